@@ -19,8 +19,10 @@
 
      Override before the implementation is included, if you like:
          SK_ASSERT(x)            default assert(x) from <assert.h>
-         SK_SQRTF, SK_FABSF, SK_FLOORF, SK_CEILF, SK_LOG2F, SK_POWF, SK_TANF,
-         SK_ATANF, SK_SINF, SK_COSF, SK_ACOSF  default the <math.h> functions
+         SK_SQRTF, SK_FABSF, SK_FLOORF, SK_CEILF       float math (hot loops)
+         SK_SQRT, SK_FABS, SK_FLOOR, SK_CEIL, SK_LOG2, SK_POW, SK_TAN, SK_ATAN,
+         SK_COS, SK_FREXP, SK_LDEXP                    double math
+                                 all default to the <math.h> functions
          SKDEF                   default extern (static with SHADOWKIT_STATIC)
 
    CONVENTIONS
@@ -80,7 +82,11 @@
 
 #ifndef SKDEF
 #ifdef SHADOWKIT_STATIC
+#if defined(__GNUC__) || defined(__clang__)
+#define SKDEF static __attribute__((unused))
+#else
 #define SKDEF static
+#endif
 #else
 #define SKDEF extern
 #endif
@@ -465,3 +471,1896 @@ SKDEF int sk_rmsm_page_requests(const sk_vec3 *samples, int count, int virtual_r
 }
 #endif
 #endif /* SHADOWKIT_H */
+
+/* =========================================================================
+   IMPLEMENTATION
+   ========================================================================= */
+#ifdef SHADOWKIT_IMPLEMENTATION
+#ifndef SHADOWKIT_IMPLEMENTATION_INCLUDED
+#define SHADOWKIT_IMPLEMENTATION_INCLUDED
+
+#include <math.h>
+#include <string.h>
+
+#ifndef SK_ASSERT
+#include <assert.h>
+#define SK_ASSERT(x) assert(x)
+#endif
+#ifndef SK_SQRTF
+#define SK_SQRTF(x) sqrtf(x)
+#endif
+#ifndef SK_FABSF
+#define SK_FABSF(x) fabsf(x)
+#endif
+#ifndef SK_FLOORF
+#define SK_FLOORF(x) floorf(x)
+#endif
+#ifndef SK_CEILF
+#define SK_CEILF(x) ceilf(x)
+#endif
+#ifndef SK_SQRT
+#define SK_SQRT(x) sqrt(x)
+#endif
+#ifndef SK_FABS
+#define SK_FABS(x) fabs(x)
+#endif
+#ifndef SK_FLOOR
+#define SK_FLOOR(x) floor(x)
+#endif
+#ifndef SK_CEIL
+#define SK_CEIL(x) ceil(x)
+#endif
+#ifndef SK_LOG2
+#define SK_LOG2(x) (log(x) * 1.4426950408889634)
+#endif
+#ifndef SK_POW
+#define SK_POW(x, y) pow(x, y)
+#endif
+#ifndef SK_TAN
+#define SK_TAN(x) tan(x)
+#endif
+#ifndef SK_ATAN
+#define SK_ATAN(x) atan(x)
+#endif
+#ifndef SK_COS
+#define SK_COS(x) cos(x)
+#endif
+#ifndef SK_FREXP
+#define SK_FREXP(x, e) frexp(x, e)
+#endif
+#ifndef SK_LDEXP
+#define SK_LDEXP(x, e) ldexp(x, e)
+#endif
+
+#define SK__INF ((float)HUGE_VAL)
+#define SK__PI 3.14159265358979323846
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- 1. Core math ------------------------------------------------------ */
+
+/* Bit test, so it keeps working under -ffast-math. */
+static int sk__finite(float x)
+{
+    unsigned int u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7f800000u) != 0x7f800000u;
+}
+static int sk__finite_d(double x) { return x == x && x - x == 0.0; }
+static int sk__v3_finite(sk_vec3 v) { return sk__finite(v.x) && sk__finite(v.y) && sk__finite(v.z); }
+static int sk__mat_finite(const sk_mat4 *m)
+{
+    int i;
+    for (i = 0; i < 16; i++) if (!sk__finite(m->m[i])) return 0;
+    return 1;
+}
+static int sk__aabb_valid(const sk_aabb *b)
+{
+    return sk__v3_finite(b->min) && sk__v3_finite(b->max) &&
+           b->min.x <= b->max.x && b->min.y <= b->max.y && b->min.z <= b->max.z;
+}
+static sk_vec3 sk__v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
+static sk_vec3 sk__add(sk_vec3 a, sk_vec3 b) { return sk__v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static sk_vec3 sk__sub(sk_vec3 a, sk_vec3 b) { return sk__v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static sk_vec3 sk__scale(sk_vec3 a, float s) { return sk__v3(a.x * s, a.y * s, a.z * s); }
+static float sk__dot(sk_vec3 a, sk_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static sk_vec3 sk__cross(sk_vec3 a, sk_vec3 b)
+{
+    return sk__v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static float sk__len(sk_vec3 a) { return (float)SK_SQRT((double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z); }
+/* zero vector stays zero */
+static sk_vec3 sk__normalize(sk_vec3 a)
+{
+    float l = sk__len(a);
+    return l > 0.0f ? sk__scale(a, 1.0f / l) : a;
+}
+static sk_vec3 sk__lerp3(sk_vec3 a, sk_vec3 b, float t)
+{
+    return sk__v3(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t);
+}
+static float sk__maxabs3(sk_vec3 a)
+{
+    float m = SK_FABSF(a.x);
+    if (SK_FABSF(a.y) > m) m = SK_FABSF(a.y);
+    if (SK_FABSF(a.z) > m) m = SK_FABSF(a.z);
+    return m;
+}
+static sk_vec3 sk__aabb_corner(const sk_aabb *b, int i)
+{
+    return sk__v3((i & 1) ? b->max.x : b->min.x, (i & 2) ? b->max.y : b->min.y,
+                  (i & 4) ? b->max.z : b->min.z);
+}
+/* Matrix whose rows are the axes x, y, z, translated so that `origin` maps to 0. */
+static sk_mat4 sk__basis_view(sk_vec3 x, sk_vec3 y, sk_vec3 z, sk_vec3 origin)
+{
+    sk_mat4 r;
+    memset(&r, 0, sizeof r);
+    r.m[0] = x.x; r.m[4] = x.y; r.m[8] = x.z;
+    r.m[1] = y.x; r.m[5] = y.y; r.m[9] = y.z;
+    r.m[2] = z.x; r.m[6] = z.y; r.m[10] = z.z;
+    r.m[12] = -sk__dot(x, origin);
+    r.m[13] = -sk__dot(y, origin);
+    r.m[14] = -sk__dot(z, origin);
+    r.m[15] = 1.0f;
+    return r;
+}
+/* Affine part only (no w): for view matrices. */
+static sk_vec3 sk__xform_affine(const sk_mat4 *m, sk_vec3 p)
+{
+    return sk__v3(m->m[0] * p.x + m->m[4] * p.y + m->m[8] * p.z + m->m[12],
+                  m->m[1] * p.x + m->m[5] * p.y + m->m[9] * p.z + m->m[13],
+                  m->m[2] * p.x + m->m[6] * p.y + m->m[10] * p.z + m->m[14]);
+}
+
+SKDEF const char *sk_result_string(sk_result r)
+{
+    switch (r) {
+    case SK_OK: return "ok";
+    case SK_ERR_INVALID_ARG: return "invalid argument";
+    case SK_ERR_DEGENERATE: return "degenerate configuration";
+    case SK_ERR_CAPACITY: return "capacity exceeded";
+    }
+    return "unknown result";
+}
+
+SKDEF sk_mat4 sk_mat4_identity(void)
+{
+    sk_mat4 r;
+    memset(&r, 0, sizeof r);
+    r.m[0] = r.m[5] = r.m[10] = r.m[15] = 1.0f;
+    return r;
+}
+
+SKDEF sk_mat4 sk_mat4_mul(sk_mat4 a, sk_mat4 b)
+{
+    sk_mat4 r;
+    int c, row;
+    for (c = 0; c < 4; c++)
+        for (row = 0; row < 4; row++)
+            r.m[c * 4 + row] = a.m[row] * b.m[c * 4] + a.m[4 + row] * b.m[c * 4 + 1] +
+                               a.m[8 + row] * b.m[c * 4 + 2] + a.m[12 + row] * b.m[c * 4 + 3];
+    return r;
+}
+
+/* Cofactor expansion in double precision. */
+SKDEF int sk_mat4_inverse(sk_mat4 mat, sk_mat4 *out)
+{
+    double m[16], inv[16], det;
+    int i;
+    if (!out || !sk__mat_finite(&mat)) return 0;
+    for (i = 0; i < 16; i++) m[i] = mat.m[i];
+    inv[0] = m[5]*m[10]*m[15] - m[5]*m[11]*m[14] - m[9]*m[6]*m[15] + m[9]*m[7]*m[14] + m[13]*m[6]*m[11] - m[13]*m[7]*m[10];
+    inv[4] = -m[4]*m[10]*m[15] + m[4]*m[11]*m[14] + m[8]*m[6]*m[15] - m[8]*m[7]*m[14] - m[12]*m[6]*m[11] + m[12]*m[7]*m[10];
+    inv[8] = m[4]*m[9]*m[15] - m[4]*m[11]*m[13] - m[8]*m[5]*m[15] + m[8]*m[7]*m[13] + m[12]*m[5]*m[11] - m[12]*m[7]*m[9];
+    inv[12] = -m[4]*m[9]*m[14] + m[4]*m[10]*m[13] + m[8]*m[5]*m[14] - m[8]*m[6]*m[13] - m[12]*m[5]*m[10] + m[12]*m[6]*m[9];
+    inv[1] = -m[1]*m[10]*m[15] + m[1]*m[11]*m[14] + m[9]*m[2]*m[15] - m[9]*m[3]*m[14] - m[13]*m[2]*m[11] + m[13]*m[3]*m[10];
+    inv[5] = m[0]*m[10]*m[15] - m[0]*m[11]*m[14] - m[8]*m[2]*m[15] + m[8]*m[3]*m[14] + m[12]*m[2]*m[11] - m[12]*m[3]*m[10];
+    inv[9] = -m[0]*m[9]*m[15] + m[0]*m[11]*m[13] + m[8]*m[1]*m[15] - m[8]*m[3]*m[13] - m[12]*m[1]*m[11] + m[12]*m[3]*m[9];
+    inv[13] = m[0]*m[9]*m[14] - m[0]*m[10]*m[13] - m[8]*m[1]*m[14] + m[8]*m[2]*m[13] + m[12]*m[1]*m[10] - m[12]*m[2]*m[9];
+    inv[2] = m[1]*m[6]*m[15] - m[1]*m[7]*m[14] - m[5]*m[2]*m[15] + m[5]*m[3]*m[14] + m[13]*m[2]*m[7] - m[13]*m[3]*m[6];
+    inv[6] = -m[0]*m[6]*m[15] + m[0]*m[7]*m[14] + m[4]*m[2]*m[15] - m[4]*m[3]*m[14] - m[12]*m[2]*m[7] + m[12]*m[3]*m[6];
+    inv[10] = m[0]*m[5]*m[15] - m[0]*m[7]*m[13] - m[4]*m[1]*m[15] + m[4]*m[3]*m[13] + m[12]*m[1]*m[7] - m[12]*m[3]*m[5];
+    inv[14] = -m[0]*m[5]*m[14] + m[0]*m[6]*m[13] + m[4]*m[1]*m[14] - m[4]*m[2]*m[13] - m[12]*m[1]*m[6] + m[12]*m[2]*m[5];
+    inv[3] = -m[1]*m[6]*m[11] + m[1]*m[7]*m[10] + m[5]*m[2]*m[11] - m[5]*m[3]*m[10] - m[9]*m[2]*m[7] + m[9]*m[3]*m[6];
+    inv[7] = m[0]*m[6]*m[11] - m[0]*m[7]*m[10] - m[4]*m[2]*m[11] + m[4]*m[3]*m[10] + m[8]*m[2]*m[7] - m[8]*m[3]*m[6];
+    inv[11] = -m[0]*m[5]*m[11] + m[0]*m[7]*m[9] + m[4]*m[1]*m[11] - m[4]*m[3]*m[9] - m[8]*m[1]*m[7] + m[8]*m[3]*m[5];
+    inv[15] = m[0]*m[5]*m[10] - m[0]*m[6]*m[9] - m[4]*m[1]*m[10] + m[4]*m[2]*m[9] + m[8]*m[1]*m[6] - m[8]*m[2]*m[5];
+    det = m[0] * inv[0] + m[1] * inv[4] + m[2] * inv[8] + m[3] * inv[12];
+    if (det == 0.0 || !sk__finite_d(det)) return 0;
+    det = 1.0 / det;
+    {
+        sk_mat4 r;
+        for (i = 0; i < 16; i++) {
+            r.m[i] = (float)(inv[i] * det);
+            if (!sk__finite(r.m[i])) return 0;
+        }
+        *out = r;
+    }
+    return 1;
+}
+
+SKDEF sk_mat4 sk_mat4_perspective(float fovy, float aspect, float zn, float zf)
+{
+    sk_mat4 r;
+    double f;
+    if (!sk__finite(fovy) || !sk__finite(aspect) || !sk__finite(zn) || !sk__finite(zf) ||
+        !(fovy > 0.0f) || !(fovy < SK__PI) || !(aspect > 0.0f) || !(zn > 0.0f) || !(zf > zn))
+        return sk_mat4_identity();
+    f = 1.0 / SK_TAN(0.5 * (double)fovy);
+    memset(&r, 0, sizeof r);
+    r.m[0] = (float)(f / aspect);
+    r.m[5] = (float)f;
+    r.m[10] = (float)(((double)zf + zn) / ((double)zn - zf));
+    r.m[11] = -1.0f;
+    r.m[14] = (float)(2.0 * zf * zn / ((double)zn - zf));
+    if (!sk__mat_finite(&r)) return sk_mat4_identity();
+    return r;
+}
+
+SKDEF sk_mat4 sk_mat4_ortho(float l, float r, float b, float t, float zn, float zf)
+{
+    sk_mat4 m;
+    if (!sk__finite(l) || !sk__finite(r) || !sk__finite(b) || !sk__finite(t) ||
+        !sk__finite(zn) || !sk__finite(zf) || r == l || t == b || zf == zn)
+        return sk_mat4_identity();
+    memset(&m, 0, sizeof m);
+    m.m[0] = (float)(2.0 / ((double)r - l));
+    m.m[5] = (float)(2.0 / ((double)t - b));
+    m.m[10] = (float)(-2.0 / ((double)zf - zn));
+    m.m[12] = (float)(-((double)r + l) / ((double)r - l));
+    m.m[13] = (float)(-((double)t + b) / ((double)t - b));
+    m.m[14] = (float)(-((double)zf + zn) / ((double)zf - zn));
+    m.m[15] = 1.0f;
+    if (!sk__mat_finite(&m)) return sk_mat4_identity();
+    return m;
+}
+
+/* The world axis least aligned with d. */
+static sk_vec3 sk__least_aligned_axis(sk_vec3 d)
+{
+    float ax = SK_FABSF(d.x), ay = SK_FABSF(d.y), az = SK_FABSF(d.z);
+    if (ax <= ay && ax <= az) return sk__v3(1, 0, 0);
+    if (ay <= az) return sk__v3(0, 1, 0);
+    return sk__v3(0, 0, 1);
+}
+
+SKDEF sk_mat4 sk_mat4_look_at(sk_vec3 eye, sk_vec3 target, sk_vec3 up)
+{
+    sk_vec3 f, s, u;
+    if (!sk__v3_finite(eye) || !sk__v3_finite(target) || !sk__v3_finite(up))
+        return sk_mat4_identity();
+    f = sk__sub(target, eye);
+    if (sk__len(f) == 0.0f) return sk_mat4_identity();
+    f = sk__normalize(f);
+    s = sk__cross(f, up);
+    if (!(sk__len(s) > 1e-6f * (sk__len(up) > 0.0f ? sk__len(up) : 1.0f)))
+        s = sk__cross(f, sk__least_aligned_axis(f));
+    s = sk__normalize(s);
+    u = sk__cross(s, f);
+    return sk__basis_view(s, u, sk__scale(f, -1.0f), eye);
+}
+
+SKDEF sk_vec4 sk_mat4_transform_vec4(sk_mat4 m, sk_vec4 p)
+{
+    sk_vec4 r;
+    r.x = m.m[0] * p.x + m.m[4] * p.y + m.m[8] * p.z + m.m[12] * p.w;
+    r.y = m.m[1] * p.x + m.m[5] * p.y + m.m[9] * p.z + m.m[13] * p.w;
+    r.z = m.m[2] * p.x + m.m[6] * p.y + m.m[10] * p.z + m.m[14] * p.w;
+    r.w = m.m[3] * p.x + m.m[7] * p.y + m.m[11] * p.z + m.m[15] * p.w;
+    return r;
+}
+
+SKDEF sk_vec3 sk_mat4_transform_point(sk_mat4 m, sk_vec3 p)
+{
+    sk_vec4 h, r;
+    h.x = p.x; h.y = p.y; h.z = p.z; h.w = 1.0f;
+    r = sk_mat4_transform_vec4(m, h);
+    if (r.w != 0.0f) { float iw = 1.0f / r.w; return sk__v3(r.x * iw, r.y * iw, r.z * iw); }
+    return sk__v3(r.x, r.y, r.z);
+}
+
+static sk_plane sk__plane_normalized(double a, double b, double c, double d)
+{
+    sk_plane p;
+    double l = SK_SQRT(a * a + b * b + c * c);
+    if (!(l > 0.0)) l = 1.0;
+    p.n = sk__v3((float)(a / l), (float)(b / l), (float)(c / l));
+    p.d = (float)(d / l);
+    return p;
+}
+
+SKDEF sk_frustum sk_frustum_from_matrix(sk_mat4 vp)
+{
+    sk_frustum f;
+    sk_mat4 inv;
+    const float *m = vp.m;
+    int i, k;
+    memset(&f, 0, sizeof f);
+    if (!sk_mat4_inverse(vp, &inv)) return f;
+    for (i = 0; i < 8; i++) {
+        sk_vec4 c, r;
+        c.x = (i & 1) ? 1.0f : -1.0f; c.y = (i & 2) ? 1.0f : -1.0f;
+        c.z = (i & 4) ? 1.0f : -1.0f; c.w = 1.0f;
+        r = sk_mat4_transform_vec4(inv, c);
+        if (!(r.w != 0.0f)) { memset(&f, 0, sizeof f); return f; }
+        f.corners[i] = sk__v3(r.x / r.w, r.y / r.w, r.z / r.w);
+        if (!sk__v3_finite(f.corners[i])) { memset(&f, 0, sizeof f); return f; }
+    }
+    /* Gribb & Hartmann: plane = row3 +/- row k; inside has w +/- x_k >= 0 */
+    for (k = 0; k < 3; k++) {
+        double r3[4], rk[4];
+        for (i = 0; i < 4; i++) { r3[i] = m[i * 4 + 3]; rk[i] = m[i * 4 + k]; }
+        f.planes[2 * k] = sk__plane_normalized(r3[0] + rk[0], r3[1] + rk[1], r3[2] + rk[2], r3[3] + rk[3]);
+        f.planes[2 * k + 1] = sk__plane_normalized(r3[0] - rk[0], r3[1] - rk[1], r3[2] - rk[2], r3[3] - rk[3]);
+    }
+    return f;
+}
+
+/* Corner indices of the 6 faces in cyclic order, same plane order as
+   sk_frustum: left, right, bottom, top, near, far. */
+static const unsigned char sk__face_quads[6][4] = {
+    {0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}
+};
+/* 12 edges as corner pairs differing in one index bit. */
+static const unsigned char sk__edges[12][2] = {
+    {0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}
+};
+
+static int sk__frustum_is_zero(const sk_frustum *f)
+{
+    int i;
+    for (i = 0; i < 6; i++)
+        if (f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f) return 1;
+    for (i = 0; i < 8; i++) if (!sk__v3_finite(f->corners[i])) return 1;
+    return 0;
+}
+
+SKDEF sk_result sk_frustum_from_corners(const sk_vec3 corners[8], sk_frustum *out)
+{
+    sk_frustum f;
+    double cx = 0, cy = 0, cz = 0, scale = 0;
+    int i, k;
+    if (!corners || !out) return SK_ERR_INVALID_ARG;
+    for (i = 0; i < 8; i++) {
+        if (!sk__v3_finite(corners[i])) return SK_ERR_INVALID_ARG;
+        f.corners[i] = corners[i];
+        cx += corners[i].x; cy += corners[i].y; cz += corners[i].z;
+    }
+    cx /= 8; cy /= 8; cz /= 8;
+    for (i = 0; i < 8; i++) {
+        double dx = corners[i].x - cx, dy = corners[i].y - cy, dz = corners[i].z - cz;
+        double d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 > scale) scale = d2;
+    }
+    if (!(scale > 0.0)) return SK_ERR_DEGENERATE;
+    for (k = 0; k < 6; k++) {
+        /* Newell's normal of the (possibly non-planar) quad */
+        double nx = 0, ny = 0, nz = 0, px = 0, py = 0, pz = 0, d;
+        for (i = 0; i < 4; i++) {
+            sk_vec3 a = corners[sk__face_quads[k][i]], b = corners[sk__face_quads[k][(i + 1) & 3]];
+            nx += ((double)a.y - b.y) * ((double)a.z + b.z);
+            ny += ((double)a.z - b.z) * ((double)a.x + b.x);
+            nz += ((double)a.x - b.x) * ((double)a.y + b.y);
+            px += a.x; py += a.y; pz += a.z;
+        }
+        px /= 4; py /= 4; pz /= 4;
+        if (!(nx * nx + ny * ny + nz * nz > 1e-20 * scale * scale)) return SK_ERR_DEGENERATE;
+        d = -(nx * px + ny * py + nz * pz);
+        if (nx * cx + ny * cy + nz * cz + d < 0.0) { nx = -nx; ny = -ny; nz = -nz; d = -d; }
+        f.planes[k] = sk__plane_normalized(nx, ny, nz, d);
+    }
+    *out = f;
+    return SK_OK;
+}
+
+SKDEF sk_result sk_frustum_from_aabb(sk_aabb b, sk_frustum *out)
+{
+    int i;
+    if (!out || !sk__aabb_valid(&b)) return SK_ERR_INVALID_ARG;
+    for (i = 0; i < 8; i++) out->corners[i] = sk__aabb_corner(&b, i);
+    out->planes[0].n = sk__v3(1, 0, 0);  out->planes[0].d = -b.min.x;
+    out->planes[1].n = sk__v3(-1, 0, 0); out->planes[1].d = b.max.x;
+    out->planes[2].n = sk__v3(0, 1, 0);  out->planes[2].d = -b.min.y;
+    out->planes[3].n = sk__v3(0, -1, 0); out->planes[3].d = b.max.y;
+    out->planes[4].n = sk__v3(0, 0, 1);  out->planes[4].d = -b.min.z;
+    out->planes[5].n = sk__v3(0, 0, -1); out->planes[5].d = b.max.z;
+    return SK_OK;
+}
+
+static float sk__plane_dist(const sk_plane *pl, sk_vec3 p) { return sk__dot(pl->n, p) + pl->d; }
+
+SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
+{
+    int i;
+    if (!f || !sk__v3_finite(p)) return 0;
+    for (i = 0; i < 6; i++) {
+        float tol = 1e-5f * (1.0f + sk__maxabs3(p) + SK_FABSF(f->planes[i].d));
+        if (sk__plane_dist(&f->planes[i], p) < -tol) return 0;
+    }
+    return 1;
+}
+
+/* Sutherland-Hodgman: clip a convex polygon by dot(n,p)+d >= 0.
+   in and out may not alias; returns the new count (<= n + 1). */
+static int sk__clip_poly(const sk_vec3 *in, int n, const sk_plane *pl, sk_vec3 *out)
+{
+    int i, m = 0;
+    for (i = 0; i < n; i++) {
+        sk_vec3 a = in[i], b = in[(i + 1) % n];
+        float da = sk__plane_dist(pl, a), db = sk__plane_dist(pl, b);
+        if (da >= 0.0f) out[m++] = a;
+        if ((da >= 0.0f) != (db >= 0.0f)) out[m++] = sk__lerp3(a, b, da / (da - db));
+    }
+    return m;
+}
+
+SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap)
+{
+    sk_frustum bf;
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    int count = 0, poly, i, k, j;
+    float scale = 0.0f;
+    if (!f || !out || cap < 0 || sk__frustum_is_zero(f) || !sk__aabb_valid(&box))
+        return -(int)SK_ERR_INVALID_ARG;
+    sk_frustum_from_aabb(box, &bf);
+    for (i = 0; i < 8; i++) {
+        float a = sk__maxabs3(f->corners[i]), b = sk__maxabs3(bf.corners[i]);
+        if (a > scale) scale = a;
+        if (b > scale) scale = b;
+    }
+    /* Every face of the intersection lies in a face of one of the two
+       bodies: clip each body's faces by the other's planes, keep vertices. */
+    for (poly = 0; poly < 12; poly++) {
+        const sk_frustum *src = poly < 6 ? f : &bf, *clip = poly < 6 ? &bf : f;
+        sk_vec3 a[12], b[12];
+        int n = 4;
+        for (i = 0; i < 4; i++) a[i] = src->corners[sk__face_quads[poly % 6][i]];
+        for (k = 0; k < 6 && n > 0; k++) {
+            n = sk__clip_poly(a, n, &clip->planes[k], b);
+            for (i = 0; i < n; i++) a[i] = b[i];
+        }
+        for (i = 0; i < n; i++) {
+            float tol = 1e-6f * (1.0f + scale);
+            for (j = 0; j < count; j++)
+                if (SK_FABSF(pts[j].x - a[i].x) <= tol && SK_FABSF(pts[j].y - a[i].y) <= tol &&
+                    SK_FABSF(pts[j].z - a[i].z) <= tol) break;
+            if (j == count) {
+                if (count == SK_CLIP_MAX_POINTS) break;
+                pts[count++] = a[i];
+            }
+        }
+    }
+    if (count > cap) return -(int)SK_ERR_CAPACITY;
+    for (i = 0; i < count; i++) out[i] = pts[i];
+    return count;
+}
+
+/* ---- 2. Aliasing analysis (seed 002) ----------------------------------- */
+
+/* d = d_s (r_s / r_i) (N.V / N.L), the slides' aliasing error */
+SKDEF float sk_aliasing_error(float ds, float rs, float ri, float n_dot_v, float n_dot_l)
+{
+    double d;
+    if (ds != ds || rs != rs || ri != ri || n_dot_v != n_dot_v || n_dot_l != n_dot_l) return SK__INF;
+    if (!(n_dot_l > 0.0f) || !(ri > 0.0f) || ds < 0.0f || rs < 0.0f) return SK__INF;
+    if (n_dot_v < 0.0f) n_dot_v = 0.0f;
+    d = (double)ds * ((double)rs / ri) * ((double)n_dot_v / n_dot_l);
+    if (d != d || d > 3.0e38) return SK__INF;
+    return (float)d;
+}
+
+/* l = log2(sqrt(A)), A = |dX x dY| (RMSM phase one) */
+SKDEF float sk_rmsm_lod(sk_vec2 dx, sk_vec2 dy)
+{
+    double a = SK_FABS((double)dx.x * dy.y - (double)dx.y * dy.x);
+    if (a != a || a == 0.0) return -SK__INF;
+    if (!sk__finite_d(a)) return SK__INF;
+    return (float)(0.5 * SK_LOG2(a));
+}
+
+/* ---- 3. Crop matrices and parallel splits (seeds 000, 002) ------------- */
+
+SKDEF sk_mat4 sk_crop_matrix(sk_rect r, float zmin, float zmax)
+{
+    sk_mat4 m = sk_mat4_identity();
+    if (sk__finite(r.x0) && sk__finite(r.x1) && r.x1 > r.x0) {
+        m.m[0] = (float)(2.0 / ((double)r.x1 - r.x0));
+        m.m[12] = (float)(-((double)r.x1 + r.x0) / ((double)r.x1 - r.x0));
+    }
+    if (sk__finite(r.y0) && sk__finite(r.y1) && r.y1 > r.y0) {
+        m.m[5] = (float)(2.0 / ((double)r.y1 - r.y0));
+        m.m[13] = (float)(-((double)r.y1 + r.y0) / ((double)r.y1 - r.y0));
+    }
+    if (sk__finite(zmin) && sk__finite(zmax) && zmax > zmin) {
+        m.m[10] = (float)(2.0 / ((double)zmax - zmin));
+        m.m[14] = (float)(-((double)zmax + zmin) / ((double)zmax - zmin));
+    }
+    if (!sk__mat_finite(&m)) return sk_mat4_identity();
+    return m;
+}
+
+/* Practical split scheme (PSSM, Zhang et al.; seed 002):
+   C_i = lambda C_i^log + (1 - lambda) C_i^uni */
+SKDEF sk_result sk_pssm_splits(float zn, float zf, int m, float lambda, float *out)
+{
+    int i;
+    if (!out || !sk__finite(zn) || !sk__finite(zf) || !sk__finite(lambda) || m < 1 ||
+        m > SK_MAX_SPLITS || !(lambda >= 0.0f && lambda <= 1.0f) || !(zn >= 0.0f) || !(zf > zn) ||
+        (lambda > 0.0f && !(zn > 0.0f)))
+        return SK_ERR_INVALID_ARG;
+    out[0] = zn;
+    for (i = 1; i < m; i++) {
+        double f = (double)i / m;
+        double c_uni = zn + ((double)zf - zn) * f;
+        double c_log = lambda > 0.0f ? zn * SK_POW((double)zf / zn, f) : 0.0;
+        out[i] = (float)(lambda * c_log + (1.0 - lambda) * c_uni);
+    }
+    out[m] = zf;
+    return SK_OK;
+}
+
+SKDEF sk_result sk_frustum_slice(const sk_frustum *view, float zn, float zf, float d0, float d1,
+                                 sk_frustum *out)
+{
+    sk_vec3 c[8];
+    float t0, t1;
+    int i;
+    if (!view || !out || !sk__finite(zn) || !sk__finite(zf) || !sk__finite(d0) || !sk__finite(d1) ||
+        !(zn >= 0.0f) || !(zf > zn) || !(d0 >= zn) || !(d1 > d0) || !(d1 <= zf) || sk__frustum_is_zero(view))
+        return SK_ERR_INVALID_ARG;
+    t0 = (float)(((double)d0 - zn) / ((double)zf - zn));
+    t1 = (float)(((double)d1 - zn) / ((double)zf - zn));
+    for (i = 0; i < 8; i++)
+        c[i] = sk__lerp3(view->corners[i & 3], view->corners[(i & 3) + 4], (i & 4) ? t1 : t0);
+    return sk_frustum_from_corners(c, out);
+}
+
+SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f)
+{
+    sk_sphere s;
+    double cn[3] = {0, 0, 0}, cf[3] = {0, 0, 0}, a2 = 0, b2 = 0, l2 = 0, t, c[3], r2 = 0, r;
+    int i, k, e;
+    s.c = sk__v3(0, 0, 0); s.r = 0.0f;
+    if (!f) return s;
+    for (i = 0; i < 8; i++) if (!sk__v3_finite(f->corners[i])) return s;
+    for (i = 0; i < 4; i++) {
+        cn[0] += f->corners[i].x / 4.0; cn[1] += f->corners[i].y / 4.0; cn[2] += f->corners[i].z / 4.0;
+        cf[0] += f->corners[i + 4].x / 4.0; cf[1] += f->corners[i + 4].y / 4.0; cf[2] += f->corners[i + 4].z / 4.0;
+    }
+    for (i = 0; i < 4; i++) {
+        double da = 0, db = 0;
+        const float *pn = &f->corners[i].x, *pf = &f->corners[i + 4].x;
+        for (k = 0; k < 3; k++) {
+            da += (pn[k] - cn[k]) * (pn[k] - cn[k]);
+            db += (pf[k] - cf[k]) * (pf[k] - cf[k]);
+        }
+        if (da > a2) a2 = da;
+        if (db > b2) b2 = db;
+    }
+    for (k = 0; k < 3; k++) l2 += (cf[k] - cn[k]) * (cf[k] - cn[k]);
+    /* centre on the axis where the farthest near and far corners are equidistant */
+    t = l2 > 0.0 ? (b2 - a2 + l2) / (2.0 * l2) : 0.5;
+    if (t < 0.0) t = 0.0;
+    if (t > 1.0) t = 1.0;
+    for (k = 0; k < 3; k++) c[k] = cn[k] + t * (cf[k] - cn[k]);
+    for (i = 0; i < 8; i++) {
+        const float *p = &f->corners[i].x;
+        double d2 = 0;
+        for (k = 0; k < 3; k++) d2 += (p[k] - c[k]) * (p[k] - c[k]);
+        if (d2 > r2) r2 = d2;
+    }
+    r = SK_SQRT(r2);
+    if (r > 0.0) {
+        double q;
+        SK_FREXP(r, &e);
+        q = SK_LDEXP(1.0, e - 10);
+        r = SK_CEIL(r / q) * q;
+    }
+    s.c = sk__v3((float)c[0], (float)c[1], (float)c[2]);
+    s.r = (float)r;
+    if ((double)s.r < r) s.r = (float)(r * (1.0 + 1e-7));
+    return s;
+}
+
+SKDEF sk_mat4 sk_light_view_directional(sk_vec3 light_dir)
+{
+    sk_vec3 d = sk__normalize(light_dir), up;
+    if (!sk__v3_finite(light_dir) || sk__len(light_dir) == 0.0f) d = sk__v3(0, -1, 0);
+    /* fixed world up, never the camera's: a stable light-space texel grid */
+    up = SK_FABSF(d.z) < 0.9f ? sk__v3(0, 0, 1) : sk__v3(0, 1, 0);
+    return sk_mat4_look_at(sk__v3(0, 0, 0), d, up);
+}
+
+/* Orthographic projection of the light-view box [lo, hi]: x, y onto [-1,1],
+   larger z (nearer the light: the view looks down -z) onto depth -1. */
+static sk_mat4 sk__ortho_box(double xlo, double xhi, double ylo, double yhi, double zlo, double zhi)
+{
+    double e = 1e-6 * (1.0 + SK_FABS(xlo) + SK_FABS(xhi));
+    if (xhi - xlo < e) { xlo -= e; xhi += e; }
+    e = 1e-6 * (1.0 + SK_FABS(ylo) + SK_FABS(yhi));
+    if (yhi - ylo < e) { ylo -= e; yhi += e; }
+    e = 1e-6 * (1.0 + SK_FABS(zlo) + SK_FABS(zhi));
+    if (zhi - zlo < e) { zlo -= e; zhi += e; }
+    return sk_mat4_ortho((float)xlo, (float)xhi, (float)ylo, (float)yhi, (float)-zhi, (float)-zlo);
+}
+
+/* Largest light-view z (nearest the light) of the casters' corners. */
+static double sk__casters_zmax(const sk_mat4 *view, const sk_aabb *casters, double z)
+{
+    int i;
+    if (!casters || !sk__aabb_valid(casters)) return z;
+    for (i = 0; i < 8; i++) {
+        double cz = sk__xform_affine(view, sk__aabb_corner(casters, i)).z;
+        if (cz > z) z = cz;
+    }
+    return z;
+}
+
+SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
+                             const sk_aabb *casters, sk_mat4 *out_proj)
+{
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    int i, k;
+    if (!pts || count < 1 || !out_proj || !sk__mat_finite(&light_view) ||
+        (casters && !sk__aabb_valid(casters)))
+        return SK_ERR_INVALID_ARG;
+    for (i = 0; i < count; i++) {
+        sk_vec3 p;
+        if (!sk__v3_finite(pts[i])) return SK_ERR_INVALID_ARG;
+        p = sk__xform_affine(&light_view, pts[i]);
+        for (k = 0; k < 3; k++) {
+            double v = (&p.x)[k];
+            if (v < lo[k]) lo[k] = v;
+            if (v > hi[k]) hi[k] = v;
+        }
+    }
+    hi[2] = sk__casters_zmax(&light_view, casters, hi[2]);
+    *out_proj = sk__ortho_box(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
+    return SK_OK;
+}
+
+SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
+                               const sk_aabb *casters, sk_mat4 *out_proj)
+{
+    sk_vec3 c;
+    double texel, x0, y0, ext, zhi;
+    if (!out_proj || res < 2 || !sk__v3_finite(s.c) || !sk__finite(s.r) || !(s.r > 0.0f) ||
+        !sk__mat_finite(&light_view) || (casters && !sk__aabb_valid(casters)))
+        return SK_ERR_INVALID_ARG;
+    c = sk__xform_affine(&light_view, s.c);
+    texel = 2.0 * s.r / (res - 1);
+    /* snap the crop origin to whole texels of a grid fixed in light space */
+    x0 = SK_FLOOR(((double)c.x - s.r) / texel) * texel;
+    y0 = SK_FLOOR(((double)c.y - s.r) / texel) * texel;
+    ext = texel * res;
+    zhi = sk__casters_zmax(&light_view, casters, (double)c.z + s.r);
+    *out_proj = sk_mat4_ortho((float)x0, (float)(x0 + ext), (float)y0, (float)(y0 + ext),
+                              (float)-zhi, (float)(-(double)c.z + s.r));
+    return SK_OK;
+}
+
+/* ---- 4. PSM and LiSPSM (seed 002) -------------------------------------- */
+
+/* Off-centre perspective from `eye` looking along `dir`, fitted around the
+   points (all must lie in front). Returns 0 if a point is not in front. */
+static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int n,
+                               const sk_vec3 *depth_pts, int nd, sk_mat4 *out)
+{
+    sk_mat4 view = sk_mat4_look_at(eye, sk__add(eye, dir), sk__least_aligned_axis(dir));
+    double l = 1e300, r = -1e300, b = 1e300, t = -1e300, zn = 1e300, zf = -1e300;
+    int i;
+    sk_mat4 p;
+    for (i = 0; i < n + nd; i++) {
+        sk_vec3 q = sk__xform_affine(&view, i < n ? pts[i] : depth_pts[i - n]);
+        double depth = -(double)q.z;
+        if (!(depth > 1e-7 * (1.0 + sk__maxabs3(eye)))) return 0;
+        if (i < n) {
+            double x = q.x / depth, y = q.y / depth;
+            if (x < l) l = x;
+            if (x > r) r = x;
+            if (y < b) b = y;
+            if (y > t) t = y;
+        }
+        if (depth < zn) zn = depth;
+        if (depth > zf) zf = depth;
+    }
+    if (!(r > l)) { l -= 1e-6; r += 1e-6; }
+    if (!(t > b)) { b -= 1e-6; t += 1e-6; }
+    zn *= 0.999;
+    zf *= 1.001;
+    memset(&p, 0, sizeof p);
+    p.m[0] = (float)(2.0 / (r - l));
+    p.m[8] = (float)((r + l) / (r - l));
+    p.m[5] = (float)(2.0 / (t - b));
+    p.m[9] = (float)((t + b) / (t - b));
+    p.m[10] = (float)(-(zf + zn) / (zf - zn));
+    p.m[14] = (float)(-2.0 * zf * zn / (zf - zn));
+    p.m[11] = -1.0f;
+    *out = sk_mat4_mul(p, view);
+    return sk__mat_finite(out);
+}
+
+/* Perspective shadow maps (Stamminger & Drettakis 2002; the slides' special
+   cases: lights behind the viewer invert, casters behind the camera). */
+SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
+{
+    sk_vec3 l, le, cube[8], cpts[8 * 64];
+    sk_mat4 vview, vproj, ppv, lvp;
+    sk_vec4 lh;
+    float slide = 0.0f, zf;
+    int i, nc = 0, inverted = 0, ortho = 0;
+    if (!d || !out || !sk__mat_finite(&d->cam_view) || !sk__v3_finite(d->light_dir) ||
+        sk__len(d->light_dir) == 0.0f || !sk__finite(d->fovy) || !sk__finite(d->aspect) ||
+        !sk__finite(d->zn) || !sk__finite(d->zf) || !(d->fovy > 0.0f) || !(d->fovy < SK__PI) ||
+        !(d->aspect > 0.0f) || !(d->zn > 0.0f) || !(d->zf > d->zn) || d->caster_count < 0 ||
+        (d->caster_count > 0 && !d->casters) || d->caster_count > 64)
+        return SK_ERR_INVALID_ARG;
+    for (i = 0; i < d->caster_count; i++)
+        if (!sk__aabb_valid(&d->casters[i])) return SK_ERR_INVALID_ARG;
+    /* casters behind the camera: slide the virtual camera back (Kozlov 2004) */
+    for (i = 0; i < d->caster_count; i++) {
+        int k;
+        for (k = 0; k < 8; k++) {
+            float depth = -sk__xform_affine(&d->cam_view, sk__aabb_corner(&d->casters[i], k)).z;
+            float s = d->zn - depth;
+            if (s > slide) slide = s;
+        }
+    }
+    if (slide > 0.0f) slide += 0.01f * d->zn;
+    vview = d->cam_view;
+    vview.m[14] -= slide;
+    zf = d->zf + slide;
+    vproj = sk_mat4_perspective(d->fovy, d->aspect, d->zn, zf);
+    ppv = sk_mat4_mul(vproj, vview);
+    if (!sk__mat_finite(&ppv)) return SK_ERR_DEGENERATE;
+
+    /* the light in post-perspective space: P V (-dir, 0) */
+    l = sk__normalize(sk__scale(d->light_dir, -1.0f));
+    le = sk__v3(vview.m[0] * l.x + vview.m[4] * l.y + vview.m[8] * l.z,
+                vview.m[1] * l.x + vview.m[5] * l.y + vview.m[9] * l.z,
+                vview.m[2] * l.x + vview.m[6] * l.y + vview.m[10] * l.z);
+    {
+        sk_vec4 h;
+        h.x = le.x; h.y = le.y; h.z = le.z; h.w = 0.0f;
+        lh = sk_mat4_transform_vec4(vproj, h);
+    }
+    for (i = 0; i < 8; i++)
+        cube[i] = sk__v3((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? 1.0f : -1.0f);
+    for (i = 0; i < d->caster_count; i++) {
+        int k;
+        for (k = 0; k < 8; k++) cpts[nc++] = sk_mat4_transform_point(ppv, sk__aabb_corner(&d->casters[i], k));
+    }
+    if (SK_FABSF(le.z) < 1e-4f) {
+        /* light perpendicular to the view: parallel rays in PP space too */
+        sk_vec3 dir = sk__normalize(sk__v3(-lh.x, -lh.y, -lh.z)), all[8 + 8 * 64];
+        sk_mat4 lv = sk_mat4_look_at(sk__v3(0, 0, 0), dir, sk__least_aligned_axis(dir)), lp;
+        for (i = 0; i < 8; i++) all[i] = cube[i];
+        for (i = 0; i < nc; i++) all[8 + i] = cpts[i];
+        ortho = 1;
+        if (sk_fit_ortho(all, 8 + nc, lv, NULL, &lp) != SK_OK) return SK_ERR_DEGENERATE;
+        lvp = sk_mat4_mul(lp, lv);
+        out->light_pp = dir;
+    } else {
+        /* finite point on z = (f+n)/(f-n); w < 0: the light is behind the
+           viewer and becomes a sink: same frustum, reversed depth order */
+        sk_vec3 lp = sk__v3(lh.x / lh.w, lh.y / lh.w, lh.z / lh.w), dir;
+        inverted = lh.w < 0.0f;
+        dir = sk__normalize(sk__scale(lp, -1.0f));
+        if (!sk__fit_perspective(lp, dir, cube, 8, cpts, nc, &lvp) &&
+            !sk__fit_perspective(lp, sk__v3(0, 0, -1), cube, 8, cpts, nc, &lvp))
+            return SK_ERR_DEGENERATE;
+        out->light_pp = lp;
+    }
+    out->light_view_proj = sk_mat4_mul(lvp, ppv);
+    if (!sk__mat_finite(&out->light_view_proj)) return SK_ERR_DEGENERATE;
+    out->virtual_cam_view_proj = ppv;
+    out->inverted = inverted;
+    out->compare = inverted ? SK_DEPTH_GREATER : SK_DEPTH_LESS;
+    out->orthographic = ortho;
+    out->slide = slide;
+    return SK_OK;
+}
+
+/* Light-space perspective shadow maps (Wimmer, Scherzer & Purgathofer 2004). */
+SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *out)
+{
+    sk_vec3 l, v, yax, zax, xax;
+    sk_mat4 lv;
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    double cosg, sing, depth, n;
+    int i, k;
+    if (!d || !out || !sk__v3_finite(d->eye) || !sk__v3_finite(d->view_dir) ||
+        !sk__v3_finite(d->light_dir) || sk__len(d->view_dir) == 0.0f || sk__len(d->light_dir) == 0.0f ||
+        !sk__finite(d->zn) || !(d->zn > 0.0f) || !d->body || d->body_count < 1 ||
+        !sk__finite(d->n_override) || (d->casters && !sk__aabb_valid(d->casters)))
+        return SK_ERR_INVALID_ARG;
+    for (i = 0; i < d->body_count; i++) if (!sk__v3_finite(d->body[i])) return SK_ERR_INVALID_ARG;
+    l = sk__normalize(d->light_dir);
+    v = sk__normalize(d->view_dir);
+    cosg = sk__dot(v, l);
+    if (cosg > 1.0) cosg = 1.0;
+    if (cosg < -1.0) cosg = -1.0;
+    sing = SK_SQRT(1.0 - cosg * cosg);
+    /* light space: z towards the light, y the view direction projected
+       perpendicular to the light (the warp axis), origin at the eye */
+    zax = sk__scale(l, -1.0f);
+    yax = sk__sub(v, sk__scale(l, (float)cosg));
+    if (sing < 1e-6 || sk__len(yax) < 1e-6f) {
+        sk_mat4 fixed = sk_light_view_directional(l);
+        yax = sk__v3(fixed.m[1], fixed.m[5], fixed.m[9]);
+        sing = 0.0;
+    }
+    yax = sk__normalize(yax);
+    xax = sk__normalize(sk__cross(yax, zax));
+    lv = sk__basis_view(xax, yax, zax, d->eye);
+    for (i = 0; i < d->body_count; i++) {
+        sk_vec3 p = sk__xform_affine(&lv, d->body[i]);
+        for (k = 0; k < 3; k++) {
+            if ((&p.x)[k] < lo[k]) lo[k] = (&p.x)[k];
+            if ((&p.x)[k] > hi[k]) hi[k] = (&p.x)[k];
+        }
+    }
+    hi[2] = sk__casters_zmax(&lv, d->casters, hi[2]);
+    depth = hi[1] - lo[1];
+    if (d->n_override > 0.0f) n = d->n_override;
+    else if (sing > 0.0) {
+        double zf = d->zn + depth * sing;
+        n = (d->zn + SK_SQRT((double)d->zn * zf)) / sing;   /* n_opt */
+    } else n = SK__INF;
+    out->sin_gamma = (float)sing;
+    if (!(depth > 0.0) || !sk__finite_d(n) || n > 1e4 * depth) {
+        /* uniform focused map: the limit of the warp as n -> infinity */
+        out->light_view_proj = sk_mat4_mul(sk__ortho_box(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]), lv);
+        out->n = SK__INF;
+        out->warped = 0;
+        return sk__mat_finite(&out->light_view_proj) ? SK_OK : SK_ERR_DEGENERATE;
+    }
+    {
+        /* projection centre n before the body along y; perspective along y:
+           x' = x, y' = a y + b, z' = z, w' = y (depth order along a light
+           ray, fixed x and y, is kept since w is constant there) */
+        double f = n + depth, a = (f + n) / (f - n), b = -2.0 * f * n / (f - n);
+        double wlo[3] = {1e300, 1e300, 1e300}, whi[3] = {-1e300, -1e300, -1e300};
+        sk_mat4 t = sk_mat4_identity(), w, crop;
+        t.m[13] = (float)-(lo[1] - n);
+        memset(&w, 0, sizeof w);
+        w.m[0] = 1.0f;
+        w.m[5] = (float)a;
+        w.m[13] = (float)b;
+        w.m[10] = 1.0f;
+        w.m[7] = 1.0f;
+        w = sk_mat4_mul(w, t);
+        for (i = 0; i < d->body_count; i++) {
+            sk_vec3 p = sk_mat4_transform_point(w, sk__xform_affine(&lv, d->body[i]));
+            for (k = 0; k < 3; k++) {
+                if ((&p.x)[k] < wlo[k]) wlo[k] = (&p.x)[k];
+                if ((&p.x)[k] > whi[k]) whi[k] = (&p.x)[k];
+            }
+        }
+        /* casters reach the map only on light rays through the body, where
+           w lies in [n, n + depth]: bound their warped z conservatively */
+        if (hi[2] > 0.0) { if (hi[2] / n > whi[2]) whi[2] = hi[2] / n; }
+        else if (hi[2] / f > whi[2]) whi[2] = hi[2] / f;
+        crop = sk__ortho_box(wlo[0], whi[0], wlo[1], whi[1], wlo[2], whi[2]);
+        out->light_view_proj = sk_mat4_mul(sk_mat4_mul(crop, w), lv);
+        out->n = (float)n;
+        out->warped = 1;
+    }
+    return sk__mat_finite(&out->light_view_proj) ? SK_OK : SK_ERR_DEGENERATE;
+}
+
+/* ---- 5. Light Space Partitioned Shadow Maps (seed 003) ----------------- */
+
+SKDEF sk_lspsm_params sk_lspsm_default_params(void)
+{
+    sk_lspsm_params p;
+    p.zeta = 0.25f;   /* maximum space-wasting factor (Sec. 4) */
+    p.sigma = 0.5f;   /* uv footprint difference tolerance */
+    p.h_max = 4;      /* lengthways partitions */
+    p.nw_max = 2;     /* transverse partitions per row */
+    return p;
+}
+
+typedef struct sk__lspsm_sink {
+    sk_rect *rects;                 /* may be NULL */
+    sk_mat4 *vps;                   /* may be NULL */
+    const sk_lspsm_region *region;  /* for vps */
+} sk__lspsm_sink;
+
+static void sk__lspsm_put(sk__lspsm_sink *s, int i, double x0, double y0, double x1, double y1)
+{
+    sk_rect r;
+    r.x0 = (float)x0; r.y0 = (float)y0; r.x1 = (float)x1; r.y1 = (float)y1;
+    if (s->region) {
+        r.x0 += s->region->origin.x; r.x1 += s->region->origin.x;
+        r.y0 += s->region->origin.y; r.y1 += s->region->origin.y;
+        if (s->vps)
+            s->vps[i] = sk_mat4_mul(sk__ortho_box(r.x0, r.x1, r.y0, r.y1, s->region->zmin, s->region->zmax),
+                                    s->region->light_view);
+    }
+    if (s->rects) s->rects[i] = r;
+}
+
+/* Eq. (1): rows of width W_i and height H_i from the near base; each row's
+   width is the trapezoid's width at its far edge. Transverse split when
+   W/H > 1 + sigma (Sec. 3.2). With sink == NULL only counts. Returns the
+   count, or -1 if a value is not finite. */
+static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_params *p, sk__lspsm_sink *sink)
+{
+    double t = SK_TAN(theta), zeta = p->zeta, q, hfac, W = n, y = 0.0;
+    int i, count = 0;
+    if (t <= zeta) { q = 1.0 / (1.0 - 2.0 * t); hfac = 1.0; }
+    else { q = 1.0 / (1.0 - 2.0 * zeta); hfac = zeta / t; }
+    for (i = 1; i <= p->h_max; i++) {
+        double H, y1, row_w, ratio;
+        int nw = 1, j;
+        W *= q;
+        H = W * hfac;
+        y1 = y + H;
+        row_w = W;
+        if (i == p->h_max && y1 < L) { y1 = L; row_w = n + 2.0 * L * t; }
+        if (!sk__finite_d(y1) || !sk__finite_d(row_w) || !(y1 > y)) return -1;
+        ratio = row_w / (y1 - y);
+        if (ratio > 1.0 + p->sigma) {
+            double c = ratio / (1.0 + p->sigma);
+            nw = c >= (double)p->nw_max ? p->nw_max : (int)SK_CEIL(c);
+        }
+        if (sink)
+            for (j = 0; j < nw; j++)
+                sk__lspsm_put(sink, count + j, -0.5 * row_w + row_w * j / nw, y,
+                              -0.5 * row_w + row_w * (j + 1) / nw, y1);
+        count += nw;
+        y = y1;
+        if (y >= L) break;
+    }
+    return count;
+}
+
+static int sk__lspsm_params_valid(const sk_lspsm_params *p)
+{
+    return p && sk__finite(p->zeta) && sk__finite(p->sigma) && p->zeta > 0.0f && p->zeta < 0.5f &&
+           p->sigma > 0.0f && p->h_max >= 1 && p->nw_max >= 1 && p->h_max <= 1024 && p->nw_max <= 1024;
+}
+
+SKDEF int sk_lspsm_partition(float n, float L, float theta, const sk_lspsm_params *p, sk_rect *out, int cap)
+{
+    sk__lspsm_sink sink;
+    int count;
+    if (!out || cap < 0 || !sk__lspsm_params_valid(p) || !sk__finite(n) || !sk__finite(L) ||
+        !sk__finite(theta) || !(n > 0.0f) || !(L > 0.0f) || !(theta >= 0.0f) ||
+        !((double)theta < 0.5 * SK__PI))
+        return -(int)SK_ERR_INVALID_ARG;
+    count = sk__lspsm_rows(n, L, theta, p, NULL);
+    if (count < 0) return -(int)SK_ERR_INVALID_ARG;
+    if (count > cap) return -(int)SK_ERR_CAPACITY;
+    sink.rects = out; sink.vps = NULL; sink.region = NULL;
+    return sk__lspsm_rows(n, L, theta, p, &sink);
+}
+
+/* 2D convex hull (Andrew's monotone chain) in place; returns the hull size. */
+static int sk__hull2(sk_vec2 *p, int n)
+{
+    sk_vec2 h[2 * SK_CLIP_MAX_POINTS];
+    int i, j, k = 0, lower;
+    for (i = 1; i < n; i++) {       /* insertion sort by x, then y */
+        sk_vec2 key = p[i];
+        for (j = i - 1; j >= 0 && (p[j].x > key.x || (p[j].x == key.x && p[j].y > key.y)); j--) p[j + 1] = p[j];
+        p[j + 1] = key;
+    }
+    if (n < 3) return n;
+    for (i = 0; i < n; i++) {
+        while (k >= 2 && ((double)h[k-1].x - h[k-2].x) * ((double)p[i].y - h[k-2].y) -
+                         ((double)h[k-1].y - h[k-2].y) * ((double)p[i].x - h[k-2].x) <= 0.0) k--;
+        h[k++] = p[i];
+    }
+    lower = k + 1;
+    for (i = n - 2; i >= 0; i--) {
+        while (k >= lower && ((double)h[k-1].x - h[k-2].x) * ((double)p[i].y - h[k-2].y) -
+                             ((double)h[k-1].y - h[k-2].y) * ((double)p[i].x - h[k-2].x) <= 0.0) k--;
+        h[k++] = p[i];
+    }
+    k--;
+    for (i = 0; i < k; i++) p[i] = h[i];
+    return k;
+}
+
+/* Width at mid-height of the narrowest enclosing isosceles trapezoid with
+   legs of slope t: legs x = u - s t and x = v + s t (s = y - y0). */
+static double sk__trap_cost(const sk_vec2 *p, int n, double y0, double L, double t, double *u, double *v)
+{
+    double lo = 1e300, hi = -1e300;
+    int i;
+    for (i = 0; i < n; i++) {
+        double s = p[i].y - y0, a = p[i].x + s * t, b = p[i].x - s * t;
+        if (a < lo) lo = a;
+        if (b > hi) hi = b;
+    }
+    *u = lo; *v = hi;
+    return (hi - lo > 0.0 ? hi - lo : 0.0) + L * t;
+}
+
+SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir, sk_aabb receivers,
+                                        const sk_aabb *casters, sk_vec3 light_dir, sk_lspsm_region *out)
+{
+    sk_vec3 pts[SK_CLIP_MAX_POINTS], l, v, yax, zax, xax, centre = sk__v3(0, 0, 0);
+    sk_vec2 p2[SK_CLIP_MAX_POINTS];
+    sk_lspsm_region r;
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300, L;
+    int n, i, h;
+    if (!view || !out || !sk__v3_finite(view_dir) || !sk__v3_finite(light_dir) ||
+        sk__len(view_dir) == 0.0f || sk__len(light_dir) == 0.0f || (casters && !sk__aabb_valid(casters)))
+        return SK_ERR_INVALID_ARG;
+    n = sk_clip_frustum_aabb(view, receivers, pts, SK_CLIP_MAX_POINTS);
+    if (n < 0) return SK_ERR_INVALID_ARG;
+    if (n == 0) return SK_ERR_DEGENERATE;
+    for (i = 0; i < n; i++) centre = sk__add(centre, sk__scale(pts[i], 1.0f / n));
+    memset(&r, 0, sizeof r);
+    l = sk__normalize(light_dir);
+    v = sk__normalize(view_dir);
+    zax = sk__scale(l, -1.0f);
+    yax = sk__sub(v, sk__scale(l, sk__dot(v, l)));
+    if (sk__len(yax) < 1e-4f) {
+        /* view parallel to the light: no trapezoid axis */
+        sk_mat4 fixed = sk_light_view_directional(l);
+        yax = sk__v3(fixed.m[1], fixed.m[5], fixed.m[9]);
+        r.fallback = 1;
+    }
+    yax = sk__normalize(yax);
+    xax = sk__normalize(sk__cross(yax, zax));
+    r.light_view = sk__basis_view(xax, yax, zax, centre);
+    for (i = 0; i < n; i++) {
+        sk_vec3 q = sk__xform_affine(&r.light_view, pts[i]);
+        p2[i].x = q.x; p2[i].y = q.y;
+        if (q.x < xmin) xmin = q.x;
+        if (q.x > xmax) xmax = q.x;
+        if (q.y < ymin) ymin = q.y;
+        if (q.y > ymax) ymax = q.y;
+        if (q.z < zmin) zmin = q.z;
+        if (q.z > zmax) zmax = q.z;
+    }
+    if (casters)
+        for (i = 0; i < 8; i++) {
+            double z = sk__xform_affine(&r.light_view, sk__aabb_corner(casters, i)).z;
+            if (z < zmin) zmin = z;
+            if (z > zmax) zmax = z;
+        }
+    r.zmin = (float)zmin;
+    r.zmax = (float)zmax;
+    L = ymax - ymin;
+    if (!r.fallback && !(L > 1e-6 * (1.0 + (xmax - xmin)))) r.fallback = 1;
+    if (r.fallback) {
+        double tiny = 1e-6 * (1.0 + SK_FABS(xmax) + SK_FABS(ymax));
+        r.n = (float)(xmax - xmin > tiny ? xmax - xmin : tiny);
+        r.L = (float)(L > tiny ? L : tiny);
+        r.theta = 0.0f;
+        r.origin.x = (float)(0.5 * (xmin + xmax));
+        r.origin.y = (float)ymin;
+    } else {
+        /* minimise area L*(n + L tan theta): the mid-height width is convex in
+           t = tan theta; golden-section search on [0, (xmax-xmin)/L] */
+        double a = 0.0, b = (xmax - xmin) / L, g = 0.6180339887498949, u, w, t, nn, far_w;
+        double c1 = b - g * (b - a), c2 = a + g * (b - a), f1, f2;
+        h = sk__hull2(p2, n);
+        f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w);
+        f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w);
+        for (i = 0; i < 80; i++) {
+            if (f1 <= f2) { b = c2; c2 = c1; f2 = f1; c1 = b - g * (b - a); f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w); }
+            else { a = c1; c1 = c2; f1 = f2; c2 = a + g * (b - a); f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w); }
+        }
+        t = 0.5 * (a + b);
+        sk__trap_cost(p2, h, ymin, L, t, &u, &w);
+        nn = w - u;
+        far_w = nn + 2.0 * L * t;
+        if (nn < 1e-4 * far_w) nn = 1e-4 * far_w;     /* n -> 0: keep Eq. (1) finite */
+        r.n = (float)nn;
+        r.L = (float)L;
+        r.theta = (float)SK_ATAN(t);
+        r.origin.x = (float)(0.5 * (u + w));
+        r.origin.y = (float)ymin;
+    }
+    *out = r;
+    return SK_OK;
+}
+
+SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
+                         sk_mat4 *out_view_proj, sk_rect *out_rects, int cap)
+{
+    sk__lspsm_sink sink;
+    int count;
+    if (!r || !out_view_proj || cap < 0 || !sk__lspsm_params_valid(p) || !sk__mat_finite(&r->light_view) ||
+        !sk__finite(r->n) || !sk__finite(r->L) || !sk__finite(r->theta) || !(r->n > 0.0f) ||
+        !(r->L > 0.0f) || !(r->theta >= 0.0f) || !((double)r->theta < 0.5 * SK__PI) ||
+        !sk__finite(r->zmin) || !sk__finite(r->zmax) || !sk__finite(r->origin.x) || !sk__finite(r->origin.y))
+        return -(int)SK_ERR_INVALID_ARG;
+    sink.rects = out_rects; sink.vps = out_view_proj; sink.region = r;
+    if (r->fallback) {
+        if (cap < 1) return -(int)SK_ERR_CAPACITY;
+        sk__lspsm_put(&sink, 0, -0.5 * r->n, 0.0, 0.5 * r->n, r->L);
+        return 1;
+    }
+    count = sk__lspsm_rows(r->n, r->L, r->theta, p, NULL);
+    if (count < 0) return -(int)SK_ERR_INVALID_ARG;
+    if (count > cap) return -(int)SK_ERR_CAPACITY;
+    return sk__lspsm_rows(r->n, r->L, r->theta, p, &sink);
+}
+
+/* ---- 6. Omnidirectional lights (seed 004) ------------------------------ */
+
+/* Per face: right, up, forward (GL cube-map face table: s runs along
+   right, t along up, the major axis is forward). */
+static const signed char sk__cube_axes[6][3][3] = {
+    {{0, 0, -1}, {0, -1, 0}, {1, 0, 0}},   /* +X: sc = -rz, tc = -ry */
+    {{0, 0, 1}, {0, -1, 0}, {-1, 0, 0}},   /* -X: sc = +rz, tc = -ry */
+    {{1, 0, 0}, {0, 0, 1}, {0, 1, 0}},     /* +Y: sc = +rx, tc = +rz */
+    {{1, 0, 0}, {0, 0, -1}, {0, -1, 0}},   /* -Y: sc = +rx, tc = -rz */
+    {{1, 0, 0}, {0, -1, 0}, {0, 0, 1}},    /* +Z: sc = +rx, tc = -ry */
+    {{-1, 0, 0}, {0, -1, 0}, {0, 0, -1}}   /* -Z: sc = -rx, tc = -ry */
+};
+static sk_vec3 sk__cube_axis(int face, int which)
+{
+    const signed char *a = sk__cube_axes[face][which];
+    return sk__v3(a[0], a[1], a[2]);
+}
+
+SKDEF sk_mat4 sk_cube_face_view(int face, sk_vec3 light_pos)
+{
+    if (face < 0 || face > 5) face = 0;
+    if (!sk__v3_finite(light_pos)) light_pos = sk__v3(0, 0, 0);
+    return sk__basis_view(sk__cube_axis(face, 0), sk__cube_axis(face, 1),
+                          sk__scale(sk__cube_axis(face, 2), -1.0f), light_pos);
+}
+
+SKDEF sk_mat4 sk_cube_face_proj(float zn, float zf)
+{
+    sk_mat4 r;
+    if (!sk__finite(zn) || !sk__finite(zf) || !(zn > 0.0f) || !(zf > zn)) return sk_mat4_identity();
+    memset(&r, 0, sizeof r);
+    r.m[0] = r.m[5] = 1.0f;
+    r.m[10] = (float)(((double)zf + zn) / ((double)zn - zf));
+    r.m[11] = -1.0f;
+    r.m[14] = (float)(2.0 * zf * zn / ((double)zn - zf));
+    return r;
+}
+
+/* HalfIntersection(A, B): does an edge of A (a corner inside B included)
+   reach B? Each edge is clipped against B's planes (Liang-Barsky). */
+static int sk__half_intersection(const sk_frustum *a, const sk_frustum *b, float tol)
+{
+    int e, k;
+    for (e = 0; e < 12; e++) {
+        sk_vec3 p0 = a->corners[sk__edges[e][0]], p1 = a->corners[sk__edges[e][1]];
+        float t0 = 0.0f, t1 = 1.0f;
+        for (k = 0; k < 6; k++) {
+            float d0 = sk__plane_dist(&b->planes[k], p0) + tol, d1 = sk__plane_dist(&b->planes[k], p1) + tol;
+            if (d0 < 0.0f && d1 < 0.0f) break;
+            if (d0 < 0.0f) { float t = d0 / (d0 - d1); if (t > t0) t0 = t; }
+            else if (d1 < 0.0f) { float t = d0 / (d0 - d1); if (t < t1) t1 = t; }
+            if (t0 > t1) break;
+        }
+        if (k == 6) return 1;
+    }
+    return 0;
+}
+
+SKDEF int sk_frustum_intersects(const sk_frustum *a, const sk_frustum *b)
+{
+    float scale = 0.0f;
+    int i;
+    if (!a || !b || sk__frustum_is_zero(a) || sk__frustum_is_zero(b)) return 1;
+    for (i = 0; i < 8; i++) {
+        float sa = sk__maxabs3(a->corners[i]), sb = sk__maxabs3(b->corners[i]);
+        if (sa > scale) scale = sa;
+        if (sb > scale) scale = sb;
+    }
+    scale = 1e-5f * (1.0f + scale);
+    return sk__half_intersection(a, b, scale) || sk__half_intersection(b, a, scale);
+}
+
+/* The frustum of one cube face, built directly (90 degree side planes). */
+static void sk__cube_face_frustum(int face, sk_vec3 lp, float zn, float zf, sk_frustum *f)
+{
+    sk_vec3 r = sk__cube_axis(face, 0), u = sk__cube_axis(face, 1), fw = sk__cube_axis(face, 2);
+    const float s = 0.70710678118654752f;
+    int i;
+    for (i = 0; i < 8; i++) {
+        float d = (i & 4) ? zf : zn;
+        sk_vec3 c = sk__add(lp, sk__scale(fw, d));
+        c = sk__add(c, sk__scale(r, (i & 1) ? d : -d));
+        f->corners[i] = sk__add(c, sk__scale(u, (i & 2) ? d : -d));
+    }
+    /* inside: |right.(p-l)| <= fw.(p-l) and the same for up */
+    f->planes[0].n = sk__scale(sk__add(fw, r), s);
+    f->planes[1].n = sk__scale(sk__sub(fw, r), s);
+    f->planes[2].n = sk__scale(sk__add(fw, u), s);
+    f->planes[3].n = sk__scale(sk__sub(fw, u), s);
+    for (i = 0; i < 4; i++) f->planes[i].d = -sk__dot(f->planes[i].n, lp);
+    f->planes[4].n = fw;
+    f->planes[4].d = -sk__dot(fw, lp) - zn;
+    f->planes[5].n = sk__scale(fw, -1.0f);
+    f->planes[5].d = sk__dot(fw, lp) + zf;
+}
+
+SKDEF unsigned sk_cube_visible_faces(sk_vec3 light_pos, float zn, float zf, const sk_frustum *view)
+{
+    unsigned bits = 0;
+    int face;
+    if (!view || !sk__v3_finite(light_pos) || !sk__finite(zn) || !sk__finite(zf) || !(zn > 0.0f) ||
+        !(zf > zn) || sk__frustum_is_zero(view))
+        return 0x3fu;
+    if (sk_frustum_contains_point(view, light_pos)) return 0x3fu;
+    for (face = 0; face < 6; face++) {
+        sk_frustum f;
+        sk__cube_face_frustum(face, light_pos, zn, zf, &f);
+        if (sk_frustum_intersects(&f, view)) bits |= 1u << face;
+    }
+    return bits;
+}
+
+SKDEF sk_result sk_caster_shadow_frustum(sk_vec3 light_pos, float light_range, sk_aabb caster, sk_frustum *out)
+{
+    sk_vec3 axis, u, v, c[8], nearest;
+    double cos_min = 1.0, near_d = 1e300, tan_a;
+    float dist;
+    int i;
+    if (!out || !sk__v3_finite(light_pos) || !sk__finite(light_range) || !(light_range > 0.0f) ||
+        !sk__aabb_valid(&caster))
+        return SK_ERR_INVALID_ARG;
+    nearest.x = light_pos.x < caster.min.x ? caster.min.x : light_pos.x > caster.max.x ? caster.max.x : light_pos.x;
+    nearest.y = light_pos.y < caster.min.y ? caster.min.y : light_pos.y > caster.max.y ? caster.max.y : light_pos.y;
+    nearest.z = light_pos.z < caster.min.z ? caster.min.z : light_pos.z > caster.max.z ? caster.max.z : light_pos.z;
+    dist = sk__len(sk__sub(nearest, light_pos));
+    if (dist >= light_range) return SK_ERR_DEGENERATE;   /* out of reach: no shadow */
+    axis = sk__sub(sk__scale(sk__add(caster.min, caster.max), 0.5f), light_pos);
+    if (dist > 0.0f && sk__len(axis) > 0.0f) {
+        axis = sk__normalize(axis);
+        for (i = 0; i < 8; i++) {
+            sk_vec3 d = sk__sub(sk__aabb_corner(&caster, i), light_pos);
+            double len = sk__len(d), along = sk__dot(d, axis);
+            double cs = len > 0.0 ? along / len : -1.0;
+            if (cs < cos_min) cos_min = cs;
+            if (along < near_d) near_d = along;
+        }
+    } else cos_min = -1.0;
+    /* light inside the box, or a cone wider than 170 degrees: the range box */
+    if (cos_min <= 0.0871557427) {
+        sk_aabb b;
+        b.min = sk__sub(light_pos, sk__v3(light_range, light_range, light_range));
+        b.max = sk__add(light_pos, sk__v3(light_range, light_range, light_range));
+        return sk_frustum_from_aabb(b, out);
+    }
+    tan_a = SK_SQRT(1.0 - cos_min * cos_min) / cos_min;
+    u = sk__normalize(sk__cross(axis, sk__least_aligned_axis(axis)));
+    v = sk__cross(axis, u);
+    for (i = 0; i < 8; i++) {
+        float d = (i & 4) ? light_range : (float)near_d;
+        float h = (float)(d * tan_a) * 1.0001f;
+        sk_vec3 p = sk__add(light_pos, sk__scale(axis, d));
+        p = sk__add(p, sk__scale(u, (i & 1) ? h : -h));
+        c[i] = sk__add(p, sk__scale(v, (i & 2) ? h : -h));
+    }
+    return sk_frustum_from_corners(c, out);
+}
+
+SKDEF int sk_caster_visible(sk_vec3 light_pos, float light_range, sk_aabb caster, const sk_frustum *view)
+{
+    sk_frustum f;
+    sk_result r;
+    if (!view) return 1;
+    r = sk_caster_shadow_frustum(light_pos, light_range, caster, &f);
+    if (r == SK_ERR_DEGENERATE) return 0;
+    if (r != SK_OK) return 1;
+    return sk_frustum_intersects(&f, view);
+}
+
+SKDEF int sk_light_scissor(sk_vec3 light_pos, float radius, sk_mat4 view_proj, int vp_w, int vp_h, int out_rect[4])
+{
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
+    int i, behind = 0, x0, y0, x1, y1;
+    if (!out_rect) return 0;
+    out_rect[0] = out_rect[1] = out_rect[2] = out_rect[3] = 0;
+    if (!sk__v3_finite(light_pos) || !sk__finite(radius) || !(radius > 0.0f) || vp_w < 1 || vp_h < 1 ||
+        !sk__mat_finite(&view_proj))
+        return 0;
+    for (i = 0; i < 8; i++) {
+        sk_vec4 p, c;
+        p.x = light_pos.x + ((i & 1) ? radius : -radius);
+        p.y = light_pos.y + ((i & 2) ? radius : -radius);
+        p.z = light_pos.z + ((i & 4) ? radius : -radius);
+        p.w = 1.0f;
+        c = sk_mat4_transform_vec4(view_proj, p);
+        if (c.w <= 0.0f) { behind++; continue; }
+        {
+            double x = (0.5 * c.x / c.w + 0.5) * vp_w, y = (0.5 * c.y / c.w + 0.5) * vp_h;
+            if (x < xmin) xmin = x;
+            if (x > xmax) xmax = x;
+            if (y < ymin) ymin = y;
+            if (y > ymax) ymax = y;
+        }
+    }
+    if (behind == 8) return 0;
+    if (behind > 0) { out_rect[2] = vp_w; out_rect[3] = vp_h; return 1; }
+    if (xmin < 0.0) xmin = 0.0;
+    if (ymin < 0.0) ymin = 0.0;
+    if (xmax > vp_w) xmax = vp_w;
+    if (ymax > vp_h) ymax = vp_h;
+    x0 = (int)SK_FLOOR(xmin); y0 = (int)SK_FLOOR(ymin);
+    x1 = (int)SK_CEIL(xmax); y1 = (int)SK_CEIL(ymax);
+    if (x1 <= x0 || y1 <= y0) return 0;
+    out_rect[0] = x0; out_rect[1] = y0; out_rect[2] = x1 - x0; out_rect[3] = y1 - y0;
+    return 1;
+}
+
+/* N * M^2 >= c * S with c = 2 in the seed ("Optimizing Shadow Texture Resolution") */
+SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res)
+{
+    int top = 1, m = 1;
+    double need;
+    if (faces < 0 || faces > 6 || !sk__finite(c) || !(c > 0.0f) || pixels != pixels || pixels < 0.0f ||
+        max_res < 1 || faces == 0)
+        return 0;
+    while (top <= max_res / 2) top *= 2;
+    need = (double)c * pixels / faces;
+    while (m < top && (double)m * m < need) m *= 2;
+    return m;
+}
+
+SKDEF sk_result sk_vsdct_layout_make(int face_res, sk_vsdct_layout *out)
+{
+    int f;
+    if (!out || face_res < 1 || face_res > SK_VSDCT_MAX_FACE_RES) return SK_ERR_INVALID_ARG;
+    out->face_res = face_res;
+    out->atlas_w = 3 * face_res;
+    out->atlas_h = 2 * face_res;
+    for (f = 0; f < 6; f++) {
+        out->face_x[f] = (f % 3) * face_res;
+        out->face_y[f] = (f / 3) * face_res;
+    }
+    return SK_OK;
+}
+
+static int sk__ceil_log2(int x)
+{
+    int e = 0;
+    while ((1 << e) < x) e++;
+    return e;
+}
+
+/* Eq. (5.4.7) */
+SKDEF int sk_vsdct_indirection_size(int face_res, int grey_levels, int deriv_bits)
+{
+    int e, g;
+    if (face_res < 1 || face_res > SK_VSDCT_MAX_FACE_RES || grey_levels < 1 || deriv_bits < 0 || deriv_bits > 30)
+        return 0;
+    g = sk__ceil_log2(grey_levels);
+    e = sk__ceil_log2(face_res) + (g < deriv_bits ? g : deriv_bits) - deriv_bits;
+    return e <= 0 ? 1 : 1 << e;
+}
+
+/* Eq. (5.4.6): Z_s = -1/MA * zf zn/(zf - zn) + zf/(zf - zn), the same in GL
+   window depth as in D3D's [0,1] NDC */
+SKDEF void sk_vsdct_depth_coeffs(float zn, float zf, float *scale, float *bias)
+{
+    double s = 0.0, b = 1.0;
+    if (sk__finite(zn) && sk__finite(zf) && zn > 0.0f && zf > zn) {
+        s = -(double)zf * zn / ((double)zf - zn);
+        b = (double)zf / ((double)zf - zn);
+    }
+    if (scale) *scale = (float)s;
+    if (bias) *bias = (float)b;
+}
+
+static int sk__layout_valid(const sk_vsdct_layout *l)
+{
+    int f;
+    if (!l || l->face_res < 1 || l->atlas_w < l->face_res || l->atlas_h < l->face_res) return 0;
+    for (f = 0; f < 6; f++)
+        if (l->face_x[f] < 0 || l->face_y[f] < 0 || l->face_x[f] > l->atlas_w - l->face_res ||
+            l->face_y[f] > l->atlas_h - l->face_res)
+            return 0;
+    return 1;
+}
+
+/* face-local s, t in [0,1] -> atlas u, v, at least half a texel inside */
+static void sk__vsdct_atlas(const sk_vsdct_layout *l, int face, double s, double t, float *u, float *v)
+{
+    double fs = s * l->face_res, ft = t * l->face_res, hi = l->face_res - 0.5;
+    if (fs < 0.5) fs = 0.5;
+    if (fs > hi) fs = hi;
+    if (ft < 0.5) ft = 0.5;
+    if (ft > hi) ft = hi;
+    *u = (float)((l->face_x[face] + fs) / l->atlas_w);
+    *v = (float)((l->face_y[face] + ft) / l->atlas_h);
+}
+
+SKDEF int sk_vsdct_lookup(const sk_vsdct_layout *l, sk_vec3 dir, float *u, float *v)
+{
+    double ax = SK_FABS(dir.x), ay = SK_FABS(dir.y), az = SK_FABS(dir.z), ma;
+    int face;
+    sk_vec3 d;
+    if (!u || !v || !sk__layout_valid(l) || !sk__v3_finite(dir) || (ax == 0.0 && ay == 0.0 && az == 0.0))
+        return -1;
+    if (ax >= ay && ax >= az) { face = dir.x >= 0.0f ? 0 : 1; ma = ax; }
+    else if (ay >= az) { face = dir.y >= 0.0f ? 2 : 3; ma = ay; }
+    else { face = dir.z >= 0.0f ? 4 : 5; ma = az; }
+    d = dir;
+    sk__vsdct_atlas(l, face, 0.5 * (sk__dot(sk__cube_axis(face, 0), d) / ma + 1.0),
+                    0.5 * (sk__dot(sk__cube_axis(face, 1), d) / ma + 1.0), u, v);
+    return face;
+}
+
+SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsigned short *out)
+{
+    int face, s, t;
+    if (!out || !sk__layout_valid(l) || ni < 1 || ni > 65536) return SK_ERR_INVALID_ARG;
+    for (face = 0; face < 6; face++)
+        for (t = 0; t < ni; t++)
+            for (s = 0; s < ni; s++) {
+                float u, v;
+                unsigned short *o = out + (((size_t)face * ni + t) * ni + s) * 2;
+                sk__vsdct_atlas(l, face, (s + 0.5) / ni, (t + 0.5) / ni, &u, &v);
+                o[0] = (unsigned short)(u * 65535.0 + 0.5);
+                o[1] = (unsigned short)(v * 65535.0 + 0.5);
+            }
+    return SK_OK;
+}
+
+/* ---- 7. Resolution estimation (seed 000) ------------------------------- */
+
+/* Light clip position of one window-space point, sign-corrected so that w > 0
+   for points in front of the light; valid = 0 if the camera-space point is
+   invalid (w_world <= 0). */
+typedef struct sk__res_pt { float x, y; int ok; } sk__res_pt;
+
+#define SK__RES_STRIP 256
+
+SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4 inv, sk_mat4 lvp,
+                                       int max_res, sk_res_estimate *out)
+{
+    sk_mat4 m;
+    float bx0 = SK__INF, by0 = SK__INF, bx1 = -SK__INF, by1 = -SK__INF, tw = SK__INF, th = SK__INF;
+    float sx = 2.0f / (float)w, sy = 2.0f / (float)h;
+    int samples = 0, patches = 0, x0;
+    sk__res_pt rowa[SK__RES_STRIP + 1], rowb[SK__RES_STRIP + 1];
+    if (!depth || !out || w < 1 || h < 1 || w > 65536 || h > 65536 || max_res < 1 ||
+        !sk__mat_finite(&inv) || !sk__mat_finite(&lvp))
+        return SK_ERR_INVALID_ARG;
+    /* NDC -> light clip in one matrix: the homogeneous world point needs no
+       divide in between, only the sign of its w (row 3 of inv) */
+    m = sk_mat4_mul(lvp, inv);
+    for (x0 = 0; x0 < w; x0 += SK__RES_STRIP) {
+        int x1 = x0 + SK__RES_STRIP < w ? x0 + SK__RES_STRIP : w, ncorner = x1 - x0 + 1, cy;
+        sk__res_pt *lo = rowa, *hi = rowb, *tmp;
+        for (cy = 0; cy <= h; cy++) {
+            /* corner row cy: corner (cx, cy) is shared by pixels (cx-1..cx, cy-1..cy) */
+            const float *ra = cy > 0 ? depth + (size_t)(cy - 1) * w : NULL;
+            const float *rb = cy < h ? depth + (size_t)cy * w : NULL;
+            float ny = (float)cy * sy - 1.0f;
+            float bx = m.m[4] * ny + m.m[12], by = m.m[5] * ny + m.m[13], bw = m.m[7] * ny + m.m[15];
+            float gw = inv.m[7] * ny + inv.m[15];
+            int i;
+            for (i = 0; i < ncorner; i++) {
+                int cx = x0 + i, k, nv = 0;
+                float sum = 0.0f;
+                for (k = 0; k < 4; k++) {
+                    const float *row = (k & 2) ? rb : ra;
+                    int px = cx - 1 + (k & 1);
+                    float d;
+                    if (!row || px < 0 || px >= w) continue;
+                    d = row[px];
+                    if (d >= 0.0f && d < 1.0f) { sum += d; nv++; }
+                }
+                hi[i].ok = 0;
+                if (nv) {
+                    float nx = (float)cx * sx - 1.0f, nz = 2.0f * (sum / (float)nv) - 1.0f;
+                    float lx = bx + m.m[0] * nx + m.m[8] * nz, ly = by + m.m[1] * nx + m.m[9] * nz;
+                    float lw = bw + m.m[3] * nx + m.m[11] * nz, ww = gw + inv.m[3] * nx + inv.m[11] * nz;
+                    if (ww < 0.0f) { lx = -lx; ly = -ly; lw = -lw; }
+                    if (lw > 0.0f && ww != 0.0f) {
+                        float iw = 1.0f / lw;
+                        hi[i].x = lx * iw; hi[i].y = ly * iw; hi[i].ok = 1;
+                    }
+                }
+            }
+            if (cy > 0) {
+                /* pixel row cy-1: centres, then patches from corner rows lo, hi */
+                float ny2 = ((float)cy - 0.5f) * sy - 1.0f;
+                float cbx = m.m[4] * ny2 + m.m[12], cby = m.m[5] * ny2 + m.m[13];
+                float cbz = m.m[6] * ny2 + m.m[14], cbw = m.m[7] * ny2 + m.m[15];
+                float cgw = inv.m[7] * ny2 + inv.m[15];
+                for (i = 0; i < ncorner - 1; i++) {
+                    float d = ra[x0 + i], nx, nz, lx, ly, lz, lw, ww;
+                    if (!(d >= 0.0f && d < 1.0f)) continue;
+                    nx = ((float)(x0 + i) + 0.5f) * sx - 1.0f;
+                    nz = 2.0f * d - 1.0f;
+                    lx = cbx + m.m[0] * nx + m.m[8] * nz;
+                    ly = cby + m.m[1] * nx + m.m[9] * nz;
+                    lz = cbz + m.m[2] * nx + m.m[10] * nz;
+                    lw = cbw + m.m[3] * nx + m.m[11] * nz;
+                    ww = cgw + inv.m[3] * nx + inv.m[11] * nz;
+                    if (ww < 0.0f) { lx = -lx; ly = -ly; lz = -lz; lw = -lw; }
+                    /* inside the light's clip volume (Sec. 3.1) */
+                    if (!(lw > 0.0f) || lx > lw || -lx > lw || ly > lw || -ly > lw || lz > lw || -lz > lw)
+                        continue;
+                    {
+                        float iw = 1.0f / lw, px = lx * iw, py = ly * iw;
+                        samples++;
+                        if (px < bx0) bx0 = px;
+                        if (px > bx1) bx1 = px;
+                        if (py < by0) by0 = py;
+                        if (py > by1) by1 = py;
+                    }
+                    /* the patch: AABB of the four projected corners (Sec. 3.2) */
+                    if (lo[i].ok && lo[i + 1].ok && hi[i].ok && hi[i + 1].ok) {
+                        float ax0 = lo[i].x, ax1 = lo[i].x, ay0 = lo[i].y, ay1 = lo[i].y, e;
+                        const sk__res_pt *q[3];
+                        int k;
+                        q[0] = &lo[i + 1]; q[1] = &hi[i]; q[2] = &hi[i + 1];
+                        for (k = 0; k < 3; k++) {
+                            if (q[k]->x < ax0) ax0 = q[k]->x;
+                            if (q[k]->x > ax1) ax1 = q[k]->x;
+                            if (q[k]->y < ay0) ay0 = q[k]->y;
+                            if (q[k]->y > ay1) ay1 = q[k]->y;
+                        }
+                        e = ax1 - ax0;
+                        if (e < tw) tw = e;
+                        e = ay1 - ay0;
+                        if (e < th) th = e;
+                        patches++;
+                    }
+                }
+            }
+            tmp = lo; lo = hi; hi = tmp;
+        }
+    }
+    memset(out, 0, sizeof *out);
+    out->bounds.x0 = -1.0f; out->bounds.y0 = -1.0f; out->bounds.x1 = 1.0f; out->bounds.y1 = 1.0f;
+    out->crop = sk_mat4_identity();
+    if (samples == 0) return SK_OK;
+    {
+        double bw = (double)bx1 - bx0, bh = (double)by1 - by0, rw, rh;
+        if (!patches) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
+        rw = tw > 0.0f ? bw / tw : (double)max_res;
+        rh = th > 0.0f ? bh / th : (double)max_res;
+        out->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
+        out->height = !(rh < max_res) ? max_res : rh < 1.0 ? 1 : (int)SK_CEIL(rh);
+        if (out->width > max_res) out->width = max_res;
+        if (out->height > max_res) out->height = max_res;
+    }
+    out->bounds.x0 = bx0; out->bounds.y0 = by0; out->bounds.x1 = bx1; out->bounds.y1 = by1;
+    out->texel_w = tw;
+    out->texel_h = th;
+    out->samples = samples;
+    out->crop = sk_crop_matrix(out->bounds, -1.0f, 1.0f);
+    return SK_OK;
+}
+
+/* ---- 8. Predicted virtual soft shadow maps (seed 001) ------------------ */
+
+/* The cubics' maxima, where their derivatives vanish:
+   dynamic 0.7794 + 0.7934x - 0.08148x^2 = 0, static 1.406 - 0.09374x - 0.011832x^2 = 0 */
+static double sk__rho_x(float n, double peak)
+{
+    double x;
+    if (!(n > 1.0f)) return 0.0;
+    x = SK_LOG2((double)n);
+    return x > peak ? peak : x;
+}
+static double sk__peak(double a1, double a2, double a3)
+{
+    /* positive root of a1 + 2 a2 x + 3 a3 x^2 = 0 (a3 < 0) */
+    double A = 3.0 * a3, B = 2.0 * a2, C = a1;
+    return (-B - SK_SQRT(B * B - 4.0 * A * C)) / (2.0 * A);
+}
+SKDEF float sk_rho_dynamic(float n)
+{
+    double x = sk__rho_x(n, sk__peak(0.7794, 0.3967, -0.02716));
+    return (float)(0.667 + x * (0.7794 + x * (0.3967 - 0.02716 * x)));
+}
+SKDEF float sk_rho_static(float n)
+{
+    double x = sk__rho_x(n, sk__peak(1.406, -0.04687, -0.003944));
+    return (float)(0.5477 + x * (1.406 + x * (-0.04687 - 0.003944 * x)));
+}
+
+/* Appendix: V_h = M0 M0^T + M1 M1^T, then the Cholesky factor's columns */
+SKDEF void sk_convolve_parallelograms(sk_vec2 u0, sk_vec2 v0, sk_vec2 u1, sk_vec2 v1,
+                                      sk_vec2 *u_out, sk_vec2 *v_out)
+{
+    double m00, m10, m11, ux, uy, vy;
+    sk_vec2 zero;
+    zero.x = zero.y = 0.0f;
+    if (!u_out || !v_out) return;
+    if (!sk__finite(u0.x) || !sk__finite(u0.y) || !sk__finite(v0.x) || !sk__finite(v0.y) ||
+        !sk__finite(u1.x) || !sk__finite(u1.y) || !sk__finite(v1.x) || !sk__finite(v1.y)) {
+        *u_out = zero; *v_out = zero;
+        return;
+    }
+    m00 = (double)u0.x * u0.x + (double)v0.x * v0.x + (double)u1.x * u1.x + (double)v1.x * v1.x;
+    m10 = (double)u0.x * u0.y + (double)v0.x * v0.y + (double)u1.x * u1.y + (double)v1.x * v1.y;
+    m11 = (double)u0.y * u0.y + (double)v0.y * v0.y + (double)u1.y * u1.y + (double)v1.y * v1.y;
+    ux = SK_SQRT(m00);
+    uy = ux > 0.0 ? m10 / ux : 0.0;
+    vy = m11 - uy * uy;
+    vy = vy > 0.0 ? SK_SQRT(vy) : 0.0;
+    u_out->x = (float)ux; u_out->y = (float)uy;
+    v_out->x = 0.0f; v_out->y = (float)vy;
+    if (!sk__finite(u_out->x) || !sk__finite(u_out->y) || !sk__finite(v_out->y)) { *u_out = zero; *v_out = zero; }
+}
+
+SKDEF float sk_texel_box_coverage(float x0, float y0, float x1, float y1, int tx, int ty)
+{
+    double ax0 = x0 > (double)tx ? x0 : (double)tx, ax1 = x1 < (double)tx + 1 ? x1 : (double)tx + 1;
+    double ay0 = y0 > (double)ty ? y0 : (double)ty, ay1 = y1 < (double)ty + 1 ? y1 : (double)ty + 1;
+    if (!(ax1 > ax0) || !(ay1 > ay0)) return 0.0f;
+    return (float)((ax1 - ax0) * (ay1 - ay0));
+}
+
+/* Sec. 4.1: texels as quads clipped by the kernel, so the result varies
+   continuously with the kernel's position and size. */
+SKDEF float sk_smooth_box_visibility(float x0, float y0, float x1, float y1,
+                                     int (*lit)(void *user, int tx, int ty), void *user)
+{
+    double sum = 0.0, area;
+    int tx0, ty0, tx1, ty1, tx, ty;
+    if (!lit || !sk__finite(x0) || !sk__finite(y0) || !sk__finite(x1) || !sk__finite(y1) ||
+        SK_FABS(x0) > 1e9 || SK_FABS(x1) > 1e9 || SK_FABS(y0) > 1e9 || SK_FABS(y1) > 1e9)
+        return -1.0f;
+    if (!(x1 > x0) || !(y1 > y0))
+        return lit(user, (int)SK_FLOOR(0.5 * ((double)x0 + x1)), (int)SK_FLOOR(0.5 * ((double)y0 + y1))) ? 1.0f : 0.0f;
+    tx0 = (int)SK_FLOOR(x0); tx1 = (int)SK_CEIL(x1);
+    ty0 = (int)SK_FLOOR(y0); ty1 = (int)SK_CEIL(y1);
+    if (tx1 - tx0 > 64 || ty1 - ty0 > 64) return -1.0f;
+    for (ty = ty0; ty < ty1; ty++)
+        for (tx = tx0; tx < tx1; tx++)
+            if (lit(user, tx, ty)) sum += sk_texel_box_coverage(x0, y0, x1, y1, tx, ty);
+    area = ((double)x1 - x0) * ((double)y1 - y0);
+    sum /= area;
+    return (float)(sum > 1.0 ? 1.0 : sum);
+}
+
+/* Eq. (4): n_0 = ||M^-1 e0 e0^T u_h||, n_1 = ||M^-1 e1 e1^T v_h||;
+   Eq. (5): r_0 = 2 e0^T u_h / rho(n_0), r_1 = 2 e1^T v_h / rho(n_1) */
+SKDEF void sk_pvsm_predict(sk_vec2 u_h, sk_vec2 v_h, sk_vec2 u_phi, sk_vec2 v_phi,
+                           int dynamic_scene, float *r0, float *r1)
+{
+    double det, n0, n1, a, b;
+    if (!sk__finite(u_h.x) || !sk__finite(u_h.y) || !sk__finite(v_h.x) || !sk__finite(v_h.y) ||
+        !sk__finite(u_phi.x) || !sk__finite(u_phi.y) || !sk__finite(v_phi.x) || !sk__finite(v_phi.y)) {
+        if (r0) *r0 = SK__INF;
+        if (r1) *r1 = SK__INF;
+        return;
+    }
+    det = (double)u_phi.x * v_phi.y - (double)v_phi.x * u_phi.y;
+    a = SK_FABS((double)u_h.x);
+    b = SK_FABS((double)v_h.y);
+    /* M^-1 (a,0) = a/det (v.y, -u.y); M^-1 (0,b) = b/det (-v.x, u.x) */
+    if (det != 0.0) {
+        n0 = a * SK_SQRT((double)v_phi.y * v_phi.y + (double)u_phi.y * u_phi.y) / SK_FABS(det);
+        n1 = b * SK_SQRT((double)v_phi.x * v_phi.x + (double)u_phi.x * u_phi.x) / SK_FABS(det);
+    } else n0 = n1 = 1e30;
+    if (!(n0 < 1e30)) n0 = 1e30;
+    if (!(n1 < 1e30)) n1 = 1e30;
+    if (r0) *r0 = (float)(2.0 * a / (dynamic_scene ? sk_rho_dynamic((float)n0) : sk_rho_static((float)n0)));
+    if (r1) *r1 = (float)(2.0 * b / (dynamic_scene ? sk_rho_dynamic((float)n1) : sk_rho_static((float)n1)));
+}
+
+/* Sec. 5.2: V_dst = V_dst A_dst + V_src A_src, A_dst = A_dst + A_src */
+SKDEF void sk_pvsm_merge(float *v, float *a, float v_src, float a_src)
+{
+    double na;
+    if (!v || !a || !sk__finite(v_src) || !sk__finite(a_src) || !(a_src > 0.0f) || !sk__finite(*v) ||
+        !sk__finite(*a) || *a < 0.0f)
+        return;
+    na = (double)*a + a_src;
+    *v = (float)(((double)*v * *a + (double)v_src * a_src) / na);
+    *a = (float)na;
+}
+
+SKDEF int sk_smtg_pyramid_size(int gw, int gh)
+{
+    long total = 0;
+    if (gw < 1 || gh < 1 || gw > 4096 || gh > 4096) return 0;
+    for (;;) {
+        total += (long)gw * gh * 2;
+        if (gw == 1 && gh == 1) break;
+        gw = (gw + 1) / 2;
+        gh = (gh + 1) / 2;
+    }
+    return (int)total;
+}
+
+/* min that ignores NaN (NaN = no sample) */
+static float sk__minf(float a, float b) { return (b < a || a != a) ? b : a; }
+
+SKDEF int sk_smtg_pyramid(const float *grid, int gw, int gh, float *out, int cap_floats)
+{
+    int need = sk_smtg_pyramid_size(gw, gh), levels = 1, i;
+    float *src;
+    if (!grid || !out || need == 0 || cap_floats < 0) return -(int)SK_ERR_INVALID_ARG;
+    if (cap_floats < need) return -(int)SK_ERR_CAPACITY;
+    for (i = 0; i < gw * gh * 2; i++) out[i] = grid[i] != grid[i] ? SK__INF : grid[i];
+    src = out;
+    while (gw > 1 || gh > 1) {
+        int nw = (gw + 1) / 2, nh = (gh + 1) / 2, x, y, c;
+        float *dst = src + (size_t)gw * gh * 2;
+        for (y = 0; y < nh; y++)
+            for (x = 0; x < nw; x++)
+                for (c = 0; c < 2; c++) {
+                    float v = src[((2 * y) * gw + 2 * x) * 2 + c];
+                    if (2 * x + 1 < gw) v = sk__minf(v, src[((2 * y) * gw + 2 * x + 1) * 2 + c]);
+                    if (2 * y + 1 < gh) {
+                        v = sk__minf(v, src[((2 * y + 1) * gw + 2 * x) * 2 + c]);
+                        if (2 * x + 1 < gw) v = sk__minf(v, src[((2 * y + 1) * gw + 2 * x + 1) * 2 + c]);
+                    }
+                    dst[(y * nw + x) * 2 + c] = v;
+                }
+        src = dst;
+        gw = nw; gh = nh;
+        levels++;
+    }
+    return levels;
+}
+
+/* Resolution a node of `cells` cells needs along one axis, or a huge value. */
+static double sk__node_res(int cells, int g, float min_texel)
+{
+    double span = 2.0 * cells / g;
+    if (!(min_texel < SK__INF)) return 1.0;
+    if (!(min_texel > 0.0f)) return 1e30;
+    return SK_CEIL(span / min_texel);
+}
+
+/* Giegl & Wimmer's kd-tree over the SMTG, traversed top-down (Sec. 5.2, steps 5-7) */
+SKDEF int sk_fvsm_tiles(const float *grid, int gw, int gh, int max_res, sk_tile *out, int cap)
+{
+    int stack[64][4], sp = 0, count = 0;
+    if (!grid || !out || cap < 0 || gw < 1 || gh < 1 || gw > 4096 || gh > 4096 || max_res < 1)
+        return -(int)SK_ERR_INVALID_ARG;
+    stack[0][0] = 0; stack[0][1] = 0; stack[0][2] = gw; stack[0][3] = gh;
+    sp = 1;
+    while (sp > 0) {
+        int x0, y0, x1, y1, x, y, bx0 = 1 << 30, by0 = 1 << 30, bx1 = -1, by1 = -1;
+        float mx = SK__INF, my = SK__INF;
+        double rx, ry;
+        sp--;
+        x0 = stack[sp][0]; y0 = stack[sp][1]; x1 = stack[sp][2]; y1 = stack[sp][3];
+        for (y = y0; y < y1; y++)
+            for (x = x0; x < x1; x++) {
+                float a = grid[((size_t)y * gw + x) * 2], b = grid[((size_t)y * gw + x) * 2 + 1];
+                if (a != a) a = SK__INF;
+                if (b != b) b = SK__INF;
+                if (!(a < SK__INF) && !(b < SK__INF)) continue;
+                if (a < 0.0f) a = 0.0f;
+                if (b < 0.0f) b = 0.0f;
+                if (a < mx) mx = a;
+                if (b < my) my = b;
+                if (x < bx0) bx0 = x;
+                if (x + 1 > bx1) bx1 = x + 1;
+                if (y < by0) by0 = y;
+                if (y + 1 > by1) by1 = y + 1;
+            }
+        if (bx1 < 0) continue;                         /* no sample in this node */
+        rx = sk__node_res(bx1 - bx0, gw, mx);
+        ry = sk__node_res(by1 - by0, gh, my);
+        if ((rx <= max_res && ry <= max_res) || (bx1 - bx0 == 1 && by1 - by0 == 1)) {
+            if (count == cap) return -(int)SK_ERR_CAPACITY;
+            out[count].x0 = bx0; out[count].y0 = by0; out[count].x1 = bx1; out[count].y1 = by1;
+            out[count].res_x = rx > max_res ? max_res : rx < 1.0 ? 1 : (int)rx;
+            out[count].res_y = ry > max_res ? max_res : ry < 1.0 ? 1 : (int)ry;
+            count++;
+            continue;
+        }
+        {
+            /* split in half along the axis that exceeds the limit more */
+            int split_x = rx >= ry ? (bx1 - bx0 > 1) : !(by1 - by0 > 1);
+            SK_ASSERT(sp + 2 <= 64);
+            stack[sp][0] = bx0; stack[sp][1] = by0; stack[sp][2] = bx1; stack[sp][3] = by1;
+            stack[sp + 1][0] = bx0; stack[sp + 1][1] = by0; stack[sp + 1][2] = bx1; stack[sp + 1][3] = by1;
+            if (split_x) { int mid = (bx0 + bx1) / 2; stack[sp][2] = mid; stack[sp + 1][0] = mid; }
+            else { int mid = (by0 + by1) / 2; stack[sp][3] = mid; stack[sp + 1][1] = mid; }
+            sp += 2;
+        }
+    }
+    return count;
+}
+
+/* ---- 9. RMSM page requests (seed 002) ---------------------------------- */
+
+static int sk__page_cmp(const sk_page *a, const sk_page *b)
+{
+    if (a->level != b->level) return a->level < b->level ? -1 : 1;
+    if (a->py != b->py) return a->py < b->py ? -1 : 1;
+    if (a->px != b->px) return a->px < b->px ? -1 : 1;
+    return 0;
+}
+
+static int sk__is_pow2(int x) { return x > 0 && (x & (x - 1)) == 0; }
+
+SKDEF int sk_rmsm_page_requests(const sk_vec3 *samples, int count, int virtual_res, int page_size,
+                                sk_page *out, int cap)
+{
+    int i, n = 0, max_level = 0, have_last = 0;
+    sk_page last;
+    if (count < 0 || cap < 0 || (count > 0 && !samples) || (cap > 0 && !out) || !sk__is_pow2(virtual_res) ||
+        !sk__is_pow2(page_size) || page_size > virtual_res)
+        return -(int)SK_ERR_INVALID_ARG;
+    while ((page_size << max_level) < virtual_res) max_level++;
+    memset(&last, 0, sizeof last);
+    for (i = 0; i < count; i++) {
+        sk_page p;
+        double lod = samples[i].z, pages;
+        int lo, hi;
+        if (!(samples[i].x >= 0.0f && samples[i].x < 1.0f && samples[i].y >= 0.0f && samples[i].y < 1.0f))
+            continue;
+        p.level = lod != lod || lod < 0.0 ? 0 : lod >= max_level ? max_level : (int)SK_FLOOR(lod);
+        pages = (double)((virtual_res >> p.level) / page_size);
+        p.px = (int)((double)samples[i].x * pages);
+        p.py = (int)((double)samples[i].y * pages);
+        /* neighbouring samples mostly ask for the same page */
+        if (have_last && sk__page_cmp(&p, &last) == 0) continue;
+        last = p; have_last = 1;
+        lo = 0; hi = n;
+        while (lo < hi) {
+            int mid = (lo + hi) / 2;
+            if (sk__page_cmp(&out[mid], &p) < 0) lo = mid + 1; else hi = mid;
+        }
+        if (lo < n && sk__page_cmp(&out[lo], &p) == 0) continue;
+        if (n == cap) return -(int)SK_ERR_CAPACITY;
+        memmove(out + lo + 1, out + lo, (size_t)(n - lo) * sizeof *out);
+        out[lo] = p;
+        n++;
+    }
+    return n;
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SHADOWKIT_IMPLEMENTATION_INCLUDED */
+#endif /* SHADOWKIT_IMPLEMENTATION */
+
+/*
+------------------------------------------------------------------------------
+This software is available under 2 licenses -- choose whichever you prefer.
+------------------------------------------------------------------------------
+ALTERNATIVE A - MIT License
+Copyright (c) 2026 shadowkit authors
+Permission is hereby granted, free of charge, to any person obtaining a copy of
+this software and associated documentation files (the "Software"), to deal in
+the Software without restriction, including without limitation the rights to
+use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies
+of the Software, and to permit persons to whom the Software is furnished to do
+so, subject to the following conditions:
+The above copyright notice and this permission notice shall be included in all
+copies or substantial portions of the Software.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER
+LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM,
+OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE
+SOFTWARE.
+------------------------------------------------------------------------------
+ALTERNATIVE B - Public Domain (www.unlicense.org)
+This is free and unencumbered software released into the public domain.
+Anyone is free to copy, modify, publish, use, compile, sell, or distribute this
+software, either in source code form or as a compiled binary, for any purpose,
+commercial or non-commercial, and by any means.
+In jurisdictions that recognize copyright laws, the author or authors of this
+software dedicate any and all copyright interest in the software to the public
+domain. We make this dedication for the benefit of the public at large and to
+the detriment of our heirs and successors. We intend this dedication to be an
+overt act of relinquishment in perpetuity of all present and future rights to
+this software under copyright law.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN AN
+ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION
+WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
+------------------------------------------------------------------------------
+*/
