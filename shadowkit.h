@@ -809,11 +809,13 @@ static const unsigned char sk__edges[12][2] = {
     {0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}
 };
 
-static int sk__frustum_is_zero(const sk_frustum *f)
+/* All-zero (what a singular matrix gives) or non-finite: not a usable frustum. */
+static int sk__frustum_invalid(const sk_frustum *f)
 {
     int i;
     for (i = 0; i < 6; i++)
-        if (f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f) return 1;
+        if ((f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f) ||
+            !sk__v3_finite(f->planes[i].n) || !sk__finite(f->planes[i].d)) return 1;
     for (i = 0; i < 8; i++) if (!sk__v3_finite(f->corners[i])) return 1;
     return 0;
 }
@@ -903,7 +905,7 @@ SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, i
     sk_vec3 pts[SK_CLIP_MAX_POINTS];
     int count = 0, poly, i, k, j;
     float scale = 0.0f;
-    if (!f || !out || cap < 0 || sk__frustum_is_zero(f) || !sk__aabb_valid(&box))
+    if (!f || !out || cap < 0 || sk__frustum_invalid(f) || !sk__aabb_valid(&box))
         return -(int)SK_ERR_INVALID_ARG;
     sk_frustum_from_aabb(box, &bf);
     for (i = 0; i < 8; i++) {
@@ -1009,7 +1011,7 @@ SKDEF sk_result sk_frustum_slice(const sk_frustum *view, float zn, float zf, flo
     float t0, t1;
     int i;
     if (!view || !out || !sk__finite(zn) || !sk__finite(zf) || !sk__finite(d0) || !sk__finite(d1) ||
-        !(zn >= 0.0f) || !(zf > zn) || !(d0 >= zn) || !(d1 > d0) || !(d1 <= zf) || sk__frustum_is_zero(view))
+        !(zn >= 0.0f) || !(zf > zn) || !(d0 >= zn) || !(d1 > d0) || !(d1 <= zf) || sk__frustum_invalid(view))
         return SK_ERR_INVALID_ARG;
     t0 = (float)(((double)d0 - zn) / ((double)zf - zn));
     t1 = (float)(((double)d1 - zn) / ((double)zf - zn));
@@ -1167,8 +1169,11 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
         if (depth < zn) zn = depth;
         if (depth > zf) zf = depth;
     }
-    if (!(r > l)) { l -= 1e-6; r += 1e-6; }
-    if (!(t > b)) { b -= 1e-6; t += 1e-6; }
+    /* a small margin so the fitted points land inside, not on, the frustum */
+    {
+        double mx = 1e-4 * (r - l) + 1e-6, my = 1e-4 * (t - b) + 1e-6;
+        l -= mx; r += mx; b -= my; t += my;
+    }
     zn *= 0.999;
     zf *= 1.001;
     memset(&p, 0, sizeof p);
@@ -1386,9 +1391,11 @@ static void sk__lspsm_put(sk__lspsm_sink *s, int i, double x0, double y0, double
 
 /* Eq. (1): rows of width W_i and height H_i from the near base; each row's
    width is the trapezoid's width at its far edge. Transverse split when
-   W/H > 1 + sigma (Sec. 3.2). With sink == NULL only counts. Returns the
-   count, or -1 if a value is not finite. */
-static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_params *p, sk__lspsm_sink *sink)
+   W/H > 1 + sigma (Sec. 3.2). With sink == NULL only counts, and stops as
+   soon as the count passes `limit`. Returns the count, or -1 if a value is
+   not finite. */
+static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_params *p, sk__lspsm_sink *sink,
+                          int limit)
 {
     double t = SK_TAN(theta), zeta = p->zeta, q, hfac, W = n, y = 0.0;
     int i, count = 0;
@@ -1408,6 +1415,7 @@ static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_param
             double c = ratio / (1.0 + p->sigma);
             nw = c >= (double)p->nw_max ? p->nw_max : (int)SK_CEIL(c);
         }
+        if (nw > limit - count) return limit + 1;    /* more than the caller can take */
         if (sink)
             for (j = 0; j < nw; j++)
                 sk__lspsm_put(sink, count + j, -0.5 * row_w + row_w * j / nw, y,
@@ -1422,7 +1430,7 @@ static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_param
 static int sk__lspsm_params_valid(const sk_lspsm_params *p)
 {
     return p && sk__finite(p->zeta) && sk__finite(p->sigma) && p->zeta > 0.0f && p->zeta < 0.5f &&
-           p->sigma > 0.0f && p->h_max >= 1 && p->nw_max >= 1 && p->h_max <= 1024 && p->nw_max <= 1024;
+           p->sigma > 0.0f && p->h_max >= 1 && p->nw_max >= 1;
 }
 
 SKDEF int sk_lspsm_partition(float n, float L, float theta, const sk_lspsm_params *p, sk_rect *out, int cap)
@@ -1433,11 +1441,11 @@ SKDEF int sk_lspsm_partition(float n, float L, float theta, const sk_lspsm_param
         !sk__finite(theta) || !(n > 0.0f) || !(L > 0.0f) || !(theta >= 0.0f) ||
         !((double)theta < 0.5 * SK__PI))
         return -(int)SK_ERR_INVALID_ARG;
-    count = sk__lspsm_rows(n, L, theta, p, NULL);
+    count = sk__lspsm_rows(n, L, theta, p, NULL, cap);
     if (count < 0) return -(int)SK_ERR_INVALID_ARG;
     if (count > cap) return -(int)SK_ERR_CAPACITY;
     sink.rects = out; sink.vps = NULL; sink.region = NULL;
-    return sk__lspsm_rows(n, L, theta, p, &sink);
+    return sk__lspsm_rows(n, L, theta, p, &sink, cap);
 }
 
 /* 2D convex hull (Andrew's monotone chain) in place; returns the hull size. */
@@ -1581,10 +1589,10 @@ SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
         sk__lspsm_put(&sink, 0, -0.5 * r->n, 0.0, 0.5 * r->n, r->L);
         return 1;
     }
-    count = sk__lspsm_rows(r->n, r->L, r->theta, p, NULL);
+    count = sk__lspsm_rows(r->n, r->L, r->theta, p, NULL, cap);
     if (count < 0) return -(int)SK_ERR_INVALID_ARG;
     if (count > cap) return -(int)SK_ERR_CAPACITY;
-    return sk__lspsm_rows(r->n, r->L, r->theta, p, &sink);
+    return sk__lspsm_rows(r->n, r->L, r->theta, p, &sink, cap);
 }
 
 /* ---- 6. Omnidirectional lights (seed 004) ------------------------------ */
@@ -1649,7 +1657,7 @@ SKDEF int sk_frustum_intersects(const sk_frustum *a, const sk_frustum *b)
 {
     float scale = 0.0f;
     int i;
-    if (!a || !b || sk__frustum_is_zero(a) || sk__frustum_is_zero(b)) return 1;
+    if (!a || !b || sk__frustum_invalid(a) || sk__frustum_invalid(b)) return 1;
     for (i = 0; i < 8; i++) {
         float sa = sk__maxabs3(a->corners[i]), sb = sk__maxabs3(b->corners[i]);
         if (sa > scale) scale = sa;
@@ -1688,7 +1696,7 @@ SKDEF unsigned sk_cube_visible_faces(sk_vec3 light_pos, float zn, float zf, cons
     unsigned bits = 0;
     int face;
     if (!view || !sk__v3_finite(light_pos) || !sk__finite(zn) || !sk__finite(zf) || !(zn > 0.0f) ||
-        !(zf > zn) || sk__frustum_is_zero(view))
+        !(zf > zn) || sk__frustum_invalid(view))
         return 0x3fu;
     if (sk_frustum_contains_point(view, light_pos)) return 0x3fu;
     for (face = 0; face < 6; face++) {
@@ -2092,8 +2100,10 @@ SKDEF void sk_convolve_parallelograms(sk_vec2 u0, sk_vec2 v0, sk_vec2 u1, sk_vec
 
 SKDEF float sk_texel_box_coverage(float x0, float y0, float x1, float y1, int tx, int ty)
 {
-    double ax0 = x0 > (double)tx ? x0 : (double)tx, ax1 = x1 < (double)tx + 1 ? x1 : (double)tx + 1;
-    double ay0 = y0 > (double)ty ? y0 : (double)ty, ay1 = y1 < (double)ty + 1 ? y1 : (double)ty + 1;
+    double ax0, ax1, ay0, ay1;
+    if (x0 != x0 || y0 != y0 || x1 != x1 || y1 != y1) return 0.0f;
+    ax0 = x0 > (double)tx ? x0 : (double)tx; ax1 = x1 < (double)tx + 1 ? x1 : (double)tx + 1;
+    ay0 = y0 > (double)ty ? y0 : (double)ty; ay1 = y1 < (double)ty + 1 ? y1 : (double)ty + 1;
     if (!(ax1 > ax0) || !(ay1 > ay0)) return 0.0f;
     return (float)((ax1 - ax0) * (ay1 - ay0));
 }

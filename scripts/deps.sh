@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# scripts/deps.sh [GROUP...] - install the Debian packages a make target needs,
+# only those that are missing. Quiet when nothing is missing.
+#   test   compilers, libc headers, sanitizer runtimes      (make test, make check)
+#   demo   test + gnuplot, OSMesa, EGL, Embree, assimp, stb, GLFW (make demo)
+# To add a group or a package, edit the arrays and the case below.
+# Debian 12 (bookworm); needs root (or sudo) only when something is missing.
+set -euo pipefail
+
+PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1)
+PKGS_DEMO=(gnuplot-nox libosmesa6-dev libegl-dev libembree-dev libassimp-dev
+           libstb-dev libglfw3-dev)
+
+groups=("$@")
+[ ${#groups[@]} -gt 0 ] || groups=(test)
+
+want=()
+for g in "${groups[@]}"; do
+    case "$g" in
+        test) want+=("${PKGS_TEST[@]}") ;;
+        demo) want+=("${PKGS_TEST[@]}" "${PKGS_DEMO[@]}") ;;
+        *) echo "deps.sh: unknown group '$g' (known: test demo)" >&2; exit 2 ;;
+    esac
+done
+
+installed() {
+    dpkg -s "$1" 2>/dev/null | grep -q '^Status: install ok installed'
+}
+
+missing=()
+for p in "${want[@]}"; do
+    case " ${missing[*]-} " in *" $p "*) continue ;; esac
+    installed "$p" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "deps.sh: installing missing packages: ${missing[*]}" >&2
+if ! command -v apt-get >/dev/null 2>&1; then
+    echo "deps.sh: apt-get not found; install these yourself: ${missing[*]}" >&2
+    exit 1
+fi
+SUDO=()
+if [ "$(id -u)" -ne 0 ]; then
+    if command -v sudo >/dev/null 2>&1; then
+        SUDO=(sudo)
+    else
+        echo "deps.sh: not root and no sudo; run as root:" >&2
+        echo "  apt-get update && apt-get install -y --no-install-recommends ${missing[*]}" >&2
+        exit 1
+    fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+LOCK=(-o DPkg::Lock::Timeout=600)   # wait for another apt/dpkg to finish
+"${SUDO[@]}" apt-get "${LOCK[@]}" update -qq
+"${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive \
+    apt-get "${LOCK[@]}" install -y -qq --no-install-recommends "${missing[@]}"
+
+still=()
+for p in "${missing[@]}"; do installed "$p" || still+=("$p"); done
+if [ ${#still[@]} -gt 0 ]; then
+    echo "deps.sh: still missing after install: ${still[*]}" >&2
+    exit 1
+fi

@@ -1,0 +1,3 @@
+/* The one translation unit that holds the (extern) implementation. */
+#define SHADOWKIT_IMPLEMENTATION
+#include "shadowkit.h"
