@@ -216,7 +216,9 @@ typedef struct sk_psm_desc {
     sk_mat4 cam_view;             /* world -> camera eye space */
     float fovy, aspect, zn, zf;   /* camera projection (sk_mat4_perspective) */
     sk_vec3 light_dir;            /* directional light travel direction */
-    const sk_aabb *casters;       /* optional: casters that must be in the map */
+    const sk_aabb *casters;       /* optional: caster boxes. Their depth range is
+                                     covered, and any part whose shadow can
+                                     reach the view lies inside the map */
     int caster_count;
 } sk_psm_desc;
 typedef struct sk_psm_result {
@@ -303,7 +305,8 @@ typedef struct sk_lspsm_region {
    the receivers' box, projected on the light plane; the smallest enclosing
    isosceles trapezoid (minimum area) whose axis is the projected view
    direction. Casters (may be NULL) extend the depth range only.
-   n is kept >= 1e-4 of the far base so the partition stays finite.
+   n is kept >= 1e-2 of the far base: as n -> 0 the rows of Eq. (1) would
+   shrink to nothing (and past float precision).
    SK_ERR_DEGENERATE when the frustum misses the receivers. */
 SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir,
                                         sk_aabb receivers, const sk_aabb *casters,
@@ -364,7 +367,8 @@ SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res);
 typedef struct sk_vsdct_layout { int face_res, atlas_w, atlas_h; int face_x[6], face_y[6]; } sk_vsdct_layout;
 SKDEF sk_result sk_vsdct_layout_make(int face_res, sk_vsdct_layout *out);
 /* N_i = 2^(ceil(log2 Ns) + min(ceil(log2 G), D) - D)  (Eq. 5.4.7), at least 1;
-   0 on bad input (face_res, grey_levels < 1, deriv_bits < 0). */
+   0 on bad input (face_res outside [1, SK_VSDCT_MAX_FACE_RES],
+   grey_levels < 1, deriv_bits < 0). */
 SKDEF int sk_vsdct_indirection_size(int face_res, int grey_levels, int deriv_bits);
 /* window depth stored for eye depth MA: scale / MA + bias  (Eq. 5.4.6).
    Bad input (zn <= 0, zf <= zn, NaN): scale 0, bias 1. */
@@ -396,7 +400,9 @@ typedef struct sk_res_estimate {
    A sample is the pixel centre's world position; it counts when it lands
    inside the light's clip volume (w > 0, |x|,|y|,|z| <= w). Patches come from
    the four pixel corners, their depth bilinearly interpolated from the valid
-   pixels around each corner (Sec. 3.2). No sample: SK_OK with samples = 0,
+   pixels around each corner (Sec. 3.2). If no patch has all four corners in
+   front of the light, the texel size is the bounds over max_res (so the map
+   is max_res wide). No sample: SK_OK with samples = 0,
    width and height 0, texel sizes 0, bounds and crop the identity of
    [-1,1]^2. w and h in [1, 65536]; max_res >= 1. */
 SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h,
@@ -436,14 +442,16 @@ SKDEF void sk_pvsm_predict(sk_vec2 u_h, sk_vec2 v_h, sk_vec2 u_phi, sk_vec2 v_ph
 SKDEF void sk_pvsm_merge(float *v, float *a, float v_src, float a_src);
 typedef struct sk_tile { int x0, y0, x1, y1; int res_x, res_y; } sk_tile;  /* cells [x0,x1) x [y0,y1) */
 /* Size in floats of the SMTG min-pyramid of a gw x gh grid of 2-float cells
-   (all levels, level 0 included, down to 1x1); 0 on bad input. */
+   (all levels, level 0 included, down to 1x1); 0 on bad input (gw, gh
+   outside [1, 4096]). */
 SKDEF int sk_smtg_pyramid_size(int gw, int gh);
 /* Builds the min-pyramid: level 0 is the grid, each next level the per-2x2
    minimum (odd sizes round up). Returns the number of levels, or -sk_result. */
 SKDEF int sk_smtg_pyramid(const float *grid, int gw, int gh, float *out, int cap_floats);
 /* grid: gw*gh*2 floats, cell (x,y) at grid[(y*gw + x)*2 + {0,1}], the minimum
    required texel size along x and y in light-clip units (2/gw per cell span);
-   +INFINITY or NaN = no sample; <= 0 demands max_res. A cell whose need
+   +INFINITY or NaN = no sample; <= 0 is an unbounded demand (that cell ends
+   in a 1x1 tile at max_res). A cell whose need
    exceeds max_res gets a tile of its own at max_res (clamped, never an error).
    Empty grid: returns 0. Top-down kd-tree (Giegl & Wimmer): a node, shrunk to
    its sampled cells, becomes a tile when its resolution fits max_res, else it
@@ -885,55 +893,65 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
     return 1;
 }
 
-/* Sutherland-Hodgman: clip a convex polygon by dot(n,p)+d >= 0.
-   in and out may not alias; returns the new count (<= n + 1). */
-static int sk__clip_poly(const sk_vec3 *in, int n, const sk_plane *pl, sk_vec3 *out)
+static int sk__in_aabb(const sk_aabb *b, sk_vec3 p, float tol)
 {
-    int i, m = 0;
-    for (i = 0; i < n; i++) {
-        sk_vec3 a = in[i], b = in[(i + 1) % n];
-        float da = sk__plane_dist(pl, a), db = sk__plane_dist(pl, b);
-        if (da >= 0.0f) out[m++] = a;
-        if ((da >= 0.0f) != (db >= 0.0f)) out[m++] = sk__lerp3(a, b, da / (da - db));
+    return p.x >= b->min.x - tol && p.x <= b->max.x + tol && p.y >= b->min.y - tol &&
+           p.y <= b->max.y + tol && p.z >= b->min.z - tol && p.z <= b->max.z + tol;
+}
+static int sk__in_planes(const sk_plane *pl, sk_vec3 p, float tol)
+{
+    int k;
+    for (k = 0; k < 6; k++) if (sk__plane_dist(&pl[k], p) < -tol) return 0;
+    return 1;
+}
+/* Crossings of a's edges with b's planes that lie inside b. */
+static int sk__edge_crossings(const sk_frustum *a, const sk_frustum *b, float tol, sk_vec3 *out, int n)
+{
+    int e, k;
+    for (e = 0; e < 12; e++) {
+        sk_vec3 p0 = a->corners[sk__edges[e][0]], p1 = a->corners[sk__edges[e][1]];
+        for (k = 0; k < 6; k++) {
+            float d0 = sk__plane_dist(&b->planes[k], p0), d1 = sk__plane_dist(&b->planes[k], p1);
+            sk_vec3 q;
+            if ((d0 > 0.0f) == (d1 > 0.0f) || d0 == d1) continue;
+            q = sk__lerp3(p0, p1, d0 / (d0 - d1));
+            if (n < SK_CLIP_MAX_POINTS && sk__in_planes(b->planes, q, tol)) out[n++] = q;
+        }
     }
-    return m;
+    return n;
 }
 
+/* A vertex of the intersection of two convex bodies is a corner of one
+   inside the other, or where an edge of one crosses a face of the other. */
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap)
 {
     sk_frustum bf;
     sk_vec3 pts[SK_CLIP_MAX_POINTS];
-    int count = 0, poly, i, k, j;
-    float scale = 0.0f;
+    int count = 0, i, j, n = 0;
+    float tol = 0.0f;
     if (!f || !out || cap < 0 || sk__frustum_invalid(f) || !sk__aabb_valid(&box))
         return -(int)SK_ERR_INVALID_ARG;
     sk_frustum_from_aabb(box, &bf);
     for (i = 0; i < 8; i++) {
         float a = sk__maxabs3(f->corners[i]), b = sk__maxabs3(bf.corners[i]);
-        if (a > scale) scale = a;
-        if (b > scale) scale = b;
+        if (a > tol) tol = a;
+        if (b > tol) tol = b;
     }
-    /* Every face of the intersection lies in a face of one of the two
-       bodies: clip each body's faces by the other's planes, keep vertices. */
-    for (poly = 0; poly < 12; poly++) {
-        const sk_frustum *src = poly < 6 ? f : &bf, *clip = poly < 6 ? &bf : f;
-        sk_vec3 a[12], b[12];
-        int n = 4;
-        for (i = 0; i < 4; i++) a[i] = src->corners[sk__face_quads[poly % 6][i]];
-        for (k = 0; k < 6 && n > 0; k++) {
-            n = sk__clip_poly(a, n, &clip->planes[k], b);
-            for (i = 0; i < n; i++) a[i] = b[i];
-        }
-        for (i = 0; i < n; i++) {
-            float tol = 1e-6f * (1.0f + scale);
-            for (j = 0; j < count; j++)
-                if (SK_FABSF(pts[j].x - a[i].x) <= tol && SK_FABSF(pts[j].y - a[i].y) <= tol &&
-                    SK_FABSF(pts[j].z - a[i].z) <= tol) break;
-            if (j == count) {
-                if (count == SK_CLIP_MAX_POINTS) break;
-                pts[count++] = a[i];
-            }
-        }
+    tol = 1e-5f * (1.0f + tol);
+    for (i = 0; i < 8; i++) {
+        if (sk__in_aabb(&box, f->corners[i], tol)) pts[n++] = f->corners[i];
+        if (sk__in_planes(f->planes, bf.corners[i], tol)) pts[n++] = bf.corners[i];
+    }
+    if (n < 16) {
+        n = sk__edge_crossings(f, &bf, tol, pts, n);
+        n = sk__edge_crossings(&bf, f, tol, pts, n);
+    }
+    /* drop coincident points (shared corners, edges through corners) */
+    for (i = 0; i < n; i++) {
+        for (j = 0; j < count; j++)
+            if (SK_FABSF(pts[j].x - pts[i].x) <= tol && SK_FABSF(pts[j].y - pts[i].y) <= tol &&
+                SK_FABSF(pts[j].z - pts[i].z) <= tol) break;
+        if (j == count) pts[count++] = pts[i];
     }
     if (count > cap) return -(int)SK_ERR_CAPACITY;
     for (i = 0; i < count; i++) out[i] = pts[i];
@@ -1147,17 +1165,20 @@ SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
 /* ---- 4. PSM and LiSPSM (seed 002) -------------------------------------- */
 
 /* Off-centre perspective from `eye` looking along `dir`, fitted around the
-   points (all must lie in front). Returns 0 if a point is not in front. */
+   points (all must lie in front); the casters' corners, taken to space `pp`
+   first, widen only the depth range. Returns 0 if a point is not in front. */
 static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int n,
-                               const sk_vec3 *depth_pts, int nd, sk_mat4 *out)
+                               const sk_aabb *casters, int nc, sk_mat4 pp, sk_mat4 *out)
 {
     sk_mat4 view = sk_mat4_look_at(eye, sk__add(eye, dir), sk__least_aligned_axis(dir));
     double l = 1e300, r = -1e300, b = 1e300, t = -1e300, zn = 1e300, zf = -1e300;
     int i;
     sk_mat4 p;
-    for (i = 0; i < n + nd; i++) {
-        sk_vec3 q = sk__xform_affine(&view, i < n ? pts[i] : depth_pts[i - n]);
-        double depth = -(double)q.z;
+    for (i = 0; i < n + 8 * nc; i++) {
+        sk_vec3 q = i < n ? pts[i] : sk_mat4_transform_point(pp, sk__aabb_corner(&casters[(i - n) / 8], (i - n) & 7));
+        double depth;
+        q = sk__xform_affine(&view, q);
+        depth = -(double)q.z;
         if (!(depth > 1e-7 * (1.0 + sk__maxabs3(eye)))) return 0;
         if (i < n) {
             double x = q.x / depth, y = q.y / depth;
@@ -1192,16 +1213,16 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
    cases: lights behind the viewer invert, casters behind the camera). */
 SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
 {
-    sk_vec3 l, le, cube[8], cpts[8 * 64];
+    sk_vec3 l, le, cube[8];
     sk_mat4 vview, vproj, ppv, lvp;
     sk_vec4 lh;
     float slide = 0.0f, zf;
-    int i, nc = 0, inverted = 0, ortho = 0;
+    int i, inverted = 0, ortho = 0;
     if (!d || !out || !sk__mat_finite(&d->cam_view) || !sk__v3_finite(d->light_dir) ||
         sk__len(d->light_dir) == 0.0f || !sk__finite(d->fovy) || !sk__finite(d->aspect) ||
         !sk__finite(d->zn) || !sk__finite(d->zf) || !(d->fovy > 0.0f) || !(d->fovy < SK__PI) ||
         !(d->aspect > 0.0f) || !(d->zn > 0.0f) || !(d->zf > d->zn) || d->caster_count < 0 ||
-        (d->caster_count > 0 && !d->casters) || d->caster_count > 64)
+        (d->caster_count > 0 && !d->casters))
         return SK_ERR_INVALID_ARG;
     for (i = 0; i < d->caster_count; i++)
         if (!sk__aabb_valid(&d->casters[i])) return SK_ERR_INVALID_ARG;
@@ -1234,18 +1255,26 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
     }
     for (i = 0; i < 8; i++)
         cube[i] = sk__v3((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? 1.0f : -1.0f);
-    for (i = 0; i < d->caster_count; i++) {
-        int k;
-        for (k = 0; k < 8; k++) cpts[nc++] = sk_mat4_transform_point(ppv, sk__aabb_corner(&d->casters[i], k));
-    }
     if (SK_FABSF(le.z) < 1e-4f) {
         /* light perpendicular to the view: parallel rays in PP space too */
-        sk_vec3 dir = sk__normalize(sk__v3(-lh.x, -lh.y, -lh.z)), all[8 + 8 * 64];
+        sk_vec3 dir = sk__normalize(sk__v3(-lh.x, -lh.y, -lh.z));
         sk_mat4 lv = sk_mat4_look_at(sk__v3(0, 0, 0), dir, sk__least_aligned_axis(dir)), lp;
-        for (i = 0; i < 8; i++) all[i] = cube[i];
-        for (i = 0; i < nc; i++) all[8 + i] = cpts[i];
+        double zlo = 1e300, zhi = -1e300;
         ortho = 1;
-        if (sk_fit_ortho(all, 8 + nc, lv, NULL, &lp) != SK_OK) return SK_ERR_DEGENERATE;
+        if (sk_fit_ortho(cube, 8, lv, NULL, &lp) != SK_OK) return SK_ERR_DEGENERATE;
+        for (i = 0; i < 8 * d->caster_count; i++) {
+            sk_vec3 q = sk__xform_affine(&lv, sk_mat4_transform_point(ppv, sk__aabb_corner(&d->casters[i / 8], i & 7)));
+            if (q.z < zlo) zlo = q.z;
+            if (q.z > zhi) zhi = q.z;
+        }
+        if (d->caster_count > 0) {
+            /* widen the fitted depth range [-1,1] to the casters' */
+            double za = (-1.0 - lp.m[14]) / lp.m[10], zb = (1.0 - lp.m[14]) / lp.m[10];  /* view z at depth -1, +1 */
+            if (zhi > za) za = zhi;
+            if (zlo < zb) zb = zlo;
+            lp.m[10] = (float)(2.0 / (zb - za));
+            lp.m[14] = (float)(-1.0 - 2.0 * za / (zb - za));
+        }
         lvp = sk_mat4_mul(lp, lv);
         out->light_pp = dir;
     } else {
@@ -1254,8 +1283,8 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         sk_vec3 lp = sk__v3(lh.x / lh.w, lh.y / lh.w, lh.z / lh.w), dir;
         inverted = lh.w < 0.0f;
         dir = sk__normalize(sk__scale(lp, -1.0f));
-        if (!sk__fit_perspective(lp, dir, cube, 8, cpts, nc, &lvp) &&
-            !sk__fit_perspective(lp, sk__v3(0, 0, -1), cube, 8, cpts, nc, &lvp))
+        if (!sk__fit_perspective(lp, dir, cube, 8, d->casters, d->caster_count, ppv, &lvp) &&
+            !sk__fit_perspective(lp, sk__v3(0, 0, -1), cube, 8, d->casters, d->caster_count, ppv, &lvp))
             return SK_ERR_DEGENERATE;
         out->light_pp = lp;
     }
@@ -1285,15 +1314,19 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
     for (i = 0; i < d->body_count; i++) if (!sk__v3_finite(d->body[i])) return SK_ERR_INVALID_ARG;
     l = sk__normalize(d->light_dir);
     v = sk__normalize(d->view_dir);
-    cosg = sk__dot(v, l);
-    if (cosg > 1.0) cosg = 1.0;
-    if (cosg < -1.0) cosg = -1.0;
-    sing = SK_SQRT(1.0 - cosg * cosg);
+    {
+        /* sin(gamma) = |v x l| and the warp axis v - (v.l) l, in double: both
+           cancel badly in float as the light turns parallel to the view */
+        double lx = l.x, ly = l.y, lz = l.z, vx = v.x, vy = v.y, vz = v.z;
+        double cx = vy * lz - vz * ly, cy = vz * lx - vx * lz, cz = vx * ly - vy * lx;
+        cosg = vx * lx + vy * ly + vz * lz;
+        sing = SK_SQRT(cx * cx + cy * cy + cz * cz);
+        yax = sk__v3((float)(vx - cosg * lx), (float)(vy - cosg * ly), (float)(vz - cosg * lz));
+    }
     /* light space: z towards the light, y the view direction projected
        perpendicular to the light (the warp axis), origin at the eye */
     zax = sk__scale(l, -1.0f);
-    yax = sk__sub(v, sk__scale(l, (float)cosg));
-    if (sing < 1e-6 || sk__len(yax) < 1e-6f) {
+    if (sing < 1e-6 || sk__len(yax) < 1e-7f) {
         sk_mat4 fixed = sk_light_view_directional(l);
         yax = sk__v3(fixed.m[1], fixed.m[5], fixed.m[9]);
         sing = 0.0;
@@ -1554,7 +1587,7 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
         h = sk__hull2(p2, n);
         f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w);
         f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w);
-        for (i = 0; i < 80; i++) {
+        for (i = 0; i < 48; i++) {
             if (f1 <= f2) { b = c2; c2 = c1; f2 = f1; c1 = b - g * (b - a); f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w); }
             else { a = c1; c1 = c2; f1 = f2; c2 = a + g * (b - a); f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w); }
         }
@@ -1562,7 +1595,7 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
         sk__trap_cost(p2, h, ymin, L, t, &u, &w);
         nn = w - u;
         far_w = nn + 2.0 * L * t;
-        if (nn < 1e-4 * far_w) nn = 1e-4 * far_w;     /* n -> 0: keep Eq. (1) finite */
+        if (nn < 1e-2 * far_w) nn = 1e-2 * far_w;     /* n -> 0: rows of usable size */
         r.n = (float)nn;
         r.L = (float)L;
         r.theta = (float)SK_ATAN(t);
@@ -1794,6 +1827,7 @@ SKDEF int sk_light_scissor(sk_vec3 light_pos, float radius, sk_mat4 view_proj, i
     if (ymin < 0.0) ymin = 0.0;
     if (xmax > vp_w) xmax = vp_w;
     if (ymax > vp_h) ymax = vp_h;
+    if (!(xmax > xmin) || !(ymax > ymin)) return 0;      /* off-screen */
     x0 = (int)SK_FLOOR(xmin); y0 = (int)SK_FLOOR(ymin);
     x1 = (int)SK_CEIL(xmax); y1 = (int)SK_CEIL(ymax);
     if (x1 <= x0 || y1 <= y0) return 0;
@@ -1832,7 +1866,7 @@ SKDEF sk_result sk_vsdct_layout_make(int face_res, sk_vsdct_layout *out)
 static int sk__ceil_log2(int x)
 {
     int e = 0;
-    while ((1 << e) < x) e++;
+    while (e < 31 && (1u << e) < (unsigned)x) e++;
     return e;
 }
 
@@ -1840,7 +1874,7 @@ static int sk__ceil_log2(int x)
 SKDEF int sk_vsdct_indirection_size(int face_res, int grey_levels, int deriv_bits)
 {
     int e, g;
-    if (face_res < 1 || face_res > SK_VSDCT_MAX_FACE_RES || grey_levels < 1 || deriv_bits < 0 || deriv_bits > 30)
+    if (face_res < 1 || face_res > SK_VSDCT_MAX_FACE_RES || grey_levels < 1 || deriv_bits < 0)
         return 0;
     g = sk__ceil_log2(grey_levels);
     e = sk__ceil_log2(face_res) + (g < deriv_bits ? g : deriv_bits) - deriv_bits;
@@ -1923,6 +1957,7 @@ SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsi
 typedef struct sk__res_pt { float x, y; int ok; } sk__res_pt;
 
 #define SK__RES_STRIP 256
+static const float sk__inv_count[5] = {0.0f, 1.0f, 0.5f, 1.0f / 3.0f, 0.25f};
 
 SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4 inv, sk_mat4 lvp,
                                        int max_res, sk_res_estimate *out)
@@ -1932,6 +1967,8 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
     float sx = 2.0f / (float)w, sy = 2.0f / (float)h;
     int samples = 0, patches = 0, x0;
     sk__res_pt rowa[SK__RES_STRIP + 1], rowb[SK__RES_STRIP + 1];
+    float colsum[SK__RES_STRIP + 2];
+    int colcnt[SK__RES_STRIP + 2];
     if (!depth || !out || w < 1 || h < 1 || w > 65536 || h > 65536 || max_res < 1 ||
         !sk__mat_finite(&inv) || !sk__mat_finite(&lvp))
         return SK_ERR_INVALID_ARG;
@@ -1949,20 +1986,23 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
             float bx = m.m[4] * ny + m.m[12], by = m.m[5] * ny + m.m[13], bw = m.m[7] * ny + m.m[15];
             float gw = inv.m[7] * ny + inv.m[15];
             int i;
-            for (i = 0; i < ncorner; i++) {
-                int cx = x0 + i, k, nv = 0;
-                float sum = 0.0f;
-                for (k = 0; k < 4; k++) {
-                    const float *row = (k & 2) ? rb : ra;
-                    int px = cx - 1 + (k & 1);
-                    float d;
-                    if (!row || px < 0 || px >= w) continue;
-                    d = row[px];
-                    if (d >= 0.0f && d < 1.0f) { sum += d; nv++; }
+            /* vertical pair sums of valid depths, column x0-1+i at index i,
+               so each corner is the sum of two neighbouring columns */
+            for (i = 0; i < ncorner + 1; i++) {
+                int px = x0 - 1 + i, n = 0;
+                float sum = 0.0f, d;
+                if (px >= 0 && px < w) {
+                    if (ra) { d = ra[px]; if (d >= 0.0f && d < 1.0f) { sum += d; n++; } }
+                    if (rb) { d = rb[px]; if (d >= 0.0f && d < 1.0f) { sum += d; n++; } }
                 }
+                colsum[i] = sum;
+                colcnt[i] = n;
+            }
+            for (i = 0; i < ncorner; i++) {
+                int cx = x0 + i, nv = colcnt[i] + colcnt[i + 1];
                 hi[i].ok = 0;
                 if (nv) {
-                    float nx = (float)cx * sx - 1.0f, nz = 2.0f * (sum / (float)nv) - 1.0f;
+                    float nx = (float)cx * sx - 1.0f, nz = 2.0f * ((colsum[i] + colsum[i + 1]) * sk__inv_count[nv]) - 1.0f;
                     float lx = bx + m.m[0] * nx + m.m[8] * nz, ly = by + m.m[1] * nx + m.m[9] * nz;
                     float lw = bw + m.m[3] * nx + m.m[11] * nz, ww = gw + inv.m[3] * nx + inv.m[11] * nz;
                     if (ww < 0.0f) { lx = -lx; ly = -ly; lw = -lw; }
