@@ -1,0 +1,447 @@
+/* tb_reference.c - see tb_reference.h */
+#if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 200809L
+#undef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 200809L
+#endif
+#include "tb_reference.h"
+
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#if defined(__SSE__) || defined(__x86_64__)
+#include <xmmintrin.h>
+#define TB_HAVE_MXCSR 1
+#endif
+
+#define TB_MAX_THREADS 64
+#define TB_POINT_CHUNK 64   /* points per work item in tb_reference_trace_points */
+
+struct tb_reference {
+    RTCDevice device;
+    RTCScene scene;
+    double diagonal;
+};
+
+static void tb_embree_error_(void *user, enum RTCError code, const char *msg) {
+    (void)user;
+    fprintf(stderr, "embree error %d: %s\n", (int)code, msg ? msg : "");
+}
+
+tb_reference *tb_reference_create(const tb_scene *s) {
+    tb_reference *r;
+    RTCGeometry g;
+    float *vb;
+    unsigned *ib;
+    if (!s || s->index_count < 3 || !s->positions || !s->indices) return NULL;
+    r = (tb_reference *)calloc(1, sizeof *r);
+    if (!r) return NULL;
+    r->device = rtcNewDevice(NULL);
+    if (!r->device) {
+        fprintf(stderr, "embree: rtcNewDevice failed (%d)\n", (int)rtcGetDeviceError(NULL));
+        free(r);
+        return NULL;
+    }
+    rtcSetDeviceErrorFunction(r->device, tb_embree_error_, NULL);
+    r->scene = rtcNewScene(r->device);
+    rtcSetSceneFlags(r->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(r->scene, RTC_BUILD_QUALITY_HIGH);
+    g = rtcNewGeometry(r->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    vb = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                          3 * sizeof(float), s->vertex_count);
+    ib = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                             3 * sizeof(unsigned), s->index_count / 3);
+    if (!vb || !ib) {
+        rtcReleaseGeometry(g);
+        tb_reference_destroy(r);
+        return NULL;
+    }
+    memcpy(vb, s->positions, (size_t)s->vertex_count * 3 * sizeof(float));
+    memcpy(ib, s->indices, (size_t)(s->index_count / 3) * 3 * sizeof(unsigned));
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(r->scene, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(r->scene);
+    if (rtcGetDeviceError(r->device) != RTC_ERROR_NONE) {
+        tb_reference_destroy(r);
+        return NULL;
+    }
+    r->diagonal = tb_scene_diagonal(s);
+    return r;
+}
+
+void tb_reference_destroy(tb_reference *r) {
+    if (!r) return;
+    if (r->scene) rtcReleaseScene(r->scene);
+    if (r->device) rtcReleaseDevice(r->device);
+    free(r);
+}
+
+static double tb_eps_rel_(const tb_ref_options *opt) {
+    return (opt && opt->eps_rel > 0) ? opt->eps_rel : TB_REF_EPS_REL;
+}
+
+double tb_reference_epsilon(const tb_reference *r, const tb_ref_options *opt) {
+    return r ? tb_eps_rel_(opt) * r->diagonal : 0.0;
+}
+
+/* ---- math ---- */
+
+static void tb_mul_m4_v4_(const sk_mat4 *m, const double v[4], double out[4]) {
+    int row, col;
+    for (row = 0; row < 4; row++) {
+        double acc = 0;
+        for (col = 0; col < 4; col++) acc += (double)m->m[col * 4 + row] * v[col];
+        out[row] = acc;
+    }
+}
+
+int tb_unproject_pixel(const sk_mat4 *ivp, int width, int height, int x, int y, float depth,
+                       double out[3]) {
+    double ndc[4], w[4];
+    ndc[0] = 2.0 * (x + 0.5) / width - 1.0;
+    ndc[1] = 2.0 * (y + 0.5) / height - 1.0;
+    ndc[2] = 2.0 * (double)depth - 1.0;
+    ndc[3] = 1.0;
+    tb_mul_m4_v4_(ivp, ndc, w);
+    if (w[3] == 0 || !isfinite(w[3])) return -1;
+    out[0] = w[0] / w[3];
+    out[1] = w[1] / w[3];
+    out[2] = w[2] / w[3];
+    return (isfinite(out[0]) && isfinite(out[1]) && isfinite(out[2])) ? 0 : -1;
+}
+
+static double tb_dot_(const double a[3], const double b[3]) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static int tb_normalize_(double v[3]) {
+    double l = sqrt(tb_dot_(v, v));
+    if (!(l > 0) || !isfinite(l)) return 0;
+    v[0] /= l; v[1] /= l; v[2] /= l;
+    return 1;
+}
+
+/* PCG32 (O'Neill), seeded per pixel: deterministic regardless of threads */
+typedef struct tb_pcg_ { uint64_t state, inc; } tb_pcg_;
+static uint32_t tb_pcg_next_(tb_pcg_ *g) {
+    uint64_t old = g->state;
+    uint32_t xs, rot;
+    g->state = old * 6364136223846793005ull + g->inc;
+    xs = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+    rot = (uint32_t)(old >> 59u);
+    return (xs >> rot) | (xs << ((32u - rot) & 31u));
+}
+static void tb_pcg_seed_(tb_pcg_ *g, uint64_t seed, uint64_t stream) {
+    g->state = 0;
+    g->inc = (stream << 1u) | 1u;
+    tb_pcg_next_(g);
+    g->state += seed;
+    tb_pcg_next_(g);
+}
+static double tb_pcg_unit_(tb_pcg_ *g) { return tb_pcg_next_(g) * (1.0 / 4294967296.0); }
+
+/* ---- shading one point ---- */
+
+typedef struct tb_job_ {
+    const tb_reference *ref;
+    const tb_light *light;
+    double eps;
+    int facing;
+    /* pixel mode */
+    const tb_view *view;
+    const float *depth;
+    const float *fnormals;
+    /* point mode */
+    const double *points;
+    const double *dnormals;
+    int count;
+    /* normals mode (tb_reference_normals) */
+    float *out_normals;
+    int rows;            /* work items */
+    int nthreads;
+    float *vis;
+} tb_job_;
+
+static int tb_occluded1_(RTCScene scene, const double o[3], const double d[3], double tnear,
+                         double tfar) {
+    struct RTCIntersectContext ctx;
+    struct RTCRay ray;
+    rtcInitIntersectContext(&ctx);
+    ray.org_x = (float)o[0]; ray.org_y = (float)o[1]; ray.org_z = (float)o[2];
+    ray.dir_x = (float)d[0]; ray.dir_y = (float)d[1]; ray.dir_z = (float)d[2];
+    ray.tnear = (float)tnear;
+    ray.tfar = (float)tfar;
+    ray.time = 0;
+    ray.mask = 0xFFFFFFFFu;
+    ray.id = 0;
+    ray.flags = 0;
+    rtcOccluded1(scene, &ctx, &ray);
+    return ray.tfar < 0;   /* -inf when occluded */
+}
+
+/* visibility of world point p (normal n or NULL), sample stream `index` */
+static float tb_shade_(const tb_job_ *j, const double p_in[3], const double *n_in, uint64_t index) {
+    const tb_light *L = j->light;
+    RTCScene scene = j->ref->scene;
+    double p[3], n[3], eps = j->eps;
+    int has_n = 0;
+    p[0] = p_in[0]; p[1] = p_in[1]; p[2] = p_in[2];
+    if (n_in) {
+        n[0] = n_in[0]; n[1] = n_in[1]; n[2] = n_in[2];
+        has_n = tb_normalize_(n);
+        if (has_n) { p[0] += n[0] * eps; p[1] += n[1] * eps; p[2] += n[2] * eps; }
+    }
+    if (L->type == TB_LIGHT_DIRECTIONAL) {
+        double d[3];
+        d[0] = -(double)L->direction.x; d[1] = -(double)L->direction.y; d[2] = -(double)L->direction.z;
+        if (!tb_normalize_(d)) return 0.0f;
+        if (has_n && j->facing && tb_dot_(n, d) <= 0) return 0.0f;
+        return tb_occluded1_(scene, p, d, eps, INFINITY) ? 0.0f : 1.0f;
+    }
+    if (L->type == TB_LIGHT_POINT) {
+        double d[3], dist;
+        d[0] = L->position.x - p_in[0]; d[1] = L->position.y - p_in[1]; d[2] = L->position.z - p_in[2];
+        dist = sqrt(tb_dot_(d, d));
+        if (L->range > 0 && dist > L->range) return TB_VIS_OUT_OF_RANGE;
+        d[0] = L->position.x - p[0]; d[1] = L->position.y - p[1]; d[2] = L->position.z - p[2];
+        dist = sqrt(tb_dot_(d, d));
+        if (!tb_normalize_(d)) return 1.0f;   /* at the light */
+        if (has_n && j->facing && tb_dot_(n, d) <= 0) return 0.0f;
+        if (dist <= 2 * eps) return 1.0f;
+        return tb_occluded1_(scene, p, d, eps, dist - eps) ? 0.0f : 1.0f;
+    }
+    {
+        /* rect light: strata x strata jittered samples, 16-ray packets */
+        int s = L->strata < TB_REF_MIN_STRATA ? TB_REF_MIN_STRATA : L->strata;
+        int total = s * s, k = 0, unocc = 0, i;
+        tb_pcg_ rng;
+        struct RTCIntersectContext ctx;
+        RTC_ALIGN(64) int valid[16];
+        RTC_ALIGN(64) struct RTCRay16 ray;
+        tb_pcg_seed_(&rng, ((uint64_t)L->seed << 32) ^ 0x9E3779B97F4A7C15ull, index);
+        rtcInitIntersectContext(&ctx);
+        memset(&ray, 0, sizeof ray);
+        while (k < total) {
+            int m = total - k < 16 ? total - k : 16, any = 0;
+            for (i = 0; i < 16; i++) {
+                valid[i] = 0;
+                ray.tfar[i] = 0;
+                if (i < m) {
+                    int cell = k + i, cx = cell % s, cy = cell / s;
+                    double a = 2.0 * (cx + tb_pcg_unit_(&rng)) / s - 1.0;
+                    double b = 2.0 * (cy + tb_pcg_unit_(&rng)) / s - 1.0;
+                    double q[3], d[3], dist;
+                    q[0] = L->position.x + a * L->half_u.x + b * L->half_v.x;
+                    q[1] = L->position.y + a * L->half_u.y + b * L->half_v.y;
+                    q[2] = L->position.z + a * L->half_u.z + b * L->half_v.z;
+                    d[0] = q[0] - p[0]; d[1] = q[1] - p[1]; d[2] = q[2] - p[2];
+                    dist = sqrt(tb_dot_(d, d));
+                    if (!tb_normalize_(d)) { unocc++; continue; }
+                    if (has_n && j->facing && tb_dot_(n, d) <= 0) continue;   /* occluded */
+                    if (dist <= 2 * eps) { unocc++; continue; }
+                    ray.org_x[i] = (float)p[0]; ray.org_y[i] = (float)p[1]; ray.org_z[i] = (float)p[2];
+                    ray.dir_x[i] = (float)d[0]; ray.dir_y[i] = (float)d[1]; ray.dir_z[i] = (float)d[2];
+                    ray.tnear[i] = (float)eps;
+                    ray.tfar[i] = (float)(dist - eps);
+                    ray.time[i] = 0;
+                    ray.mask[i] = 0xFFFFFFFFu;
+                    ray.id[i] = (unsigned)i;
+                    ray.flags[i] = 0;
+                    valid[i] = -1;
+                    any = 1;
+                }
+            }
+            if (any) {
+                rtcOccluded16(valid, scene, &ctx, &ray);
+                for (i = 0; i < m; i++)
+                    if (valid[i] && ray.tfar[i] >= 0) unocc++;
+            }
+            k += m;
+        }
+        return (float)((double)unocc / total);
+    }
+}
+
+/* primary ray through pixel (x, y); 1 and the camera-facing unit normal
+   when the hit lies within tol of the reconstructed point p */
+static int tb_primary_normal_(const tb_job_ *j, int x, int y, const double p[3], float out[3]) {
+    const tb_view *v = j->view;
+    double a[3], b[3], d[3], len, tol = 0.01 * j->ref->diagonal, hit[3], e[3], ng[3];
+    struct RTCIntersectContext ctx;
+    struct RTCRayHit rh;
+    if (tb_unproject_pixel(&v->inv_view_proj, v->width, v->height, x, y, 0.0f, a) ||
+        tb_unproject_pixel(&v->inv_view_proj, v->width, v->height, x, y, 1.0f, b))
+        return 0;
+    d[0] = b[0] - a[0]; d[1] = b[1] - a[1]; d[2] = b[2] - a[2];
+    len = sqrt(tb_dot_(d, d));
+    if (!tb_normalize_(d)) return 0;
+    rtcInitIntersectContext(&ctx);
+    rh.ray.org_x = (float)a[0]; rh.ray.org_y = (float)a[1]; rh.ray.org_z = (float)a[2];
+    rh.ray.dir_x = (float)d[0]; rh.ray.dir_y = (float)d[1]; rh.ray.dir_z = (float)d[2];
+    rh.ray.tnear = 0;
+    rh.ray.tfar = (float)(len * 1.001);
+    rh.ray.time = 0;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(j->ref->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return 0;
+    hit[0] = a[0] + d[0] * rh.ray.tfar; hit[1] = a[1] + d[1] * rh.ray.tfar; hit[2] = a[2] + d[2] * rh.ray.tfar;
+    e[0] = hit[0] - p[0]; e[1] = hit[1] - p[1]; e[2] = hit[2] - p[2];
+    if (tb_dot_(e, e) > tol * tol) return 0;
+    ng[0] = rh.hit.Ng_x; ng[1] = rh.hit.Ng_y; ng[2] = rh.hit.Ng_z;
+    if (!tb_normalize_(ng)) return 0;
+    if (tb_dot_(ng, d) > 0) { ng[0] = -ng[0]; ng[1] = -ng[1]; ng[2] = -ng[2]; }
+    out[0] = (float)ng[0]; out[1] = (float)ng[1]; out[2] = (float)ng[2];
+    return 1;
+}
+
+typedef struct tb_worker_ { const tb_job_ *job; int tid; } tb_worker_;
+
+static void *tb_worker_main_(void *arg) {
+    const tb_worker_ *w = (const tb_worker_ *)arg;
+    const tb_job_ *j = w->job;
+    int row;
+#ifdef TB_HAVE_MXCSR
+    /* flush-to-zero and denormals-are-zero, as Embree recommends */
+    _mm_setcsr(_mm_getcsr() | 0x8040);
+#endif
+    for (row = w->tid; row < j->rows; row += j->nthreads) {
+        if (j->view) {
+            const tb_view *v = j->view;
+            int x;
+            for (x = 0; x < v->width; x++) {
+                size_t i = (size_t)row * (size_t)v->width + (size_t)x;
+                double p[3], nd[3];
+                const double *np = NULL;
+                float dep = j->depth[i];
+                if (j->out_normals) {
+                    float *o = j->out_normals + 3 * i;
+                    o[0] = o[1] = o[2] = 0.0f;
+                    if (!(dep < 1.0f) || tb_unproject_pixel(&v->inv_view_proj, v->width, v->height,
+                                                             x, row, dep, p))
+                        continue;
+                    tb_primary_normal_(j, x, row, p, o);
+                    continue;
+                }
+                if (!(dep < 1.0f) || !(dep >= 0.0f) ||
+                    tb_unproject_pixel(&v->inv_view_proj, v->width, v->height, x, row, dep, p)) {
+                    j->vis[i] = TB_VIS_BACKGROUND;
+                    continue;
+                }
+                if (j->fnormals) {
+                    nd[0] = j->fnormals[3 * i];
+                    nd[1] = j->fnormals[3 * i + 1];
+                    nd[2] = j->fnormals[3 * i + 2];
+                    np = nd;
+                }
+                j->vis[i] = tb_shade_(j, p, np, (uint64_t)i);
+            }
+        } else {
+            int i0 = row * TB_POINT_CHUNK, i;
+            for (i = i0; i < i0 + TB_POINT_CHUNK && i < j->count; i++)
+                j->vis[i] = tb_shade_(j, j->points + 3 * (size_t)i,
+                                      j->dnormals ? j->dnormals + 3 * (size_t)i : NULL, (uint64_t)i);
+        }
+    }
+    return NULL;
+}
+
+static int tb_run_(tb_job_ *j, const tb_ref_options *opt) {
+    pthread_t th[TB_MAX_THREADS];
+    tb_worker_ w[TB_MAX_THREADS];
+    int n = opt && opt->threads > 0 ? opt->threads : 0, i, started = 0;
+    if (n <= 0) {
+        long c = sysconf(_SC_NPROCESSORS_ONLN);
+        n = c > 0 ? (int)c : 1;
+    }
+    if (n > TB_MAX_THREADS) n = TB_MAX_THREADS;
+    if (n > j->rows) n = j->rows > 0 ? j->rows : 1;
+    j->nthreads = n;
+    for (i = 0; i < n; i++) {
+        w[i].job = j;
+        w[i].tid = i;
+        if (pthread_create(&th[i], NULL, tb_worker_main_, &w[i]) != 0) break;
+        started++;
+    }
+    if (started == 0) {
+        /* no threads available: do it here */
+        j->nthreads = 1;
+        w[0].tid = 0;
+        tb_worker_main_(&w[0]);
+        return 0;
+    }
+    if (started < n) {
+        /* the missing workers' rows: redo with the threads we have */
+        for (i = 0; i < started; i++) pthread_join(th[i], NULL);
+        j->nthreads = 1;
+        w[0].tid = 0;
+        tb_worker_main_(&w[0]);
+        return 0;
+    }
+    for (i = 0; i < started; i++) pthread_join(th[i], NULL);
+    return 0;
+}
+
+static int tb_light_ok_(const tb_light *L) {
+    if (!L) return 0;
+    return L->type == TB_LIGHT_DIRECTIONAL || L->type == TB_LIGHT_POINT || L->type == TB_LIGHT_RECT;
+}
+
+int tb_reference_trace(const tb_reference *ref, const tb_view *view, const float *depth,
+                       const float *normals, const tb_light *light, const tb_ref_options *opt,
+                       float *vis) {
+    tb_job_ j;
+    if (!ref || !view || !depth || !vis || !tb_light_ok_(light) || view->width <= 0 ||
+        view->height <= 0)
+        return -1;
+    memset(&j, 0, sizeof j);
+    j.ref = ref;
+    j.light = light;
+    j.eps = tb_reference_epsilon(ref, opt);
+    j.facing = !(opt && opt->ignore_facing);
+    j.view = view;
+    j.depth = depth;
+    j.fnormals = normals;
+    j.rows = view->height;
+    j.vis = vis;
+    return tb_run_(&j, opt);
+}
+
+int tb_reference_trace_points(const tb_reference *ref, const double *points, const double *normals,
+                              int count, const tb_light *light, const tb_ref_options *opt,
+                              float *vis) {
+    tb_job_ j;
+    if (!ref || !points || !vis || count < 0 || !tb_light_ok_(light)) return -1;
+    if (count == 0) return 0;
+    memset(&j, 0, sizeof j);
+    j.ref = ref;
+    j.light = light;
+    j.eps = tb_reference_epsilon(ref, opt);
+    j.facing = !(opt && opt->ignore_facing);
+    j.points = points;
+    j.dnormals = normals;
+    j.count = count;
+    j.rows = (count + TB_POINT_CHUNK - 1) / TB_POINT_CHUNK;
+    j.vis = vis;
+    return tb_run_(&j, opt);
+}
+
+int tb_reference_normals(const tb_reference *ref, const tb_view *view, const float *depth,
+                         const tb_ref_options *opt, float *normals) {
+    tb_job_ j;
+    if (!ref || !view || !depth || !normals || view->width <= 0 || view->height <= 0) return -1;
+    memset(&j, 0, sizeof j);
+    j.ref = ref;
+    j.view = view;
+    j.depth = depth;
+    j.out_normals = normals;
+    j.rows = view->height;
+    return tb_run_(&j, opt);
+}

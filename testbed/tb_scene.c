@@ -1,0 +1,411 @@
+/* tb_scene.c - see tb_scene.h */
+#include "tb_scene.h"
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static sk_aabb tb_empty_box_(void) {
+    sk_aabb b;
+    b.min.x = b.min.y = b.min.z = FLT_MAX;
+    b.max.x = b.max.y = b.max.z = -FLT_MAX;
+    return b;
+}
+
+static void tb_box_add_(sk_aabb *b, const float *p) {
+    if (p[0] < b->min.x) b->min.x = p[0];
+    if (p[1] < b->min.y) b->min.y = p[1];
+    if (p[2] < b->min.z) b->min.z = p[2];
+    if (p[0] > b->max.x) b->max.x = p[0];
+    if (p[1] > b->max.y) b->max.y = p[1];
+    if (p[2] > b->max.z) b->max.z = p[2];
+}
+
+void tb_scene_init(tb_scene *s) {
+    memset(s, 0, sizeof *s);
+    s->bounds = tb_empty_box_();
+}
+
+void tb_scene_free(tb_scene *s) {
+    free(s->positions);
+    free(s->normals);
+    free(s->indices);
+    free(s->objects);
+    tb_scene_init(s);
+}
+
+double tb_scene_diagonal(const tb_scene *s) {
+    double dx = (double)s->bounds.max.x - s->bounds.min.x;
+    double dy = (double)s->bounds.max.y - s->bounds.min.y;
+    double dz = (double)s->bounds.max.z - s->bounds.min.z;
+    if (s->index_count == 0 || dx < 0 || dy < 0 || dz < 0) return 0.0;
+    return sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+int tb_scene_find_object(const tb_scene *s, const char *name) {
+    uint32_t i;
+    for (i = 0; i < s->object_count; i++)
+        if (strcmp(s->objects[i].name, name) == 0) return (int)i;
+    return -1;
+}
+
+/* ---- growth ---- */
+
+static int tb_grow_(void **p, uint32_t *cap, uint64_t need, size_t elem) {
+    uint64_t c = *cap ? *cap : 64;
+    void *q;
+    if (need <= *cap) return 0;
+    if (need > 0xFFFFFFFFull) return -1;
+    while (c < need) c *= 2;
+    if (c > 0xFFFFFFFFull) c = 0xFFFFFFFFull;
+    q = realloc(*p, (size_t)c * elem);
+    if (!q) return -1;
+    *p = q;
+    *cap = (uint32_t)c;
+    return 0;
+}
+
+/* reserve room for nv more vertices and ni more indices */
+static int tb_reserve_(tb_scene *s, uint64_t nv, uint64_t ni) {
+    uint32_t vcap = s->vertex_cap_, vcap2 = s->vertex_cap_;
+    void *pp = s->positions, *np = s->normals, *ip = s->indices;
+    if (tb_grow_(&pp, &vcap, (uint64_t)s->vertex_count + nv, 3 * sizeof(float))) return -1;
+    s->positions = (float *)pp;
+    if (tb_grow_(&np, &vcap2, (uint64_t)s->vertex_count + nv, 3 * sizeof(float))) return -1;
+    s->normals = (float *)np;
+    s->vertex_cap_ = vcap < vcap2 ? vcap : vcap2;
+    if (tb_grow_(&ip, &s->index_cap_, (uint64_t)s->index_count + ni, sizeof(uint32_t))) return -1;
+    s->indices = (uint32_t *)ip;
+    return 0;
+}
+
+/* start an object: returns its index or -1 */
+static int tb_begin_object_(tb_scene *s, const char *name) {
+    void *op = s->objects;
+    tb_object *o;
+    if (tb_grow_(&op, &s->object_cap_, (uint64_t)s->object_count + 1, sizeof(tb_object))) return -1;
+    s->objects = (tb_object *)op;
+    o = &s->objects[s->object_count];
+    memset(o, 0, sizeof *o);
+    if (name) {
+        strncpy(o->name, name, TB_NAME_MAX - 1);
+        o->name[TB_NAME_MAX - 1] = 0;
+    }
+    o->first_index = s->index_count;
+    o->bounds = tb_empty_box_();
+    return (int)s->object_count++;
+}
+
+/* finish the last object: index range and bounds from the indices added */
+static void tb_end_object_(tb_scene *s, int obj) {
+    tb_object *o = &s->objects[obj];
+    uint32_t i;
+    o->index_count = s->index_count - o->first_index;
+    for (i = o->first_index; i < s->index_count; i++) {
+        const float *p = s->positions + 3 * (size_t)s->indices[i];
+        tb_box_add_(&o->bounds, p);
+        tb_box_add_(&s->bounds, p);
+    }
+}
+
+/* drop a half-built object (after an allocation failure) */
+static void tb_abort_object_(tb_scene *s, int obj, uint32_t vcount) {
+    s->index_count = s->objects[obj].first_index;
+    s->vertex_count = vcount;
+    s->object_count = (uint32_t)obj;
+}
+
+/* rectangle origin + a*u + b*v (a, b in [0,1]) as nu x nv quads; the normal
+   is cross(u, v) flipped if needed to agree with `want` */
+static int tb_add_rect_(tb_scene *s, const double o[3], const double u_in[3],
+                        const double v_in[3], int nu, int nv, const double want[3]) {
+    double u[3], v[3], n[3], len;
+    uint32_t base = s->vertex_count;
+    int i, j;
+    if (nu < 1) nu = 1;
+    if (nv < 1) nv = 1;
+    memcpy(u, u_in, sizeof u);
+    memcpy(v, v_in, sizeof v);
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    if (n[0] * want[0] + n[1] * want[1] + n[2] * want[2] < 0) {
+        /* swap u and v: same rectangle, opposite winding */
+        memcpy(u, v_in, sizeof u);
+        memcpy(v, u_in, sizeof v);
+        i = nu; nu = nv; nv = i;
+        n[0] = -n[0]; n[1] = -n[1]; n[2] = -n[2];
+    }
+    len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len > 0) { n[0] /= len; n[1] /= len; n[2] /= len; }
+    if (tb_reserve_(s, (uint64_t)(nu + 1) * (nv + 1), (uint64_t)nu * nv * 6)) return -1;
+    for (j = 0; j <= nv; j++)
+        for (i = 0; i <= nu; i++) {
+            double a = (double)i / nu, b = (double)j / nv;
+            float *p = s->positions + 3 * (size_t)s->vertex_count;
+            float *q = s->normals + 3 * (size_t)s->vertex_count;
+            int k;
+            for (k = 0; k < 3; k++) {
+                /* exact endpoints: a == 1 gives o + u without rounding drift */
+                p[k] = (float)(o[k] + a * u[k] + b * v[k]);
+                q[k] = (float)n[k];
+            }
+            s->vertex_count++;
+        }
+    for (j = 0; j < nv; j++)
+        for (i = 0; i < nu; i++) {
+            uint32_t a = base + (uint32_t)(j * (nu + 1) + i);
+            uint32_t b = a + 1, c = a + (uint32_t)(nu + 1), d = c + 1;
+            uint32_t *t = s->indices + s->index_count;
+            /* (a, b, d) and (a, d, c): CCW seen from +cross(u, v) */
+            t[0] = a; t[1] = b; t[2] = d;
+            t[3] = a; t[4] = d; t[5] = c;
+            s->index_count += 6;
+        }
+    return 0;
+}
+
+static int tb_add_box_faces_(tb_scene *s, sk_vec3 mn, sk_vec3 mx) {
+    double lo[3], hi[3];
+    int ax;
+    lo[0] = mn.x; lo[1] = mn.y; lo[2] = mn.z;
+    hi[0] = mx.x; hi[1] = mx.y; hi[2] = mx.z;
+    for (ax = 0; ax < 3; ax++) {
+        int side;
+        for (side = 0; side < 2; side++) {
+            double o[3], u[3] = {0, 0, 0}, v[3] = {0, 0, 0}, w[3] = {0, 0, 0};
+            int a1 = (ax + 1) % 3, a2 = (ax + 2) % 3;
+            o[0] = lo[0]; o[1] = lo[1]; o[2] = lo[2];
+            o[ax] = side ? hi[ax] : lo[ax];
+            u[a1] = hi[a1] - lo[a1];
+            v[a2] = hi[a2] - lo[a2];
+            w[ax] = side ? 1.0 : -1.0;
+            if (tb_add_rect_(s, o, u, v, 1, 1, w)) return -1;
+        }
+    }
+    return 0;
+}
+
+int tb_scene_add_box(tb_scene *s, const char *name, sk_vec3 mn, sk_vec3 mx) {
+    uint32_t vc = s->vertex_count;
+    int obj = tb_begin_object_(s, name);
+    if (obj < 0) return -1;
+    if (tb_add_box_faces_(s, mn, mx)) { tb_abort_object_(s, obj, vc); return -1; }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+int tb_scene_add_pole(tb_scene *s, const char *name, float x, float y0, float z,
+                      float r, float h) {
+    sk_vec3 mn, mx;
+    mn.x = x - r; mn.y = y0; mn.z = z - r;
+    mx.x = x + r; mx.y = y0 + h; mx.z = z + r;
+    return tb_scene_add_box(s, name, mn, mx);
+}
+
+int tb_scene_add_ground(tb_scene *s, const char *name, float cx, float cz,
+                        float hx, float hz, float y0, int nx, int nz) {
+    uint32_t vc = s->vertex_count;
+    double o[3], u[3] = {0, 0, 0}, v[3] = {0, 0, 0}, up[3] = {0, 1, 0};
+    int obj = tb_begin_object_(s, name);
+    if (obj < 0) return -1;
+    o[0] = (double)cx - hx; o[1] = y0; o[2] = (double)cz - hz;
+    u[0] = 2.0 * hx;
+    v[2] = 2.0 * hz;
+    if (tb_add_rect_(s, o, u, v, nx, nz, up)) { tb_abort_object_(s, obj, vc); return -1; }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+static sk_vec3 tb_v3_(float x, float y, float z) {
+    sk_vec3 r;
+    r.x = x; r.y = y; r.z = z;
+    return r;
+}
+
+/* ---- standard scenes ---- */
+
+int tb_scene_build_ground_boxes(tb_scene *s) {
+    if (tb_scene_add_ground(s, "ground", 0, 0, 20, 20, 0, 8, 8) < 0) return -1;
+    if (tb_scene_add_box(s, "box0", tb_v3_(-1, 0, -1), tb_v3_(1, 2, 1)) < 0) return -1;
+    if (tb_scene_add_box(s, "box1", tb_v3_(3, 0, -4), tb_v3_(5, 4, -2)) < 0) return -1;
+    if (tb_scene_add_box(s, "box2", tb_v3_(-6, 0, 2), tb_v3_(-3, 1, 5)) < 0) return -1;
+    if (tb_scene_add_box(s, "box3", tb_v3_(-2, 3, 4), tb_v3_(0, 3.5f, 6)) < 0) return -1;
+    if (tb_scene_add_box(s, "box4", tb_v3_(6, 0, 5), tb_v3_(6.5f, 6, 5.5f)) < 0) return -1;
+    return 0;
+}
+
+int tb_scene_build_fence(tb_scene *s) {
+    char name[TB_NAME_MAX];
+    int i, obj;
+    uint32_t vc;
+    if (tb_scene_add_ground(s, "ground", 0, 0, 15, 15, 0, 4, 4) < 0) return -1;
+    for (i = 0; i <= 20; i++) {
+        snprintf(name, sizeof name, "pole%d", i);
+        if (tb_scene_add_pole(s, name, -10.0f + (float)i, 0, 0, 0.02f, 2) < 0) return -1;
+    }
+    vc = s->vertex_count;
+    obj = tb_begin_object_(s, "fence");
+    if (obj < 0) return -1;
+    for (i = 1; i <= 9; i++) {
+        float y = 0.2f * (float)i;
+        if (tb_add_box_faces_(s, tb_v3_(-10, y - 0.01f, -0.01f), tb_v3_(10, y + 0.01f, 0.01f))) {
+            tb_abort_object_(s, obj, vc);
+            return -1;
+        }
+    }
+    for (i = 0; i <= 40; i++) {
+        float x = -10.0f + 0.5f * (float)i;
+        if (tb_add_box_faces_(s, tb_v3_(x - 0.01f, 0, -0.01f), tb_v3_(x + 0.01f, 2, 0.01f))) {
+            tb_abort_object_(s, obj, vc);
+            return -1;
+        }
+    }
+    tb_end_object_(s, obj);
+    for (i = 0; i < 8; i++) {
+        snprintf(name, sizeof name, "post%d", i);
+        if (tb_scene_add_pole(s, name, -7.0f + 2.0f * (float)i, 0, 4, 0.05f, 3) < 0) return -1;
+    }
+    return 0;
+}
+
+int tb_scene_build_terrace(tb_scene *s) {
+    char name[TB_NAME_MAX];
+    int k;
+    if (tb_scene_add_ground(s, "ground", 0, -100, 6, 100, 0, 4, 100) < 0) return -1;
+    for (k = 0; k < 40; k++) {
+        float z = -2.5f - 5.0f * (float)k;
+        snprintf(name, sizeof name, "postL%d", k);
+        if (tb_scene_add_pole(s, name, -5, 0, z, 0.075f, 3) < 0) return -1;
+        snprintf(name, sizeof name, "postR%d", k);
+        if (tb_scene_add_pole(s, name, 5, 0, z, 0.075f, 3) < 0) return -1;
+        snprintf(name, sizeof name, "box%d", k);
+        if (tb_scene_add_box(s, name, tb_v3_(-0.5f, 0, z - 0.5f), tb_v3_(0.5f, 1, z + 0.5f)) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+static int tb_add_surface_(tb_scene *s, const char *name, const double o[3], const double u[3],
+                           const double v[3], const double want[3]) {
+    uint32_t vc = s->vertex_count;
+    int obj = tb_begin_object_(s, name);
+    if (obj < 0) return -1;
+    if (tb_add_rect_(s, o, u, v, 4, 4, want)) { tb_abort_object_(s, obj, vc); return -1; }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+int tb_scene_build_room(tb_scene *s) {
+    static const double ex[3] = {10, 0, 0}, ey[3] = {0, 4, 0}, ez[3] = {0, 0, 10};
+    static const double px[3] = {1, 0, 0}, nx[3] = {-1, 0, 0};
+    static const double py[3] = {0, 1, 0}, ny[3] = {0, -1, 0};
+    static const double pz[3] = {0, 0, 1}, nz[3] = {0, 0, -1};
+    static const double o0[3] = {-5, 0, -5}, oc[3] = {-5, 4, -5};
+    static const double oxp[3] = {5, 0, -5}, ozp[3] = {-5, 0, 5};
+    char name[TB_NAME_MAX];
+    int i;
+    if (tb_add_surface_(s, "floor", o0, ex, ez, py) < 0) return -1;
+    if (tb_add_surface_(s, "ceiling", oc, ex, ez, ny) < 0) return -1;
+    if (tb_add_surface_(s, "wall_xn", o0, ey, ez, px) < 0) return -1;
+    if (tb_add_surface_(s, "wall_xp", oxp, ey, ez, nx) < 0) return -1;
+    if (tb_add_surface_(s, "wall_zn", o0, ex, ey, pz) < 0) return -1;
+    if (tb_add_surface_(s, "wall_zp", ozp, ex, ey, nz) < 0) return -1;
+    for (i = 0; i < 4; i++) {
+        float cx = (i & 1) ? 2.5f : -2.5f, cz = (i & 2) ? 2.5f : -2.5f;
+        snprintf(name, sizeof name, "pillar%d", i);
+        if (tb_scene_add_box(s, name, tb_v3_(cx - 0.3f, 0, cz - 0.3f), tb_v3_(cx + 0.3f, 4, cz + 0.3f)) < 0)
+            return -1;
+    }
+    if (tb_scene_add_box(s, "crate", tb_v3_(0.5f, 0, -1.5f), tb_v3_(1.5f, 0.8f, -0.5f)) < 0) return -1;
+    return 0;
+}
+
+int tb_scene_build_contact(tb_scene *s) {
+    if (tb_scene_add_ground(s, "ground", 0, 0, 10, 10, 0, 1, 1) < 0) return -1;
+    if (tb_scene_add_box(s, "box", tb_v3_(-1, 0, -1), tb_v3_(1, 1, 1)) < 0) return -1;
+    return 0;
+}
+
+int tb_scene_build(tb_scene *s, const char *name) {
+    if (!name) return -1;
+    if (strcmp(name, "ground-boxes") == 0) return tb_scene_build_ground_boxes(s);
+    if (strcmp(name, "fence") == 0) return tb_scene_build_fence(s);
+    if (strcmp(name, "terrace") == 0) return tb_scene_build_terrace(s);
+    if (strcmp(name, "room") == 0) return tb_scene_build_room(s);
+    if (strcmp(name, "contact") == 0) return tb_scene_build_contact(s);
+    return -1;
+}
+
+/* ---- assimp ---- */
+
+int tb_scene_load(tb_scene *s, const char *path) {
+    const struct aiScene *sc;
+    unsigned m;
+    sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                aiProcess_GenSmoothNormals | aiProcess_PreTransformVertices);
+    if (!sc) {
+        fprintf(stderr, "tb_scene_load: %s: %s\n", path, aiGetErrorString());
+        return -1;
+    }
+    for (m = 0; m < sc->mNumMeshes; m++) {
+        const struct aiMesh *mesh = sc->mMeshes[m];
+        uint32_t base = s->vertex_count, vc = s->vertex_count, ntri = 0;
+        char name[TB_NAME_MAX];
+        unsigned f, v;
+        int obj;
+        const char *nm = name;
+        if (!(mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;
+        for (f = 0; f < mesh->mNumFaces; f++)
+            if (mesh->mFaces[f].mNumIndices == 3) ntri++;
+        if (ntri == 0) continue;
+        snprintf(name, sizeof name, "mesh%u", m);
+        if (mesh->mName.length > 0) nm = mesh->mName.data;   /* truncated to TB_NAME_MAX-1 */
+        obj = tb_begin_object_(s, nm);
+        if (obj < 0 || tb_reserve_(s, mesh->mNumVertices, (uint64_t)ntri * 3)) {
+            if (obj >= 0) tb_abort_object_(s, obj, vc);
+            aiReleaseImport(sc);
+            return -1;
+        }
+        for (v = 0; v < mesh->mNumVertices; v++) {
+            float *p = s->positions + 3 * (size_t)(base + v);
+            float *n = s->normals + 3 * (size_t)(base + v);
+            p[0] = mesh->mVertices[v].x;
+            p[1] = mesh->mVertices[v].y;
+            p[2] = mesh->mVertices[v].z;
+            if (mesh->mNormals) {
+                double len;
+                n[0] = mesh->mNormals[v].x;
+                n[1] = mesh->mNormals[v].y;
+                n[2] = mesh->mNormals[v].z;
+                len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+                if (len > 0 && len == len) {
+                    n[0] = (float)(n[0] / len); n[1] = (float)(n[1] / len); n[2] = (float)(n[2] / len);
+                } else {
+                    n[0] = 0; n[1] = 1; n[2] = 0;   /* degenerate: any unit vector */
+                }
+            } else {
+                n[0] = 0; n[1] = 1; n[2] = 0;
+            }
+        }
+        s->vertex_count += mesh->mNumVertices;
+        for (f = 0; f < mesh->mNumFaces; f++) {
+            const struct aiFace *face = &mesh->mFaces[f];
+            uint32_t *t;
+            if (face->mNumIndices != 3) continue;
+            t = s->indices + s->index_count;
+            t[0] = base + face->mIndices[0];
+            t[1] = base + face->mIndices[1];
+            t[2] = base + face->mIndices[2];
+            s->index_count += 3;
+        }
+        tb_end_object_(s, obj);
+    }
+    aiReleaseImport(sc);
+    return 0;
+}

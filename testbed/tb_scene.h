@@ -1,0 +1,137 @@
+/* tb_scene.h - triangle-soup scenes for the shadowkit testbed.
+
+   A scene is what both the GL renderer and the Embree reference see:
+   float xyz positions, per-vertex unit normals, uint32 triangle indices,
+   a list of named objects (each an index range plus its AABB, used as the
+   caster bounds where shadowkit culls) and the whole scene's AABB.
+
+   Sources:
+   - tb_scene_load(): any file assimp reads (OBJ, glTF 2.0, ...), with node
+     transforms applied (aiProcess_PreTransformVertices), triangulated,
+     identical vertices joined, smooth normals generated where missing.
+     Points and lines are dropped. One object per assimp mesh.
+   - procedural builders (tb_scene_add_* append one object; tb_scene_build_*
+     make a complete standard scene). Units are metres, +y is up, the ground
+     is the plane y = 0. Faces wind counter-clockwise seen from the side their
+     normal points to (GL front faces); closed boxes have outward normals,
+     the room's surfaces face inward.
+
+   Ownership: every tb_scene is freed with tb_scene_free(); a zeroed struct
+   (or tb_scene_init()) is an empty scene. Functions that allocate return 0
+   on success and -1 on failure (allocation, unreadable file); on failure the
+   scene keeps what it had.
+
+   Depends on: shadowkit.h (types only: sk_vec3, sk_aabb), libassimp. */
+#ifndef TB_SCENE_H
+#define TB_SCENE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "shadowkit.h"   /* types only; build with -I<repo root> */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define TB_NAME_MAX 64
+
+typedef struct tb_object {
+    char name[TB_NAME_MAX];
+    uint32_t first_index;     /* into tb_scene.indices (multiple of 3) */
+    uint32_t index_count;     /* 3 * triangle count */
+    sk_aabb bounds;           /* of the vertices its triangles use */
+} tb_object;
+
+typedef struct tb_scene {
+    float *positions;         /* 3 * vertex_count floats, xyz */
+    float *normals;           /* 3 * vertex_count floats, unit length */
+    uint32_t vertex_count;
+    uint32_t *indices;        /* index_count entries, 3 per triangle (CCW front) */
+    uint32_t index_count;
+    tb_object *objects;
+    uint32_t object_count;
+    sk_aabb bounds;           /* whole scene; min > max while empty */
+    /* capacities (internal) */
+    uint32_t vertex_cap_, index_cap_, object_cap_;
+} tb_scene;
+
+void tb_scene_init(tb_scene *s);
+void tb_scene_free(tb_scene *s);               /* frees and re-initialises */
+static inline uint32_t tb_scene_triangle_count(const tb_scene *s) { return s->index_count / 3u; }
+/* diagonal length of the scene AABB (0 when empty) */
+double tb_scene_diagonal(const tb_scene *s);
+/* find an object by exact name, -1 if none */
+int tb_scene_find_object(const tb_scene *s, const char *name);
+
+/* Loads with assimp (aiImportFile). Appends to s. On failure prints the
+   assimp error to stderr and returns -1. */
+int tb_scene_load(tb_scene *s, const char *path);
+
+/* ---- primitives: each appends one object and returns its index, or -1 ---- */
+
+/* Horizontal plane y = y0 facing +y, centred at (cx, cz), size 2*hx by 2*hz,
+   split into nx x nz quads (each >= 1; 2*nx*nz triangles). */
+int tb_scene_add_ground(tb_scene *s, const char *name, float cx, float cz,
+                        float hx, float hz, float y0, int nx, int nz);
+/* Axis-aligned closed box from mn to mx, outward normals, 12 triangles. */
+int tb_scene_add_box(tb_scene *s, const char *name, sk_vec3 mn, sk_vec3 mx);
+/* A thin vertical pole: square prism of side 2*r standing on (x, y0, z),
+   height h; a closed box (12 triangles). */
+int tb_scene_add_pole(tb_scene *s, const char *name, float x, float y0, float z,
+                      float r, float h);
+
+/* ---- standard procedural scenes (each appends several objects) ---- */
+
+/* "ground-boxes": ground 40 x 40 (y = 0, x,z in [-20,20], 8x8 quads, object
+   "ground") and five boxes "box0".."box4":
+     box0 [-1,0,-1]..[1,2,1]           (2 x 2 x 2 on the ground at the origin)
+     box1 [3,0,-4]..[5,4,-2]           (tall)
+     box2 [-6,0,2]..[-3,1,5]           (flat)
+     box3 [-2,3,4]..[0,3.5,6]          (floating slab, 3 above the ground)
+     box4 [6,0,5]..[6.5,6,5.5]         (narrow tower)
+   Bounds [-20,0,-20]..[20,6,20]; 8*8*2 + 5*12 = 188 triangles. */
+int tb_scene_build_ground_boxes(tb_scene *s);
+
+/* "fence": fine shadow detail. Ground 30 x 30 ("ground", x,z in [-15,15],
+   4x4 quads), then along the line z = 0, x in [-10, 10]:
+     21 thin poles "pole0".."pole20" at x = -10 + i, side 0.04, height 2;
+     a fence grid "fence": 9 horizontal rails (y = 0.2, 0.4, .. 1.8, each a
+     box 20 long x 0.02 x 0.02 centred on z = 0) and 41 vertical slats
+     (x = -10 + 0.5 i, 0.02 x 2 x 0.02), all as one object;
+     plus 8 free-standing poles "post0".."post7" at x = -7 + 2 i, z = 4,
+     side 0.1, height 3.
+   Bounds [-15,0,-15]..[15,3,15]; 32 + (21 + 50 + 8) * 12 = 980 triangles. */
+int tb_scene_build_fence(tb_scene *s);
+
+/* "terrace": perspective aliasing. A ground strip "ground" 12 wide and 200
+   long (x in [-6,6], z in [-200,0], 4 x 100 quads = 800 triangles), and regularly spaced features
+   receding to the horizon along -z every 5 m (k = 0..39, z_k = -2.5 - 5 k):
+     posts "postL<k>" and "postR<k>" at x = -5 and x = +5, side 0.15, height 3;
+     boxes "box<k>" [-0.5,0,z_k-0.5]..[0.5,1,z_k+0.5] in the middle.
+   Bounds [-6,0,-200]..[6,3,0]; 800 + 120 * 12 = 2240 triangles. */
+int tb_scene_build_terrace(tb_scene *s);
+
+/* "room": omni lights. Inward-facing floor "floor" (y = 0), ceiling
+   "ceiling" (y = 4), walls "wall_xn" (x = -5), "wall_xp" (x = 5), "wall_zn"
+   (z = -5), "wall_zp" (z = 5): a 10 x 4 x 10 room, each surface a 4x4-quad
+   grid (32 triangles); four pillars "pillar0".."pillar3" (boxes 0.6 x 4 x 0.6
+   centred at (+-2.5, *, +-2.5), floor to ceiling) and a table-like box
+   "crate" [0.5,0,-1.5]..[1.5,0.8,-0.5].
+   Bounds [-5,0,-5]..[5,4,5]; 6 * 32 + 5 * 12 = 252 triangles. A point light
+   at (0, 2, 0) with range >= 8 is the intended setup. */
+int tb_scene_build_room(tb_scene *s);
+
+/* "contact": contact shadows. Ground 20 x 20 ("ground", x,z in [-10,10],
+   one quad, 2 triangles) and a box "box" [-1,0,-1]..[1,1,1] resting exactly
+   on the ground (its bottom face lies in y = 0).
+   Bounds [-10,0,-10]..[10,1,10]; 2 + 12 = 14 triangles. */
+int tb_scene_build_contact(tb_scene *s);
+
+/* builds one of the standard scenes by name: "ground-boxes", "fence",
+   "terrace", "room", "contact"; -1 for an unknown name */
+int tb_scene_build(tb_scene *s, const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* TB_SCENE_H */
