@@ -126,4 +126,7 @@ deps-demo:
 clean:
 	rm -rf $(BUILD) $(OUT)
 
+# GL tests, examples and the bench add their rules in mk/*.mk
+include $(sort $(wildcard mk/*.mk))
+
 -include $(wildcard $(BUILD)/dep/*.d)

@@ -109,10 +109,12 @@ typedef struct sk_plane { sk_vec3 n; float d; } sk_plane;     /* dot(n,p)+d >= 0
 typedef struct sk_frustum { sk_vec3 corners[8]; sk_plane planes[6]; } sk_frustum;
 typedef struct sk_sphere { sk_vec3 c; float r; } sk_sphere;
 typedef enum sk_result { SK_OK = 0, SK_ERR_INVALID_ARG, SK_ERR_DEGENERATE,
-                         SK_ERR_CAPACITY } sk_result;
+                         SK_ERR_CAPACITY,
+                         SK_ERR_GL           /* shadowkit_gl.h: a GL error or an unsupported context */
+} sk_result;
 
-/* "ok", "invalid argument", "degenerate configuration", "capacity exceeded";
-   "unknown result" for any other value */
+/* "ok", "invalid argument", "degenerate configuration", "capacity exceeded",
+   "GL error"; "unknown result" for any other value */
 SKDEF const char *sk_result_string(sk_result r);
 
 SKDEF sk_mat4 sk_mat4_identity(void);
@@ -630,6 +632,7 @@ SKDEF const char *sk_result_string(sk_result r)
     case SK_ERR_INVALID_ARG: return "invalid argument";
     case SK_ERR_DEGENERATE: return "degenerate configuration";
     case SK_ERR_CAPACITY: return "capacity exceeded";
+    case SK_ERR_GL: return "GL error";
     }
     return "unknown result";
 }

@@ -201,11 +201,12 @@ static void test_result_string(void) {
     SK_CHECK(strcmp(sk_result_string(SK_ERR_INVALID_ARG), "invalid argument") == 0);
     SK_CHECK(strcmp(sk_result_string(SK_ERR_DEGENERATE), "degenerate configuration") == 0);
     SK_CHECK(strcmp(sk_result_string(SK_ERR_CAPACITY), "capacity exceeded") == 0);
+    SK_CHECK(strcmp(sk_result_string(SK_ERR_GL), "GL error") == 0);
 #ifndef __cplusplus
     /* out-of-range enum values are only well defined in C */
     SK_CHECK(strcmp(sk_result_string((sk_result)99), "unknown result") == 0);
     SK_CHECK(strcmp(sk_result_string((sk_result)-1), "unknown result") == 0);
-    SK_CHECK(strcmp(sk_result_string((sk_result)4), "unknown result") == 0);
+    SK_CHECK(strcmp(sk_result_string((sk_result)5), "unknown result") == 0);
 #endif
 }
 
@@ -749,6 +750,24 @@ static void test_frustum_from_corners(void) {
         SK_CHECK_MSG(bad == 0, "mirrored parallelepiped: %d violations", bad);
     }
 
+    /* stability (DESIGN.md): far/near = 1e6 is a valid frustum, its tiny near
+       face has non-zero area (~1e-4 x 1e-4 here, exactly representable
+       corners): SK_OK with consistent planes */
+    {
+        dv3 eye = dv(0, 0, 0), target = dv(0, 0, -1), up = dv(0, 1, 0);
+        cam_t cam = make_cam(eye, target, up, 1.0f, 1.0f, 0.01f, 1e4f);
+        sk_result r;
+        for (i = 0; i < 8; i++) c[i] = tof(cam_corner(&cam, i, cam.zn, cam.zf));
+        r = sk_frustum_from_corners(c, &f);
+        SK_CHECK_MSG(r == SK_OK, "far/near 1e6 frustum from corners: %s", sk_result_string(r));
+        if (r == SK_OK) {
+            bad = frustum_plane_violations(&f, 1e-6, 1e-5, 1);
+            SK_CHECK_MSG(bad == 0, "far/near 1e6 from corners: %d violations", bad);
+        }
+        for (i = 0; i < 8; i++) c[i] = tof(cam_corner(&cam, i, cam.zn, 1e3));  /* 1e5: fine either way */
+        SK_CHECK(sk_frustum_from_corners(c, &f) == SK_OK);
+    }
+
     /* degenerate faces */
     for (i = 0; i < 8; i++) c[i] = v3(1, 2, 3);
     SK_CHECK(sk_frustum_from_corners(c, &f) == SK_ERR_DEGENERATE);
@@ -1015,6 +1034,31 @@ static void test_clip_frustum_aabb(void) {
         i = sk_clip_frustum_aabb(&f, b, out, 0);
         SK_CHECK_MSG(i == -SK_ERR_CAPACITY || i == -SK_ERR_INVALID_ARG, "cap 0: %d", i);
         SK_CHECK(is_sentinel(out, sizeof out));
+    }
+
+    /* scale: distinct vertices of the intersection must survive whatever the
+       size of the other body. (a) a short camera frustum inside huge scene
+       bounds (+-1e5, a terrain): all 8 frustum corners; (b) a 4 cm box inside
+       a far/near = 1e6 view: all 8 box corners. Tolerance 1e-4 of the
+       intersection's own size. */
+    {
+        sk_frustum sf = sk_frustum_from_matrix(sk_mat4_mul(sk_mat4_perspective(1.0f, 1.5f, 0.1f, 10.0f),
+                                                           sk_mat4_look_at(v3(0, 1, 0), v3(0, 1, -1), v3(0, 1, 0))));
+        sk_frustum lf = sk_frustum_from_matrix(sk_mat4_mul(sk_mat4_perspective(1.0f, 1.0f, 0.01f, 1e4f),
+                                                           sk_mat4_look_at(v3(0, 0, 0), v3(0, 0, -1), v3(0, 1, 0))));
+        sk_aabb small = box3(-0.02f, -0.02f, -5.04f, 0.02f, 0.02f, -5.0f);
+        int miss = 0;
+        n = sk_clip_frustum_aabb(&sf, box3(-1e5f, -1e5f, -1e5f, 1e5f, 1e5f, 1e5f), out, SK_CLIP_MAX_POINTS);
+        for (i = 0; i < 8; i++) if (n < 0 || !has_point(out, n, tod(sf.corners[i]), 1e-4 * 10)) miss++;
+        SK_CHECK_MSG(miss == 0, "frustum (zn 0.1, zf 10) in a +-1e5 box: %d of 8 corners lost (n = %d)", miss, n);
+        miss = 0;
+        n = sk_clip_frustum_aabb(&lf, small, out, SK_CLIP_MAX_POINTS);
+        for (i = 0; i < 8; i++) {
+            dv3 q = dv((i & 1) ? small.max.x : small.min.x, (i & 2) ? small.max.y : small.min.y,
+                       (i & 4) ? small.max.z : small.min.z);
+            if (n < 0 || !has_point(out, n, q, 1e-4 * 0.04)) miss++;
+        }
+        SK_CHECK_MSG(miss == 0, "4 cm box in a far/near 1e6 view: %d of 8 corners lost (n = %d)", miss, n);
     }
 
     /* random configurations: never more than SK_CLIP_MAX_POINTS, sound, complete */

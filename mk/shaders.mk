@@ -1,0 +1,22 @@
+# Embedded GLSL: shaders_embedded/* are the sources, shadowkit_gl.h holds them
+# as string literals between its SKGL_EMBEDDED_SHADERS markers.
+#   make shaders        rewrite the literals in shadowkit_gl.h from the sources
+#   make check-shaders  fail if they differ (part of `make check` and `make test`)
+SHADER_SRCS := shaders_embedded/depth.vert shaders_embedded/depth.frag \
+               shaders_embedded/fullscreen.vert shaders_embedded/shadow_sample.glsl \
+               shaders_embedded/shadow_mask.frag
+EMBED := $(BUILD)/tools/embed
+
+$(EMBED): shaders_embedded/embed.c | deps-test
+	$(MKDIR)
+	$(CC) -std=c99 -O2 -Wall -Wextra -Werror $< -o $@
+
+.PHONY: shaders check-shaders
+shaders: $(EMBED)
+	$(EMBED) --write shadowkit_gl.h $(SHADER_SRCS)
+check-shaders: $(EMBED)
+	$(EMBED) --check shadowkit_gl.h $(SHADER_SRCS)
+	@echo "check-shaders: shadowkit_gl.h matches shaders_embedded/"
+
+check: check-shaders
+test: check-shaders

@@ -1,0 +1,4 @@
+/* Depth-only pass: the rasteriser writes depth; no colour output. */
+void main()
+{
+}

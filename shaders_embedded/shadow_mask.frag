@@ -1,0 +1,24 @@
+/* Deferred shadow mask: camera depth (and optional world normals) in,
+   visibility out (1 lit, 0 shadowed), one value per pixel in an R16F target.
+   World positions are reconstructed from window depth exactly as the
+   reference does: NDC from the pixel centre and 2*depth - 1, inverse
+   view-projection, w-divide. */
+in vec2 v_uv;
+out float o_visibility;
+uniform sampler2D u_depth;
+uniform sampler2D u_normals;
+uniform int u_has_normals;
+uniform mat4 u_inv_view_proj;
+uniform mat4 u_view;
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(u_depth, px, 0).r;
+    if (d >= 1.0) { o_visibility = 1.0; return; }
+    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
+    vec3 world = w.xyz / w.w;
+    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);
+    float view_depth = -(u_view * vec4(world, 1.0)).z;
+    o_visibility = sk_shadow(world, n, view_depth);
+}

@@ -1,0 +1,62 @@
+/* shadowkit: directional-light shadow lookup, shared by the deferred
+   shadow-mask pass and forward shaders (skgl_glsl_snippet()).
+
+   Maps are layers of one depth texture array: one layer for a standard
+   focused map, one per cascade for PSSM. A world position picks its layer by
+   view depth against the split distances (PSSM practical split scheme,
+   seed 002), optionally blending into the next cascade inside a band.
+
+   Bias, in texels so it follows resolution: the receiver is pushed along its
+   normal by sk_normal_bias texels of its layer (normal offset), and the
+   casters were rendered with slope-scaled polygon offset. Filtering: one
+   hardware 2x2 comparison (bilinear PCF), or a (2r)x(2r) grid of them.
+   A surface facing away from the light (given a normal) is in its own
+   shadow: 0, whatever the map says near its silhouette. */
+uniform sampler2DArrayShadow sk_shadow_map;
+uniform mat4 sk_light_vp[8];
+uniform float sk_texel_world[8];   /* world size of one texel of each layer */
+uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */
+uniform int sk_layers;
+uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */
+uniform float sk_normal_bias;      /* texels */
+uniform int sk_pcf_radius;
+uniform vec3 sk_light_dir;         /* travel direction, unit */
+
+float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)
+{
+    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_world[layer]);
+    vec4 c = sk_light_vp[layer] * vec4(p, 1.0);
+    if (c.w <= 0.0) return 1.0;
+    vec3 ndc = c.xyz / c.w;
+    vec3 uvz = ndc * 0.5 + 0.5;
+    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
+    if (uvz.z > 1.0) return 1.0;
+    float z = max(uvz.z, 0.0);
+    if (sk_pcf_radius <= 0)
+        return texture(sk_shadow_map, vec4(uvz.xy, float(layer), z));
+    vec2 texel = 1.0 / vec2(textureSize(sk_shadow_map, 0).xy);
+    float sum = 0.0;
+    int r = sk_pcf_radius;
+    for (int y = -r; y < r; y++)
+        for (int x = -r; x < r; x++)
+            sum += texture(sk_shadow_map, vec4(uvz.xy + (vec2(x, y) + 0.5) * texel, float(layer), z));
+    return sum / float(4 * r * r);
+}
+
+float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
+{
+    if (dot(world_normal, sk_light_dir) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;
+    if (view_depth < sk_splits[0] || view_depth >= sk_splits[sk_layers]) return 1.0;
+    int layer = 0;
+    for (int i = 1; i < sk_layers; i++)
+        if (view_depth >= sk_splits[i]) layer = i;
+    float v = sk_shadow_layer(world_pos, world_normal, layer);
+    if (sk_blend_band > 0.0 && layer + 1 < sk_layers) {
+        float end = sk_splits[layer + 1];
+        float band = sk_blend_band * (end - sk_splits[layer]);
+        float t = (view_depth - (end - band)) / band;
+        if (t > 0.0)
+            v = mix(v, sk_shadow_layer(world_pos, world_normal, layer + 1), t);
+    }
+    return v;
+}

@@ -1,0 +1,1089 @@
+/* shadowkit_gl.h - v0.1.0 - public domain / MIT - OpenGL 3.3 core shadow passes
+
+   The GPU half of shadowkit: depth passes, cascade selection, filtering and
+   the deferred shadow mask, driven by the math in shadowkit.h. Owns its GL
+   objects, never your scene.
+
+   USAGE
+     In exactly one C or C++ file, after your GL loader (or none at all):
+         #define SHADOWKIT_IMPLEMENTATION
+         #define SHADOWKIT_GL_IMPLEMENTATION
+         #include "shadowkit_gl.h"          (includes shadowkit.h)
+     No system GL header is needed: the ~50 entry points shadowkit uses are
+     loaded into a private table through the getproc function you pass
+     (glfwGetProcAddress, eglGetProcAddress, OSMesaGetProcAddress...), so it
+     coexists with glad, GLEW or anything else.
+
+   THE FLOW (one directional light, every frame)
+
+       skgl_context *gl;                 once: skgl_create(&desc, &gl)
+       skgl_shadow *sun;                 once: skgl_shadow_create(gl, &sdesc, &sun)
+
+       skgl_camera cam = { view, proj };
+       skgl_scene scene = { draw_casters, my_user_ptr, scene_bounds };
+       skgl_shadow_render(gl, sun, &cam, &scene, light_dir);
+       then either
+         skgl_shadow_mask(gl, sun, &cam, depth_tex, normal_tex, mask_tex);
+           (deferred: R16F visibility per pixel, 1 lit .. 0 shadowed)
+       or, in your own forward shader that pastes skgl_glsl_snippet():
+         glUseProgram(prog); skgl_shadow_bind(gl, sun, prog, unit);
+         ... in GLSL: float v = sk_shadow(world_pos, world_normal, view_depth);
+
+       skgl_shadow_destroy(gl, sun); skgl_destroy(gl);   at shutdown
+
+   SCENE ACCESS
+     shadowkit asks only for a draw callback and the scene's bounds (used to
+     pull the light's near plane back so off-screen casters still cast). For
+     each shadow pass it binds its depth program (attribute 0 = position,
+     vec3) and calls draw(user, info): bind your VAOs and draw the casters;
+     call skgl_set_model(gl, matrix) before an object whose model matrix is
+     not the identity. info gives the pass's view-projection, its kind and
+     index (cascade) and its frustum, so you can cull.
+
+   TECHNIQUES (skgl_shadow_desc.technique)
+     SKGL_STANDARD  one focused map: the view frustum clipped to the scene
+                    bounds, fitted in light space (seed 000 crop, Brabec);
+                    .stable = 1 snaps it to whole texels (no shimmer).
+     SKGL_PSSM      parallel-split cascades with the practical split scheme
+                    (seed 002), one layer of a depth texture array each,
+                    per-cascade crop (or stable crop), cascade chosen per
+                    pixel by view depth, optional blend band.
+
+   BIAS AND FILTERING
+     Casters are drawn with slope-scaled polygon offset (.slope_bias, in
+     depth slope units, i.e. texels); receivers are pushed along their normal
+     by .normal_bias texels of their cascade. .pcf_radius = 0 takes one
+     hardware 2x2 comparison (bilinear PCF); r > 0 takes (2r)x(2r) of them.
+
+   GL STATE
+     Every call saves and restores the state it touches (framebuffer
+     bindings, viewport, scissor, program, VAO, active texture and the 2D,
+     2D-array texture and sampler bindings of the units it uses, depth test
+     and function and mask, cull face, blend, polygon offset, colour mask,
+     clear depth), like Dear ImGui's OpenGL3 backend. With desc.debug set,
+     glGetError is checked after every pass and a GL error is reported as
+     SK_ERR_GL. skgl_gl_object_count() tells how many GL objects the context
+     holds (0 after every shadow and the context are destroyed).
+
+   TIMING
+     With desc.timing set, each pass is wrapped in a GL_TIME_ELAPSED query
+     and its result read back at once (a CPU-GPU sync: for measuring, not
+     shipping). skgl_shadow_stats() returns ms per pass, shadow texels
+     rendered and draw passes.
+
+   LICENSE: see the end of the file.
+*/
+#ifndef SHADOWKIT_GL_H
+#define SHADOWKIT_GL_H
+
+#include "shadowkit.h"
+
+#ifndef SKGLDEF
+#define SKGLDEF SKDEF
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define SKGL_MAX_CASCADES 8
+
+typedef void *(*skgl_getproc_fn)(const char *name);
+
+typedef enum skgl_pass_kind {
+    SKGL_PASS_DIRECTIONAL = 0     /* a layer of a directional light's map (index = cascade) */
+} skgl_pass_kind;
+
+typedef struct skgl_draw_info {
+    skgl_pass_kind kind;
+    int index;                    /* cascade / layer */
+    sk_mat4 view_proj;            /* world -> clip of this pass */
+    sk_frustum frustum;           /* of view_proj, for culling */
+} skgl_draw_info;
+typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
+
+typedef struct skgl_desc {
+    skgl_getproc_fn getproc;      /* required */
+    int debug;                    /* glGetError after each pass -> SK_ERR_GL */
+    int timing;                   /* GL timer queries into skgl_stats */
+} skgl_desc;
+
+typedef enum skgl_technique { SKGL_STANDARD = 0, SKGL_PSSM = 1 } skgl_technique;
+
+/* Zero-initialised fields take the default in brackets. */
+typedef struct skgl_shadow_desc {
+    skgl_technique technique;     /* [SKGL_STANDARD] */
+    int resolution;               /* texels per side of each map [2048] */
+    int cascades;                 /* PSSM, 1..SKGL_MAX_CASCADES [4] */
+    float lambda;                 /* PSSM split scheme weight [0.75];
+                                     SKGL_LAMBDA_UNIFORM (-1) for exactly 0 */
+    float blend_band;             /* PSSM: fraction of a cascade blended into the next [0: off] */
+    int stable;                   /* 1: texel-snapped crops (sphere fit) [0] */
+    float slope_bias;             /* polygon offset factor [2.0]; < 0: none */
+    float depth_bias;             /* polygon offset units [1.0]; < 0: none */
+    float normal_bias;            /* receiver normal offset in texels [1.5]; < 0: none */
+    int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
+    float max_distance;           /* shadows end at this view depth [camera far] */
+} skgl_shadow_desc;
+#define SKGL_LAMBDA_UNIFORM (-1.0f)
+
+typedef struct skgl_camera {
+    sk_mat4 view, proj;           /* proj from sk_mat4_perspective (near/far are read back from it) */
+} skgl_camera;
+
+typedef struct skgl_scene {
+    skgl_draw_fn draw;            /* required */
+    void *user;
+    sk_aabb bounds;               /* all casters and receivers */
+} skgl_scene;
+
+typedef struct skgl_stats {
+    float shadow_ms;              /* GPU time of the depth passes; -1 without timing */
+    float mask_ms;                /* GPU time of the last skgl_shadow_mask; -1 without timing */
+    double texels;                /* shadow texels rendered (sum of viewport areas) */
+    int passes;                   /* draw callbacks made */
+    int maps;                     /* layers rendered */
+    int resolution;               /* per layer */
+    float splits[SKGL_MAX_CASCADES + 1];  /* view depths of the layers */
+} skgl_stats;
+
+typedef struct skgl_context skgl_context;
+typedef struct skgl_shadow skgl_shadow;
+
+SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out);
+SKGLDEF void skgl_destroy(skgl_context *ctx);
+/* GL objects the context currently owns (its own and its shadows') */
+SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
+/* inside a draw callback: model matrix of the next objects (column-major) */
+SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16]);
+
+SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out);
+SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s);
+/* the desc with its defaults filled in */
+SKGLDEF skgl_shadow_desc skgl_shadow_get_desc(const skgl_shadow *s);
+/* Renders the light's map(s) for this camera. light_dir: travel direction. */
+SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                     const skgl_scene *scene, sk_vec3 light_dir);
+/* Deferred shadow mask: depth_tex is the camera's depth texture (window
+   depth; any depth or single-channel float format), normal_tex an optional
+   texture of world-space normals in .xyz (0: none, no normal offset),
+   mask_tex an R16F (or any renderable single-channel) texture of the same
+   size that receives visibility. */
+SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
+/* GLSL (330 core) declaring the uniforms and
+   float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth);
+   Paste it into a fragment shader after the #version line. */
+SKGLDEF const char *skgl_glsl_snippet(void);
+/* For a forward shader containing the snippet: program must be current;
+   binds the map (and a comparison sampler) to texture unit `unit` and sets
+   the snippet's uniforms. The binding is left in place for the draw. */
+SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
+/* the info log of the last shader or framebuffer failure ("" if none) */
+SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
+/* light view-projection of one layer (world -> light clip) */
+SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
+SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s);
+/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
+SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* SHADOWKIT_GL_H */
+
+/* =========================================================================
+   IMPLEMENTATION
+   ========================================================================= */
+#ifdef SHADOWKIT_GL_IMPLEMENTATION
+#ifndef SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
+#define SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
+
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef SKGL_MALLOC
+#define SKGL_MALLOC(n) malloc(n)
+#define SKGL_FREE(p) free(p)
+#endif
+
+#if defined(_WIN32) && !defined(SKGL__APIENTRY)
+#define SKGL__APIENTRY __stdcall
+#elif !defined(SKGL__APIENTRY)
+#define SKGL__APIENTRY
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- embedded GLSL: the files of shaders_embedded/, written here by `make shaders` ---- */
+/* SKGL_EMBEDDED_SHADERS_BEGIN */
+static const char skgl__src_depth_vert[] =
+    "/* Depth-only pass: shadow maps of every technique. Attribute 0 is the\n"
+    "   position; u_model is set per object through skgl_set_model(). */\n"
+    "layout(location = 0) in vec3 a_position;\n"
+    "uniform mat4 u_view_proj;\n"
+    "uniform mat4 u_model;\n"
+    "void main()\n"
+    "{\n"
+    "    gl_Position = u_view_proj * (u_model * vec4(a_position, 1.0));\n"
+    "}\n"
+    ;
+static const char skgl__src_depth_frag[] =
+    "/* Depth-only pass: the rasteriser writes depth; no colour output. */\n"
+    "void main()\n"
+    "{\n"
+    "}\n"
+    ;
+static const char skgl__src_fullscreen_vert[] =
+    "/* One triangle covering the viewport, from gl_VertexID alone (no buffers). */\n"
+    "out vec2 v_uv;\n"
+    "void main()\n"
+    "{\n"
+    "    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
+    "    v_uv = p;\n"
+    "    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_shadow_sample_glsl[] =
+    "/* shadowkit: directional-light shadow lookup, shared by the deferred\n"
+    "   shadow-mask pass and forward shaders (skgl_glsl_snippet()).\n"
+    "\n"
+    "   Maps are layers of one depth texture array: one layer for a standard\n"
+    "   focused map, one per cascade for PSSM. A world position picks its layer by\n"
+    "   view depth against the split distances (PSSM practical split scheme,\n"
+    "   seed 002), optionally blending into the next cascade inside a band.\n"
+    "\n"
+    "   Bias, in texels so it follows resolution: the receiver is pushed along its\n"
+    "   normal by sk_normal_bias texels of its layer (normal offset), and the\n"
+    "   casters were rendered with slope-scaled polygon offset. Filtering: one\n"
+    "   hardware 2x2 comparison (bilinear PCF), or a (2r)x(2r) grid of them.\n"
+    "   A surface facing away from the light (given a normal) is in its own\n"
+    "   shadow: 0, whatever the map says near its silhouette. */\n"
+    "uniform sampler2DArrayShadow sk_shadow_map;\n"
+    "uniform mat4 sk_light_vp[8];\n"
+    "uniform float sk_texel_world[8];   /* world size of one texel of each layer */\n"
+    "uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */\n"
+    "uniform int sk_layers;\n"
+    "uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */\n"
+    "uniform float sk_normal_bias;      /* texels */\n"
+    "uniform int sk_pcf_radius;\n"
+    "uniform vec3 sk_light_dir;         /* travel direction, unit */\n"
+    "\n"
+    "float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)\n"
+    "{\n"
+    "    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_world[layer]);\n"
+    "    vec4 c = sk_light_vp[layer] * vec4(p, 1.0);\n"
+    "    if (c.w <= 0.0) return 1.0;\n"
+    "    vec3 ndc = c.xyz / c.w;\n"
+    "    vec3 uvz = ndc * 0.5 + 0.5;\n"
+    "    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;\n"
+    "    if (uvz.z > 1.0) return 1.0;\n"
+    "    float z = max(uvz.z, 0.0);\n"
+    "    if (sk_pcf_radius <= 0)\n"
+    "        return texture(sk_shadow_map, vec4(uvz.xy, float(layer), z));\n"
+    "    vec2 texel = 1.0 / vec2(textureSize(sk_shadow_map, 0).xy);\n"
+    "    float sum = 0.0;\n"
+    "    int r = sk_pcf_radius;\n"
+    "    for (int y = -r; y < r; y++)\n"
+    "        for (int x = -r; x < r; x++)\n"
+    "            sum += texture(sk_shadow_map, vec4(uvz.xy + (vec2(x, y) + 0.5) * texel, float(layer), z));\n"
+    "    return sum / float(4 * r * r);\n"
+    "}\n"
+    "\n"
+    "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
+    "{\n"
+    "    if (dot(world_normal, sk_light_dir) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;\n"
+    "    if (view_depth < sk_splits[0] || view_depth >= sk_splits[sk_layers]) return 1.0;\n"
+    "    int layer = 0;\n"
+    "    for (int i = 1; i < sk_layers; i++)\n"
+    "        if (view_depth >= sk_splits[i]) layer = i;\n"
+    "    float v = sk_shadow_layer(world_pos, world_normal, layer);\n"
+    "    if (sk_blend_band > 0.0 && layer + 1 < sk_layers) {\n"
+    "        float end = sk_splits[layer + 1];\n"
+    "        float band = sk_blend_band * (end - sk_splits[layer]);\n"
+    "        float t = (view_depth - (end - band)) / band;\n"
+    "        if (t > 0.0)\n"
+    "            v = mix(v, sk_shadow_layer(world_pos, world_normal, layer + 1), t);\n"
+    "    }\n"
+    "    return v;\n"
+    "}\n"
+    ;
+static const char skgl__src_shadow_mask_frag[] =
+    "/* Deferred shadow mask: camera depth (and optional world normals) in,\n"
+    "   visibility out (1 lit, 0 shadowed), one value per pixel in an R16F target.\n"
+    "   World positions are reconstructed from window depth exactly as the\n"
+    "   reference does: NDC from the pixel centre and 2*depth - 1, inverse\n"
+    "   view-projection, w-divide. */\n"
+    "in vec2 v_uv;\n"
+    "out float o_visibility;\n"
+    "uniform sampler2D u_depth;\n"
+    "uniform sampler2D u_normals;\n"
+    "uniform int u_has_normals;\n"
+    "uniform mat4 u_inv_view_proj;\n"
+    "uniform mat4 u_view;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    float d = texelFetch(u_depth, px, 0).r;\n"
+    "    if (d >= 1.0) { o_visibility = 1.0; return; }\n"
+    "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
+    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
+    "    vec3 world = w.xyz / w.w;\n"
+    "    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);\n"
+    "    float view_depth = -(u_view * vec4(world, 1.0)).z;\n"
+    "    o_visibility = sk_shadow(world, n, view_depth);\n"
+    "}\n"
+    ;
+/* SKGL_EMBEDDED_SHADERS_END */
+
+/* ---- the GL 3.3 core subset shadowkit uses ------------------------------ */
+typedef unsigned int skgl__enum;
+typedef unsigned int skgl__uint;
+typedef int skgl__int;
+typedef int skgl__sizei;
+typedef unsigned char skgl__bool;
+typedef unsigned long long skgl__u64;
+
+#define SKGL__DEPTH_BUFFER_BIT 0x0100
+#define SKGL__TRIANGLES 0x0004
+#define SKGL__LESS 0x0201
+#define SKGL__LEQUAL 0x0203
+#define SKGL__CULL_FACE 0x0B44
+#define SKGL__CULL_FACE_MODE 0x0B45
+#define SKGL__DEPTH_TEST 0x0B71
+#define SKGL__DEPTH_WRITEMASK 0x0B72
+#define SKGL__DEPTH_CLEAR_VALUE 0x0B73
+#define SKGL__DEPTH_FUNC 0x0B74
+#define SKGL__VIEWPORT 0x0BA2
+#define SKGL__BLEND 0x0BE2
+#define SKGL__SCISSOR_BOX 0x0C10
+#define SKGL__SCISSOR_TEST 0x0C11
+#define SKGL__COLOR_WRITEMASK 0x0C23
+#define SKGL__TEXTURE_2D 0x0DE1
+#define SKGL__TEXTURE_WIDTH 0x1000
+#define SKGL__TEXTURE_HEIGHT 0x1001
+#define SKGL__FLOAT 0x1406
+#define SKGL__DEPTH_COMPONENT 0x1902
+#define SKGL__NEAREST 0x2600
+#define SKGL__LINEAR 0x2601
+#define SKGL__TEXTURE_MAG_FILTER 0x2800
+#define SKGL__TEXTURE_MIN_FILTER 0x2801
+#define SKGL__TEXTURE_WRAP_S 0x2802
+#define SKGL__TEXTURE_WRAP_T 0x2803
+#define SKGL__POLYGON_OFFSET_UNITS 0x2A00
+#define SKGL__POLYGON_OFFSET_FILL 0x8037
+#define SKGL__POLYGON_OFFSET_FACTOR 0x8038
+#define SKGL__TEXTURE_BINDING_2D 0x8069
+#define SKGL__CLAMP_TO_EDGE 0x812F
+#define SKGL__TEXTURE0 0x84C0
+#define SKGL__ACTIVE_TEXTURE 0x84E0
+#define SKGL__VERTEX_ARRAY_BINDING 0x85B5
+#define SKGL__QUERY_RESULT 0x8866
+#define SKGL__TEXTURE_COMPARE_MODE 0x884C
+#define SKGL__TEXTURE_COMPARE_FUNC 0x884D
+#define SKGL__COMPARE_REF_TO_TEXTURE 0x884E
+#define SKGL__TIME_ELAPSED 0x88BF
+#define SKGL__SAMPLER_BINDING 0x8919
+#define SKGL__FRAGMENT_SHADER 0x8B30
+#define SKGL__VERTEX_SHADER 0x8B31
+#define SKGL__COMPILE_STATUS 0x8B81
+#define SKGL__LINK_STATUS 0x8B82
+#define SKGL__CURRENT_PROGRAM 0x8B8D
+#define SKGL__TEXTURE_2D_ARRAY 0x8C1A
+#define SKGL__TEXTURE_BINDING_2D_ARRAY 0x8C1D
+#define SKGL__DEPTH_COMPONENT32F 0x8CAC
+#define SKGL__DRAW_FRAMEBUFFER_BINDING 0x8CA6
+#define SKGL__READ_FRAMEBUFFER 0x8CA8
+#define SKGL__DRAW_FRAMEBUFFER 0x8CA9
+#define SKGL__READ_FRAMEBUFFER_BINDING 0x8CAA
+#define SKGL__FRAMEBUFFER_COMPLETE 0x8CD5
+#define SKGL__COLOR_ATTACHMENT0 0x8CE0
+#define SKGL__DEPTH_ATTACHMENT 0x8D00
+#define SKGL__FRAMEBUFFER 0x8D40
+#define SKGL__MAJOR_VERSION 0x821B
+#define SKGL__MINOR_VERSION 0x821C
+#define SKGL__NONE 0
+#define SKGL__UNITS 3                      /* texture units the mask pass uses: 0, 1, 2 */
+
+#define SKGL__FUNCS(X) \
+    X(skgl__enum, GetError, (void)) \
+    X(void, GetIntegerv, (skgl__enum pname, skgl__int *data)) \
+    X(void, GetFloatv, (skgl__enum pname, float *data)) \
+    X(void, GetDoublev, (skgl__enum pname, double *data)) \
+    X(void, GetBooleanv, (skgl__enum pname, skgl__bool *data)) \
+    X(skgl__bool, IsEnabled, (skgl__enum cap)) \
+    X(void, Enable, (skgl__enum cap)) \
+    X(void, Disable, (skgl__enum cap)) \
+    X(void, Viewport, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h)) \
+    X(void, Scissor, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h)) \
+    X(void, ColorMask, (skgl__bool r, skgl__bool g, skgl__bool b, skgl__bool a)) \
+    X(void, DepthMask, (skgl__bool flag)) \
+    X(void, DepthFunc, (skgl__enum func)) \
+    X(void, ClearDepth, (double d)) \
+    X(void, Clear, (skgl__uint mask)) \
+    X(void, CullFace, (skgl__enum mode)) \
+    X(void, PolygonOffset, (float factor, float units)) \
+    X(void, GenFramebuffers, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteFramebuffers, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindFramebuffer, (skgl__enum target, skgl__uint fb)) \
+    X(void, FramebufferTextureLayer, (skgl__enum target, skgl__enum att, skgl__uint tex, skgl__int level, skgl__int layer)) \
+    X(void, FramebufferTexture2D, (skgl__enum target, skgl__enum att, skgl__enum textarget, skgl__uint tex, skgl__int level)) \
+    X(skgl__enum, CheckFramebufferStatus, (skgl__enum target)) \
+    X(void, DrawBuffer, (skgl__enum buf)) \
+    X(void, ReadBuffer, (skgl__enum buf)) \
+    X(void, GenTextures, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteTextures, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindTexture, (skgl__enum target, skgl__uint tex)) \
+    X(void, ActiveTexture, (skgl__enum unit)) \
+    X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
+    X(void, TexParameteri, (skgl__enum target, skgl__enum pname, skgl__int v)) \
+    X(void, GetTexLevelParameteriv, (skgl__enum target, skgl__int level, skgl__enum pname, skgl__int *v)) \
+    X(void, GenSamplers, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteSamplers, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindSampler, (skgl__uint unit, skgl__uint sampler)) \
+    X(void, SamplerParameteri, (skgl__uint sampler, skgl__enum pname, skgl__int v)) \
+    X(skgl__uint, CreateShader, (skgl__enum type)) \
+    X(void, ShaderSource, (skgl__uint sh, skgl__sizei n, const char *const *src, const skgl__int *len)) \
+    X(void, CompileShader, (skgl__uint sh)) \
+    X(void, GetShaderiv, (skgl__uint sh, skgl__enum pname, skgl__int *v)) \
+    X(void, GetShaderInfoLog, (skgl__uint sh, skgl__sizei max, skgl__sizei *len, char *log)) \
+    X(void, DeleteShader, (skgl__uint sh)) \
+    X(skgl__uint, CreateProgram, (void)) \
+    X(void, AttachShader, (skgl__uint p, skgl__uint sh)) \
+    X(void, LinkProgram, (skgl__uint p)) \
+    X(void, GetProgramiv, (skgl__uint p, skgl__enum pname, skgl__int *v)) \
+    X(void, GetProgramInfoLog, (skgl__uint p, skgl__sizei max, skgl__sizei *len, char *log)) \
+    X(void, DeleteProgram, (skgl__uint p)) \
+    X(void, UseProgram, (skgl__uint p)) \
+    X(skgl__int, GetUniformLocation, (skgl__uint p, const char *name)) \
+    X(void, Uniform1i, (skgl__int loc, skgl__int v)) \
+    X(void, Uniform1f, (skgl__int loc, float v)) \
+    X(void, Uniform1fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, Uniform3fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, UniformMatrix4fv, (skgl__int loc, skgl__sizei n, skgl__bool transpose, const float *v)) \
+    X(void, GenVertexArrays, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteVertexArrays, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindVertexArray, (skgl__uint vao)) \
+    X(void, DrawArrays, (skgl__enum mode, skgl__int first, skgl__sizei count)) \
+    X(void, GenQueries, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteQueries, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BeginQuery, (skgl__enum target, skgl__uint id)) \
+    X(void, EndQuery, (skgl__enum target)) \
+    X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v))
+
+typedef struct skgl__api {
+#define SKGL__X(ret, name, args) ret (SKGL__APIENTRY *name) args;
+    SKGL__FUNCS(SKGL__X)
+#undef SKGL__X
+} skgl__api;
+
+struct skgl_context {
+    skgl__api gl;
+    int debug, timing, objects;
+    skgl__uint depth_prog, mask_prog, empty_vao, fbo, query;
+    skgl__uint cmp_sampler, point_sampler;
+    skgl__int depth_u_view_proj, depth_u_model;
+    char log[1024];
+};
+
+struct skgl_shadow {
+    skgl_shadow_desc desc;
+    skgl__uint tex;                /* GL_TEXTURE_2D_ARRAY of depth, one layer per map */
+    int layers;
+    sk_mat4 vp[SKGL_MAX_CASCADES];
+    float texel_world[SKGL_MAX_CASCADES];
+    sk_vec3 light_dir;             /* unit travel direction of the last render */
+    skgl_stats stats;
+};
+
+/* ---- saved GL state ----------------------------------------------------- */
+typedef struct skgl__state {
+    skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
+    skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
+    skgl__int depth_func, cull_mode;
+    skgl__bool depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
+    float poly_factor, poly_units;
+    double clear_depth;
+} skgl__state;
+
+static void skgl__enable(const skgl__api *gl, skgl__enum cap, int on)
+{
+    if (on) gl->Enable(cap); else gl->Disable(cap);
+}
+
+static void skgl__save(const skgl__api *gl, skgl__state *st)
+{
+    int u;
+    gl->GetIntegerv(SKGL__DRAW_FRAMEBUFFER_BINDING, &st->draw_fb);
+    gl->GetIntegerv(SKGL__READ_FRAMEBUFFER_BINDING, &st->read_fb);
+    gl->GetIntegerv(SKGL__VIEWPORT, st->viewport);
+    gl->GetIntegerv(SKGL__SCISSOR_BOX, st->scissor_box);
+    gl->GetIntegerv(SKGL__CURRENT_PROGRAM, &st->program);
+    gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, &st->vao);
+    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &st->active_tex);
+    for (u = 0; u < SKGL__UNITS; u++) {
+        gl->ActiveTexture(SKGL__TEXTURE0 + u);
+        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D, &st->tex2d[u]);
+        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D_ARRAY, &st->tex2da[u]);
+        gl->GetIntegerv(SKGL__SAMPLER_BINDING, &st->sampler[u]);
+    }
+    gl->ActiveTexture((skgl__enum)st->active_tex);
+    gl->GetIntegerv(SKGL__DEPTH_FUNC, &st->depth_func);
+    gl->GetIntegerv(SKGL__CULL_FACE_MODE, &st->cull_mode);
+    st->depth_test = gl->IsEnabled(SKGL__DEPTH_TEST);
+    gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, &st->depth_mask);
+    st->cull = gl->IsEnabled(SKGL__CULL_FACE);
+    st->blend = gl->IsEnabled(SKGL__BLEND);
+    st->scissor = gl->IsEnabled(SKGL__SCISSOR_TEST);
+    st->poly_fill = gl->IsEnabled(SKGL__POLYGON_OFFSET_FILL);
+    gl->GetBooleanv(SKGL__COLOR_WRITEMASK, st->color_mask);
+    gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &st->poly_factor);
+    gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &st->poly_units);
+    gl->GetDoublev(SKGL__DEPTH_CLEAR_VALUE, &st->clear_depth);
+}
+
+static void skgl__restore(const skgl__api *gl, const skgl__state *st)
+{
+    int u;
+    gl->BindFramebuffer(SKGL__DRAW_FRAMEBUFFER, (skgl__uint)st->draw_fb);
+    gl->BindFramebuffer(SKGL__READ_FRAMEBUFFER, (skgl__uint)st->read_fb);
+    gl->Viewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
+    gl->Scissor(st->scissor_box[0], st->scissor_box[1], st->scissor_box[2], st->scissor_box[3]);
+    gl->UseProgram((skgl__uint)st->program);
+    gl->BindVertexArray((skgl__uint)st->vao);
+    for (u = 0; u < SKGL__UNITS; u++) {
+        gl->ActiveTexture(SKGL__TEXTURE0 + u);
+        gl->BindTexture(SKGL__TEXTURE_2D, (skgl__uint)st->tex2d[u]);
+        gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, (skgl__uint)st->tex2da[u]);
+        gl->BindSampler((skgl__uint)u, (skgl__uint)st->sampler[u]);
+    }
+    gl->ActiveTexture((skgl__enum)st->active_tex);
+    gl->DepthFunc((skgl__enum)st->depth_func);
+    gl->CullFace((skgl__enum)st->cull_mode);
+    skgl__enable(gl, SKGL__DEPTH_TEST, st->depth_test);
+    gl->DepthMask(st->depth_mask);
+    skgl__enable(gl, SKGL__CULL_FACE, st->cull);
+    skgl__enable(gl, SKGL__BLEND, st->blend);
+    skgl__enable(gl, SKGL__SCISSOR_TEST, st->scissor);
+    skgl__enable(gl, SKGL__POLYGON_OFFSET_FILL, st->poly_fill);
+    gl->ColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
+    gl->PolygonOffset(st->poly_factor, st->poly_units);
+    gl->ClearDepth(st->clear_depth);
+}
+
+/* ---- objects ---------------------------------------------------------- */
+static void skgl__set_log(skgl_context *ctx, const char *what, const char *detail)
+{
+    size_t n = strlen(what);
+    if (n >= sizeof ctx->log) n = sizeof ctx->log - 1;
+    memcpy(ctx->log, what, n);
+    ctx->log[n] = 0;
+    if (detail && n + 2 < sizeof ctx->log) {
+        size_t m = strlen(detail);
+        ctx->log[n] = ':'; ctx->log[n + 1] = ' ';
+        if (m > sizeof ctx->log - n - 3) m = sizeof ctx->log - n - 3;
+        memcpy(ctx->log + n + 2, detail, m);
+        ctx->log[n + 2 + m] = 0;
+    }
+}
+
+static skgl__uint skgl__shader(skgl_context *ctx, skgl__enum type, const char *a, const char *b)
+{
+    const char *src[3];
+    skgl__uint sh = ctx->gl.CreateShader(type);
+    skgl__int ok = 0;
+    src[0] = "#version 330 core\n"; src[1] = a; src[2] = b ? b : "";
+    ctx->gl.ShaderSource(sh, 3, src, NULL);
+    ctx->gl.CompileShader(sh);
+    ctx->gl.GetShaderiv(sh, SKGL__COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[900];
+        log[0] = 0;
+        ctx->gl.GetShaderInfoLog(sh, (skgl__sizei)sizeof log, NULL, log);
+        skgl__set_log(ctx, "shader compile failed", log);
+        ctx->gl.DeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *fs_a, const char *fs_b)
+{
+    skgl__uint v = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL), f, p;
+    skgl__int ok = 0;
+    if (!v) return 0;
+    f = skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs_a, fs_b);
+    if (!f) { ctx->gl.DeleteShader(v); return 0; }
+    p = ctx->gl.CreateProgram();
+    ctx->gl.AttachShader(p, v);
+    ctx->gl.AttachShader(p, f);
+    ctx->gl.LinkProgram(p);
+    ctx->gl.DeleteShader(v);
+    ctx->gl.DeleteShader(f);
+    ctx->gl.GetProgramiv(p, SKGL__LINK_STATUS, &ok);
+    if (!ok) {
+        char log[900];
+        log[0] = 0;
+        ctx->gl.GetProgramInfoLog(p, (skgl__sizei)sizeof log, NULL, log);
+        skgl__set_log(ctx, "program link failed", log);
+        ctx->gl.DeleteProgram(p);
+        return 0;
+    }
+    ctx->objects++;
+    return p;
+}
+
+static skgl__uint skgl__sampler(skgl_context *ctx, int compare)
+{
+    skgl__uint s = 0;
+    ctx->gl.GenSamplers(1, &s);
+    ctx->objects++;
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_MIN_FILTER, compare ? SKGL__LINEAR : SKGL__NEAREST);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_MAG_FILTER, compare ? SKGL__LINEAR : SKGL__NEAREST);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_COMPARE_MODE, compare ? SKGL__COMPARE_REF_TO_TEXTURE : SKGL__NONE);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+    return s;
+}
+
+static void skgl__release(skgl_context *ctx)
+{
+    skgl__api *gl = &ctx->gl;
+    if (ctx->depth_prog) { gl->DeleteProgram(ctx->depth_prog); ctx->objects--; }
+    if (ctx->mask_prog) { gl->DeleteProgram(ctx->mask_prog); ctx->objects--; }
+    if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
+    if (ctx->fbo) { gl->DeleteFramebuffers(1, &ctx->fbo); ctx->objects--; }
+    if (ctx->query) { gl->DeleteQueries(1, &ctx->query); ctx->objects--; }
+    if (ctx->cmp_sampler) { gl->DeleteSamplers(1, &ctx->cmp_sampler); ctx->objects--; }
+    if (ctx->point_sampler) { gl->DeleteSamplers(1, &ctx->point_sampler); ctx->objects--; }
+    ctx->depth_prog = ctx->mask_prog = ctx->empty_vao = ctx->fbo = ctx->query = 0;
+    ctx->cmp_sampler = ctx->point_sampler = 0;
+}
+
+SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
+{
+    skgl_context *ctx;
+    skgl__int major = 0, minor = 0;
+    int missing = 0;
+    if (!desc || !desc->getproc || !out) return SK_ERR_INVALID_ARG;
+    *out = NULL;
+    ctx = (skgl_context *)SKGL_MALLOC(sizeof *ctx);
+    if (!ctx) return SK_ERR_CAPACITY;
+    memset(ctx, 0, sizeof *ctx);
+    /* void* -> function pointer through memcpy: ISO C has no direct cast */
+#define SKGL__X(ret, name, args) { void *p_ = desc->getproc("gl" #name); \
+        memcpy(&ctx->gl.name, &p_, sizeof p_); if (!p_) missing = 1; }
+    SKGL__FUNCS(SKGL__X)
+#undef SKGL__X
+    if (missing) { SKGL_FREE(ctx); return SK_ERR_GL; }
+    ctx->gl.GetIntegerv(SKGL__MAJOR_VERSION, &major);
+    ctx->gl.GetIntegerv(SKGL__MINOR_VERSION, &minor);
+    if (major < 3 || (major == 3 && minor < 3)) { SKGL_FREE(ctx); return SK_ERR_GL; }
+    ctx->debug = desc->debug;
+    ctx->timing = desc->timing;
+    ctx->depth_prog = skgl__program(ctx, skgl__src_depth_vert, skgl__src_depth_frag, NULL);
+    ctx->mask_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_shadow_sample_glsl,
+                                   skgl__src_shadow_mask_frag);
+    if (!ctx->depth_prog || !ctx->mask_prog) {
+        skgl__release(ctx);
+        SKGL_FREE(ctx);
+        return SK_ERR_GL;
+    }
+    ctx->depth_u_view_proj = ctx->gl.GetUniformLocation(ctx->depth_prog, "u_view_proj");
+    ctx->depth_u_model = ctx->gl.GetUniformLocation(ctx->depth_prog, "u_model");
+    ctx->gl.GenVertexArrays(1, &ctx->empty_vao); ctx->objects++;
+    ctx->gl.GenFramebuffers(1, &ctx->fbo); ctx->objects++;
+    ctx->gl.GenQueries(1, &ctx->query); ctx->objects++;
+    ctx->cmp_sampler = skgl__sampler(ctx, 1);
+    ctx->point_sampler = skgl__sampler(ctx, 0);
+    if (ctx->gl.GetError() != 0) {
+        skgl__set_log(ctx, "GL error while creating the context objects", NULL);
+        skgl__release(ctx);
+        SKGL_FREE(ctx);
+        return SK_ERR_GL;
+    }
+    *out = ctx;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_destroy(skgl_context *ctx)
+{
+    if (!ctx) return;
+    skgl__release(ctx);
+    SKGL_FREE(ctx);
+}
+
+SKGLDEF int skgl_gl_object_count(const skgl_context *ctx) { return ctx ? ctx->objects : 0; }
+SKGLDEF const char *skgl_error_log(const skgl_context *ctx) { return ctx ? ctx->log : ""; }
+
+SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
+{
+    if (ctx && model) ctx->gl.UniformMatrix4fv(ctx->depth_u_model, 1, 0, model);
+}
+
+SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__src_shadow_sample_glsl; }
+
+static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
+{
+    skgl_shadow_desc r = *d;
+    if (r.resolution <= 0) r.resolution = 2048;
+    if (r.cascades <= 0) r.cascades = 4;
+    if (r.technique == SKGL_STANDARD) r.cascades = 1;
+    if (r.lambda == 0.0f) r.lambda = 0.75f;
+    else if (r.lambda < 0.0f) r.lambda = 0.0f;
+    if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
+    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
+    if (r.normal_bias == 0.0f) r.normal_bias = 1.5f;
+    if (r.pcf_radius == 0) r.pcf_radius = 1;
+    else if (r.pcf_radius < 0) r.pcf_radius = 0;
+    return r;
+}
+
+SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out)
+{
+    skgl_shadow *s;
+    skgl__state st;
+    skgl__api *gl;
+    skgl_shadow_desc d;
+    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    d = skgl__defaults(desc);
+    if ((d.technique != SKGL_STANDARD && d.technique != SKGL_PSSM) || d.resolution > 16384 ||
+        d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
+        d.pcf_radius > 8 || !(d.max_distance >= 0.0f))
+        return SK_ERR_INVALID_ARG;
+    s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
+    if (!s) return SK_ERR_CAPACITY;
+    memset(s, 0, sizeof *s);
+    s->desc = d;
+    s->layers = d.cascades;
+    gl = &ctx->gl;
+    skgl__save(gl, &st);
+    gl->GenTextures(1, &s->tex);
+    ctx->objects++;
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, d.resolution, d.resolution, s->layers, 0,
+                   SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+    skgl__restore(gl, &st);
+    if (gl->GetError() != 0) {
+        skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
+        skgl_shadow_destroy(ctx, s);
+        return SK_ERR_GL;
+    }
+    s->stats.shadow_ms = s->stats.mask_ms = -1.0f;
+    *out = s;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
+{
+    if (!s) return;
+    if (ctx && s->tex) { ctx->gl.DeleteTextures(1, &s->tex); ctx->objects--; }
+    SKGL_FREE(s);
+}
+
+SKGLDEF skgl_shadow_desc skgl_shadow_get_desc(const skgl_shadow *s)
+{
+    skgl_shadow_desc d;
+    if (s) return s->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
+{
+    if (!s || layer < 0 || layer >= s->layers) return sk_mat4_identity();
+    return s->vp[layer];
+}
+SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
+SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
+
+static void skgl__query_begin(skgl_context *ctx)
+{
+    if (ctx->timing) ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, ctx->query);
+}
+static float skgl__query_end(skgl_context *ctx)
+{
+    skgl__u64 ns = 0;
+    if (!ctx->timing) return -1.0f;
+    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
+    ctx->gl.GetQueryObjectui64v(ctx->query, SKGL__QUERY_RESULT, &ns);
+    return (float)((double)ns * 1e-6);
+}
+
+/* near and far of a perspective (or orthographic) GL projection */
+static int skgl__near_far(const sk_mat4 *p, float *zn, float *zf)
+{
+    double a = p->m[10], b = p->m[14], n, f;
+    if (p->m[11] == -1.0f && p->m[15] == 0.0f) { n = b / (a - 1.0); f = b / (a + 1.0); }
+    else if (p->m[11] == 0.0f && p->m[15] == 1.0f && a != 0.0) { n = (b + 1.0) / a; f = (b - 1.0) / a; }
+    else return 0;
+    *zn = (float)n; *zf = (float)f;
+    return sk__finite(*zn) && sk__finite(*zf) && *zf > *zn && (p->m[11] == 0.0f || *zn > 0.0f);
+}
+
+/* Crops of every layer: the PSSM practical split scheme (seed 002) over
+   the part of the view that can hold receivers; per layer a focused crop of
+   the slice clipped to the scene, or a texel-snapped stable crop. */
+static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene, sk_vec3 light_dir)
+{
+    const skgl_shadow_desc *d = &s->desc;
+    sk_mat4 cam_vp = sk_mat4_mul(cam->proj, cam->view), lview = sk_light_view_directional(light_dir);
+    sk_frustum view = sk_frustum_from_matrix(cam_vp);
+    float zn, cam_zf, zf, far_scene = 0.0f;
+    int i;
+    if (!skgl__near_far(&cam->proj, &zn, &cam_zf) || sk__frustum_invalid(&view)) return SK_ERR_INVALID_ARG;
+    /* shadows end where the scene ends (or at max_distance) */
+    zf = cam_zf;
+    for (i = 0; i < 8; i++) {
+        float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
+        if (depth > far_scene) far_scene = depth;
+    }
+    if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
+    if (d->max_distance > zn && d->max_distance < zf) zf = d->max_distance;
+    if (s->layers == 1) { s->stats.splits[0] = zn; s->stats.splits[1] = zf; }
+    else if (sk_pssm_splits(zn, zf, s->layers, d->lambda, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
+    for (i = 0; i < s->layers; i++) {
+        sk_frustum slice;
+        sk_mat4 proj;
+        sk_result r = sk_frustum_slice(&view, zn, cam_zf, s->stats.splits[i], s->stats.splits[i + 1], &slice);
+        if (r != SK_OK) return r;
+        if (d->stable) {
+            r = sk_stable_crop(sk_frustum_bounding_sphere(&slice), lview, d->resolution, &scene->bounds, &proj);
+        } else {
+            sk_vec3 pts[SK_CLIP_MAX_POINTS];
+            int n = sk_clip_frustum_aabb(&slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+            r = n > 0 ? sk_fit_ortho(pts, n, lview, &scene->bounds, &proj)
+                      : sk_fit_ortho(slice.corners, 8, lview, &scene->bounds, &proj);
+        }
+        if (r != SK_OK) return r;
+        s->vp[i] = sk_mat4_mul(proj, lview);
+        {
+            float tx = 2.0f / (SK_FABSF(proj.m[0]) * d->resolution), ty = 2.0f / (SK_FABSF(proj.m[5]) * d->resolution);
+            s->texel_world[i] = tx > ty ? tx : ty;
+        }
+    }
+    return SK_OK;
+}
+
+static sk_result skgl__check(skgl_context *ctx, const char *what)
+{
+    if (ctx->debug && ctx->gl.GetError() != 0) {
+        skgl__set_log(ctx, what, "glGetError reported an error");
+        return SK_ERR_GL;
+    }
+    return SK_OK;
+}
+
+SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                     const skgl_scene *scene, sk_vec3 light_dir)
+{
+    skgl__api *gl;
+    skgl__state st;
+    sk_result r;
+    int i, res;
+    if (!ctx || !s || !cam || !scene || !scene->draw || !sk__v3_finite(light_dir) ||
+        sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj) ||
+        !sk__aabb_valid(&scene->bounds))
+        return SK_ERR_INVALID_ARG;
+    r = skgl__fit_layers(s, cam, scene, light_dir);
+    if (r != SK_OK) return r;
+    s->light_dir = sk__normalize(light_dir);
+    gl = &ctx->gl;
+    res = s->desc.resolution;
+    skgl__save(gl, &st);
+    skgl__query_begin(ctx);
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->DrawBuffer(SKGL__NONE);
+    gl->ReadBuffer(SKGL__NONE);
+    gl->Viewport(0, 0, res, res);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);          /* open meshes cast from both sides */
+    gl->Enable(SKGL__DEPTH_TEST);
+    gl->DepthFunc(SKGL__LESS);
+    gl->DepthMask(1);
+    gl->ClearDepth(1.0);
+    if (s->desc.slope_bias > 0.0f || s->desc.depth_bias > 0.0f) {
+        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
+        gl->PolygonOffset(s->desc.slope_bias > 0.0f ? s->desc.slope_bias : 0.0f,
+                          s->desc.depth_bias > 0.0f ? s->desc.depth_bias : 0.0f);
+    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->UseProgram(ctx->depth_prog);
+    s->stats.passes = 0;
+    s->stats.texels = 0.0;
+    for (i = 0; i < s->layers; i++) {
+        skgl_draw_info info;
+        static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+        gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, s->tex, 0, i);
+        if (i == 0 && gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+            skgl__set_log(ctx, "shadow framebuffer incomplete", NULL);
+            skgl__restore(gl, &st);
+            return SK_ERR_GL;
+        }
+        gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->vp[i].m);
+        gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_DIRECTIONAL;
+        info.index = i;
+        info.view_proj = s->vp[i];
+        info.frustum = sk_frustum_from_matrix(s->vp[i]);
+        scene->draw(scene->user, &info);
+        s->stats.passes++;
+        s->stats.texels += (double)res * res;
+        /* the callback may have bound its own program: ours again for the next layer */
+        gl->UseProgram(ctx->depth_prog);
+    }
+    gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
+    s->stats.shadow_ms = skgl__query_end(ctx);
+    s->stats.maps = s->layers;
+    s->stats.resolution = res;
+    skgl__restore(gl, &st);
+    return skgl__check(ctx, "skgl_shadow_render");
+}
+
+static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint prog, int unit)
+{
+    skgl__api *gl = &ctx->gl;
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_shadow_map"), unit);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->layers, 0, s->vp[0].m);
+    gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_texel_world"), s->layers, s->texel_world);
+    gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->layers + 1, s->stats.splits);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_layers"), s->layers);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_blend_band"), s->desc.blend_band);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_normal_bias"), s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_pcf_radius"), s->desc.pcf_radius);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "sk_light_dir"), 1, &s->light_dir.x);
+}
+
+SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit)
+{
+    skgl__api *gl;
+    skgl__int active = 0;
+    if (!ctx || !s || !program || unit < 0 || unit > 31) return SK_ERR_INVALID_ARG;
+    gl = &ctx->gl;
+    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
+    gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
+    gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
+    gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+    gl->ActiveTexture((skgl__enum)active);
+    skgl__uniforms(ctx, s, program, unit);
+    return skgl__check(ctx, "skgl_shadow_bind");
+}
+
+SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    skgl__api *gl;
+    skgl__state st;
+    skgl__int w = 0, h = 0;
+    sk_mat4 inv;
+    skgl__uint p;
+    if (!ctx || !s || !cam || !depth_tex || !mask_tex || !sk__mat_finite(&cam->view) ||
+        !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
+        return SK_ERR_INVALID_ARG;
+    gl = &ctx->gl;
+    p = ctx->mask_prog;
+    skgl__save(gl, &st);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
+    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
+    gl->BindSampler(1, ctx->point_sampler);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
+    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
+    gl->BindSampler(2, ctx->point_sampler);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
+    gl->BindSampler(0, ctx->cmp_sampler);
+    if (w <= 0 || h <= 0) {
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_shadow_mask: mask texture has no level 0", NULL);
+        return SK_ERR_INVALID_ARG;
+    }
+    skgl__query_begin(ctx);
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
+    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
+    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_shadow_mask: mask texture is not colour-renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->Viewport(0, 0, w, h);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->UseProgram(p);
+    skgl__uniforms(ctx, s, p, 0);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_depth"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_normals"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_has_normals"), normal_tex != 0);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_inv_view_proj"), 1, 0, inv.m);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_view"), 1, 0, cam->view.m);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    s->stats.mask_ms = skgl__query_end(ctx);
+    skgl__restore(gl, &st);
+    return skgl__check(ctx, "skgl_shadow_mask");
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SHADOWKIT_GL_IMPLEMENTATION_INCLUDED */
+#endif /* SHADOWKIT_GL_IMPLEMENTATION */
+
+/*
+------------------------------------------------------------------------------
+This software is available under 2 licenses -- choose whichever you prefer.
+------------------------------------------------------------------------------
+ALTERNATIVE A - MIT License
+Copyright (c) 2026 shadowkit authors
+Permission is hereby granted, free of charge, to any person obtaining a copy of
+this software and associated documentation files (the "Software"), to deal in
+the Software without restriction, including without limitation the rights to
+use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies
+of the Software, and to permit persons to whom the Software is furnished to do
+so, subject to the following conditions:
+The above copyright notice and this permission notice shall be included in all
+copies or substantial portions of the Software.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER
+LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM,
+OUT OF OR IN CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE
+SOFTWARE.
+------------------------------------------------------------------------------
+ALTERNATIVE B - Public Domain (www.unlicense.org)
+This is free and unencumbered software released into the public domain.
+Anyone is free to copy, modify, publish, use, compile, sell, or distribute this
+software, either in source code form or as a compiled binary, for any purpose,
+commercial or non-commercial, and by any means.
+In jurisdictions that recognize copyright laws, the author or authors of this
+software dedicate any and all copyright interest in the software to the public
+domain. We make this dedication for the benefit of the public at large and to
+the detriment of our heirs and successors. We intend this dedication to be an
+overt act of relinquishment in perpetuity of all present and future rights to
+this software under copyright law.
+THE SOFTWARE IS PROVIDED "AS IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR
+IMPLIED, INCLUDING BUT NOT LIMITED TO THE WARRANTIES OF MERCHANTABILITY,
+FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO EVENT SHALL THE
+AUTHORS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER LIABILITY, WHETHER IN AN
+ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN CONNECTION
+WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
+------------------------------------------------------------------------------
+*/
