@@ -185,11 +185,19 @@ SKDEF sk_result sk_pssm_splits(float zn, float zf, int m, float lambda, float *o
 SKDEF sk_result sk_frustum_slice(const sk_frustum *view, float zn, float zf,
                                  float d0, float d1, sk_frustum *out);
 /* Bounding sphere of a frustum slice that depends only on its shape, not on
-   its position or orientation (so it does not change as the camera moves):
-   centre on the line joining the near and far face centres, balanced between
-   the near and far corners; radius rounded up to a multiple of 2^-10 of
-   itself so float noise cannot change it. */
+   its position or orientation: centre on the line joining the near and far
+   face centres, balanced between the near and far corners; radius rounded up
+   to a multiple of 2^-10 of itself, which absorbs the float noise of the
+   corners except when the exact radius lies within that noise of a rounding
+   step. For a radius that is bitwise the same wherever the camera is, use
+   sk_cascade_sphere. */
 SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f);
+/* The same sphere computed from the camera's parameters: a symmetric
+   perspective camera (cam_view rigid, fovy, aspect) and the slice [d0, d1] of
+   eye depths. The radius depends on fovy, aspect, d0 and d1 only, so it is
+   bitwise identical at every camera position and orientation: what stable
+   cascades need. Bad input: a zero sphere (r = 0). */
+SKDEF sk_sphere sk_cascade_sphere(sk_mat4 cam_view, float fovy, float aspect, float d0, float d1);
 /* World-to-light view for a directional light (looks along light_dir; the up
    vector is a fixed world axis, never the camera's, so it is stable).
    Zero or non-finite direction: looks down -Y. */
@@ -860,7 +868,7 @@ SKDEF sk_result sk_frustum_from_corners(const sk_vec3 corners[8], sk_frustum *ou
             px += a.x; py += a.y; pz += a.z;
         }
         px /= 4; py /= 4; pz /= 4;
-        if (!(nx * nx + ny * ny + nz * nz > 1e-20 * scale * scale)) return SK_ERR_DEGENERATE;
+        if (!(nx * nx + ny * ny + nz * nz > 0.0) || !sk__finite_d(nx * nx + ny * ny + nz * nz)) return SK_ERR_DEGENERATE;
         d = -(nx * px + ny * py + nz * pz);
         if (nx * cx + ny * cy + nz * cz + d < 0.0) { nx = -nx; ny = -ny; nz = -nz; d = -d; }
         f.planes[k] = sk__plane_normalized(nx, ny, nz, d);
@@ -896,19 +904,23 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
     return 1;
 }
 
-static int sk__in_aabb(const sk_aabb *b, sk_vec3 p, float tol)
+/* Containment with a tolerance relative to the magnitudes involved. */
+static int sk__in_aabb(const sk_aabb *b, sk_vec3 p)
 {
-    return p.x >= b->min.x - tol && p.x <= b->max.x + tol && p.y >= b->min.y - tol &&
-           p.y <= b->max.y + tol && p.z >= b->min.z - tol && p.z <= b->max.z + tol;
+    float t = 1e-5f * (1.0f + sk__maxabs3(p));
+    return p.x >= b->min.x - t && p.x <= b->max.x + t && p.y >= b->min.y - t &&
+           p.y <= b->max.y + t && p.z >= b->min.z - t && p.z <= b->max.z + t;
 }
-static int sk__in_planes(const sk_plane *pl, sk_vec3 p, float tol)
+static int sk__in_planes(const sk_plane *pl, sk_vec3 p)
 {
     int k;
-    for (k = 0; k < 6; k++) if (sk__plane_dist(&pl[k], p) < -tol) return 0;
+    float m = 1.0f + sk__maxabs3(p);
+    for (k = 0; k < 6; k++)
+        if (sk__plane_dist(&pl[k], p) < -1e-5f * (m + SK_FABSF(pl[k].d))) return 0;
     return 1;
 }
 /* Crossings of a's edges with b's planes that lie inside b. */
-static int sk__edge_crossings(const sk_frustum *a, const sk_frustum *b, float tol, sk_vec3 *out, int n)
+static int sk__edge_crossings(const sk_frustum *a, const sk_frustum *b, sk_vec3 *out, int n)
 {
     int e, k;
     for (e = 0; e < 12; e++) {
@@ -918,7 +930,7 @@ static int sk__edge_crossings(const sk_frustum *a, const sk_frustum *b, float to
             sk_vec3 q;
             if ((d0 > 0.0f) == (d1 > 0.0f) || d0 == d1) continue;
             q = sk__lerp3(p0, p1, d0 / (d0 - d1));
-            if (n < SK_CLIP_MAX_POINTS && sk__in_planes(b->planes, q, tol)) out[n++] = q;
+            if (n < SK_CLIP_MAX_POINTS && sk__in_planes(b->planes, q)) out[n++] = q;
         }
     }
     return n;
@@ -931,26 +943,20 @@ SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, i
     sk_frustum bf;
     sk_vec3 pts[SK_CLIP_MAX_POINTS];
     int count = 0, i, j, n = 0;
-    float tol = 0.0f;
     if (!f || !out || cap < 0 || sk__frustum_invalid(f) || !sk__aabb_valid(&box))
         return -(int)SK_ERR_INVALID_ARG;
     sk_frustum_from_aabb(box, &bf);
     for (i = 0; i < 8; i++) {
-        float a = sk__maxabs3(f->corners[i]), b = sk__maxabs3(bf.corners[i]);
-        if (a > tol) tol = a;
-        if (b > tol) tol = b;
-    }
-    tol = 1e-5f * (1.0f + tol);
-    for (i = 0; i < 8; i++) {
-        if (sk__in_aabb(&box, f->corners[i], tol)) pts[n++] = f->corners[i];
-        if (sk__in_planes(f->planes, bf.corners[i], tol)) pts[n++] = bf.corners[i];
+        if (sk__in_aabb(&box, f->corners[i])) pts[n++] = f->corners[i];
+        if (sk__in_planes(f->planes, bf.corners[i])) pts[n++] = bf.corners[i];
     }
     if (n < 16) {
-        n = sk__edge_crossings(f, &bf, tol, pts, n);
-        n = sk__edge_crossings(&bf, f, tol, pts, n);
+        n = sk__edge_crossings(f, &bf, pts, n);
+        n = sk__edge_crossings(&bf, f, pts, n);
     }
     /* drop coincident points (shared corners, edges through corners) */
     for (i = 0; i < n; i++) {
+        float tol = 1e-6f * (1.0f + sk__maxabs3(pts[i]));
         for (j = 0; j < count; j++)
             if (SK_FABSF(pts[j].x - pts[i].x) <= tol && SK_FABSF(pts[j].y - pts[i].y) <= tol &&
                 SK_FABSF(pts[j].z - pts[i].z) <= tol) break;
@@ -1085,6 +1091,33 @@ SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f)
     s.c = sk__v3((float)c[0], (float)c[1], (float)c[2]);
     s.r = (float)r;
     if ((double)s.r < r) s.r = (float)(r * (1.0 + 1e-7));
+    return s;
+}
+
+SKDEF sk_sphere sk_cascade_sphere(sk_mat4 v, float fovy, float aspect, float d0, float d1)
+{
+    sk_sphere s;
+    double t2, a2, b2, zc, r, eye[3], fwd[3];
+    int k;
+    s.c = sk__v3(0, 0, 0); s.r = 0.0f;
+    if (!sk__mat_finite(&v) || !sk__finite(fovy) || !sk__finite(aspect) || !sk__finite(d0) ||
+        !sk__finite(d1) || !(fovy > 0.0f) || !(fovy < SK__PI) || !(aspect > 0.0f) || !(d0 >= 0.0f) || !(d1 > d0))
+        return s;
+    /* squared half-diagonal of the cross-section at unit depth */
+    t2 = SK_TAN(0.5 * fovy);
+    t2 = t2 * t2 * (1.0 + (double)aspect * aspect);
+    a2 = t2 * d0 * d0;
+    b2 = t2 * d1 * d1;
+    zc = (b2 - a2 + (double)d1 * d1 - (double)d0 * d0) / (2.0 * ((double)d1 - d0));
+    if (zc > d1) zc = d1;
+    r = zc >= d1 ? SK_SQRT(b2) : SK_SQRT(a2 + (zc - d0) * (zc - d0));
+    /* eye = -R^T t, forward = -(third row of R) for the rigid view matrix */
+    for (k = 0; k < 3; k++) {
+        eye[k] = -((double)v.m[k * 4] * v.m[12] + (double)v.m[k * 4 + 1] * v.m[13] + (double)v.m[k * 4 + 2] * v.m[14]);
+        fwd[k] = -(double)v.m[k * 4 + 2];
+    }
+    s.c = sk__v3((float)(eye[0] + zc * fwd[0]), (float)(eye[1] + zc * fwd[1]), (float)(eye[2] + zc * fwd[2]));
+    s.r = (float)(r * (1.0 + 1e-4));   /* covers float corners of the same camera */
     return s;
 }
 
