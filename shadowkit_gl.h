@@ -48,6 +48,12 @@
                     (seed 002), one layer of a depth texture array each,
                     per-cascade crop (or stable crop), cascade chosen per
                     pixel by view depth, optional blend band.
+     Focused crops end the shadow range where the scene ends and fit the view
+     clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
+     sphere that depends only on the camera's projection and the split
+     distances, over the range [near, max_distance or far]: the texel size
+     never changes as the camera moves, at the price of covering more than
+     the scene (set max_distance).
 
    BIAS AND FILTERING
      Casters are drawn with slope-scaled polygon offset (.slope_bias, in
@@ -837,13 +843,17 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     float zn, cam_zf, zf, far_scene = 0.0f;
     int i;
     if (!skgl__near_far(&cam->proj, &zn, &cam_zf) || sk__frustum_invalid(&view)) return SK_ERR_INVALID_ARG;
-    /* shadows end where the scene ends (or at max_distance) */
+    /* shadows end at max_distance, and (focused mode only) where the scene
+       ends: stable mode needs a range that does not depend on where the
+       camera is, or the cascade spheres and their texels would change size */
     zf = cam_zf;
-    for (i = 0; i < 8; i++) {
-        float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
-        if (depth > far_scene) far_scene = depth;
+    if (!d->stable) {
+        for (i = 0; i < 8; i++) {
+            float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
+            if (depth > far_scene) far_scene = depth;
+        }
+        if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
     }
-    if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
     if (d->max_distance > zn && d->max_distance < zf) zf = d->max_distance;
     if (s->layers == 1) { s->stats.splits[0] = zn; s->stats.splits[1] = zf; }
     else if (sk_pssm_splits(zn, zf, s->layers, d->lambda, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
@@ -853,7 +863,12 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
         sk_result r = sk_frustum_slice(&view, zn, cam_zf, s->stats.splits[i], s->stats.splits[i + 1], &slice);
         if (r != SK_OK) return r;
         if (d->stable) {
-            r = sk_stable_crop(sk_frustum_bounding_sphere(&slice), lview, d->resolution, &scene->bounds, &proj);
+            /* radius from the camera's parameters only: bitwise the same
+               wherever the camera goes (fovy and aspect of a GL perspective) */
+            float fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5])), aspect = cam->proj.m[5] / cam->proj.m[0];
+            sk_sphere sph = sk_cascade_sphere(cam->view, fovy, aspect, s->stats.splits[i], s->stats.splits[i + 1]);
+            if (!(sph.r > 0.0f)) sph = sk_frustum_bounding_sphere(&slice);
+            r = sk_stable_crop(sph, lview, d->resolution, &scene->bounds, &proj);
         } else {
             sk_vec3 pts[SK_CLIP_MAX_POINTS];
             int n = sk_clip_frustum_aabb(&slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
