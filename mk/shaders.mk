@@ -20,3 +20,17 @@ check-shaders: $(EMBED)
 
 check: check-shaders
 test: check-shaders
+
+# shadowkit_gl.h compiled as C99, C++11 and C++17 (no GL needed to link)
+GL_HEADER_BINS := $(addprefix $(BUILD)/compile/,gl-header-c99 gl-header-cpp11 gl-header-cpp17)
+$(BUILD)/compile/gl-header-c99: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test
+	$(MKDIR)
+	$(C99) $(OPT) $< -o $@ $(LDLIBS)
+$(BUILD)/compile/gl-header-cpp11: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test
+	$(MKDIR)
+	$(CXX11) $(OPT) $< -o $@ $(LDLIBS)
+$(BUILD)/compile/gl-header-cpp17: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test
+	$(MKDIR)
+	$(CXX17) $(OPT) $< -o $@ $(LDLIBS)
+test: $(GL_HEADER_BINS)
+check-compile: $(GL_HEADER_BINS)
