@@ -860,13 +860,18 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     for (i = 0; i < s->layers; i++) {
         sk_frustum slice;
         sk_mat4 proj;
-        sk_result r = sk_frustum_slice(&view, zn, cam_zf, s->stats.splits[i], s->stats.splits[i + 1], &slice);
+        /* layer i is also sampled in the blend region at the end of layer
+           i-1, [s_i - band, s_i): its crop covers that region too, or the
+           blend would fade toward "outside the map" (lit) */
+        float z0 = i > 0 ? s->stats.splits[i] - d->blend_band * (s->stats.splits[i] - s->stats.splits[i - 1])
+                         : s->stats.splits[0];
+        sk_result r = sk_frustum_slice(&view, zn, cam_zf, z0, s->stats.splits[i + 1], &slice);
         if (r != SK_OK) return r;
         if (d->stable) {
             /* radius from the camera's parameters only: bitwise the same
                wherever the camera goes (fovy and aspect of a GL perspective) */
             float fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5])), aspect = cam->proj.m[5] / cam->proj.m[0];
-            sk_sphere sph = sk_cascade_sphere(cam->view, fovy, aspect, s->stats.splits[i], s->stats.splits[i + 1]);
+            sk_sphere sph = sk_cascade_sphere(cam->view, fovy, aspect, z0, s->stats.splits[i + 1]);
             if (!(sph.r > 0.0f)) sph = sk_frustum_bounding_sphere(&slice);
             r = sk_stable_crop(sph, lview, d->resolution, &scene->bounds, &proj);
         } else {

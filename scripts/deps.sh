@@ -2,14 +2,15 @@
 # scripts/deps.sh [GROUP...] - install the Debian packages a make target needs,
 # only those that are missing. Quiet when nothing is missing.
 #   test   compilers, libc headers, sanitizer runtimes      (make test, make check)
-#   demo   test + gnuplot, OSMesa, EGL, Embree, assimp, stb, GLFW (make demo)
+#   gl     test + pkg-config, OSMesa, EGL, Embree, assimp, stb (testbed, GL tests)
+#   demo   gl + gnuplot, GLFW (make demo)
 # To add a group or a package, edit the arrays and the case below.
 # Debian 12 (bookworm); needs root (or sudo) only when something is missing.
 set -euo pipefail
 
 PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1)
-PKGS_DEMO=(gnuplot-nox libosmesa6-dev libegl-dev libembree-dev libassimp-dev
-           libstb-dev libglfw3-dev)
+PKGS_GL=(pkg-config libosmesa6-dev libegl-dev libembree-dev libassimp-dev libstb-dev)
+PKGS_DEMO=(gnuplot-nox libglfw3-dev)
 
 groups=("$@")
 [ ${#groups[@]} -gt 0 ] || groups=(test)
@@ -18,13 +19,16 @@ want=()
 for g in "${groups[@]}"; do
     case "$g" in
         test) want+=("${PKGS_TEST[@]}") ;;
-        demo) want+=("${PKGS_TEST[@]}" "${PKGS_DEMO[@]}") ;;
-        *) echo "deps.sh: unknown group '$g' (known: test demo)" >&2; exit 2 ;;
+        gl) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}") ;;
+        demo) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_DEMO[@]}") ;;
+        *) echo "deps.sh: unknown group '$g' (known: test gl demo)" >&2; exit 2 ;;
     esac
 done
 
+# (not `dpkg -s | grep -q`: grep -q exits at the first match, dpkg dies of
+# SIGPIPE on a long record such as libc6-dev's, and pipefail fails the test)
 installed() {
-    dpkg -s "$1" 2>/dev/null | grep -q '^Status: install ok installed'
+    [ "$(dpkg-query -W -f='${Status}' "$1" 2>/dev/null)" = "install ok installed" ]
 }
 
 missing=()

@@ -3,8 +3,11 @@
 # their summary lines ("<prog>: N passed, M failed", see tests/sk_test.h).
 #
 # Flavours are the folders under $BUILD (default build/): c99 cpp asan-c99
-# asan-cpp compile (the default is all of them, in that order). Every
+# asan-cpp compile gl (the default is all of them, in that order). Every
 # executable file in build/<flavour>/ is run from the repository root.
+# build/gl/<name> comes from tests/gl/<name>.c (GL tests on the testbed, see
+# mk/testbed.mk); they run with LSAN_OPTIONS=suppressions=testbed/lsan.supp
+# (OSMesa keeps ~850 bytes after its context is destroyed).
 # A program counts as its M failures; one that prints no summary line, or
 # exits non-zero with M == 0 (crash, sanitizer report, leak, timeout), counts
 # as 1 failure. The last line printed is exactly "N passed, M failed"; the
@@ -19,7 +22,7 @@ BUILD=${BUILD:-build}
 JOBS=${SK_TEST_JOBS:-$(nproc 2>/dev/null || echo 2)}
 TIMEOUT=${SK_TEST_TIMEOUT:-300}
 flavours=("$@")
-[ ${#flavours[@]} -gt 0 ] || flavours=(c99 cpp asan-c99 asan-cpp compile)
+[ ${#flavours[@]} -gt 0 ] || flavours=(c99 cpp asan-c99 asan-cpp compile gl)
 
 LOGS=$(mktemp -d "${TMPDIR:-/tmp}/sk_tests.XXXXXX") || exit 2
 trap 'rm -rf "$LOGS"' EXIT
@@ -35,6 +38,7 @@ run_one() {  # flavour binary logfile
     case "$1" in asan-*)
         env=(ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:verify_asan_link_order=0
              UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1) ;;
+        gl) env=(LSAN_OPTIONS=suppressions=testbed/lsan.supp) ;;
     esac
     env "${env[@]}" timeout -k 10 "$TIMEOUT" "${STDBUF[@]}" "./$2" > "$3" 2>&1 < /dev/null
     echo $? > "$3.rc"
@@ -48,7 +52,11 @@ for f in "${flavours[@]}"; do
     for b in "$BUILD/$f"/*; do
         [ -f "$b" ] && [ -x "$b" ] || continue
         # skip a stale binary whose tests/<name>.c was removed or renamed
-        [ "$f" = compile ] || [ -f "tests/$(basename "$b").c" ] || continue
+        case "$f" in
+            compile) ;;
+            gl) [ -f "tests/gl/$(basename "$b").c" ] || continue ;;
+            *) [ -f "tests/$(basename "$b").c" ] || continue ;;
+        esac
         log="$LOGS/$i.log"; i=$((i + 1))
         entries+=("$f|$b|$log")
         while [ "$(jobs -rp | wc -l)" -ge "$JOBS" ]; do wait -n; done

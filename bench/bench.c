@@ -1,0 +1,1245 @@
+/* bench/bench.c - speed against accuracy of every shadowkit_gl.h method
+   (issue 4, item 4; DESIGN.md "Measuring").
+
+   What it does
+     For every scene, view and method configuration: render the camera
+     G-buffer (window depth + world normals, 1280x720), then
+     skgl_shadow_render + skgl_shadow_mask with GL timer queries
+     (skgl_desc.timing = 1), read the R16F mask back and compare it with the
+     exact Embree reference (tb_reference_trace, hard shadows, traced ONCE
+     per (scene, view) from the same depth buffer and normals the mask pass
+     reads). Error = tb_metric_hard(): % of covered pixels whose lit/shadowed
+     class differs from the reference.
+
+   Output (everything under --out, default out/)
+     bench.csv                  one row per run, exactly the columns
+       method,params,scene,view,width,height,error_kind,error,texels,passes,
+       shadow_ms,analysis_ms,total_ms,device
+       method     standard | standard-stable | pssm   (DESIGN.md names)
+       params     key=value;key=value (resolution is per map / per cascade)
+       error_kind hard_pct
+       texels     shadow texels rendered (skgl_stats.texels)
+       passes     draw callbacks made (skgl_stats.passes)
+       shadow_ms  GPU time of the depth passes (timer query), median of
+                  --repeat timing passes
+       analysis_ms 0 (these methods analyse nothing on the GPU)
+       total_ms   shadow_ms + mask_ms (the deferred mask pass, one sample)
+       device     GL renderer string (CSV-quoted: llvmpipe's has commas)
+     bench-data/<scene>.*.dat   the chart data: per configuration the mean
+                                error and mean shadow_ms over the views
+     pareto-<scene>.png         gnuplot (bench/pareto.gp): error against
+                                shadow time, one series per method, the
+                                Pareto front (configurations no other beats
+                                in both time and error) drawn as a staircase
+                                through circled points
+     bench-data/sweep.txt       repeat count, sweep, views, runs, device
+     bench/<scene>-<view>-*.png with --images: a shaded picture of the
+                                reference and the error image of the first
+                                configuration (tb_image_write_error colours)
+
+   Scenes
+     ../shared/scenes/ (relative to the repository root; --scenes DIR):
+     stanford-bunny.obj, sponza-ivy/sponza_ivy.gltf and
+     sponza-curtains/sponza_curtains.gltf, each standing on a ground plane
+     added here (y = the model's lowest point, 3x its horizontal extent) so
+     that its shadows have a receiver. When the folder is missing only the
+     procedural scenes run, and stderr says so. Procedural (testbed):
+     ground-boxes, fence, terrace. One directional light per scene.
+
+   Views (3, derived from the bounds of the non-ground objects, so they work
+   for any scene; see make_views): "overview" (the whole content from 35
+   degrees up), "low" (eye low beyond one end of the longest horizontal
+   axis, looking along it: perspective aliasing), "close" (a close-up of
+   the centre from 50 degrees up). 50 degree vertical field of view; near
+   plane 0.002 x the eye-target distance, far plane past the scene.
+   Light: one directional light travelling along (-0.45, -1, -0.35).
+
+   Timing: per scene, `--repeat` timing passes (default 5) go over every
+   configuration; in each pass a configuration gets a new map, one warm-up
+   render (not timed: texture allocation, llvmpipe shader variants) and one
+   timed render per view. shadow_ms is the median over the passes.
+   Interleaving the repetitions this way means a slow spell of a shared
+   machine spoils one sample of many configurations instead of every sample
+   of one. The last pass also runs the mask pass once per view (its time is
+   mask_ms in total_ms; one sample) and scores the mask. On llvmpipe
+   (OSMesa, CPU) the times are comparable only within one run of the bench
+   on one machine; on a GPU (SK_GL=egl) they are absolute GPU times.
+
+   Usage (from the repository root; `make bench`, `make bench-demo`):
+     build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
+                       [--only SCENE[,SCENE..]] [--views N] [--images]
+                       [--views-only] [--gp FILE] [--plot-only] [--dry-run]
+     --quick      the small sweep of `make demo` (also SK_BENCH_QUICK=1)
+     --plot-only  redraw the charts from an existing OUT/bench.csv
+     --dry-run    print the sweep (configurations, runs) and exit
+     --help       all options
+   Exit status: 0; 1 on a setup failure (context, scene, gnuplot missing,
+   chart failure); 2 on a usage error. A run whose shadowkit call fails is
+   reported on stderr and skipped (no CSV row); the exit status is then 1.
+
+   Note on skgl_shadow_desc.pcf_radius: zero means "default" (1), so the
+   sweep asks for radius 0 (one hardware 2x2 comparison) with -1. */
+#define _POSIX_C_SOURCE 200809L
+#define SHADOWKIT_IMPLEMENTATION
+#define SHADOWKIT_GL_IMPLEMENTATION
+#include "shadowkit_gl.h"
+
+#include "tb_gl_context.h"
+#include "tb_gl_fbo.h"
+#include "tb_gl_funcs.h"
+#include "tb_gl_scene.h"
+#include "tb_image.h"
+#include "tb_metrics.h"
+#include "tb_reference.h"
+#include "tb_scene.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+
+#define BENCH_W 1280
+#define BENCH_H 720
+#define BENCH_FOVY 0.872665f             /* 50 degrees */
+#define BENCH_MAX_CFG 512
+#define BENCH_MAX_SCENES 16
+#define BENCH_MAX_VIEWS 3
+#define BENCH_MAX_REPEAT 31
+#define BENCH_CSV_HEADER \
+    "method,params,scene,view,width,height,error_kind,error,texels,passes,shadow_ms,analysis_ms,total_ms,device"
+
+/* ------------------------------------------------------------------ utils */
+static double now_s(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static sk_vec3 v3(float x, float y, float z) {
+    sk_vec3 r;
+    r.x = x; r.y = y; r.z = z;
+    return r;
+}
+static sk_vec3 v3_add(sk_vec3 a, sk_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static sk_vec3 v3_scale(sk_vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
+static float v3_len(sk_vec3 a) { return sqrtf(a.x * a.x + a.y * a.y + a.z * a.z); }
+static sk_vec3 v3_norm(sk_vec3 a) {
+    float l = v3_len(a);
+    return l > 0.0f ? v3_scale(a, 1.0f / l) : a;
+}
+
+static int cmp_float(const void *a, const void *b) {
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : x > y;
+}
+static float median(float *v, int n) {
+    if (n <= 0) return -1.0f;
+    qsort(v, (size_t)n, sizeof *v, cmp_float);
+    return n & 1 ? v[n / 2] : 0.5f * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static void fmt_duration(double s, char *buf, size_t n) {
+    if (s < 0) s = 0;
+    if (s < 60) snprintf(buf, n, "%.0fs", s);
+    else if (s < 3600) snprintf(buf, n, "%dm%02ds", (int)(s / 60), (int)s % 60);
+    else snprintf(buf, n, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
+}
+
+static int file_exists(const char *p) {
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
+}
+static int dir_exists(const char *p) {
+    struct stat st;
+    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
+}
+/* mkdir -p dir (through the testbed's helper, which makes a path's parents) */
+static int mkdir_p(const char *dir) {
+    char buf[1100];
+    snprintf(buf, sizeof buf, "%s/x", dir);
+    return tb_image_make_parent_dirs(buf);
+}
+
+/* inverse of a column-major 4x4 in double (Gauss-Jordan, partial pivoting) */
+static int mat4_inverse_d(const double m[16], double inv[16]) {
+    double a[4][8];
+    int i, j, k;
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 8; j++) a[i][j] = j < 4 ? m[j * 4 + i] : (double)(j - 4 == i);
+    for (i = 0; i < 4; i++) {
+        int p = i;
+        double piv;
+        for (k = i + 1; k < 4; k++)
+            if (fabs(a[k][i]) > fabs(a[p][i])) p = k;
+        if (fabs(a[p][i]) < 1e-300) return 0;
+        for (j = 0; j < 8; j++) {
+            double t = a[i][j];
+            a[i][j] = a[p][j];
+            a[p][j] = t;
+        }
+        piv = a[i][i];
+        for (j = 0; j < 8; j++) a[i][j] /= piv;
+        for (k = 0; k < 4; k++)
+            if (k != i) {
+                double f = a[k][i];
+                for (j = 0; j < 8; j++) a[k][j] -= f * a[i][j];
+            }
+    }
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 4; j++) inv[j * 4 + i] = a[i][j + 4];
+    return 1;
+}
+
+/* -------------------------------------------------------- configurations */
+typedef struct bench_cfg {
+    char method[32];
+    char params[160];
+    skgl_shadow_desc desc;
+} bench_cfg;
+
+static int g_ncfg;
+static bench_cfg g_cfg[BENCH_MAX_CFG];
+
+/* pcf: the radius to measure (0 = one hardware 2x2 comparison). In
+   skgl_shadow_desc a zero pcf_radius means "default" (1), so 0 is asked
+   for with a negative value (skgl__defaults: < 0 -> 0). */
+static void add_standard(int stable, int res, int pcf) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "%s", stable ? "standard-stable" : "standard");
+    snprintf(c->params, sizeof c->params, "resolution=%d;pcf=%d", res, pcf);
+    c->desc.technique = SKGL_STANDARD;
+    c->desc.resolution = res;
+    c->desc.stable = stable;
+    c->desc.pcf_radius = pcf > 0 ? pcf : -1;
+}
+
+static void add_pssm(int cascades, float lambda, int res, float blend, int pcf) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "pssm");
+    snprintf(c->params, sizeof c->params, "cascades=%d;lambda=%g;resolution=%d;blend=%g;pcf=%d", cascades,
+             (double)lambda, res, (double)blend, pcf);
+    c->desc.technique = SKGL_PSSM;
+    c->desc.cascades = cascades;
+    c->desc.lambda = lambda > 0.0f ? lambda : SKGL_LAMBDA_UNIFORM;
+    c->desc.resolution = res;
+    c->desc.blend_band = blend;
+    c->desc.pcf_radius = pcf > 0 ? pcf : -1;
+}
+
+static void build_sweep(int quick) {
+    static const int std_res[] = {512, 1024, 2048, 4096};
+    static const float lambdas[] = {0.5f, 0.75f, 0.9f};
+    static const int pssm_res[] = {512, 1024, 2048};
+    static const float blends[] = {0.0f, 0.1f};
+    int stable, r, p, c, l, b;
+    g_ncfg = 0;
+    if (quick) {
+        /* the demo sweep: the resolution ladder of the standard map with
+           both filters at two sizes, the stable map, PSSM over its cascade
+           count at two resolutions, lambda at both ends, one blend band */
+        for (r = 0; r < 4; r++) add_standard(0, std_res[r], 1);
+        add_standard(0, 1024, 0);
+        add_standard(0, 2048, 0);
+        add_standard(1, 1024, 1);
+        add_standard(1, 2048, 1);
+        for (c = 1; c <= 8; c *= 2) {
+            add_pssm(c, 0.75f, 512, 0.0f, 1);
+            add_pssm(c, 0.75f, 1024, 0.0f, 1);
+        }
+        add_pssm(4, 0.5f, 1024, 0.0f, 1);
+        add_pssm(4, 0.9f, 1024, 0.0f, 1);
+        add_pssm(4, 0.75f, 1024, 0.1f, 1);
+        return;
+    }
+    for (stable = 0; stable <= 1; stable++)
+        for (r = 0; r < 4; r++)
+            for (p = 0; p <= 1; p++) add_standard(stable, std_res[r], p);
+    for (c = 1; c <= SKGL_MAX_CASCADES; c++)
+        for (l = 0; l < 3; l++)
+            for (r = 0; r < 3; r++)
+                for (b = 0; b < 2; b++) {
+                    /* one cascade: lambda and the blend band change nothing */
+                    if (c == 1 && (l != 1 || b != 0)) continue;
+                    add_pssm(c, lambdas[l], pssm_res[r], blends[b], 1);
+                }
+}
+
+/* ---------------------------------------------------------------- scenes */
+typedef struct bench_scene_def {
+    char name[64];
+    char path[1024];          /* "" for procedural */
+    sk_vec3 light_dir;        /* travel direction */
+} bench_scene_def;
+
+typedef struct bench_view {
+    char name[16];
+    sk_vec3 eye, target;
+    float zn, zf;
+    skgl_camera cam;
+    sk_mat4 view_proj;
+} bench_view;
+
+/* the ground plane under a loaded model: 3x its horizontal extent */
+static int add_ground_under(tb_scene *s) {
+    sk_aabb b = s->bounds;
+    float cx = 0.5f * (b.min.x + b.max.x), cz = 0.5f * (b.min.z + b.max.z);
+    float hx = 0.5f * (b.max.x - b.min.x), hz = 0.5f * (b.max.z - b.min.z);
+    float h = 3.0f * (hx > hz ? hx : hz);
+    return tb_scene_add_ground(s, "ground", cx, cz, h, h, b.min.y, 8, 8) < 0 ? -1 : 0;
+}
+
+/* union of the bounds of the objects that are not the ground */
+static sk_aabb content_bounds(const tb_scene *s) {
+    sk_aabb r;
+    unsigned i;
+    int any = 0;
+    r = s->bounds;
+    for (i = 0; i < s->object_count; i++) {
+        const tb_object *o = &s->objects[i];
+        if (strstr(o->name, "ground")) continue;
+        if (!any) r = o->bounds;
+        else {
+            if (o->bounds.min.x < r.min.x) r.min.x = o->bounds.min.x;
+            if (o->bounds.min.y < r.min.y) r.min.y = o->bounds.min.y;
+            if (o->bounds.min.z < r.min.z) r.min.z = o->bounds.min.z;
+            if (o->bounds.max.x > r.max.x) r.max.x = o->bounds.max.x;
+            if (o->bounds.max.y > r.max.y) r.max.y = o->bounds.max.y;
+            if (o->bounds.max.z > r.max.z) r.max.z = o->bounds.max.z;
+        }
+        any = 1;
+    }
+    return any ? r : s->bounds;
+}
+
+static void finish_view(bench_view *v, const sk_aabb *all) {
+    float zf = 0.0f, d = v3_len(v3_add(v->target, v3_scale(v->eye, -1.0f)));
+    int i;
+    for (i = 0; i < 8; i++) {
+        sk_vec3 c = v3(i & 1 ? all->max.x : all->min.x, i & 2 ? all->max.y : all->min.y,
+                       i & 4 ? all->max.z : all->min.z);
+        float l = v3_len(v3_add(c, v3_scale(v->eye, -1.0f)));
+        if (l > zf) zf = l;
+    }
+    v->zf = zf * 1.01f;
+    v->zn = 0.002f * d;
+    if (v->zn < v->zf * 1e-5f) v->zn = v->zf * 1e-5f;
+    v->cam.view = sk_mat4_look_at(v->eye, v->target, v3(0, 1, 0));
+    v->cam.proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, v->zn, v->zf);
+    v->view_proj = sk_mat4_mul(v->cam.proj, v->cam.view);
+}
+
+/* direction from azimuth (about +y, 0 = +z) and elevation, in radians */
+static sk_vec3 dir_az_el(float az, float el) {
+    return v3(cosf(el) * sinf(az), sinf(el), cosf(el) * cosf(az));
+}
+static float azimuth_of(sk_vec3 h) { return atan2f(h.x, h.z); }
+
+/* the distance along u (unit, target -> eye) at which every corner of box
+   lies in front of the camera and within +-lim of the frame in NDC (lim > 1:
+   the box overflows the frame, a close-up) */
+static float fit_distance(sk_vec3 target, sk_vec3 u, const sk_aabb *box, float lim) {
+    float lo = 0.0f, hi, rad;
+    sk_mat4 proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, 1e-3f, 1e6f);
+    int it, k;
+    rad = v3_len(v3(box->max.x - box->min.x, box->max.y - box->min.y, box->max.z - box->min.z));
+    hi = 100.0f * (rad > 0.0f ? rad : 1.0f);
+    for (it = 0; it < 48; it++) {
+        float d = 0.5f * (lo + hi);
+        sk_mat4 vp = sk_mat4_mul(proj, sk_mat4_look_at(v3_add(target, v3_scale(u, d)), target, v3(0, 1, 0)));
+        int ok = 1;
+        for (k = 0; k < 8 && ok; k++) {
+            sk_vec4 p, c;
+            p.x = k & 1 ? box->max.x : box->min.x;
+            p.y = k & 2 ? box->max.y : box->min.y;
+            p.z = k & 4 ? box->max.z : box->min.z;
+            p.w = 1.0f;
+            c = sk_mat4_transform_vec4(vp, p);
+            if (!(c.w > 0.0f) || fabsf(c.x) > lim * c.w || fabsf(c.y) > lim * c.w) ok = 0;
+        }
+        if (ok) hi = d; else lo = d;
+    }
+    return hi;
+}
+
+/* Three views from the content bounds (the objects but the ground):
+   overview: the whole content from 35 degrees up, seen along its long
+     horizontal axis (20 degrees off it), its bounding box framed;
+   low: eye low beyond one end of the long axis, looking along it to a point
+     a quarter of the way in, near the ground (grazing, perspective
+     aliasing); the nearer half of the content box is framed;
+   close: the middle of the content (a box as wide as the content is high or
+     deep) from 50 degrees up, framed so that it overflows the image. */
+static int make_views(const tb_scene *s, bench_view *v) {
+    sk_aabb cb = content_bounds(s), all = s->bounds, local;
+    sk_vec3 c = v3(0.5f * (cb.min.x + cb.max.x), 0.5f * (cb.min.y + cb.max.y), 0.5f * (cb.min.z + cb.max.z));
+    sk_vec3 ex = v3(0.5f * (cb.max.x - cb.min.x), 0.5f * (cb.max.y - cb.min.y), 0.5f * (cb.max.z - cb.min.z));
+    float H = 2.0f * ex.y, L, S, m, az0, el, d;
+    sk_vec3 axis, side, u;
+    if (ex.x >= ex.z) { axis = v3(1, 0, 0); side = v3(0, 0, 1); L = ex.x; S = ex.z; }
+    else { axis = v3(0, 0, 1); side = v3(1, 0, 0); L = ex.z; S = ex.x; }
+    if (H < 0.02f * L) H = 0.02f * L;
+    memset(v, 0, 3 * sizeof *v);
+
+    snprintf(v[0].name, sizeof v[0].name, "overview");
+    az0 = azimuth_of(v3_add(v3_scale(axis, 0.94f), v3_scale(side, 0.34f)));   /* 20 degrees off the axis */
+    u = dir_az_el(az0, 0.61f);
+    v[0].target = c;
+    v[0].eye = v3_add(c, v3_scale(u, fit_distance(c, u, &cb, 1.0f)));
+    finish_view(&v[0], &all);
+
+    snprintf(v[1].name, sizeof v[1].name, "low");
+    v[1].target = v3_add(c, v3_scale(axis, -0.25f * L));
+    v[1].target.y = cb.min.y + 0.15f * H;
+    el = atan2f(0.6f * H, L);
+    if (el < 0.05f) el = 0.05f;
+    if (el > 0.35f) el = 0.35f;
+    m = 0.5f * S / L;   /* off the axis by about the content's half width */
+    if (m < 0.05f) m = 0.05f;
+    if (m > 0.3f) m = 0.3f;
+    u = dir_az_el(azimuth_of(v3_add(axis, v3_scale(side, m))), el);
+    local = cb;   /* the half of the content nearer the eye must be in the frame */
+    if (axis.x > 0.0f) local.min.x = c.x; else local.min.z = c.z;
+    v[1].eye = v3_add(v[1].target, v3_scale(u, fit_distance(v[1].target, u, &local, 1.0f)));
+    finish_view(&v[1], &all);
+
+    snprintf(v[2].name, sizeof v[2].name, "close");
+    m = S > H ? S : H;
+    local = cb;
+    if (ex.x > m) { local.min.x = c.x - m; local.max.x = c.x + m; }
+    if (ex.z > m) { local.min.z = c.z - m; local.max.z = c.z + m; }
+    u = dir_az_el(az0 - 1.9f, 0.87f);
+    v[2].target = v3(c.x, cb.min.y + 0.3f * H, c.z);
+    d = fit_distance(v[2].target, u, &local, 1.5f);
+    v[2].eye = v3_add(v[2].target, v3_scale(u, d));
+    finish_view(&v[2], &all);
+    return 3;
+}
+
+/* ---------------------------------------------------- the draw callback */
+typedef struct draw_user {
+    const tb_gl_funcs *gl;
+    const tb_scene *scene;
+    const tb_gl_mesh *mesh;
+} draw_user;
+
+/* positions are in world space (assimp pre-transforms); objects whose box
+   misses the pass's frustum are skipped */
+static void draw_casters(void *user, const skgl_draw_info *info) {
+    const draw_user *u = (const draw_user *)user;
+    unsigned i;
+    for (i = 0; i < u->scene->object_count; i++) {
+        const tb_object *o = &u->scene->objects[i];
+        sk_frustum box;
+        if (sk_frustum_from_aabb(o->bounds, &box) == SK_OK && !sk_frustum_intersects(&info->frustum, &box))
+            continue;
+        tb_gl_mesh_draw(u->gl, u->mesh, o->first_index, o->index_count);
+    }
+}
+
+/* ------------------------------------------------------------- options */
+typedef struct bench_opts {
+    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only;
+    const char *scenes_dir, *out_dir, *gp, *only;
+} bench_opts;
+
+static int scene_selected(const bench_opts *o, const char *name) {
+    const char *p = o->only;
+    size_t n = strlen(name);
+    if (!p || !*p) return 1;
+    while (*p) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && strncmp(p, name, n) == 0) return 1;
+        if (!e) break;
+        p = e + 1;
+    }
+    return 0;
+}
+
+static void usage(FILE *f, const char *argv0) {
+    fprintf(f,
+            "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
+            "          [--views N] [--images] [--views-only] [--gp FILE] [--plot-only] [--dry-run]\n"
+            "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
+            "  --repeat N     timing passes, the median is reported (default 5)\n"
+            "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
+            "  --out DIR      output folder (default out)\n"
+            "  --only LIST    only these scenes (comma separated names)\n"
+            "  --views N      first N of the views overview,low,close (default 3)\n"
+            "  --images       write reference and error PNGs per view to OUT/bench/\n"
+            "  --views-only   only the reference PNGs of each view (no sweep, no CSV rows)\n"
+            "  --gp FILE      the gnuplot script (default bench/pareto.gp)\n"
+            "  --plot-only    only redraw the charts from OUT/bench.csv\n"
+            "  --dry-run      print the sweep and exit\n"
+            "Environment: SK_GL=osmesa|egl picks the GL backend (default: a GPU through EGL, else OSMesa).\n",
+            argv0);
+}
+
+
+/* ---------------------------------------------------------------- plot */
+/* one chart point: a configuration on a scene, averaged over its views */
+typedef struct plot_pt {
+    int scene;                /* index into the scene names */
+    char method[32], params[160];
+    double err_sum, ms_sum;
+    int n;                    /* views */
+    double err, ms;           /* means */
+    int front;
+} plot_pt;
+
+typedef struct plot_data {
+    plot_pt *pts;
+    int npts, cap;
+    char scenes[BENCH_MAX_SCENES * 4][64];
+    int nscenes;
+    char device[512];
+} plot_data;
+
+static int cmp_pt(const void *a, const void *b) {
+    const plot_pt *p = *(const plot_pt *const *)a, *q = *(const plot_pt *const *)b;
+    if (p->ms != q->ms) return p->ms < q->ms ? -1 : 1;
+    if (p->err != q->err) return p->err < q->err ? -1 : 1;
+    return 0;
+}
+
+/* a short label for a front point: "2048 pcf1", "stable 1024 pcf0", "4×1024 λ0.75 blend" (UTF-8) */
+static void short_label(const plot_pt *p, char *buf, size_t n) {
+    int res = 0, pcf = 0, casc = 0;
+    double lambda = 0, blend = 0;
+    const char *s;
+    if ((s = strstr(p->params, "resolution="))) res = atoi(s + 11);
+    if ((s = strstr(p->params, "pcf="))) pcf = atoi(s + 4);
+    if ((s = strstr(p->params, "cascades="))) casc = atoi(s + 9);
+    if ((s = strstr(p->params, "lambda="))) lambda = atof(s + 7);
+    if ((s = strstr(p->params, "blend="))) blend = atof(s + 6);
+    if (strncmp(p->method, "pssm", 4) == 0)
+        snprintf(buf, n, "%d\xc3\x97%d \xce\xbb%g%s", casc, res, lambda, blend > 0 ? " blend" : "");
+    else
+        snprintf(buf, n, "%s%d pcf%d", strstr(p->method, "stable") ? "stable " : "", res, pcf);
+}
+
+/* a gnuplot single-quoted string: ' doubled */
+static void gp_string(FILE *f, const char *s) {
+    fputc('\'', f);
+    for (; *s; s++) {
+        if (*s == '\'') fputc('\'', f);
+        fputc(*s, f);
+    }
+    fputc('\'', f);
+}
+
+/* writes a CSV field, quoted when it holds a comma, quote or newline */
+static void csv_field(FILE *f, const char *s) {
+    if (!strpbrk(s, ",\"\n\r")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* splits one line of bench.csv into its 14 fields (any may be quoted) */
+static int csv_split(char *line, char **f) {
+    int n = 0;
+    char *p = line;
+    size_t l = strlen(line);
+    while (l && (line[l - 1] == '\n' || line[l - 1] == '\r')) line[--l] = 0;
+    for (;;) {
+        if (n == 14) return 15;   /* too many */
+        if (*p == '"') {
+            char *w = ++p;
+            f[n++] = w;
+            for (;;) {
+                if (!*p) break;
+                if (*p == '"' && p[1] == '"') { *w++ = '"'; p += 2; }
+                else if (*p == '"') { p++; break; }
+                else *w++ = *p++;
+            }
+            if (*p == ',') { *w = 0; p++; continue; }
+            *w = 0;
+            return n;
+        } else {
+            char *e = strchr(p, ',');
+            f[n++] = p;
+            if (!e) return n;
+            *e = 0;
+            p = e + 1;
+        }
+    }
+}
+
+static int plot_read(const char *csv, plot_data *d) {
+    char line[4096];
+    FILE *f = fopen(csv, "r");
+    memset(d, 0, sizeof *d);
+    if (!f) { fprintf(stderr, "bench: cannot read %s: %s\n", csv, strerror(errno)); return -1; }
+    if (!fgets(line, sizeof line, f) || strncmp(line, BENCH_CSV_HEADER, strlen(BENCH_CSV_HEADER)) != 0) {
+        fprintf(stderr, "bench: %s does not start with the bench header\n", csv);
+        fclose(f);
+        return -1;
+    }
+    while (fgets(line, sizeof line, f)) {
+        char *fld[15];
+        int si, k;
+        plot_pt *p = NULL;
+        if (csv_split(line, fld) != 14 || strcmp(fld[6], "hard_pct") != 0) continue;
+        for (si = 0; si < d->nscenes; si++)
+            if (strcmp(d->scenes[si], fld[2]) == 0) break;
+        if (si == d->nscenes) {
+            if (d->nscenes == (int)(sizeof d->scenes / sizeof d->scenes[0])) continue;
+            snprintf(d->scenes[d->nscenes++], sizeof d->scenes[0], "%s", fld[2]);
+        }
+        snprintf(d->device, sizeof d->device, "%s", fld[13]);
+        for (k = 0; k < d->npts; k++)
+            if (d->pts[k].scene == si && strcmp(d->pts[k].method, fld[0]) == 0 &&
+                strcmp(d->pts[k].params, fld[1]) == 0) {
+                p = &d->pts[k];
+                break;
+            }
+        if (!p) {
+            if (d->npts == d->cap) {
+                int nc = d->cap ? 2 * d->cap : 256;
+                plot_pt *np = (plot_pt *)realloc(d->pts, sizeof *np * (size_t)nc);
+                if (!np) { fclose(f); return -1; }
+                d->pts = np;
+                d->cap = nc;
+            }
+            p = &d->pts[d->npts++];
+            memset(p, 0, sizeof *p);
+            p->scene = si;
+            snprintf(p->method, sizeof p->method, "%s", fld[0]);
+            snprintf(p->params, sizeof p->params, "%s", fld[1]);
+        }
+        p->err_sum += atof(fld[7]);
+        p->ms_sum += atof(fld[10]);
+        p->n++;
+    }
+    fclose(f);
+    return 0;
+}
+
+/* the data files and variables of one scene's chart, then gnuplot */
+static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
+    plot_pt **sel = (plot_pt **)malloc(sizeof *sel * (size_t)(d->npts > 0 ? d->npts : 1));
+    char methods[16][32], path[1400], base[1200], list[600] = "", cmd[3000];
+    int nsel = 0, nm = 0, m, k, maxn = 0, logy = 1, nfront = 0, rc = 0;
+    double best = 1e300, emin = 1e300, emax = 0, tmin = 1e300, tmax = 0;
+    FILE *g;
+    if (!sel) return -1;
+    for (k = 0; k < d->npts; k++)
+        if (d->pts[k].scene == si && d->pts[k].n > maxn) maxn = d->pts[k].n;
+    for (k = 0; k < d->npts; k++) {
+        plot_pt *p = &d->pts[k];
+        if (p->scene != si || p->n < maxn) continue;   /* only configurations seen from every view */
+        p->err = p->err_sum / p->n;
+        p->ms = p->ms_sum / p->n;
+        if (p->ms < 1e-3) p->ms = 1e-3;
+        if (!(p->err > 0.0)) logy = 0;
+        if (p->err < emin) emin = p->err;
+        if (p->err > emax) emax = p->err;
+        if (p->ms < tmin) tmin = p->ms;
+        if (p->ms > tmax) tmax = p->ms;
+        p->front = 0;
+        sel[nsel++] = p;
+        for (m = 0; m < nm; m++)
+            if (strcmp(methods[m], p->method) == 0) break;
+        if (m == nm && nm < 16) snprintf(methods[nm++], sizeof methods[0], "%s", p->method);
+    }
+    if (nsel == 0) { free(sel); return 0; }
+    if (logy && emax < 4.0 * emin) logy = 0;   /* a narrow range reads better linear */
+    /* Pareto front: in order of time, a point is on it when its error is
+       below that of every point at least as fast */
+    qsort(sel, (size_t)nsel, sizeof *sel, cmp_pt);
+    for (k = 0; k < nsel; k++)
+        if (sel[k]->err < best) {
+            sel[k]->front = 1;
+            best = sel[k]->err;
+            nfront++;
+        }
+    snprintf(base, sizeof base, "%s/bench-data/%s", o->out_dir, d->scenes[si]);
+    for (m = 0; m < nm; m++) {
+        snprintf(path, sizeof path, "%s.%s.dat", base, methods[m]);
+        if (!(g = fopen(path, "w"))) { rc = -1; continue; }
+        fprintf(g, "# %s on %s, mean over %d view(s): shadow_ms hard_pct params\n", methods[m], d->scenes[si], maxn);
+        for (k = 0; k < nsel; k++)
+            if (strcmp(sel[k]->method, methods[m]) == 0)
+                fprintf(g, "%.4f %.4f %s\n", sel[k]->ms, sel[k]->err, sel[k]->params);
+        fclose(g);
+        if (m) strncat(list, " ", sizeof list - strlen(list) - 1);
+        strncat(list, methods[m], sizeof list - strlen(list) - 1);
+    }
+    snprintf(path, sizeof path, "%s.front.dat", base);
+    if ((g = fopen(path, "w"))) {
+        /* labels only where they do not crowd the previous label: chart
+           coordinates in [0,1] (log time; log or linear error) */
+        double lu = -1.0, lv = -1.0, ut = log(tmax / tmin), ue = logy ? log(emax / emin) : emax;
+        fprintf(g, "# Pareto front on %s: shadow_ms hard_pct label (\"\" where it would crowd) method params\n",
+                d->scenes[si]);
+        for (k = 0; k < nsel; k++)
+            if (sel[k]->front) {
+                char lab[64];
+                double u = ut > 0.0 ? log(sel[k]->ms / tmin) / ut : 0.0;
+                double w = ue > 0.0 ? (logy ? log(sel[k]->err / emin) : sel[k]->err) / ue : 0.0;
+                short_label(sel[k], lab, sizeof lab);
+                if (lu >= 0.0 && fabs(u - lu) < 0.12 && fabs(w - lv) < 0.07) lab[0] = 0;
+                else { lu = u; lv = w; }
+                fprintf(g, "%.4f %.4f \"%s\" %s %s\n", sel[k]->ms, sel[k]->err, lab, sel[k]->method, sel[k]->params);
+            }
+        fclose(g);
+    } else rc = -1;
+    snprintf(path, sizeof path, "%s.vars.gp", base);
+    if (!(g = fopen(path, "w"))) { free(sel); return -1; }
+    fprintf(g, "# written by bench/bench.c; draw with: gnuplot %s %s\nscene = ", path, o->gp);
+    gp_string(g, d->scenes[si]);
+    fprintf(g, "\ndevice = ");
+    gp_string(g, d->device);
+    fprintf(g, "\ndatabase = ");
+    gp_string(g, base);
+    fprintf(g, "\noutfile = ");
+    snprintf(base, sizeof base, "%s/pareto-%s.png", o->out_dir, d->scenes[si]);
+    gp_string(g, base);
+    fprintf(g, "\nmethods = ");
+    gp_string(g, list);
+    fprintf(g, "\nnviews = %d\nrepeat = %d\nlogy = %d\nwidth = %d\nheight = %d\n", maxn, repeat, logy, BENCH_W, BENCH_H);
+    fprintf(g, "tmin = %g\ntmax = %g\nemin = %g\nemax = %g\n", tmin, tmax, emin, emax);
+    fclose(g);
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->gp);
+    if (system(cmd) != 0) {
+        fprintf(stderr, "bench: gnuplot failed for %s: %s\n", d->scenes[si], cmd);
+        rc = -1;
+    } else {
+        fprintf(stderr, "bench: chart %s (%d configurations, %d on the Pareto front)\n", base, nsel, nfront);
+    }
+    free(sel);
+    return rc;
+}
+
+static int plot_all(const bench_opts *o, int repeat) {
+    plot_data d;
+    char csv[1100], dir[1100];
+    int i, rc = 0;
+    if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+        fprintf(stderr, "bench: gnuplot not found (Debian: gnuplot-nox; `make deps-demo` installs it): no charts\n");
+        return -1;
+    }
+    if (!file_exists(o->gp)) {
+        fprintf(stderr, "bench: gnuplot script %s not found (run from the repository root or pass --gp)\n", o->gp);
+        return -1;
+    }
+    snprintf(csv, sizeof csv, "%s/bench.csv", o->out_dir);
+    if (plot_read(csv, &d) != 0) return -1;
+    snprintf(dir, sizeof dir, "%s/bench-data", o->out_dir);
+    mkdir_p(dir);
+    for (i = 0; i < d.nscenes; i++)
+        if (plot_scene(o, &d, i, repeat) != 0) rc = -1;
+    if (d.nscenes == 0) fprintf(stderr, "bench: %s has no rows: no charts\n", csv);
+    free(d.pts);
+    return rc;
+}
+
+/* ------------------------------------------------------------- the sweep */
+typedef struct bench_gl {
+    tb_gl_context *ctx;
+    tb_gl_funcs gl;
+    tb_gl_gbuffer gb;
+    tb_gl_fbo mask;            /* R16F, 1280x720 */
+    skgl_context *sk;
+    const char *renderer;
+} bench_gl;
+
+typedef struct view_data {
+    bench_view v;
+    tb_gl_fbo gbuf;            /* depth + normals, kept on the GPU for the mask pass */
+    float *ref;                /* reference visibility */
+    long covered;
+} view_data;
+
+/* progress: runs scored, and timed renders done (the ETA unit) */
+typedef struct progress {
+    int done, total;
+    long units, total_units;
+    double t0;
+} progress;
+
+static void progress_times(const progress *pg, char *el_s, char *eta_s, size_t n) {
+    double el = now_s() - pg->t0;
+    double eta = pg->units > 0 ? el / (double)pg->units * (double)(pg->total_units - pg->units) : 0.0;
+    fmt_duration(el, el_s, n);
+    fmt_duration(eta, eta_s, n);
+}
+
+/* the result of one run (configuration x view) */
+typedef struct run_rec {
+    float shadow[BENCH_MAX_REPEAT];   /* shadow_ms of each timing pass */
+    int n;
+    float mask_ms;
+    double err, texels;
+    int passes;
+    int state;                        /* 0 pending, 1 scored, -1 failed */
+} run_rec;
+
+/* the mask of the map just rendered for this view, read back and scored */
+static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px, run_rec *rr, const char **why) {
+    const skgl_stats *st;
+    sk_result r = skgl_shadow_mask(B->sk, sh, &vd->v.cam, vd->gbuf.depth_tex, vd->gbuf.color_tex, B->mask.color_tex);
+    if (r != SK_OK) { *why = "skgl_shadow_mask"; return -1; }
+    if (tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, mask_px) != 0) { *why = "mask readback"; return -1; }
+    st = skgl_shadow_stats(sh);
+    rr->mask_ms = st->mask_ms;
+    rr->texels = st->texels;
+    rr->passes = st->passes;
+    rr->err = tb_metric_hard(vd->ref, mask_px, (size_t)BENCH_W * BENCH_H).pct;
+    return 0;
+}
+
+/* G-buffer and reference of one view. 0 ok. */
+static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, const tb_reference *ref,
+                        sk_vec3 light_dir, view_data *vd, float *depth, float *rgba, float *nrm) {
+    double vp[16], ivp[16];
+    tb_view tv;
+    tb_light L;
+    size_t i, n = (size_t)BENCH_W * BENCH_H;
+    int k;
+    if (tb_gl_fbo_create(&B->gl, &vd->gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0) return -1;
+    if (tb_gl_gbuffer_render(&B->gl, &B->gb, mesh, &vd->gbuf, &vd->v.view_proj) != 0) return -1;
+    if (tb_gl_read_depth(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, depth) != 0) return -1;
+    if (tb_gl_read_rgba_float(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) return -1;
+    for (i = 0; i < n; i++)
+        for (k = 0; k < 3; k++) nrm[3 * i + k] = rgba[4 * i + k];
+    /* the exact inverse (double) of the float matrix the G-buffer used */
+    for (k = 0; k < 16; k++) vp[k] = vd->v.view_proj.m[k];
+    if (!mat4_inverse_d(vp, ivp)) return -1;
+    memset(&tv, 0, sizeof tv);
+    for (k = 0; k < 16; k++) tv.inv_view_proj.m[k] = (float)ivp[k];
+    tv.width = BENCH_W;
+    tv.height = BENCH_H;
+    memset(&L, 0, sizeof L);
+    L.type = TB_LIGHT_DIRECTIONAL;
+    L.direction = light_dir;
+    vd->ref = (float *)malloc(sizeof(float) * n);
+    if (!vd->ref) return -1;
+    if (tb_reference_trace(ref, &tv, depth, nrm, &L, NULL, vd->ref) != 0) return -1;
+    vd->covered = 0;
+    for (i = 0; i < n; i++)
+        if (vd->ref[i] >= 0.0f) vd->covered++;
+    (void)s;
+    return 0;
+}
+
+/* a shaded picture of the reference: grey * (ambient + direct * visibility), sky blue background */
+static void write_shaded(const char *path, const float *vis, const float *nrm, sk_vec3 light_dir) {
+    size_t i, n = (size_t)BENCH_W * BENCH_H;
+    unsigned char *rgb = (unsigned char *)malloc(3 * n);
+    if (!rgb) return;
+    for (i = 0; i < n; i++) {
+        unsigned char *p = rgb + 3 * i;
+        if (vis[i] < 0.0f) { p[0] = 150; p[1] = 180; p[2] = 220; continue; }
+        {
+            float nl = -(nrm[3 * i] * light_dir.x + nrm[3 * i + 1] * light_dir.y + nrm[3 * i + 2] * light_dir.z);
+            float c = 0.25f + 0.75f * vis[i] * (nl > 0.0f ? nl : 0.0f);
+            p[0] = (unsigned char)(235.0f * c);
+            p[1] = (unsigned char)(225.0f * c);
+            p[2] = (unsigned char)(205.0f * c);
+        }
+    }
+    tb_image_write_rgb8(path, BENCH_W, BENCH_H, rgb);
+    free(rgb);
+}
+
+static int load_scene(const bench_scene_def *def, tb_scene *s) {
+    tb_scene_init(s);
+    if (def->path[0]) {
+        if (tb_scene_load(s, def->path) != 0 || s->index_count == 0) return -1;
+        return add_ground_under(s);
+    }
+    return tb_scene_build(s, def->name);
+}
+
+int main(int argc, char **argv) {
+    bench_opts o;
+    bench_scene_def defs[BENCH_MAX_SCENES];
+    int ndefs = 0, i, c, v, status = 0, shared = 0;
+    const char *env;
+    bench_gl B;
+    FILE *csv = NULL;
+    char path[1200], err[1024];
+    progress pg;
+    float *depth = NULL, *rgba = NULL, *nrm = NULL, *mask_px = NULL;
+    size_t npx = (size_t)BENCH_W * BENCH_H;
+    double t_start = now_s();
+
+    memset(&o, 0, sizeof o);
+    o.repeat = 5;
+    o.views = 0;
+    o.scenes_dir = "../shared/scenes";
+    o.out_dir = "out";
+    o.gp = "bench/pareto.gp";
+    env = getenv("SK_BENCH_QUICK");
+    if (env && *env && strcmp(env, "0") != 0) o.quick = 1;
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        int more = i + 1 < argc;
+        if (strcmp(a, "--quick") == 0) o.quick = 1;
+        else if (strcmp(a, "--full") == 0) o.quick = 0;
+        else if (strcmp(a, "--repeat") == 0 && more) { o.repeat = atoi(argv[++i]); o.repeat_given = 1; }
+        else if (strcmp(a, "--views") == 0 && more) o.views = atoi(argv[++i]);
+        else if (strcmp(a, "--scenes") == 0 && more) o.scenes_dir = argv[++i];
+        else if (strcmp(a, "--out") == 0 && more) o.out_dir = argv[++i];
+        else if (strcmp(a, "--only") == 0 && more) o.only = argv[++i];
+        else if (strcmp(a, "--gp") == 0 && more) o.gp = argv[++i];
+        else if (strcmp(a, "--images") == 0) o.images = 1;
+        else if (strcmp(a, "--plot-only") == 0) o.plot_only = 1;
+        else if (strcmp(a, "--dry-run") == 0) o.dry_run = 1;
+        else if (strcmp(a, "--views-only") == 0) { o.views_only = 1; o.images = 1; }
+        else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(stdout, argv[0]); return 0; }
+        else { fprintf(stderr, "bench: unknown or incomplete option %s\n", a); usage(stderr, argv[0]); return 2; }
+    }
+    if (o.repeat < 1) o.repeat = 1;
+    if (o.repeat > BENCH_MAX_REPEAT) o.repeat = BENCH_MAX_REPEAT;
+    if (o.views <= 0) o.views = 3;
+    if (o.views > BENCH_MAX_VIEWS) o.views = BENCH_MAX_VIEWS;
+
+    if (o.plot_only) {
+        /* the repeat count of the sweep that wrote the CSV, for the chart titles */
+        FILE *m;
+        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
+        if (!o.repeat_given && (m = fopen(path, "r"))) {
+            if (fscanf(m, "repeat %d", &o.repeat) != 1) o.repeat = 5;
+            fclose(m);
+        }
+        return plot_all(&o, o.repeat) == 0 ? 0 : 1;
+    }
+
+    /* ---- scenes */
+    {
+        static const char *shared_names[3] = {"stanford-bunny", "sponza-ivy", "sponza-curtains"};
+        static const char *shared_files[3] = {"stanford-bunny.obj", "sponza-ivy/sponza_ivy.gltf",
+                                              "sponza-curtains/sponza_curtains.gltf"};
+        static const char *proc[3] = {"ground-boxes", "fence", "terrace"};
+        if (dir_exists(o.scenes_dir)) {
+            shared = 1;
+            for (i = 0; i < 3; i++) {
+                bench_scene_def *d = &defs[ndefs];
+                memset(d, 0, sizeof *d);
+                snprintf(d->name, sizeof d->name, "%s", shared_names[i]);
+                snprintf(d->path, sizeof d->path, "%s/%s", o.scenes_dir, shared_files[i]);
+                d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
+                if (!scene_selected(&o, d->name)) continue;
+                if (!file_exists(d->path)) {
+                    fprintf(stderr, "bench: %s is missing: scene %s skipped\n", d->path, d->name);
+                    continue;
+                }
+                ndefs++;
+            }
+        } else {
+            fprintf(stderr,
+                    "bench: %s not found: PROCEDURAL SCENES ONLY (no stanford-bunny, sponza-ivy, sponza-curtains);"
+                    " --scenes DIR points elsewhere\n",
+                    o.scenes_dir);
+        }
+        for (i = 0; i < 3; i++) {
+            bench_scene_def *d = &defs[ndefs];
+            memset(d, 0, sizeof *d);
+            snprintf(d->name, sizeof d->name, "%s", proc[i]);
+            d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
+            if (scene_selected(&o, d->name)) ndefs++;
+        }
+        if (ndefs == 0) { fprintf(stderr, "bench: no scene selected (--only %s)\n", o.only ? o.only : ""); return 2; }
+    }
+    build_sweep(o.quick);
+    memset(&pg, 0, sizeof pg);
+    pg.total = ndefs * o.views * g_ncfg;
+    pg.total_units = (long)pg.total * o.repeat;
+    {
+        /* a priori estimate, measured on a 2-core machine under llvmpipe
+           (full sweep, repeat 5: 2610 runs in about 10 minutes): seconds
+           per run (timed renders, warm-ups, mask pass, readback, scoring)
+           and per scene view (G-buffer, Embree reference) */
+        double per_run = 0.04 + 0.04 * o.repeat, per_view = 0.5;
+        char est[32];
+        fmt_duration(pg.total * per_run + ndefs * o.views * per_view, est, sizeof est);
+        fprintf(stderr,
+                "bench: %s sweep: %d configurations x %d scene(s) x %d view(s) = %d runs at %dx%d, timings the "
+                "median of %d; estimate ~%s on 2-core llvmpipe (much less on a GPU)\n",
+                o.quick ? "quick" : "full", g_ncfg, ndefs, o.views, pg.total, BENCH_W, BENCH_H, o.repeat, est);
+    }
+    if (o.dry_run) {
+        for (i = 0; i < ndefs; i++) fprintf(stderr, "  scene %s %s\n", defs[i].name, defs[i].path);
+        for (c = 0; c < g_ncfg; c++) fprintf(stderr, "  %-16s %s\n", g_cfg[c].method, g_cfg[c].params);
+        return 0;
+    }
+
+    /* ---- GL */
+    memset(&B, 0, sizeof B);
+    B.ctx = tb_gl_context_create(TB_GL_AUTO, err, sizeof err);
+    if (!B.ctx) { fprintf(stderr, "bench: no GL context: %s\n", err); return 1; }
+    if (tb_gl_funcs_load(&B.gl, tb_gl_context_getproc(B.ctx)) != 0) {
+        fprintf(stderr, "bench: GL entry points missing\n");
+        tb_gl_context_destroy(B.ctx);
+        return 1;
+    }
+    B.renderer = tb_gl_context_renderer(B.ctx);
+    fprintf(stderr, "bench: GL %s on %s (%s)\n", tb_gl_context_version(B.ctx), B.renderer,
+            tb_gl_context_backend_name(B.ctx));
+    if (strstr(B.renderer, "llvmpipe") || strstr(B.renderer, "softpipe") || strstr(B.renderer, "Mesa")) {
+        fprintf(stderr, "bench: NOTE: %s renders on the CPU: its times are comparable only within this run "
+                        "(same machine, same load); compare ratios, not absolute ms\n", B.renderer);
+    }
+    {
+        skgl_desc sd;
+        sk_result r;
+        memset(&sd, 0, sizeof sd);
+        sd.getproc = tb_gl_context_getproc(B.ctx);
+        sd.timing = 1;
+        r = skgl_create(&sd, &B.sk);
+        if (r != SK_OK) {
+            fprintf(stderr, "bench: skgl_create: %s %s\n", sk_result_string(r), B.sk ? skgl_error_log(B.sk) : "");
+            tb_gl_context_destroy(B.ctx);
+            return 1;
+        }
+    }
+    if (tb_gl_gbuffer_create(&B.gl, &B.gb, err, sizeof err) != 0 ||
+        tb_gl_fbo_create(&B.gl, &B.mask, BENCH_W, BENCH_H, TB_GL_COLOR_R16F) != 0) {
+        fprintf(stderr, "bench: G-buffer / mask target: %s\n", err);
+        status = 1;
+        goto done;
+    }
+    depth = (float *)malloc(sizeof(float) * npx);
+    rgba = (float *)malloc(sizeof(float) * 4 * npx);
+    nrm = (float *)malloc(sizeof(float) * 3 * npx);
+    mask_px = (float *)malloc(sizeof(float) * npx);
+    if (!depth || !rgba || !nrm || !mask_px) { fprintf(stderr, "bench: out of memory\n"); status = 1; goto done; }
+
+    mkdir_p(o.out_dir);
+    /* charts of an earlier sweep would no longer match bench.csv */
+    {
+        static const char *known[] = {"stanford-bunny", "sponza-ivy", "sponza-curtains", "ground-boxes", "fence",
+                                      "terrace"};
+        for (i = 0; i < (int)(sizeof known / sizeof known[0]); i++) {
+            snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.out_dir, known[i]);
+            remove(path);
+        }
+    }
+    snprintf(path, sizeof path, "%s/bench.csv", o.out_dir);
+    csv = fopen(path, "w");
+    if (!csv) { fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno)); status = 1; goto done; }
+    fprintf(csv, "%s\n", BENCH_CSV_HEADER);
+    fflush(csv);
+    if (!shared) fprintf(stderr, "bench: (reminder) procedural scenes only: %s is missing\n", o.scenes_dir);
+
+    pg.t0 = now_s();
+    for (i = 0; i < ndefs; i++) {
+        const bench_scene_def *def = &defs[i];
+        tb_scene s;
+        tb_gl_mesh mesh;
+        tb_reference *ref = NULL;
+        view_data vd[BENCH_MAX_VIEWS];
+        bench_view views[3];
+        draw_user du;
+        skgl_scene sc;
+        double ts = now_s();
+        run_rec *recs = NULL;
+        int pass;
+        double last_note = now_s();
+        memset(vd, 0, sizeof vd);
+        memset(&mesh, 0, sizeof mesh);
+        if (load_scene(def, &s) != 0) {
+            fprintf(stderr, "bench: cannot load scene %s %s: skipped\n", def->name, def->path);
+            tb_scene_free(&s);
+            status = 1;
+            pg.total -= o.views * g_ncfg;
+            pg.total_units -= (long)o.views * g_ncfg * o.repeat;
+            continue;
+        }
+        if (tb_gl_mesh_create(&B.gl, &mesh, &s) != 0 || !(ref = tb_reference_create(&s))) {
+            fprintf(stderr, "bench: cannot upload / build the reference of %s: skipped\n", def->name);
+            if (mesh.vao) tb_gl_mesh_destroy(&B.gl, &mesh);
+            tb_scene_free(&s);
+            status = 1;
+            pg.total -= o.views * g_ncfg;
+            pg.total_units -= (long)o.views * g_ncfg * o.repeat;
+            continue;
+        }
+        make_views(&s, views);
+        for (v = 0; v < o.views; v++) {
+            vd[v].v = views[v];
+            if (prepare_view(&B, &s, &mesh, ref, def->light_dir, &vd[v], depth, rgba, nrm) != 0) {
+                fprintf(stderr, "bench: G-buffer / reference failed for %s view %s\n", def->name, views[v].name);
+                status = 1;
+                goto scene_done;
+            }
+            if (o.images) {
+                snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-reference.png", o.out_dir, def->name,
+                         views[v].name);
+                write_shaded(path, vd[v].ref, nrm, def->light_dir);
+            }
+        }
+        fprintf(stderr, "bench: scene %s: %u triangles, %d view(s) (", def->name, tb_scene_triangle_count(&s), o.views);
+        for (v = 0; v < o.views; v++)
+            fprintf(stderr, "%s%s %.0f%% covered", v ? ", " : "", vd[v].v.name, 100.0 * vd[v].covered / (double)npx);
+        fprintf(stderr, "); references traced in %.1f s\n", now_s() - ts);
+
+        if (o.views_only) goto scene_done;
+        du.gl = &B.gl;
+        du.scene = &s;
+        du.mesh = &mesh;
+        sc.draw = draw_casters;
+        sc.user = &du;
+        sc.bounds = s.bounds;
+        /* Timing passes: every configuration once per pass, `repeat` passes,
+           so that a slow spell of the machine (other jobs on a shared CPU
+           under llvmpipe) touches one sample of many configurations rather
+           than every sample of one. Per configuration and pass: a new map,
+           one warm-up render (not timed), then one timed render per view.
+           The last pass also runs the mask pass once per view and scores it. */
+        recs = (run_rec *)calloc((size_t)g_ncfg * (size_t)o.views, sizeof *recs);
+        if (!recs) { fprintf(stderr, "bench: out of memory\n"); status = 1; goto scene_done; }
+        for (pass = 0; pass < o.repeat; pass++) {
+            int last = pass == o.repeat - 1;
+            for (c = 0; c < g_ncfg; c++) {
+                const bench_cfg *cfg = &g_cfg[c];
+                run_rec *rc = recs + (size_t)c * (size_t)o.views;
+                skgl_shadow *sh = NULL;
+                sk_result r;
+                int live = 0;
+                for (v = 0; v < o.views; v++) live += rc[v].state >= 0;
+                if (!live) continue;
+                r = skgl_shadow_create(B.sk, &cfg->desc, &sh);
+                if (r == SK_OK) r = skgl_shadow_render(B.sk, sh, &vd[0].v.cam, &sc, def->light_dir);   /* warm-up */
+                if (r != SK_OK) {
+                    fprintf(stderr, "bench: FAILED %s %s %s: skgl_shadow_create/render: %s %s\n", def->name,
+                            cfg->method, cfg->params, sk_result_string(r), skgl_error_log(B.sk));
+                    for (v = 0; v < o.views; v++)
+                        if (rc[v].state >= 0) { rc[v].state = -1; pg.total--; pg.total_units -= o.repeat - pass; }
+                    status = 1;
+                    skgl_shadow_destroy(B.sk, sh);
+                    continue;
+                }
+                for (v = 0; v < o.views; v++) {
+                    run_rec *rr = &rc[v];
+                    const char *why = "skgl_shadow_render";
+                    if (rr->state < 0) continue;
+                    r = skgl_shadow_render(B.sk, sh, &vd[v].v.cam, &sc, def->light_dir);
+                    if (r == SK_OK) {
+                        rr->shadow[rr->n++] = skgl_shadow_stats(sh)->shadow_ms;
+                        pg.units++;
+                    }
+                    if (r != SK_OK || (last && score_run(&B, sh, &vd[v], mask_px, rr, &why) != 0)) {
+                        fprintf(stderr, "bench: FAILED %s %s %s %s: %s: %s\n", def->name, vd[v].v.name, cfg->method,
+                                cfg->params, why, skgl_error_log(B.sk));
+                        rr->state = -1;
+                        status = 1;
+                        pg.total--;
+                        pg.total_units -= o.repeat - rr->n;
+                        continue;
+                    }
+                    if (last) {
+                        char el_s[32], eta_s[32];
+                        float tmp[BENCH_MAX_REPEAT];
+                        memcpy(tmp, rr->shadow, sizeof tmp);
+                        rr->state = 1;
+                        pg.done++;
+                        progress_times(&pg, el_s, eta_s, sizeof el_s);
+                        fprintf(stderr, "[%4d/%d %s, eta %s] %-15s %-8s %-15s %-48s err %7.3f%%  shadow %8.2f ms"
+                                        "  mask %7.2f ms\n", pg.done, pg.total, el_s, eta_s, def->name, vd[v].v.name,
+                                cfg->method, cfg->params, rr->err, (double)median(tmp, rr->n), (double)rr->mask_ms);
+                        if (o.images && c == 0) {
+                            snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.out_dir,
+                                     def->name, vd[v].v.name, cfg->method);
+                            tb_image_write_error(path, BENCH_W, BENCH_H, vd[v].ref, mask_px);
+                        }
+                    }
+                }
+                skgl_shadow_destroy(B.sk, sh);
+                if (!last && now_s() - last_note > 15.0) {   /* a sign of life between the scored lines */
+                    char el_s[32], eta_s[32];
+                    progress_times(&pg, el_s, eta_s, sizeof el_s);
+                    fprintf(stderr, "[%s, eta %s] %s: timing pass %d of %d: %d of %d configurations\n", el_s, eta_s,
+                            def->name, pass + 1, o.repeat, c + 1, g_ncfg);
+                    last_note = now_s();
+                }
+            }
+            if (!last) {
+                char el_s[32], eta_s[32];
+                progress_times(&pg, el_s, eta_s, sizeof el_s);
+                fprintf(stderr, "[%s, eta %s] %s: timing pass %d of %d done (%d configurations x %d views); "
+                                "scores follow in the last pass\n", el_s, eta_s, def->name, pass + 1, o.repeat,
+                        g_ncfg, o.views);
+            }
+        }
+        /* the scene's rows: shadow_ms the median over the passes */
+        for (c = 0; c < g_ncfg; c++)
+            for (v = 0; v < o.views; v++) {
+                const bench_cfg *cfg = &g_cfg[c];
+                run_rec *rr = &recs[(size_t)c * (size_t)o.views + (size_t)v];
+                float sms;
+                if (rr->state != 1) continue;
+                sms = median(rr->shadow, rr->n);
+                csv_field(csv, cfg->method);
+                fputc(',', csv);
+                csv_field(csv, cfg->params);
+                fputc(',', csv);
+                csv_field(csv, def->name);
+                fputc(',', csv);
+                csv_field(csv, vd[v].v.name);
+                fprintf(csv, ",%d,%d,hard_pct,%.4f,%.0f,%d,%.4f,0,%.4f,", BENCH_W, BENCH_H, rr->err, rr->texels,
+                        rr->passes, (double)sms, (double)(sms + rr->mask_ms));
+                csv_field(csv, B.renderer);
+                fputc('\n', csv);
+            }
+        fflush(csv);
+        fprintf(stderr, "bench: scene %s done in %.1f s\n", def->name, now_s() - ts);
+    scene_done:
+        free(recs);
+        recs = NULL;
+        for (v = 0; v < BENCH_MAX_VIEWS; v++) {
+            if (vd[v].gbuf.fbo) tb_gl_fbo_destroy(&B.gl, &vd[v].gbuf);
+            free(vd[v].ref);
+        }
+        tb_reference_destroy(ref);
+        tb_gl_mesh_destroy(&B.gl, &mesh);
+        tb_scene_free(&s);
+    }
+    fclose(csv);
+    csv = NULL;
+    {
+        char a[32];
+        fmt_duration(now_s() - t_start, a, sizeof a);
+        fprintf(stderr, "bench: %d runs in %s; wrote %s/bench.csv\n", pg.done, a, o.out_dir);
+    }
+    {
+        FILE *m;
+        snprintf(path, sizeof path, "%.900s/bench-data", o.out_dir);
+        mkdir_p(path);
+        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
+        if ((m = fopen(path, "w"))) {
+            fprintf(m, "repeat %d\nsweep %s\nviews %d\nruns %d\ndevice %s\n", o.repeat, o.quick ? "quick" : "full",
+                    o.views, pg.done, B.renderer);
+            fclose(m);
+        }
+    }
+    if (plot_all(&o, o.repeat) != 0) status = 1;
+    if (B.renderer && strstr(B.renderer, "llvmpipe"))
+        fprintf(stderr, "bench: device %s: times are comparable only within this run\n", B.renderer);
+
+done:
+    if (csv) fclose(csv);
+    free(depth);
+    free(rgba);
+    free(nrm);
+    free(mask_px);
+    if (B.mask.fbo) tb_gl_fbo_destroy(&B.gl, &B.mask);
+    if (B.gb.program) tb_gl_gbuffer_destroy(&B.gl, &B.gb);
+    skgl_destroy(B.sk);
+    tb_gl_context_destroy(B.ctx);
+    return status;
+}

@@ -1,0 +1,48 @@
+# bench/pareto.gp - one speed-vs-accuracy chart of the shadowkit bench.
+# bench/bench.c writes, per scene, OUT/bench-data/<scene>.vars.gp (the
+# variables below), <scene>.<method>.dat (shadow_ms, error, params per
+# configuration: means over the views) and <scene>.front.dat (the Pareto
+# front: shadow_ms, error, label), then runs:
+#     gnuplot OUT/bench-data/<scene>.vars.gp bench/pareto.gp
+# Variables: scene, device, database (path prefix of the .dat files),
+# outfile, methods (space-separated), nviews, repeat, logy, width, height,
+# tmin, tmax, emin, emax.
+
+set terminal pngcairo size 1280,860 noenhanced font 'DejaVu Sans,12'
+set output outfile
+set encoding utf8
+
+set title sprintf("shadowkit bench, scene %s: hard-shadow error against shadow-map time\n%dx%d, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
+                  scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
+set xlabel "shadow-map render time per frame (ms, GL timer query, log scale)"
+set ylabel "hard-shadow error (% of covered pixels misclassified)"
+set logscale x
+set format x "%g"
+set format y "%g"
+# labelled ticks at 1-2-5 steps on log axes
+set xtics add (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000)
+if (logy) {
+    set logscale y
+    set ylabel "hard-shadow error (% of covered pixels misclassified, log scale)"
+    set ytics add (0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100)
+}
+set grid xtics ytics mxtics mytics lc rgb '#e0e0e0' lw 1, lc rgb '#f0f0f0' lw 1
+set border lw 1.2
+set key inside top right box opaque samplen 3
+set xrange [tmin / 2.2 : tmax * 1.6]
+if (logy) { set yrange [emin / 1.4 : emax * 1.3] } else { set yrange [0 : emax * 1.1] }
+
+# Front labels go below-left of their point: no run lies there (else the
+# point would not be on the front). bench.c leaves a label empty where it
+# would crowd the previous one.
+# one colour and point type per method, in the order given
+array colours[6] = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b']
+array shapes[6] = [7, 5, 9, 11, 13, 15]
+nm = words(methods)
+
+frontfile = database . '.front.dat'
+plot for [i = 1:nm] sprintf('%s.%s.dat', database, word(methods, i)) using 1:2 \
+         with points pt shapes[(i - 1) % 6 + 1] ps 1.4 lc rgb colours[(i - 1) % 6 + 1] title word(methods, i), \
+     frontfile using 1:2 with steps lw 2 lc rgb '#333333' dt 2 title 'Pareto front (no other run is both faster and more accurate)', \
+     frontfile using 1:2 with points pt 6 ps 2.6 lw 1.5 lc rgb '#333333' notitle, \
+     frontfile using 1:2:3 with labels right offset -1.3,-0.9 font 'DejaVu Sans,9' tc rgb '#333333' notitle

@@ -1,0 +1,403 @@
+/* examples/common.c - see common.h. Window/headless setup, scene loading,
+   the forward shader and the caster draw callback. */
+#include "common.h"
+#include "tb_image.h"
+
+#define GLFW_INCLUDE_NONE          /* we load GL ourselves: no GL header from GLFW */
+#include <GLFW/glfw3.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* the few GL enums used here */
+#define EX_GL_COLOR_BUFFER_BIT 0x4000
+#define EX_GL_DEPTH_BUFFER_BIT 0x0100
+#define EX_GL_DEPTH_TEST 0x0B71
+#define EX_GL_CULL_FACE 0x0B44
+#define EX_GL_LESS 0x0201
+#define EX_GL_FRAMEBUFFER 0x8D40
+#define EX_GL_VERTEX_SHADER 0x8B31
+#define EX_GL_FRAGMENT_SHADER 0x8B30
+#define EX_GL_COMPILE_STATUS 0x8B81
+#define EX_GL_LINK_STATUS 0x8B82
+
+sk_vec3 ex_v3(float x, float y, float z) {
+    sk_vec3 r;
+    r.x = x; r.y = y; r.z = z;
+    return r;
+}
+
+sk_vec3 ex_normalize(sk_vec3 v) {
+    float l = sqrtf(v.x * v.x + v.y * v.y + v.z * v.z);
+    return l > 0.0f ? ex_v3(v.x / l, v.y / l, v.z / l) : v;
+}
+
+float ex_texel_size(sk_mat4 m, int res) {
+    float r = sqrtf(m.m[0] * m.m[0] + m.m[4] * m.m[4] + m.m[8] * m.m[8]);   /* column-major row 0 */
+    return r > 0.0f && res > 0 ? 2.0f / ((float)res * r) : 0.0f;
+}
+
+/* ------------------------------------------------------------ command line */
+int ex_parse_args(int argc, char **argv, const char *default_out, int allow_cascades,
+                  ex_options *o) {
+    int i;
+    memset(o, 0, sizeof *o);
+    o->out_path = default_out;
+    for (i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--headless") == 0) {
+            o->headless = 1;
+        } else if (strcmp(a, "--scene") == 0 && i + 1 < argc) {
+            o->scene_path = argv[++i];
+        } else if (strcmp(a, "--frames") == 0 && i + 1 < argc) {
+            o->frames = atoi(argv[++i]);
+        } else if (strcmp(a, "--out") == 0 && i + 1 < argc) {
+            o->out_path = argv[++i];
+        } else if (allow_cascades && strcmp(a, "--show-cascades") == 0) {
+            o->show_cascades = 1;
+        } else {
+            int help = strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0;
+            if (!help) fprintf(stderr, "unknown or incomplete option: %s\n", a);
+            fprintf(help ? stdout : stderr,
+                    "usage: %s [--headless] [--scene FILE] [--frames N] [--out FILE]%s\n"
+                    "  --headless        render off-screen and write a PNG (default %s)\n"
+                    "  --scene FILE      load a glTF/OBJ scene (on a ground plane) instead of the procedural one\n"
+                    "  --frames N        quit after N frames\n"
+                    "  --out FILE        PNG path for --headless\n%s",
+                    argv[0], allow_cascades ? " [--show-cascades]" : "", default_out,
+                    allow_cascades ? "  --show-cascades   colour each pixel by its cascade\n" : "");
+            return help ? 1 : 2;
+        }
+    }
+    if (o->headless && o->frames <= 0) o->frames = 1;
+    return 0;
+}
+
+/* --------------------------------------------------------------- GL tables */
+/* glfwGetProcAddress returns a function pointer; shadowkit and the testbed
+   take void *(*)(const char *). Convert without the cast ISO C forbids. */
+static void *ex_glfw_getproc(const char *name) {
+    GLFWglproc f = glfwGetProcAddress(name);
+    void *p = NULL;
+    memcpy(&p, &f, sizeof p < sizeof f ? sizeof p : sizeof f);
+    return p;
+}
+
+static int ex_load_extra(ex_gl_extra *x, skgl_getproc_fn getproc) {
+    void *a = getproc("glUniform1i"), *b = getproc("glUniform1fv");
+    if (!a || !b) { fprintf(stderr, "examples: glUniform1i/glUniform1fv missing\n"); return -1; }
+    memcpy(&x->Uniform1i, &a, sizeof a);
+    memcpy(&x->Uniform1fv, &b, sizeof b);
+    return 0;
+}
+
+static void ex_glfw_error(int code, const char *msg) {
+    fprintf(stderr, "GLFW error %d: %s\n", code, msg);
+}
+
+int ex_app_open(ex_app *app, const ex_options *o, const char *title) {
+    memset(app, 0, sizeof *app);
+    app->opt = *o;
+    app->width = EX_WIDTH;
+    app->height = EX_HEIGHT;
+    tb_scene_init(&app->scene);
+    if (o->headless) {
+        char err[256] = "";
+        /* OSMesa (llvmpipe) or EGL; SK_GL=osmesa|egl picks one */
+        app->headless = tb_gl_context_create(TB_GL_AUTO, err, sizeof err);
+        if (!app->headless) { fprintf(stderr, "headless GL context: %s\n", err); return -1; }
+        app->getproc = tb_gl_context_getproc(app->headless);
+        printf("headless GL: %s (%s)\n", tb_gl_context_renderer(app->headless),
+               tb_gl_context_backend_name(app->headless));
+    } else {
+        GLFWwindow *w;
+        glfwSetErrorCallback(ex_glfw_error);
+        if (!glfwInit()) {
+            fprintf(stderr, "cannot start GLFW; --headless needs no display\n");
+            return -1;
+        }
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);   /* macOS wants it */
+        w = glfwCreateWindow(EX_WIDTH, EX_HEIGHT, title, NULL, NULL);
+        if (!w) {
+            fprintf(stderr, "no window with a GL 3.3 core context; --headless needs no display\n");
+            glfwTerminate();
+            return -1;
+        }
+        glfwMakeContextCurrent(w);
+        glfwSwapInterval(1);
+        app->window = w;
+        app->getproc = ex_glfw_getproc;
+    }
+    if (tb_gl_funcs_load(&app->gl, app->getproc) != 0 || ex_load_extra(&app->glx, app->getproc) != 0) {
+        ex_app_close(app);
+        return -1;
+    }
+    if (app->headless &&
+        tb_gl_fbo_create(&app->gl, &app->target, EX_WIDTH, EX_HEIGHT, TB_GL_COLOR_RGBA8) != 0) {
+        fprintf(stderr, "cannot create the %dx%d render target\n", EX_WIDTH, EX_HEIGHT);
+        ex_app_close(app);
+        return -1;
+    }
+    return 0;
+}
+
+void ex_app_close(ex_app *app) {
+    if (app->program) app->gl.DeleteProgram(app->program);
+    if (app->mesh.vao) tb_gl_mesh_destroy(&app->gl, &app->mesh);
+    if (app->target.fbo) tb_gl_fbo_destroy(&app->gl, &app->target);
+    tb_scene_free(&app->scene);
+    if (app->headless) tb_gl_context_destroy(app->headless);
+    if (app->window) {
+        glfwDestroyWindow((GLFWwindow *)app->window);
+        glfwTerminate();
+    }
+    memset(app, 0, sizeof *app);
+}
+
+/* ------------------------------------------------------------------ scene */
+int ex_app_load_scene(ex_app *app, int (*build)(tb_scene *s)) {
+    const char *what = app->opt.scene_path ? app->opt.scene_path : "procedural scene";
+    int r = app->opt.scene_path ? tb_scene_load(&app->scene, app->opt.scene_path) : build(&app->scene);
+    if (r != 0 || app->scene.index_count == 0) {
+        fprintf(stderr, "cannot load %s\n", what);
+        return -1;
+    }
+    app->model_bounds = app->scene.bounds;
+    if (app->opt.scene_path) {
+        /* a ground plane under the loaded model, so that it has somewhere to
+           cast its shadow: centred below it, a little over twice its size */
+        sk_aabb b = app->scene.bounds;
+        float hx = b.max.x - b.min.x, hz = b.max.z - b.min.z, h = hx > hz ? hx : hz;
+        if (tb_scene_add_ground(&app->scene, "ground", 0.5f * (b.min.x + b.max.x),
+                                0.5f * (b.min.z + b.max.z), 1.2f * h, 1.2f * h, b.min.y, 1, 1) < 0)
+            return -1;
+    }
+    if (tb_gl_mesh_create(&app->gl, &app->mesh, &app->scene) != 0) {
+        fprintf(stderr, "cannot upload %s to the GPU\n", what);
+        return -1;
+    }
+    printf("scene: %s, %u triangles, %u objects\n", what, tb_scene_triangle_count(&app->scene),
+           app->scene.object_count);
+    return 0;
+}
+
+void ex_camera_from_bounds(sk_aabb b, sk_vec3 *eye, sk_vec3 *target, float *zn, float *zf) {
+    sk_vec3 c = ex_v3(0.5f * (b.min.x + b.max.x), 0.5f * (b.min.y + b.max.y), 0.5f * (b.min.z + b.max.z));
+    sk_vec3 e = ex_v3(b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z);
+    float d = sqrtf(e.x * e.x + e.y * e.y + e.z * e.z);
+    if (!(d > 0.0f)) d = 1.0f;
+    /* from above the +x +z side, far enough to see the whole box */
+    *eye = ex_v3(c.x + 0.55f * d, c.y + 0.45f * d, c.z + 0.75f * d);
+    *target = c;
+    *zn = 0.01f * d;
+    *zf = 3.0f * d;
+}
+
+/* ------------------------------------------------------------ frame loop */
+int ex_app_begin_frame(ex_app *app) {
+    if (app->opt.frames > 0 && app->frame >= app->opt.frames) return 0;
+    if (app->window) {
+        GLFWwindow *w = (GLFWwindow *)app->window;
+        glfwPollEvents();
+        if (glfwWindowShouldClose(w) || glfwGetKey(w, GLFW_KEY_ESCAPE) == GLFW_PRESS) return 0;
+        glfwGetFramebufferSize(w, &app->width, &app->height);
+        if (app->width <= 0 || app->height <= 0) { app->width = 1; app->height = 1; }  /* minimised */
+        app->time = glfwGetTime();
+        app->gl.BindFramebuffer(EX_GL_FRAMEBUFFER, 0);
+        app->gl.Viewport(0, 0, app->width, app->height);
+    } else {
+        app->time = app->frame / 60.0;
+        tb_gl_fbo_bind(&app->gl, &app->target);   /* binds and sets the viewport */
+    }
+    app->frame++;
+    app->gl.ClearColor(0.55f, 0.68f, 0.85f, 1.0f);   /* sky */
+    app->gl.ClearDepth(1.0);
+    app->gl.Clear(EX_GL_COLOR_BUFFER_BIT | EX_GL_DEPTH_BUFFER_BIT);
+    return 1;
+}
+
+int ex_app_end_frame(ex_app *app) {
+    unsigned char *rgb;
+    int r;
+    if (app->window) {
+        glfwSwapBuffers((GLFWwindow *)app->window);
+        return 0;
+    }
+    if (app->frame < app->opt.frames) return 0;     /* only the last frame is saved */
+    rgb = (unsigned char *)malloc((size_t)EX_WIDTH * EX_HEIGHT * 3);
+    if (!rgb) return -1;
+    r = tb_gl_read_rgb8(&app->gl, app->target.fbo, EX_WIDTH, EX_HEIGHT, rgb);
+    if (r == 0) r = tb_image_write_rgb8(app->opt.out_path, EX_WIDTH, EX_HEIGHT, rgb);
+    free(rgb);
+    if (r != 0) { fprintf(stderr, "cannot write %s\n", app->opt.out_path); return -1; }
+    printf("wrote %s (%dx%d)\n", app->opt.out_path, EX_WIDTH, EX_HEIGHT);
+    return 0;
+}
+
+/* --------------------------------------------------------- forward shader */
+static const char *ex_vs =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_position;   /* world space: the testbed pre-transforms */\n"
+    "layout(location = 1) in vec3 a_normal;\n"
+    "uniform mat4 u_view_proj;\n"
+    "uniform mat4 u_view;\n"
+    "out vec3 v_world_pos;\n"
+    "out vec3 v_world_normal;\n"
+    "out float v_view_depth;                      /* distance along the view axis */\n"
+    "void main() {\n"
+    "    v_world_pos = a_position;\n"
+    "    v_world_normal = a_normal;\n"
+    "    v_view_depth = -(u_view * vec4(a_position, 1.0)).z;\n"
+    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
+    "}\n";
+
+/* goes after "#version 330 core" and shadowkit's snippet */
+static const char *ex_fs_body =
+    "in vec3 v_world_pos;\n"
+    "in vec3 v_world_normal;\n"
+    "in float v_view_depth;\n"
+    "uniform vec3 u_light_dir;                    /* travel direction of the light */\n"
+    "uniform vec3 u_albedo;\n"
+    "uniform int u_cascades;                      /* --show-cascades: their count; else 0 */\n"
+    "uniform float u_splits[9];                   /* view depths bounding each cascade */\n"
+    "out vec4 o_color;\n"
+    "const vec3 ex_tint[8] = vec3[8](vec3(1.0, 0.35, 0.35), vec3(0.35, 1.0, 0.35),\n"
+    "    vec3(0.4, 0.5, 1.0), vec3(1.0, 1.0, 0.3), vec3(1.0, 0.4, 1.0), vec3(0.3, 1.0, 1.0),\n"
+    "    vec3(1.0, 0.65, 0.2), vec3(0.6, 0.4, 1.0));\n"
+    "void main() {\n"
+    "    vec3 n = normalize(v_world_normal);\n"
+    "    if (!gl_FrontFacing) n = -n;             /* single-sided ground, foliage */\n"
+    "    float lambert = max(dot(n, -u_light_dir), 0.0);\n"
+    "    float vis = sk_shadow(v_world_pos, n, v_view_depth);   /* 1 lit .. 0 shadowed */\n"
+    "    vec3 albedo = u_albedo;\n"
+    "    if (u_cascades > 0) {\n"
+    "        int c = -1;\n"
+    "        for (int i = 0; i < u_cascades; i++)\n"
+    "            if (v_view_depth >= u_splits[i] && v_view_depth <= u_splits[i + 1]) { c = i; break; }\n"
+    "        albedo = c >= 0 ? albedo * ex_tint[c] : albedo * 0.5;\n"
+    "    }\n"
+    "    float ambient = 0.22 + 0.08 * n.y;\n"
+    "    vec3 c = albedo * (ambient + (1.0 - ambient) * lambert * vis);\n"
+    "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), 1.0);   /* to sRGB, roughly */\n"
+    "}\n";
+
+static unsigned ex_compile(ex_app *app, unsigned type, int count, const char *const *src) {
+    unsigned sh = app->gl.CreateShader(type);
+    int ok = 0;
+    app->gl.ShaderSource(sh, count, src, NULL);
+    app->gl.CompileShader(sh);
+    app->gl.GetShaderiv(sh, EX_GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = "";
+        app->gl.GetShaderInfoLog(sh, (int)sizeof log, NULL, log);
+        fprintf(stderr, "%s shader:\n%s\n", type == EX_GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+        app->gl.DeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+int ex_forward_create(ex_app *app, const char *shadow_snippet) {
+    const char *fs_src[3];
+    unsigned vs, fs;
+    int ok = 0;
+    fs_src[0] = "#version 330 core\n";
+    fs_src[1] = shadow_snippet;
+    fs_src[2] = ex_fs_body;
+    vs = ex_compile(app, EX_GL_VERTEX_SHADER, 1, &ex_vs);
+    fs = ex_compile(app, EX_GL_FRAGMENT_SHADER, 3, fs_src);
+    if (!vs || !fs) {
+        if (vs) app->gl.DeleteShader(vs);
+        if (fs) app->gl.DeleteShader(fs);
+        return -1;
+    }
+    app->program = app->gl.CreateProgram();
+    app->gl.AttachShader(app->program, vs);
+    app->gl.AttachShader(app->program, fs);
+    app->gl.LinkProgram(app->program);
+    app->gl.DeleteShader(vs);
+    app->gl.DeleteShader(fs);
+    app->gl.GetProgramiv(app->program, EX_GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048] = "";
+        app->gl.GetProgramInfoLog(app->program, (int)sizeof log, NULL, log);
+        fprintf(stderr, "forward program link:\n%s\n", log);
+        return -1;
+    }
+#define EX_U(field, name) app->field = app->gl.GetUniformLocation(app->program, name)
+    EX_U(u_view_proj, "u_view_proj");
+    EX_U(u_view, "u_view");
+    EX_U(u_light_dir, "u_light_dir");
+    EX_U(u_albedo, "u_albedo");
+    EX_U(u_cascades, "u_cascades");
+    EX_U(u_splits, "u_splits");
+#undef EX_U
+    return 0;
+}
+
+/* A colour per kind of object: the ground light grey; the rest from a
+   palette by name without its trailing digits ("pole3" -> "pole"), so a
+   fence's slats share one colour; unnamed objects by index. */
+static void ex_object_albedo(const tb_object *o, unsigned i, float rgb[3]) {
+    static const float pal[6][3] = {{0.85f, 0.45f, 0.30f}, {0.35f, 0.60f, 0.85f}, {0.90f, 0.75f, 0.35f},
+                                    {0.50f, 0.75f, 0.45f}, {0.75f, 0.50f, 0.80f}, {0.80f, 0.80f, 0.80f}};
+    size_t n = strlen(o->name), k;
+    unsigned h = 5381u;
+    if (strstr(o->name, "ground") || strstr(o->name, "floor")) {
+        rgb[0] = rgb[1] = rgb[2] = 0.78f;
+        return;
+    }
+    while (n > 0 && o->name[n - 1] >= '0' && o->name[n - 1] <= '9') n--;
+    for (k = 0; k < n; k++) h = h * 33u + (unsigned char)o->name[k];
+    memcpy(rgb, pal[(n > 0 ? h : i) % 6u], sizeof pal[0]);
+}
+
+void ex_forward_draw(ex_app *app, const skgl_camera *cam, sk_vec3 light_dir,
+                     const float *splits, int cascades) {
+    const tb_gl_funcs *gl = &app->gl;
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
+    float sp[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    unsigned i;
+    if (cascades < 0) cascades = 0;
+    if (cascades > 8) cascades = 8;
+    if (splits && cascades > 0) memcpy(sp, splits, sizeof(float) * (size_t)(cascades + 1));
+    gl->Enable(EX_GL_DEPTH_TEST);
+    gl->DepthFunc(EX_GL_LESS);
+    gl->DepthMask(1);
+    gl->Disable(EX_GL_CULL_FACE);      /* single-sided ground and foliage */
+    gl->UniformMatrix4fv(app->u_view_proj, 1, 0, vp.m);
+    gl->UniformMatrix4fv(app->u_view, 1, 0, cam->view.m);
+    gl->Uniform3f(app->u_light_dir, light_dir.x, light_dir.y, light_dir.z);
+    app->glx.Uniform1i(app->u_cascades, cascades);
+    app->glx.Uniform1fv(app->u_splits, 9, sp);
+    for (i = 0; i < app->scene.object_count; i++) {
+        const tb_object *o = &app->scene.objects[i];
+        float rgb[3];
+        ex_object_albedo(o, i, rgb);
+        gl->Uniform3f(app->u_albedo, rgb[0], rgb[1], rgb[2]);
+        tb_gl_mesh_draw(gl, &app->mesh, o->first_index, o->index_count);
+    }
+}
+
+/* ------------------------------------------------------ shadow-pass callback */
+void ex_draw_casters(void *user, const skgl_draw_info *info) {
+    ex_app *app = (ex_app *)user;
+    unsigned i;
+    /* shadowkit has bound its depth program and the pass's framebuffer;
+       all we do is draw. Objects whose box misses this pass's frustum (a
+       cascade's light volume) are skipped. Our positions are already in
+       world space; an engine with model matrices would call
+       skgl_set_model(ctx, model) before each object. */
+    for (i = 0; i < app->scene.object_count; i++) {
+        const tb_object *o = &app->scene.objects[i];
+        sk_frustum box;
+        if (sk_frustum_from_aabb(o->bounds, &box) == SK_OK && !sk_frustum_intersects(&info->frustum, &box))
+            continue;
+        tb_gl_mesh_draw(&app->gl, &app->mesh, o->first_index, o->index_count);
+    }
+}

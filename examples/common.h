@@ -1,0 +1,122 @@
+/* examples/common.h - the plumbing the shadowkit examples share, so that each
+   example file shows only what it teaches: the shadowkit_gl.h calls.
+
+   What lives here (none of it is shadowkit):
+   - command line: --headless, --scene FILE, --frames N, --out FILE,
+     --show-cascades (02 only), --help;
+   - a window (GLFW, GL 3.3 core) or, with --headless, an off-screen GL 3.3
+     core context from the testbed (OSMesa or EGL) rendering into a 1280x720
+     framebuffer object that is saved as a PNG at the end;
+   - the scene: a procedural one built by the example, or any glTF/OBJ file
+     through the testbed's assimp loader, uploaded as one mesh;
+   - the forward shader: lambert lighting times sk_shadow() from the GLSL
+     snippet of shadowkit_gl.h, with an optional colour per cascade;
+   - the draw callback shadowkit calls for each shadow pass.
+
+   The examples depend on shadowkit_gl.h and on the testbed (the tb_*.h headers),
+   never the other way round. */
+#ifndef EXAMPLES_COMMON_H
+#define EXAMPLES_COMMON_H
+
+#include "shadowkit_gl.h"
+#include "tb_gl_context.h"
+#include "tb_gl_funcs.h"
+#include "tb_gl_fbo.h"
+#include "tb_gl_scene.h"
+#include "tb_scene.h"
+
+#define EX_WIDTH 1280    /* headless image and initial window size */
+#define EX_HEIGHT 720
+
+typedef struct ex_options {
+    int headless;              /* --headless: no window, write a PNG */
+    const char *scene_path;    /* --scene FILE (NULL: procedural scene) */
+    int frames;                /* --frames N: quit after N frames (0: until closed; headless: 1) */
+    const char *out_path;      /* --out FILE: PNG written in headless mode */
+    int show_cascades;         /* --show-cascades: colour pixels by cascade */
+} ex_options;
+
+/* GL entry points the examples call: the testbed's table, plus the few
+   uniform setters it lacks. Loaded through the same getproc shadowkit gets. */
+typedef struct ex_gl_extra {
+    void (TB_GLAPI *Uniform1i)(int loc, int v);
+    void (TB_GLAPI *Uniform1fv)(int loc, int count, const float *v);
+} ex_gl_extra;
+
+typedef struct ex_app {
+    ex_options opt;
+    skgl_getproc_fn getproc;   /* hand this to skgl_create() */
+    tb_gl_funcs gl;            /* call GL as app.gl.Clear(...) */
+    ex_gl_extra glx;
+    int width, height;         /* current framebuffer size in pixels */
+    int frame;                 /* frames started so far */
+    double time;               /* seconds (headless: frame / 60) */
+
+    /* the scene, on the CPU (bounds, objects) and on the GPU */
+    tb_scene scene;
+    tb_gl_mesh mesh;
+    sk_aabb model_bounds;      /* of the file or procedural scene, before the added ground */
+
+    /* the forward program (ex_forward_create) */
+    unsigned program;
+    int u_view_proj, u_view, u_light_dir, u_albedo, u_cascades, u_splits;
+
+    /* the window, or the headless context and its render target */
+    void *window;              /* GLFWwindow * */
+    tb_gl_context *headless;
+    tb_gl_fbo target;
+} ex_app;
+
+/* Parses argv into o. `default_out` is the headless PNG path when --out is
+   not given; allow_cascades enables --show-cascades. Returns 0 to go on, 1
+   when the program should exit with status 0 (--help), 2 on a usage error. */
+int ex_parse_args(int argc, char **argv, const char *default_out, int allow_cascades,
+                  ex_options *o);
+
+/* Opens the window or the headless context and loads the GL tables.
+   0 on success, -1 (message on stderr). */
+int ex_app_open(ex_app *app, const ex_options *o, const char *title);
+void ex_app_close(ex_app *app);
+
+/* Loads opt.scene_path if set (and adds a ground plane under it, so that
+   its shadow has somewhere to fall), otherwise calls build(scene); then
+   uploads the mesh. 0 ok, -1 (message on stderr). */
+int ex_app_load_scene(ex_app *app, int (*build)(tb_scene *s));
+
+/* A camera looking at the scene's bounds from above one corner, for scenes
+   loaded from files: eye, target and near/far planes scaled to the bounds. */
+void ex_camera_from_bounds(sk_aabb b, sk_vec3 *eye, sk_vec3 *target, float *zn, float *zf);
+
+/* Frame loop: ex_app_begin_frame returns 0 when it is time to quit (window
+   closed, Esc, --frames reached); otherwise it binds the window or the
+   off-screen framebuffer, sets the viewport and clears colour and depth.
+   ex_app_end_frame shows the frame (window) or, after the last headless
+   frame, reads it back and writes opt.out_path. 0 ok, -1 on failure. */
+int ex_app_begin_frame(ex_app *app);
+int ex_app_end_frame(ex_app *app);
+
+/* Builds the forward program: our vertex shader, and a fragment shader made
+   of "#version 330 core", shadowkit's GLSL snippet (it declares
+   sk_shadow()), and our lighting code that calls sk_shadow(). 0 or -1. */
+int ex_forward_create(ex_app *app, const char *shadow_snippet);
+
+/* Draws the whole scene with the forward program, which must be current
+   (the example binds it and calls skgl_shadow_bind first). light_dir is the
+   light's travel direction. splits/cascades feed the --show-cascades view
+   (cascades 0: off). */
+void ex_forward_draw(ex_app *app, const skgl_camera *cam, sk_vec3 light_dir,
+                     const float *splits, int cascades);
+
+/* The skgl_scene draw callback (user = the ex_app): draws each object whose
+   bounds meet the pass's frustum, with whatever program shadowkit bound. */
+void ex_draw_casters(void *user, const skgl_draw_info *info);
+
+/* World size (metres) of one texel of a map of res x res texels whose
+   world -> light clip matrix is light_vp (orthographic): 2 / (res * |row 0|). */
+float ex_texel_size(sk_mat4 light_vp, int res);
+
+/* small vector helpers */
+sk_vec3 ex_v3(float x, float y, float z);
+sk_vec3 ex_normalize(sk_vec3 v);
+
+#endif /* EXAMPLES_COMMON_H */

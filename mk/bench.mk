@@ -1,0 +1,37 @@
+# mk/bench.mk - the speed-vs-accuracy bench (bench/bench.c; included by the Makefile).
+#   make bench        full sweep of every shadowkit_gl.h method (145 configurations,
+#                     6 scenes, 3 views; about 10 minutes on 2 cores under llvmpipe):
+#                     out/bench.csv and out/pareto-<scene>.png (gnuplot, bench/pareto.gp)
+#   make bench-demo   the quick sweep (19 configurations; about 1 minute) for `make demo`
+#   make bench-plot   redraw the charts from an existing out/bench.csv
+# Both sweeps write the same files: the last one run is what out/ holds.
+# Extra arguments: make bench BENCH_ARGS="--only fence,terrace --repeat 5"
+# The shared scenes are read from ../shared/scenes when it exists (else
+# procedural scenes only, said on stderr). SK_GL=osmesa|egl picks the GL backend.
+# The testbed's variables come from mk/testbed.mk, read after this file:
+# prerequisites naming them are expanded in the second phase.
+.SECONDEXPANSION:
+
+BENCH_BIN  := $(BUILD)/bench/bench
+BENCH_ARGS ?=
+
+$(BENCH_BIN): bench/bench.c shadowkit.h shadowkit_gl.h $$(TESTBED_LIB) | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) $< -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
+
+.PHONY: bench bench-demo bench-plot
+# deps-demo brings gnuplot (scripts/deps.sh demo)
+bench: $(BENCH_BIN) | deps-demo
+	@mkdir -p $(OUT)
+	./$(BENCH_BIN) --out $(OUT) $(BENCH_ARGS)
+	@echo "bench: $(OUT)/bench.csv and the charts $(OUT)/pareto-*.png"
+
+bench-demo: $(BENCH_BIN) | deps-demo
+	@mkdir -p $(OUT)
+	./$(BENCH_BIN) --quick --out $(OUT) $(BENCH_ARGS)
+	@echo "bench-demo: $(OUT)/bench.csv and the charts $(OUT)/pareto-*.png"
+
+bench-plot: $(BENCH_BIN) | deps-demo
+	./$(BENCH_BIN) --plot-only --out $(OUT) $(BENCH_ARGS)
+
+DEMO_TARGETS += bench-demo

@@ -1,0 +1,46 @@
+# mk/examples.mk - the tutorial programs in examples/ (included by the Makefile).
+#   make examples        build build/examples/01_hard_shadows and 02_cascades
+#   make examples-demo   render each one headless into out/ (part of make demo)
+# Each example is one C99 file holding the shadowkit implementation, plus
+# examples/common.c, linked with the testbed library and GLFW.
+# The testbed's variables (TESTBED_CFLAGS, TESTBED_LIB, TESTBED_LIBS) come
+# from mk/testbed.mk, which is read after this file: prerequisites naming them
+# are written $$(...) and expanded in the second phase (.SECONDEXPANSION).
+.SECONDEXPANSION:
+
+EX_DIR   := $(BUILD)/examples
+EX_NAMES := 01_hard_shadows 02_cascades
+EX_BINS  := $(addprefix $(EX_DIR)/,$(EX_NAMES))
+EX_OBJS  := $(addprefix $(EX_DIR)/obj/,$(addsuffix .o,$(EX_NAMES)))
+EX_HDRS  := shadowkit.h shadowkit_gl.h examples/common.h
+# recursive (=): pkg-config runs when a recipe needs it, after deps-demo
+# has installed libglfw3-dev
+EX_GLFW_CFLAGS = $(shell pkg-config --cflags glfw3)
+EX_GLFW_LIBS   = $(shell pkg-config --libs glfw3)
+EX_CC          = $(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) -Iexamples
+
+.PHONY: examples examples-demo
+
+examples: $(EX_BINS)
+
+$(EX_DIR)/obj/common.o: examples/common.c $(EX_HDRS) | deps-demo
+	$(MKDIR)
+	$(EX_CC) $(EX_GLFW_CFLAGS) $(DEPFLAGS) -c $< -o $@
+
+$(EX_OBJS): $(EX_DIR)/obj/%.o: examples/%.c $(EX_HDRS) | deps-demo
+	$(MKDIR)
+	$(EX_CC) $(DEPFLAGS) -c $< -o $@
+
+$(EX_BINS): $(EX_DIR)/%: $(EX_DIR)/obj/%.o $(EX_DIR)/obj/common.o $$(TESTBED_LIB) | deps-demo
+	$(MKDIR)
+	$(CC) $< $(EX_DIR)/obj/common.o -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(EX_GLFW_LIBS) $(LDLIBS)
+
+# the headless renders; run from the repository root (paths are relative)
+examples-demo: $(EX_BINS)
+	@mkdir -p $(OUT)
+	./$(EX_DIR)/01_hard_shadows --headless --out $(OUT)/01_hard_shadows.png
+	./$(EX_DIR)/02_cascades --headless --out $(OUT)/02_cascades.png
+	./$(EX_DIR)/02_cascades --headless --show-cascades --out $(OUT)/02_cascades-show.png
+	@echo "examples: images in $(OUT)/: 01_hard_shadows.png 02_cascades.png 02_cascades-show.png"
+
+DEMO_TARGETS += examples-demo

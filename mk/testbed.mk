@@ -1,0 +1,64 @@
+# testbed/ as a library, and the GL tests (tests/gl/test_gl_*.c) built on it.
+#   build/testbed/libtestbed.a   testbed/*.c except selftest.c, C99 -O2
+#   build/gl/<name>              one program per tests/gl/<name>.c (the `gl`
+#                                flavour of tests/run_tests.sh, part of `make test`)
+#   make testbed-selftest        the testbed's own self-test (testbed/selftest.c)
+# Variables for the other fragments (examples, bench), all recursive so that
+# pkg-config runs after deps-gl has installed it:
+#   TESTBED_CFLAGS  include paths and pkg-config cflags (add your own -std/-O/warnings)
+#   TESTBED_LIB     the archive path (a prerequisite; link it before TESTBED_LIBS)
+#   TESTBED_LIBS    the libraries it needs
+# A rule that links the testbed: `target: src $(TESTBED_LIB) | deps-gl`, recipe
+#   $(CC) -std=c99 $(TESTBED_CFLAGS) src -o $@ $(TESTBED_LIB) $(TESTBED_LIBS)
+
+TESTBED_PCS    := assimp osmesa egl
+TESTBED_CFLAGS  = -I. -Itestbed $(shell pkg-config --cflags $(TESTBED_PCS) 2>/dev/null)
+TESTBED_LIB    := $(BUILD)/testbed/libtestbed.a
+# Debian's libembree-dev has no .pc file; the fallback is for a missing pkg-config
+TESTBED_LIBS    = $(shell pkg-config --libs $(TESTBED_PCS) stb 2>/dev/null || \
+                    echo -lassimp -lOSMesa -lEGL -lstb) -lembree3 -lpthread -lm
+
+TESTBED_SRCS := $(filter-out testbed/selftest.c,$(sort $(wildcard testbed/*.c)))
+TESTBED_OBJS := $(patsubst testbed/%.c,$(BUILD)/testbed/%.o,$(TESTBED_SRCS))
+TESTBED_HDRS := $(wildcard testbed/*.h) shadowkit.h
+
+$(BUILD)/testbed/%.o: testbed/%.c $(TESTBED_HDRS) | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) -c $< -o $@
+
+$(TESTBED_LIB): $(TESTBED_OBJS)
+	@mkdir -p $(@D)
+	rm -f $@
+	ar rcs $@ $^
+
+$(BUILD)/testbed/selftest: testbed/selftest.c $(TESTBED_LIB) $(TESTBED_HDRS) | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) $< -o $@ $(TESTBED_LIB) $(TESTBED_LIBS)
+
+# ---------------------------------------------------------------- GL tests
+# Every tests/gl/test_gl_*.c is a whole program (tests/sk_test.h) that
+# includes shadowkit_gl.h with its implementation and links the testbed.
+GL_TESTS     := $(sort $(wildcard tests/gl/test_gl_*.c))
+GL_TEST_BINS := $(patsubst tests/gl/%.c,$(BUILD)/gl/%,$(GL_TESTS))
+GL_TEST_DEPS := shadowkit.h shadowkit_gl.h tests/sk_test.h $(wildcard tests/gl/*.h)
+
+$(BUILD)/gl/%: tests/gl/%.c $(GL_TEST_DEPS) $(TESTBED_LIB) | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) -Itests $(DEPFLAGS) $< -o $@ \
+	    $(TESTBED_LIB) $(TESTBED_LIBS)
+
+.PHONY: deps-gl testbed testbed-selftest test-gl
+deps-gl:
+	@bash scripts/deps.sh gl
+
+testbed: $(TESTBED_LIB)
+
+testbed-selftest: $(BUILD)/testbed/selftest
+	@mkdir -p $(OUT)
+	LSAN_OPTIONS=suppressions=testbed/lsan.supp ./$(BUILD)/testbed/selftest
+
+# the GL flavour alone
+test-gl: $(GL_TEST_BINS)
+	@bash tests/run_tests.sh gl
+
+test: $(GL_TEST_BINS)

@@ -1,0 +1,390 @@
+/* gl_test_util.h - what the GL tests share: an OSMesa context, a scene on
+   the GPU, the camera G-buffer (window depth + world normals), the Embree
+   reference traced from that same depth buffer, and shadowkit_gl.h's
+   deferred mask read back. Include after shadowkit_gl.h (with its
+   implementation) and sk_test.h. All functions are static inline.
+
+   One frame of a test:
+       gt_env e;  gt_env_init(&e, scene, W, H)      (takes the scene)
+       skgl_camera cam = gt_camera(eye, target, fovy, zn, zf, W, H);
+       gt_gbuffer(&e, &cam);                       depth + normals of this view
+       gt_reference(&e, &cam, light_dir, ref);     exact visibility per pixel
+       gt_mask(&e, shadow, &cam, light_dir, res);  skgl_shadow_render + skgl_shadow_mask
+       tb_hard_error err = tb_metric_hard(ref, res, W * H);
+   Images go under out/tests/ (error image: red false lit, blue false shadow). */
+#ifndef GL_TEST_UTIL_H
+#define GL_TEST_UTIL_H
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "tb_gl_context.h"
+#include "tb_gl_fbo.h"
+#include "tb_gl_funcs.h"
+#include "tb_gl_scene.h"
+#include "tb_image.h"
+#include "tb_metrics.h"
+#include "tb_reference.h"
+#include "tb_scene.h"
+
+typedef struct gt_env {
+    tb_gl_context *ctx;
+    tb_gl_funcs gl;
+    skgl_context *sk;
+    tb_scene scene;
+    tb_gl_mesh mesh;
+    tb_gl_gbuffer gb;
+    tb_gl_fbo gbuf;        /* RGBA16F world normals + DEPTH_COMPONENT32F */
+    tb_gl_fbo mask;        /* R16F visibility (skgl_shadow_mask target) */
+    tb_reference *ref;
+    int w, h;
+    size_t n;              /* w * h */
+    float *depth;          /* window depth of the last gt_gbuffer, row 0 at the bottom */
+    float *normals;        /* 3 per pixel, world space, facing the camera; 0 on background */
+    float *rgba;           /* scratch */
+    sk_mat4 inv_vp;        /* of the last gt_gbuffer */
+    sk_mat4 view;          /* of the last gt_gbuffer */
+} gt_env;
+
+static inline sk_vec3 gt_v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
+
+static inline sk_aabb gt_box(float x0, float y0, float z0, float x1, float y1, float z1) {
+    sk_aabb b;
+    b.min = gt_v3(x0, y0, z0);
+    b.max = gt_v3(x1, y1, z1);
+    return b;
+}
+
+/* a perspective camera for a w x h image; up = +y */
+static inline skgl_camera gt_camera(sk_vec3 eye, sk_vec3 target, float fovy, float zn, float zf, int w, int h) {
+    skgl_camera c;
+    c.view = sk_mat4_look_at(eye, target, gt_v3(0, 1, 0));
+    c.proj = sk_mat4_perspective(fovy, (float)w / (float)h, zn, zf);
+    return c;
+}
+
+/* the draw callback: the whole mesh with shadowkit's depth program */
+static inline void gt_draw(void *user, const skgl_draw_info *info) {
+    gt_env *e = (gt_env *)user;
+    (void)info;
+    tb_gl_mesh_draw(&e->gl, &e->mesh, 0, 0);
+}
+
+static inline skgl_scene gt_scene(gt_env *e) {
+    skgl_scene sc;
+    sc.draw = gt_draw;
+    sc.user = e;
+    sc.bounds = e->scene.bounds;
+    return sc;
+}
+
+static inline void gt_env_free(gt_env *e) {
+    if (e->sk) skgl_destroy(e->sk);
+    if (e->ctx) {
+        tb_gl_gbuffer_destroy(&e->gl, &e->gb);
+        tb_gl_mesh_destroy(&e->gl, &e->mesh);
+        tb_gl_fbo_destroy(&e->gl, &e->gbuf);
+        tb_gl_fbo_destroy(&e->gl, &e->mask);
+        tb_gl_context_destroy(e->ctx);
+    }
+    tb_reference_destroy(e->ref);
+    tb_scene_free(&e->scene);
+    free(e->depth); free(e->normals); free(e->rgba);
+    memset(e, 0, sizeof *e);
+}
+
+/* Takes ownership of *scene (left empty). OSMesa forced: what CI runs.
+   0 ok; -1 with the reason printed (and counted as a failed check). */
+static inline int gt_env_init(gt_env *e, tb_scene *scene, int w, int h) {
+    char err[1024] = "";
+    skgl_desc d;
+    sk_result r;
+    memset(e, 0, sizeof *e);
+    e->scene = *scene;
+    tb_scene_init(scene);
+    e->w = w;
+    e->h = h;
+    e->n = (size_t)w * (size_t)h;
+    e->depth = (float *)malloc(sizeof(float) * e->n);
+    e->normals = (float *)malloc(sizeof(float) * 3 * e->n);
+    e->rgba = (float *)malloc(sizeof(float) * 4 * e->n);
+    if (!e->depth || !e->normals || !e->rgba) { SK_CHECK_MSG(0, "out of memory"); return -1; }
+    e->ctx = tb_gl_context_create(TB_GL_OSMESA, err, sizeof err);
+    if (!e->ctx) { SK_CHECK_MSG(0, "OSMesa context: %s", err); return -1; }
+    if (tb_gl_funcs_load(&e->gl, tb_gl_context_getproc(e->ctx)) != 0 ||
+        tb_gl_fbo_create(&e->gl, &e->gbuf, w, h, TB_GL_COLOR_RGBA16F) != 0 ||
+        tb_gl_fbo_create(&e->gl, &e->mask, w, h, TB_GL_COLOR_R16F) != 0 ||
+        tb_gl_mesh_create(&e->gl, &e->mesh, &e->scene) != 0 ||
+        tb_gl_gbuffer_create(&e->gl, &e->gb, err, sizeof err) != 0) {
+        SK_CHECK_MSG(0, "testbed GL setup failed: %s", err);
+        return -1;
+    }
+    e->ref = tb_reference_create(&e->scene);
+    if (!e->ref) { SK_CHECK_MSG(0, "Embree scene"); return -1; }
+    memset(&d, 0, sizeof d);
+    d.getproc = (skgl_getproc_fn)tb_gl_context_getproc(e->ctx);
+    d.debug = 1;
+    r = skgl_create(&d, &e->sk);
+    if (r != SK_OK) {
+        SK_CHECK_MSG(0, "skgl_create: %s (%s)", sk_result_string(r), e->sk ? skgl_error_log(e->sk) : "");
+        return -1;
+    }
+    return 0;
+}
+
+static inline int gt_env_init_named(gt_env *e, const char *name, int w, int h) {
+    tb_scene s;
+    tb_scene_init(&s);
+    if (tb_scene_build(&s, name) != 0) { SK_CHECK_MSG(0, "scene %s", name); tb_scene_free(&s); return -1; }
+    return gt_env_init(e, &s, w, h);
+}
+
+/* G-buffer of this camera: e->depth, e->normals (and the textures in e->gbuf) */
+static inline int gt_gbuffer(gt_env *e, const skgl_camera *cam) {
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
+    size_t i;
+    if (!sk_mat4_inverse(vp, &e->inv_vp)) return -1;
+    e->view = cam->view;
+    if (tb_gl_gbuffer_render(&e->gl, &e->gb, &e->mesh, &e->gbuf, &vp) != 0) return -1;
+    if (tb_gl_read_depth(&e->gl, e->gbuf.fbo, e->w, e->h, e->depth) != 0) return -1;
+    if (tb_gl_read_rgba_float(&e->gl, e->gbuf.fbo, e->w, e->h, e->rgba) != 0) return -1;
+    for (i = 0; i < e->n; i++) {
+        e->normals[3 * i] = e->rgba[4 * i];
+        e->normals[3 * i + 1] = e->rgba[4 * i + 1];
+        e->normals[3 * i + 2] = e->rgba[4 * i + 2];
+    }
+    return 0;
+}
+
+static inline tb_light gt_sun(sk_vec3 dir) {
+    tb_light l;
+    memset(&l, 0, sizeof l);
+    l.type = TB_LIGHT_DIRECTIONAL;
+    l.direction = dir;
+    return l;
+}
+
+/* reference visibility of the last G-buffer: 1 lit, 0 shadowed, < 0 background */
+static inline int gt_reference(gt_env *e, sk_vec3 light_dir, float *vis) {
+    tb_view v;
+    tb_light l = gt_sun(light_dir);
+    v.inv_view_proj = e->inv_vp;
+    v.width = e->w;
+    v.height = e->h;
+    return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+}
+
+/* skgl_shadow_render for cam, then skgl_shadow_mask over the last G-buffer
+   (which must be of the same camera unless the test wants otherwise), read
+   back into vis. Background pixels get -1 (like the reference). */
+static inline int gt_mask_only(gt_env *e, skgl_shadow *s, const skgl_camera *cam, float *vis) {
+    sk_result r = skgl_shadow_mask(e->sk, s, cam, e->gbuf.depth_tex, e->gbuf.color_tex, e->mask.color_tex);
+    size_t i;
+    if (r != SK_OK) {
+        printf("skgl_shadow_mask: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
+        return -1;
+    }
+    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
+    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
+    return 0;
+}
+
+static inline int gt_mask(gt_env *e, skgl_shadow *s, const skgl_camera *cam, sk_vec3 light_dir, float *vis) {
+    skgl_scene sc = gt_scene(e);
+    sk_result r = skgl_shadow_render(e->sk, s, cam, &sc, light_dir);
+    if (r != SK_OK) {
+        printf("skgl_shadow_render: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
+        return -1;
+    }
+    return gt_mask_only(e, s, cam, vis);
+}
+
+static inline skgl_shadow *gt_shadow(gt_env *e, const skgl_shadow_desc *d) {
+    skgl_shadow *s = NULL;
+    sk_result r = skgl_shadow_create(e->sk, d, &s);
+    if (r != SK_OK) {
+        SK_CHECK_MSG(0, "skgl_shadow_create: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
+        return NULL;
+    }
+    return s;
+}
+
+/* world position of pixel i of the last G-buffer; 0 ok, -1 background */
+static inline int gt_world(const gt_env *e, size_t i, double out[3]) {
+    if (!(e->depth[i] < 1.0f)) return -1;
+    return tb_unproject_pixel(&e->inv_vp, e->w, e->h, (int)(i % (size_t)e->w), (int)(i / (size_t)e->w),
+                              e->depth[i], out);
+}
+
+/* view depth (distance along the view axis) of pixel i; -1 on background */
+static inline double gt_view_depth(const gt_env *e, size_t i) {
+    double p[3];
+    const float *m = e->view.m;
+    if (gt_world(e, i, p)) return -1.0;
+    return -(m[2] * p[0] + m[6] * p[1] + m[10] * p[2] + m[14]);
+}
+
+/* writes out/tests/<name>.png (visibility) and out/tests/<name>-error.png */
+static inline void gt_images(const gt_env *e, const char *name, const float *ref, const float *res) {
+    char path[256];
+    snprintf(path, sizeof path, "out/tests/%s.png", name);
+    tb_image_write_visibility(path, e->w, e->h, res);
+    snprintf(path, sizeof path, "out/tests/%s-error.png", name);
+    tb_image_write_error(path, e->w, e->h, ref, res);
+}
+
+/* 1 when pixel i's reference class differs from a pixel within r pixels
+   (Chebyshev): near a shadow boundary, where aliasing, not bias, decides */
+static inline int gt_near_boundary(const gt_env *e, const float *ref, size_t i, int r) {
+    int x0 = (int)(i % (size_t)e->w), y0 = (int)(i / (size_t)e->w), x, y;
+    int c = tb_visibility_class(ref[i]);
+    for (y = y0 - r; y <= y0 + r; y++)
+        for (x = x0 - r; x <= x0 + r; x++) {
+            int k;
+            if (x < 0 || y < 0 || x >= e->w || y >= e->h) continue;
+            k = tb_visibility_class(ref[(size_t)y * (size_t)e->w + (size_t)x]);
+            if (k >= 0 && k != c) return 1;
+        }
+    return 0;
+}
+
+/* ---- the forward path: a tiny shader containing skgl_glsl_snippet() ---- */
+typedef struct gt_forward {
+    unsigned program;
+    int u_view_proj, u_view;
+    tb_gl_fbo fbo;         /* R16F visibility + depth, the env's size */
+} gt_forward;
+
+static const char gt_forward_vs[] =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_position;\n"
+    "layout(location = 1) in vec3 a_normal;\n"
+    "uniform mat4 u_view_proj;\n"
+    "uniform mat4 u_view;\n"
+    "out vec3 v_world;\n"
+    "out vec3 v_normal;\n"
+    "out float v_view_depth;\n"
+    "void main() {\n"
+    "    v_world = a_position;\n"
+    "    v_normal = a_normal;\n"
+    "    v_view_depth = -(u_view * vec4(a_position, 1.0)).z;\n"
+    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
+    "}\n";
+/* the snippet goes between the #version line and this */
+static const char gt_forward_fs[] =
+    "in vec3 v_world;\n"
+    "in vec3 v_normal;\n"
+    "in float v_view_depth;\n"
+    "out float o_visibility;\n"
+    "void main() {\n"
+    "    vec3 n = normalize(v_normal);\n"
+    "    o_visibility = sk_shadow(v_world, gl_FrontFacing ? n : -n, v_view_depth);\n"
+    "}\n";
+
+static inline unsigned gt_compile(const tb_gl_funcs *gl, unsigned type, int count, const char *const *src) {
+    unsigned sh = gl->CreateShader(type);
+    int ok = 0;
+    gl->ShaderSource(sh, count, src, NULL);
+    gl->CompileShader(sh);
+    gl->GetShaderiv(sh, 0x8B81 /* COMPILE_STATUS */, &ok);
+    if (!ok) {
+        char log[2048] = "";
+        gl->GetShaderInfoLog(sh, (int)sizeof log, NULL, log);
+        SK_CHECK_MSG(0, "forward shader: %s", log);
+        gl->DeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+/* 0 ok */
+static inline int gt_forward_create(gt_env *e, gt_forward *f) {
+    const tb_gl_funcs *gl = &e->gl;
+    const char *vs[1], *fs[3];
+    unsigned v, g;
+    int ok = 0;
+    memset(f, 0, sizeof *f);
+    vs[0] = gt_forward_vs;
+    fs[0] = "#version 330 core\n";
+    fs[1] = skgl_glsl_snippet();
+    fs[2] = gt_forward_fs;
+    v = gt_compile(gl, 0x8B31 /* VERTEX_SHADER */, 1, vs);
+    g = gt_compile(gl, 0x8B30 /* FRAGMENT_SHADER */, 3, fs);
+    if (!v || !g) { if (v) gl->DeleteShader(v); if (g) gl->DeleteShader(g); return -1; }
+    f->program = gl->CreateProgram();
+    gl->AttachShader(f->program, v);
+    gl->AttachShader(f->program, g);
+    gl->LinkProgram(f->program);
+    gl->DeleteShader(v);
+    gl->DeleteShader(g);
+    gl->GetProgramiv(f->program, 0x8B82 /* LINK_STATUS */, &ok);
+    if (!ok) {
+        char log[2048] = "";
+        gl->GetProgramInfoLog(f->program, (int)sizeof log, NULL, log);
+        SK_CHECK_MSG(0, "forward program: %s", log);
+        gl->DeleteProgram(f->program);
+        f->program = 0;
+        return -1;
+    }
+    f->u_view_proj = gl->GetUniformLocation(f->program, "u_view_proj");
+    f->u_view = gl->GetUniformLocation(f->program, "u_view");
+    if (tb_gl_fbo_create(gl, &f->fbo, e->w, e->h, TB_GL_COLOR_R16F) != 0) {
+        gl->DeleteProgram(f->program);
+        f->program = 0;
+        return -1;
+    }
+    return 0;
+}
+
+static inline void gt_forward_destroy(gt_env *e, gt_forward *f) {
+    if (f->program) e->gl.DeleteProgram(f->program);
+    tb_gl_fbo_destroy(&e->gl, &f->fbo);
+    memset(f, 0, sizeof *f);
+}
+
+/* Draws the scene with the forward shader for cam, the map of s (already
+   rendered for cam) bound to texture unit `unit`; reads visibility back
+   (-1 where the forward pass drew nothing). 0 ok. */
+static inline int gt_forward_render(gt_env *e, gt_forward *f, const skgl_shadow *s, const skgl_camera *cam,
+                                    int unit, float *vis, float *depth) {
+    const tb_gl_funcs *gl = &e->gl;
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
+    sk_result r;
+    size_t i;
+    tb_gl_fbo_bind(gl, &f->fbo);
+    gl->ClearColor(-1.0f, 0, 0, 0);
+    gl->ClearDepth(1.0);
+    gl->Clear(0x00004000u | 0x00000100u);
+    gl->Enable(0x0B71 /* DEPTH_TEST */);
+    gl->DepthFunc(0x0201 /* LESS */);
+    gl->UseProgram(f->program);
+    gl->UniformMatrix4fv(f->u_view_proj, 1, 0, vp.m);
+    gl->UniformMatrix4fv(f->u_view, 1, 0, cam->view.m);
+    r = skgl_shadow_bind(e->sk, s, f->program, unit);
+    if (r != SK_OK) {
+        SK_CHECK_MSG(0, "skgl_shadow_bind: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
+        gl->UseProgram(0);
+        tb_gl_fbo_bind(gl, NULL);
+        return -1;
+    }
+    tb_gl_mesh_draw(gl, &e->mesh, 0, 0);
+    gl->UseProgram(0);
+    tb_gl_fbo_bind(gl, NULL);
+    if (tb_gl_read_red(gl, f->fbo.fbo, e->w, e->h, vis) != 0) return -1;
+    if (tb_gl_read_depth(gl, f->fbo.fbo, e->w, e->h, depth) != 0) return -1;
+    for (i = 0; i < e->n; i++) if (!(depth[i] < 1.0f)) vis[i] = -1.0f;
+    return 0;
+}
+
+/* a scale for the can-fail experiments: SK_GL_TEST_RES_SCALE=0.25 runs the
+   accuracy tests at a quarter of their shadow-map resolution (they must then
+   fail; the figures are in the tests' comments). Unset: 1. */
+static inline double gt_res_scale(void) {
+    const char *s = getenv("SK_GL_TEST_RES_SCALE");
+    double v = s && *s ? atof(s) : 1.0;
+    return v > 0.0 && v <= 4.0 ? v : 1.0;
+}
+
+static inline float *gt_alloc(const gt_env *e) { return (float *)malloc(sizeof(float) * e->n); }
+
+#endif /* GL_TEST_UTIL_H */

@@ -1,0 +1,166 @@
+/* test_gl_stable.c - stable (texel-snapped) crops do not shimmer under
+   sub-texel camera translation; unsnapped crops do.
+
+   The camera ("ground-boxes", 400 x 225) slides along a fixed oblique
+   direction, 24 frames (23 frame pairs), each step 0.37 of the finer of the
+   two maps' texels (so sub-texel for both; over the path the snapped crop
+   crosses several texel steps, and the test checks that it moved). The
+   same path runs with .stable = 1 and .stable = 0, both techniques, maps
+   1024^2, max_distance 45 m (the scene's far corner is 42.5 m away).
+
+   Measurement: every frame's map (fitted to that frame's camera) is applied
+   to the SAME world points, those of the first frame's G-buffer, through
+   skgl_shadow_mask. The reference of both frames of a pair is then the
+   same, and tb_metric_flip(ref, ref, frame k-1, frame k) counts exactly the
+   pixels whose shadow changed because the map was refitted: shimmer. (If
+   the G-buffer moves too, pixels crossing the thin band where any map's
+   edge differs from the true edge flip as well, stable or not; measured
+   that way on this path the rates were 0.123% stable vs 0.047% unstable,
+   the stable map's texels being larger: that measures edge accuracy.)
+
+   Measured (Mesa 22.3 llvmpipe), flips / covered pixels over the 23 pairs:
+     standard: stable 0 (0.0000%), unstable 655 of 1382277 (0.0474%, worst pair 0.0965%)
+     pssm:     stable 0 (0.0000%), unstable 223 of 1382277 (0.0161%, worst pair 0.0466%)
+   Asserted: stable < 0.005% over the path (the issue asks < 0.05%) and
+   < 0.01% in every pair; unstable strictly higher than stable.
+   Can fail: with the snapping disabled in a local copy of the header
+   (stable mode taking the focused branch) stable = unstable = 0.0474%
+   (standard) and 0.0149% (pssm): both the bound and the comparison fail.
+   Before commit c90830e the standard stable map changed size once on this
+   kind of path (its slice ended at a camera-dependent depth): 30 flips in
+   one pair (0.05% of that pair), caught by the per-pair bound. */
+#define SHADOWKIT_IMPLEMENTATION
+#define SHADOWKIT_GL_IMPLEMENTATION
+#include "shadowkit_gl.h"
+#include "sk_test.h"
+#include "gl_test_util.h"
+
+#define W 400
+#define H 225
+#define FRAMES 24
+#define MAX_DISTANCE 45.0f   /* the scene's far corner is 42.5 m away */
+#define STEP_TEXELS 0.37f
+#define STABLE_MAX_PCT 0.005       /* the issue asks < 0.05%; measured 0 */
+#define STABLE_MAX_PAIR_PCT 0.01    /* any single frame pair; measured 0 */
+
+typedef struct path_result {
+    double pct, max_pair_pct;
+    uint64_t flips, covered;
+} path_result;
+
+static skgl_camera cam_at(float t, sk_vec3 dir) {
+    sk_vec3 eye = gt_v3(-9 + dir.x * t, 7 + dir.y * t, 12 + dir.z * t);
+    sk_vec3 target = gt_v3(dir.x * t, 1 + dir.y * t, dir.z * t);
+    return gt_camera(eye, target, 0.9f, 0.5f, 100, W, H);
+}
+
+/* world size of one texel of layer 0 of s (after a render) */
+static float texel_world(const skgl_shadow *s) {
+    sk_mat4 m = skgl_shadow_matrix(s, 0);
+    float sx = sqrtf(m.m[0] * m.m[0] + m.m[4] * m.m[4] + m.m[8] * m.m[8]);
+    return sx > 0 ? 2.0f / (sx * (float)skgl_shadow_get_desc(s).resolution) : 0;
+}
+
+static path_result run_path(gt_env *e, skgl_technique tech, int stable, float step, const float *ref) {
+    skgl_shadow_desc d;
+    skgl_shadow *s;
+    path_result pr;
+    float *out[2];
+    sk_vec3 light = gt_v3(-0.5f, -1, -0.35f), dir = gt_v3(0.6f, 0.13f, 0.79f);
+    skgl_camera cam0 = cam_at(0, dir);
+    skgl_scene sc = gt_scene(e);
+    sk_mat4 first;
+    int f;
+    memset(&pr, 0, sizeof pr);
+    memset(&d, 0, sizeof d);
+    d.technique = tech;
+    d.resolution = 1024;
+    d.stable = stable;
+    d.max_distance = MAX_DISTANCE;
+    s = gt_shadow(e, &d);
+    out[0] = gt_alloc(e);
+    out[1] = gt_alloc(e);
+    if (!s || !out[0] || !out[1]) { free(out[0]); free(out[1]); skgl_shadow_destroy(e->sk, s); return pr; }
+    for (f = 0; f < FRAMES; f++) {
+        skgl_camera cam = cam_at(step * (float)f, dir);
+        int k = f & 1;
+        sk_result r = skgl_shadow_render(e->sk, s, &cam, &sc, light);
+        SK_CHECK_MSG(r == SK_OK, "render: %s", sk_result_string(r));
+        if (f == 0) first = skgl_shadow_matrix(s, 0);
+        if (f == FRAMES - 1) {
+            /* the crop followed the camera (for stable crops: by whole texels) */
+            sk_mat4 last = skgl_shadow_matrix(s, 0);
+            SK_CHECK_MSG(memcmp(&first, &last, sizeof first) != 0, "the crop did not move");
+        }
+        SK_CHECK(gt_mask_only(e, s, &cam0, out[k]) == 0);
+        if (f > 0) {
+            tb_flip_rate fr = tb_metric_flip(ref, ref, out[k ^ 1], out[k], e->n);
+            double pair = fr.covered ? 100.0 * (double)fr.flips / (double)fr.covered : 0;
+            SK_CHECK(fr.ref_flips == 0);
+            pr.flips += fr.flips;
+            pr.covered += fr.covered;
+            if (pair > pr.max_pair_pct) pr.max_pair_pct = pair;
+        }
+    }
+    pr.pct = pr.covered ? 100.0 * (double)pr.flips / (double)pr.covered : 100.0;
+    free(out[0]); free(out[1]);
+    skgl_shadow_destroy(e->sk, s);
+    return pr;
+}
+
+static void test_stable_crops(void) {
+    gt_env e;
+    float *ref;
+    int t;
+    sk_vec3 light = gt_v3(-0.5f, -1, -0.35f);
+    if (gt_env_init_named(&e, "ground-boxes", W, H) != 0) { gt_env_free(&e); return; }
+    ref = gt_alloc(&e);
+    {
+        /* the G-buffer and reference of the first frame: the fixed world points */
+        skgl_camera cam0 = cam_at(0, gt_v3(0.6f, 0.13f, 0.79f));
+        SK_CHECK(ref && gt_gbuffer(&e, &cam0) == 0 && gt_reference(&e, light, ref) == 0);
+    }
+    for (t = 0; t < 2; t++) {
+        skgl_technique tech = t ? SKGL_PSSM : SKGL_STANDARD;
+        const char *tn = t ? "pssm" : "standard";
+        skgl_shadow_desc d;
+        skgl_shadow *probe;
+        float texel[2] = {0, 0}, step;
+        int k;
+        path_result st, un;
+        /* the finer of the two maps' texels (world units) sets the step */
+        for (k = 0; k < 2; k++) {
+            memset(&d, 0, sizeof d);
+            d.technique = tech;
+            d.resolution = 1024;
+            d.stable = k;
+            d.max_distance = MAX_DISTANCE;
+            probe = gt_shadow(&e, &d);
+            if (probe) {
+                skgl_camera cam0 = cam_at(0, gt_v3(0.6f, 0.13f, 0.79f));
+                skgl_scene sc = gt_scene(&e);
+                SK_CHECK(skgl_shadow_render(e.sk, probe, &cam0, &sc, light) == SK_OK);
+                texel[k] = texel_world(probe);
+                skgl_shadow_destroy(e.sk, probe);
+            }
+            SK_CHECK(texel[k] > 0);
+        }
+        step = STEP_TEXELS * (texel[0] < texel[1] ? texel[0] : texel[1]);
+        st = run_path(&e, tech, 1, step, ref);
+        un = run_path(&e, tech, 0, step, ref);
+        printf("%s: texel %.4f m (unstable) %.4f m (stable), step %.4f m; flips / covered over %d pairs: stable %llu/%llu = %.4f%% "
+               "(worst pair %.4f%%), unstable %llu/%llu = %.4f%% (worst pair %.4f%%)\n", tn, texel[0], texel[1], step,
+               FRAMES - 1, (unsigned long long)st.flips, (unsigned long long)st.covered, st.pct, st.max_pair_pct,
+               (unsigned long long)un.flips, (unsigned long long)un.covered, un.pct, un.max_pair_pct);
+        SK_CHECK(st.covered > (uint64_t)(FRAMES - 1) * (W * H / 2));
+        SK_CHECK_MSG(st.pct < STABLE_MAX_PCT, "%s stable: %.4f%% >= %.3f%%", tn, st.pct, STABLE_MAX_PCT);
+        SK_CHECK_MSG(st.max_pair_pct < STABLE_MAX_PAIR_PCT, "%s stable, worst pair: %.4f%% >= %.3f%%", tn,
+                     st.max_pair_pct, STABLE_MAX_PAIR_PCT);
+        SK_CHECK_MSG(un.pct > st.pct, "%s: unstable %.4f%% not above stable %.4f%%", tn, un.pct, st.pct);
+    }
+    SK_CHECK(e.gl.GetError() == 0);
+    free(ref);
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_stable_crops)

@@ -1,0 +1,169 @@
+/* test_gl_testbed.c - smoke test of the machinery every GL test stands on
+   (no shadowkit_gl.h code runs here): an OSMesa GL 3.3 core context, the
+   testbed's FBO and G-buffer, and a tiny Embree reference case whose answer
+   is known in closed form. If this fails, the other GL tests' failures say
+   nothing about shadowkit. */
+#define SHADOWKIT_IMPLEMENTATION
+#include "shadowkit.h"
+#include "sk_test.h"
+
+#include <stdlib.h>
+
+#include "tb_gl_context.h"
+#include "tb_gl_fbo.h"
+#include "tb_gl_funcs.h"
+#include "tb_gl_scene.h"
+#include "tb_metrics.h"
+#include "tb_reference.h"
+#include "tb_scene.h"
+
+static sk_vec3 v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
+
+/* The context: OSMesa forced (what CI has), GL >= 3.3 core, the testbed's
+   entry points load, an RGBA8 FBO clears and reads back. */
+static void test_context(void) {
+    char err[512] = "";
+    tb_gl_context *ctx = tb_gl_context_create(TB_GL_OSMESA, err, sizeof err);
+    tb_gl_funcs gl;
+    tb_gl_fbo fbo;
+    unsigned char rgba[4 * 4 * 4];
+    int major = 0, minor = 0, core = 0;
+    SK_CHECK_MSG(ctx != NULL, "OSMesa context: %s", err);
+    if (!ctx) return;
+    tb_gl_context_gl_version(ctx, &major, &minor, &core);
+    printf("context: %s | %s | %s\n", tb_gl_context_backend_name(ctx), tb_gl_context_renderer(ctx),
+           tb_gl_context_version(ctx));
+    SK_CHECK_MSG(major > 3 || (major == 3 && minor >= 3), "GL %d.%d", major, minor);
+    SK_CHECK(core);
+    SK_CHECK(tb_gl_funcs_load(&gl, tb_gl_context_getproc(ctx)) == 0);
+    SK_CHECK(tb_gl_context_getproc(ctx)("glGenQueries") != NULL);   /* timer queries, GL 3.3 */
+    if (tb_gl_fbo_create(&gl, &fbo, 4, 4, TB_GL_COLOR_RGBA8) == 0) {
+        tb_gl_fbo_bind(&gl, &fbo);
+        gl.ClearColor(1.0f, 0.5f, 0.0f, 1.0f);
+        gl.Clear(0x00004000u);
+        SK_CHECK(tb_gl_read_rgba8(&gl, fbo.fbo, 4, 4, rgba) == 0);
+        SK_CHECK(rgba[20] == 255 && abs(rgba[21] - 128) <= 1 && rgba[22] == 0 && rgba[23] == 255);
+        tb_gl_fbo_bind(&gl, NULL);
+        tb_gl_fbo_destroy(&gl, &fbo);
+    } else {
+        SK_CHECK_MSG(0, "FBO creation failed");
+    }
+    SK_CHECK(gl.GetError() == 0);
+    tb_gl_context_destroy(ctx);
+}
+
+/* Embree on the "contact" scene (box [-1,0,-1]..[1,1,1] on the ground), sun
+   straight down: points under the box's footprint are shadowed, points
+   outside it lit, the box top is lit. */
+static void test_reference_points(void) {
+    tb_scene s;
+    tb_reference *ref;
+    tb_light sun;
+    const double pts[5 * 3] = {0, 0, 0,  0.9, 0, -0.9,  1.1, 0, 0,  5, 0, 5,  0, 1, 0};
+    const double nrm[5 * 3] = {0, 1, 0,  0, 1, 0,  0, 1, 0,  0, 1, 0,  0, 1, 0};
+    const float want[5] = {0, 0, 1, 1, 1};
+    float vis[5];
+    int i;
+    tb_scene_init(&s);
+    SK_CHECK(tb_scene_build_contact(&s) == 0);
+    ref = tb_reference_create(&s);
+    SK_CHECK(ref != NULL);
+    if (!ref) { tb_scene_free(&s); return; }
+    memset(&sun, 0, sizeof sun);
+    sun.type = TB_LIGHT_DIRECTIONAL;
+    sun.direction = v3(0, -1, 0);
+    SK_CHECK(tb_reference_trace_points(ref, pts, nrm, 5, &sun, NULL, vis) == 0);
+    for (i = 0; i < 5; i++) SK_CHECK_MSG(vis[i] == want[i], "point %d: %g, expected %g", i, vis[i], want[i]);
+    tb_reference_destroy(ref);
+    tb_scene_free(&s);
+}
+
+/* G-buffer + reference together at 160 x 90 on the contact scene, seen
+   from above at an angle, the sun 45 degrees from +x: the box's shadow on
+   the ground is its footprint sheared 1 m toward +x. Ground pixels well
+   inside that region are shadowed, ground on the far side of the box and
+   the box top are lit, background pixels are "not covered". */
+static void test_gbuffer_reference(void) {
+    const int W = 160, H = 90;
+    char err[512] = "";
+    tb_gl_context *ctx = tb_gl_context_create(TB_GL_OSMESA, err, sizeof err);
+    tb_gl_funcs gl;
+    tb_gl_fbo fbo;
+    tb_gl_mesh mesh;
+    tb_gl_gbuffer gb;
+    tb_scene s;
+    tb_reference *ref = NULL;
+    tb_view view;
+    tb_light sun;
+    sk_mat4 v, p, vp;
+    float *depth = (float *)malloc(sizeof(float) * W * H);
+    float *rgba = (float *)malloc(sizeof(float) * 4 * W * H);
+    float *nrm = (float *)malloc(sizeof(float) * 3 * W * H);
+    float *vis = (float *)malloc(sizeof(float) * W * H);
+    long i, covered = 0, shadow_ground = 0, lit_top = 0, top = 0, bad = 0, far_ground = 0;
+    tb_scene_init(&s);
+    SK_CHECK_MSG(ctx != NULL, "OSMesa context: %s", err);
+    if (!ctx || !depth || !rgba || !nrm || !vis) goto done;
+    SK_CHECK(tb_gl_funcs_load(&gl, tb_gl_context_getproc(ctx)) == 0);
+    SK_CHECK(tb_scene_build_contact(&s) == 0);
+    SK_CHECK(tb_gl_fbo_create(&gl, &fbo, W, H, TB_GL_COLOR_RGBA16F) == 0);
+    SK_CHECK(tb_gl_mesh_create(&gl, &mesh, &s) == 0);
+    SK_CHECK_MSG(tb_gl_gbuffer_create(&gl, &gb, err, sizeof err) == 0, "gbuffer: %s", err);
+    v = sk_mat4_look_at(v3(0, 6, 6), v3(0, 0, 0), v3(0, 1, 0));
+    p = sk_mat4_perspective(0.9f, (float)W / (float)H, 0.5f, 50.0f);
+    vp = sk_mat4_mul(p, v);
+    memset(&view, 0, sizeof view);
+    SK_CHECK(sk_mat4_inverse(vp, &view.inv_view_proj));
+    view.width = W;
+    view.height = H;
+    SK_CHECK(tb_gl_gbuffer_render(&gl, &gb, &mesh, &fbo, &vp) == 0);
+    SK_CHECK(tb_gl_read_depth(&gl, fbo.fbo, W, H, depth) == 0);
+    SK_CHECK(tb_gl_read_rgba_float(&gl, fbo.fbo, W, H, rgba) == 0);
+    for (i = 0; i < (long)W * H; i++) {
+        nrm[3 * i] = rgba[4 * i]; nrm[3 * i + 1] = rgba[4 * i + 1]; nrm[3 * i + 2] = rgba[4 * i + 2];
+        if (depth[i] < 1.0f) covered++;
+    }
+    SK_CHECK_MSG(covered > (long)W * H / 2, "covered %ld", covered);
+    ref = tb_reference_create(&s);
+    SK_CHECK(ref != NULL);
+    if (!ref) goto done;
+    memset(&sun, 0, sizeof sun);
+    sun.type = TB_LIGHT_DIRECTIONAL;
+    /* 45 degrees from +x: the shadow is the footprint sheared 1 m toward +x */
+    sun.direction = v3(1, -1, 0);
+    SK_CHECK(tb_reference_trace(ref, &view, depth, nrm, &sun, NULL, vis) == 0);
+    for (i = 0; i < (long)W * H; i++) {
+        double w[3];
+        if (!(depth[i] < 1.0f)) { if (!(vis[i] < 0.0f)) bad++; continue; }
+        if (tb_unproject_pixel(&view.inv_view_proj, W, H, (int)(i % W), (int)(i / W), depth[i], w)) continue;
+        if (nrm[3 * i + 1] < 0.9f) continue;                     /* box sides */
+        if (w[1] > 0.95) { top++; if (vis[i] == 1.0f) lit_top++; }
+        if (w[1] < 0.01 && w[0] > 1.05 && w[0] < 1.95 && fabs(w[2]) < 0.95) {
+            shadow_ground++;
+            if (vis[i] != 0.0f) bad++;
+        }
+        if (w[1] < 0.01 && w[0] < -1.05) { far_ground++; if (vis[i] != 1.0f) bad++; }
+    }
+    printf("gbuffer+reference: %ld covered, box top %ld (lit %ld), ground in the shadow %ld, "
+           "ground beyond the box %ld, wrong %ld\n", covered, top, lit_top, shadow_ground, far_ground, bad);
+    SK_CHECK(top > 100 && lit_top == top);
+    SK_CHECK(shadow_ground > 100 && far_ground > 100);
+    SK_CHECK_MSG(bad == 0, "%ld pixels disagree with the closed-form answer", bad);
+    SK_CHECK(gl.GetError() == 0);
+    {
+        tb_hard_error e = tb_metric_hard(vis, vis, (size_t)W * H);
+        SK_CHECK(e.wrong == 0 && e.covered == (uint64_t)covered);
+    }
+done:
+    tb_reference_destroy(ref);
+    if (ctx) {
+        tb_gl_gbuffer_destroy(&gl, &gb);
+        tb_gl_mesh_destroy(&gl, &mesh);
+        tb_gl_fbo_destroy(&gl, &fbo);
+        tb_gl_context_destroy(ctx);
+    }
+    tb_scene_free(&s);
+    free(depth); free(rgba); free(nrm); free(vis);
+}
+
+SK_TEST_MAIN(test_context, test_reference_points, test_gbuffer_reference)
