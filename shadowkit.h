@@ -230,6 +230,17 @@ typedef struct sk_psm_desc {
                                      covered, and any part whose shadow can
                                      reach the view lies inside the map */
     int caster_count;
+    const sk_vec3 *body;          /* optional focus body: world points of the
+                                     receivers the map must cover (e.g. the
+                                     view frustum clipped to the scene, from
+                                     sk_clip_frustum_aabb); the light frustum
+                                     is fitted to them in post-perspective
+                                     space instead of to the whole unit cube */
+    int body_count;               /* 0..SK_CLIP_MAX_POINTS */
+    float extra_slide;            /* >= 0: the virtual camera moves this much
+                                     further back, its near plane with it
+                                     (near' = zn + extra_slide): a more uniform
+                                     map, the PSM analogue of LiSPSM's n [0] */
 } sk_psm_desc;
 typedef struct sk_psm_result {
     sk_mat4 light_view_proj;      /* world -> light clip; the whole chain */
@@ -584,6 +595,7 @@ static sk_vec3 sk__add(sk_vec3 a, sk_vec3 b) { return sk__v3(a.x + b.x, a.y + b.
 static sk_vec3 sk__sub(sk_vec3 a, sk_vec3 b) { return sk__v3(a.x - b.x, a.y - b.y, a.z - b.z); }
 static sk_vec3 sk__scale(sk_vec3 a, float s) { return sk__v3(a.x * s, a.y * s, a.z * s); }
 static float sk__dot(sk_vec3 a, sk_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static float sk__clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
 static sk_vec3 sk__cross(sk_vec3 a, sk_vec3 b)
 {
     return sk__v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
@@ -1249,17 +1261,20 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
    cases: lights behind the viewer invert, casters behind the camera). */
 SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
 {
-    sk_vec3 l, le, cube[8];
+    sk_vec3 l, le, fit[SK_CLIP_MAX_POINTS];
     sk_mat4 vview, vproj, ppv, lvp;
     sk_vec4 lh;
     float slide = 0.0f, zf;
-    int i, inverted = 0, ortho = 0;
+    int i, nfit, inverted = 0, ortho = 0;
     if (!d || !out || !sk__mat_finite(&d->cam_view) || !sk__v3_finite(d->light_dir) ||
         sk__len(d->light_dir) == 0.0f || !sk__finite(d->fovy) || !sk__finite(d->aspect) ||
         !sk__finite(d->zn) || !sk__finite(d->zf) || !(d->fovy > 0.0f) || !(d->fovy < SK__PI) ||
         !(d->aspect > 0.0f) || !(d->zn > 0.0f) || !(d->zf > d->zn) || d->caster_count < 0 ||
-        (d->caster_count > 0 && !d->casters))
+        (d->caster_count > 0 && !d->casters) || d->body_count < 0 || d->body_count > SK_CLIP_MAX_POINTS ||
+        (d->body_count > 0 && !d->body) || !sk__finite(d->extra_slide) || d->extra_slide < 0.0f)
         return SK_ERR_INVALID_ARG;
+    for (i = 0; i < d->body_count; i++)
+        if (!sk__v3_finite(d->body[i])) return SK_ERR_INVALID_ARG;
     for (i = 0; i < d->caster_count; i++)
         if (!sk__aabb_valid(&d->casters[i])) return SK_ERR_INVALID_ARG;
     /* casters behind the camera: slide the virtual camera back (Kozlov 2004) */
@@ -1272,10 +1287,11 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         }
     }
     if (slide > 0.0f) slide += 0.01f * d->zn;
+    slide += d->extra_slide;
     vview = d->cam_view;
     vview.m[14] -= slide;
     zf = d->zf + slide;
-    vproj = sk_mat4_perspective(d->fovy, d->aspect, d->zn, zf);
+    vproj = sk_mat4_perspective(d->fovy, d->aspect, d->zn + d->extra_slide, zf);
     ppv = sk_mat4_mul(vproj, vview);
     if (!sk__mat_finite(&ppv)) return SK_ERR_DEGENERATE;
 
@@ -1289,15 +1305,29 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         h.x = le.x; h.y = le.y; h.z = le.z; h.w = 0.0f;
         lh = sk_mat4_transform_vec4(vproj, h);
     }
-    for (i = 0; i < 8; i++)
-        cube[i] = sk__v3((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? 1.0f : -1.0f);
+    /* what the map covers in post-perspective space: the focus body, clamped
+       to the unit cube (the view frustum), or the whole cube */
+    nfit = 0;
+    for (i = 0; i < d->body_count; i++) {
+        sk_vec4 h, q;
+        h.x = d->body[i].x; h.y = d->body[i].y; h.z = d->body[i].z; h.w = 1.0f;
+        q = sk_mat4_transform_vec4(ppv, h);
+        if (!(q.w > 0.0f)) continue;
+        fit[nfit++] = sk__v3(sk__clampf(q.x / q.w, -1.0f, 1.0f), sk__clampf(q.y / q.w, -1.0f, 1.0f),
+                             sk__clampf(q.z / q.w, -1.0f, 1.0f));
+    }
+    if (nfit < 4) {
+        for (i = 0; i < 8; i++)
+            fit[i] = sk__v3((i & 1) ? 1.0f : -1.0f, (i & 2) ? 1.0f : -1.0f, (i & 4) ? 1.0f : -1.0f);
+        nfit = 8;
+    }
     if (SK_FABSF(le.z) < 1e-4f) {
         /* light perpendicular to the view: parallel rays in PP space too */
         sk_vec3 dir = sk__normalize(sk__v3(-lh.x, -lh.y, -lh.z));
         sk_mat4 lv = sk_mat4_look_at(sk__v3(0, 0, 0), dir, sk__least_aligned_axis(dir)), lp;
         double zlo = 1e300, zhi = -1e300;
         ortho = 1;
-        if (sk_fit_ortho(cube, 8, lv, NULL, &lp) != SK_OK) return SK_ERR_DEGENERATE;
+        if (sk_fit_ortho(fit, nfit, lv, NULL, &lp) != SK_OK) return SK_ERR_DEGENERATE;
         for (i = 0; i < 8 * d->caster_count; i++) {
             sk_vec3 q = sk__xform_affine(&lv, sk_mat4_transform_point(ppv, sk__aabb_corner(&d->casters[i / 8], i & 7)));
             if (q.z < zlo) zlo = q.z;
@@ -1319,8 +1349,8 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         sk_vec3 lp = sk__v3(lh.x / lh.w, lh.y / lh.w, lh.z / lh.w), dir;
         inverted = lh.w < 0.0f;
         dir = sk__normalize(sk__scale(lp, -1.0f));
-        if (!sk__fit_perspective(lp, dir, cube, 8, d->casters, d->caster_count, ppv, &lvp) &&
-            !sk__fit_perspective(lp, sk__v3(0, 0, -1), cube, 8, d->casters, d->caster_count, ppv, &lvp))
+        if (!sk__fit_perspective(lp, dir, fit, nfit, d->casters, d->caster_count, ppv, &lvp) &&
+            !sk__fit_perspective(lp, sk__v3(0, 0, -1), fit, nfit, d->casters, d->caster_count, ppv, &lvp))
             return SK_ERR_DEGENERATE;
         out->light_pp = lp;
     }

@@ -114,7 +114,12 @@ typedef struct skgl_desc {
     int timing;                   /* GL timer queries into skgl_stats */
 } skgl_desc;
 
-typedef enum skgl_technique { SKGL_STANDARD = 0, SKGL_PSSM = 1 } skgl_technique;
+typedef enum skgl_technique {
+    SKGL_STANDARD = 0,            /* one focused (or stable) orthographic map */
+    SKGL_PSSM = 1,                /* parallel-split cascades */
+    SKGL_PSM = 2,                 /* perspective shadow map (one map) */
+    SKGL_LISPSM = 3               /* light-space perspective map; cascades > 1: one per PSSM slice */
+} skgl_technique;
 
 /* Zero-initialised fields take the default in brackets. */
 typedef struct skgl_shadow_desc {
@@ -130,6 +135,10 @@ typedef struct skgl_shadow_desc {
     float normal_bias;            /* receiver normal offset in texels [1.5]; < 0: none */
     int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
     float max_distance;           /* shadows end at this view depth [camera far] */
+    float psm_slide;              /* PSM: the virtual camera slides back by this
+                                     times sqrt(near*far) of the receivers, its
+                                     near plane with it: more uniform texels
+                                     [0.5]; < 0: none (the plain PSM) */
 } skgl_shadow_desc;
 #define SKGL_LAMBDA_UNIFORM (-1.0f)
 
@@ -151,6 +160,11 @@ typedef struct skgl_stats {
     int maps;                     /* layers rendered */
     int resolution;               /* per layer */
     float splits[SKGL_MAX_CASCADES + 1];  /* view depths of the layers */
+    /* warping (PSM, LiSPSM), per layer */
+    float warp_n[SKGL_MAX_CASCADES];      /* LiSPSM: n of the warp (n_opt); +INF: uniform map */
+    int warped[SKGL_MAX_CASCADES];        /* 1: the layer's map is perspective-warped */
+    int depth_reversed;                   /* PSM: light behind the viewer (depth order flipped back) */
+    float psm_slide;                      /* PSM: how far the virtual camera slid back */
 } skgl_stats;
 
 typedef struct skgl_context skgl_context;
@@ -261,15 +275,18 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   view depth against the split distances (PSSM practical split scheme,\n"
     "   seed 002), optionally blending into the next cascade inside a band.\n"
     "\n"
+    "   Maps may be orthographic (standard, PSSM) or perspective-warped (PSM,\n"
+    "   LiSPSM): the light-clip w is divided out per pixel.\n"
+    "\n"
     "   Bias, in texels so it follows resolution: the receiver is pushed along its\n"
-    "   normal by sk_normal_bias texels of its layer (normal offset), and the\n"
+    "   normal by sk_normal_bias texels of its layer at that point (normal\n"
+    "   offset; a warped map's texels change size across the view), and the\n"
     "   casters were rendered with slope-scaled polygon offset. Filtering: one\n"
     "   hardware 2x2 comparison (bilinear PCF), or a (2r)x(2r) grid of them.\n"
     "   A surface facing away from the light (given a normal) is in its own\n"
     "   shadow: 0, whatever the map says near its silhouette. */\n"
     "uniform sampler2DArrayShadow sk_shadow_map;\n"
     "uniform mat4 sk_light_vp[8];\n"
-    "uniform float sk_texel_world[8];   /* world size of one texel of each layer */\n"
     "uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */\n"
     "uniform int sk_layers;\n"
     "uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */\n"
@@ -277,9 +294,23 @@ static const char skgl__src_shadow_sample_glsl[] =
     "uniform int sk_pcf_radius;\n"
     "uniform vec3 sk_light_dir;         /* travel direction, unit */\n"
     "\n"
+    "/* World size of one texel of the layer at p: 2/res over the gradient of\n"
+    "   light NDC x (and y), d(c.x/c.w)/dp = (row0 - ndc.x row3) / c.w; the larger\n"
+    "   of the two sizes. For an orthographic map row3 = (0,0,0,1): constant. */\n"
+    "float sk_texel_size(vec3 p, int layer)\n"
+    "{\n"
+    "    mat4 m = sk_light_vp[layer];\n"
+    "    vec4 c = m * vec4(p, 1.0);\n"
+    "    if (c.w <= 0.0) return 0.0;\n"
+    "    vec3 r0 = vec3(m[0][0], m[1][0], m[2][0]), r1 = vec3(m[0][1], m[1][1], m[2][1]);\n"
+    "    vec3 r3 = vec3(m[0][3], m[1][3], m[2][3]);\n"
+    "    float g = min(length(r0 - (c.x / c.w) * r3), length(r1 - (c.y / c.w) * r3)) / c.w;\n"
+    "    return g > 0.0 ? 2.0 / (float(textureSize(sk_shadow_map, 0).x) * g) : 0.0;\n"
+    "}\n"
+    "\n"
     "float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)\n"
     "{\n"
-    "    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_world[layer]);\n"
+    "    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_size(world_pos, layer));\n"
     "    vec4 c = sk_light_vp[layer] * vec4(p, 1.0);\n"
     "    if (c.w <= 0.0) return 1.0;\n"
     "    vec3 ndc = c.xyz / c.w;\n"
@@ -499,7 +530,6 @@ struct skgl_shadow {
     skgl__uint tex;                /* GL_TEXTURE_2D_ARRAY of depth, one layer per map */
     int layers;
     sk_mat4 vp[SKGL_MAX_CASCADES];
-    float texel_world[SKGL_MAX_CASCADES];
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl_stats stats;
 };
@@ -736,13 +766,15 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
 {
     skgl_shadow_desc r = *d;
     if (r.resolution <= 0) r.resolution = 2048;
-    if (r.cascades <= 0) r.cascades = 4;
-    if (r.technique == SKGL_STANDARD) r.cascades = 1;
+    if (r.cascades <= 0) r.cascades = r.technique == SKGL_LISPSM ? 1 : 4;
+    if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM) r.cascades = 1;
     if (r.lambda == 0.0f) r.lambda = 0.75f;
     else if (r.lambda < 0.0f) r.lambda = 0.0f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
     if (r.normal_bias == 0.0f) r.normal_bias = 1.5f;
+    if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
+    else if (r.psm_slide < 0.0f) r.psm_slide = 0.0f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
     else if (r.pcf_radius < 0) r.pcf_radius = 0;
     return r;
@@ -756,9 +788,9 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     skgl_shadow_desc d;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
     d = skgl__defaults(desc);
-    if ((d.technique != SKGL_STANDARD && d.technique != SKGL_PSSM) || d.resolution > 16384 ||
+    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_LISPSM || d.resolution > 16384 ||
         d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
-        d.pcf_radius > 8 || !(d.max_distance >= 0.0f))
+        d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f))
         return SK_ERR_INVALID_ARG;
     s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
@@ -832,6 +864,99 @@ static int skgl__near_far(const sk_mat4 *p, float *zn, float *zf)
     return sk__finite(*zn) && sk__finite(*zf) && *zf > *zn && (p->m[11] == 0.0f || *zn > 0.0f);
 }
 
+/* The part of a view slice that can hold receivers: the slice clipped to
+   the scene bounds (its corners when the clip is empty), and its range of
+   eye depths. Returns the point count. */
+static int skgl__receiver_body(const sk_frustum *slice, const skgl_scene *scene, const sk_mat4 *cam_view,
+                               sk_vec3 *pts, float *dmin, float *dmax)
+{
+    int i, n = sk_clip_frustum_aabb(slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+    if (n <= 0) {
+        for (i = 0; i < 8; i++) pts[i] = slice->corners[i];
+        n = 8;
+    }
+    *dmin = SK__INF;
+    *dmax = -SK__INF;
+    for (i = 0; i < n; i++) {
+        float z = -sk__xform_affine(cam_view, pts[i]).z;
+        if (z < *dmin) *dmin = z;
+        if (z > *dmax) *dmax = z;
+    }
+    return n;
+}
+
+/* Light-space perspective shadow map of one slice (Wimmer et al. 2004, the
+   LiSPSM of seed 002): the slice's receiver body, n_opt from the nearest
+   receiver depth of the slice. */
+static sk_result skgl__fit_lispsm(skgl_shadow *s, int layer, const skgl_camera *cam, const skgl_scene *scene,
+                                  sk_vec3 light_dir, const sk_frustum *slice, float z0)
+{
+    sk_vec3 body[SK_CLIP_MAX_POINTS];
+    sk_mat4 inv;
+    sk_lispsm_desc ld;
+    sk_lispsm_result lr;
+    float dmin, dmax;
+    sk_result r;
+    memset(&ld, 0, sizeof ld);
+    ld.body_count = skgl__receiver_body(slice, scene, &cam->view, body, &dmin, &dmax);
+    if (!sk_mat4_inverse(cam->view, &inv)) return SK_ERR_INVALID_ARG;
+    ld.eye = sk__v3(inv.m[12], inv.m[13], inv.m[14]);
+    ld.view_dir = sk__v3(-cam->view.m[2], -cam->view.m[6], -cam->view.m[10]);
+    ld.zn = dmin > z0 ? dmin : z0;
+    ld.light_dir = light_dir;
+    ld.body = body;
+    ld.casters = &scene->bounds;
+    r = sk_lispsm_matrices(&ld, &lr);
+    if (r != SK_OK) return r;
+    s->vp[layer] = lr.light_view_proj;
+    s->stats.warp_n[layer] = lr.n;
+    s->stats.warped[layer] = lr.warped;
+    return SK_OK;
+}
+
+/* Perspective shadow map (Stamminger & Drettakis 2002, seed 002) over the
+   view range that holds receivers: the camera's near plane moved up to the
+   nearest receiver (PSM's resolution depends on the near/far ratio). A light
+   behind the viewer reverses the depth order (sk_psm_result.compare): the
+   map's z is negated so the depth test and comparison stay LESS/LEQUAL. */
+static sk_result skgl__fit_psm(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene,
+                               sk_vec3 light_dir, const sk_frustum *view, float zn, float cam_zf, float zf)
+{
+    sk_vec3 body[SK_CLIP_MAX_POINTS];
+    sk_frustum slice;
+    sk_psm_desc pd;
+    sk_psm_result pr;
+    float dmin, dmax;
+    sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
+    if (r != SK_OK) return r;
+    memset(&pd, 0, sizeof pd);
+    pd.body_count = skgl__receiver_body(&slice, scene, &cam->view, body, &dmin, &dmax);
+    pd.body = body;
+    pd.cam_view = cam->view;
+    pd.fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5]));
+    pd.aspect = cam->proj.m[5] / cam->proj.m[0];
+    pd.zn = dmin > zn ? dmin * 0.999f : zn;
+    pd.zf = dmax < zf ? dmax * 1.001f : zf;
+    if (!(pd.zf > pd.zn)) pd.zf = pd.zn * 1.001f;
+    pd.light_dir = light_dir;
+    pd.casters = &scene->bounds;
+    pd.caster_count = 1;
+    if (s->desc.psm_slide > 0.0f) pd.extra_slide = s->desc.psm_slide * (float)SK_SQRT((double)pd.zn * pd.zf);
+    r = sk_psm_matrices(&pd, &pr);
+    if (r != SK_OK) return r;
+    if (pr.compare == SK_DEPTH_GREATER) {
+        int c;
+        for (c = 0; c < 4; c++) pr.light_view_proj.m[c * 4 + 2] = -pr.light_view_proj.m[c * 4 + 2];
+    }
+    s->vp[0] = pr.light_view_proj;
+    s->stats.splits[0] = pd.zn;
+    s->stats.splits[1] = pd.zf;
+    s->stats.warped[0] = !pr.orthographic;
+    s->stats.depth_reversed = pr.compare == SK_DEPTH_GREATER;
+    s->stats.psm_slide = pr.slide;
+    return SK_OK;
+}
+
 /* Crops of every layer: the PSSM practical split scheme (seed 002) over
    the part of the view that can hold receivers; per layer a focused crop of
    the slice clipped to the scene, or a texel-snapped stable crop. */
@@ -857,6 +982,12 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     if (d->max_distance > zn && d->max_distance < zf) zf = d->max_distance;
     if (s->layers == 1) { s->stats.splits[0] = zn; s->stats.splits[1] = zf; }
     else if (sk_pssm_splits(zn, zf, s->layers, d->lambda, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
+    s->stats.depth_reversed = 0;
+    s->stats.psm_slide = 0.0f;
+    if (d->technique == SKGL_PSM) {
+        s->stats.warp_n[0] = SK__INF;
+        return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
+    }
     for (i = 0; i < s->layers; i++) {
         sk_frustum slice;
         sk_mat4 proj;
@@ -867,6 +998,13 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
                          : s->stats.splits[0];
         sk_result r = sk_frustum_slice(&view, zn, cam_zf, z0, s->stats.splits[i + 1], &slice);
         if (r != SK_OK) return r;
+        s->stats.warp_n[i] = SK__INF;
+        s->stats.warped[i] = 0;
+        if (d->technique == SKGL_LISPSM) {
+            r = skgl__fit_lispsm(s, i, cam, scene, light_dir, &slice, z0);
+            if (r != SK_OK) return r;
+            continue;
+        }
         if (d->stable) {
             /* radius from the camera's parameters only: bitwise the same
                wherever the camera goes (fovy and aspect of a GL perspective) */
@@ -882,10 +1020,6 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
         }
         if (r != SK_OK) return r;
         s->vp[i] = sk_mat4_mul(proj, lview);
-        {
-            float tx = 2.0f / (SK_FABSF(proj.m[0]) * d->resolution), ty = 2.0f / (SK_FABSF(proj.m[5]) * d->resolution);
-            s->texel_world[i] = tx > ty ? tx : ty;
-        }
     }
     return SK_OK;
 }
@@ -972,7 +1106,6 @@ static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint p
     skgl__api *gl = &ctx->gl;
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_shadow_map"), unit);
     gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->layers, 0, s->vp[0].m);
-    gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_texel_world"), s->layers, s->texel_world);
     gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->layers + 1, s->stats.splits);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_layers"), s->layers);
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_blend_band"), s->desc.blend_band);

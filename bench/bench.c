@@ -15,7 +15,8 @@
      bench.csv                  one row per run, exactly the columns
        method,params,scene,view,width,height,error_kind,error,texels,passes,
        shadow_ms,analysis_ms,total_ms,device
-       method     standard | standard-stable | pssm   (DESIGN.md names)
+       method     standard | standard-stable | pssm | psm | lispsm |
+                  lispsm-pssm (LiSPSM per cascade)   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
        error_kind hard_pct
        texels     shadow texels rendered (skgl_stats.texels)
@@ -231,6 +232,28 @@ static void add_pssm(int cascades, float lambda, int res, float blend, int pcf) 
     c->desc.pcf_radius = pcf > 0 ? pcf : -1;
 }
 
+/* PSM: slide = the virtual-camera slide in sqrt(near*far) units (< 0: plain PSM) */
+static void add_psm(int res, float slide) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "psm");
+    snprintf(c->params, sizeof c->params, "resolution=%d;slide=%g;pcf=1", res, slide < 0.0f ? 0.0 : (double)slide);
+    c->desc.technique = SKGL_PSM;
+    c->desc.resolution = res;
+    c->desc.psm_slide = slide;
+}
+
+/* LiSPSM, alone (cascades = 1) or one warp per PSSM cascade */
+static void add_lispsm(int cascades, int res) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "%s", cascades > 1 ? "lispsm-pssm" : "lispsm");
+    snprintf(c->params, sizeof c->params, "cascades=%d;lambda=0.75;resolution=%d;pcf=1", cascades, res);
+    c->desc.technique = SKGL_LISPSM;
+    c->desc.cascades = cascades;
+    c->desc.resolution = res;
+}
+
 static void build_sweep(int quick) {
     static const int std_res[] = {512, 1024, 2048, 4096};
     static const float lambdas[] = {0.5f, 0.75f, 0.9f};
@@ -254,6 +277,13 @@ static void build_sweep(int quick) {
         add_pssm(4, 0.5f, 1024, 0.0f, 1);
         add_pssm(4, 0.9f, 1024, 0.0f, 1);
         add_pssm(4, 0.75f, 1024, 0.1f, 1);
+        for (r = 0; r < 3; r++) {
+            add_psm(std_res[r], 0.5f);
+            add_lispsm(1, std_res[r]);
+        }
+        add_psm(1024, -1.0f);
+        add_lispsm(4, 512);
+        add_lispsm(4, 1024);
         return;
     }
     for (stable = 0; stable <= 1; stable++)
@@ -267,6 +297,13 @@ static void build_sweep(int quick) {
                     if (c == 1 && (l != 1 || b != 0)) continue;
                     add_pssm(c, lambdas[l], pssm_res[r], blends[b], 1);
                 }
+    for (r = 0; r < 4; r++) {
+        static const float slides[] = {-1.0f, 0.25f, 0.5f, 1.0f};
+        for (p = 0; p < 4; p++) add_psm(std_res[r], slides[p]);
+        add_lispsm(1, std_res[r]);
+    }
+    for (c = 2; c <= 8; c *= 2)
+        for (r = 0; r < 3; r++) add_lispsm(c, pssm_res[r]);
 }
 
 /* ---------------------------------------------------------------- scenes */
@@ -517,7 +554,14 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
     if ((s = strstr(p->params, "cascades="))) casc = atoi(s + 9);
     if ((s = strstr(p->params, "lambda="))) lambda = atof(s + 7);
     if ((s = strstr(p->params, "blend="))) blend = atof(s + 6);
-    if (strncmp(p->method, "pssm", 4) == 0)
+    if (strcmp(p->method, "psm") == 0)
+        snprintf(buf, n, "psm %d slide %g", res, (s = strstr(p->params, "slide=")) ? atof(s + 6) : 0.0);
+    else if (strncmp(p->method, "lispsm", 6) == 0)
+    {
+        if (casc > 1) snprintf(buf, n, "lispsm %d\xc3\x97%d", casc, res);
+        else snprintf(buf, n, "lispsm %d", res);
+    }
+    else if (strncmp(p->method, "pssm", 4) == 0)
         snprintf(buf, n, "%d\xc3\x97%d \xce\xbb%g%s", casc, res, lambda, blend > 0 ? " blend" : "");
     else
         snprintf(buf, n, "%s%d pcf%d", strstr(p->method, "stable") ? "stable " : "", res, pcf);

@@ -36,13 +36,14 @@ if (logy) { set yrange [emin / 1.4 : emax * 1.3] } else { set yrange [0 : emax *
 # point would not be on the front). bench.c leaves a label empty where it
 # would crowd the previous one.
 # one colour and point type per method, in the order given
-array colours[6] = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b']
-array shapes[6] = [7, 5, 9, 11, 13, 15]
+array colours[12] = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', \
+                     '#e377c2', '#7f7f7f', '#bcbd22', '#17becf', '#393b79', '#ad494a']
+array shapes[12] = [7, 5, 9, 11, 13, 15, 7, 5, 9, 11, 13, 15]
 nm = words(methods)
 
 frontfile = database . '.front.dat'
 plot for [i = 1:nm] sprintf('%s.%s.dat', database, word(methods, i)) using 1:2 \
-         with points pt shapes[(i - 1) % 6 + 1] ps 1.4 lc rgb colours[(i - 1) % 6 + 1] title word(methods, i), \
+         with points pt shapes[(i - 1) % 12 + 1] ps 1.4 lc rgb colours[(i - 1) % 12 + 1] title word(methods, i), \
      frontfile using 1:2 with steps lw 2 lc rgb '#333333' dt 2 title 'Pareto front (no other run is both faster and more accurate)', \
      frontfile using 1:2 with points pt 6 ps 2.6 lw 1.5 lc rgb '#333333' notitle, \
      frontfile using 1:2:3 with labels right offset -1.3,-0.9 font 'DejaVu Sans,9' tc rgb '#333333' notitle

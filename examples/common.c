@@ -55,17 +55,20 @@ int ex_parse_args(int argc, char **argv, const char *default_out, int allow_casc
             o->frames = atoi(argv[++i]);
         } else if (strcmp(a, "--out") == 0 && i + 1 < argc) {
             o->out_path = argv[++i];
+        } else if (strcmp(a, "--technique") == 0 && i + 1 < argc) {
+            o->technique = argv[++i];
         } else if (allow_cascades && strcmp(a, "--show-cascades") == 0) {
             o->show_cascades = 1;
         } else {
             int help = strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0;
             if (!help) fprintf(stderr, "unknown or incomplete option: %s\n", a);
             fprintf(help ? stdout : stderr,
-                    "usage: %s [--headless] [--scene FILE] [--frames N] [--out FILE]%s\n"
+                    "usage: %s [--headless] [--scene FILE] [--frames N] [--out FILE] [--technique NAME]%s\n"
                     "  --headless        render off-screen and write a PNG (default %s)\n"
                     "  --scene FILE      load a glTF/OBJ scene (on a ground plane) instead of the procedural one\n"
                     "  --frames N        quit after N frames\n"
-                    "  --out FILE        PNG path for --headless\n%s",
+                    "  --out FILE        PNG path for --headless\n"
+                    "  --technique NAME  the shadow technique, where the example offers a choice\n%s",
                     argv[0], allow_cascades ? " [--show-cascades]" : "", default_out,
                     allow_cascades ? "  --show-cascades   colour each pixel by its cascade\n" : "");
             return help ? 1 : 2;

@@ -3,7 +3,7 @@
 
    What lives here (none of it is shadowkit):
    - command line: --headless, --scene FILE, --frames N, --out FILE,
-     --show-cascades (02 only), --help;
+     --technique NAME (03), --show-cascades (02 only), --help;
    - a window (GLFW, GL 3.3 core) or, with --headless, an off-screen GL 3.3
      core context from the testbed (OSMesa or EGL) rendering into a 1280x720
      framebuffer object that is saved as a PNG at the end;
@@ -34,6 +34,7 @@ typedef struct ex_options {
     int frames;                /* --frames N: quit after N frames (0: until closed; headless: 1) */
     const char *out_path;      /* --out FILE: PNG written in headless mode */
     int show_cascades;         /* --show-cascades: colour pixels by cascade */
+    const char *technique;     /* --technique NAME (NULL: the example's default) */
 } ex_options;
 
 /* GL entry points the examples call: the testbed's table, plus the few

@@ -6,15 +6,18 @@
    view depth against the split distances (PSSM practical split scheme,
    seed 002), optionally blending into the next cascade inside a band.
 
+   Maps may be orthographic (standard, PSSM) or perspective-warped (PSM,
+   LiSPSM): the light-clip w is divided out per pixel.
+
    Bias, in texels so it follows resolution: the receiver is pushed along its
-   normal by sk_normal_bias texels of its layer (normal offset), and the
+   normal by sk_normal_bias texels of its layer at that point (normal
+   offset; a warped map's texels change size across the view), and the
    casters were rendered with slope-scaled polygon offset. Filtering: one
    hardware 2x2 comparison (bilinear PCF), or a (2r)x(2r) grid of them.
    A surface facing away from the light (given a normal) is in its own
    shadow: 0, whatever the map says near its silhouette. */
 uniform sampler2DArrayShadow sk_shadow_map;
 uniform mat4 sk_light_vp[8];
-uniform float sk_texel_world[8];   /* world size of one texel of each layer */
 uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */
 uniform int sk_layers;
 uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */
@@ -22,9 +25,23 @@ uniform float sk_normal_bias;      /* texels */
 uniform int sk_pcf_radius;
 uniform vec3 sk_light_dir;         /* travel direction, unit */
 
+/* World size of one texel of the layer at p: 2/res over the gradient of
+   light NDC x (and y), d(c.x/c.w)/dp = (row0 - ndc.x row3) / c.w; the larger
+   of the two sizes. For an orthographic map row3 = (0,0,0,1): constant. */
+float sk_texel_size(vec3 p, int layer)
+{
+    mat4 m = sk_light_vp[layer];
+    vec4 c = m * vec4(p, 1.0);
+    if (c.w <= 0.0) return 0.0;
+    vec3 r0 = vec3(m[0][0], m[1][0], m[2][0]), r1 = vec3(m[0][1], m[1][1], m[2][1]);
+    vec3 r3 = vec3(m[0][3], m[1][3], m[2][3]);
+    float g = min(length(r0 - (c.x / c.w) * r3), length(r1 - (c.y / c.w) * r3)) / c.w;
+    return g > 0.0 ? 2.0 / (float(textureSize(sk_shadow_map, 0).x) * g) : 0.0;
+}
+
 float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)
 {
-    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_world[layer]);
+    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_size(world_pos, layer));
     vec4 c = sk_light_vp[layer] * vec4(p, 1.0);
     if (c.w <= 0.0) return 1.0;
     vec3 ndc = c.xyz / c.w;

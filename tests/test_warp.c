@@ -437,6 +437,59 @@ static void test_psm_casters_behind(void) {
     }
 }
 
+/* The focus body: the light frustum is fitted to the receivers in
+   post-perspective space (tight: they touch the map's edges) instead of to
+   the whole view frustum. extra_slide: the virtual camera and its near plane
+   move back by exactly that much; the view frustum stays inside the map and
+   depth order along light rays holds. */
+static void test_psm_body_and_slide(void) {
+    cam a = cam_a();
+    sk_aabb recv = box(-3, 0, -20, 3, 1, -4);
+    dv3 bodyd[256], pts[125 + 64];
+    sk_vec3 body[256];
+    static const double lights[3][3] = {{0.3, -0.5, 1}, {0.3, -0.5, -1}, {0, -1, 0}};
+    int nb = clip_body(&a, recv, bodyd, 256), n = frustum_samples(&a, 5, pts), i, k, wi;
+    double worst;
+    SK_CHECK(nb >= 8 && nb <= SK_CLIP_MAX_POINTS);
+    for (i = 0; i < nb; i++) body[i] = tof(bodyd[i]);
+    for (k = 0; k < 3; k++) {
+        dv3 l = dv(lights[k][0], lights[k][1], lights[k][2]);
+        sk_psm_desc d = psm_desc(&a, l);
+        sk_psm_result full, fit, slid;
+        double lo[2][2] = {{1e30, 1e30}, {1e30, 1e30}}, hi[2][2] = {{-1e30, -1e30}, {-1e30, -1e30}};
+        int j, c, q;
+        SK_CHECK(sk_psm_matrices(&d, &full) == SK_OK);
+        d.body = body; d.body_count = nb;
+        SK_CHECK(sk_psm_matrices(&d, &fit) == SK_OK);
+        SK_CHECK_MSG(count_outside(&fit.light_view_proj, bodyd, nb, 2e-3, &wi, &worst) == 0,
+                     "light %d: body point %d outside the fitted map by %g", k, wi, worst);
+        for (q = 0; q < 2; q++)
+            for (j = 0; j < nb; j++) {
+                double h[4];
+                xform(q ? &fit.light_view_proj : &full.light_view_proj, bodyd[j], h);
+                for (c = 0; c < 2; c++) {
+                    if (h[c] / h[3] < lo[q][c]) lo[q][c] = h[c] / h[3];
+                    if (h[c] / h[3] > hi[q][c]) hi[q][c] = h[c] / h[3];
+                }
+            }
+        /* tight on both axes, and more of the map spent on the receivers */
+        for (c = 0; c < 2; c++)
+            SK_CHECK_MSG(lo[1][c] < -0.99 && hi[1][c] > 0.99, "light %d axis %d: body spans [%g, %g] of the map", k,
+                         c, lo[1][c], hi[1][c]);
+        SK_CHECK_MSG((hi[1][0] - lo[1][0]) * (hi[1][1] - lo[1][1]) > 1.05 * (hi[0][0] - lo[0][0]) * (hi[0][1] - lo[0][1]),
+                     "light %d: fitted area %g not above the whole-frustum fit's %g", k,
+                     (hi[1][0] - lo[1][0]) * (hi[1][1] - lo[1][1]), (hi[0][0] - lo[0][0]) * (hi[0][1] - lo[0][1]));
+        d.body = NULL; d.body_count = 0;
+        d.extra_slide = 4.0f;
+        SK_CHECK(sk_psm_matrices(&d, &slid) == SK_OK);
+        SK_CHECK_NEAR(slid.slide, 4.0, 1e-5);
+        SK_CHECK_MSG(count_outside(&slid.light_view_proj, pts, n, 2e-3, &wi, &worst) == 0,
+                     "light %d, slid: view sample %d outside the map by %g", k, wi, worst);
+        check_ray_order("extra slide", &slid.light_view_proj, pts, n, dnorm(l), &a, slid.compare == SK_DEPTH_GREATER,
+                        0.5, NULL);
+    }
+}
+
 static void test_psm_bad_input(void) {
     cam a = cam_a();
     sk_psm_desc good = psm_desc(&a, dv(0.3, -0.5, 1)), d;
@@ -445,7 +498,9 @@ static void test_psm_bad_input(void) {
     sk_result res;
     int i;
     memset(&sentinel, 0x5a, sizeof sentinel);
-    for (i = 0; i < 28; i++) {
+    sk_vec3 pts[SK_CLIP_MAX_POINTS + 1];
+    for (i = 0; i <= SK_CLIP_MAX_POINTS; i++) pts[i] = v3(0, 1, -5);
+    for (i = 0; i < 35; i++) {
         const sk_psm_desc *dp = &d;
         sk_psm_result *op = &r;
         d = good;
@@ -479,6 +534,13 @@ static void test_psm_bad_input(void) {
         case 25: d.light_dir = v3(1e-30f, 0, 0); d.light_dir.x = 0; d.light_dir.y = -0.0f; break;
         case 26: d.aspect = NAN; break;
         case 27: d.zf = NAN; break;
+        case 28: d.body = pts; d.body_count = -1; break;
+        case 29: d.body = pts; d.body_count = SK_CLIP_MAX_POINTS + 1; break;
+        case 30: d.body = NULL; d.body_count = 3; break;
+        case 31: pts[2].y = NAN; d.body = pts; d.body_count = 4; break;
+        case 32: d.extra_slide = -1.0f; break;
+        case 33: d.extra_slide = NAN; break;
+        case 34: d.extra_slide = INFINITY; break;
         }
         memcpy(&r, &sentinel, sizeof r);
         res = sk_psm_matrices(dp, op);
@@ -840,6 +902,6 @@ static void test_lispsm_bad_input(void) {
     }
 }
 
-SK_TEST_MAIN(test_psm_cases, test_psm_casters_behind, test_psm_bad_input, test_lispsm_sweep,
+SK_TEST_MAIN(test_psm_cases, test_psm_casters_behind, test_psm_body_and_slide, test_psm_bad_input, test_lispsm_sweep,
              test_lispsm_oblique_and_override, test_lispsm_resolution_near_eye, test_lispsm_casters,
              test_lispsm_bad_input)

@@ -367,14 +367,17 @@ static void test_state_and_objects(void) {
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
     SK_CHECK(gl->GetError() == 0);
 
-    for (t = 0; t < 2; t++) {
+    for (t = 0; t < 5; t++) {
+        static const char *const names[5] = {"standard", "pssm", "psm", "lispsm", "lispsm-cascades"};
+        static const skgl_technique techs[5] = {SKGL_STANDARD, SKGL_PSSM, SKGL_PSM, SKGL_LISPSM, SKGL_LISPSM};
         skgl_shadow_desc d;
         skgl_shadow *s = NULL;
-        const char *tn = t ? "pssm" : "standard";
+        const char *tn = names[t];
         memset(&d, 0, sizeof d);
-        d.technique = t ? SKGL_PSSM : SKGL_STANDARD;
+        d.technique = techs[t];
         d.resolution = 512;
-        d.blend_band = t ? 0.1f : 0.0f;
+        d.cascades = t == 4 ? 3 : 0;
+        d.blend_band = t == 1 || t == 4 ? 0.1f : 0.0f;
         for (v = 0; v < 2; v++) {
             gl_state before, after;
             char what[96];
