@@ -48,6 +48,18 @@
                     (seed 002), one layer of a depth texture array each,
                     per-cascade crop (or stable crop), cascade chosen per
                     pixel by view depth, optional blend band.
+     SKGL_PSM       perspective shadow map (Stamminger & Drettakis, seed 002):
+                    rendered in the camera's post-perspective space, fitted
+                    to the receivers there; .psm_slide moves the virtual
+                    camera back by that many sqrt(near*far) [0.5] for more
+                    uniform texels. A light behind the viewer reverses the
+                    depth order: the map's z is negated, so nothing changes
+                    for you (stats.depth_reversed says it happened).
+                    Casters behind the camera slide the virtual camera back.
+     SKGL_LISPSM    light-space perspective shadow map (Wimmer et al.) with
+                    n_opt; fades into the focused map as the light turns
+                    parallel to the view (stats.warped, stats.warp_n).
+                    .cascades > 1: one LiSPSM per PSSM cascade.
      Focused crops end the shadow range where the scene ends and fit the view
      clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
      sphere that depends only on the camera's projection and the split
@@ -58,7 +70,8 @@
    BIAS AND FILTERING
      Casters are drawn with slope-scaled polygon offset (.slope_bias, in
      depth slope units, i.e. texels); receivers are pushed along their normal
-     by .normal_bias texels of their cascade. .pcf_radius = 0 takes one
+     by .normal_bias texels of their map at that point (warped maps have
+     texels of varying size). .pcf_radius = 0 takes one
      hardware 2x2 comparison (bilinear PCF); r > 0 takes (2r)x(2r) of them.
 
    GL STATE
