@@ -131,7 +131,8 @@ typedef enum skgl_technique {
     SKGL_STANDARD = 0,            /* one focused (or stable) orthographic map */
     SKGL_PSSM = 1,                /* parallel-split cascades */
     SKGL_PSM = 2,                 /* perspective shadow map (one map) */
-    SKGL_LISPSM = 3               /* light-space perspective map; cascades > 1: one per PSSM slice */
+    SKGL_LISPSM = 3,              /* light-space perspective map; cascades > 1: one per PSSM slice */
+    SKGL_LSPSM = 4                /* light space partitioned maps (seed 003) */
 } skgl_technique;
 
 /* Zero-initialised fields take the default in brackets. */
@@ -148,6 +149,9 @@ typedef struct skgl_shadow_desc {
     float normal_bias;            /* receiver normal offset in texels [1.5]; < 0: none */
     int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
     float max_distance;           /* shadows end at this view depth [camera far] */
+    sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
+                                     the paper's zeta 0.25, sigma 0.5, h_max 4,
+                                     nw_max 2 (h_max * nw_max <= SKGL_MAX_CASCADES) */
     float psm_slide;              /* PSM: the virtual camera slides back by this
                                      times sqrt(near*far) of the receivers, its
                                      near plane with it: more uniform texels
@@ -177,6 +181,7 @@ typedef struct skgl_stats {
     float warp_n[SKGL_MAX_CASCADES];      /* LiSPSM: n of the warp (n_opt); +INF: uniform map */
     int warped[SKGL_MAX_CASCADES];        /* 1: the layer's map is perspective-warped */
     int depth_reversed;                   /* PSM: light behind the viewer (depth order flipped back) */
+    int lspsm_fallback;                   /* LSPSM: no trapezoid axis (view along the light): one focused map */
     float psm_slide;                      /* PSM: how far the virtual camera slid back */
 } skgl_stats;
 
@@ -251,6 +256,13 @@ extern "C" {
 #endif
 
 /* ---- embedded GLSL: the files of shaders_embedded/, written here by `make shaders` ---- */
+/* The literals may pass C99's minimum of 4095 characters per string
+   (GCC, Clang and MSVC take 64K): -Woverlength-strings is a portability
+   note, silenced for this block only. */
+#if defined(__GNUC__) || defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Woverlength-strings"
+#endif
 /* SKGL_EMBEDDED_SHADERS_BEGIN */
 static const char skgl__src_depth_vert[] =
     "/* Depth-only pass: shadow maps of every technique. Attribute 0 is the\n"
@@ -286,7 +298,9 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   Maps are layers of one depth texture array: one layer for a standard\n"
     "   focused map, one per cascade for PSSM. A world position picks its layer by\n"
     "   view depth against the split distances (PSSM practical split scheme,\n"
-    "   seed 002), optionally blending into the next cascade inside a band.\n"
+    "   seed 002), optionally blending into the next cascade inside a band; or,\n"
+    "   for LSPSM's partitions (seed 003), which tile the light plane rather than\n"
+    "   the view depth, the first layer whose partition rect holds it.\n"
     "\n"
     "   Maps may be orthographic (standard, PSSM) or perspective-warped (PSM,\n"
     "   LiSPSM): the light-clip w is divided out per pixel.\n"
@@ -306,6 +320,8 @@ static const char skgl__src_shadow_sample_glsl[] =
     "uniform float sk_normal_bias;      /* texels */\n"
     "uniform int sk_pcf_radius;\n"
     "uniform vec3 sk_light_dir;         /* travel direction, unit */\n"
+    "uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */\n"
+    "uniform float sk_select_extent;    /* a partition's rect in its light NDC: [-e, e]^2 */\n"
     "\n"
     "/* World size of one texel of the layer at p: 2/res over the gradient of\n"
     "   light NDC x (and y), d(c.x/c.w)/dp = (row0 - ndc.x row3) / c.w; the larger\n"
@@ -345,6 +361,15 @@ static const char skgl__src_shadow_sample_glsl[] =
     "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
     "{\n"
     "    if (dot(world_normal, sk_light_dir) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;\n"
+    "    if (sk_select_by_map != 0) {\n"
+    "        if (view_depth < sk_splits[0] || view_depth >= sk_splits[1]) return 1.0;\n"
+    "        for (int i = 0; i < sk_layers; i++) {\n"
+    "            vec4 c = sk_light_vp[i] * vec4(world_pos, 1.0);\n"
+    "            if (all(lessThanEqual(abs(c.xy), vec2(sk_select_extent * c.w))))\n"
+    "                return sk_shadow_layer(world_pos, world_normal, i);\n"
+    "        }\n"
+    "        return 1.0;\n"
+    "    }\n"
     "    if (view_depth < sk_splits[0] || view_depth >= sk_splits[sk_layers]) return 1.0;\n"
     "    int layer = 0;\n"
     "    for (int i = 1; i < sk_layers; i++)\n"
@@ -387,6 +412,9 @@ static const char skgl__src_shadow_mask_frag[] =
     "}\n"
     ;
 /* SKGL_EMBEDDED_SHADERS_END */
+#if defined(__GNUC__) || defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 /* ---- the GL 3.3 core subset shadowkit uses ------------------------------ */
 typedef unsigned int skgl__enum;
@@ -541,7 +569,9 @@ struct skgl_context {
 struct skgl_shadow {
     skgl_shadow_desc desc;
     skgl__uint tex;                /* GL_TEXTURE_2D_ARRAY of depth, one layer per map */
-    int layers;
+    int layers;                    /* allocated */
+    int maps;                      /* used by the last render (LSPSM: its partition count) */
+    float select_extent;           /* LSPSM: |light NDC| <= this selects a partition (its rect) */
     sk_mat4 vp[SKGL_MAX_CASCADES];
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl_stats stats;
@@ -779,7 +809,15 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
 {
     skgl_shadow_desc r = *d;
     if (r.resolution <= 0) r.resolution = 2048;
+    if (r.lspsm.zeta == 0.0f) r.lspsm.zeta = 0.25f;
+    if (r.lspsm.sigma == 0.0f) r.lspsm.sigma = 0.5f;
+    if (r.lspsm.h_max == 0) r.lspsm.h_max = 4;
+    if (r.lspsm.nw_max == 0) r.lspsm.nw_max = 2;
     if (r.cascades <= 0) r.cascades = r.technique == SKGL_LISPSM ? 1 : 4;
+    /* LSPSM: one layer per possible partition; how many are used is per frame */
+    if (r.technique == SKGL_LSPSM && r.lspsm.h_max > 0 && r.lspsm.nw_max > 0 &&
+        r.lspsm.h_max <= SKGL_MAX_CASCADES && r.lspsm.nw_max <= SKGL_MAX_CASCADES)
+        r.cascades = r.lspsm.h_max * r.lspsm.nw_max;
     if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM) r.cascades = 1;
     if (r.lambda == 0.0f) r.lambda = 0.75f;
     else if (r.lambda < 0.0f) r.lambda = 0.0f;
@@ -801,15 +839,19 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     skgl_shadow_desc d;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
     d = skgl__defaults(desc);
-    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_LISPSM || d.resolution > 16384 ||
+    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_LSPSM || d.resolution > 16384 ||
         d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
-        d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f))
+        d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f) ||
+        !(d.lspsm.zeta > 0.0f && d.lspsm.zeta < 0.5f) || !(d.lspsm.sigma > 0.0f && d.lspsm.sigma <= 1e3f) ||
+        d.lspsm.h_max < 1 || d.lspsm.nw_max < 1)
         return SK_ERR_INVALID_ARG;
     s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
     memset(s, 0, sizeof *s);
     s->desc = d;
     s->layers = d.cascades;
+    s->maps = s->layers;
+    s->select_extent = 1.0f;
     gl = &ctx->gl;
     skgl__save(gl, &st);
     gl->GenTextures(1, &s->tex);
@@ -970,6 +1012,52 @@ static sk_result skgl__fit_psm(skgl_shadow *s, const skgl_camera *cam, const skg
     return SK_OK;
 }
 
+/* Light Space Partitioned Shadow Maps (seed 003): the trapezoid around the
+   refined view frustum on the light plane, its partitions (Eq. 1), one
+   orthographic crop each, every crop widened by a margin of texels so the
+   PCF kernel and the normal offset of a point near a partition's edge stay
+   inside that partition's map. The shader picks the partition whose rect
+   holds the point (|NDC| <= select_extent). View direction along the light
+   (no trapezoid axis): the region's documented fallback, one focused map. */
+static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene,
+                                 sk_vec3 light_dir, const sk_frustum *view, float zn, float cam_zf, float zf)
+{
+    sk_frustum slice;
+    sk_lspsm_region reg;
+    sk_vec3 view_dir = sk__v3(-cam->view.m[2], -cam->view.m[6], -cam->view.m[10]);
+    float margin = (float)(s->desc.pcf_radius + 3) + (s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    float k = 1.0f - 2.0f * margin / (float)s->desc.resolution;
+    int i, n;
+    sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
+    if (r != SK_OK) return r;
+    s->stats.splits[0] = zn;
+    s->stats.splits[1] = zf;
+    if (!(k > 0.5f)) k = 0.5f;
+    r = sk_lspsm_region_extract(&slice, view_dir, scene->bounds, &scene->bounds, light_dir, &reg);
+    if (r == SK_ERR_DEGENERATE) {
+        /* the view holds no receiver: one map over the slice, nothing to see */
+        sk_mat4 lview = sk_light_view_directional(light_dir), proj;
+        r = sk_fit_ortho(slice.corners, 8, lview, &scene->bounds, &proj);
+        if (r != SK_OK) return r;
+        s->vp[0] = sk_mat4_mul(proj, lview);
+        s->maps = 1;
+        s->stats.lspsm_fallback = 1;
+        s->select_extent = 1.0f;
+        return SK_OK;
+    }
+    if (r != SK_OK) return r;
+    n = sk_lspsm_crops(&reg, &s->desc.lspsm, s->vp, NULL, s->layers);
+    if (n <= 0) return n < 0 ? (sk_result)-n : SK_ERR_DEGENERATE;
+    for (i = 0; i < n; i++) {
+        int c;
+        for (c = 0; c < 4; c++) { s->vp[i].m[c * 4] *= k; s->vp[i].m[c * 4 + 1] *= k; }
+    }
+    s->maps = n;
+    s->stats.lspsm_fallback = reg.fallback;
+    s->select_extent = k;
+    return SK_OK;
+}
+
 /* Crops of every layer: the PSSM practical split scheme (seed 002) over
    the part of the view that can hold receivers; per layer a focused crop of
    the slice clipped to the scene, or a texel-snapped stable crop. */
@@ -997,10 +1085,11 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     else if (sk_pssm_splits(zn, zf, s->layers, d->lambda, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
     s->stats.depth_reversed = 0;
     s->stats.psm_slide = 0.0f;
-    if (d->technique == SKGL_PSM) {
-        s->stats.warp_n[0] = SK__INF;
-        return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
-    }
+    s->maps = s->layers;
+    s->stats.lspsm_fallback = 0;
+    for (i = 0; i < s->layers; i++) { s->stats.warp_n[i] = SK__INF; s->stats.warped[i] = 0; }
+    if (d->technique == SKGL_PSM) return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
+    if (d->technique == SKGL_LSPSM) return skgl__fit_lspsm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
     for (i = 0; i < s->layers; i++) {
         sk_frustum slice;
         sk_mat4 proj;
@@ -1011,8 +1100,6 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
                          : s->stats.splits[0];
         sk_result r = sk_frustum_slice(&view, zn, cam_zf, z0, s->stats.splits[i + 1], &slice);
         if (r != SK_OK) return r;
-        s->stats.warp_n[i] = SK__INF;
-        s->stats.warped[i] = 0;
         if (d->technique == SKGL_LISPSM) {
             r = skgl__fit_lispsm(s, i, cam, scene, light_dir, &slice, z0);
             if (r != SK_OK) return r;
@@ -1083,7 +1170,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     gl->UseProgram(ctx->depth_prog);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
-    for (i = 0; i < s->layers; i++) {
+    for (i = 0; i < s->maps; i++) {
         skgl_draw_info info;
         static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
         gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, s->tex, 0, i);
@@ -1108,7 +1195,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     }
     gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
     s->stats.shadow_ms = skgl__query_end(ctx);
-    s->stats.maps = s->layers;
+    s->stats.maps = s->maps;
     s->stats.resolution = res;
     skgl__restore(gl, &st);
     return skgl__check(ctx, "skgl_shadow_render");
@@ -1118,9 +1205,11 @@ static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint p
 {
     skgl__api *gl = &ctx->gl;
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_shadow_map"), unit);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->layers, 0, s->vp[0].m);
-    gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->layers + 1, s->stats.splits);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_layers"), s->layers);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->maps, 0, s->vp[0].m);
+    gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->maps + 1, s->stats.splits);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_layers"), s->maps);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_select_by_map"), s->desc.technique == SKGL_LSPSM);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_select_extent"), s->select_extent);
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_blend_band"), s->desc.blend_band);
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_normal_bias"), s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_pcf_radius"), s->desc.pcf_radius);

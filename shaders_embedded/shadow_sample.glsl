@@ -4,7 +4,9 @@
    Maps are layers of one depth texture array: one layer for a standard
    focused map, one per cascade for PSSM. A world position picks its layer by
    view depth against the split distances (PSSM practical split scheme,
-   seed 002), optionally blending into the next cascade inside a band.
+   seed 002), optionally blending into the next cascade inside a band; or,
+   for LSPSM's partitions (seed 003), which tile the light plane rather than
+   the view depth, the first layer whose partition rect holds it.
 
    Maps may be orthographic (standard, PSSM) or perspective-warped (PSM,
    LiSPSM): the light-clip w is divided out per pixel.
@@ -24,6 +26,8 @@ uniform float sk_blend_band;       /* fraction of a layer's depth range blended 
 uniform float sk_normal_bias;      /* texels */
 uniform int sk_pcf_radius;
 uniform vec3 sk_light_dir;         /* travel direction, unit */
+uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */
+uniform float sk_select_extent;    /* a partition's rect in its light NDC: [-e, e]^2 */
 
 /* World size of one texel of the layer at p: 2/res over the gradient of
    light NDC x (and y), d(c.x/c.w)/dp = (row0 - ndc.x row3) / c.w; the larger
@@ -63,6 +67,15 @@ float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)
 float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
 {
     if (dot(world_normal, sk_light_dir) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;
+    if (sk_select_by_map != 0) {
+        if (view_depth < sk_splits[0] || view_depth >= sk_splits[1]) return 1.0;
+        for (int i = 0; i < sk_layers; i++) {
+            vec4 c = sk_light_vp[i] * vec4(world_pos, 1.0);
+            if (all(lessThanEqual(abs(c.xy), vec2(sk_select_extent * c.w))))
+                return sk_shadow_layer(world_pos, world_normal, i);
+        }
+        return 1.0;
+    }
     if (view_depth < sk_splits[0] || view_depth >= sk_splits[sk_layers]) return 1.0;
     int layer = 0;
     for (int i = 1; i < sk_layers; i++)

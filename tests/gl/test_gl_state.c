@@ -367,9 +367,10 @@ static void test_state_and_objects(void) {
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
     SK_CHECK(gl->GetError() == 0);
 
-    for (t = 0; t < 5; t++) {
-        static const char *const names[5] = {"standard", "pssm", "psm", "lispsm", "lispsm-cascades"};
-        static const skgl_technique techs[5] = {SKGL_STANDARD, SKGL_PSSM, SKGL_PSM, SKGL_LISPSM, SKGL_LISPSM};
+    for (t = 0; t < 6; t++) {
+        static const char *const names[6] = {"standard", "pssm", "psm", "lispsm", "lispsm-cascades", "lspsm"};
+        static const skgl_technique techs[6] = {SKGL_STANDARD, SKGL_PSSM, SKGL_PSM, SKGL_LISPSM, SKGL_LISPSM,
+                                                SKGL_LSPSM};
         skgl_shadow_desc d;
         skgl_shadow *s = NULL;
         const char *tn = names[t];
