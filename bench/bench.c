@@ -16,7 +16,7 @@
        method,params,scene,view,width,height,error_kind,error,texels,passes,
        shadow_ms,analysis_ms,total_ms,device
        method     standard | standard-stable | pssm | psm | lispsm |
-                  lispsm-pssm (LiSPSM per cascade)   (DESIGN.md names)
+                  lispsm-pssm (LiSPSM per cascade) | lspsm   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
        error_kind hard_pct
        texels     shadow texels rendered (skgl_stats.texels)
@@ -254,6 +254,16 @@ static void add_lispsm(int cascades, int res) {
     c->desc.resolution = res;
 }
 
+/* LSPSM with the paper's parameters; res per partition */
+static void add_lspsm(int res) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "lspsm");
+    snprintf(c->params, sizeof c->params, "resolution=%d;pcf=1", res);
+    c->desc.technique = SKGL_LSPSM;
+    c->desc.resolution = res;
+}
+
 static void build_sweep(int quick) {
     static const int std_res[] = {512, 1024, 2048, 4096};
     static const float lambdas[] = {0.5f, 0.75f, 0.9f};
@@ -284,6 +294,8 @@ static void build_sweep(int quick) {
         add_psm(1024, -1.0f);
         add_lispsm(4, 512);
         add_lispsm(4, 1024);
+        add_lspsm(512);
+        add_lspsm(1024);
         return;
     }
     for (stable = 0; stable <= 1; stable++)
@@ -304,6 +316,7 @@ static void build_sweep(int quick) {
     }
     for (c = 2; c <= 8; c *= 2)
         for (r = 0; r < 3; r++) add_lispsm(c, pssm_res[r]);
+    for (r = 0; r < 3; r++) add_lspsm(pssm_res[r]);
 }
 
 /* ---------------------------------------------------------------- scenes */
@@ -561,6 +574,8 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
         if (casc > 1) snprintf(buf, n, "lispsm %d\xc3\x97%d", casc, res);
         else snprintf(buf, n, "lispsm %d", res);
     }
+    else if (strcmp(p->method, "lspsm") == 0)
+        snprintf(buf, n, "lspsm %d", res);
     else if (strncmp(p->method, "pssm", 4) == 0)
         snprintf(buf, n, "%d\xc3\x97%d \xce\xbb%g%s", casc, res, lambda, blend > 0 ? " blend" : "");
     else
@@ -845,6 +860,22 @@ static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px
     return 0;
 }
 
+/* one CSV row of a scored run */
+static void write_row(FILE *csv, const char *method, const char *params, const char *scene, const char *view,
+                      const run_rec *rr, float sms, const char *renderer) {
+    csv_field(csv, method);
+    fputc(',', csv);
+    csv_field(csv, params);
+    fputc(',', csv);
+    csv_field(csv, scene);
+    fputc(',', csv);
+    csv_field(csv, view);
+    fprintf(csv, ",%d,%d,hard_pct,%.4f,%.0f,%d,%.4f,0,%.4f,", BENCH_W, BENCH_H, rr->err, rr->texels, rr->passes,
+            (double)sms, (double)(sms + rr->mask_ms));
+    csv_field(csv, renderer);
+    fputc('\n', csv);
+}
+
 /* G-buffer and reference of one view. 0 ok. */
 static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, const tb_reference *ref,
                         sk_vec3 light_dir, view_data *vd, float *depth, float *rgba, float *nrm) {
@@ -908,13 +939,93 @@ static int load_scene(const bench_scene_def *def, tb_scene *s) {
     return tb_scene_build(s, def->name);
 }
 
+/* The walk-through of seed 003's Table 1: the camera moves in `frames`
+   steps from the "low" view to the "overview" one; at each step LSPSM and
+   PSSM with 8 cascades at the same per-map resolution (1024) render and are
+   scored. Rows go to bench-walk.csv (the bench.csv columns, view walkNN);
+   the summary (mean partitions, the shadow-time ratio LSPSM / PSSM-8, the
+   mean errors) to bench-walk.txt and stderr. */
+static const struct walk_cfg {
+    const char *method, *params;
+    skgl_technique technique;
+    int cascades;
+} walk_cfgs[2] = {
+    {"lspsm", "resolution=1024;pcf=1", SKGL_LSPSM, 0},
+    {"pssm", "cascades=8;lambda=0.75;resolution=1024;blend=0;pcf=1", SKGL_PSSM, 8},
+};
+
+static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *s, const tb_gl_mesh *mesh,
+                       const tb_reference *ref, const bench_view *views, const skgl_scene *sc, int frames,
+                       int repeat, float *depth, float *rgba, float *nrm, float *mask_px, FILE *csv, FILE *txt) {
+    skgl_shadow *sh[2] = {NULL, NULL};
+    double ms[2] = {0, 0}, err[2] = {0, 0}, parts = 0;
+    int k, m, i, nf = 0;
+    for (m = 0; m < 2; m++) {
+        skgl_shadow_desc d;
+        memset(&d, 0, sizeof d);
+        d.technique = walk_cfgs[m].technique;
+        d.cascades = walk_cfgs[m].cascades;
+        d.resolution = 1024;
+        if (skgl_shadow_create(B->sk, &d, &sh[m]) != SK_OK ||
+            skgl_shadow_render(B->sk, sh[m], &views[1].cam, sc, def->light_dir) != SK_OK) {   /* warm-up */
+            fprintf(stderr, "bench: walk %s: %s failed: %s\n", def->name, walk_cfgs[m].method, skgl_error_log(B->sk));
+            goto done;
+        }
+    }
+    for (k = 0; k < frames; k++) {
+        view_data vd;
+        float t = frames > 1 ? (float)k / (float)(frames - 1) : 0.0f;
+        memset(&vd, 0, sizeof vd);
+        vd.v.eye = v3_add(v3_scale(views[1].eye, 1.0f - t), v3_scale(views[0].eye, t));
+        vd.v.target = v3_add(v3_scale(views[1].target, 1.0f - t), v3_scale(views[0].target, t));
+        snprintf(vd.v.name, sizeof vd.v.name, "walk%02d", k);
+        finish_view(&vd.v, &s->bounds);
+        if (prepare_view(B, s, mesh, ref, def->light_dir, &vd, depth, rgba, nrm) == 0) {
+            for (m = 0; m < 2; m++) {
+                run_rec rr;
+                const char *why = "";
+                memset(&rr, 0, sizeof rr);
+                for (i = 0; i < repeat && i < BENCH_MAX_REPEAT; i++) {
+                    if (skgl_shadow_render(B->sk, sh[m], &vd.v.cam, sc, def->light_dir) != SK_OK) break;
+                    rr.shadow[rr.n++] = skgl_shadow_stats(sh[m])->shadow_ms;
+                }
+                if (rr.n == 0 || score_run(B, sh[m], &vd, mask_px, &rr, &why) != 0) {
+                    fprintf(stderr, "bench: walk %s %s frame %d failed %s\n", def->name, walk_cfgs[m].method, k, why);
+                    continue;
+                }
+                write_row(csv, walk_cfgs[m].method, walk_cfgs[m].params, def->name, vd.v.name, &rr,
+                          median(rr.shadow, rr.n), B->renderer);
+                ms[m] += median(rr.shadow, rr.n);
+                err[m] += rr.err;
+                if (m == 0) parts += rr.passes;
+            }
+            nf++;
+        }
+        if (vd.gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
+        free(vd.ref);
+    }
+    fflush(csv);
+    if (nf > 0) {
+        char line[512];
+        snprintf(line, sizeof line,
+                 "%-16s %2d frames: lspsm %.2f partitions on average, shadow time %.2fx pssm-8 (%.2f vs %.2f ms "
+                 "per frame), error %.3f%% vs %.3f%%\n",
+                 def->name, nf, parts / nf, ms[1] > 0 ? ms[0] / ms[1] : 0.0, ms[0] / nf, ms[1] / nf, err[0] / nf,
+                 err[1] / nf);
+        fprintf(stderr, "bench: walk %s", line);
+        if (txt) { fputs(line, txt); fflush(txt); }
+    }
+done:
+    for (m = 0; m < 2; m++) skgl_shadow_destroy(B->sk, sh[m]);
+}
+
 int main(int argc, char **argv) {
     bench_opts o;
     bench_scene_def defs[BENCH_MAX_SCENES];
     int ndefs = 0, i, c, v, status = 0, shared = 0;
     const char *env;
     bench_gl B;
-    FILE *csv = NULL;
+    FILE *csv = NULL, *walk = NULL, *walk_txt = NULL;
     char path[1200], err[1024];
     progress pg;
     float *depth = NULL, *rgba = NULL, *nrm = NULL, *mask_px = NULL;
@@ -1075,6 +1186,11 @@ int main(int argc, char **argv) {
     }
     snprintf(path, sizeof path, "%s/bench.csv", o.out_dir);
     csv = fopen(path, "w");
+    snprintf(path, sizeof path, "%.900s/bench-walk.csv", o.out_dir);
+    walk = fopen(path, "w");
+    if (walk) fprintf(walk, "%s\n", BENCH_CSV_HEADER);
+    snprintf(path, sizeof path, "%.900s/bench-walk.txt", o.out_dir);
+    walk_txt = fopen(path, "w");
     if (!csv) { fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno)); status = 1; goto done; }
     fprintf(csv, "%s\n", BENCH_CSV_HEADER);
     fflush(csv);
@@ -1228,19 +1344,11 @@ int main(int argc, char **argv) {
                 float sms;
                 if (rr->state != 1) continue;
                 sms = median(rr->shadow, rr->n);
-                csv_field(csv, cfg->method);
-                fputc(',', csv);
-                csv_field(csv, cfg->params);
-                fputc(',', csv);
-                csv_field(csv, def->name);
-                fputc(',', csv);
-                csv_field(csv, vd[v].v.name);
-                fprintf(csv, ",%d,%d,hard_pct,%.4f,%.0f,%d,%.4f,0,%.4f,", BENCH_W, BENCH_H, rr->err, rr->texels,
-                        rr->passes, (double)sms, (double)(sms + rr->mask_ms));
-                csv_field(csv, B.renderer);
-                fputc('\n', csv);
+                write_row(csv, cfg->method, cfg->params, def->name, vd[v].v.name, rr, sms, B.renderer);
             }
         fflush(csv);
+        if (walk) walk_scene(&B, def, &s, &mesh, ref, views, &sc, o.quick ? 6 : 12, o.repeat, depth, rgba, nrm,
+                             mask_px, walk, walk_txt);
         fprintf(stderr, "bench: scene %s done in %.1f s\n", def->name, now_s() - ts);
     scene_done:
         free(recs);
@@ -1255,6 +1363,9 @@ int main(int argc, char **argv) {
     }
     fclose(csv);
     csv = NULL;
+    if (walk) fclose(walk);
+    if (walk_txt) fclose(walk_txt);
+    walk = walk_txt = NULL;
     {
         char a[32];
         fmt_duration(now_s() - t_start, a, sizeof a);
