@@ -67,8 +67,8 @@ static const char *tech_name(skgl_technique t) {
     case SKGL_PSSM: return "pssm";
     case SKGL_PSM: return "psm";
     case SKGL_LISPSM: return "lispsm";
+    default: return "other";
     }
-    return "?";
 }
 
 /* one frame of technique t on the env's scene; the reference is ref */
