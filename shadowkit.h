@@ -625,6 +625,11 @@ static sk_mat4 sk__basis_view(sk_vec3 x, sk_vec3 y, sk_vec3 z, sk_vec3 origin)
     r.m[15] = 1.0f;
     return r;
 }
+/* z of sk__xform_affine alone */
+static float sk__xform_z(const sk_mat4 *m, sk_vec3 p)
+{
+    return m->m[2] * p.x + m->m[6] * p.y + m->m[10] * p.z + m->m[14];
+}
 /* Affine part only (no w): for view matrices. */
 static sk_vec3 sk__xform_affine(const sk_mat4 *m, sk_vec3 p)
 {
@@ -772,13 +777,43 @@ SKDEF sk_vec4 sk_mat4_transform_vec4(sk_mat4 m, sk_vec4 p)
     return r;
 }
 
+/* sk_mat4_transform_point without copying the matrix */
+static sk_vec3 sk__xform_point(const sk_mat4 *m, sk_vec3 p)
+{
+    float x = m->m[0] * p.x + m->m[4] * p.y + m->m[8] * p.z + m->m[12];
+    float y = m->m[1] * p.x + m->m[5] * p.y + m->m[9] * p.z + m->m[13];
+    float z = m->m[2] * p.x + m->m[6] * p.y + m->m[10] * p.z + m->m[14];
+    float w = m->m[3] * p.x + m->m[7] * p.y + m->m[11] * p.z + m->m[15];
+    if (w != 0.0f) { float iw = 1.0f / w; return sk__v3(x * iw, y * iw, z * iw); }
+    return sk__v3(x, y, z);
+}
+
+/* sk__xform_point of the 8 corners of b (sk__aabb_corner order), with the
+   products of m's columns and the box bounds formed once: the same sums of
+   the same products in the same order as corner by corner. */
+static void sk__xform_box(const sk_mat4 *m, const sk_aabb *b, sk_vec3 *out)
+{
+    float px[2][4], py[2][4], pz[2][4];
+    int r, i;
+    for (r = 0; r < 4; r++) {
+        px[0][r] = m->m[r] * b->min.x; px[1][r] = m->m[r] * b->max.x;
+        py[0][r] = m->m[4 + r] * b->min.y; py[1][r] = m->m[4 + r] * b->max.y;
+        pz[0][r] = m->m[8 + r] * b->min.z; pz[1][r] = m->m[8 + r] * b->max.z;
+    }
+    for (i = 0; i < 8; i++) {
+        int a = i & 1, c = (i >> 1) & 1, e = (i >> 2) & 1;
+        float x = px[a][0] + py[c][0] + pz[e][0] + m->m[12];
+        float y = px[a][1] + py[c][1] + pz[e][1] + m->m[13];
+        float z = px[a][2] + py[c][2] + pz[e][2] + m->m[14];
+        float w = px[a][3] + py[c][3] + pz[e][3] + m->m[15];
+        if (w != 0.0f) { float iw = 1.0f / w; out[i] = sk__v3(x * iw, y * iw, z * iw); }
+        else out[i] = sk__v3(x, y, z);
+    }
+}
+
 SKDEF sk_vec3 sk_mat4_transform_point(sk_mat4 m, sk_vec3 p)
 {
-    sk_vec4 h, r;
-    h.x = p.x; h.y = p.y; h.z = p.z; h.w = 1.0f;
-    r = sk_mat4_transform_vec4(m, h);
-    if (r.w != 0.0f) { float iw = 1.0f / r.w; return sk__v3(r.x * iw, r.y * iw, r.z * iw); }
-    return sk__v3(r.x, r.y, r.z);
+    return sk__xform_point(&m, p);
 }
 
 static sk_plane sk__plane_normalized(double a, double b, double c, double d)
@@ -904,63 +939,90 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
     return 1;
 }
 
-/* Containment with a tolerance relative to the magnitudes involved. */
-static int sk__in_aabb(const sk_aabb *b, sk_vec3 p)
-{
-    float t = 1e-5f * (1.0f + sk__maxabs3(p));
-    return p.x >= b->min.x - t && p.x <= b->max.x + t && p.y >= b->min.y - t &&
-           p.y <= b->max.y + t && p.z >= b->min.z - t && p.z <= b->max.z + t;
-}
-static int sk__in_planes(const sk_plane *pl, sk_vec3 p)
-{
-    int k;
-    float m = 1.0f + sk__maxabs3(p);
-    for (k = 0; k < 6; k++)
-        if (sk__plane_dist(&pl[k], p) < -1e-5f * (m + SK_FABSF(pl[k].d))) return 0;
-    return 1;
-}
-/* Crossings of a's edges with b's planes that lie inside b. */
-static int sk__edge_crossings(const sk_frustum *a, const sk_frustum *b, sk_vec3 *out, int n)
+/* The parts of the 12 edges of hexahedron c (corner order of sk_frustum)
+   inside the other body, by parametric clipping against its six planes
+   (Cyrus & Beck 1978): dist[i][k] is corner i's signed distance to plane k,
+   bit k of out[i] set where corner i is outside plane k beyond the
+   containment tolerance (see below). A plane constrains an
+   edge where exactly one end is outside it; the edge enters the body at the
+   largest entering crossing and leaves at the smallest leaving one. Those
+   points are appended (an end within tolerance of the body is a corner,
+   appended by the caller). Planes the whole edge is within tolerance of do
+   not cut it, so faces that touch or coincide keep their vertices. */
+static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsigned *out, sk_vec3 *pts, int n)
 {
     int e, k;
     for (e = 0; e < 12; e++) {
-        sk_vec3 p0 = a->corners[sk__edges[e][0]], p1 = a->corners[sk__edges[e][1]];
-        for (k = 0; k < 6; k++) {
-            float d0 = sk__plane_dist(&b->planes[k], p0), d1 = sk__plane_dist(&b->planes[k], p1);
-            sk_vec3 q;
-            if ((d0 > 0.0f) == (d1 > 0.0f) || d0 == d1) continue;
-            q = sk__lerp3(p0, p1, d0 / (d0 - d1));
-            if (n < SK_CLIP_MAX_POINTS && sk__in_planes(b->planes, q)) out[n++] = q;
+        int a = sk__edges[e][0], b = sk__edges[e][1], enter = 0, leave = 0;
+        unsigned oa = out[a], ob = out[b], x = oa | ob;
+        float t0 = 0.0f, t1 = 1.0f;
+        if (!x || (oa & ob)) continue;   /* inside all along, or beyond one plane at both ends */
+        for (k = 0; x >> k; k++) {
+            float d0 = dist[a][k], t;
+            if (!(x >> k & 1u)) continue;
+            t = d0 / (d0 - dist[b][k]);
+            if (oa >> k & 1u) { enter = 1; if (t > t0) t0 = t < 1.0f ? t : 1.0f; }
+            else { leave = 1; if (t < t1) t1 = t > 0.0f ? t : 0.0f; }
         }
+        if (t0 > t1 + 1e-6f) continue;   /* passes by the body */
+        if (enter) pts[n++] = sk__lerp3(c[a], c[b], t0);
+        if (leave) pts[n++] = sk__lerp3(c[a], c[b], t1);
     }
     return n;
 }
 
 /* A vertex of the intersection of two convex bodies is a corner of one
-   inside the other, or where an edge of one crosses a face of the other. */
+   inside the other, or where an edge of one crosses a face of the other.
+   The 8 x 6 signed distances of each body's corners to the other's planes
+   are computed once. Containment has a tolerance relative to the magnitudes
+   involved: 1e-5 (1 + |p| + |d|) for a point p and a plane's offset d. */
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap)
 {
-    sk_frustum bf;
-    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    sk_vec3 bc[8], pts[16 + 2 * 24];
+    float fd[8][6], bd[8][6];   /* frustum corners to box planes, box corners to frustum planes */
+    float fpd[6], bpd[6];
+    unsigned fo[8], bo[8];
     int count = 0, i, j, n = 0;
     if (!f || !out || cap < 0 || sk__frustum_invalid(f) || !sk__aabb_valid(&box))
         return -(int)SK_ERR_INVALID_ARG;
-    sk_frustum_from_aabb(box, &bf);
+    /* the box's planes in sk_frustum_from_aabb's order: x - min.x, max.x - x, ...;
+       1e-5 |d| of each plane */
+    bpd[0] = 1e-5f * SK_FABSF(box.min.x); bpd[1] = 1e-5f * SK_FABSF(box.max.x);
+    bpd[2] = 1e-5f * SK_FABSF(box.min.y); bpd[3] = 1e-5f * SK_FABSF(box.max.y);
+    bpd[4] = 1e-5f * SK_FABSF(box.min.z); bpd[5] = 1e-5f * SK_FABSF(box.max.z);
+    for (j = 0; j < 6; j++) fpd[j] = 1e-5f * SK_FABSF(f->planes[j].d);
     for (i = 0; i < 8; i++) {
-        if (sk__in_aabb(&box, f->corners[i])) pts[n++] = f->corners[i];
-        if (sk__in_planes(f->planes, bf.corners[i])) pts[n++] = bf.corners[i];
+        /* outside plane k: distance + 1e-5 |d_k| < -1e-5 (1 + |p|) */
+        sk_vec3 p = f->corners[i];
+        float mp = -1e-5f * (1.0f + sk__maxabs3(p)), mq;
+        unsigned o = 0u, q = 0u;
+        bc[i] = sk__aabb_corner(&box, i);
+        mq = -1e-5f * (1.0f + sk__maxabs3(bc[i]));
+        fd[i][0] = p.x - box.min.x; fd[i][1] = box.max.x - p.x;
+        fd[i][2] = p.y - box.min.y; fd[i][3] = box.max.y - p.y;
+        fd[i][4] = p.z - box.min.z; fd[i][5] = box.max.z - p.z;
+        for (j = 0; j < 6; j++) {
+            bd[i][j] = sk__plane_dist(&f->planes[j], bc[i]);
+            o |= (unsigned)(fd[i][j] + bpd[j] < mp) << j;
+            q |= (unsigned)(bd[i][j] + fpd[j] < mq) << j;
+        }
+        fo[i] = o;
+        bo[i] = q;
+        if (!o) pts[n++] = p;
+        if (!q) pts[n++] = bc[i];
     }
     if (n < 16) {
-        n = sk__edge_crossings(f, &bf, pts, n);
-        n = sk__edge_crossings(&bf, f, pts, n);
+        n = sk__clip_edges(f->corners, (const float (*)[6])fd, fo, pts, n);
+        n = sk__clip_edges(bc, (const float (*)[6])bd, bo, pts, n);
     }
     /* drop coincident points (shared corners, edges through corners) */
     for (i = 0; i < n; i++) {
-        float tol = 1e-6f * (1.0f + sk__maxabs3(pts[i]));
+        sk_vec3 p = pts[i];
+        float tol = 1e-6f * (1.0f + sk__maxabs3(p));
         for (j = 0; j < count; j++)
-            if (SK_FABSF(pts[j].x - pts[i].x) <= tol && SK_FABSF(pts[j].y - pts[i].y) <= tol &&
-                SK_FABSF(pts[j].z - pts[i].z) <= tol) break;
-        if (j == count) pts[count++] = pts[i];
+            if (SK_FABSF(pts[j].x - p.x) <= tol && SK_FABSF(pts[j].y - p.y) <= tol &&
+                SK_FABSF(pts[j].z - p.z) <= tol) break;
+        if (j == count) pts[count++] = p;
     }
     if (count > cap) return -(int)SK_ERR_CAPACITY;
     for (i = 0; i < count; i++) out[i] = pts[i];
@@ -1149,7 +1211,7 @@ static double sk__casters_zmax(const sk_mat4 *view, const sk_aabb *casters, doub
     int i;
     if (!casters || !sk__aabb_valid(casters)) return z;
     for (i = 0; i < 8; i++) {
-        double cz = sk__xform_affine(view, sk__aabb_corner(casters, i)).z;
+        double cz = sk__xform_z(view, sk__aabb_corner(casters, i));
         if (cz > z) z = cz;
     }
     return z;
@@ -1202,29 +1264,31 @@ SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
 
 /* Off-centre perspective from `eye` looking along `dir`, fitted around the
    points (all must lie in front); the casters' corners, taken to space `pp`
-   first, widen only the depth range. Returns 0 if a point is not in front. */
-static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int n,
-                               const sk_aabb *casters, int nc, sk_mat4 pp, sk_mat4 *out)
+   first (or given so in cpts, when not NULL), widen only the depth range.
+   Returns 0 if a point is not in front. */
+static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int n, const sk_vec3 *cpts,
+                               const sk_aabb *casters, int nc, const sk_mat4 *pp, sk_mat4 *out)
 {
     sk_mat4 view = sk_mat4_look_at(eye, sk__add(eye, dir), sk__least_aligned_axis(dir));
     double l = 1e300, r = -1e300, b = 1e300, t = -1e300, zn = 1e300, zf = -1e300;
+    double eps = 1e-7 * (1.0 + sk__maxabs3(eye));
     int i;
     sk_mat4 p;
+    /* depths first (all points, casters included): a point behind fails the fit early */
     for (i = 0; i < n + 8 * nc; i++) {
-        sk_vec3 q = i < n ? pts[i] : sk_mat4_transform_point(pp, sk__aabb_corner(&casters[(i - n) / 8], (i - n) & 7));
-        double depth;
-        q = sk__xform_affine(&view, q);
-        depth = -(double)q.z;
-        if (!(depth > 1e-7 * (1.0 + sk__maxabs3(eye)))) return 0;
-        if (i < n) {
-            double x = q.x / depth, y = q.y / depth;
-            if (x < l) l = x;
-            if (x > r) r = x;
-            if (y < b) b = y;
-            if (y > t) t = y;
-        }
+        sk_vec3 q = i < n ? pts[i] : cpts ? cpts[i - n] : sk__xform_point(pp, sk__aabb_corner(&casters[(i - n) / 8], (i - n) & 7));
+        double depth = -(double)sk__xform_z(&view, q);
+        if (!(depth > eps)) return 0;
         if (depth < zn) zn = depth;
         if (depth > zf) zf = depth;
+    }
+    for (i = 0; i < n; i++) {
+        sk_vec3 q = sk__xform_affine(&view, pts[i]);
+        double depth = -(double)q.z, x = q.x / depth, y = q.y / depth;
+        if (x < l) l = x;
+        if (x > r) r = x;
+        if (y < b) b = y;
+        if (y > t) t = y;
     }
     /* a small margin so the fitted points land inside, not on, the frustum */
     {
@@ -1247,9 +1311,11 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
 
 /* Perspective shadow maps (Stamminger & Drettakis 2002; the slides' special
    cases: lights behind the viewer invert, casters behind the camera). */
+#define SK__PSM_CORNERS 256   /* caster corners kept in post-perspective space (32 boxes) */
 SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
 {
-    sk_vec3 l, le, cube[8];
+    sk_vec3 l, le, cube[8], cbuf[SK__PSM_CORNERS];
+    const sk_vec3 *cpts = NULL;
     sk_mat4 vview, vproj, ppv, lvp;
     sk_vec4 lh;
     float slide = 0.0f, zf;
@@ -1264,12 +1330,16 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         if (!sk__aabb_valid(&d->casters[i])) return SK_ERR_INVALID_ARG;
     /* casters behind the camera: slide the virtual camera back (Kozlov 2004) */
     for (i = 0; i < d->caster_count; i++) {
-        int k;
-        for (k = 0; k < 8; k++) {
-            float depth = -sk__xform_affine(&d->cam_view, sk__aabb_corner(&d->casters[i], k)).z;
-            float s = d->zn - depth;
-            if (s > slide) slide = s;
-        }
+        /* the nearest corner: the larger product on each axis (float sums are
+           monotone in each term, so this is the largest of the eight z) */
+        const float *m = d->cam_view.m;
+        const sk_aabb *c = &d->casters[i];
+        float zx = m[2] * c->min.x > m[2] * c->max.x ? m[2] * c->min.x : m[2] * c->max.x;
+        float zy = m[6] * c->min.y > m[6] * c->max.y ? m[6] * c->min.y : m[6] * c->max.y;
+        float zz = m[10] * c->min.z > m[10] * c->max.z ? m[10] * c->min.z : m[10] * c->max.z;
+        float depth = -(zx + zy + zz + m[14]);
+        float s = d->zn - depth;
+        if (s > slide) slide = s;
     }
     if (slide > 0.0f) slide += 0.01f * d->zn;
     vview = d->cam_view;
@@ -1278,6 +1348,11 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
     vproj = sk_mat4_perspective(d->fovy, d->aspect, d->zn, zf);
     ppv = sk_mat4_mul(vproj, vview);
     if (!sk__mat_finite(&ppv)) return SK_ERR_DEGENERATE;
+    /* the casters' corners in post-perspective space, once for all fits below */
+    if (d->caster_count <= SK__PSM_CORNERS / 8) {
+        for (i = 0; i < d->caster_count; i++) sk__xform_box(&ppv, &d->casters[i], cbuf + 8 * i);
+        cpts = cbuf;
+    }
 
     /* the light in post-perspective space: P V (-dir, 0) */
     l = sk__normalize(sk__scale(d->light_dir, -1.0f));
@@ -1299,7 +1374,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         ortho = 1;
         if (sk_fit_ortho(cube, 8, lv, NULL, &lp) != SK_OK) return SK_ERR_DEGENERATE;
         for (i = 0; i < 8 * d->caster_count; i++) {
-            sk_vec3 q = sk__xform_affine(&lv, sk_mat4_transform_point(ppv, sk__aabb_corner(&d->casters[i / 8], i & 7)));
+            sk_vec3 q = sk__xform_affine(&lv, cpts ? cpts[i] : sk__xform_point(&ppv, sk__aabb_corner(&d->casters[i / 8], i & 7)));
             if (q.z < zlo) zlo = q.z;
             if (q.z > zhi) zhi = q.z;
         }
@@ -1319,8 +1394,8 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         sk_vec3 lp = sk__v3(lh.x / lh.w, lh.y / lh.w, lh.z / lh.w), dir;
         inverted = lh.w < 0.0f;
         dir = sk__normalize(sk__scale(lp, -1.0f));
-        if (!sk__fit_perspective(lp, dir, cube, 8, d->casters, d->caster_count, ppv, &lvp) &&
-            !sk__fit_perspective(lp, sk__v3(0, 0, -1), cube, 8, d->casters, d->caster_count, ppv, &lvp))
+        if (!sk__fit_perspective(lp, dir, cube, 8, cpts, d->casters, d->caster_count, &ppv, &lvp) &&
+            !sk__fit_perspective(lp, sk__v3(0, 0, -1), cube, 8, cpts, d->casters, d->caster_count, &ppv, &lvp))
             return SK_ERR_DEGENERATE;
         out->light_pp = lp;
     }
@@ -1337,7 +1412,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
 /* Light-space perspective shadow maps (Wimmer, Scherzer & Purgathofer 2004). */
 SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *out)
 {
-    sk_vec3 l, v, yax, zax, xax;
+    sk_vec3 l, v, yax, zax, xax, lbody[SK_CLIP_MAX_POINTS];   /* light-space body, when it fits */
     sk_mat4 lv;
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     double cosg, sing, depth, n;
@@ -1372,6 +1447,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
     lv = sk__basis_view(xax, yax, zax, d->eye);
     for (i = 0; i < d->body_count; i++) {
         sk_vec3 p = sk__xform_affine(&lv, d->body[i]);
+        if (i < SK_CLIP_MAX_POINTS) lbody[i] = p;
         for (k = 0; k < 3; k++) {
             if ((&p.x)[k] < lo[k]) lo[k] = (&p.x)[k];
             if ((&p.x)[k] > hi[k]) hi[k] = (&p.x)[k];
@@ -1408,7 +1484,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         w.m[7] = 1.0f;
         w = sk_mat4_mul(w, t);
         for (i = 0; i < d->body_count; i++) {
-            sk_vec3 p = sk_mat4_transform_point(w, sk__xform_affine(&lv, d->body[i]));
+            sk_vec3 p = sk__xform_point(&w, i < SK_CLIP_MAX_POINTS ? lbody[i] : sk__xform_affine(&lv, d->body[i]));
             for (k = 0; k < 3; k++) {
                 if ((&p.x)[k] < wlo[k]) wlo[k] = (&p.x)[k];
                 if ((&p.x)[k] > whi[k]) whi[k] = (&p.x)[k];
@@ -1517,56 +1593,65 @@ SKDEF int sk_lspsm_partition(float n, float L, float theta, const sk_lspsm_param
     return sk__lspsm_rows(n, L, theta, p, &sink, cap);
 }
 
-/* 2D convex hull (Andrew's monotone chain) in place; returns the hull size. */
-static int sk__hull2(sk_vec2 *p, int n)
+/* An isosceles trapezoid with legs of slope t >= 0 around points (x, s),
+   s = y - y0 >= 0, has legs x = u - s t and x = v + s t with u = min(x + s t)
+   and v = max(x - s t). A point with no larger x and no smaller s than
+   another never gives v, for any t (float rounding is monotone, so not even
+   by rounding), nor one with no smaller x and no smaller s u. Only the
+   rest, the "fronts" of points not so dominated, are kept: (xs, s) with
+   xs = x for v's front and xs = -x for u's, each dominated point removed as
+   it is found. Returns the new front size. */
+static int sk__front_add(double *fxs, double *fs, int k, double xs, double s)
 {
-    sk_vec2 h[2 * SK_CLIP_MAX_POINTS];
-    int i, j, k = 0, lower;
-    for (i = 1; i < n; i++) {       /* insertion sort by x, then y */
-        sk_vec2 key = p[i];
-        for (j = i - 1; j >= 0 && (p[j].x > key.x || (p[j].x == key.x && p[j].y > key.y)); j--) p[j + 1] = p[j];
-        p[j + 1] = key;
-    }
-    if (n < 3) return n;
-    for (i = 0; i < n; i++) {
-        while (k >= 2 && ((double)h[k-1].x - h[k-2].x) * ((double)p[i].y - h[k-2].y) -
-                         ((double)h[k-1].y - h[k-2].y) * ((double)p[i].x - h[k-2].x) <= 0.0) k--;
-        h[k++] = p[i];
-    }
-    lower = k + 1;
-    for (i = n - 2; i >= 0; i--) {
-        while (k >= lower && ((double)h[k-1].x - h[k-2].x) * ((double)p[i].y - h[k-2].y) -
-                             ((double)h[k-1].y - h[k-2].y) * ((double)p[i].x - h[k-2].x) <= 0.0) k--;
-        h[k++] = p[i];
-    }
-    k--;
-    for (i = 0; i < k; i++) p[i] = h[i];
-    return k;
+    int j, m = 0;
+    for (j = 0; j < k; j++)
+        if (fxs[j] >= xs && fs[j] <= s) return k;
+    for (j = 0; j < k; j++)
+        if (!(xs >= fxs[j] && s <= fs[j])) { fxs[m] = fxs[j]; fs[m] = fs[j]; m++; }
+    fxs[m] = xs;
+    fs[m] = s;
+    return m + 1;
 }
 
 /* Width at mid-height of the narrowest enclosing isosceles trapezoid with
-   legs of slope t: legs x = u - s t and x = v + s t (s = y - y0). */
-static double sk__trap_cost(const sk_vec2 *p, int n, double y0, double L, double t, double *u, double *v)
+   legs of slope t, plus L t (its area over L); u and v as above, from the
+   fronts (lx: -x of u's front, rx: x of v's front). */
+static double sk__trap_cost(const double *lx, const double *ls, int nl, const double *rx, const double *rs, int nr,
+                            double L, double t, double *u, double *v)
 {
     double lo = 1e300, hi = -1e300;
     int i;
-    for (i = 0; i < n; i++) {
-        double s = p[i].y - y0, a = p[i].x + s * t, b = p[i].x - s * t;
+    for (i = 0; i < nl; i++) {
+        double a = -lx[i] + ls[i] * t;
         if (a < lo) lo = a;
+    }
+    for (i = 0; i < nr; i++) {
+        double b = rx[i] - rs[i] * t;
         if (b > hi) hi = b;
     }
     *u = lo; *v = hi;
     return (hi - lo > 0.0 ? hi - lo : 0.0) + L * t;
 }
 
+/* Candidate slope c for the minimum of sk__trap_cost: taken if in (0, tmax]
+   and cheaper than *best (relative 1e-12), or as cheap and smaller than *t. */
+static void sk__trap_try(const double *lx, const double *ls, int nl, const double *rx, const double *rs, int nr,
+                         double L, double tmax, double c, double *best, double *t)
+{
+    double u, v, f;
+    if (!(c > 0.0 && c <= tmax)) return;
+    f = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, c, &u, &v);
+    if (f < *best - 1e-12 * *best || (f <= *best + 1e-12 * *best && c < *t)) { *best = f; *t = c; }
+}
+
 SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir, sk_aabb receivers,
                                         const sk_aabb *casters, sk_vec3 light_dir, sk_lspsm_region *out)
 {
     sk_vec3 pts[SK_CLIP_MAX_POINTS], l, v, yax, zax, xax, centre = sk__v3(0, 0, 0);
-    sk_vec2 p2[SK_CLIP_MAX_POINTS];
+    double lx[SK_CLIP_MAX_POINTS], ls[SK_CLIP_MAX_POINTS], rx[SK_CLIP_MAX_POINTS], rs[SK_CLIP_MAX_POINTS];
     sk_lspsm_region r;
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300, L;
-    int n, i, h;
+    int n, i, nl = 0, nr = 0;
     if (!view || !out || !sk__v3_finite(view_dir) || !sk__v3_finite(light_dir) ||
         sk__len(view_dir) == 0.0f || sk__len(light_dir) == 0.0f || (casters && !sk__aabb_valid(casters)))
         return SK_ERR_INVALID_ARG;
@@ -1590,7 +1675,7 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     r.light_view = sk__basis_view(xax, yax, zax, centre);
     for (i = 0; i < n; i++) {
         sk_vec3 q = sk__xform_affine(&r.light_view, pts[i]);
-        p2[i].x = q.x; p2[i].y = q.y;
+        pts[i] = q;
         if (q.x < xmin) xmin = q.x;
         if (q.x > xmax) xmax = q.x;
         if (q.y < ymin) ymin = q.y;
@@ -1600,7 +1685,7 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     }
     if (casters)
         for (i = 0; i < 8; i++) {
-            double z = sk__xform_affine(&r.light_view, sk__aabb_corner(casters, i)).z;
+            double z = sk__xform_z(&r.light_view, sk__aabb_corner(casters, i));
             if (z < zmin) zmin = z;
             if (z > zmax) zmax = z;
         }
@@ -1616,19 +1701,27 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
         r.origin.x = (float)(0.5 * (xmin + xmax));
         r.origin.y = (float)ymin;
     } else {
-        /* minimise area L*(n + L tan theta): the mid-height width is convex in
-           t = tan theta; golden-section search on [0, (xmax-xmin)/L] */
-        double a = 0.0, b = (xmax - xmin) / L, g = 0.6180339887498949, u, w, t, nn, far_w;
-        double c1 = b - g * (b - a), c2 = a + g * (b - a), f1, f2;
-        h = sk__hull2(p2, n);
-        f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w);
-        f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w);
-        for (i = 0; i < 48; i++) {
-            if (f1 <= f2) { b = c2; c2 = c1; f2 = f1; c1 = b - g * (b - a); f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w); }
-            else { a = c1; c1 = c2; f1 = f2; c2 = a + g * (b - a); f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w); }
+        /* minimise area L*(n + L tan theta) over t = tan theta in
+           [0, (xmax-xmin)/L]: the cost is convex and piecewise linear in t
+           (sk__trap_cost), so its minimum lies at t = 0, at the end, or where
+           two lines of one front cross (a breakpoint); all are tried, the
+           smallest t winning ties */
+        double tmax = (xmax - xmin) / L, u, w, t = 0.0, nn, far_w, best;
+        int j;
+        for (i = 0; i < n; i++) {
+            double s = pts[i].y - ymin;
+            nl = sk__front_add(lx, ls, nl, -(double)pts[i].x, s);
+            nr = sk__front_add(rx, rs, nr, pts[i].x, s);
         }
-        t = 0.5 * (a + b);
-        sk__trap_cost(p2, h, ymin, L, t, &u, &w);
+        best = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, 0.0, &u, &w);
+        sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, tmax, &best, &t);
+        for (i = 0; i < nl; i++)
+            for (j = i + 1; j < nl; j++)
+                if (ls[i] != ls[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (lx[i] - lx[j]) / (ls[i] - ls[j]), &best, &t);
+        for (i = 0; i < nr; i++)
+            for (j = i + 1; j < nr; j++)
+                if (rs[i] != rs[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (rx[i] - rx[j]) / (rs[i] - rs[j]), &best, &t);
+        sk__trap_cost(lx, ls, nl, rx, rs, nr, L, t, &u, &w);
         nn = w - u;
         far_w = nn + 2.0 * L * t;
         if (nn < 1e-2 * far_w) nn = 1e-2 * far_w;     /* n -> 0: rows of usable size */
