@@ -2080,116 +2080,147 @@ SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsi
 
 /* ---- 7. Resolution estimation (seed 000) ------------------------------- */
 
-/* Light clip position of one window-space point, sign-corrected so that w > 0
-   for points in front of the light; valid = 0 if the camera-space point is
-   invalid (w_world <= 0). */
-typedef struct sk__res_pt { float x, y; int ok; } sk__res_pt;
-
+/* Seed 000, Sec. 3: every pixel's corners are shared with its neighbours, so
+   one row of corners is projected per pixel row (strips of SK__RES_STRIP
+   columns keep the rows in cache). Evaluated in double precision: the
+   NDC -> light-clip map nearly cancels for distant points (the depth
+   unprojection), and a patch extent is a difference of neighbouring
+   corners, so float rounding would show in the smallest patch, which
+   decides the resolution. */
 #define SK__RES_STRIP 256
-static const float sk__inv_count[5] = {0.0f, 1.0f, 0.5f, 1.0f / 3.0f, 0.25f};
+static const double sk__inv_count[5] = {0.0, 1.0, 0.5, 1.0 / 3.0, 0.25};
 
 SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4 inv, sk_mat4 lvp,
                                        int max_res, sk_res_estimate *out)
 {
-    sk_mat4 m;
-    float bx0 = SK__INF, by0 = SK__INF, bx1 = -SK__INF, by1 = -SK__INF, tw = SK__INF, th = SK__INF;
-    float sx = 2.0f / (float)w, sy = 2.0f / (float)h;
-    int samples = 0, patches = 0, x0;
-    sk__res_pt rowa[SK__RES_STRIP + 1], rowb[SK__RES_STRIP + 1];
-    float colsum[SK__RES_STRIP + 2];
-    int colcnt[SK__RES_STRIP + 2];
+    double m[16], g[16];
+    double bx0 = SK__INF, by0 = SK__INF, bx1 = -SK__INF, by1 = -SK__INF, tw = SK__INF, th = SK__INF;
+    double sx, sy;
+    int samples = 0, patches = 0, x0, i, j;
+    /* per corner row (two, alternating): light-clip x, y of each corner and
+       whether it is valid; per pair of neighbouring corners, their x and y
+       ranges and whether both are valid */
+    double cxr[2][SK__RES_STRIP + 1], cyr[2][SK__RES_STRIP + 1];
+    double pxl[2][SK__RES_STRIP], pxh[2][SK__RES_STRIP], pyl[2][SK__RES_STRIP], pyh[2][SK__RES_STRIP];
+    double colsum[SK__RES_STRIP + 2], rowd[2][SK__RES_STRIP + 2];
+    int colcnt[SK__RES_STRIP + 2], rowc[2][SK__RES_STRIP + 2];
+    unsigned char cok[2][SK__RES_STRIP + 1], pok[2][SK__RES_STRIP];
     if (!depth || !out || w < 1 || h < 1 || w > 65536 || h > 65536 || max_res < 1 ||
         !sk__mat_finite(&inv) || !sk__mat_finite(&lvp))
         return SK_ERR_INVALID_ARG;
-    /* NDC -> light clip in one matrix: the homogeneous world point needs no
-       divide in between, only the sign of its w (row 3 of inv) */
-    m = sk_mat4_mul(lvp, inv);
+    /* NDC -> light clip in one matrix (in double): the homogeneous world
+       point needs no divide in between, only the sign of its w (row 3 of inv) */
+    for (i = 0; i < 16; i++) g[i] = inv.m[i];
+    for (j = 0; j < 4; j++)
+        for (i = 0; i < 4; i++)
+            m[j * 4 + i] = (double)lvp.m[i] * g[j * 4] + (double)lvp.m[4 + i] * g[j * 4 + 1] +
+                           (double)lvp.m[8 + i] * g[j * 4 + 2] + (double)lvp.m[12 + i] * g[j * 4 + 3];
+    sx = 2.0 / w;
+    sy = 2.0 / h;
     for (x0 = 0; x0 < w; x0 += SK__RES_STRIP) {
-        int x1 = x0 + SK__RES_STRIP < w ? x0 + SK__RES_STRIP : w, ncorner = x1 - x0 + 1, cy;
-        sk__res_pt *lo = rowa, *hi = rowb, *tmp;
+        int x1 = x0 + SK__RES_STRIP < w ? x0 + SK__RES_STRIP : w, ncorner = x1 - x0 + 1, cy, cur = 0;
         for (cy = 0; cy <= h; cy++) {
             /* corner row cy: corner (cx, cy) is shared by pixels (cx-1..cx, cy-1..cy) */
             const float *ra = cy > 0 ? depth + (size_t)(cy - 1) * w : NULL;
             const float *rb = cy < h ? depth + (size_t)cy * w : NULL;
-            float ny = (float)cy * sy - 1.0f;
-            float bx = m.m[4] * ny + m.m[12], by = m.m[5] * ny + m.m[13], bw = m.m[7] * ny + m.m[15];
-            float gw = inv.m[7] * ny + inv.m[15];
-            int i;
-            /* vertical pair sums of valid depths, column x0-1+i at index i,
-               so each corner is the sum of two neighbouring columns */
-            for (i = 0; i < ncorner + 1; i++) {
-                int px = x0 - 1 + i, n = 0;
-                float sum = 0.0f, d;
-                if (px >= 0 && px < w) {
-                    if (ra) { d = ra[px]; if (d >= 0.0f && d < 1.0f) { sum += d; n++; } }
-                    if (rb) { d = rb[px]; if (d >= 0.0f && d < 1.0f) { sum += d; n++; } }
+            double ny = cy * sy - 1.0;
+            double bx = m[4] * ny + m[12], by = m[5] * ny + m[13], bw = m[7] * ny + m[15];
+            double gw = g[7] * ny + g[15];
+            double *cx = cxr[cur], *cyv = cyr[cur];
+            unsigned char *ok = cok[cur];
+            /* depth row cy (column x0-1+i at index i): valid depths (0 where
+               invalid) and their count; row cy-1 is kept from the last pass */
+            {
+                double *rd = rowd[cur];
+                int *rc = rowc[cur];
+                /* indices whose column x0-1+i lies in the image */
+                int ilo = x0 > 0 ? 0 : 1, ihi = ncorner + 1 < w - x0 + 1 ? ncorner + 1 : w - x0 + 1;
+                if (!rb) ilo = ihi = ncorner + 1;
+                for (i = 0; i < ilo; i++) { rd[i] = 0.0; rc[i] = 0; }
+                for (i = ihi; i < ncorner + 1; i++) { rd[i] = 0.0; rc[i] = 0; }
+                for (i = ilo; i < ihi; i++) {
+                    float d = rb[x0 - 1 + i];
+                    int v = (d >= 0.0f) & (d < 1.0f);
+                    rd[i] = v ? d : 0.0;
+                    rc[i] = v;
                 }
-                colsum[i] = sum;
-                colcnt[i] = n;
+                /* vertical pair sums, so each corner is the sum of two
+                   neighbouring columns */
+                if (ra)
+                    for (i = 0; i < ncorner + 1; i++) {
+                        colsum[i] = rowd[cur ^ 1][i] + rd[i];
+                        colcnt[i] = rowc[cur ^ 1][i] + rc[i];
+                    }
+                else
+                    for (i = 0; i < ncorner + 1; i++) {
+                        colsum[i] = rd[i];
+                        colcnt[i] = rc[i];
+                    }
             }
             for (i = 0; i < ncorner; i++) {
-                int cx = x0 + i, nv = colcnt[i] + colcnt[i + 1];
-                hi[i].ok = 0;
+                int nv = colcnt[i] + colcnt[i + 1];
+                ok[i] = 0;
+                cx[i] = cyv[i] = 0.0;
                 if (nv) {
-                    float nx = (float)cx * sx - 1.0f, nz = 2.0f * ((colsum[i] + colsum[i + 1]) * sk__inv_count[nv]) - 1.0f;
-                    float lx = bx + m.m[0] * nx + m.m[8] * nz, ly = by + m.m[1] * nx + m.m[9] * nz;
-                    float lw = bw + m.m[3] * nx + m.m[11] * nz, ww = gw + inv.m[3] * nx + inv.m[11] * nz;
-                    if (ww < 0.0f) { lx = -lx; ly = -ly; lw = -lw; }
-                    if (lw > 0.0f && ww != 0.0f) {
-                        float iw = 1.0f / lw;
-                        hi[i].x = lx * iw; hi[i].y = ly * iw; hi[i].ok = 1;
+                    double nx = (x0 + i) * sx - 1.0, nz = 2.0 * ((colsum[i] + colsum[i + 1]) * sk__inv_count[nv]) - 1.0;
+                    double lx = bx + m[0] * nx + m[8] * nz, ly = by + m[1] * nx + m[9] * nz;
+                    double lw = bw + m[3] * nx + m[11] * nz, ww = gw + g[3] * nx + g[11] * nz;
+                    if (ww < 0.0) { lx = -lx; ly = -ly; lw = -lw; }
+                    if (lw > 0.0 && ww != 0.0) {
+                        double iw = 1.0 / lw;
+                        cx[i] = lx * iw; cyv[i] = ly * iw; ok[i] = 1;
                     }
                 }
             }
+            /* x and y ranges of neighbouring corner pairs, shared by the
+               patches of the pixel rows above and below */
+            for (i = 0; i < ncorner - 1; i++) {
+                double a = cx[i], b = cx[i + 1], c = cyv[i], e = cyv[i + 1];
+                pok[cur][i] = ok[i] & ok[i + 1];
+                pxl[cur][i] = a < b ? a : b; pxh[cur][i] = a > b ? a : b;
+                pyl[cur][i] = c < e ? c : e; pyh[cur][i] = c > e ? c : e;
+            }
             if (cy > 0) {
-                /* pixel row cy-1: centres, then patches from corner rows lo, hi */
-                float ny2 = ((float)cy - 0.5f) * sy - 1.0f;
-                float cbx = m.m[4] * ny2 + m.m[12], cby = m.m[5] * ny2 + m.m[13];
-                float cbz = m.m[6] * ny2 + m.m[14], cbw = m.m[7] * ny2 + m.m[15];
-                float cgw = inv.m[7] * ny2 + inv.m[15];
+                /* pixel row cy-1: centres, then patches from corner rows cy-1 (lo) and cy (hi) */
+                int lo = cur ^ 1;
+                double ny2 = (cy - 0.5) * sy - 1.0;
+                double cbx = m[4] * ny2 + m[12], cby = m[5] * ny2 + m[13];
+                double cbz = m[6] * ny2 + m[14], cbw = m[7] * ny2 + m[15];
+                double cgw = g[7] * ny2 + g[15];
                 for (i = 0; i < ncorner - 1; i++) {
-                    float d = ra[x0 + i], nx, nz, lx, ly, lz, lw, ww;
+                    float d = ra[x0 + i];
+                    double nx, nz, lx, ly, lz, lw, ww, ex, ey;
                     if (!(d >= 0.0f && d < 1.0f)) continue;
-                    nx = ((float)(x0 + i) + 0.5f) * sx - 1.0f;
-                    nz = 2.0f * d - 1.0f;
-                    lx = cbx + m.m[0] * nx + m.m[8] * nz;
-                    ly = cby + m.m[1] * nx + m.m[9] * nz;
-                    lz = cbz + m.m[2] * nx + m.m[10] * nz;
-                    lw = cbw + m.m[3] * nx + m.m[11] * nz;
-                    ww = cgw + inv.m[3] * nx + inv.m[11] * nz;
-                    if (ww < 0.0f) { lx = -lx; ly = -ly; lz = -lz; lw = -lw; }
+                    nx = (x0 + i + 0.5) * sx - 1.0;
+                    nz = 2.0 * d - 1.0;
+                    lx = cbx + m[0] * nx + m[8] * nz;
+                    ly = cby + m[1] * nx + m[9] * nz;
+                    lz = cbz + m[2] * nx + m[10] * nz;
+                    lw = cbw + m[3] * nx + m[11] * nz;
+                    ww = cgw + g[3] * nx + g[11] * nz;
+                    if (ww < 0.0) { lx = -lx; ly = -ly; lz = -lz; lw = -lw; }
                     /* inside the light's clip volume (Sec. 3.1) */
-                    if (!(lw > 0.0f) || lx > lw || -lx > lw || ly > lw || -ly > lw || lz > lw || -lz > lw)
-                        continue;
-                    {
-                        float iw = 1.0f / lw, px = lx * iw, py = ly * iw;
-                        samples++;
-                        if (px < bx0) bx0 = px;
-                        if (px > bx1) bx1 = px;
-                        if (py < by0) by0 = py;
-                        if (py > by1) by1 = py;
-                    }
+                    if (!(lw > 0.0) || SK_FABS(lx) > lw || SK_FABS(ly) > lw || SK_FABS(lz) > lw) continue;
+                    samples++;
+                    /* bounds: x/w compared as x against bound*w (w > 0), divided
+                       only when it extends them */
+                    if (lx < bx0 * lw && lx / lw < bx0) bx0 = lx / lw;
+                    if (lx > bx1 * lw && lx / lw > bx1) bx1 = lx / lw;
+                    if (ly < by0 * lw && ly / lw < by0) by0 = ly / lw;
+                    if (ly > by1 * lw && ly / lw > by1) by1 = ly / lw;
                     /* the patch: AABB of the four projected corners (Sec. 3.2) */
-                    if (lo[i].ok && lo[i + 1].ok && hi[i].ok && hi[i + 1].ok) {
-                        float ax0 = lo[i].x, ax1 = lo[i].x, ay0 = lo[i].y, ay1 = lo[i].y, e;
-                        const sk__res_pt *q[3];
-                        int k;
-                        q[0] = &lo[i + 1]; q[1] = &hi[i]; q[2] = &hi[i + 1];
-                        for (k = 0; k < 3; k++) {
-                            if (q[k]->x < ax0) ax0 = q[k]->x;
-                            if (q[k]->x > ax1) ax1 = q[k]->x;
-                            if (q[k]->y < ay0) ay0 = q[k]->y;
-                            if (q[k]->y > ay1) ay1 = q[k]->y;
-                        }
-                        e = ax1 - ax0;
-                        if (e < tw) tw = e;
-                        e = ay1 - ay0;
-                        if (e < th) th = e;
+                    if (pok[lo][i] & pok[cur][i]) {
+                        ex = (pxh[lo][i] > pxh[cur][i] ? pxh[lo][i] : pxh[cur][i]) -
+                             (pxl[lo][i] < pxl[cur][i] ? pxl[lo][i] : pxl[cur][i]);
+                        ey = (pyh[lo][i] > pyh[cur][i] ? pyh[lo][i] : pyh[cur][i]) -
+                             (pyl[lo][i] < pyl[cur][i] ? pyl[lo][i] : pyl[cur][i]);
+                        if (ex < tw) tw = ex;
+                        if (ey < th) th = ey;
                         patches++;
                     }
                 }
             }
-            tmp = lo; lo = hi; hi = tmp;
+            cur ^= 1;
         }
     }
     memset(out, 0, sizeof *out);
@@ -2197,18 +2228,18 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
     out->crop = sk_mat4_identity();
     if (samples == 0) return SK_OK;
     {
-        double bw = (double)bx1 - bx0, bh = (double)by1 - by0, rw, rh;
-        if (!patches) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
-        rw = tw > 0.0f ? bw / tw : (double)max_res;
-        rh = th > 0.0f ? bh / th : (double)max_res;
+        double bw = bx1 - bx0, bh = by1 - by0, rw, rh;
+        if (!patches) { tw = bw / max_res; th = bh / max_res; }
+        rw = tw > 0.0 ? bw / tw : (double)max_res;
+        rh = th > 0.0 ? bh / th : (double)max_res;
         out->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
         out->height = !(rh < max_res) ? max_res : rh < 1.0 ? 1 : (int)SK_CEIL(rh);
         if (out->width > max_res) out->width = max_res;
         if (out->height > max_res) out->height = max_res;
     }
-    out->bounds.x0 = bx0; out->bounds.y0 = by0; out->bounds.x1 = bx1; out->bounds.y1 = by1;
-    out->texel_w = tw;
-    out->texel_h = th;
+    out->bounds.x0 = (float)bx0; out->bounds.y0 = (float)by0; out->bounds.x1 = (float)bx1; out->bounds.y1 = (float)by1;
+    out->texel_w = (float)tw;
+    out->texel_h = (float)th;
     out->samples = samples;
     out->crop = sk_crop_matrix(out->bounds, -1.0f, 1.0f);
     return SK_OK;
