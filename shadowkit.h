@@ -637,6 +637,11 @@ static sk_mat4 sk__basis_view(sk_vec3 x, sk_vec3 y, sk_vec3 z, sk_vec3 origin)
     r.m[15] = 1.0f;
     return r;
 }
+/* z of sk__xform_affine alone */
+static float sk__xform_z(const sk_mat4 *m, sk_vec3 p)
+{
+    return m->m[2] * p.x + m->m[6] * p.y + m->m[10] * p.z + m->m[14];
+}
 /* Affine part only (no w): for view matrices. */
 static sk_vec3 sk__xform_affine(const sk_mat4 *m, sk_vec3 p)
 {
@@ -784,13 +789,43 @@ SKDEF sk_vec4 sk_mat4_transform_vec4(sk_mat4 m, sk_vec4 p)
     return r;
 }
 
+/* sk_mat4_transform_point without copying the matrix */
+static sk_vec3 sk__xform_point(const sk_mat4 *m, sk_vec3 p)
+{
+    float x = m->m[0] * p.x + m->m[4] * p.y + m->m[8] * p.z + m->m[12];
+    float y = m->m[1] * p.x + m->m[5] * p.y + m->m[9] * p.z + m->m[13];
+    float z = m->m[2] * p.x + m->m[6] * p.y + m->m[10] * p.z + m->m[14];
+    float w = m->m[3] * p.x + m->m[7] * p.y + m->m[11] * p.z + m->m[15];
+    if (w != 0.0f) { float iw = 1.0f / w; return sk__v3(x * iw, y * iw, z * iw); }
+    return sk__v3(x, y, z);
+}
+
+/* sk__xform_point of the 8 corners of b (sk__aabb_corner order), with the
+   products of m's columns and the box bounds formed once: the same sums of
+   the same products in the same order as corner by corner. */
+static void sk__xform_box(const sk_mat4 *m, const sk_aabb *b, sk_vec3 *out)
+{
+    float px[2][4], py[2][4], pz[2][4];
+    int r, i;
+    for (r = 0; r < 4; r++) {
+        px[0][r] = m->m[r] * b->min.x; px[1][r] = m->m[r] * b->max.x;
+        py[0][r] = m->m[4 + r] * b->min.y; py[1][r] = m->m[4 + r] * b->max.y;
+        pz[0][r] = m->m[8 + r] * b->min.z; pz[1][r] = m->m[8 + r] * b->max.z;
+    }
+    for (i = 0; i < 8; i++) {
+        int a = i & 1, c = (i >> 1) & 1, e = (i >> 2) & 1;
+        float x = px[a][0] + py[c][0] + pz[e][0] + m->m[12];
+        float y = px[a][1] + py[c][1] + pz[e][1] + m->m[13];
+        float z = px[a][2] + py[c][2] + pz[e][2] + m->m[14];
+        float w = px[a][3] + py[c][3] + pz[e][3] + m->m[15];
+        if (w != 0.0f) { float iw = 1.0f / w; out[i] = sk__v3(x * iw, y * iw, z * iw); }
+        else out[i] = sk__v3(x, y, z);
+    }
+}
+
 SKDEF sk_vec3 sk_mat4_transform_point(sk_mat4 m, sk_vec3 p)
 {
-    sk_vec4 h, r;
-    h.x = p.x; h.y = p.y; h.z = p.z; h.w = 1.0f;
-    r = sk_mat4_transform_vec4(m, h);
-    if (r.w != 0.0f) { float iw = 1.0f / r.w; return sk__v3(r.x * iw, r.y * iw, r.z * iw); }
-    return sk__v3(r.x, r.y, r.z);
+    return sk__xform_point(&m, p);
 }
 
 static sk_plane sk__plane_normalized(double a, double b, double c, double d)
@@ -916,63 +951,90 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
     return 1;
 }
 
-/* Containment with a tolerance relative to the magnitudes involved. */
-static int sk__in_aabb(const sk_aabb *b, sk_vec3 p)
-{
-    float t = 1e-5f * (1.0f + sk__maxabs3(p));
-    return p.x >= b->min.x - t && p.x <= b->max.x + t && p.y >= b->min.y - t &&
-           p.y <= b->max.y + t && p.z >= b->min.z - t && p.z <= b->max.z + t;
-}
-static int sk__in_planes(const sk_plane *pl, sk_vec3 p)
-{
-    int k;
-    float m = 1.0f + sk__maxabs3(p);
-    for (k = 0; k < 6; k++)
-        if (sk__plane_dist(&pl[k], p) < -1e-5f * (m + SK_FABSF(pl[k].d))) return 0;
-    return 1;
-}
-/* Crossings of a's edges with b's planes that lie inside b. */
-static int sk__edge_crossings(const sk_frustum *a, const sk_frustum *b, sk_vec3 *out, int n)
+/* The parts of the 12 edges of hexahedron c (corner order of sk_frustum)
+   inside the other body, by parametric clipping against its six planes
+   (Cyrus & Beck 1978): dist[i][k] is corner i's signed distance to plane k,
+   bit k of out[i] set where corner i is outside plane k beyond the
+   containment tolerance (see below). A plane constrains an
+   edge where exactly one end is outside it; the edge enters the body at the
+   largest entering crossing and leaves at the smallest leaving one. Those
+   points are appended (an end within tolerance of the body is a corner,
+   appended by the caller). Planes the whole edge is within tolerance of do
+   not cut it, so faces that touch or coincide keep their vertices. */
+static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsigned *out, sk_vec3 *pts, int n)
 {
     int e, k;
     for (e = 0; e < 12; e++) {
-        sk_vec3 p0 = a->corners[sk__edges[e][0]], p1 = a->corners[sk__edges[e][1]];
-        for (k = 0; k < 6; k++) {
-            float d0 = sk__plane_dist(&b->planes[k], p0), d1 = sk__plane_dist(&b->planes[k], p1);
-            sk_vec3 q;
-            if ((d0 > 0.0f) == (d1 > 0.0f) || d0 == d1) continue;
-            q = sk__lerp3(p0, p1, d0 / (d0 - d1));
-            if (n < SK_CLIP_MAX_POINTS && sk__in_planes(b->planes, q)) out[n++] = q;
+        int a = sk__edges[e][0], b = sk__edges[e][1], enter = 0, leave = 0;
+        unsigned oa = out[a], ob = out[b], x = oa | ob;
+        float t0 = 0.0f, t1 = 1.0f;
+        if (!x || (oa & ob)) continue;   /* inside all along, or beyond one plane at both ends */
+        for (k = 0; x >> k; k++) {
+            float d0 = dist[a][k], t;
+            if (!(x >> k & 1u)) continue;
+            t = d0 / (d0 - dist[b][k]);
+            if (oa >> k & 1u) { enter = 1; if (t > t0) t0 = t < 1.0f ? t : 1.0f; }
+            else { leave = 1; if (t < t1) t1 = t > 0.0f ? t : 0.0f; }
         }
+        if (t0 > t1 + 1e-6f) continue;   /* passes by the body */
+        if (enter) pts[n++] = sk__lerp3(c[a], c[b], t0);
+        if (leave) pts[n++] = sk__lerp3(c[a], c[b], t1);
     }
     return n;
 }
 
 /* A vertex of the intersection of two convex bodies is a corner of one
-   inside the other, or where an edge of one crosses a face of the other. */
+   inside the other, or where an edge of one crosses a face of the other.
+   The 8 x 6 signed distances of each body's corners to the other's planes
+   are computed once. Containment has a tolerance relative to the magnitudes
+   involved: 1e-5 (1 + |p| + |d|) for a point p and a plane's offset d. */
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap)
 {
-    sk_frustum bf;
-    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    sk_vec3 bc[8], pts[16 + 2 * 24];
+    float fd[8][6], bd[8][6];   /* frustum corners to box planes, box corners to frustum planes */
+    float fpd[6], bpd[6];
+    unsigned fo[8], bo[8];
     int count = 0, i, j, n = 0;
     if (!f || !out || cap < 0 || sk__frustum_invalid(f) || !sk__aabb_valid(&box))
         return -(int)SK_ERR_INVALID_ARG;
-    sk_frustum_from_aabb(box, &bf);
+    /* the box's planes in sk_frustum_from_aabb's order: x - min.x, max.x - x, ...;
+       1e-5 |d| of each plane */
+    bpd[0] = 1e-5f * SK_FABSF(box.min.x); bpd[1] = 1e-5f * SK_FABSF(box.max.x);
+    bpd[2] = 1e-5f * SK_FABSF(box.min.y); bpd[3] = 1e-5f * SK_FABSF(box.max.y);
+    bpd[4] = 1e-5f * SK_FABSF(box.min.z); bpd[5] = 1e-5f * SK_FABSF(box.max.z);
+    for (j = 0; j < 6; j++) fpd[j] = 1e-5f * SK_FABSF(f->planes[j].d);
     for (i = 0; i < 8; i++) {
-        if (sk__in_aabb(&box, f->corners[i])) pts[n++] = f->corners[i];
-        if (sk__in_planes(f->planes, bf.corners[i])) pts[n++] = bf.corners[i];
+        /* outside plane k: distance + 1e-5 |d_k| < -1e-5 (1 + |p|) */
+        sk_vec3 p = f->corners[i];
+        float mp = -1e-5f * (1.0f + sk__maxabs3(p)), mq;
+        unsigned o = 0u, q = 0u;
+        bc[i] = sk__aabb_corner(&box, i);
+        mq = -1e-5f * (1.0f + sk__maxabs3(bc[i]));
+        fd[i][0] = p.x - box.min.x; fd[i][1] = box.max.x - p.x;
+        fd[i][2] = p.y - box.min.y; fd[i][3] = box.max.y - p.y;
+        fd[i][4] = p.z - box.min.z; fd[i][5] = box.max.z - p.z;
+        for (j = 0; j < 6; j++) {
+            bd[i][j] = sk__plane_dist(&f->planes[j], bc[i]);
+            o |= (unsigned)(fd[i][j] + bpd[j] < mp) << j;
+            q |= (unsigned)(bd[i][j] + fpd[j] < mq) << j;
+        }
+        fo[i] = o;
+        bo[i] = q;
+        if (!o) pts[n++] = p;
+        if (!q) pts[n++] = bc[i];
     }
     if (n < 16) {
-        n = sk__edge_crossings(f, &bf, pts, n);
-        n = sk__edge_crossings(&bf, f, pts, n);
+        n = sk__clip_edges(f->corners, (const float (*)[6])fd, fo, pts, n);
+        n = sk__clip_edges(bc, (const float (*)[6])bd, bo, pts, n);
     }
     /* drop coincident points (shared corners, edges through corners) */
     for (i = 0; i < n; i++) {
-        float tol = 1e-6f * (1.0f + sk__maxabs3(pts[i]));
+        sk_vec3 p = pts[i];
+        float tol = 1e-6f * (1.0f + sk__maxabs3(p));
         for (j = 0; j < count; j++)
-            if (SK_FABSF(pts[j].x - pts[i].x) <= tol && SK_FABSF(pts[j].y - pts[i].y) <= tol &&
-                SK_FABSF(pts[j].z - pts[i].z) <= tol) break;
-        if (j == count) pts[count++] = pts[i];
+            if (SK_FABSF(pts[j].x - p.x) <= tol && SK_FABSF(pts[j].y - p.y) <= tol &&
+                SK_FABSF(pts[j].z - p.z) <= tol) break;
+        if (j == count) pts[count++] = p;
     }
     if (count > cap) return -(int)SK_ERR_CAPACITY;
     for (i = 0; i < count; i++) out[i] = pts[i];
@@ -1161,7 +1223,7 @@ static double sk__casters_zmax(const sk_mat4 *view, const sk_aabb *casters, doub
     int i;
     if (!casters || !sk__aabb_valid(casters)) return z;
     for (i = 0; i < 8; i++) {
-        double cz = sk__xform_affine(view, sk__aabb_corner(casters, i)).z;
+        double cz = sk__xform_z(view, sk__aabb_corner(casters, i));
         if (cz > z) z = cz;
     }
     return z;
@@ -1214,29 +1276,31 @@ SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
 
 /* Off-centre perspective from `eye` looking along `dir`, fitted around the
    points (all must lie in front); the casters' corners, taken to space `pp`
-   first, widen only the depth range. Returns 0 if a point is not in front. */
-static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int n,
-                               const sk_aabb *casters, int nc, sk_mat4 pp, sk_mat4 *out)
+   first (or given so in cpts, when not NULL), widen only the depth range.
+   Returns 0 if a point is not in front. */
+static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int n, const sk_vec3 *cpts,
+                               const sk_aabb *casters, int nc, const sk_mat4 *pp, sk_mat4 *out)
 {
     sk_mat4 view = sk_mat4_look_at(eye, sk__add(eye, dir), sk__least_aligned_axis(dir));
     double l = 1e300, r = -1e300, b = 1e300, t = -1e300, zn = 1e300, zf = -1e300;
+    double eps = 1e-7 * (1.0 + sk__maxabs3(eye));
     int i;
     sk_mat4 p;
+    /* depths first (all points, casters included): a point behind fails the fit early */
     for (i = 0; i < n + 8 * nc; i++) {
-        sk_vec3 q = i < n ? pts[i] : sk_mat4_transform_point(pp, sk__aabb_corner(&casters[(i - n) / 8], (i - n) & 7));
-        double depth;
-        q = sk__xform_affine(&view, q);
-        depth = -(double)q.z;
-        if (!(depth > 1e-7 * (1.0 + sk__maxabs3(eye)))) return 0;
-        if (i < n) {
-            double x = q.x / depth, y = q.y / depth;
-            if (x < l) l = x;
-            if (x > r) r = x;
-            if (y < b) b = y;
-            if (y > t) t = y;
-        }
+        sk_vec3 q = i < n ? pts[i] : cpts ? cpts[i - n] : sk__xform_point(pp, sk__aabb_corner(&casters[(i - n) / 8], (i - n) & 7));
+        double depth = -(double)sk__xform_z(&view, q);
+        if (!(depth > eps)) return 0;
         if (depth < zn) zn = depth;
         if (depth > zf) zf = depth;
+    }
+    for (i = 0; i < n; i++) {
+        sk_vec3 q = sk__xform_affine(&view, pts[i]);
+        double depth = -(double)q.z, x = q.x / depth, y = q.y / depth;
+        if (x < l) l = x;
+        if (x > r) r = x;
+        if (y < b) b = y;
+        if (y > t) t = y;
     }
     /* a small margin so the fitted points land inside, not on, the frustum */
     {
@@ -1259,9 +1323,11 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
 
 /* Perspective shadow maps (Stamminger & Drettakis 2002; the slides' special
    cases: lights behind the viewer invert, casters behind the camera). */
+#define SK__PSM_CORNERS 256   /* caster corners kept in post-perspective space (32 boxes) */
 SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
 {
-    sk_vec3 l, le, fit[SK_CLIP_MAX_POINTS];
+    sk_vec3 l, le, fit[SK_CLIP_MAX_POINTS], cbuf[SK__PSM_CORNERS];
+    const sk_vec3 *cpts = NULL;
     sk_mat4 vview, vproj, ppv, lvp;
     sk_vec4 lh;
     float slide = 0.0f, zf;
@@ -1279,12 +1345,16 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         if (!sk__aabb_valid(&d->casters[i])) return SK_ERR_INVALID_ARG;
     /* casters behind the camera: slide the virtual camera back (Kozlov 2004) */
     for (i = 0; i < d->caster_count; i++) {
-        int k;
-        for (k = 0; k < 8; k++) {
-            float depth = -sk__xform_affine(&d->cam_view, sk__aabb_corner(&d->casters[i], k)).z;
-            float s = d->zn - depth;
-            if (s > slide) slide = s;
-        }
+        /* the nearest corner: the larger product on each axis (float sums are
+           monotone in each term, so this is the largest of the eight z) */
+        const float *m = d->cam_view.m;
+        const sk_aabb *c = &d->casters[i];
+        float zx = m[2] * c->min.x > m[2] * c->max.x ? m[2] * c->min.x : m[2] * c->max.x;
+        float zy = m[6] * c->min.y > m[6] * c->max.y ? m[6] * c->min.y : m[6] * c->max.y;
+        float zz = m[10] * c->min.z > m[10] * c->max.z ? m[10] * c->min.z : m[10] * c->max.z;
+        float depth = -(zx + zy + zz + m[14]);
+        float s = d->zn - depth;
+        if (s > slide) slide = s;
     }
     if (slide > 0.0f) slide += 0.01f * d->zn;
     slide += d->extra_slide;
@@ -1294,6 +1364,11 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
     vproj = sk_mat4_perspective(d->fovy, d->aspect, d->zn + d->extra_slide, zf);
     ppv = sk_mat4_mul(vproj, vview);
     if (!sk__mat_finite(&ppv)) return SK_ERR_DEGENERATE;
+    /* the casters' corners in post-perspective space, once for all fits below */
+    if (d->caster_count <= SK__PSM_CORNERS / 8) {
+        for (i = 0; i < d->caster_count; i++) sk__xform_box(&ppv, &d->casters[i], cbuf + 8 * i);
+        cpts = cbuf;
+    }
 
     /* the light in post-perspective space: P V (-dir, 0) */
     l = sk__normalize(sk__scale(d->light_dir, -1.0f));
@@ -1329,7 +1404,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         ortho = 1;
         if (sk_fit_ortho(fit, nfit, lv, NULL, &lp) != SK_OK) return SK_ERR_DEGENERATE;
         for (i = 0; i < 8 * d->caster_count; i++) {
-            sk_vec3 q = sk__xform_affine(&lv, sk_mat4_transform_point(ppv, sk__aabb_corner(&d->casters[i / 8], i & 7)));
+            sk_vec3 q = sk__xform_affine(&lv, cpts ? cpts[i] : sk__xform_point(&ppv, sk__aabb_corner(&d->casters[i / 8], i & 7)));
             if (q.z < zlo) zlo = q.z;
             if (q.z > zhi) zhi = q.z;
         }
@@ -1349,8 +1424,8 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         sk_vec3 lp = sk__v3(lh.x / lh.w, lh.y / lh.w, lh.z / lh.w), dir;
         inverted = lh.w < 0.0f;
         dir = sk__normalize(sk__scale(lp, -1.0f));
-        if (!sk__fit_perspective(lp, dir, fit, nfit, d->casters, d->caster_count, ppv, &lvp) &&
-            !sk__fit_perspective(lp, sk__v3(0, 0, -1), fit, nfit, d->casters, d->caster_count, ppv, &lvp))
+        if (!sk__fit_perspective(lp, dir, fit, nfit, cpts, d->casters, d->caster_count, &ppv, &lvp) &&
+            !sk__fit_perspective(lp, sk__v3(0, 0, -1), fit, nfit, cpts, d->casters, d->caster_count, &ppv, &lvp))
             return SK_ERR_DEGENERATE;
         out->light_pp = lp;
     }
@@ -1367,7 +1442,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
 /* Light-space perspective shadow maps (Wimmer, Scherzer & Purgathofer 2004). */
 SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *out)
 {
-    sk_vec3 l, v, yax, zax, xax;
+    sk_vec3 l, v, yax, zax, xax, lbody[SK_CLIP_MAX_POINTS];   /* light-space body, when it fits */
     sk_mat4 lv;
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     double cosg, sing, depth, n;
@@ -1402,6 +1477,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
     lv = sk__basis_view(xax, yax, zax, d->eye);
     for (i = 0; i < d->body_count; i++) {
         sk_vec3 p = sk__xform_affine(&lv, d->body[i]);
+        if (i < SK_CLIP_MAX_POINTS) lbody[i] = p;
         for (k = 0; k < 3; k++) {
             if ((&p.x)[k] < lo[k]) lo[k] = (&p.x)[k];
             if ((&p.x)[k] > hi[k]) hi[k] = (&p.x)[k];
@@ -1438,7 +1514,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         w.m[7] = 1.0f;
         w = sk_mat4_mul(w, t);
         for (i = 0; i < d->body_count; i++) {
-            sk_vec3 p = sk_mat4_transform_point(w, sk__xform_affine(&lv, d->body[i]));
+            sk_vec3 p = sk__xform_point(&w, i < SK_CLIP_MAX_POINTS ? lbody[i] : sk__xform_affine(&lv, d->body[i]));
             for (k = 0; k < 3; k++) {
                 if ((&p.x)[k] < wlo[k]) wlo[k] = (&p.x)[k];
                 if ((&p.x)[k] > whi[k]) whi[k] = (&p.x)[k];
@@ -1547,56 +1623,65 @@ SKDEF int sk_lspsm_partition(float n, float L, float theta, const sk_lspsm_param
     return sk__lspsm_rows(n, L, theta, p, &sink, cap);
 }
 
-/* 2D convex hull (Andrew's monotone chain) in place; returns the hull size. */
-static int sk__hull2(sk_vec2 *p, int n)
+/* An isosceles trapezoid with legs of slope t >= 0 around points (x, s),
+   s = y - y0 >= 0, has legs x = u - s t and x = v + s t with u = min(x + s t)
+   and v = max(x - s t). A point with no larger x and no smaller s than
+   another never gives v, for any t (float rounding is monotone, so not even
+   by rounding), nor one with no smaller x and no smaller s u. Only the
+   rest, the "fronts" of points not so dominated, are kept: (xs, s) with
+   xs = x for v's front and xs = -x for u's, each dominated point removed as
+   it is found. Returns the new front size. */
+static int sk__front_add(double *fxs, double *fs, int k, double xs, double s)
 {
-    sk_vec2 h[2 * SK_CLIP_MAX_POINTS];
-    int i, j, k = 0, lower;
-    for (i = 1; i < n; i++) {       /* insertion sort by x, then y */
-        sk_vec2 key = p[i];
-        for (j = i - 1; j >= 0 && (p[j].x > key.x || (p[j].x == key.x && p[j].y > key.y)); j--) p[j + 1] = p[j];
-        p[j + 1] = key;
-    }
-    if (n < 3) return n;
-    for (i = 0; i < n; i++) {
-        while (k >= 2 && ((double)h[k-1].x - h[k-2].x) * ((double)p[i].y - h[k-2].y) -
-                         ((double)h[k-1].y - h[k-2].y) * ((double)p[i].x - h[k-2].x) <= 0.0) k--;
-        h[k++] = p[i];
-    }
-    lower = k + 1;
-    for (i = n - 2; i >= 0; i--) {
-        while (k >= lower && ((double)h[k-1].x - h[k-2].x) * ((double)p[i].y - h[k-2].y) -
-                             ((double)h[k-1].y - h[k-2].y) * ((double)p[i].x - h[k-2].x) <= 0.0) k--;
-        h[k++] = p[i];
-    }
-    k--;
-    for (i = 0; i < k; i++) p[i] = h[i];
-    return k;
+    int j, m = 0;
+    for (j = 0; j < k; j++)
+        if (fxs[j] >= xs && fs[j] <= s) return k;
+    for (j = 0; j < k; j++)
+        if (!(xs >= fxs[j] && s <= fs[j])) { fxs[m] = fxs[j]; fs[m] = fs[j]; m++; }
+    fxs[m] = xs;
+    fs[m] = s;
+    return m + 1;
 }
 
 /* Width at mid-height of the narrowest enclosing isosceles trapezoid with
-   legs of slope t: legs x = u - s t and x = v + s t (s = y - y0). */
-static double sk__trap_cost(const sk_vec2 *p, int n, double y0, double L, double t, double *u, double *v)
+   legs of slope t, plus L t (its area over L); u and v as above, from the
+   fronts (lx: -x of u's front, rx: x of v's front). */
+static double sk__trap_cost(const double *lx, const double *ls, int nl, const double *rx, const double *rs, int nr,
+                            double L, double t, double *u, double *v)
 {
     double lo = 1e300, hi = -1e300;
     int i;
-    for (i = 0; i < n; i++) {
-        double s = p[i].y - y0, a = p[i].x + s * t, b = p[i].x - s * t;
+    for (i = 0; i < nl; i++) {
+        double a = -lx[i] + ls[i] * t;
         if (a < lo) lo = a;
+    }
+    for (i = 0; i < nr; i++) {
+        double b = rx[i] - rs[i] * t;
         if (b > hi) hi = b;
     }
     *u = lo; *v = hi;
     return (hi - lo > 0.0 ? hi - lo : 0.0) + L * t;
 }
 
+/* Candidate slope c for the minimum of sk__trap_cost: taken if in (0, tmax]
+   and cheaper than *best (relative 1e-12), or as cheap and smaller than *t. */
+static void sk__trap_try(const double *lx, const double *ls, int nl, const double *rx, const double *rs, int nr,
+                         double L, double tmax, double c, double *best, double *t)
+{
+    double u, v, f;
+    if (!(c > 0.0 && c <= tmax)) return;
+    f = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, c, &u, &v);
+    if (f < *best - 1e-12 * *best || (f <= *best + 1e-12 * *best && c < *t)) { *best = f; *t = c; }
+}
+
 SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir, sk_aabb receivers,
                                         const sk_aabb *casters, sk_vec3 light_dir, sk_lspsm_region *out)
 {
     sk_vec3 pts[SK_CLIP_MAX_POINTS], l, v, yax, zax, xax, centre = sk__v3(0, 0, 0);
-    sk_vec2 p2[SK_CLIP_MAX_POINTS];
+    double lx[SK_CLIP_MAX_POINTS], ls[SK_CLIP_MAX_POINTS], rx[SK_CLIP_MAX_POINTS], rs[SK_CLIP_MAX_POINTS];
     sk_lspsm_region r;
     double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300, L;
-    int n, i, h;
+    int n, i, nl = 0, nr = 0;
     if (!view || !out || !sk__v3_finite(view_dir) || !sk__v3_finite(light_dir) ||
         sk__len(view_dir) == 0.0f || sk__len(light_dir) == 0.0f || (casters && !sk__aabb_valid(casters)))
         return SK_ERR_INVALID_ARG;
@@ -1620,7 +1705,7 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     r.light_view = sk__basis_view(xax, yax, zax, centre);
     for (i = 0; i < n; i++) {
         sk_vec3 q = sk__xform_affine(&r.light_view, pts[i]);
-        p2[i].x = q.x; p2[i].y = q.y;
+        pts[i] = q;
         if (q.x < xmin) xmin = q.x;
         if (q.x > xmax) xmax = q.x;
         if (q.y < ymin) ymin = q.y;
@@ -1630,7 +1715,7 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     }
     if (casters)
         for (i = 0; i < 8; i++) {
-            double z = sk__xform_affine(&r.light_view, sk__aabb_corner(casters, i)).z;
+            double z = sk__xform_z(&r.light_view, sk__aabb_corner(casters, i));
             if (z < zmin) zmin = z;
             if (z > zmax) zmax = z;
         }
@@ -1646,19 +1731,27 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
         r.origin.x = (float)(0.5 * (xmin + xmax));
         r.origin.y = (float)ymin;
     } else {
-        /* minimise area L*(n + L tan theta): the mid-height width is convex in
-           t = tan theta; golden-section search on [0, (xmax-xmin)/L] */
-        double a = 0.0, b = (xmax - xmin) / L, g = 0.6180339887498949, u, w, t, nn, far_w;
-        double c1 = b - g * (b - a), c2 = a + g * (b - a), f1, f2;
-        h = sk__hull2(p2, n);
-        f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w);
-        f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w);
-        for (i = 0; i < 48; i++) {
-            if (f1 <= f2) { b = c2; c2 = c1; f2 = f1; c1 = b - g * (b - a); f1 = sk__trap_cost(p2, h, ymin, L, c1, &u, &w); }
-            else { a = c1; c1 = c2; f1 = f2; c2 = a + g * (b - a); f2 = sk__trap_cost(p2, h, ymin, L, c2, &u, &w); }
+        /* minimise area L*(n + L tan theta) over t = tan theta in
+           [0, (xmax-xmin)/L]: the cost is convex and piecewise linear in t
+           (sk__trap_cost), so its minimum lies at t = 0, at the end, or where
+           two lines of one front cross (a breakpoint); all are tried, the
+           smallest t winning ties */
+        double tmax = (xmax - xmin) / L, u, w, t = 0.0, nn, far_w, best;
+        int j;
+        for (i = 0; i < n; i++) {
+            double s = pts[i].y - ymin;
+            nl = sk__front_add(lx, ls, nl, -(double)pts[i].x, s);
+            nr = sk__front_add(rx, rs, nr, pts[i].x, s);
         }
-        t = 0.5 * (a + b);
-        sk__trap_cost(p2, h, ymin, L, t, &u, &w);
+        best = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, 0.0, &u, &w);
+        sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, tmax, &best, &t);
+        for (i = 0; i < nl; i++)
+            for (j = i + 1; j < nl; j++)
+                if (ls[i] != ls[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (lx[i] - lx[j]) / (ls[i] - ls[j]), &best, &t);
+        for (i = 0; i < nr; i++)
+            for (j = i + 1; j < nr; j++)
+                if (rs[i] != rs[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (rx[i] - rx[j]) / (rs[i] - rs[j]), &best, &t);
+        sk__trap_cost(lx, ls, nl, rx, rs, nr, L, t, &u, &w);
         nn = w - u;
         far_w = nn + 2.0 * L * t;
         if (nn < 1e-2 * far_w) nn = 1e-2 * far_w;     /* n -> 0: rows of usable size */
@@ -2017,116 +2110,147 @@ SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsi
 
 /* ---- 7. Resolution estimation (seed 000) ------------------------------- */
 
-/* Light clip position of one window-space point, sign-corrected so that w > 0
-   for points in front of the light; valid = 0 if the camera-space point is
-   invalid (w_world <= 0). */
-typedef struct sk__res_pt { float x, y; int ok; } sk__res_pt;
-
+/* Seed 000, Sec. 3: every pixel's corners are shared with its neighbours, so
+   one row of corners is projected per pixel row (strips of SK__RES_STRIP
+   columns keep the rows in cache). Evaluated in double precision: the
+   NDC -> light-clip map nearly cancels for distant points (the depth
+   unprojection), and a patch extent is a difference of neighbouring
+   corners, so float rounding would show in the smallest patch, which
+   decides the resolution. */
 #define SK__RES_STRIP 256
-static const float sk__inv_count[5] = {0.0f, 1.0f, 0.5f, 1.0f / 3.0f, 0.25f};
+static const double sk__inv_count[5] = {0.0, 1.0, 0.5, 1.0 / 3.0, 0.25};
 
 SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4 inv, sk_mat4 lvp,
                                        int max_res, sk_res_estimate *out)
 {
-    sk_mat4 m;
-    float bx0 = SK__INF, by0 = SK__INF, bx1 = -SK__INF, by1 = -SK__INF, tw = SK__INF, th = SK__INF;
-    float sx = 2.0f / (float)w, sy = 2.0f / (float)h;
-    int samples = 0, patches = 0, x0;
-    sk__res_pt rowa[SK__RES_STRIP + 1], rowb[SK__RES_STRIP + 1];
-    float colsum[SK__RES_STRIP + 2];
-    int colcnt[SK__RES_STRIP + 2];
+    double m[16], g[16];
+    double bx0 = SK__INF, by0 = SK__INF, bx1 = -SK__INF, by1 = -SK__INF, tw = SK__INF, th = SK__INF;
+    double sx, sy;
+    int samples = 0, patches = 0, x0, i, j;
+    /* per corner row (two, alternating): light-clip x, y of each corner and
+       whether it is valid; per pair of neighbouring corners, their x and y
+       ranges and whether both are valid */
+    double cxr[2][SK__RES_STRIP + 1], cyr[2][SK__RES_STRIP + 1];
+    double pxl[2][SK__RES_STRIP], pxh[2][SK__RES_STRIP], pyl[2][SK__RES_STRIP], pyh[2][SK__RES_STRIP];
+    double colsum[SK__RES_STRIP + 2], rowd[2][SK__RES_STRIP + 2];
+    int colcnt[SK__RES_STRIP + 2], rowc[2][SK__RES_STRIP + 2];
+    unsigned char cok[2][SK__RES_STRIP + 1], pok[2][SK__RES_STRIP];
     if (!depth || !out || w < 1 || h < 1 || w > 65536 || h > 65536 || max_res < 1 ||
         !sk__mat_finite(&inv) || !sk__mat_finite(&lvp))
         return SK_ERR_INVALID_ARG;
-    /* NDC -> light clip in one matrix: the homogeneous world point needs no
-       divide in between, only the sign of its w (row 3 of inv) */
-    m = sk_mat4_mul(lvp, inv);
+    /* NDC -> light clip in one matrix (in double): the homogeneous world
+       point needs no divide in between, only the sign of its w (row 3 of inv) */
+    for (i = 0; i < 16; i++) g[i] = inv.m[i];
+    for (j = 0; j < 4; j++)
+        for (i = 0; i < 4; i++)
+            m[j * 4 + i] = (double)lvp.m[i] * g[j * 4] + (double)lvp.m[4 + i] * g[j * 4 + 1] +
+                           (double)lvp.m[8 + i] * g[j * 4 + 2] + (double)lvp.m[12 + i] * g[j * 4 + 3];
+    sx = 2.0 / w;
+    sy = 2.0 / h;
     for (x0 = 0; x0 < w; x0 += SK__RES_STRIP) {
-        int x1 = x0 + SK__RES_STRIP < w ? x0 + SK__RES_STRIP : w, ncorner = x1 - x0 + 1, cy;
-        sk__res_pt *lo = rowa, *hi = rowb, *tmp;
+        int x1 = x0 + SK__RES_STRIP < w ? x0 + SK__RES_STRIP : w, ncorner = x1 - x0 + 1, cy, cur = 0;
         for (cy = 0; cy <= h; cy++) {
             /* corner row cy: corner (cx, cy) is shared by pixels (cx-1..cx, cy-1..cy) */
             const float *ra = cy > 0 ? depth + (size_t)(cy - 1) * w : NULL;
             const float *rb = cy < h ? depth + (size_t)cy * w : NULL;
-            float ny = (float)cy * sy - 1.0f;
-            float bx = m.m[4] * ny + m.m[12], by = m.m[5] * ny + m.m[13], bw = m.m[7] * ny + m.m[15];
-            float gw = inv.m[7] * ny + inv.m[15];
-            int i;
-            /* vertical pair sums of valid depths, column x0-1+i at index i,
-               so each corner is the sum of two neighbouring columns */
-            for (i = 0; i < ncorner + 1; i++) {
-                int px = x0 - 1 + i, n = 0;
-                float sum = 0.0f, d;
-                if (px >= 0 && px < w) {
-                    if (ra) { d = ra[px]; if (d >= 0.0f && d < 1.0f) { sum += d; n++; } }
-                    if (rb) { d = rb[px]; if (d >= 0.0f && d < 1.0f) { sum += d; n++; } }
+            double ny = cy * sy - 1.0;
+            double bx = m[4] * ny + m[12], by = m[5] * ny + m[13], bw = m[7] * ny + m[15];
+            double gw = g[7] * ny + g[15];
+            double *cx = cxr[cur], *cyv = cyr[cur];
+            unsigned char *ok = cok[cur];
+            /* depth row cy (column x0-1+i at index i): valid depths (0 where
+               invalid) and their count; row cy-1 is kept from the last pass */
+            {
+                double *rd = rowd[cur];
+                int *rc = rowc[cur];
+                /* indices whose column x0-1+i lies in the image */
+                int ilo = x0 > 0 ? 0 : 1, ihi = ncorner + 1 < w - x0 + 1 ? ncorner + 1 : w - x0 + 1;
+                if (!rb) ilo = ihi = ncorner + 1;
+                for (i = 0; i < ilo; i++) { rd[i] = 0.0; rc[i] = 0; }
+                for (i = ihi; i < ncorner + 1; i++) { rd[i] = 0.0; rc[i] = 0; }
+                for (i = ilo; i < ihi; i++) {
+                    float d = rb[x0 - 1 + i];
+                    int v = (d >= 0.0f) & (d < 1.0f);
+                    rd[i] = v ? d : 0.0;
+                    rc[i] = v;
                 }
-                colsum[i] = sum;
-                colcnt[i] = n;
+                /* vertical pair sums, so each corner is the sum of two
+                   neighbouring columns */
+                if (ra)
+                    for (i = 0; i < ncorner + 1; i++) {
+                        colsum[i] = rowd[cur ^ 1][i] + rd[i];
+                        colcnt[i] = rowc[cur ^ 1][i] + rc[i];
+                    }
+                else
+                    for (i = 0; i < ncorner + 1; i++) {
+                        colsum[i] = rd[i];
+                        colcnt[i] = rc[i];
+                    }
             }
             for (i = 0; i < ncorner; i++) {
-                int cx = x0 + i, nv = colcnt[i] + colcnt[i + 1];
-                hi[i].ok = 0;
+                int nv = colcnt[i] + colcnt[i + 1];
+                ok[i] = 0;
+                cx[i] = cyv[i] = 0.0;
                 if (nv) {
-                    float nx = (float)cx * sx - 1.0f, nz = 2.0f * ((colsum[i] + colsum[i + 1]) * sk__inv_count[nv]) - 1.0f;
-                    float lx = bx + m.m[0] * nx + m.m[8] * nz, ly = by + m.m[1] * nx + m.m[9] * nz;
-                    float lw = bw + m.m[3] * nx + m.m[11] * nz, ww = gw + inv.m[3] * nx + inv.m[11] * nz;
-                    if (ww < 0.0f) { lx = -lx; ly = -ly; lw = -lw; }
-                    if (lw > 0.0f && ww != 0.0f) {
-                        float iw = 1.0f / lw;
-                        hi[i].x = lx * iw; hi[i].y = ly * iw; hi[i].ok = 1;
+                    double nx = (x0 + i) * sx - 1.0, nz = 2.0 * ((colsum[i] + colsum[i + 1]) * sk__inv_count[nv]) - 1.0;
+                    double lx = bx + m[0] * nx + m[8] * nz, ly = by + m[1] * nx + m[9] * nz;
+                    double lw = bw + m[3] * nx + m[11] * nz, ww = gw + g[3] * nx + g[11] * nz;
+                    if (ww < 0.0) { lx = -lx; ly = -ly; lw = -lw; }
+                    if (lw > 0.0 && ww != 0.0) {
+                        double iw = 1.0 / lw;
+                        cx[i] = lx * iw; cyv[i] = ly * iw; ok[i] = 1;
                     }
                 }
             }
+            /* x and y ranges of neighbouring corner pairs, shared by the
+               patches of the pixel rows above and below */
+            for (i = 0; i < ncorner - 1; i++) {
+                double a = cx[i], b = cx[i + 1], c = cyv[i], e = cyv[i + 1];
+                pok[cur][i] = ok[i] & ok[i + 1];
+                pxl[cur][i] = a < b ? a : b; pxh[cur][i] = a > b ? a : b;
+                pyl[cur][i] = c < e ? c : e; pyh[cur][i] = c > e ? c : e;
+            }
             if (cy > 0) {
-                /* pixel row cy-1: centres, then patches from corner rows lo, hi */
-                float ny2 = ((float)cy - 0.5f) * sy - 1.0f;
-                float cbx = m.m[4] * ny2 + m.m[12], cby = m.m[5] * ny2 + m.m[13];
-                float cbz = m.m[6] * ny2 + m.m[14], cbw = m.m[7] * ny2 + m.m[15];
-                float cgw = inv.m[7] * ny2 + inv.m[15];
+                /* pixel row cy-1: centres, then patches from corner rows cy-1 (lo) and cy (hi) */
+                int lo = cur ^ 1;
+                double ny2 = (cy - 0.5) * sy - 1.0;
+                double cbx = m[4] * ny2 + m[12], cby = m[5] * ny2 + m[13];
+                double cbz = m[6] * ny2 + m[14], cbw = m[7] * ny2 + m[15];
+                double cgw = g[7] * ny2 + g[15];
                 for (i = 0; i < ncorner - 1; i++) {
-                    float d = ra[x0 + i], nx, nz, lx, ly, lz, lw, ww;
+                    float d = ra[x0 + i];
+                    double nx, nz, lx, ly, lz, lw, ww, ex, ey;
                     if (!(d >= 0.0f && d < 1.0f)) continue;
-                    nx = ((float)(x0 + i) + 0.5f) * sx - 1.0f;
-                    nz = 2.0f * d - 1.0f;
-                    lx = cbx + m.m[0] * nx + m.m[8] * nz;
-                    ly = cby + m.m[1] * nx + m.m[9] * nz;
-                    lz = cbz + m.m[2] * nx + m.m[10] * nz;
-                    lw = cbw + m.m[3] * nx + m.m[11] * nz;
-                    ww = cgw + inv.m[3] * nx + inv.m[11] * nz;
-                    if (ww < 0.0f) { lx = -lx; ly = -ly; lz = -lz; lw = -lw; }
+                    nx = (x0 + i + 0.5) * sx - 1.0;
+                    nz = 2.0 * d - 1.0;
+                    lx = cbx + m[0] * nx + m[8] * nz;
+                    ly = cby + m[1] * nx + m[9] * nz;
+                    lz = cbz + m[2] * nx + m[10] * nz;
+                    lw = cbw + m[3] * nx + m[11] * nz;
+                    ww = cgw + g[3] * nx + g[11] * nz;
+                    if (ww < 0.0) { lx = -lx; ly = -ly; lz = -lz; lw = -lw; }
                     /* inside the light's clip volume (Sec. 3.1) */
-                    if (!(lw > 0.0f) || lx > lw || -lx > lw || ly > lw || -ly > lw || lz > lw || -lz > lw)
-                        continue;
-                    {
-                        float iw = 1.0f / lw, px = lx * iw, py = ly * iw;
-                        samples++;
-                        if (px < bx0) bx0 = px;
-                        if (px > bx1) bx1 = px;
-                        if (py < by0) by0 = py;
-                        if (py > by1) by1 = py;
-                    }
+                    if (!(lw > 0.0) || SK_FABS(lx) > lw || SK_FABS(ly) > lw || SK_FABS(lz) > lw) continue;
+                    samples++;
+                    /* bounds: x/w compared as x against bound*w (w > 0), divided
+                       only when it extends them */
+                    if (lx < bx0 * lw && lx / lw < bx0) bx0 = lx / lw;
+                    if (lx > bx1 * lw && lx / lw > bx1) bx1 = lx / lw;
+                    if (ly < by0 * lw && ly / lw < by0) by0 = ly / lw;
+                    if (ly > by1 * lw && ly / lw > by1) by1 = ly / lw;
                     /* the patch: AABB of the four projected corners (Sec. 3.2) */
-                    if (lo[i].ok && lo[i + 1].ok && hi[i].ok && hi[i + 1].ok) {
-                        float ax0 = lo[i].x, ax1 = lo[i].x, ay0 = lo[i].y, ay1 = lo[i].y, e;
-                        const sk__res_pt *q[3];
-                        int k;
-                        q[0] = &lo[i + 1]; q[1] = &hi[i]; q[2] = &hi[i + 1];
-                        for (k = 0; k < 3; k++) {
-                            if (q[k]->x < ax0) ax0 = q[k]->x;
-                            if (q[k]->x > ax1) ax1 = q[k]->x;
-                            if (q[k]->y < ay0) ay0 = q[k]->y;
-                            if (q[k]->y > ay1) ay1 = q[k]->y;
-                        }
-                        e = ax1 - ax0;
-                        if (e < tw) tw = e;
-                        e = ay1 - ay0;
-                        if (e < th) th = e;
+                    if (pok[lo][i] & pok[cur][i]) {
+                        ex = (pxh[lo][i] > pxh[cur][i] ? pxh[lo][i] : pxh[cur][i]) -
+                             (pxl[lo][i] < pxl[cur][i] ? pxl[lo][i] : pxl[cur][i]);
+                        ey = (pyh[lo][i] > pyh[cur][i] ? pyh[lo][i] : pyh[cur][i]) -
+                             (pyl[lo][i] < pyl[cur][i] ? pyl[lo][i] : pyl[cur][i]);
+                        if (ex < tw) tw = ex;
+                        if (ey < th) th = ey;
                         patches++;
                     }
                 }
             }
-            tmp = lo; lo = hi; hi = tmp;
+            cur ^= 1;
         }
     }
     memset(out, 0, sizeof *out);
@@ -2134,18 +2258,18 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
     out->crop = sk_mat4_identity();
     if (samples == 0) return SK_OK;
     {
-        double bw = (double)bx1 - bx0, bh = (double)by1 - by0, rw, rh;
-        if (!patches) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
-        rw = tw > 0.0f ? bw / tw : (double)max_res;
-        rh = th > 0.0f ? bh / th : (double)max_res;
+        double bw = bx1 - bx0, bh = by1 - by0, rw, rh;
+        if (!patches) { tw = bw / max_res; th = bh / max_res; }
+        rw = tw > 0.0 ? bw / tw : (double)max_res;
+        rh = th > 0.0 ? bh / th : (double)max_res;
         out->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
         out->height = !(rh < max_res) ? max_res : rh < 1.0 ? 1 : (int)SK_CEIL(rh);
         if (out->width > max_res) out->width = max_res;
         if (out->height > max_res) out->height = max_res;
     }
-    out->bounds.x0 = bx0; out->bounds.y0 = by0; out->bounds.x1 = bx1; out->bounds.y1 = by1;
-    out->texel_w = tw;
-    out->texel_h = th;
+    out->bounds.x0 = (float)bx0; out->bounds.y0 = (float)by0; out->bounds.x1 = (float)bx1; out->bounds.y1 = (float)by1;
+    out->texel_w = (float)tw;
+    out->texel_h = (float)th;
     out->samples = samples;
     out->crop = sk_crop_matrix(out->bounds, -1.0f, 1.0f);
     return SK_OK;

@@ -635,6 +635,14 @@ static double k_frustum_bounding_sphere(long n)
     LOOP { sk_sphere s = f(&g.slice[IX]); acc += s.r + s.c.x; }
     return acc;
 }
+static double k_cascade_sphere(long n)
+{
+    typedef sk_sphere (*F)(sk_mat4, float, float, float, float);
+    F f = OPAQUE(F, sk_cascade_sphere);
+    double acc = 0.0; long i;
+    LOOP { sk_sphere s = f(g.view[IX], g.fovy[IX], g.aspect[IX], g.split_d0[IX], g.split_d1[IX]); acc += s.r + s.c.x; }
+    return acc;
+}
 static double k_light_view_directional(long n)
 {
     typedef sk_mat4 (*F)(sk_vec3);
@@ -1041,6 +1049,7 @@ static const bench_item g_items[] = {
     { "sk_pssm_splits", k_pssm_splits, NULL },
     { "sk_frustum_slice", k_frustum_slice, NULL },
     { "sk_frustum_bounding_sphere", k_frustum_bounding_sphere, NULL },
+    { "sk_cascade_sphere", k_cascade_sphere, NULL },
     { "sk_light_view_directional", k_light_view_directional, NULL },
     { "sk_fit_ortho", k_fit_ortho, NULL },
     { "sk_stable_crop", k_stable_crop, NULL },
