@@ -132,7 +132,8 @@ typedef enum skgl_technique {
     SKGL_PSSM = 1,                /* parallel-split cascades */
     SKGL_PSM = 2,                 /* perspective shadow map (one map) */
     SKGL_LISPSM = 3,              /* light-space perspective map; cascades > 1: one per PSSM slice */
-    SKGL_LSPSM = 4                /* light space partitioned maps (seed 003) */
+    SKGL_LSPSM = 4,               /* light space partitioned maps (seed 003) */
+    SKGL_FERKO = 5                /* crop and resolution estimated from the G-buffer (seed 000) */
 } skgl_technique;
 
 /* Zero-initialised fields take the default in brackets. */
@@ -152,6 +153,10 @@ typedef struct skgl_shadow_desc {
     sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
                                      the paper's zeta 0.25, sigma 0.5, h_max 4,
                                      nw_max 2 (h_max * nw_max <= SKGL_MAX_CASCADES) */
+    int ferko_latency;            /* FERKO: 0 the estimate of this frame, read back at
+                                     once (a CPU-GPU sync) [0]; 1 last frame's,
+                                     through a pixel buffer: no stall, one frame
+                                     late (fast motion can clip the crop) */
     float psm_slide;              /* PSM: the virtual camera slides back by this
                                      times sqrt(near*far) of the receivers, its
                                      near plane with it: more uniform texels
@@ -182,6 +187,11 @@ typedef struct skgl_stats {
     int warped[SKGL_MAX_CASCADES];        /* 1: the layer's map is perspective-warped */
     int depth_reversed;                   /* PSM: light behind the viewer (depth order flipped back) */
     int lspsm_fallback;                   /* LSPSM: no trapezoid axis (view along the light): one focused map */
+    float analysis_ms;                    /* FERKO: GPU time of the last skgl_shadow_analyze; -1 without timing */
+    sk_res_estimate estimate;             /* FERKO: the estimate the last render used, in the clip
+                                             space of estimate_light (see skgl_shadow_analyze) */
+    sk_mat4 estimate_light;               /* FERKO: the uncropped light frustum of that estimate */
+    int map_width, map_height;            /* texels rendered per layer (FERKO: the estimate, clamped) */
     float psm_slide;                      /* PSM: how far the virtual camera slid back */
 } skgl_stats;
 
@@ -209,6 +219,15 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
    size that receives visibility. */
 SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
+/* SKGL_FERKO: estimates the crop and the resolution of the next
+   skgl_shadow_render from the camera's depth texture (window depth, the
+   G-buffer of the frame; seed 000). The light frustum before the crop is an
+   orthographic map around scene->bounds; the estimate (stats.estimate) is
+   in its clip space. Call it before skgl_shadow_render with the same camera,
+   scene and light. Nothing visible in the light: a 1x1 map. Without a call,
+   the render falls back to the focused map at full resolution. */
+SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                      const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex);
 /* GLSL (330 core) declaring the uniforms and
    float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth);
    Paste it into a fragment shader after the #version line. */
@@ -237,6 +256,7 @@ SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
 #ifndef SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
 #define SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -411,6 +431,131 @@ static const char skgl__src_shadow_mask_frag[] =
     "    o_visibility = sk_shadow(world, n, view_depth);\n"
     "}\n"
     ;
+static const char skgl__src_ferko_analyze_frag[] =
+    "/* Resolution estimation, first pass (Ferko 2013, seed 000, Sec. 3): each\n"
+    "   output texel covers a 4x4 block of camera pixels. Per pixel: the world\n"
+    "   point from its window depth, in the light's clip space; samples outside\n"
+    "   the light frustum are discarded (Sec. 3.1). Per kept pixel: its light-clip\n"
+    "   xy bounds the crop, and the axis-aligned extent of its patch, the four\n"
+    "   pixel corners projected with depth averaged over the pixels that share\n"
+    "   each corner (Sec. 3.2), gives the smallest texel the view needs; the\n"
+    "   corners are taken relative to the pixel centre for float precision.\n"
+    "   The same definition as sk_estimate_resolution on the CPU.\n"
+    "   Out: o_bounds = (min x, min y, -max x, -max y) and\n"
+    "        o_patch  = (min patch width, min patch height, -1 if any sample,\n"
+    "                    -1 if any patch); \"none\" is +SK_BIG. A 4x4 MIN\n"
+    "   reduction (ferko_reduce.frag) takes both to one texel. */\n"
+    "uniform sampler2D u_depth;           /* window depth, row 0 at the bottom */\n"
+    "uniform mat4 u_ndc_to_light;         /* light view-projection * inverse camera view-projection */\n"
+    "uniform vec4 u_world_w;              /* row 3 of the inverse camera view-projection */\n"
+    "layout(location = 0) out vec4 o_bounds;\n"
+    "layout(location = 1) out vec4 o_patch;\n"
+    "\n"
+    "const float SK_BIG = 3.0e38;\n"
+    "\n"
+    "float sk_depth_at(ivec2 p, ivec2 size)\n"
+    "{\n"
+    "    if (p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y) return -1.0;\n"
+    "    float d = texelFetch(u_depth, p, 0).r;\n"
+    "    return d >= 0.0 && d < 1.0 ? d : -1.0;\n"
+    "}\n"
+    "\n"
+    "/* light clip of NDC (x, y, z), with the sign of the homogeneous world w folded in */\n"
+    "vec4 sk_to_light(vec3 ndc)\n"
+    "{\n"
+    "    vec4 h = vec4(ndc, 1.0);\n"
+    "    vec4 l = u_ndc_to_light * h;\n"
+    "    float ww = dot(u_world_w, h);\n"
+    "    if (ww < 0.0) l = -l;\n"
+    "    if (ww == 0.0) l.w = 0.0;\n"
+    "    return l;\n"
+    "}\n"
+    "\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 size = textureSize(u_depth, 0);\n"
+    "    ivec2 base = ivec2(gl_FragCoord.xy) * 4;\n"
+    "    vec2 to_ndc = 2.0 / vec2(size);\n"
+    "    float d[36];                     /* pixels base-1 .. base+4, 6 x 6 */\n"
+    "    float cz[25];                    /* corners base .. base+4, 5 x 5: NDC z of the averaged depth, or 2 (none) */\n"
+    "    vec4 b = vec4(SK_BIG), pt = vec4(SK_BIG, SK_BIG, 0.0, 0.0);\n"
+    "    int x, y, k;\n"
+    "    for (y = 0; y < 6; y++)\n"
+    "        for (x = 0; x < 6; x++) d[y * 6 + x] = sk_depth_at(base + ivec2(x - 1, y - 1), size);\n"
+    "    for (y = 0; y < 5; y++)\n"
+    "        for (x = 0; x < 5; x++) {\n"
+    "            /* corner base + (x, y) touches pixels (x-1..x, y-1..y): d[y..y+1][x..x+1] */\n"
+    "            float s = 0.0, n = 0.0, v;\n"
+    "            v = d[y * 6 + x];           if (v >= 0.0) { s += v; n += 1.0; }\n"
+    "            v = d[y * 6 + x + 1];       if (v >= 0.0) { s += v; n += 1.0; }\n"
+    "            v = d[(y + 1) * 6 + x];     if (v >= 0.0) { s += v; n += 1.0; }\n"
+    "            v = d[(y + 1) * 6 + x + 1]; if (v >= 0.0) { s += v; n += 1.0; }\n"
+    "            cz[y * 5 + x] = n > 0.0 ? 2.0 * (s * (1.0 / n)) - 1.0 : 2.0;\n"
+    "        }\n"
+    "    for (y = 0; y < 4; y++)\n"
+    "        for (x = 0; x < 4; x++) {\n"
+    "            float dp = d[(y + 1) * 6 + x + 1];\n"
+    "            if (dp < 0.0) continue;\n"
+    "            vec3 c = vec3((vec2(base + ivec2(x, y)) + 0.5) * to_ndc - 1.0, 2.0 * dp - 1.0);\n"
+    "            float ww = dot(u_world_w, vec4(c, 1.0));\n"
+    "            vec4 l = sk_to_light(c);\n"
+    "            if (!(l.w > 0.0) || any(greaterThan(abs(l.xyz), vec3(l.w)))) continue;\n"
+    "            vec2 p = l.xy / l.w;\n"
+    "            b = min(b, vec4(p, -p));\n"
+    "            pt.z = -1.0;\n"
+    "            /* the patch: its four corners relative to the pixel centre,\n"
+    "               (C.xy P.w - P.xy C.w) / (C.w P.w) with C = P + M delta, so the\n"
+    "               extent comes from small differences, not from subtracting\n"
+    "               nearly equal light-clip positions (float has no room for that) */\n"
+    "            vec2 lo = vec2(SK_BIG), hi = vec2(-SK_BIG);\n"
+    "            bool ok = true;\n"
+    "            for (k = 0; k < 4; k++) {\n"
+    "                int kx = k & 1, ky = k >> 1, ci = (y + ky) * 5 + x + kx;\n"
+    "                if (cz[ci] > 1.5) { ok = false; break; }\n"
+    "                vec3 delta = vec3((vec2(kx, ky) - 0.5) * to_ndc, cz[ci] - c.z);\n"
+    "                vec4 md = u_ndc_to_light * vec4(delta, 0.0);\n"
+    "                float cw = dot(u_world_w, vec4(c + delta, 1.0));\n"
+    "                if (ww < 0.0) md = -md;\n"
+    "                vec4 cl = l + md;\n"
+    "                if (!(cl.w > 0.0) || cw * ww <= 0.0) { ok = false; break; }\n"
+    "                vec2 q = (md.xy * l.w - l.xy * md.w) / (cl.w * l.w);\n"
+    "                lo = min(lo, q);\n"
+    "                hi = max(hi, q);\n"
+    "            }\n"
+    "            if (ok) {\n"
+    "                pt.xy = min(pt.xy, hi - lo);\n"
+    "                pt.w = -1.0;\n"
+    "            }\n"
+    "        }\n"
+    "    o_bounds = b;\n"
+    "    o_patch = pt;\n"
+    "}\n"
+    ;
+static const char skgl__src_ferko_reduce_frag[] =
+    "/* Resolution estimation, reduction (seed 000, Sec. 3.3): the MIN of a 4x4\n"
+    "   neighbourhood of both analysis textures (the bounds are stored as\n"
+    "   (min x, min y, -max x, -max y), so one MIN serves both ends). Texels\n"
+    "   outside the source level's u_src_size are skipped. */\n"
+    "uniform sampler2D u_bounds;\n"
+    "uniform sampler2D u_patch;\n"
+    "uniform ivec2 u_src_size;\n"
+    "layout(location = 0) out vec4 o_bounds;\n"
+    "layout(location = 1) out vec4 o_patch;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 base = ivec2(gl_FragCoord.xy) * 4;\n"
+    "    vec4 b = vec4(3.0e38), p = vec4(3.0e38, 3.0e38, 0.0, 0.0);\n"
+    "    for (int y = 0; y < 4; y++)\n"
+    "        for (int x = 0; x < 4; x++) {\n"
+    "            ivec2 q = base + ivec2(x, y);\n"
+    "            if (q.x >= u_src_size.x || q.y >= u_src_size.y) continue;\n"
+    "            b = min(b, texelFetch(u_bounds, q, 0));\n"
+    "            p = min(p, texelFetch(u_patch, q, 0));\n"
+    "        }\n"
+    "    o_bounds = b;\n"
+    "    o_patch = p;\n"
+    "}\n"
+    ;
 /* SKGL_EMBEDDED_SHADERS_END */
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic pop
@@ -483,6 +628,12 @@ typedef unsigned long long skgl__u64;
 #define SKGL__MAJOR_VERSION 0x821B
 #define SKGL__MINOR_VERSION 0x821C
 #define SKGL__NONE 0
+#define SKGL__RGBA 0x1908
+#define SKGL__RGBA32F 0x8814
+#define SKGL__PIXEL_PACK_BUFFER 0x88EB
+#define SKGL__PIXEL_PACK_BUFFER_BINDING 0x88ED
+#define SKGL__STREAM_READ 0x88E1
+#define SKGL__COLOR_ATTACHMENT1 0x8CE1
 #define SKGL__UNITS 3                      /* texture units the mask pass uses: 0, 1, 2 */
 
 #define SKGL__FUNCS(X) \
@@ -515,6 +666,16 @@ typedef unsigned long long skgl__u64;
     X(void, DeleteTextures, (skgl__sizei n, const skgl__uint *ids)) \
     X(void, BindTexture, (skgl__enum target, skgl__uint tex)) \
     X(void, ActiveTexture, (skgl__enum unit)) \
+    X(void, TexImage2D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
+    X(void, ReadPixels, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, void *data)) \
+    X(void, DrawBuffers, (skgl__sizei n, const skgl__enum *bufs)) \
+    X(void, GenBuffers, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteBuffers, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindBuffer, (skgl__enum target, skgl__uint buf)) \
+    X(void, BufferData, (skgl__enum target, ptrdiff_t size, const void *data, skgl__enum usage)) \
+    X(void, GetBufferSubData, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, void *data)) \
+    X(void, Uniform2i, (skgl__int loc, skgl__int a, skgl__int b)) \
+    X(void, Uniform4fv, (skgl__int loc, skgl__sizei n, const float *v)) \
     X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
     X(void, TexParameteri, (skgl__enum target, skgl__enum pname, skgl__int v)) \
     X(void, GetTexLevelParameteriv, (skgl__enum target, skgl__int level, skgl__enum pname, skgl__int *v)) \
@@ -562,6 +723,7 @@ struct skgl_context {
     int debug, timing, objects;
     skgl__uint depth_prog, mask_prog, empty_vao, fbo, query;
     skgl__uint cmp_sampler, point_sampler;
+    skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 4x4 MIN reduction */
     skgl__int depth_u_view_proj, depth_u_model;
     char log[1024];
 };
@@ -572,6 +734,15 @@ struct skgl_shadow {
     int layers;                    /* allocated */
     int maps;                      /* used by the last render (LSPSM: its partition count) */
     float select_extent;           /* LSPSM: |light NDC| <= this selects a partition (its rect) */
+    sk_mat4 render_vp[SKGL_MAX_CASCADES];   /* the depth pass's matrix (vp: the lookup's) */
+    int view_w, view_h;            /* viewport of every layer's depth pass */
+    /* FERKO: analysis targets (bounds, patch) at 1/4 and 1/16 of the G-buffer,
+       the size they were made for, the readback buffer, and the estimate */
+    skgl__uint ferko_tex[2][2], ferko_pbo;
+    int ferko_w, ferko_h;
+    int ferko_state;               /* 0 no estimate, 1 estimate ready, 2 a readback pending in the PBO */
+    sk_mat4 ferko_lvp, ferko_pending_lvp;   /* the uncropped light frustum of the estimate / of the pending one */
+    sk_res_estimate ferko_est;
     sk_mat4 vp[SKGL_MAX_CASCADES];
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl_stats stats;
@@ -581,7 +752,7 @@ struct skgl_shadow {
 typedef struct skgl__state {
     skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
     skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
-    skgl__int depth_func, cull_mode;
+    skgl__int depth_func, cull_mode, pack_buffer;
     skgl__bool depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
     float poly_factor, poly_units;
     double clear_depth;
@@ -610,6 +781,7 @@ static void skgl__save(const skgl__api *gl, skgl__state *st)
     }
     gl->ActiveTexture((skgl__enum)st->active_tex);
     gl->GetIntegerv(SKGL__DEPTH_FUNC, &st->depth_func);
+    gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, &st->pack_buffer);
     gl->GetIntegerv(SKGL__CULL_FACE_MODE, &st->cull_mode);
     st->depth_test = gl->IsEnabled(SKGL__DEPTH_TEST);
     gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, &st->depth_mask);
@@ -640,6 +812,7 @@ static void skgl__restore(const skgl__api *gl, const skgl__state *st)
     }
     gl->ActiveTexture((skgl__enum)st->active_tex);
     gl->DepthFunc((skgl__enum)st->depth_func);
+    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)st->pack_buffer);
     gl->CullFace((skgl__enum)st->cull_mode);
     skgl__enable(gl, SKGL__DEPTH_TEST, st->depth_test);
     gl->DepthMask(st->depth_mask);
@@ -738,6 +911,9 @@ static void skgl__release(skgl_context *ctx)
     if (ctx->query) { gl->DeleteQueries(1, &ctx->query); ctx->objects--; }
     if (ctx->cmp_sampler) { gl->DeleteSamplers(1, &ctx->cmp_sampler); ctx->objects--; }
     if (ctx->point_sampler) { gl->DeleteSamplers(1, &ctx->point_sampler); ctx->objects--; }
+    if (ctx->ferko_prog) { gl->DeleteProgram(ctx->ferko_prog); ctx->objects--; }
+    if (ctx->reduce_prog) { gl->DeleteProgram(ctx->reduce_prog); ctx->objects--; }
+    ctx->ferko_prog = ctx->reduce_prog = 0;
     ctx->depth_prog = ctx->mask_prog = ctx->empty_vao = ctx->fbo = ctx->query = 0;
     ctx->cmp_sampler = ctx->point_sampler = 0;
 }
@@ -766,7 +942,9 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     ctx->depth_prog = skgl__program(ctx, skgl__src_depth_vert, skgl__src_depth_frag, NULL);
     ctx->mask_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_shadow_sample_glsl,
                                    skgl__src_shadow_mask_frag);
-    if (!ctx->depth_prog || !ctx->mask_prog) {
+    ctx->ferko_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_ferko_analyze_frag, NULL);
+    ctx->reduce_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_ferko_reduce_frag, NULL);
+    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog) {
         skgl__release(ctx);
         SKGL_FREE(ctx);
         return SK_ERR_GL;
@@ -818,7 +996,7 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     if (r.technique == SKGL_LSPSM && r.lspsm.h_max > 0 && r.lspsm.nw_max > 0 &&
         r.lspsm.h_max <= SKGL_MAX_CASCADES && r.lspsm.nw_max <= SKGL_MAX_CASCADES)
         r.cascades = r.lspsm.h_max * r.lspsm.nw_max;
-    if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM) r.cascades = 1;
+    if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM || r.technique == SKGL_FERKO) r.cascades = 1;
     if (r.lambda == 0.0f) r.lambda = 0.75f;
     else if (r.lambda < 0.0f) r.lambda = 0.0f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
@@ -839,11 +1017,11 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     skgl_shadow_desc d;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
     d = skgl__defaults(desc);
-    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_LSPSM || d.resolution > 16384 ||
+    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_FERKO || d.resolution > 16384 ||
         d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
         d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f) ||
         !(d.lspsm.zeta > 0.0f && d.lspsm.zeta < 0.5f) || !(d.lspsm.sigma > 0.0f && d.lspsm.sigma <= 1e3f) ||
-        d.lspsm.h_max < 1 || d.lspsm.nw_max < 1)
+        d.lspsm.h_max < 1 || d.lspsm.nw_max < 1 || d.ferko_latency < 0 || d.ferko_latency > 1)
         return SK_ERR_INVALID_ARG;
     s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
@@ -873,10 +1051,13 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     return SK_OK;
 }
 
+static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
+
 SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
 {
     if (!s) return;
     if (ctx && s->tex) { ctx->gl.DeleteTextures(1, &s->tex); ctx->objects--; }
+    if (ctx) skgl__ferko_free(ctx, s);
     SKGL_FREE(s);
 }
 
@@ -1058,6 +1239,251 @@ static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const s
     return SK_OK;
 }
 
+static sk_result skgl__check(skgl_context *ctx, const char *what)
+{
+    if (ctx->debug && ctx->gl.GetError() != 0) {
+        skgl__set_log(ctx, what, "glGetError reported an error");
+        return SK_ERR_GL;
+    }
+    return SK_OK;
+}
+
+/* ---- resolution estimation on the GPU (seed 000) ----------------------- */
+static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
+{
+    int i, k;
+    for (i = 0; i < 2; i++)
+        for (k = 0; k < 2; k++)
+            if (s->ferko_tex[i][k]) { ctx->gl.DeleteTextures(1, &s->ferko_tex[i][k]); ctx->objects--; s->ferko_tex[i][k] = 0; }
+    if (s->ferko_pbo) { ctx->gl.DeleteBuffers(1, &s->ferko_pbo); ctx->objects--; s->ferko_pbo = 0; }
+    s->ferko_w = s->ferko_h = 0;
+}
+
+/* the analysis targets for a w x h G-buffer: RGBA32F pairs at 1/4 and 1/16
+   (each later level of the 4x4 reduction fits in the one two levels up) */
+static void skgl__ferko_targets(skgl_context *ctx, skgl_shadow *s, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    int i, k;
+    if (s->ferko_w == w && s->ferko_h == h) return;
+    skgl__ferko_free(ctx, s);
+    for (i = 0; i < 2; i++) {
+        int div = i ? 16 : 4, tw = (w + div - 1) / div, th = (h + div - 1) / div;
+        for (k = 0; k < 2; k++) {
+            gl->GenTextures(1, &s->ferko_tex[i][k]);
+            ctx->objects++;
+            gl->BindTexture(SKGL__TEXTURE_2D, s->ferko_tex[i][k]);
+            gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__RGBA32F, tw, th, 0, SKGL__RGBA, SKGL__FLOAT, NULL);
+            gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+            gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+        }
+    }
+    gl->GenBuffers(1, &s->ferko_pbo);
+    ctx->objects++;
+    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, s->ferko_pbo);
+    gl->BufferData(SKGL__PIXEL_PACK_BUFFER, 8 * sizeof(float), NULL, SKGL__STREAM_READ);
+    s->ferko_w = w;
+    s->ferko_h = h;
+    s->ferko_state = 0;
+}
+
+/* The reduced texel, (min x, min y, -max x, -max y) and (min patch width,
+   min patch height, any sample, any patch), to the estimate, with the same
+   rules as sk_estimate_resolution (samples: 1 when any, the GPU counts none). */
+static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate *e)
+{
+    double bw, bh, rw, rh;
+    float tw = v[4], th = v[5];
+    memset(e, 0, sizeof *e);
+    e->bounds.x0 = -1.0f; e->bounds.y0 = -1.0f; e->bounds.x1 = 1.0f; e->bounds.y1 = 1.0f;
+    e->crop = sk_mat4_identity();
+    if (!(v[6] < 0.0f) || !sk__finite(v[0]) || !sk__finite(v[1]) || !sk__finite(v[2]) || !sk__finite(v[3])) return;
+    e->bounds.x0 = v[0]; e->bounds.y0 = v[1]; e->bounds.x1 = -v[2]; e->bounds.y1 = -v[3];
+    bw = (double)e->bounds.x1 - e->bounds.x0;
+    bh = (double)e->bounds.y1 - e->bounds.y0;
+    if (!(v[7] < 0.0f)) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
+    rw = tw > 0.0f ? bw / tw : (double)max_res;
+    rh = th > 0.0f ? bh / th : (double)max_res;
+    e->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
+    e->height = !(rh < max_res) ? max_res : rh < 1.0 ? 1 : (int)SK_CEIL(rh);
+    e->texel_w = tw;
+    e->texel_h = th;
+    e->samples = 1;
+    e->crop = sk_crop_matrix(e->bounds, -1.0f, 1.0f);
+}
+
+/* the map of the estimate: its crop widened by a margin of texels (the
+   normal offset and the PCF footprint of a sample at the crop's edge stay in
+   the rendered region), rendered into the texture's lower-left w x h texels;
+   the lookup matrix maps the crop onto that region */
+static void skgl__fit_ferko(skgl_shadow *s, float zf)
+{
+    const sk_res_estimate *e = &s->ferko_est;
+    int res = s->desc.resolution, w = e->width, h = e->height;
+    int margin = s->desc.pcf_radius + 2 + (int)SK_CEIL(s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    sk_mat4 m, t = sk_mat4_identity();
+    sk_rect b = e->bounds;
+    if (e->samples > 0 && w > 0 && h > 0) {
+        float mx = margin * (b.x1 - b.x0) / (float)w, my = margin * (b.y1 - b.y0) / (float)h;
+        b.x0 -= mx; b.x1 += mx; b.y0 -= my; b.y1 += my;
+        w += 2 * margin;
+        h += 2 * margin;
+        m = sk_mat4_mul(sk_crop_matrix(b, -1.0f, 1.0f), s->ferko_lvp);
+    } else {
+        w = h = 1;                               /* nothing visible in the light */
+        m = s->ferko_lvp;
+    }
+    if (w > res) w = res;
+    if (h > res) h = res;
+    t.m[0] = (float)w / (float)res; t.m[12] = (float)w / (float)res - 1.0f;
+    t.m[5] = (float)h / (float)res; t.m[13] = (float)h / (float)res - 1.0f;
+    s->render_vp[0] = m;
+    s->vp[0] = sk_mat4_mul(t, m);
+    s->view_w = w;
+    s->view_h = h;
+    s->maps = 1;
+    s->stats.splits[1] = zf;
+    s->stats.estimate = *e;
+    s->stats.estimate_light = s->ferko_lvp;
+}
+
+/* the uncropped light frustum: an orthographic map around the scene */
+static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, sk_mat4 *out)
+{
+    sk_vec3 c[8];
+    sk_mat4 lview = sk_light_view_directional(light_dir), proj;
+    int i;
+    sk_result r;
+    for (i = 0; i < 8; i++) c[i] = sk__aabb_corner(&scene->bounds, i);
+    r = sk_fit_ortho(c, 8, lview, &scene->bounds, &proj);
+    if (r == SK_OK) *out = sk_mat4_mul(proj, lview);
+    return r;
+}
+
+SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                      const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex)
+{
+    static const skgl__enum bufs[2] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1};
+    skgl__api *gl;
+    skgl__state st;
+    sk_mat4 inv, lvp, ndc_to_light;
+    skgl__int w = 0, h = 0;
+    int cw, ch, src = 0, sync;
+    float world_w[4], v[8];
+    sk_result r;
+    if (!ctx || !s || !cam || !scene || !depth_tex || s->desc.technique != SKGL_FERKO ||
+        !sk__v3_finite(light_dir) || sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) ||
+        !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) ||
+        !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
+        return SK_ERR_INVALID_ARG;
+    r = skgl__ferko_light(scene, light_dir, &lvp);
+    if (r != SK_OK) return r;
+    gl = &ctx->gl;
+    skgl__save(gl, &st);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
+    if (w <= 0 || h <= 0 || w > 65536 || h > 65536) {
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_shadow_analyze: depth texture has no level 0", NULL);
+        return SK_ERR_INVALID_ARG;
+    }
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    skgl__ferko_targets(ctx, s, w, h);
+    /* one frame late: the estimate of the last call, waiting in the PBO */
+    if (s->ferko_state == 2) {
+        gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, s->ferko_pbo);
+        gl->GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, 8 * sizeof(float), v);
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
+        s->ferko_lvp = s->ferko_pending_lvp;
+        s->ferko_state = 1;
+    }
+    sync = !s->desc.ferko_latency || s->ferko_state == 0;
+    skgl__query_begin(ctx);
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->BindVertexArray(ctx->empty_vao);
+    /* pass 1: 4x4 blocks of the G-buffer */
+    cw = (w + 3) / 4;
+    ch = (h + 3) / 4;
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->ferko_tex[0][0], 0);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, s->ferko_tex[0][1], 0);
+    gl->DrawBuffers(2, bufs);
+    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, 0, 0);
+        if (ctx->timing) gl->EndQuery(SKGL__TIME_ELAPSED);
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->Viewport(0, 0, cw, ch);
+    gl->UseProgram(ctx->ferko_prog);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindSampler(1, ctx->point_sampler);
+    gl->Uniform1i(gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
+    ndc_to_light = sk_mat4_mul(lvp, inv);
+    world_w[0] = inv.m[3]; world_w[1] = inv.m[7]; world_w[2] = inv.m[11]; world_w[3] = inv.m[15];
+    gl->UniformMatrix4fv(gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light"), 1, 0, ndc_to_light.m);
+    gl->Uniform4fv(gl->GetUniformLocation(ctx->ferko_prog, "u_world_w"), 1, world_w);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    /* 4x4 MIN reductions, ping-pong between the two pairs, down to one texel */
+    gl->UseProgram(ctx->reduce_prog);
+    gl->Uniform1i(gl->GetUniformLocation(ctx->reduce_prog, "u_bounds"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(ctx->reduce_prog, "u_patch"), 2);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
+    gl->BindSampler(2, ctx->point_sampler);
+    while (cw > 1 || ch > 1) {
+        int dst = 1 - src, nw = (cw + 3) / 4, nh = (ch + 3) / 4;
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->ferko_tex[dst][0], 0);
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, s->ferko_tex[dst][1], 0);
+        gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+        gl->BindTexture(SKGL__TEXTURE_2D, s->ferko_tex[src][0]);
+        gl->ActiveTexture(SKGL__TEXTURE0 + 2);
+        gl->BindTexture(SKGL__TEXTURE_2D, s->ferko_tex[src][1]);
+        gl->Uniform2i(gl->GetUniformLocation(ctx->reduce_prog, "u_src_size"), cw, ch);
+        gl->Viewport(0, 0, nw, nh);
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+        src = dst;
+        cw = nw;
+        ch = nh;
+    }
+    /* the result: texel (0, 0) of the pair attached now */
+    if (sync) {
+        gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
+        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
+        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, v);
+        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT1);
+        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, v + 4);
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
+        s->ferko_lvp = lvp;
+        s->ferko_state = 1;
+    }
+    if (s->desc.ferko_latency) {
+        /* start this frame's readback; the next call takes it */
+        gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, s->ferko_pbo);
+        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
+        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
+        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT1);
+        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, (void *)(4 * sizeof(float)));
+        s->ferko_pending_lvp = lvp;
+        s->ferko_state = 2;
+    }
+    gl->ReadBuffer(SKGL__NONE);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, 0, 0);
+    gl->DrawBuffer(SKGL__NONE);
+    s->stats.analysis_ms = skgl__query_end(ctx);
+    skgl__restore(gl, &st);
+    return skgl__check(ctx, "skgl_shadow_analyze");
+}
+
 /* Crops of every layer: the PSSM practical split scheme (seed 002) over
    the part of the view that can hold receivers; per layer a focused crop of
    the slice clipped to the scene, or a texel-snapped stable crop. */
@@ -1088,8 +1514,13 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     s->maps = s->layers;
     s->stats.lspsm_fallback = 0;
     for (i = 0; i < s->layers; i++) { s->stats.warp_n[i] = SK__INF; s->stats.warped[i] = 0; }
+    s->view_w = s->view_h = d->resolution;
     if (d->technique == SKGL_PSM) return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
     if (d->technique == SKGL_LSPSM) return skgl__fit_lspsm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
+    if (d->technique == SKGL_FERKO && s->ferko_state != 0) {
+        skgl__fit_ferko(s, cam_zf > zf ? cam_zf : zf);
+        return SK_OK;
+    }
     for (i = 0; i < s->layers; i++) {
         sk_frustum slice;
         sk_mat4 proj;
@@ -1124,15 +1555,6 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     return SK_OK;
 }
 
-static sk_result skgl__check(skgl_context *ctx, const char *what)
-{
-    if (ctx->debug && ctx->gl.GetError() != 0) {
-        skgl__set_log(ctx, what, "glGetError reported an error");
-        return SK_ERR_GL;
-    }
-    return SK_OK;
-}
-
 SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                      const skgl_scene *scene, sk_vec3 light_dir)
 {
@@ -1146,6 +1568,8 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
         return SK_ERR_INVALID_ARG;
     r = skgl__fit_layers(s, cam, scene, light_dir);
     if (r != SK_OK) return r;
+    if (s->desc.technique != SKGL_FERKO || s->ferko_state == 0)
+        for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
     s->light_dir = sk__normalize(light_dir);
     gl = &ctx->gl;
     res = s->desc.resolution;
@@ -1154,8 +1578,13 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
     gl->DrawBuffer(SKGL__NONE);
     gl->ReadBuffer(SKGL__NONE);
-    gl->Viewport(0, 0, res, res);
-    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->Viewport(0, 0, s->view_w, s->view_h);
+    /* a map smaller than its texture (FERKO): clear and draw only its
+       region, plus one texel for the filter's footprint at the edge */
+    if (s->view_w < res || s->view_h < res) {
+        gl->Enable(SKGL__SCISSOR_TEST);
+        gl->Scissor(0, 0, s->view_w < res ? s->view_w + 1 : res, s->view_h < res ? s->view_h + 1 : res);
+    } else gl->Disable(SKGL__SCISSOR_TEST);
     gl->Disable(SKGL__BLEND);
     gl->Disable(SKGL__CULL_FACE);          /* open meshes cast from both sides */
     gl->Enable(SKGL__DEPTH_TEST);
@@ -1180,16 +1609,16 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
             return SK_ERR_GL;
         }
         gl->Clear(SKGL__DEPTH_BUFFER_BIT);
-        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->vp[i].m);
+        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->render_vp[i].m);
         gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
-        info.view_proj = s->vp[i];
-        info.frustum = sk_frustum_from_matrix(s->vp[i]);
+        info.view_proj = s->render_vp[i];
+        info.frustum = sk_frustum_from_matrix(s->render_vp[i]);
         scene->draw(scene->user, &info);
         s->stats.passes++;
-        s->stats.texels += (double)res * res;
+        s->stats.texels += (double)s->view_w * s->view_h;
         /* the callback may have bound its own program: ours again for the next layer */
         gl->UseProgram(ctx->depth_prog);
     }
@@ -1197,6 +1626,8 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     s->stats.shadow_ms = skgl__query_end(ctx);
     s->stats.maps = s->maps;
     s->stats.resolution = res;
+    s->stats.map_width = s->view_w;
+    s->stats.map_height = s->view_h;
     skgl__restore(gl, &st);
     return skgl__check(ctx, "skgl_shadow_render");
 }

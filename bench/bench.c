@@ -16,18 +16,21 @@
        method,params,scene,view,width,height,error_kind,error,texels,passes,
        shadow_ms,analysis_ms,total_ms,device
        method     standard | standard-stable | pssm | psm | lispsm |
-                  lispsm-pssm (LiSPSM per cascade) | lspsm   (DESIGN.md names)
+                  lispsm-pssm (LiSPSM per cascade) | lspsm | ferko   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
        error_kind hard_pct
        texels     shadow texels rendered (skgl_stats.texels)
        passes     draw callbacks made (skgl_stats.passes)
        shadow_ms  GPU time of the depth passes (timer query), median of
                   --repeat timing passes
-       analysis_ms 0 (these methods analyse nothing on the GPU)
-       total_ms   shadow_ms + mask_ms (the deferred mask pass, one sample)
+       analysis_ms GPU time of FERKO's skgl_shadow_analyze (median, like
+                  shadow_ms); 0 for the methods that analyse nothing
+       total_ms   shadow_ms + analysis_ms + mask_ms (the deferred mask pass,
+                  one sample)
        device     GL renderer string (CSV-quoted: llvmpipe's has commas)
      bench-data/<scene>.*.dat   the chart data: per configuration the mean
-                                error and mean shadow_ms over the views
+                                error and mean shadow_ms + analysis_ms over
+                                the views
      pareto-<scene>.png         gnuplot (bench/pareto.gp): error against
                                 shadow time, one series per method, the
                                 Pareto front (configurations no other beats
@@ -264,6 +267,16 @@ static void add_lspsm(int res) {
     c->desc.resolution = res;
 }
 
+/* FERKO: res = the maximum resolution of its estimate */
+static void add_ferko(int res) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "ferko");
+    snprintf(c->params, sizeof c->params, "max_resolution=%d;pcf=1", res);
+    c->desc.technique = SKGL_FERKO;
+    c->desc.resolution = res;
+}
+
 static void build_sweep(int quick) {
     static const int std_res[] = {512, 1024, 2048, 4096};
     static const float lambdas[] = {0.5f, 0.75f, 0.9f};
@@ -296,6 +309,8 @@ static void build_sweep(int quick) {
         add_lispsm(4, 1024);
         add_lspsm(512);
         add_lspsm(1024);
+        add_ferko(2048);
+        add_ferko(4096);
         return;
     }
     for (stable = 0; stable <= 1; stable++)
@@ -317,6 +332,8 @@ static void build_sweep(int quick) {
     for (c = 2; c <= 8; c *= 2)
         for (r = 0; r < 3; r++) add_lispsm(c, pssm_res[r]);
     for (r = 0; r < 3; r++) add_lspsm(pssm_res[r]);
+    for (r = 1; r < 4; r++) add_ferko(std_res[r]);
+    add_ferko(8192);
 }
 
 /* ---------------------------------------------------------------- scenes */
@@ -574,6 +591,8 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
         if (casc > 1) snprintf(buf, n, "lispsm %d\xc3\x97%d", casc, res);
         else snprintf(buf, n, "lispsm %d", res);
     }
+    else if (strcmp(p->method, "ferko") == 0)
+        snprintf(buf, n, "ferko max %d", (s = strstr(p->params, "max_resolution=")) ? atoi(s + 15) : 0);
     else if (strcmp(p->method, "lspsm") == 0)
         snprintf(buf, n, "lspsm %d", res);
     else if (strncmp(p->method, "pssm", 4) == 0)
@@ -679,7 +698,7 @@ static int plot_read(const char *csv, plot_data *d) {
             snprintf(p->params, sizeof p->params, "%s", fld[1]);
         }
         p->err_sum += atof(fld[7]);
-        p->ms_sum += atof(fld[10]);
+        p->ms_sum += atof(fld[10]) + atof(fld[11]);   /* depth passes + analysis (FERKO) */
         p->n++;
     }
     fclose(f);
@@ -839,6 +858,7 @@ static void progress_times(const progress *pg, char *el_s, char *eta_s, size_t n
 /* the result of one run (configuration x view) */
 typedef struct run_rec {
     float shadow[BENCH_MAX_REPEAT];   /* shadow_ms of each timing pass */
+    float analysis[BENCH_MAX_REPEAT]; /* analysis_ms (FERKO's skgl_shadow_analyze), 0 for the others */
     int n;
     float mask_ms;
     double err, texels;
@@ -863,6 +883,9 @@ static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px
 /* one CSV row of a scored run */
 static void write_row(FILE *csv, const char *method, const char *params, const char *scene, const char *view,
                       const run_rec *rr, float sms, const char *renderer) {
+    float tmp[BENCH_MAX_REPEAT], ams;
+    memcpy(tmp, rr->analysis, sizeof tmp);
+    ams = rr->n > 0 ? median(tmp, rr->n) : 0.0f;
     csv_field(csv, method);
     fputc(',', csv);
     csv_field(csv, params);
@@ -870,10 +893,23 @@ static void write_row(FILE *csv, const char *method, const char *params, const c
     csv_field(csv, scene);
     fputc(',', csv);
     csv_field(csv, view);
-    fprintf(csv, ",%d,%d,hard_pct,%.4f,%.0f,%d,%.4f,0,%.4f,", BENCH_W, BENCH_H, rr->err, rr->texels, rr->passes,
-            (double)sms, (double)(sms + rr->mask_ms));
+    fprintf(csv, ",%d,%d,hard_pct,%.4f,%.0f,%d,%.4f,%.4f,%.4f,", BENCH_W, BENCH_H, rr->err, rr->texels, rr->passes,
+            (double)sms, (double)ams, (double)(sms + ams + rr->mask_ms));
     csv_field(csv, renderer);
     fputc('\n', csv);
+}
+
+/* one frame's shadow work: FERKO first analyses the view's depth buffer;
+   *analysis_ms gets that pass's time (0 for the other methods) */
+static sk_result render_frame(bench_gl *B, skgl_shadow *sh, const view_data *vd, const skgl_scene *sc,
+                              sk_vec3 light_dir, float *analysis_ms) {
+    *analysis_ms = 0.0f;
+    if (skgl_shadow_get_desc(sh).technique == SKGL_FERKO) {
+        sk_result r = skgl_shadow_analyze(B->sk, sh, &vd->v.cam, sc, light_dir, vd->gbuf.depth_tex);
+        if (r != SK_OK) return r;
+        *analysis_ms = skgl_shadow_stats(sh)->analysis_ms;
+    }
+    return skgl_shadow_render(B->sk, sh, &vd->v.cam, sc, light_dir);
 }
 
 /* G-buffer and reference of one view. 0 ok. */
@@ -1270,11 +1306,12 @@ int main(int argc, char **argv) {
                 run_rec *rc = recs + (size_t)c * (size_t)o.views;
                 skgl_shadow *sh = NULL;
                 sk_result r;
+                float warm_ms;
                 int live = 0;
                 for (v = 0; v < o.views; v++) live += rc[v].state >= 0;
                 if (!live) continue;
                 r = skgl_shadow_create(B.sk, &cfg->desc, &sh);
-                if (r == SK_OK) r = skgl_shadow_render(B.sk, sh, &vd[0].v.cam, &sc, def->light_dir);   /* warm-up */
+                if (r == SK_OK) r = render_frame(&B, sh, &vd[0], &sc, def->light_dir, &warm_ms);   /* warm-up */
                 if (r != SK_OK) {
                     fprintf(stderr, "bench: FAILED %s %s %s: skgl_shadow_create/render: %s %s\n", def->name,
                             cfg->method, cfg->params, sk_result_string(r), skgl_error_log(B.sk));
@@ -1288,7 +1325,7 @@ int main(int argc, char **argv) {
                     run_rec *rr = &rc[v];
                     const char *why = "skgl_shadow_render";
                     if (rr->state < 0) continue;
-                    r = skgl_shadow_render(B.sk, sh, &vd[v].v.cam, &sc, def->light_dir);
+                    r = render_frame(&B, sh, &vd[v], &sc, def->light_dir, &rr->analysis[rr->n]);
                     if (r == SK_OK) {
                         rr->shadow[rr->n++] = skgl_shadow_stats(sh)->shadow_ms;
                         pg.units++;

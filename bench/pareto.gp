@@ -14,7 +14,7 @@ set encoding utf8
 
 set title sprintf("shadowkit bench, scene %s: hard-shadow error against shadow-map time\n%dx%d, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
                   scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
-set xlabel "shadow-map render time per frame (ms, GL timer query, log scale)"
+set xlabel "shadow time per frame: depth passes + analysis (ms, GL timer queries, log scale)"
 set ylabel "hard-shadow error (% of covered pixels misclassified)"
 set logscale x
 set format x "%g"

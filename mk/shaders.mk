@@ -4,7 +4,8 @@
 #   make check-shaders  fail if they differ (part of `make check` and `make test`)
 SHADER_SRCS := shaders_embedded/depth.vert shaders_embedded/depth.frag \
                shaders_embedded/fullscreen.vert shaders_embedded/shadow_sample.glsl \
-               shaders_embedded/shadow_mask.frag
+               shaders_embedded/shadow_mask.frag shaders_embedded/ferko_analyze.frag \
+               shaders_embedded/ferko_reduce.frag
 EMBED := $(BUILD)/tools/embed
 
 $(EMBED): shaders_embedded/embed.c | deps-test

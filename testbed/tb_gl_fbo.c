@@ -109,12 +109,15 @@ void tb_gl_fbo_bind(const tb_gl_funcs *gl, const tb_gl_fbo *f) {
 /* glReadPixels from `fbo`; color: read attachment 0 (else depth) */
 static int tb_read_(const tb_gl_funcs *gl, unsigned fbo, int color, int w, int h, unsigned fmt,
                     unsigned type, void *out) {
-    int prev_read = 0, prev_pack = 4, prev_buf = 0;
+    int prev_read = 0, prev_pack = 4, prev_buf = 0, prev_pbo = 0;
     int ok;
     if (w <= 0 || h <= 0 || !out) return -1;
     while (gl->GetError() != TB_GL_NO_ERROR) {}
     gl->GetIntegerv(TB_GL_READ_FRAMEBUFFER_BINDING, &prev_read);
     gl->GetIntegerv(TB_GL_PACK_ALIGNMENT, &prev_pack);
+    /* a bound pixel-pack buffer would take the pixels: read to client memory */
+    gl->GetIntegerv(0x88ED /* GL_PIXEL_PACK_BUFFER_BINDING */, &prev_pbo);
+    gl->BindBuffer(0x88EB /* GL_PIXEL_PACK_BUFFER */, 0);
     gl->BindFramebuffer(TB_GL_READ_FRAMEBUFFER, fbo);
     gl->GetIntegerv(TB_GL_READ_BUFFER, &prev_buf);
     if (color && fbo) gl->ReadBuffer(TB_GL_COLOR_ATTACHMENT0);
@@ -123,6 +126,7 @@ static int tb_read_(const tb_gl_funcs *gl, unsigned fbo, int color, int w, int h
     ok = gl->GetError() == TB_GL_NO_ERROR;
     if (color && fbo) gl->ReadBuffer((unsigned)prev_buf);
     gl->PixelStorei(TB_GL_PACK_ALIGNMENT, prev_pack);
+    gl->BindBuffer(0x88EB, (unsigned)prev_pbo);
     gl->BindFramebuffer(TB_GL_READ_FRAMEBUFFER, (unsigned)prev_read);
     return ok ? 0 : -1;
 }

@@ -209,7 +209,7 @@ static int live_objects(int with_shaders) {
 
 /* ---- the state ---- */
 typedef struct gl_state {
-    int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active, array_buffer;
+    int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active, array_buffer, pack_buffer;
     int tex2d[UNITS], tex2da[UNITS], sampler[UNITS];
     int depth_func, cull_mode;
     unsigned char depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
@@ -219,7 +219,7 @@ typedef struct gl_state {
 
 typedef struct objs {
     tb_gl_fbo draw_fbo, read_fbo;
-    unsigned tex2d[UNITS], tex2da[UNITS], sampler[UNITS], vao;
+    unsigned tex2d[UNITS], tex2da[UNITS], sampler[UNITS], vao, pack_buffer;
 } objs;
 
 static void read_state(const tb_gl_funcs *gl, const ext_funcs *x, gl_state *s) {
@@ -232,6 +232,7 @@ static void read_state(const tb_gl_funcs *gl, const ext_funcs *x, gl_state *s) {
     gl->GetIntegerv(E_CURRENT_PROGRAM, &s->program);
     gl->GetIntegerv(E_VERTEX_ARRAY_BINDING, &s->vao);
     gl->GetIntegerv(E_ARRAY_BUFFER_BINDING, &s->array_buffer);
+    gl->GetIntegerv(0x88ED, &s->pack_buffer);   /* GL_PIXEL_PACK_BUFFER_BINDING */
     gl->GetIntegerv(E_ACTIVE_TEXTURE, &s->active);
     for (u = 0; u < UNITS; u++) {
         gl->ActiveTexture(E_TEXTURE0 + (unsigned)u);
@@ -264,6 +265,7 @@ static void set_state(const tb_gl_funcs *gl, const ext_funcs *x, const objs *o, 
     if (v) x->Scissor(11, 2, 5, 301); else x->Scissor(3, 5, 17, 11);
     gl->UseProgram(program);
     gl->BindVertexArray(o->vao);
+    gl->BindBuffer(0x88EB, v ? 0 : o->pack_buffer);   /* GL_PIXEL_PACK_BUFFER: A bound, B none */
     for (u = 0; u < UNITS; u++) {
         int j = v ? UNITS - 1 - u : u;      /* B: the names in reverse order */
         gl->ActiveTexture(E_TEXTURE0 + (unsigned)u);
@@ -294,7 +296,7 @@ static int compare_state(const gl_state *a, const gl_state *b, const char *what,
     printf("%s: %s changed: %g -> %g\n", what, #field, (double)a->field, (double)b->field); } } while (0)
 #define SAME_I(field, i) do { if (a->field[i] != b->field[i]) { bad++; \
     printf("%s: %s[%d] changed: %g -> %g\n", what, #field, i, (double)a->field[i], (double)b->field[i]); } } while (0)
-    SAME(draw_fb); SAME(read_fb); SAME(program); SAME(vao); SAME(active); SAME(array_buffer);
+    SAME(draw_fb); SAME(read_fb); SAME(program); SAME(vao); SAME(active); SAME(array_buffer); SAME(pack_buffer);
     for (k = 0; k < 4; k++) {
         SAME_I(viewport, k); SAME_I(scissor_box, k); SAME_I(color_mask, k); SAME_I(clear_color, k);
     }
@@ -354,6 +356,7 @@ static void test_state_and_objects(void) {
     gl->GenTextures(UNITS, o.tex2da);
     x.GenSamplers(UNITS, o.sampler);
     gl->GenVertexArrays(1, &o.vao);
+    gl->GenBuffers(1, &o.pack_buffer);
     for (u = 0; u < UNITS; u++) {
         gl->BindTexture(E_TEXTURE_2D, o.tex2d[u]);
         gl->TexImage2D(E_TEXTURE_2D, 0, (int)E_RGBA8, 4, 4, 0, E_RGBA, E_UNSIGNED_BYTE, NULL);
@@ -367,10 +370,11 @@ static void test_state_and_objects(void) {
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
     SK_CHECK(gl->GetError() == 0);
 
-    for (t = 0; t < 6; t++) {
-        static const char *const names[6] = {"standard", "pssm", "psm", "lispsm", "lispsm-cascades", "lspsm"};
-        static const skgl_technique techs[6] = {SKGL_STANDARD, SKGL_PSSM, SKGL_PSM, SKGL_LISPSM, SKGL_LISPSM,
-                                                SKGL_LSPSM};
+    for (t = 0; t < 8; t++) {
+        static const char *const names[8] = {"standard", "pssm", "psm", "lispsm", "lispsm-cascades", "lspsm",
+                                              "ferko", "ferko-late"};
+        static const skgl_technique techs[8] = {SKGL_STANDARD, SKGL_PSSM, SKGL_PSM, SKGL_LISPSM, SKGL_LISPSM,
+                                                SKGL_LSPSM, SKGL_FERKO, SKGL_FERKO};
         skgl_shadow_desc d;
         skgl_shadow *s = NULL;
         const char *tn = names[t];
@@ -378,6 +382,7 @@ static void test_state_and_objects(void) {
         d.technique = techs[t];
         d.resolution = 512;
         d.cascades = t == 4 ? 3 : 0;
+        d.ferko_latency = t == 7;
         d.blend_band = t == 1 || t == 4 ? 0.1f : 0.0f;
         for (v = 0; v < 2; v++) {
             gl_state before, after;
@@ -394,6 +399,14 @@ static void test_state_and_objects(void) {
                 SK_CHECK_MSG(compare_state(&before, &after, what, -1) == 0, "%s", what);
                 SK_CHECK_MSG(skgl_gl_object_count(sk) == live_objects(0), "%s: count %d, tracked %d", tn,
                              skgl_gl_object_count(sk), live_objects(0));
+            }
+            if (techs[t] == SKGL_FERKO) {
+                r = skgl_shadow_analyze(sk, s, &cam, &sc, light, e.gbuf.depth_tex);
+                SK_CHECK_MSG(r == SK_OK, "%s: analyze: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
+                read_state(gl, &x, &after);
+                snprintf(what, sizeof what, "%s set %c: skgl_shadow_analyze", tn, "AB"[v]);
+                SK_CHECK_MSG(compare_state(&before, &after, what, -1) == 0, "%s", what);
+                SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
             }
             r = skgl_shadow_render(sk, s, &cam, &sc, light);
             SK_CHECK_MSG(r == SK_OK, "%s: render: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
@@ -466,6 +479,7 @@ static void test_state_and_objects(void) {
     gl->DeleteTextures(UNITS, o.tex2da);
     x.DeleteSamplers(UNITS, o.sampler);
     gl->DeleteVertexArrays(1, &o.vao);
+    gl->DeleteBuffers(1, &o.pack_buffer);
     gt_env_free(&e);
 }
 
