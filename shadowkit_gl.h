@@ -133,7 +133,8 @@ typedef enum skgl_technique {
     SKGL_PSM = 2,                 /* perspective shadow map (one map) */
     SKGL_LISPSM = 3,              /* light-space perspective map; cascades > 1: one per PSSM slice */
     SKGL_LSPSM = 4,               /* light space partitioned maps (seed 003) */
-    SKGL_FERKO = 5                /* crop and resolution estimated from the G-buffer (seed 000) */
+    SKGL_FERKO = 5,               /* crop and resolution estimated from the G-buffer (seed 000) */
+    SKGL_RMSM = 6                 /* virtual map rendered page by page at the requested levels (seed 002) */
 } skgl_technique;
 
 /* Zero-initialised fields take the default in brackets. */
@@ -157,6 +158,10 @@ typedef struct skgl_shadow_desc {
                                      once (a CPU-GPU sync) [0]; 1 last frame's,
                                      through a pixel buffer: no stall, one frame
                                      late (fast motion can clip the crop) */
+    int rmsm_page_size;           /* RMSM: page side in texels, a power of two in [16, 1024] [128] */
+    int rmsm_pool_pages;          /* RMSM: the physical pool holds this^2 pages, 2..64 [24];
+                                     .resolution is the virtual map's side, a power
+                                     of two [16384 for RMSM], at most 1024 pages */
     float psm_slide;              /* PSM: the virtual camera slides back by this
                                      times sqrt(near*far) of the receivers, its
                                      near plane with it: more uniform texels
@@ -192,6 +197,9 @@ typedef struct skgl_stats {
                                              space of estimate_light (see skgl_shadow_analyze) */
     sk_mat4 estimate_light;               /* FERKO: the uncropped light frustum of that estimate */
     int map_width, map_height;            /* texels rendered per layer (FERKO: the estimate, clamped) */
+    int pages_requested;                  /* RMSM: distinct pages the view asked for (finest levels) */
+    int pages_rendered;                   /* RMSM: pages in the pool this frame (the coarsest always) */
+    int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
     float psm_slide;                      /* PSM: how far the virtual camera slid back */
 } skgl_stats;
 
@@ -219,7 +227,12 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
    size that receives visibility. */
 SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
-/* SKGL_FERKO: estimates the crop and the resolution of the next
+/* SKGL_RMSM: the same call finds the pages of the virtual map the view
+   needs (per pixel level of detail from the screen derivatives of its
+   virtual-map texel coordinates, requests reduced on the GPU, read back);
+   the render draws them into the page pool. Without a call, only the
+   coarsest page (the whole map at pool-page resolution) is rendered.
+   SKGL_FERKO: estimates the crop and the resolution of the next
    skgl_shadow_render from the camera's depth texture (window depth, the
    G-buffer of the frame; seed 000). The light frustum before the crop is an
    orthographic map around scene->bounds; the estimate (stats.estimate) is
@@ -234,13 +247,21 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
 SKGLDEF const char *skgl_glsl_snippet(void);
 /* For a forward shader containing the snippet: program must be current;
    binds the map (and a comparison sampler) to texture unit `unit` and sets
-   the snippet's uniforms. The binding is left in place for the draw. */
+   the snippet's uniforms. The binding is left in place for the draw.
+   Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
+   keep it free of samplers of another type in that program. */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
 /* the info log of the last shader or framebuffer failure ("" if none) */
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
 /* light view-projection of one layer (world -> light clip) */
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
 SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s);
+/* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
+   sorted by (level, py, px); writes at most cap, returns how many there are */
+SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap);
+/* RMSM: the RGBA32F texture of the last analysis, (s, t, lod, 1) per pixel
+   (0 where no sample), for debugging and tests; 0 before any */
+SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s);
 /* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
 
@@ -320,7 +341,11 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   view depth against the split distances (PSSM practical split scheme,\n"
     "   seed 002), optionally blending into the next cascade inside a band; or,\n"
     "   for LSPSM's partitions (seed 003), which tile the light plane rather than\n"
-    "   the view depth, the first layer whose partition rect holds it.\n"
+    "   the view depth, the first layer whose partition rect holds it; or, for\n"
+    "   RMSM (seed 002), a virtual map: the page of the point's level of detail\n"
+    "   through the page table into a pool of pages (layer 0), or the nearest\n"
+    "   coarser page resident. sk_shadow() takes screen derivatives for RMSM:\n"
+    "   call it in uniform control flow (not after a discard or an early return).\n"
     "\n"
     "   Maps may be orthographic (standard, PSSM) or perspective-warped (PSM,\n"
     "   LiSPSM): the light-clip w is divided out per pixel.\n"
@@ -341,6 +366,12 @@ static const char skgl__src_shadow_sample_glsl[] =
     "uniform int sk_pcf_radius;\n"
     "uniform vec3 sk_light_dir;         /* travel direction, unit */\n"
     "uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */\n"
+    "uniform int sk_rmsm;               /* 1: a virtual map through sk_page_table */\n"
+    "uniform sampler2D sk_page_table;   /* RMSM: per page of every level, (slot x, slot y)/255 and a = resident */\n"
+    "uniform int sk_rmsm_pages0;        /* RMSM: pages per side at level 0 */\n"
+    "uniform int sk_rmsm_levels;        /* RMSM: levels, the last one page */\n"
+    "uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered */\n"
+    "uniform int sk_rmsm_page;          /* RMSM: page side in texels (+2 border texels in the pool) */\n"
     "uniform float sk_select_extent;    /* a partition's rect in its light NDC: [-e, e]^2 */\n"
     "\n"
     "/* World size of one texel of the layer at p: 2/res over the gradient of\n"
@@ -378,9 +409,48 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    return sum / float(4 * r * r);\n"
     "}\n"
     "\n"
+    "/* RMSM: the point through the page table, from its level up to the\n"
+    "   coarsest; each pool page has a border of one texel, which bounds the\n"
+    "   normal offset's reach and the filter to a 2x2 comparison */\n"
+    "float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, float lod)\n"
+    "{\n"
+    "    vec4 c0 = sk_light_vp[0] * vec4(world_pos, 1.0);\n"
+    "    vec2 st = c0.xy / c0.w * 0.5 + 0.5;\n"
+    "    if (any(lessThan(st, vec2(0.0))) || any(greaterThanEqual(st, vec2(1.0)))) return 1.0;\n"
+    "    float vres = float(sk_rmsm_pages0 * sk_rmsm_page), page = float(sk_rmsm_page);\n"
+    "    vec2 pool = vec2(textureSize(sk_shadow_map, 0).xy);\n"
+    "    for (int level = clamp(int(floor(lod)), sk_rmsm_min_level, sk_rmsm_levels - 1); level < sk_rmsm_levels; level++) {\n"
+    "        int n = sk_rmsm_pages0 >> level;\n"
+    "        ivec2 pg = min(ivec2(st * float(n)), ivec2(n - 1));\n"
+    "        vec4 e = texelFetch(sk_page_table, ivec2(2 * sk_rmsm_pages0 - 2 * n + pg.x, pg.y), 0);\n"
+    "        if (e.a < 0.5) continue;\n"
+    "        /* texels of this level: the map at vres / 2^level */\n"
+    "        float lres = vres / exp2(float(level));\n"
+    "        float texel = sk_texel_size(world_pos, 0) * (pool.x / lres);\n"
+    "        vec4 c = sk_light_vp[0] * vec4(world_pos + world_normal * (min(sk_normal_bias, 0.9) * texel), 1.0);\n"
+    "        vec3 uvz = c.xyz / c.w * 0.5 + 0.5;\n"
+    "        if (uvz.z > 1.0) return 1.0;\n"
+    "        vec2 f = clamp(uvz.xy * lres - vec2(pg) * page, vec2(-0.5), vec2(page + 0.5));\n"
+    "        vec2 slot = floor(e.rg * 255.0 + 0.5);\n"
+    "        vec2 puv = (slot * (page + 2.0) + 1.0 + f) / pool;\n"
+    "        return texture(sk_shadow_map, vec4(puv, 0.0, max(uvz.z, 0.0)));\n"
+    "    }\n"
+    "    return 1.0;\n"
+    "}\n"
+    "\n"
     "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
     "{\n"
+    "    float rmsm_lod = 0.0;\n"
+    "    if (sk_rmsm != 0) {\n"
+    "        /* the level of detail as rmsm_analyze.frag takes it, before any branch */\n"
+    "        vec4 c = sk_light_vp[0] * vec4(world_pos, 1.0);\n"
+    "        float vres = float(sk_rmsm_pages0 * sk_rmsm_page);\n"
+    "        vec2 st = c.xy / c.w * 0.5 + 0.5;\n"
+    "        vec2 dx = dFdx(st) * vres, dy = dFdy(st) * vres;\n"
+    "        rmsm_lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));\n"
+    "    }\n"
     "    if (dot(world_normal, sk_light_dir) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;\n"
+    "    if (sk_rmsm != 0) return sk_shadow_rmsm(world_pos, world_normal, rmsm_lod);\n"
     "    if (sk_select_by_map != 0) {\n"
     "        if (view_depth < sk_splits[0] || view_depth >= sk_splits[1]) return 1.0;\n"
     "        for (int i = 0; i < sk_layers; i++) {\n"
@@ -422,13 +492,15 @@ static const char skgl__src_shadow_mask_frag[] =
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    float d = texelFetch(u_depth, px, 0).r;\n"
-    "    if (d >= 1.0) { o_visibility = 1.0; return; }\n"
+    "    /* no early return for the background: sk_shadow() may take screen\n"
+    "       derivatives (RMSM), which need every pixel of a 2x2 quad */\n"
     "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
     "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
     "    vec3 world = w.xyz / w.w;\n"
     "    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);\n"
     "    float view_depth = -(u_view * vec4(world, 1.0)).z;\n"
-    "    o_visibility = sk_shadow(world, n, view_depth);\n"
+    "    float v = sk_shadow(world, n, view_depth);\n"
+    "    o_visibility = d >= 1.0 ? 1.0 : v;\n"
     "}\n"
     ;
 static const char skgl__src_ferko_analyze_frag[] =
@@ -556,6 +628,68 @@ static const char skgl__src_ferko_reduce_frag[] =
     "    o_patch = p;\n"
     "}\n"
     ;
+static const char skgl__src_rmsm_analyze_frag[] =
+    "/* RMSM page analysis, per pixel (seed 002, after Lefohn et al. 2007): the\n"
+    "   world point from window depth, its coordinates (s, t) in the virtual\n"
+    "   shadow map of u_virtual_res^2 texels, and the level of detail\n"
+    "   lod = log2(sqrt(|dX x dY|)) from the screen derivatives of the texel\n"
+    "   coordinates (sk_rmsm_lod). The derivatives are those the lookup in\n"
+    "   shadow_sample.glsl takes, so both choose the same page.\n"
+    "   Out: (s, t, lod, 1), or 0 where nothing needs the map. */\n"
+    "uniform sampler2D u_depth;\n"
+    "uniform mat4 u_inv_view_proj;\n"
+    "uniform mat4 u_light;            /* world -> the virtual map's light clip */\n"
+    "uniform float u_virtual_res;\n"
+    "out vec4 o_sample;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    float d = texelFetch(u_depth, px, 0).r;\n"
+    "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
+    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
+    "    vec4 c = u_light * vec4(w.xyz / w.w, 1.0);\n"
+    "    vec2 st = c.xy / c.w * 0.5 + 0.5;\n"
+    "    /* derivatives first, in uniform control flow */\n"
+    "    vec2 dx = dFdx(st) * u_virtual_res, dy = dFdy(st) * u_virtual_res;\n"
+    "    float lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));\n"
+    "    bool ok = d < 1.0 && all(greaterThanEqual(st, vec2(0.0))) && all(lessThan(st, vec2(1.0))) &&\n"
+    "              abs(c.z) <= c.w;\n"
+    "    o_sample = ok ? vec4(st, lod, 1.0) : vec4(0.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_rmsm_request_vert[] =
+    "/* RMSM page requests, reduced on the GPU: one point per pixel of the\n"
+    "   analysis texture, drawn onto the texel of the page it needs in the\n"
+    "   request atlas, so every page asked for by any pixel ends up set. Level l\n"
+    "   needs clamp(floor(lod), u_min_level, u_levels - 1) (sk_rmsm_page_requests\n"
+    "   with a raised minimum when the page pool is short). Atlas layout: level\n"
+    "   l's n_l = u_pages0 >> l pages per side start at column 2 u_pages0 - 2 n_l;\n"
+    "   the atlas is (2 u_pages0 - 1) x u_pages0 texels. */\n"
+    "uniform sampler2D u_samples;\n"
+    "uniform int u_pages0;\n"
+    "uniform int u_levels;\n"
+    "uniform int u_min_level;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 size = textureSize(u_samples, 0);\n"
+    "    vec4 s = texelFetch(u_samples, ivec2(gl_VertexID % size.x, gl_VertexID / size.x), 0);\n"
+    "    gl_PointSize = 1.0;\n"
+    "    if (s.w < 0.5) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }   /* outside: clipped */\n"
+    "    int level = clamp(int(floor(s.z)), u_min_level, u_levels - 1);\n"
+    "    int n = u_pages0 >> level;\n"
+    "    ivec2 page = min(ivec2(s.xy * float(n)), ivec2(n - 1));\n"
+    "    vec2 texel = vec2(float(2 * u_pages0 - 2 * n + page.x), float(page.y)) + 0.5;\n"
+    "    gl_Position = vec4(texel / vec2(float(2 * u_pages0 - 1), float(u_pages0)) * 2.0 - 1.0, 0.0, 1.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_rmsm_request_frag[] =
+    "/* RMSM page requests: a set texel is a requested page. */\n"
+    "out float o_request;\n"
+    "void main()\n"
+    "{\n"
+    "    o_request = 1.0;\n"
+    "}\n"
+    ;
 /* SKGL_EMBEDDED_SHADERS_END */
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic pop
@@ -634,7 +768,15 @@ typedef unsigned long long skgl__u64;
 #define SKGL__PIXEL_PACK_BUFFER_BINDING 0x88ED
 #define SKGL__STREAM_READ 0x88E1
 #define SKGL__COLOR_ATTACHMENT1 0x8CE1
-#define SKGL__UNITS 3                      /* texture units the mask pass uses: 0, 1, 2 */
+#define SKGL__RGBA8 0x8058
+#define SKGL__UNSIGNED_BYTE 0x1401
+#define SKGL__POINTS 0x0000
+#define SKGL__PROGRAM_POINT_SIZE 0x8642
+#define SKGL__COLOR_BUFFER_BIT 0x4000
+#define SKGL__COLOR_CLEAR_VALUE 0x0C22
+#define SKGL__PIXEL_UNPACK_BUFFER 0x88EC
+#define SKGL__PIXEL_UNPACK_BUFFER_BINDING 0x88EF
+#define SKGL__UNITS 4                      /* texture units the mask pass uses: 0 .. 3 */
 
 #define SKGL__FUNCS(X) \
     X(skgl__enum, GetError, (void)) \
@@ -676,6 +818,8 @@ typedef unsigned long long skgl__u64;
     X(void, GetBufferSubData, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, void *data)) \
     X(void, Uniform2i, (skgl__int loc, skgl__int a, skgl__int b)) \
     X(void, Uniform4fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, ClearColor, (float r, float g, float b, float a)) \
+    X(void, PixelStorei, (skgl__enum pname, skgl__int v)) \
     X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
     X(void, TexParameteri, (skgl__enum target, skgl__enum pname, skgl__int v)) \
     X(void, GetTexLevelParameteriv, (skgl__enum target, skgl__int level, skgl__enum pname, skgl__int *v)) \
@@ -724,6 +868,7 @@ struct skgl_context {
     skgl__uint depth_prog, mask_prog, empty_vao, fbo, query;
     skgl__uint cmp_sampler, point_sampler;
     skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 4x4 MIN reduction */
+    skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
     skgl__int depth_u_view_proj, depth_u_model;
     char log[1024];
 };
@@ -743,6 +888,15 @@ struct skgl_shadow {
     int ferko_state;               /* 0 no estimate, 1 estimate ready, 2 a readback pending in the PBO */
     sk_mat4 ferko_lvp, ferko_pending_lvp;   /* the uncropped light frustum of the estimate / of the pending one */
     sk_res_estimate ferko_est;
+    /* RMSM: the per-pixel samples (G-buffer size: ferko_w x ferko_h), the
+       request atlas and the page table (atlas_w x atlas_h), their CPU copies,
+       the pages resident this frame, the virtual map's light frustum */
+    skgl__uint rmsm_samples, rmsm_requests, rmsm_table;
+    int atlas_w, atlas_h, pages0, levels, tex_size, rmsm_w, rmsm_h;
+    unsigned char *rmsm_req_cpu, *rmsm_table_cpu;
+    sk_page *rmsm_pages;
+    int rmsm_npages, rmsm_analyzed;
+    sk_mat4 rmsm_lvp;
     sk_mat4 vp[SKGL_MAX_CASCADES];
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl_stats stats;
@@ -753,6 +907,9 @@ typedef struct skgl__state {
     skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
     skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
     skgl__int depth_func, cull_mode, pack_buffer;
+    skgl__bool point_size;
+    float clear_color[4];
+    skgl__int unpack_buffer, pixel_store[8];   /* (UN)PACK_ROW_LENGTH, SKIP_ROWS, SKIP_PIXELS, ALIGNMENT */
     skgl__bool depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
     float poly_factor, poly_units;
     double clear_depth;
@@ -761,6 +918,18 @@ typedef struct skgl__state {
 static void skgl__enable(const skgl__api *gl, skgl__enum cap, int on)
 {
     if (on) gl->Enable(cap); else gl->Disable(cap);
+}
+
+/* GL_UNPACK_ROW_LENGTH, _SKIP_ROWS, _SKIP_PIXELS, _ALIGNMENT, then the PACK ones */
+static const skgl__enum skgl__pixel_store_names[8] = {0x0CF2, 0x0CF3, 0x0CF4, 0x0CF5, 0x0D02, 0x0D03, 0x0D04, 0x0D05};
+
+/* tightly packed client memory for pixel transfers, no pixel buffers (inside save/restore) */
+static void skgl__pixel_store_plain(const skgl__api *gl)
+{
+    int i;
+    for (i = 0; i < 8; i++) gl->PixelStorei(skgl__pixel_store_names[i], (i & 3) == 3 ? 1 : 0);
+    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, 0);
+    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
 }
 
 static void skgl__save(const skgl__api *gl, skgl__state *st)
@@ -782,6 +951,10 @@ static void skgl__save(const skgl__api *gl, skgl__state *st)
     gl->ActiveTexture((skgl__enum)st->active_tex);
     gl->GetIntegerv(SKGL__DEPTH_FUNC, &st->depth_func);
     gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, &st->pack_buffer);
+    st->point_size = gl->IsEnabled(SKGL__PROGRAM_POINT_SIZE);
+    gl->GetIntegerv(SKGL__PIXEL_UNPACK_BUFFER_BINDING, &st->unpack_buffer);
+    for (u = 0; u < 8; u++) gl->GetIntegerv(skgl__pixel_store_names[u], &st->pixel_store[u]);
+    gl->GetFloatv(SKGL__COLOR_CLEAR_VALUE, st->clear_color);
     gl->GetIntegerv(SKGL__CULL_FACE_MODE, &st->cull_mode);
     st->depth_test = gl->IsEnabled(SKGL__DEPTH_TEST);
     gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, &st->depth_mask);
@@ -813,6 +986,10 @@ static void skgl__restore(const skgl__api *gl, const skgl__state *st)
     gl->ActiveTexture((skgl__enum)st->active_tex);
     gl->DepthFunc((skgl__enum)st->depth_func);
     gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)st->pack_buffer);
+    skgl__enable(gl, SKGL__PROGRAM_POINT_SIZE, st->point_size);
+    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, (skgl__uint)st->unpack_buffer);
+    for (u = 0; u < 8; u++) gl->PixelStorei(skgl__pixel_store_names[u], st->pixel_store[u]);
+    gl->ClearColor(st->clear_color[0], st->clear_color[1], st->clear_color[2], st->clear_color[3]);
     gl->CullFace((skgl__enum)st->cull_mode);
     skgl__enable(gl, SKGL__DEPTH_TEST, st->depth_test);
     gl->DepthMask(st->depth_mask);
@@ -913,7 +1090,9 @@ static void skgl__release(skgl_context *ctx)
     if (ctx->point_sampler) { gl->DeleteSamplers(1, &ctx->point_sampler); ctx->objects--; }
     if (ctx->ferko_prog) { gl->DeleteProgram(ctx->ferko_prog); ctx->objects--; }
     if (ctx->reduce_prog) { gl->DeleteProgram(ctx->reduce_prog); ctx->objects--; }
-    ctx->ferko_prog = ctx->reduce_prog = 0;
+    if (ctx->rmsm_prog) { gl->DeleteProgram(ctx->rmsm_prog); ctx->objects--; }
+    if (ctx->request_prog) { gl->DeleteProgram(ctx->request_prog); ctx->objects--; }
+    ctx->ferko_prog = ctx->reduce_prog = ctx->rmsm_prog = ctx->request_prog = 0;
     ctx->depth_prog = ctx->mask_prog = ctx->empty_vao = ctx->fbo = ctx->query = 0;
     ctx->cmp_sampler = ctx->point_sampler = 0;
 }
@@ -944,7 +1123,10 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
                                    skgl__src_shadow_mask_frag);
     ctx->ferko_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_ferko_analyze_frag, NULL);
     ctx->reduce_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_ferko_reduce_frag, NULL);
-    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog) {
+    ctx->rmsm_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_rmsm_analyze_frag, NULL);
+    ctx->request_prog = skgl__program(ctx, skgl__src_rmsm_request_vert, skgl__src_rmsm_request_frag, NULL);
+    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog || !ctx->rmsm_prog ||
+        !ctx->request_prog) {
         skgl__release(ctx);
         SKGL_FREE(ctx);
         return SK_ERR_GL;
@@ -983,10 +1165,56 @@ SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
 
 SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__src_shadow_sample_glsl; }
 
+/* ---- RMSM: virtual shadow map pages (seed 002) -------------------------- */
+static skgl__uint skgl__rgba_texture(skgl_context *ctx, skgl__int ifmt, int w, int h, skgl__enum type)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__uint t = 0;
+    gl->GenTextures(1, &t);
+    ctx->objects++;
+    gl->BindTexture(SKGL__TEXTURE_2D, t);
+    gl->TexImage2D(SKGL__TEXTURE_2D, 0, ifmt, w, h, 0, SKGL__RGBA, type, NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    return t;
+}
+
+/* the request atlas and the page table: every level's page grid side by
+   side, level l (n_l = pages0 >> l pages a side) from column 2 pages0 - 2 n_l */
+static sk_result skgl__rmsm_create(skgl_context *ctx, skgl_shadow *s)
+{
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
+    size_t bytes;
+    s->pages0 = s->desc.resolution / s->desc.rmsm_page_size;
+    for (s->levels = 1; (1 << (s->levels - 1)) < s->pages0; s->levels++) {}
+    s->atlas_w = 2 * s->pages0 - 1;
+    s->atlas_h = s->pages0;
+    bytes = (size_t)4 * (size_t)s->atlas_w * (size_t)s->atlas_h;
+    s->rmsm_req_cpu = (unsigned char *)SKGL_MALLOC(bytes);
+    s->rmsm_table_cpu = (unsigned char *)SKGL_MALLOC(bytes);
+    s->rmsm_pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
+    if (!s->rmsm_req_cpu || !s->rmsm_table_cpu || !s->rmsm_pages) return SK_ERR_CAPACITY;
+    memset(s->rmsm_table_cpu, 0, bytes);
+    s->rmsm_requests = skgl__rgba_texture(ctx, SKGL__RGBA8, s->atlas_w, s->atlas_h, SKGL__UNSIGNED_BYTE);
+    s->rmsm_table = skgl__rgba_texture(ctx, SKGL__RGBA8, s->atlas_w, s->atlas_h, SKGL__UNSIGNED_BYTE);
+    return SK_OK;
+}
+
+static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
+{
+    skgl__uint *t[3];
+    int i;
+    t[0] = &s->rmsm_samples; t[1] = &s->rmsm_requests; t[2] = &s->rmsm_table;
+    for (i = 0; i < 3; i++)
+        if (*t[i]) { ctx->gl.DeleteTextures(1, t[i]); ctx->objects--; *t[i] = 0; }
+}
+
 static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
 {
     skgl_shadow_desc r = *d;
-    if (r.resolution <= 0) r.resolution = 2048;
+    if (r.resolution <= 0) r.resolution = r.technique == SKGL_RMSM ? 16384 : 2048;
+    if (r.rmsm_page_size == 0) r.rmsm_page_size = 128;
+    if (r.rmsm_pool_pages == 0) r.rmsm_pool_pages = 24;
     if (r.lspsm.zeta == 0.0f) r.lspsm.zeta = 0.25f;
     if (r.lspsm.sigma == 0.0f) r.lspsm.sigma = 0.5f;
     if (r.lspsm.h_max == 0) r.lspsm.h_max = 4;
@@ -996,7 +1224,9 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     if (r.technique == SKGL_LSPSM && r.lspsm.h_max > 0 && r.lspsm.nw_max > 0 &&
         r.lspsm.h_max <= SKGL_MAX_CASCADES && r.lspsm.nw_max <= SKGL_MAX_CASCADES)
         r.cascades = r.lspsm.h_max * r.lspsm.nw_max;
-    if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM || r.technique == SKGL_FERKO) r.cascades = 1;
+    if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM || r.technique == SKGL_FERKO ||
+        r.technique == SKGL_RMSM)
+        r.cascades = 1;
     if (r.lambda == 0.0f) r.lambda = 0.75f;
     else if (r.lambda < 0.0f) r.lambda = 0.0f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
@@ -1017,11 +1247,17 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     skgl_shadow_desc d;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
     d = skgl__defaults(desc);
-    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_FERKO || d.resolution > 16384 ||
+    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_RMSM || (d.technique != SKGL_RMSM && d.resolution > 16384) ||
         d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
         d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f) ||
         !(d.lspsm.zeta > 0.0f && d.lspsm.zeta < 0.5f) || !(d.lspsm.sigma > 0.0f && d.lspsm.sigma <= 1e3f) ||
         d.lspsm.h_max < 1 || d.lspsm.nw_max < 1 || d.ferko_latency < 0 || d.ferko_latency > 1)
+        return SK_ERR_INVALID_ARG;
+    if (d.technique == SKGL_RMSM &&
+        (d.rmsm_page_size < 16 || d.rmsm_page_size > 1024 || (d.rmsm_page_size & (d.rmsm_page_size - 1)) ||
+         d.resolution < d.rmsm_page_size || (d.resolution & (d.resolution - 1)) ||
+         d.resolution / d.rmsm_page_size > 1024 || d.rmsm_pool_pages < 2 || d.rmsm_pool_pages > 64 ||
+         d.rmsm_pool_pages * (d.rmsm_page_size + 2) > 16384))
         return SK_ERR_INVALID_ARG;
     s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
@@ -1029,17 +1265,25 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     s->desc = d;
     s->layers = d.cascades;
     s->maps = s->layers;
+    s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
     s->select_extent = 1.0f;
     gl = &ctx->gl;
     skgl__save(gl, &st);
     gl->GenTextures(1, &s->tex);
     ctx->objects++;
     gl->ActiveTexture(SKGL__TEXTURE0);
+    skgl__pixel_store_plain(gl);
     gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
-    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, d.resolution, d.resolution, s->layers, 0,
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, s->layers, 0,
                    SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+    if (d.technique == SKGL_RMSM && skgl__rmsm_create(ctx, s) != SK_OK) {
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "out of memory for the RMSM page tables", NULL);
+        skgl_shadow_destroy(ctx, s);
+        return SK_ERR_CAPACITY;
+    }
     skgl__restore(gl, &st);
     if (gl->GetError() != 0) {
         skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
@@ -1052,12 +1296,17 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
 }
 
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
+static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s);
 
 SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
 {
     if (!s) return;
     if (ctx && s->tex) { ctx->gl.DeleteTextures(1, &s->tex); ctx->objects--; }
     if (ctx) skgl__ferko_free(ctx, s);
+    if (ctx) skgl__rmsm_free(ctx, s);
+    SKGL_FREE(s->rmsm_req_cpu);
+    SKGL_FREE(s->rmsm_table_cpu);
+    SKGL_FREE(s->rmsm_pages);
     SKGL_FREE(s);
 }
 
@@ -1075,6 +1324,14 @@ SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
 }
 SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
+SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm_samples : 0; }
+SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap)
+{
+    int i;
+    if (!s) return 0;
+    for (i = 0; out && i < s->rmsm_npages && i < cap; i++) out[i] = s->rmsm_pages[i];
+    return s->rmsm_npages;
+}
 
 static void skgl__query_begin(skgl_context *ctx)
 {
@@ -1360,6 +1617,126 @@ static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, s
     return r;
 }
 
+/* page-table entry of page (level, px, py) in an atlas of 4-byte texels */
+static unsigned char *skgl__atlas_at(const skgl_shadow *s, unsigned char *atlas, int level, int px, int py)
+{
+    int n = s->pages0 >> level;
+    return atlas + 4 * ((size_t)py * (size_t)s->atlas_w + (size_t)(2 * s->pages0 - 2 * n + px));
+}
+
+/* one request pass with finest level min_level over the npix samples bound
+   on unit 1; reads the atlas back; returns how many pages are set */
+static int skgl__rmsm_request_pass(skgl_context *ctx, skgl_shadow *s, int npix, int min_level)
+{
+    skgl__api *gl = &ctx->gl;
+    int l, px, py, count = 0;
+    skgl__uint p = ctx->request_prog;
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->rmsm_requests, 0);
+    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
+    gl->Viewport(0, 0, s->atlas_w, s->atlas_h);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->UseProgram(p);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_samples"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_pages0"), s->pages0);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_levels"), s->levels);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_min_level"), min_level);
+    gl->Enable(SKGL__PROGRAM_POINT_SIZE);
+    gl->DrawArrays(SKGL__POINTS, 0, npix);
+    gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
+    gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RGBA, SKGL__UNSIGNED_BYTE, s->rmsm_req_cpu);
+    gl->ReadBuffer(SKGL__NONE);
+    for (l = 0; l < s->levels; l++)
+        for (py = 0; py < (s->pages0 >> l); py++)
+            for (px = 0; px < (s->pages0 >> l); px++) count += skgl__atlas_at(s, s->rmsm_req_cpu, l, px, py)[0] != 0;
+    return count;
+}
+
+/* the pages resident this frame into the table (slot i at (i % pool, i / pool)), uploaded */
+static void skgl__rmsm_table(skgl_context *ctx, skgl_shadow *s)
+{
+    int i, pool = s->desc.rmsm_pool_pages;
+    memset(s->rmsm_table_cpu, 0, (size_t)4 * (size_t)s->atlas_w * (size_t)s->atlas_h);
+    for (i = 0; i < s->rmsm_npages; i++) {
+        unsigned char *e = skgl__atlas_at(s, s->rmsm_table_cpu, s->rmsm_pages[i].level, s->rmsm_pages[i].px,
+                                          s->rmsm_pages[i].py);
+        e[0] = (unsigned char)(i % pool);
+        e[1] = (unsigned char)(i / pool);
+        e[3] = 255;
+    }
+    ctx->gl.BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
+    ctx->gl.TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__RGBA8, s->atlas_w, s->atlas_h, 0, SKGL__RGBA, SKGL__UNSIGNED_BYTE,
+                       s->rmsm_table_cpu);
+}
+
+/* RMSM analysis (inside save/restore): per-pixel samples, page requests
+   reduced on the GPU, the finest level raised until the pool holds them
+   all (plus the coarsest page, always resident), the page table */
+static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl_shadow *s, const sk_mat4 *inv, const sk_mat4 *lvp,
+                                    int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__uint p = ctx->rmsm_prog;
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count, l, px, py, top;
+    skgl__query_begin(ctx);
+    if (s->rmsm_w != w || s->rmsm_h != h) {
+        if (s->rmsm_samples) { gl->DeleteTextures(1, &s->rmsm_samples); ctx->objects--; }
+        s->rmsm_samples = skgl__rgba_texture(ctx, SKGL__RGBA32F, w, h, SKGL__FLOAT);
+        s->rmsm_w = w;
+        s->rmsm_h = h;
+    }
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->rmsm_samples, 0);
+    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
+    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        if (ctx->timing) gl->EndQuery(SKGL__TIME_ELAPSED);
+        skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F target not renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->Viewport(0, 0, w, h);
+    gl->UseProgram(p);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);           /* the depth texture is bound there */
+    gl->BindSampler(1, ctx->point_sampler);
+    gl->Uniform1i(gl->GetUniformLocation(p, "u_depth"), 1);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_inv_view_proj"), 1, 0, inv->m);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_light"), 1, 0, lvp->m);
+    gl->Uniform1f(gl->GetUniformLocation(p, "u_virtual_res"), (float)s->desc.resolution);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_samples);
+    count = skgl__rmsm_request_pass(ctx, s, w * h, 0);
+    s->stats.pages_requested = count;
+    while (count + 1 > cap && min_level < s->levels - 1)
+        count = skgl__rmsm_request_pass(ctx, s, w * h, ++min_level);
+    /* the list, sorted by (level, py, px) as sk_rmsm_page_requests sorts */
+    s->rmsm_npages = 0;
+    top = s->levels - 1;
+    for (l = min_level; l < s->levels; l++)
+        for (py = 0; py < (s->pages0 >> l); py++)
+            for (px = 0; px < (s->pages0 >> l); px++)
+                if ((skgl__atlas_at(s, s->rmsm_req_cpu, l, px, py)[0] != 0 || l == top) && s->rmsm_npages < cap) {
+                    s->rmsm_pages[s->rmsm_npages].level = l;
+                    s->rmsm_pages[s->rmsm_npages].px = px;
+                    s->rmsm_pages[s->rmsm_npages].py = py;
+                    s->rmsm_npages++;
+                }
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    gl->DrawBuffer(SKGL__NONE);
+    skgl__rmsm_table(ctx, s);
+    s->stats.rmsm_min_level = min_level;
+    s->rmsm_lvp = *lvp;
+    s->rmsm_analyzed = 1;
+    s->stats.analysis_ms = skgl__query_end(ctx);
+    return SK_OK;
+}
+
 SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                       const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex)
 {
@@ -1371,7 +1748,8 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     int cw, ch, src = 0, sync;
     float world_w[4], v[8];
     sk_result r;
-    if (!ctx || !s || !cam || !scene || !depth_tex || s->desc.technique != SKGL_FERKO ||
+    if (!ctx || !s || !cam || !scene || !depth_tex ||
+        (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM) ||
         !sk__v3_finite(light_dir) || sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) ||
         !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) ||
         !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
@@ -1390,6 +1768,12 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         return SK_ERR_INVALID_ARG;
     }
     gl->ActiveTexture(SKGL__TEXTURE0);
+    skgl__pixel_store_plain(gl);
+    if (s->desc.technique == SKGL_RMSM) {
+        r = skgl__analyze_rmsm(ctx, s, &inv, &lvp, w, h);
+        skgl__restore(gl, &st);
+        return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
+    }
     skgl__ferko_targets(ctx, s, w, h);
     /* one frame late: the estimate of the last call, waiting in the PBO */
     if (s->ferko_state == 2) {
@@ -1515,6 +1899,7 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     s->stats.lspsm_fallback = 0;
     for (i = 0; i < s->layers; i++) { s->stats.warp_n[i] = SK__INF; s->stats.warped[i] = 0; }
     s->view_w = s->view_h = d->resolution;
+    if (d->technique == SKGL_RMSM) { s->maps = 1; return SK_OK; }   /* pages: skgl__render_rmsm */
     if (d->technique == SKGL_PSM) return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
     if (d->technique == SKGL_LSPSM) return skgl__fit_lspsm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
     if (d->technique == SKGL_FERKO && s->ferko_state != 0) {
@@ -1555,6 +1940,97 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     return SK_OK;
 }
 
+/* RMSM: every resident page into its pool slot, with a border of one
+   texel: level l's page (px, py) covers level texels [px P - 1, (px+1) P + 1)
+   of the virtual map at V / 2^l, crop of the virtual map's light frustum */
+static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                   const skgl_scene *scene, sk_vec3 light_dir)
+{
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    skgl__api *gl = &ctx->gl;
+    skgl__state st;
+    int i, P = s->desc.rmsm_page_size, slot = P + 2, pool = s->desc.rmsm_pool_pages;
+    sk_result r;
+    (void)cam;
+    skgl__save(gl, &st);
+    skgl__pixel_store_plain(gl);
+    if (!s->rmsm_analyzed) {
+        /* no analysis: the coarsest page alone */
+        r = skgl__ferko_light(scene, light_dir, &s->rmsm_lvp);
+        if (r != SK_OK) { skgl__restore(gl, &st); return r; }
+        s->rmsm_pages[0].level = s->levels - 1;
+        s->rmsm_pages[0].px = s->rmsm_pages[0].py = 0;
+        s->rmsm_npages = 1;
+        s->stats.pages_requested = 0;
+        s->stats.rmsm_min_level = 0;
+        skgl__rmsm_table(ctx, s);
+    }
+    s->light_dir = sk__normalize(light_dir);
+    s->vp[0] = s->rmsm_lvp;
+    s->maps = 1;
+    skgl__query_begin(ctx);
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->DrawBuffer(SKGL__NONE);
+    gl->ReadBuffer(SKGL__NONE);
+    gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, s->tex, 0, 0);
+    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
+        if (ctx->timing) gl->EndQuery(SKGL__TIME_ELAPSED);
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "shadow framebuffer incomplete", NULL);
+        return SK_ERR_GL;
+    }
+    gl->Enable(SKGL__SCISSOR_TEST);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Enable(SKGL__DEPTH_TEST);
+    gl->DepthFunc(SKGL__LESS);
+    gl->DepthMask(1);
+    gl->ClearDepth(1.0);
+    if (s->desc.slope_bias > 0.0f || s->desc.depth_bias > 0.0f) {
+        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
+        gl->PolygonOffset(s->desc.slope_bias > 0.0f ? s->desc.slope_bias : 0.0f,
+                          s->desc.depth_bias > 0.0f ? s->desc.depth_bias : 0.0f);
+    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    s->stats.passes = 0;
+    s->stats.texels = 0.0;
+    for (i = 0; i < s->rmsm_npages; i++) {
+        const sk_page *pg = &s->rmsm_pages[i];
+        double lres = (double)(s->desc.resolution >> pg->level);
+        sk_rect rc;
+        sk_mat4 vp;
+        skgl_draw_info info;
+        int x = (i % pool) * slot, y = (i / pool) * slot;
+        rc.x0 = (float)(2.0 * (pg->px * P - 1) / lres - 1.0);
+        rc.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
+        rc.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
+        rc.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
+        vp = sk_mat4_mul(sk_crop_matrix(rc, -1.0f, 1.0f), s->rmsm_lvp);
+        gl->Viewport(x, y, slot, slot);
+        gl->Scissor(x, y, slot, slot);
+        gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+        gl->UseProgram(ctx->depth_prog);
+        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
+        gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_DIRECTIONAL;
+        info.index = i;
+        info.view_proj = vp;
+        info.frustum = sk_frustum_from_matrix(vp);
+        scene->draw(scene->user, &info);
+        s->stats.passes++;
+        s->stats.texels += (double)slot * slot;
+    }
+    gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
+    s->stats.shadow_ms = skgl__query_end(ctx);
+    s->stats.maps = 1;
+    s->stats.resolution = s->desc.resolution;
+    s->stats.map_width = s->stats.map_height = s->tex_size;
+    s->stats.pages_rendered = s->rmsm_npages;
+    skgl__restore(gl, &st);
+    return skgl__check(ctx, "skgl_shadow_render");
+}
+
 SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                      const skgl_scene *scene, sk_vec3 light_dir)
 {
@@ -1568,6 +2044,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
         return SK_ERR_INVALID_ARG;
     r = skgl__fit_layers(s, cam, scene, light_dir);
     if (r != SK_OK) return r;
+    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, cam, scene, light_dir);
     if (s->desc.technique != SKGL_FERKO || s->ferko_state == 0)
         for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
     s->light_dir = sk__normalize(light_dir);
@@ -1632,9 +2109,17 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     return skgl__check(ctx, "skgl_shadow_render");
 }
 
-static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint prog, int unit)
+static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint prog, int unit, int table_unit)
 {
     skgl__api *gl = &ctx->gl;
+    /* the page table's sampler is set whatever the technique: two samplers
+       of different types must never share a unit */
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_page_table"), table_unit);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm"), s->desc.technique == SKGL_RMSM);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_pages0"), s->pages0);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_levels"), s->levels);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_min_level"), s->stats.rmsm_min_level);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_page"), s->desc.rmsm_page_size);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_shadow_map"), unit);
     gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->maps, 0, s->vp[0].m);
     gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->maps + 1, s->stats.splits);
@@ -1658,7 +2143,13 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
     gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
     gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
     gl->ActiveTexture((skgl__enum)active);
-    skgl__uniforms(ctx, s, program, unit);
+    if (s->desc.technique == SKGL_RMSM && unit < 31) {
+        gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit + 1);
+        gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
+        gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
+        gl->ActiveTexture((skgl__enum)active);
+    }
+    skgl__uniforms(ctx, s, program, unit, unit + 1);
     return skgl__check(ctx, "skgl_shadow_bind");
 }
 
@@ -1685,6 +2176,9 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     gl->ActiveTexture(SKGL__TEXTURE0 + 2);
     gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
     gl->BindSampler(2, ctx->point_sampler);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 3);
+    gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
+    gl->BindSampler(3, ctx->point_sampler);
     gl->ActiveTexture(SKGL__TEXTURE0);
     gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
     gl->BindSampler(0, ctx->cmp_sampler);
@@ -1711,7 +2205,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     gl->Disable(SKGL__POLYGON_OFFSET_FILL);
     gl->ColorMask(1, 1, 1, 1);
     gl->UseProgram(p);
-    skgl__uniforms(ctx, s, p, 0);
+    skgl__uniforms(ctx, s, p, 0, 3);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_depth"), 1);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_normals"), 2);
     gl->Uniform1i(gl->GetUniformLocation(p, "u_has_normals"), normal_tex != 0);

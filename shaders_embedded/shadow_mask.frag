@@ -14,11 +14,13 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     float d = texelFetch(u_depth, px, 0).r;
-    if (d >= 1.0) { o_visibility = 1.0; return; }
+    /* no early return for the background: sk_shadow() may take screen
+       derivatives (RMSM), which need every pixel of a 2x2 quad */
     vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
     vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
     vec3 world = w.xyz / w.w;
     vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);
     float view_depth = -(u_view * vec4(world, 1.0)).z;
-    o_visibility = sk_shadow(world, n, view_depth);
+    float v = sk_shadow(world, n, view_depth);
+    o_visibility = d >= 1.0 ? 1.0 : v;
 }

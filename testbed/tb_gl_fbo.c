@@ -148,7 +148,7 @@ int tb_gl_read_rgba_float(const tb_gl_funcs *gl, unsigned fbo, int w, int h, flo
 }
 
 static int tb_read_texture_(const tb_gl_funcs *gl, unsigned tex, int depth, int w, int h,
-                            float *out) {
+                            float *out, unsigned color_fmt) {
     unsigned fbo = 0, none = TB_GL_NONE, att0 = TB_GL_COLOR_ATTACHMENT0;
     int prev_read = 0, r;
     gl->GetIntegerv(TB_GL_READ_FRAMEBUFFER_BINDING, &prev_read);
@@ -162,14 +162,17 @@ static int tb_read_texture_(const tb_gl_funcs *gl, unsigned tex, int depth, int 
     gl->BindFramebuffer(TB_GL_READ_FRAMEBUFFER, (unsigned)prev_read);
     if (r == 0)
         r = depth ? tb_read_(gl, fbo, 0, w, h, TB_GL_DEPTH_COMPONENT, TB_GL_FLOAT, out)
-                  : tb_read_(gl, fbo, 1, w, h, TB_GL_RED, TB_GL_FLOAT, out);
+                  : tb_read_(gl, fbo, 1, w, h, color_fmt, TB_GL_FLOAT, out);
     gl->DeleteFramebuffers(1, &fbo);
     return r;
 }
 
 int tb_gl_read_texture_red(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out) {
-    return tb_read_texture_(gl, tex, 0, w, h, out);
+    return tb_read_texture_(gl, tex, 0, w, h, out, TB_GL_RED);
+}
+int tb_gl_read_texture_rgba_float(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out) {
+    return tb_read_texture_(gl, tex, 0, w, h, out, TB_GL_RGBA);
 }
 int tb_gl_read_texture_depth(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out) {
-    return tb_read_texture_(gl, tex, 1, w, h, out);
+    return tb_read_texture_(gl, tex, 1, w, h, out, TB_GL_RED);
 }

@@ -44,6 +44,7 @@ int tb_gl_read_red(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *out
 int tb_gl_read_rgba_float(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *out);
 /* red channel / depth of any 2D texture (through a temporary FBO) */
 int tb_gl_read_texture_red(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out);
+int tb_gl_read_texture_rgba_float(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out);  /* 4 per texel */
 int tb_gl_read_texture_depth(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out);
 
 #ifdef __cplusplus

@@ -8,7 +8,8 @@
    off are both caught); each technique runs render, mask and bind under
    each set; everything is read back with the test's own glGet calls and
    must be unchanged (skgl_shadow_bind may change only what it documents:
-   the 2D-array texture and the sampler of its unit). No GL error; every
+   the 2D-array texture and the sampler of its unit, and for RMSM the 2D
+   texture and sampler of the next unit, the page table). No GL error; every
    call returns SK_OK with desc.debug on.
 
    Objects: shadowkit loads its entry points through a getproc we supply,
@@ -290,7 +291,7 @@ static void set_state(const tb_gl_funcs *gl, const ext_funcs *x, const objs *o, 
 
 /* compares; `except_unit` (>= 0): its 2D-array and sampler bindings are
    allowed to differ (skgl_shadow_bind's documented effect) */
-static int compare_state(const gl_state *a, const gl_state *b, const char *what, int except_unit) {
+static int compare_state(const gl_state *a, const gl_state *b, const char *what, int except_unit, int except_table) {
     int bad = 0, u, k;
 #define SAME(field) do { if (a->field != b->field) { bad++; \
     printf("%s: %s changed: %g -> %g\n", what, #field, (double)a->field, (double)b->field); } } while (0)
@@ -301,6 +302,7 @@ static int compare_state(const gl_state *a, const gl_state *b, const char *what,
         SAME_I(viewport, k); SAME_I(scissor_box, k); SAME_I(color_mask, k); SAME_I(clear_color, k);
     }
     for (u = 0; u < UNITS; u++) {
+        if (u == except_table) { SAME_I(tex2da, u); continue; }   /* the RMSM page table: 2D + sampler */
         SAME_I(tex2d, u);
         if (u == except_unit) continue;
         SAME_I(tex2da, u); SAME_I(sampler, u);
@@ -370,17 +372,17 @@ static void test_state_and_objects(void) {
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
     SK_CHECK(gl->GetError() == 0);
 
-    for (t = 0; t < 8; t++) {
-        static const char *const names[8] = {"standard", "pssm", "psm", "lispsm", "lispsm-cascades", "lspsm",
-                                              "ferko", "ferko-late"};
-        static const skgl_technique techs[8] = {SKGL_STANDARD, SKGL_PSSM, SKGL_PSM, SKGL_LISPSM, SKGL_LISPSM,
-                                                SKGL_LSPSM, SKGL_FERKO, SKGL_FERKO};
+    for (t = 0; t < 9; t++) {
+        static const char *const names[9] = {"standard", "pssm", "psm", "lispsm", "lispsm-cascades", "lspsm",
+                                              "ferko", "ferko-late", "rmsm"};
+        static const skgl_technique techs[9] = {SKGL_STANDARD, SKGL_PSSM, SKGL_PSM, SKGL_LISPSM, SKGL_LISPSM,
+                                                SKGL_LSPSM, SKGL_FERKO, SKGL_FERKO, SKGL_RMSM};
         skgl_shadow_desc d;
         skgl_shadow *s = NULL;
         const char *tn = names[t];
         memset(&d, 0, sizeof d);
         d.technique = techs[t];
-        d.resolution = 512;
+        d.resolution = techs[t] == SKGL_RMSM ? 4096 : 512;
         d.cascades = t == 4 ? 3 : 0;
         d.ferko_latency = t == 7;
         d.blend_band = t == 1 || t == 4 ? 0.1f : 0.0f;
@@ -396,30 +398,30 @@ static void test_state_and_objects(void) {
                 if (r != SK_OK) break;
                 read_state(gl, &x, &after);
                 snprintf(what, sizeof what, "%s set %c: skgl_shadow_create", tn, "AB"[v]);
-                SK_CHECK_MSG(compare_state(&before, &after, what, -1) == 0, "%s", what);
+                SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
                 SK_CHECK_MSG(skgl_gl_object_count(sk) == live_objects(0), "%s: count %d, tracked %d", tn,
                              skgl_gl_object_count(sk), live_objects(0));
             }
-            if (techs[t] == SKGL_FERKO) {
+            if (techs[t] == SKGL_FERKO || techs[t] == SKGL_RMSM) {
                 r = skgl_shadow_analyze(sk, s, &cam, &sc, light, e.gbuf.depth_tex);
                 SK_CHECK_MSG(r == SK_OK, "%s: analyze: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
                 read_state(gl, &x, &after);
                 snprintf(what, sizeof what, "%s set %c: skgl_shadow_analyze", tn, "AB"[v]);
-                SK_CHECK_MSG(compare_state(&before, &after, what, -1) == 0, "%s", what);
+                SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
                 SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
             }
             r = skgl_shadow_render(sk, s, &cam, &sc, light);
             SK_CHECK_MSG(r == SK_OK, "%s: render: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
             read_state(gl, &x, &after);
             snprintf(what, sizeof what, "%s set %c: skgl_shadow_render", tn, "AB"[v]);
-            SK_CHECK_MSG(compare_state(&before, &after, what, -1) == 0, "%s", what);
+            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
             SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
 
             r = skgl_shadow_mask(sk, s, &cam, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex);
             SK_CHECK_MSG(r == SK_OK, "%s: mask: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
             read_state(gl, &x, &after);
             snprintf(what, sizeof what, "%s set %c: skgl_shadow_mask", tn, "AB"[v]);
-            SK_CHECK_MSG(compare_state(&before, &after, what, -1) == 0, "%s", what);
+            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
             SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
 
             /* bind needs its program current: it is (fw.program, part of the state) */
@@ -427,7 +429,7 @@ static void test_state_and_objects(void) {
             SK_CHECK_MSG(r == SK_OK, "%s: bind: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
             read_state(gl, &x, &after);
             snprintf(what, sizeof what, "%s set %c: skgl_shadow_bind", tn, "AB"[v]);
-            SK_CHECK_MSG(compare_state(&before, &after, what, 6) == 0, "%s", what);
+            SK_CHECK_MSG(compare_state(&before, &after, what, 6, techs[t] == SKGL_RMSM ? 7 : -1) == 0, "%s", what);
             SK_CHECK_MSG(after.tex2da[6] == (int)skgl_shadow_texture(s), "%s: unit 6 has %d, map is %u", what,
                          after.tex2da[6], skgl_shadow_texture(s));
             SK_CHECK_MSG(gl->GetError() == 0, "%s", what);

@@ -1,0 +1,27 @@
+/* RMSM page analysis, per pixel (seed 002, after Lefohn et al. 2007): the
+   world point from window depth, its coordinates (s, t) in the virtual
+   shadow map of u_virtual_res^2 texels, and the level of detail
+   lod = log2(sqrt(|dX x dY|)) from the screen derivatives of the texel
+   coordinates (sk_rmsm_lod). The derivatives are those the lookup in
+   shadow_sample.glsl takes, so both choose the same page.
+   Out: (s, t, lod, 1), or 0 where nothing needs the map. */
+uniform sampler2D u_depth;
+uniform mat4 u_inv_view_proj;
+uniform mat4 u_light;            /* world -> the virtual map's light clip */
+uniform float u_virtual_res;
+out vec4 o_sample;
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(u_depth, px, 0).r;
+    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
+    vec4 c = u_light * vec4(w.xyz / w.w, 1.0);
+    vec2 st = c.xy / c.w * 0.5 + 0.5;
+    /* derivatives first, in uniform control flow */
+    vec2 dx = dFdx(st) * u_virtual_res, dy = dFdy(st) * u_virtual_res;
+    float lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));
+    bool ok = d < 1.0 && all(greaterThanEqual(st, vec2(0.0))) && all(lessThan(st, vec2(1.0))) &&
+              abs(c.z) <= c.w;
+    o_sample = ok ? vec4(st, lod, 1.0) : vec4(0.0);
+}

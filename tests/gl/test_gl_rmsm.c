@@ -1,0 +1,229 @@
+/* test_gl_rmsm.c - RMSM-style virtual shadow maps (seed 002, after Lefohn
+   et al. 2007) through skgl_shadow_analyze + SKGL_RMSM: the pages reduced
+   on the GPU against sk_rmsm_page_requests over the same samples, accuracy
+   against the Embree reference, and the configurations where it degrades.
+   400 x 225; virtual map 16384^2 in pages of 128^2 (8 levels).
+
+   Measured (Mesa 22.3 llvmpipe, OSMesa):
+
+   test_pages_match_cpu - pool of 64^2 pages: the GPU's resident pages are
+   exactly sk_rmsm_page_requests over the analysis texture's samples, in
+   order, plus the coarsest page: boxes 70, terrace 83, fence 139 pages.
+
+   test_accuracy - pool of 24^2 pages, against the focused 2048^2 map:
+       boxes    0.0921% (70 pages, 1.18 Mtexels)   vs 0.0608% (4.19 Mtexels)
+       terrace  0.5330% (83 pages, 1.40 Mtexels)   vs 0.3472%
+       fence    2.3010% (139 pages, 2.35 Mtexels)  vs 2.8277%
+     Thresholds 0.16 / 0.9 / 3.5%. A 4x smaller virtual map changes nothing
+     here (the view's pages sit at levels the smaller map still has: the
+     same errors), so the can-fail run drops the analysis instead
+     (SK_RMSM_NO_ANALYSIS=1: only the coarsest page): 0.7614%, 2.2100%,
+     8.0842%: all three fail.
+
+   test_degraded - the boxes view with a pool of 2x2 pages: the finest level
+   rises to 7 (one page), error 0.7614%; 4x4: level 5, 14 pages, 0.1391%;
+   no analysis: the coarsest page, 0.7614%. Bad descriptions (virtual size
+   not a power of two, page size 100, page larger than the map, pool 1 or
+   65, 2048 pages a side) are refused with SK_ERR_INVALID_ARG.
+   Pictures: out/tests/rmsm-*.png and -error.png. */
+#define SHADOWKIT_IMPLEMENTATION
+#define SHADOWKIT_GL_IMPLEMENTATION
+#include "shadowkit_gl.h"
+#include "sk_test.h"
+#include "gl_test_util.h"
+
+#include <math.h>
+
+#define W 400
+#define H 225
+#define MAX_PAGES 4096
+
+static int rmsm_frame(gt_env *e, skgl_shadow *s, const skgl_camera *cam, const skgl_scene *sc, sk_vec3 light,
+                      int analyze, float *vis) {
+    sk_result r = analyze ? skgl_shadow_analyze(e->sk, s, cam, sc, light, e->gbuf.depth_tex) : SK_OK;
+    if (r == SK_OK) r = skgl_shadow_render(e->sk, s, cam, sc, light);
+    if (r != SK_OK) {
+        printf("rmsm frame: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
+        return -1;
+    }
+    return vis ? gt_mask_only(e, s, cam, vis) : 0;
+}
+
+static skgl_shadow *rmsm_shadow(gt_env *e, int vres, int page, int pool) {
+    skgl_shadow_desc d;
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_RMSM;
+    d.resolution = vres;
+    d.rmsm_page_size = page;
+    d.rmsm_pool_pages = pool;
+    return gt_shadow(e, &d);
+}
+
+typedef struct view_case {
+    const char *label, *scene;
+    float eye[3], target[3], light[3];
+    double max_pct;
+} view_case;
+
+static const view_case views[] = {
+    {"boxes", "ground-boxes", {-9, 7, 12}, {0, 1, 0}, {-0.5f, -1, -0.35f}, 0.16},
+    {"terrace", "terrace", {0, 2, 1}, {0, 0.5f, -30}, {0.7f, -1, 0.4f}, 0.9},
+    {"fence", "fence", {1, 1.6f, 3.5f}, {0, 0.5f, 0}, {0.3f, -1, 0.6f}, 3.5},
+};
+
+/* the GPU's pages are exactly sk_rmsm_page_requests over the analysis's own
+   samples, plus the coarsest page */
+static void test_pages_match_cpu(void) {
+    static sk_page gpu[MAX_PAGES], cpu[MAX_PAGES];
+    size_t c;
+    for (c = 0; c < sizeof views / sizeof views[0]; c++) {
+        const view_case *k = &views[c];
+        gt_env e;
+        skgl_camera cam = gt_camera(gt_v3(k->eye[0], k->eye[1], k->eye[2]),
+                                    gt_v3(k->target[0], k->target[1], k->target[2]), 1.0f, 0.1f, 250, W, H);
+        sk_vec3 l = gt_v3(k->light[0], k->light[1], k->light[2]);
+        skgl_shadow *s;
+        skgl_scene sc;
+        float *samp;
+        sk_vec3 *pts;
+        size_t i;
+        int ns = 0, ng, nc, j, extra, mism = 0;
+        const skgl_stats *st;
+        if (gt_env_init_named(&e, k->scene, W, H) != 0) { gt_env_free(&e); continue; }
+        sc = gt_scene(&e);
+        samp = (float *)malloc(sizeof(float) * 4 * e.n);
+        pts = (sk_vec3 *)malloc(sizeof(sk_vec3) * e.n);
+        s = rmsm_shadow(&e, 16384, 128, 64);
+        if (!s || !samp || !pts || gt_gbuffer(&e, &cam) != 0 || rmsm_frame(&e, s, &cam, &sc, l, 1, NULL) != 0 ||
+            tb_gl_read_texture_rgba_float(&e.gl, skgl_shadow_analysis_texture(s), W, H, samp) != 0) {
+            SK_CHECK_MSG(0, "%s: frame failed", k->label);
+        } else {
+            for (i = 0; i < e.n; i++)
+                if (samp[4 * i + 3] > 0.5f) pts[ns++] = gt_v3(samp[4 * i], samp[4 * i + 1], samp[4 * i + 2]);
+            nc = sk_rmsm_page_requests(pts, ns, 16384, 128, cpu, MAX_PAGES);
+            ng = skgl_shadow_pages(s, gpu, MAX_PAGES);
+            st = skgl_shadow_stats(s);
+            /* the coarsest page is resident whether asked for or not */
+            extra = !(nc > 0 && cpu[nc - 1].level == 7);
+            printf("%-8s %d samples: cpu %d pages, gpu %d resident (%d requested, min level %d), levels:", k->label,
+                   ns, nc, ng, st->pages_requested, st->rmsm_min_level);
+            for (j = 0; j < 8; j++) {
+                int n = 0, m;
+                for (m = 0; m < ng; m++) n += gpu[m].level == j;
+                printf(" %d", n);
+            }
+            printf("\n");
+            SK_CHECK(nc > 0 && st->rmsm_min_level == 0);
+            SK_CHECK_MSG(ng == nc + extra && st->pages_requested == nc, "%s: gpu %d (+%d) vs cpu %d", k->label, ng,
+                         extra, nc);
+            for (j = 0; j < nc && j < ng; j++)
+                mism += gpu[j].level != cpu[j].level || gpu[j].px != cpu[j].px || gpu[j].py != cpu[j].py;
+            SK_CHECK_MSG(mism == 0, "%s: %d pages differ", k->label, mism);
+            SK_CHECK(st->pages_rendered == ng && st->passes == ng);
+        }
+        SK_CHECK(e.gl.GetError() == 0);
+        skgl_shadow_destroy(e.sk, s);
+        free(samp); free(pts);
+        gt_env_free(&e);
+    }
+}
+
+/* against the reference, next to the focused 2048^2 map */
+static void test_accuracy(void) {
+    size_t c;
+    for (c = 0; c < sizeof views / sizeof views[0]; c++) {
+        const view_case *k = &views[c];
+        gt_env e;
+        skgl_camera cam = gt_camera(gt_v3(k->eye[0], k->eye[1], k->eye[2]),
+                                    gt_v3(k->target[0], k->target[1], k->target[2]), 1.0f, 0.1f, 250, W, H);
+        sk_vec3 l = gt_v3(k->light[0], k->light[1], k->light[2]);
+        skgl_shadow_desc d;
+        skgl_shadow *s, *ss;
+        skgl_scene sc;
+        float *ref, *m, *ms;
+        double er = -1, es = -1;
+        char img[64];
+        if (gt_env_init_named(&e, k->scene, W, H) != 0) { gt_env_free(&e); continue; }
+        sc = gt_scene(&e);
+        ref = gt_alloc(&e); m = gt_alloc(&e); ms = gt_alloc(&e);
+        s = rmsm_shadow(&e, (int)(16384 * gt_res_scale()), 128, 24);
+        memset(&d, 0, sizeof d);
+        d.resolution = 2048;
+        ss = gt_shadow(&e, &d);
+        if (s && ss && gt_gbuffer(&e, &cam) == 0 && gt_reference(&e, l, ref) == 0 &&
+            rmsm_frame(&e, s, &cam, &sc, l, !getenv("SK_RMSM_NO_ANALYSIS"), m) == 0 &&
+            gt_mask(&e, ss, &cam, l, ms) == 0) {
+            er = tb_metric_hard(ref, m, e.n).pct;
+            es = tb_metric_hard(ref, ms, e.n).pct;
+            snprintf(img, sizeof img, "rmsm-%s", k->label);
+            gt_images(&e, img, ref, m);
+        }
+        printf("%-8s rmsm %.4f%% (%d pages, %.2f Mtexels, min level %d)  standard-2048 %.4f%% (4.19 Mtexels)\n",
+               k->label, er, s ? skgl_shadow_stats(s)->pages_rendered : 0, s ? skgl_shadow_stats(s)->texels / 1e6 : 0.0,
+               s ? skgl_shadow_stats(s)->rmsm_min_level : -1, es);
+        SK_CHECK(er >= 0 && es >= 0);
+        SK_CHECK_MSG(er < k->max_pct, "%s: rmsm %.4f%% >= %.2f%%", k->label, er, k->max_pct);
+        SK_CHECK(e.gl.GetError() == 0);
+        skgl_shadow_destroy(e.sk, s);
+        skgl_shadow_destroy(e.sk, ss);
+        free(ref); free(m); free(ms);
+        gt_env_free(&e);
+    }
+}
+
+/* a pool too small for the view: the finest level rises until the pages
+   fit; no analysis at all: the coarsest page alone. Both stay valid. */
+static void test_degraded(void) {
+    const view_case *k = &views[0];
+    gt_env e;
+    skgl_camera cam = gt_camera(gt_v3(k->eye[0], k->eye[1], k->eye[2]),
+                                gt_v3(k->target[0], k->target[1], k->target[2]), 1.0f, 0.1f, 250, W, H);
+    sk_vec3 l = gt_v3(k->light[0], k->light[1], k->light[2]);
+    skgl_scene sc;
+    float *ref, *m;
+    int t;
+    if (gt_env_init_named(&e, k->scene, W, H) != 0) { gt_env_free(&e); return; }
+    sc = gt_scene(&e);
+    ref = gt_alloc(&e); m = gt_alloc(&e);
+    SK_CHECK(gt_gbuffer(&e, &cam) == 0 && gt_reference(&e, l, ref) == 0);
+    for (t = 0; t < 3; t++) {
+        static const char *const names[3] = {"pool 2x2", "pool 4x4", "no analysis"};
+        skgl_shadow *s = rmsm_shadow(&e, 16384, 128, t == 0 ? 2 : t == 1 ? 4 : 24);
+        const skgl_stats *st;
+        double er;
+        size_t i, bad = 0;
+        if (!s || rmsm_frame(&e, s, &cam, &sc, l, t < 2, m) != 0) { SK_CHECK(0); skgl_shadow_destroy(e.sk, s); continue; }
+        st = skgl_shadow_stats(s);
+        er = tb_metric_hard(ref, m, e.n).pct;
+        for (i = 0; i < e.n; i++) bad += !(m[i] >= 0.0f && m[i] <= 1.0f) && m[i] != -1.0f;
+        printf("%-12s %d pages requested, %d resident, min level %d: error %.4f%%\n", names[t], st->pages_requested,
+               st->pages_rendered, st->rmsm_min_level, er);
+        SK_CHECK(bad == 0 && er >= 0);
+        if (t == 0) SK_CHECK(st->pages_rendered <= 4 && st->rmsm_min_level > 0 && er < 10.0);
+        if (t == 1) SK_CHECK(st->pages_rendered <= 16 && st->rmsm_min_level > 0 && er < 5.0);
+        if (t == 2) SK_CHECK(st->pages_rendered == 1 && er < 10.0);
+        SK_CHECK(e.gl.GetError() == 0);
+        skgl_shadow_destroy(e.sk, s);
+    }
+    /* bad descriptions */
+    {
+        skgl_shadow_desc d;
+        skgl_shadow *s = NULL;
+        int b;
+        for (b = 0; b < 6; b++) {
+            memset(&d, 0, sizeof d);
+            d.technique = SKGL_RMSM;
+            if (b == 0) d.resolution = 3000;            /* not a power of two */
+            if (b == 1) d.rmsm_page_size = 100;
+            if (b == 2) { d.resolution = 64; d.rmsm_page_size = 128; }
+            if (b == 3) d.rmsm_pool_pages = 1;
+            if (b == 4) d.rmsm_pool_pages = 65;
+            if (b == 5) { d.resolution = 1 << 18; d.rmsm_page_size = 128; }   /* 2048 pages a side */
+            SK_CHECK_MSG(skgl_shadow_create(e.sk, &d, &s) == SK_ERR_INVALID_ARG, "bad desc %d accepted", b);
+        }
+    }
+    free(ref); free(m);
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_pages_match_cpu, test_accuracy, test_degraded)
