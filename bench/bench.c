@@ -16,7 +16,8 @@
        method,params,scene,view,width,height,error_kind,error,texels,passes,
        shadow_ms,analysis_ms,total_ms,device
        method     standard | standard-stable | pssm | psm | lispsm |
-                  lispsm-pssm (LiSPSM per cascade) | lspsm | ferko   (DESIGN.md names)
+                  lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm
+                  (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
        error_kind hard_pct
        texels     shadow texels rendered (skgl_stats.texels)
@@ -277,6 +278,16 @@ static void add_ferko(int res) {
     c->desc.resolution = res;
 }
 
+/* RMSM: a virtual map of vres^2 texels in pages of 128^2, a pool of 24^2 pages */
+static void add_rmsm(int vres) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "rmsm");
+    snprintf(c->params, sizeof c->params, "virtual_resolution=%d;page=128;pool=24;pcf=0", vres);
+    c->desc.technique = SKGL_RMSM;
+    c->desc.resolution = vres;
+}
+
 static void build_sweep(int quick) {
     static const int std_res[] = {512, 1024, 2048, 4096};
     static const float lambdas[] = {0.5f, 0.75f, 0.9f};
@@ -311,6 +322,7 @@ static void build_sweep(int quick) {
         add_lspsm(1024);
         add_ferko(2048);
         add_ferko(4096);
+        add_rmsm(16384);
         return;
     }
     for (stable = 0; stable <= 1; stable++)
@@ -334,6 +346,9 @@ static void build_sweep(int quick) {
     for (r = 0; r < 3; r++) add_lspsm(pssm_res[r]);
     for (r = 1; r < 4; r++) add_ferko(std_res[r]);
     add_ferko(8192);
+    add_rmsm(8192);
+    add_rmsm(16384);
+    add_rmsm(32768);
 }
 
 /* ---------------------------------------------------------------- scenes */
@@ -593,6 +608,8 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
     }
     else if (strcmp(p->method, "ferko") == 0)
         snprintf(buf, n, "ferko max %d", (s = strstr(p->params, "max_resolution=")) ? atoi(s + 15) : 0);
+    else if (strcmp(p->method, "rmsm") == 0)
+        snprintf(buf, n, "rmsm %d", (s = strstr(p->params, "virtual_resolution=")) ? atoi(s + 19) : 0);
     else if (strcmp(p->method, "lspsm") == 0)
         snprintf(buf, n, "lspsm %d", res);
     else if (strncmp(p->method, "pssm", 4) == 0)
@@ -899,12 +916,13 @@ static void write_row(FILE *csv, const char *method, const char *params, const c
     fputc('\n', csv);
 }
 
-/* one frame's shadow work: FERKO first analyses the view's depth buffer;
+/* one frame's shadow work: FERKO and RMSM first analyse the view's depth buffer;
    *analysis_ms gets that pass's time (0 for the other methods) */
 static sk_result render_frame(bench_gl *B, skgl_shadow *sh, const view_data *vd, const skgl_scene *sc,
                               sk_vec3 light_dir, float *analysis_ms) {
     *analysis_ms = 0.0f;
-    if (skgl_shadow_get_desc(sh).technique == SKGL_FERKO) {
+    skgl_technique t = skgl_shadow_get_desc(sh).technique;
+    if (t == SKGL_FERKO || t == SKGL_RMSM) {
         sk_result r = skgl_shadow_analyze(B->sk, sh, &vd->v.cam, sc, light_dir, vd->gbuf.depth_tex);
         if (r != SK_OK) return r;
         *analysis_ms = skgl_shadow_stats(sh)->analysis_ms;
