@@ -878,12 +878,14 @@ static const unsigned char sk__edges[12][2] = {
 /* All-zero (what a singular matrix gives) or non-finite: not a usable frustum. */
 static int sk__frustum_invalid(const sk_frustum *f)
 {
+    /* the 48 floats' exponent bits at once (as sk__finite), then the normals */
+    unsigned u[sizeof(sk_frustum) / sizeof(unsigned)], bad = 0u;
     int i;
+    memcpy(u, f, sizeof u);
+    for (i = 0; i < (int)(sizeof u / sizeof u[0]); i++) bad |= (unsigned)((u[i] & 0x7f800000u) == 0x7f800000u);
     for (i = 0; i < 6; i++)
-        if ((f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f) ||
-            !sk__v3_finite(f->planes[i].n) || !sk__finite(f->planes[i].d)) return 1;
-    for (i = 0; i < 8; i++) if (!sk__v3_finite(f->corners[i])) return 1;
-    return 0;
+        bad |= (unsigned)(f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f);
+    return (int)bad;
 }
 
 SKDEF sk_result sk_frustum_from_corners(const sk_vec3 corners[8], sk_frustum *out)
@@ -953,7 +955,7 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
 
 /* The parts of the 12 edges of hexahedron c (corner order of sk_frustum)
    inside the other body, by parametric clipping against its six planes
-   (Cyrus & Beck 1978): dist[i][k] is corner i's signed distance to plane k,
+   (Cyrus & Beck 1978): dist[k][i] is corner i's signed distance to plane k,
    bit k of out[i] set where corner i is outside plane k beyond the
    containment tolerance (see below). A plane constrains an
    edge where exactly one end is outside it; the edge enters the body at the
@@ -961,7 +963,7 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
    points are appended (an end within tolerance of the body is a corner,
    appended by the caller). Planes the whole edge is within tolerance of do
    not cut it, so faces that touch or coincide keep their vertices. */
-static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsigned *out, sk_vec3 *pts, int n)
+static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[8], const unsigned *out, sk_vec3 *pts, int n)
 {
     int e, k;
     for (e = 0; e < 12; e++) {
@@ -970,9 +972,9 @@ static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsign
         float t0 = 0.0f, t1 = 1.0f;
         if (!x || (oa & ob)) continue;   /* inside all along, or beyond one plane at both ends */
         for (k = 0; x >> k; k++) {
-            float d0 = dist[a][k], t;
+            float d0 = dist[k][a], t;
             if (!(x >> k & 1u)) continue;
-            t = d0 / (d0 - dist[b][k]);
+            t = d0 / (d0 - dist[k][b]);
             if (oa >> k & 1u) { enter = 1; if (t > t0) t0 = t < 1.0f ? t : 1.0f; }
             else { leave = 1; if (t < t1) t1 = t > 0.0f ? t : 0.0f; }
         }
@@ -986,55 +988,86 @@ static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsign
 /* A vertex of the intersection of two convex bodies is a corner of one
    inside the other, or where an edge of one crosses a face of the other.
    The 8 x 6 signed distances of each body's corners to the other's planes
-   are computed once. Containment has a tolerance relative to the magnitudes
-   involved: 1e-5 (1 + |p| + |d|) for a point p and a plane's offset d. */
+   are computed once, plane by plane over the 8 corners (the box corners'
+   coordinates and their products with each plane normal taken once per
+   axis: the same products and sums as corner by corner). Containment has a
+   tolerance relative to the magnitudes involved: 1e-5 (1 + |p| + |d|) for a
+   point p and a plane's offset d. */
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap)
 {
     sk_vec3 bc[8], pts[16 + 2 * 24];
-    float fd[8][6], bd[8][6];   /* frustum corners to box planes, box corners to frustum planes */
-    float fpd[6], bpd[6];
+    float fd[6][8], bd[6][8];   /* frustum corners to box planes, box corners to frustum planes */
+    float fx[8], fy[8], fz[8], fm[8], bm[8], bx[8], by[8], bz[8];
+    float kx[16 + 2 * 24 + 3], ky[16 + 2 * 24 + 3], kz[16 + 2 * 24 + 3];
+    float lo[3], hi[3], alo[3], ahi[3];
     unsigned fo[8], bo[8];
     int count = 0, i, j, n = 0;
     if (!f || !out || cap < 0 || sk__frustum_invalid(f) || !sk__aabb_valid(&box))
         return -(int)SK_ERR_INVALID_ARG;
-    /* the box's planes in sk_frustum_from_aabb's order: x - min.x, max.x - x, ...;
-       1e-5 |d| of each plane */
-    bpd[0] = 1e-5f * SK_FABSF(box.min.x); bpd[1] = 1e-5f * SK_FABSF(box.max.x);
-    bpd[2] = 1e-5f * SK_FABSF(box.min.y); bpd[3] = 1e-5f * SK_FABSF(box.max.y);
-    bpd[4] = 1e-5f * SK_FABSF(box.min.z); bpd[5] = 1e-5f * SK_FABSF(box.max.z);
-    for (j = 0; j < 6; j++) fpd[j] = 1e-5f * SK_FABSF(f->planes[j].d);
+    lo[0] = box.min.x; lo[1] = box.min.y; lo[2] = box.min.z;
+    hi[0] = box.max.x; hi[1] = box.max.y; hi[2] = box.max.z;
+    for (j = 0; j < 3; j++) { alo[j] = SK_FABSF(lo[j]); ahi[j] = SK_FABSF(hi[j]); }
+    /* the box corners in sk__aabb_corner order, by coordinate */
+    bx[0] = bx[2] = bx[4] = bx[6] = lo[0]; bx[1] = bx[3] = bx[5] = bx[7] = hi[0];
+    by[0] = by[1] = by[4] = by[5] = lo[1]; by[2] = by[3] = by[6] = by[7] = hi[1];
+    bz[0] = bz[1] = bz[2] = bz[3] = lo[2]; bz[4] = bz[5] = bz[6] = bz[7] = hi[2];
     for (i = 0; i < 8; i++) {
-        /* outside plane k: distance + 1e-5 |d_k| < -1e-5 (1 + |p|) */
-        sk_vec3 p = f->corners[i];
-        float mp = -1e-5f * (1.0f + sk__maxabs3(p)), mq;
-        unsigned o = 0u, q = 0u;
-        bc[i] = sk__aabb_corner(&box, i);
-        mq = -1e-5f * (1.0f + sk__maxabs3(bc[i]));
-        fd[i][0] = p.x - box.min.x; fd[i][1] = box.max.x - p.x;
-        fd[i][2] = p.y - box.min.y; fd[i][3] = box.max.y - p.y;
-        fd[i][4] = p.z - box.min.z; fd[i][5] = box.max.z - p.z;
-        for (j = 0; j < 6; j++) {
-            bd[i][j] = sk__plane_dist(&f->planes[j], bc[i]);
-            o |= (unsigned)(fd[i][j] + bpd[j] < mp) << j;
-            q |= (unsigned)(bd[i][j] + fpd[j] < mq) << j;
+        fx[i] = f->corners[i].x; fy[i] = f->corners[i].y; fz[i] = f->corners[i].z;
+        bc[i] = sk__v3(bx[i], by[i], bz[i]);
+        fo[i] = bo[i] = 0u;
+    }
+    for (i = 0; i < 8; i++) {
+        /* -1e-5 (1 + |p|) of each corner p, |p| its largest coordinate magnitude (sk__maxabs3) */
+        float mb = SK_FABSF(bx[i]), mf = SK_FABSF(fx[i]);
+        if (SK_FABSF(by[i]) > mb) mb = SK_FABSF(by[i]);
+        if (SK_FABSF(bz[i]) > mb) mb = SK_FABSF(bz[i]);
+        if (SK_FABSF(fy[i]) > mf) mf = SK_FABSF(fy[i]);
+        if (SK_FABSF(fz[i]) > mf) mf = SK_FABSF(fz[i]);
+        bm[i] = -1e-5f * (1.0f + mb);
+        fm[i] = -1e-5f * (1.0f + mf);
+    }
+    /* the box's planes in sk_frustum_from_aabb's order: x - min.x, max.x - x, ... */
+    for (i = 0; i < 8; i++) {
+        fd[0][i] = fx[i] - lo[0]; fd[1][i] = hi[0] - fx[i];
+        fd[2][i] = fy[i] - lo[1]; fd[3][i] = hi[1] - fy[i];
+        fd[4][i] = fz[i] - lo[2]; fd[5][i] = hi[2] - fz[i];
+    }
+    for (j = 0; j < 6; j++) {
+        const sk_plane *pl = &f->planes[j];
+        /* outside plane j: distance + 1e-5 |d_j| < -1e-5 (1 + |p|) */
+        float bt = 1e-5f * ((j & 1) ? ahi[j >> 1] : alo[j >> 1]), ft = 1e-5f * SK_FABSF(pl->d);
+        for (i = 0; i < 8; i++) {
+            bd[j][i] = pl->n.x * bx[i] + pl->n.y * by[i] + pl->n.z * bz[i] + pl->d;
+            fo[i] |= (unsigned)(fd[j][i] + bt < fm[i]) << j;
+            bo[i] |= (unsigned)(bd[j][i] + ft < bm[i]) << j;
         }
-        fo[i] = o;
-        bo[i] = q;
-        if (!o) pts[n++] = p;
-        if (!q) pts[n++] = bc[i];
+    }
+    for (i = 0; i < 8; i++) {
+        if (!fo[i]) pts[n++] = f->corners[i];
+        if (!bo[i]) pts[n++] = bc[i];
     }
     if (n < 16) {
-        n = sk__clip_edges(f->corners, (const float (*)[6])fd, fo, pts, n);
-        n = sk__clip_edges(bc, (const float (*)[6])bd, bo, pts, n);
+        n = sk__clip_edges(f->corners, (const float (*)[8])fd, fo, pts, n);
+        n = sk__clip_edges(bc, (const float (*)[8])bd, bo, pts, n);
     }
-    /* drop coincident points (shared corners, edges through corners) */
+    /* drop coincident points (shared corners, edges through corners): a
+       point is kept unless within tolerance of one kept before it. The kept
+       points' coordinates are stored apart, in groups of four; appending
+       also writes the next three slots, so the last group's tail holds
+       copies of its last point (a copy matches exactly when its original
+       does) and each group is compared at once, without branches. */
     for (i = 0; i < n; i++) {
         sk_vec3 p = pts[i];
         float tol = 1e-6f * (1.0f + sk__maxabs3(p));
-        for (j = 0; j < count; j++)
-            if (SK_FABSF(pts[j].x - p.x) <= tol && SK_FABSF(pts[j].y - p.y) <= tol &&
-                SK_FABSF(pts[j].z - p.z) <= tol) break;
-        if (j == count) pts[count++] = p;
+        int h[4] = {0, 0, 0, 0}, k;
+        for (j = 0; j < count; j += 4)
+            for (k = 0; k < 4; k++)
+                h[k] |= (SK_FABSF(kx[j + k] - p.x) <= tol) & (SK_FABSF(ky[j + k] - p.y) <= tol) &
+                        (SK_FABSF(kz[j + k] - p.z) <= tol);
+        if (!((h[0] | h[1]) | (h[2] | h[3]))) {
+            for (k = 0; k < 4; k++) { kx[count + k] = p.x; ky[count + k] = p.y; kz[count + k] = p.z; }
+            pts[count++] = p;
+        }
     }
     if (count > cap) return -(int)SK_ERR_CAPACITY;
     for (i = 0; i < count; i++) out[i] = pts[i];
@@ -1642,6 +1675,12 @@ static int sk__front_add(double *fxs, double *fs, int k, double xs, double s)
     fs[m] = s;
     return m + 1;
 }
+/* point (x, y - y0 = s) to both fronts */
+static void sk__fronts_add(double *lx, double *ls, int *nl, double *rx, double *rs, int *nr, double x, double s)
+{
+    *nl = sk__front_add(lx, ls, *nl, -x, s);
+    *nr = sk__front_add(rx, rs, *nr, x, s);
+}
 
 /* Width at mid-height of the narrowest enclosing isosceles trapezoid with
    legs of slope t, plus L t (its area over L); u and v as above, from the
@@ -1663,15 +1702,54 @@ static double sk__trap_cost(const double *lx, const double *ls, int nl, const do
     return (hi - lo > 0.0 ? hi - lo : 0.0) + L * t;
 }
 
-/* Candidate slope c for the minimum of sk__trap_cost: taken if in (0, tmax]
-   and cheaper than *best (relative 1e-12), or as cheap and smaller than *t. */
-static void sk__trap_try(const double *lx, const double *ls, int nl, const double *rx, const double *rs, int nr,
-                         double L, double tmax, double c, double *best, double *t)
+/* Candidate slopes for the minimum of sk__trap_cost, evaluated
+   SK__TRAP_BATCH at a time: for each line of the fronts in turn, every
+   candidate's u and v (the same products, sums and comparisons as
+   sk__trap_cost, candidate by candidate, so the same values); then taken in
+   order as sk__trap_cost would be: a candidate in (0, tmax] wins if cheaper
+   than *best (relative 1e-12), or as cheap and smaller than *t. Unused
+   slots hold t = 0 and are not looked at. */
+#define SK__TRAP_BATCH 16
+typedef struct sk__trap_batch {
+    const double *lx, *ls, *rx, *rs;
+    int nl, nr, k;
+    double L, c[SK__TRAP_BATCH];
+} sk__trap_batch;
+
+static void sk__trap_flush(sk__trap_batch *q, double *best, double *t)
 {
-    double u, v, f;
+    double lo[SK__TRAP_BATCH], hi[SK__TRAP_BATCH];
+    int i, j, kk = (q->k + 1) & ~1;   /* in pairs (one 2-wide vector operation each) */
+    for (j = 0; j < kk; j += 2) { lo[j] = lo[j + 1] = 1e300; hi[j] = hi[j + 1] = -1e300; }
+    for (i = 0; i < q->nl; i++) {
+        double x = -q->lx[i], s = q->ls[i];
+        for (j = 0; j < kk; j += 2) {
+            double a0 = x + s * q->c[j], a1 = x + s * q->c[j + 1];
+            lo[j] = a0 < lo[j] ? a0 : lo[j];
+            lo[j + 1] = a1 < lo[j + 1] ? a1 : lo[j + 1];
+        }
+    }
+    for (i = 0; i < q->nr; i++) {
+        double x = q->rx[i], s = q->rs[i];
+        for (j = 0; j < kk; j += 2) {
+            double b0 = x - s * q->c[j], b1 = x - s * q->c[j + 1];
+            hi[j] = b0 > hi[j] ? b0 : hi[j];
+            hi[j + 1] = b1 > hi[j + 1] ? b1 : hi[j + 1];
+        }
+    }
+    for (j = 0; j < q->k; j++) {
+        double c = q->c[j], f = (hi[j] - lo[j] > 0.0 ? hi[j] - lo[j] : 0.0) + q->L * c;
+        if (f < *best - 1e-12 * *best || (f <= *best + 1e-12 * *best && c < *t)) { *best = f; *t = c; }
+    }
+    for (j = 0; j < kk; j++) q->c[j] = 0.0;
+    q->k = 0;
+}
+
+static void sk__trap_try(sk__trap_batch *q, double tmax, double c, double *best, double *t)
+{
     if (!(c > 0.0 && c <= tmax)) return;
-    f = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, c, &u, &v);
-    if (f < *best - 1e-12 * *best || (f <= *best + 1e-12 * *best && c < *t)) { *best = f; *t = c; }
+    q->c[q->k++] = c;
+    if (q->k == SK__TRAP_BATCH) sk__trap_flush(q, best, t);
 }
 
 SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir, sk_aabb receivers,
@@ -1704,7 +1782,11 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     xax = sk__normalize(sk__cross(yax, zax));
     r.light_view = sk__basis_view(xax, yax, zax, centre);
     for (i = 0; i < n; i++) {
-        sk_vec3 q = sk__xform_affine(&r.light_view, pts[i]);
+        const float *m = r.light_view.m;
+        sk_vec3 p = pts[i], q;
+        q.x = m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12];
+        q.y = m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13];
+        q.z = m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14];
         pts[i] = q;
         if (q.x < xmin) xmin = q.x;
         if (q.x > xmax) xmax = q.x;
@@ -1737,20 +1819,21 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
            two lines of one front cross (a breakpoint); all are tried, the
            smallest t winning ties */
         double tmax = (xmax - xmin) / L, u, w, t = 0.0, nn, far_w, best;
+        sk__trap_batch q;
         int j;
-        for (i = 0; i < n; i++) {
-            double s = pts[i].y - ymin;
-            nl = sk__front_add(lx, ls, nl, -(double)pts[i].x, s);
-            nr = sk__front_add(rx, rs, nr, pts[i].x, s);
-        }
+        for (i = 0; i < n; i++)
+            sk__fronts_add(lx, ls, &nl, rx, rs, &nr, pts[i].x, pts[i].y - ymin);
         best = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, 0.0, &u, &w);
-        sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, tmax, &best, &t);
+        q.lx = lx; q.ls = ls; q.rx = rx; q.rs = rs; q.nl = nl; q.nr = nr; q.k = 0; q.L = L;
+        for (i = 0; i < SK__TRAP_BATCH; i++) q.c[i] = 0.0;
+        sk__trap_try(&q, tmax, tmax, &best, &t);
         for (i = 0; i < nl; i++)
             for (j = i + 1; j < nl; j++)
-                if (ls[i] != ls[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (lx[i] - lx[j]) / (ls[i] - ls[j]), &best, &t);
+                if (ls[i] != ls[j]) sk__trap_try(&q, tmax, (lx[i] - lx[j]) / (ls[i] - ls[j]), &best, &t);
         for (i = 0; i < nr; i++)
             for (j = i + 1; j < nr; j++)
-                if (rs[i] != rs[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (rx[i] - rx[j]) / (rs[i] - rs[j]), &best, &t);
+                if (rs[i] != rs[j]) sk__trap_try(&q, tmax, (rx[i] - rx[j]) / (rs[i] - rs[j]), &best, &t);
+        if (q.k) sk__trap_flush(&q, &best, &t);
         sk__trap_cost(lx, ls, nl, rx, rs, nr, L, t, &u, &w);
         nn = w - u;
         far_w = nn + 2.0 * L * t;
