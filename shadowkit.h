@@ -579,11 +579,27 @@ static int sk__finite(float x)
 }
 static int sk__finite_d(double x) { return x == x && x - x == 0.0; }
 static int sk__v3_finite(sk_vec3 v) { return sk__finite(v.x) && sk__finite(v.y) && sk__finite(v.z); }
+/* all 16 at once: the exponent bits of each, or-ed together without branches */
 static int sk__mat_finite(const sk_mat4 *m)
 {
+    unsigned u[16], bad = 0u;
     int i;
-    for (i = 0; i < 16; i++) if (!sk__finite(m->m[i])) return 0;
-    return 1;
+    memcpy(u, m->m, sizeof u);
+    for (i = 0; i < 16; i++) bad |= (unsigned)((u[i] & 0x7f800000u) == 0x7f800000u);
+    return !bad;
+}
+/* sk__v3_finite of each of n points, without branches */
+static int sk__v3s_finite(const sk_vec3 *p, int n)
+{
+    unsigned bad = 0u;
+    int i;
+    for (i = 0; i < n; i++) {
+        unsigned u[3];
+        memcpy(u, &p[i], sizeof u);
+        bad |= (unsigned)((u[0] & 0x7f800000u) == 0x7f800000u) | (unsigned)((u[1] & 0x7f800000u) == 0x7f800000u) |
+               (unsigned)((u[2] & 0x7f800000u) == 0x7f800000u);
+    }
+    return !bad;
 }
 static int sk__aabb_valid(const sk_aabb *b)
 {
@@ -878,12 +894,14 @@ static const unsigned char sk__edges[12][2] = {
 /* All-zero (what a singular matrix gives) or non-finite: not a usable frustum. */
 static int sk__frustum_invalid(const sk_frustum *f)
 {
+    /* the 48 floats' exponent bits at once (as sk__finite), then the normals */
+    unsigned u[sizeof(sk_frustum) / sizeof(unsigned)], bad = 0u;
     int i;
+    memcpy(u, f, sizeof u);
+    for (i = 0; i < (int)(sizeof u / sizeof u[0]); i++) bad |= (unsigned)((u[i] & 0x7f800000u) == 0x7f800000u);
     for (i = 0; i < 6; i++)
-        if ((f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f) ||
-            !sk__v3_finite(f->planes[i].n) || !sk__finite(f->planes[i].d)) return 1;
-    for (i = 0; i < 8; i++) if (!sk__v3_finite(f->corners[i])) return 1;
-    return 0;
+        bad |= (unsigned)(f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f);
+    return (int)bad;
 }
 
 SKDEF sk_result sk_frustum_from_corners(const sk_vec3 corners[8], sk_frustum *out)
@@ -953,7 +971,7 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
 
 /* The parts of the 12 edges of hexahedron c (corner order of sk_frustum)
    inside the other body, by parametric clipping against its six planes
-   (Cyrus & Beck 1978): dist[i][k] is corner i's signed distance to plane k,
+   (Cyrus & Beck 1978): dist[k][i] is corner i's signed distance to plane k,
    bit k of out[i] set where corner i is outside plane k beyond the
    containment tolerance (see below). A plane constrains an
    edge where exactly one end is outside it; the edge enters the body at the
@@ -961,7 +979,7 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p)
    points are appended (an end within tolerance of the body is a corner,
    appended by the caller). Planes the whole edge is within tolerance of do
    not cut it, so faces that touch or coincide keep their vertices. */
-static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsigned *out, sk_vec3 *pts, int n)
+static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[8], const unsigned *out, sk_vec3 *pts, int n)
 {
     int e, k;
     for (e = 0; e < 12; e++) {
@@ -970,9 +988,9 @@ static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsign
         float t0 = 0.0f, t1 = 1.0f;
         if (!x || (oa & ob)) continue;   /* inside all along, or beyond one plane at both ends */
         for (k = 0; x >> k; k++) {
-            float d0 = dist[a][k], t;
+            float d0 = dist[k][a], t;
             if (!(x >> k & 1u)) continue;
-            t = d0 / (d0 - dist[b][k]);
+            t = d0 / (d0 - dist[k][b]);
             if (oa >> k & 1u) { enter = 1; if (t > t0) t0 = t < 1.0f ? t : 1.0f; }
             else { leave = 1; if (t < t1) t1 = t > 0.0f ? t : 0.0f; }
         }
@@ -986,55 +1004,86 @@ static int sk__clip_edges(const sk_vec3 *c, const float (*dist)[6], const unsign
 /* A vertex of the intersection of two convex bodies is a corner of one
    inside the other, or where an edge of one crosses a face of the other.
    The 8 x 6 signed distances of each body's corners to the other's planes
-   are computed once. Containment has a tolerance relative to the magnitudes
-   involved: 1e-5 (1 + |p| + |d|) for a point p and a plane's offset d. */
+   are computed once, plane by plane over the 8 corners (the box corners'
+   coordinates and their products with each plane normal taken once per
+   axis: the same products and sums as corner by corner). Containment has a
+   tolerance relative to the magnitudes involved: 1e-5 (1 + |p| + |d|) for a
+   point p and a plane's offset d. */
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap)
 {
     sk_vec3 bc[8], pts[16 + 2 * 24];
-    float fd[8][6], bd[8][6];   /* frustum corners to box planes, box corners to frustum planes */
-    float fpd[6], bpd[6];
+    float fd[6][8], bd[6][8];   /* frustum corners to box planes, box corners to frustum planes */
+    float fx[8], fy[8], fz[8], fm[8], bm[8], bx[8], by[8], bz[8];
+    float kx[16 + 2 * 24 + 3], ky[16 + 2 * 24 + 3], kz[16 + 2 * 24 + 3];
+    float lo[3], hi[3], alo[3], ahi[3];
     unsigned fo[8], bo[8];
     int count = 0, i, j, n = 0;
     if (!f || !out || cap < 0 || sk__frustum_invalid(f) || !sk__aabb_valid(&box))
         return -(int)SK_ERR_INVALID_ARG;
-    /* the box's planes in sk_frustum_from_aabb's order: x - min.x, max.x - x, ...;
-       1e-5 |d| of each plane */
-    bpd[0] = 1e-5f * SK_FABSF(box.min.x); bpd[1] = 1e-5f * SK_FABSF(box.max.x);
-    bpd[2] = 1e-5f * SK_FABSF(box.min.y); bpd[3] = 1e-5f * SK_FABSF(box.max.y);
-    bpd[4] = 1e-5f * SK_FABSF(box.min.z); bpd[5] = 1e-5f * SK_FABSF(box.max.z);
-    for (j = 0; j < 6; j++) fpd[j] = 1e-5f * SK_FABSF(f->planes[j].d);
+    lo[0] = box.min.x; lo[1] = box.min.y; lo[2] = box.min.z;
+    hi[0] = box.max.x; hi[1] = box.max.y; hi[2] = box.max.z;
+    for (j = 0; j < 3; j++) { alo[j] = SK_FABSF(lo[j]); ahi[j] = SK_FABSF(hi[j]); }
+    /* the box corners in sk__aabb_corner order, by coordinate */
+    bx[0] = bx[2] = bx[4] = bx[6] = lo[0]; bx[1] = bx[3] = bx[5] = bx[7] = hi[0];
+    by[0] = by[1] = by[4] = by[5] = lo[1]; by[2] = by[3] = by[6] = by[7] = hi[1];
+    bz[0] = bz[1] = bz[2] = bz[3] = lo[2]; bz[4] = bz[5] = bz[6] = bz[7] = hi[2];
     for (i = 0; i < 8; i++) {
-        /* outside plane k: distance + 1e-5 |d_k| < -1e-5 (1 + |p|) */
-        sk_vec3 p = f->corners[i];
-        float mp = -1e-5f * (1.0f + sk__maxabs3(p)), mq;
-        unsigned o = 0u, q = 0u;
-        bc[i] = sk__aabb_corner(&box, i);
-        mq = -1e-5f * (1.0f + sk__maxabs3(bc[i]));
-        fd[i][0] = p.x - box.min.x; fd[i][1] = box.max.x - p.x;
-        fd[i][2] = p.y - box.min.y; fd[i][3] = box.max.y - p.y;
-        fd[i][4] = p.z - box.min.z; fd[i][5] = box.max.z - p.z;
-        for (j = 0; j < 6; j++) {
-            bd[i][j] = sk__plane_dist(&f->planes[j], bc[i]);
-            o |= (unsigned)(fd[i][j] + bpd[j] < mp) << j;
-            q |= (unsigned)(bd[i][j] + fpd[j] < mq) << j;
+        fx[i] = f->corners[i].x; fy[i] = f->corners[i].y; fz[i] = f->corners[i].z;
+        bc[i] = sk__v3(bx[i], by[i], bz[i]);
+        fo[i] = bo[i] = 0u;
+    }
+    for (i = 0; i < 8; i++) {
+        /* -1e-5 (1 + |p|) of each corner p, |p| its largest coordinate magnitude (sk__maxabs3) */
+        float mb = SK_FABSF(bx[i]), mf = SK_FABSF(fx[i]);
+        if (SK_FABSF(by[i]) > mb) mb = SK_FABSF(by[i]);
+        if (SK_FABSF(bz[i]) > mb) mb = SK_FABSF(bz[i]);
+        if (SK_FABSF(fy[i]) > mf) mf = SK_FABSF(fy[i]);
+        if (SK_FABSF(fz[i]) > mf) mf = SK_FABSF(fz[i]);
+        bm[i] = -1e-5f * (1.0f + mb);
+        fm[i] = -1e-5f * (1.0f + mf);
+    }
+    /* the box's planes in sk_frustum_from_aabb's order: x - min.x, max.x - x, ... */
+    for (i = 0; i < 8; i++) {
+        fd[0][i] = fx[i] - lo[0]; fd[1][i] = hi[0] - fx[i];
+        fd[2][i] = fy[i] - lo[1]; fd[3][i] = hi[1] - fy[i];
+        fd[4][i] = fz[i] - lo[2]; fd[5][i] = hi[2] - fz[i];
+    }
+    for (j = 0; j < 6; j++) {
+        const sk_plane *pl = &f->planes[j];
+        /* outside plane j: distance + 1e-5 |d_j| < -1e-5 (1 + |p|) */
+        float bt = 1e-5f * ((j & 1) ? ahi[j >> 1] : alo[j >> 1]), ft = 1e-5f * SK_FABSF(pl->d);
+        for (i = 0; i < 8; i++) {
+            bd[j][i] = pl->n.x * bx[i] + pl->n.y * by[i] + pl->n.z * bz[i] + pl->d;
+            fo[i] |= (unsigned)(fd[j][i] + bt < fm[i]) << j;
+            bo[i] |= (unsigned)(bd[j][i] + ft < bm[i]) << j;
         }
-        fo[i] = o;
-        bo[i] = q;
-        if (!o) pts[n++] = p;
-        if (!q) pts[n++] = bc[i];
+    }
+    for (i = 0; i < 8; i++) {
+        if (!fo[i]) pts[n++] = f->corners[i];
+        if (!bo[i]) pts[n++] = bc[i];
     }
     if (n < 16) {
-        n = sk__clip_edges(f->corners, (const float (*)[6])fd, fo, pts, n);
-        n = sk__clip_edges(bc, (const float (*)[6])bd, bo, pts, n);
+        n = sk__clip_edges(f->corners, (const float (*)[8])fd, fo, pts, n);
+        n = sk__clip_edges(bc, (const float (*)[8])bd, bo, pts, n);
     }
-    /* drop coincident points (shared corners, edges through corners) */
+    /* drop coincident points (shared corners, edges through corners): a
+       point is kept unless within tolerance of one kept before it. The kept
+       points' coordinates are stored apart, in groups of four; appending
+       also writes the next three slots, so the last group's tail holds
+       copies of its last point (a copy matches exactly when its original
+       does) and each group is compared at once, without branches. */
     for (i = 0; i < n; i++) {
         sk_vec3 p = pts[i];
         float tol = 1e-6f * (1.0f + sk__maxabs3(p));
-        for (j = 0; j < count; j++)
-            if (SK_FABSF(pts[j].x - p.x) <= tol && SK_FABSF(pts[j].y - p.y) <= tol &&
-                SK_FABSF(pts[j].z - p.z) <= tol) break;
-        if (j == count) pts[count++] = p;
+        int h[4] = {0, 0, 0, 0}, k;
+        for (j = 0; j < count; j += 4)
+            for (k = 0; k < 4; k++)
+                h[k] |= (SK_FABSF(kx[j + k] - p.x) <= tol) & (SK_FABSF(ky[j + k] - p.y) <= tol) &
+                        (SK_FABSF(kz[j + k] - p.z) <= tol);
+        if (!((h[0] | h[1]) | (h[2] | h[3]))) {
+            for (k = 0; k < 4; k++) { kx[count + k] = p.x; ky[count + k] = p.y; kz[count + k] = p.z; }
+            pts[count++] = p;
+        }
     }
     if (count > cap) return -(int)SK_ERR_CAPACITY;
     for (i = 0; i < count; i++) out[i] = pts[i];
@@ -1286,9 +1335,16 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
     double eps = 1e-7 * (1.0 + sk__maxabs3(eye));
     int i;
     sk_mat4 p;
-    /* depths first (all points, casters included): a point behind fails the fit early */
-    for (i = 0; i < n + 8 * nc; i++) {
-        sk_vec3 q = i < n ? pts[i] : cpts ? cpts[i - n] : sk__xform_point(pp, sk__aabb_corner(&casters[(i - n) / 8], (i - n) & 7));
+    /* depths first (all points, then the casters' corners): a point behind
+       fails the fit early */
+    for (i = 0; i < n; i++) {
+        double depth = -(double)sk__xform_z(&view, pts[i]);
+        if (!(depth > eps)) return 0;
+        if (depth < zn) zn = depth;
+        if (depth > zf) zf = depth;
+    }
+    for (i = 0; i < 8 * nc; i++) {
+        sk_vec3 q = cpts ? cpts[i] : sk__xform_point(pp, sk__aabb_corner(&casters[i / 8], i & 7));
         double depth = -(double)sk__xform_z(&view, q);
         if (!(depth > eps)) return 0;
         if (depth < zn) zn = depth;
@@ -1339,8 +1395,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
         (d->caster_count > 0 && !d->casters) || d->body_count < 0 || d->body_count > SK_CLIP_MAX_POINTS ||
         (d->body_count > 0 && !d->body) || !sk__finite(d->extra_slide) || d->extra_slide < 0.0f)
         return SK_ERR_INVALID_ARG;
-    for (i = 0; i < d->body_count; i++)
-        if (!sk__v3_finite(d->body[i])) return SK_ERR_INVALID_ARG;
+    if (d->body_count > 0 && !sk__v3s_finite(d->body, d->body_count)) return SK_ERR_INVALID_ARG;
     for (i = 0; i < d->caster_count; i++)
         if (!sk__aabb_valid(&d->casters[i])) return SK_ERR_INVALID_ARG;
     /* casters behind the camera: slide the virtual camera back (Kozlov 2004) */
@@ -1452,7 +1507,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         !sk__finite(d->zn) || !(d->zn > 0.0f) || !d->body || d->body_count < 1 ||
         !sk__finite(d->n_override) || (d->casters && !sk__aabb_valid(d->casters)))
         return SK_ERR_INVALID_ARG;
-    for (i = 0; i < d->body_count; i++) if (!sk__v3_finite(d->body[i])) return SK_ERR_INVALID_ARG;
+    if (!sk__v3s_finite(d->body, d->body_count)) return SK_ERR_INVALID_ARG;
     l = sk__normalize(d->light_dir);
     v = sk__normalize(d->view_dir);
     {
@@ -1642,6 +1697,12 @@ static int sk__front_add(double *fxs, double *fs, int k, double xs, double s)
     fs[m] = s;
     return m + 1;
 }
+/* point (x, y - y0 = s) to both fronts */
+static void sk__fronts_add(double *lx, double *ls, int *nl, double *rx, double *rs, int *nr, double x, double s)
+{
+    *nl = sk__front_add(lx, ls, *nl, -x, s);
+    *nr = sk__front_add(rx, rs, *nr, x, s);
+}
 
 /* Width at mid-height of the narrowest enclosing isosceles trapezoid with
    legs of slope t, plus L t (its area over L); u and v as above, from the
@@ -1663,15 +1724,54 @@ static double sk__trap_cost(const double *lx, const double *ls, int nl, const do
     return (hi - lo > 0.0 ? hi - lo : 0.0) + L * t;
 }
 
-/* Candidate slope c for the minimum of sk__trap_cost: taken if in (0, tmax]
-   and cheaper than *best (relative 1e-12), or as cheap and smaller than *t. */
-static void sk__trap_try(const double *lx, const double *ls, int nl, const double *rx, const double *rs, int nr,
-                         double L, double tmax, double c, double *best, double *t)
+/* Candidate slopes for the minimum of sk__trap_cost, evaluated
+   SK__TRAP_BATCH at a time: for each line of the fronts in turn, every
+   candidate's u and v (the same products, sums and comparisons as
+   sk__trap_cost, candidate by candidate, so the same values); then taken in
+   order as sk__trap_cost would be: a candidate in (0, tmax] wins if cheaper
+   than *best (relative 1e-12), or as cheap and smaller than *t. Unused
+   slots hold t = 0 and are not looked at. */
+#define SK__TRAP_BATCH 16
+typedef struct sk__trap_batch {
+    const double *lx, *ls, *rx, *rs;
+    int nl, nr, k;
+    double L, c[SK__TRAP_BATCH];
+} sk__trap_batch;
+
+static void sk__trap_flush(sk__trap_batch *q, double *best, double *t)
 {
-    double u, v, f;
+    double lo[SK__TRAP_BATCH], hi[SK__TRAP_BATCH];
+    int i, j, kk = (q->k + 1) & ~1;   /* in pairs (one 2-wide vector operation each) */
+    for (j = 0; j < kk; j += 2) { lo[j] = lo[j + 1] = 1e300; hi[j] = hi[j + 1] = -1e300; }
+    for (i = 0; i < q->nl; i++) {
+        double x = -q->lx[i], s = q->ls[i];
+        for (j = 0; j < kk; j += 2) {
+            double a0 = x + s * q->c[j], a1 = x + s * q->c[j + 1];
+            lo[j] = a0 < lo[j] ? a0 : lo[j];
+            lo[j + 1] = a1 < lo[j + 1] ? a1 : lo[j + 1];
+        }
+    }
+    for (i = 0; i < q->nr; i++) {
+        double x = q->rx[i], s = q->rs[i];
+        for (j = 0; j < kk; j += 2) {
+            double b0 = x - s * q->c[j], b1 = x - s * q->c[j + 1];
+            hi[j] = b0 > hi[j] ? b0 : hi[j];
+            hi[j + 1] = b1 > hi[j + 1] ? b1 : hi[j + 1];
+        }
+    }
+    for (j = 0; j < q->k; j++) {
+        double c = q->c[j], f = (hi[j] - lo[j] > 0.0 ? hi[j] - lo[j] : 0.0) + q->L * c;
+        if (f < *best - 1e-12 * *best || (f <= *best + 1e-12 * *best && c < *t)) { *best = f; *t = c; }
+    }
+    for (j = 0; j < kk; j++) q->c[j] = 0.0;
+    q->k = 0;
+}
+
+static void sk__trap_try(sk__trap_batch *q, double tmax, double c, double *best, double *t)
+{
     if (!(c > 0.0 && c <= tmax)) return;
-    f = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, c, &u, &v);
-    if (f < *best - 1e-12 * *best || (f <= *best + 1e-12 * *best && c < *t)) { *best = f; *t = c; }
+    q->c[q->k++] = c;
+    if (q->k == SK__TRAP_BATCH) sk__trap_flush(q, best, t);
 }
 
 SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir, sk_aabb receivers,
@@ -1704,7 +1804,11 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     xax = sk__normalize(sk__cross(yax, zax));
     r.light_view = sk__basis_view(xax, yax, zax, centre);
     for (i = 0; i < n; i++) {
-        sk_vec3 q = sk__xform_affine(&r.light_view, pts[i]);
+        const float *m = r.light_view.m;
+        sk_vec3 p = pts[i], q;
+        q.x = m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12];
+        q.y = m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13];
+        q.z = m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14];
         pts[i] = q;
         if (q.x < xmin) xmin = q.x;
         if (q.x > xmax) xmax = q.x;
@@ -1737,20 +1841,21 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
            two lines of one front cross (a breakpoint); all are tried, the
            smallest t winning ties */
         double tmax = (xmax - xmin) / L, u, w, t = 0.0, nn, far_w, best;
+        sk__trap_batch q;
         int j;
-        for (i = 0; i < n; i++) {
-            double s = pts[i].y - ymin;
-            nl = sk__front_add(lx, ls, nl, -(double)pts[i].x, s);
-            nr = sk__front_add(rx, rs, nr, pts[i].x, s);
-        }
+        for (i = 0; i < n; i++)
+            sk__fronts_add(lx, ls, &nl, rx, rs, &nr, pts[i].x, pts[i].y - ymin);
         best = sk__trap_cost(lx, ls, nl, rx, rs, nr, L, 0.0, &u, &w);
-        sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, tmax, &best, &t);
+        q.lx = lx; q.ls = ls; q.rx = rx; q.rs = rs; q.nl = nl; q.nr = nr; q.k = 0; q.L = L;
+        for (i = 0; i < SK__TRAP_BATCH; i++) q.c[i] = 0.0;
+        sk__trap_try(&q, tmax, tmax, &best, &t);
         for (i = 0; i < nl; i++)
             for (j = i + 1; j < nl; j++)
-                if (ls[i] != ls[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (lx[i] - lx[j]) / (ls[i] - ls[j]), &best, &t);
+                if (ls[i] != ls[j]) sk__trap_try(&q, tmax, (lx[i] - lx[j]) / (ls[i] - ls[j]), &best, &t);
         for (i = 0; i < nr; i++)
             for (j = i + 1; j < nr; j++)
-                if (rs[i] != rs[j]) sk__trap_try(lx, ls, nl, rx, rs, nr, L, tmax, (rx[i] - rx[j]) / (rs[i] - rs[j]), &best, &t);
+                if (rs[i] != rs[j]) sk__trap_try(&q, tmax, (rx[i] - rx[j]) / (rs[i] - rs[j]), &best, &t);
+        if (q.k) sk__trap_flush(&q, &best, &t);
         sk__trap_cost(lx, ls, nl, rx, rs, nr, L, t, &u, &w);
         nn = w - u;
         far_w = nn + 2.0 * L * t;
@@ -2111,30 +2216,45 @@ SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsi
 /* ---- 7. Resolution estimation (seed 000) ------------------------------- */
 
 /* Seed 000, Sec. 3: every pixel's corners are shared with its neighbours, so
-   one row of corners is projected per pixel row (strips of SK__RES_STRIP
-   columns keep the rows in cache). Evaluated in double precision: the
+   one row of corners is projected per pixel row, in strips of SK__RES_STRIP
+   columns that keep the rows in cache. Evaluated in double precision: the
    NDC -> light-clip map nearly cancels for distant points (the depth
    unprojection), and a patch extent is a difference of neighbouring
    corners, so float rounding would show in the smallest patch, which
-   decides the resolution. */
-#define SK__RES_STRIP 256
-static const double sk__inv_count[5] = {0.0, 1.0, 0.5, 1.0 / 3.0, 0.25};
+   decides the resolution.
+   Every loop over a strip has a fixed length (a partial last strip is
+   padded with invalid columns) and selects instead of branching, so a
+   compiler can run it on vectors; the minima, maxima and counts are kept
+   per strip column and combined at the end (a minimum does not depend on
+   the order it is taken in). */
+#define SK__RES_STRIP 64
+#define SK__RES_ROW (SK__RES_STRIP + 8)   /* depth columns x0-1 .. x0+S+6 */
+#define SK__RES_CORNERS (SK__RES_STRIP + 4)
 
 SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4 inv, sk_mat4 lvp,
                                        int max_res, sk_res_estimate *out)
 {
     double m[16], g[16];
     double bx0 = SK__INF, by0 = SK__INF, bx1 = -SK__INF, by1 = -SK__INF, tw = SK__INF, th = SK__INF;
-    double sx, sy;
-    int samples = 0, patches = 0, x0, i, j;
-    /* per corner row (two, alternating): light-clip x, y of each corner and
-       whether it is valid; per pair of neighbouring corners, their x and y
-       ranges and whether both are valid */
-    double cxr[2][SK__RES_STRIP + 1], cyr[2][SK__RES_STRIP + 1];
+    double sx, sy, nsamples = 0.0, npatches = 0.0;
+    int samples, x0, i, j;
+    /* per depth row (two, alternating): valid depths (0 where invalid) and
+       1 or 0 for valid; their vertical pair sums */
+    double rowd[2][SK__RES_ROW], rowc[2][SK__RES_ROW], colsum[SK__RES_ROW], colcnt[SK__RES_ROW];
+    /* per corner row (two, alternating): per pair of neighbouring corners
+       their x and y ranges in light clip space and 1 or 0 for both valid */
+    double cxr[SK__RES_CORNERS], cyr[SK__RES_CORNERS], cok[SK__RES_CORNERS];
     double pxl[2][SK__RES_STRIP], pxh[2][SK__RES_STRIP], pyl[2][SK__RES_STRIP], pyh[2][SK__RES_STRIP];
-    double colsum[SK__RES_STRIP + 2], rowd[2][SK__RES_STRIP + 2];
-    int colcnt[SK__RES_STRIP + 2], rowc[2][SK__RES_STRIP + 2];
-    unsigned char cok[2][SK__RES_STRIP + 1], pok[2][SK__RES_STRIP];
+    double pok[2][SK__RES_STRIP];
+    /* per pixel of the row: inside (1 or 0), x/w, y/w, patch (1 or 0) and its extents */
+    double pin[SK__RES_STRIP], pqx[SK__RES_STRIP], pqy[SK__RES_STRIP], ppa[SK__RES_STRIP];
+    double pex[SK__RES_STRIP], pey[SK__RES_STRIP];
+    /* NDC x of the strip's corners and pixel centres */
+    double ncx[SK__RES_CORNERS], npx[SK__RES_STRIP];
+    /* per strip column, over all rows and strips: bounds, smallest patch
+       extents, sample and patch counts */
+    double abx0[SK__RES_STRIP], aby0[SK__RES_STRIP], abx1[SK__RES_STRIP], aby1[SK__RES_STRIP];
+    double atw[SK__RES_STRIP], ath[SK__RES_STRIP], asam[SK__RES_STRIP], apat[SK__RES_STRIP];
     if (!depth || !out || w < 1 || h < 1 || w > 65536 || h > 65536 || max_res < 1 ||
         !sk__mat_finite(&inv) || !sk__mat_finite(&lvp))
         return SK_ERR_INVALID_ARG;
@@ -2147,119 +2267,138 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
                            (double)lvp.m[8 + i] * g[j * 4 + 2] + (double)lvp.m[12 + i] * g[j * 4 + 3];
     sx = 2.0 / w;
     sy = 2.0 / h;
+    for (i = 0; i < SK__RES_STRIP; i++) {
+        abx0[i] = aby0[i] = atw[i] = ath[i] = SK__INF;
+        abx1[i] = aby1[i] = -SK__INF;
+        asam[i] = apat[i] = 0.0;
+    }
     for (x0 = 0; x0 < w; x0 += SK__RES_STRIP) {
-        int x1 = x0 + SK__RES_STRIP < w ? x0 + SK__RES_STRIP : w, ncorner = x1 - x0 + 1, cy, cur = 0;
+        int cy, cur = 0;
+        /* the strip lies inside the image with all its depth columns */
+        int inner = x0 >= 1 && x0 - 1 + SK__RES_ROW <= w;
+        for (i = 0; i < SK__RES_CORNERS; i++) ncx[i] = (x0 + i) * sx - 1.0;
+        for (i = 0; i < SK__RES_STRIP; i++) npx[i] = (x0 + i + 0.5) * sx - 1.0;
         for (cy = 0; cy <= h; cy++) {
             /* corner row cy: corner (cx, cy) is shared by pixels (cx-1..cx, cy-1..cy) */
-            const float *ra = cy > 0 ? depth + (size_t)(cy - 1) * w : NULL;
             const float *rb = cy < h ? depth + (size_t)cy * w : NULL;
             double ny = cy * sy - 1.0;
             double bx = m[4] * ny + m[12], by = m[5] * ny + m[13], bw = m[7] * ny + m[15];
             double gw = g[7] * ny + g[15];
-            double *cx = cxr[cur], *cyv = cyr[cur];
-            unsigned char *ok = cok[cur];
-            /* depth row cy (column x0-1+i at index i): valid depths (0 where
-               invalid) and their count; row cy-1 is kept from the last pass */
-            {
-                double *rd = rowd[cur];
-                int *rc = rowc[cur];
-                /* indices whose column x0-1+i lies in the image */
-                int ilo = x0 > 0 ? 0 : 1, ihi = ncorner + 1 < w - x0 + 1 ? ncorner + 1 : w - x0 + 1;
-                if (!rb) ilo = ihi = ncorner + 1;
-                for (i = 0; i < ilo; i++) { rd[i] = 0.0; rc[i] = 0; }
-                for (i = ihi; i < ncorner + 1; i++) { rd[i] = 0.0; rc[i] = 0; }
-                for (i = ilo; i < ihi; i++) {
-                    float d = rb[x0 - 1 + i];
-                    int v = (d >= 0.0f) & (d < 1.0f);
-                    rd[i] = v ? d : 0.0;
-                    rc[i] = v;
+            double *rd = rowd[cur], *rc = rowc[cur];
+            const double *rdp = rowd[cur ^ 1], *rcp = rowc[cur ^ 1];
+            /* depth row cy (column x0-1+i at index i); row cy-1 is kept from the last pass */
+            /* (converted first, then selected: a float -> double conversion
+               under a condition keeps compilers from using vectors) */
+            if (rb && inner) {
+                const float *src = rb + x0 - 1;
+                for (i = 0; i < SK__RES_ROW; i++) rd[i] = src[i];
+            } else {
+                for (i = 0; i < SK__RES_ROW; i++) {
+                    int c = x0 - 1 + i;
+                    rd[i] = rb && c >= 0 && c < w ? (double)rb[c] : -1.0;
                 }
-                /* vertical pair sums, so each corner is the sum of two
-                   neighbouring columns */
-                if (ra)
-                    for (i = 0; i < ncorner + 1; i++) {
-                        colsum[i] = rowd[cur ^ 1][i] + rd[i];
-                        colcnt[i] = rowc[cur ^ 1][i] + rc[i];
-                    }
-                else
-                    for (i = 0; i < ncorner + 1; i++) {
-                        colsum[i] = rd[i];
-                        colcnt[i] = rc[i];
-                    }
             }
-            for (i = 0; i < ncorner; i++) {
-                int nv = colcnt[i] + colcnt[i + 1];
-                ok[i] = 0;
-                cx[i] = cyv[i] = 0.0;
-                if (nv) {
-                    double nx = (x0 + i) * sx - 1.0, nz = 2.0 * ((colsum[i] + colsum[i + 1]) * sk__inv_count[nv]) - 1.0;
-                    double lx = bx + m[0] * nx + m[8] * nz, ly = by + m[1] * nx + m[9] * nz;
-                    double lw = bw + m[3] * nx + m[11] * nz, ww = gw + g[3] * nx + g[11] * nz;
-                    if (ww < 0.0) { lx = -lx; ly = -ly; lw = -lw; }
-                    if (lw > 0.0 && ww != 0.0) {
-                        double iw = 1.0 / lw;
-                        cx[i] = lx * iw; cyv[i] = ly * iw; ok[i] = 1;
-                    }
-                }
+            for (i = 0; i < SK__RES_ROW; i++) {
+                double d = rd[i];
+                int v = (d >= 0.0) & (d < 1.0);   /* as the float comparisons */
+                rd[i] = v ? d : 0.0;
+                rc[i] = v ? 1.0 : 0.0;
+            }
+            if (cy == 0)
+                for (i = 0; i < SK__RES_ROW; i++) { colsum[i] = rd[i]; colcnt[i] = rc[i]; }
+            else
+                for (i = 0; i < SK__RES_ROW; i++) { colsum[i] = rdp[i] + rd[i]; colcnt[i] = rcp[i] + rc[i]; }
+            /* the corners: depth the mean of the valid pixels around */
+            for (i = 0; i < SK__RES_CORNERS; i++) {
+                double nv = colcnt[i] + colcnt[i + 1], nx = ncx[i];
+                /* 1/nv for nv = 1..4 (correctly rounded, as the constants 1, 1/2,
+                   1/3, 1/4 are; nv = 0 gives a corner that is not used) */
+                double nz = 2.0 * ((colsum[i] + colsum[i + 1]) * (1.0 / nv)) - 1.0;
+                double lx = bx + m[0] * nx + m[8] * nz, ly = by + m[1] * nx + m[9] * nz;
+                double lw = bw + m[3] * nx + m[11] * nz, ww = gw + g[3] * nx + g[11] * nz;
+                /* valid: a pixel around, and w > 0 once the point's world w is made
+                   positive (the sign flip of x, y and w cancels in x/w, y/w); an
+                   invalid corner's x, y are never looked at */
+                int ok = (nv > 0.0) & (((ww < 0.0) & (lw < 0.0)) | ((ww > 0.0) & (lw > 0.0)));
+                double iw = 1.0 / lw;
+                cxr[i] = lx * iw;
+                cyr[i] = ly * iw;
+                cok[i] = ok ? 1.0 : 0.0;
             }
             /* x and y ranges of neighbouring corner pairs, shared by the
                patches of the pixel rows above and below */
-            for (i = 0; i < ncorner - 1; i++) {
-                double a = cx[i], b = cx[i + 1], c = cyv[i], e = cyv[i + 1];
-                pok[cur][i] = ok[i] & ok[i + 1];
+            for (i = 0; i < SK__RES_STRIP; i++) {
+                double a = cxr[i], b = cxr[i + 1], c = cyr[i], e = cyr[i + 1];
+                pok[cur][i] = cok[i] * cok[i + 1];
                 pxl[cur][i] = a < b ? a : b; pxh[cur][i] = a > b ? a : b;
                 pyl[cur][i] = c < e ? c : e; pyh[cur][i] = c > e ? c : e;
             }
             if (cy > 0) {
-                /* pixel row cy-1: centres, then patches from corner rows cy-1 (lo) and cy (hi) */
+                /* pixel row cy-1 (depths rdp, column x0+i at index i+1): centres,
+                   then patches from corner rows cy-1 (lo) and cy (hi) */
                 int lo = cur ^ 1;
                 double ny2 = (cy - 0.5) * sy - 1.0;
                 double cbx = m[4] * ny2 + m[12], cby = m[5] * ny2 + m[13];
                 double cbz = m[6] * ny2 + m[14], cbw = m[7] * ny2 + m[15];
                 double cgw = g[7] * ny2 + g[15];
-                for (i = 0; i < ncorner - 1; i++) {
-                    float d = ra[x0 + i];
-                    double nx, nz, lx, ly, lz, lw, ww, ex, ey;
-                    if (!(d >= 0.0f && d < 1.0f)) continue;
-                    nx = (x0 + i + 0.5) * sx - 1.0;
-                    nz = 2.0 * d - 1.0;
-                    lx = cbx + m[0] * nx + m[8] * nz;
-                    ly = cby + m[1] * nx + m[9] * nz;
-                    lz = cbz + m[2] * nx + m[10] * nz;
-                    lw = cbw + m[3] * nx + m[11] * nz;
-                    ww = cgw + g[3] * nx + g[11] * nz;
-                    if (ww < 0.0) { lx = -lx; ly = -ly; lz = -lz; lw = -lw; }
-                    /* inside the light's clip volume (Sec. 3.1) */
-                    if (!(lw > 0.0) || SK_FABS(lx) > lw || SK_FABS(ly) > lw || SK_FABS(lz) > lw) continue;
-                    samples++;
-                    /* bounds: x/w compared as x against bound*w (w > 0), divided
-                       only when it extends them */
-                    if (lx < bx0 * lw && lx / lw < bx0) bx0 = lx / lw;
-                    if (lx > bx1 * lw && lx / lw > bx1) bx1 = lx / lw;
-                    if (ly < by0 * lw && ly / lw < by0) by0 = ly / lw;
-                    if (ly > by1 * lw && ly / lw > by1) by1 = ly / lw;
+                /* first every pixel's light-clip x/w, y/w, patch extents and
+                   flags, then (from those, with no arithmetic left under a
+                   condition) the per-column minima, maxima and counts */
+                for (i = 0; i < SK__RES_STRIP; i++) {
+                    double nx = npx[i], nz = 2.0 * rdp[i + 1] - 1.0;
+                    double lx = cbx + m[0] * nx + m[8] * nz, ly = cby + m[1] * nx + m[9] * nz;
+                    double lz = cbz + m[2] * nx + m[10] * nz, lw = cbw + m[3] * nx + m[11] * nz;
+                    double ww = cgw + g[3] * nx + g[11] * nz;
+                    /* w with the world point's w made positive (x, y, z flip with
+                       it, which changes neither |x|, |y|, |z| nor x/w, y/w) */
+                    double sw = lw * (ww < 0.0 ? -1.0 : 1.0);
+                    /* a valid pixel inside the light's clip volume (Sec. 3.1) */
+                    int in = (rcp[i + 1] != 0.0) & (sw > 0.0) & (SK_FABS(lx) <= sw) & (SK_FABS(ly) <= sw) &
+                             (SK_FABS(lz) <= sw);
+                    pin[i] = in ? 1.0 : 0.0;
+                    pqx[i] = lx / lw;
+                    pqy[i] = ly / lw;
                     /* the patch: AABB of the four projected corners (Sec. 3.2) */
-                    if (pok[lo][i] & pok[cur][i]) {
-                        ex = (pxh[lo][i] > pxh[cur][i] ? pxh[lo][i] : pxh[cur][i]) -
+                    ppa[i] = pin[i] * pok[lo][i] * pok[cur][i];
+                    pex[i] = (pxh[lo][i] > pxh[cur][i] ? pxh[lo][i] : pxh[cur][i]) -
                              (pxl[lo][i] < pxl[cur][i] ? pxl[lo][i] : pxl[cur][i]);
-                        ey = (pyh[lo][i] > pyh[cur][i] ? pyh[lo][i] : pyh[cur][i]) -
+                    pey[i] = (pyh[lo][i] > pyh[cur][i] ? pyh[lo][i] : pyh[cur][i]) -
                              (pyl[lo][i] < pyl[cur][i] ? pyl[lo][i] : pyl[cur][i]);
-                        if (ex < tw) tw = ex;
-                        if (ey < th) th = ey;
-                        patches++;
-                    }
+                }
+                for (i = 0; i < SK__RES_STRIP; i++) {
+                    double qx = pqx[i], qy = pqy[i], ex = pex[i], ey = pey[i];
+                    int in = pin[i] != 0.0, patch = ppa[i] != 0.0;
+                    asam[i] += pin[i];
+                    apat[i] += ppa[i];
+                    abx0[i] = in & (qx < abx0[i]) ? qx : abx0[i];
+                    abx1[i] = in & (qx > abx1[i]) ? qx : abx1[i];
+                    aby0[i] = in & (qy < aby0[i]) ? qy : aby0[i];
+                    aby1[i] = in & (qy > aby1[i]) ? qy : aby1[i];
+                    atw[i] = patch & (ex < atw[i]) ? ex : atw[i];
+                    ath[i] = patch & (ey < ath[i]) ? ey : ath[i];
                 }
             }
             cur ^= 1;
         }
     }
+    for (i = 0; i < SK__RES_STRIP; i++) {
+        if (abx0[i] < bx0) bx0 = abx0[i];
+        if (abx1[i] > bx1) bx1 = abx1[i];
+        if (aby0[i] < by0) by0 = aby0[i];
+        if (aby1[i] > by1) by1 = aby1[i];
+        if (atw[i] < tw) tw = atw[i];
+        if (ath[i] < th) th = ath[i];
+        nsamples += asam[i];
+        npatches += apat[i];
+    }
+    samples = nsamples < 2147483647.0 ? (int)nsamples : 2147483647;
     memset(out, 0, sizeof *out);
     out->bounds.x0 = -1.0f; out->bounds.y0 = -1.0f; out->bounds.x1 = 1.0f; out->bounds.y1 = 1.0f;
     out->crop = sk_mat4_identity();
     if (samples == 0) return SK_OK;
     {
         double bw = bx1 - bx0, bh = by1 - by0, rw, rh;
-        if (!patches) { tw = bw / max_res; th = bh / max_res; }
+        if (!(npatches > 0.0)) { tw = bw / max_res; th = bh / max_res; }
         rw = tw > 0.0 ? bw / tw : (double)max_res;
         rh = th > 0.0 ? bh / th : (double)max_res;
         out->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
