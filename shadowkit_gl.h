@@ -60,6 +60,21 @@
                     n_opt; fades into the focused map as the light turns
                     parallel to the view (stats.warped, stats.warp_n).
                     .cascades > 1: one LiSPSM per PSSM cascade.
+     SKGL_LSPSM     light space partitioned maps (Tang et al., seed 003): the
+                    view's trapezoid on the light plane cut by Eq. (1), one
+                    layer per partition (.lspsm: zeta, sigma, h_max, nw_max;
+                    stats.maps = partitions), the partition picked per pixel.
+     SKGL_FERKO     one map whose crop and size come from the camera's depth
+                    buffer (Ferko, seed 000): call skgl_shadow_analyze()
+                    first; .resolution is the largest size it may take;
+                    .ferko_latency = 1 reads the estimate a frame late
+                    (no CPU-GPU stall).
+     SKGL_RMSM      a virtual map (.resolution, 16384 by default) of pages
+                    (.rmsm_page_size) rendered only where the view needs them,
+                    at the level of detail it needs (seed 002): call
+                    skgl_shadow_analyze() first; pages live in a pool of
+                    .rmsm_pool_pages^2 slots, found through a page table
+                    (texture unit `unit` + 1 in skgl_shadow_bind).
      Focused crops end the shadow range where the scene ends and fit the view
      clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
      sphere that depends only on the camera's projection and the split
