@@ -1957,6 +1957,22 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     return SK_OK;
 }
 
+/* the state of every depth pass (inside save/restore): no blending, both
+   faces (open meshes cast from both sides), LESS, slope-scaled bias */
+static void skgl__depth_pass_state(const skgl__api *gl, const skgl_shadow_desc *d)
+{
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Enable(SKGL__DEPTH_TEST);
+    gl->DepthFunc(SKGL__LESS);
+    gl->DepthMask(1);
+    gl->ClearDepth(1.0);
+    if (d->slope_bias > 0.0f || d->depth_bias > 0.0f) {
+        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
+        gl->PolygonOffset(d->slope_bias > 0.0f ? d->slope_bias : 0.0f, d->depth_bias > 0.0f ? d->depth_bias : 0.0f);
+    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+}
+
 /* RMSM: every resident page into its pool slot, with a border of one
    texel: level l's page (px, py) covers level texels [px P - 1, (px+1) P + 1)
    of the virtual map at V / 2^l, crop of the virtual map's light frustum */
@@ -1998,17 +2014,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         return SK_ERR_GL;
     }
     gl->Enable(SKGL__SCISSOR_TEST);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Enable(SKGL__DEPTH_TEST);
-    gl->DepthFunc(SKGL__LESS);
-    gl->DepthMask(1);
-    gl->ClearDepth(1.0);
-    if (s->desc.slope_bias > 0.0f || s->desc.depth_bias > 0.0f) {
-        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
-        gl->PolygonOffset(s->desc.slope_bias > 0.0f ? s->desc.slope_bias : 0.0f,
-                          s->desc.depth_bias > 0.0f ? s->desc.depth_bias : 0.0f);
-    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    skgl__depth_pass_state(gl, &s->desc);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
     for (i = 0; i < s->rmsm_npages; i++) {
@@ -2079,17 +2085,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
         gl->Enable(SKGL__SCISSOR_TEST);
         gl->Scissor(0, 0, s->view_w < res ? s->view_w + 1 : res, s->view_h < res ? s->view_h + 1 : res);
     } else gl->Disable(SKGL__SCISSOR_TEST);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);          /* open meshes cast from both sides */
-    gl->Enable(SKGL__DEPTH_TEST);
-    gl->DepthFunc(SKGL__LESS);
-    gl->DepthMask(1);
-    gl->ClearDepth(1.0);
-    if (s->desc.slope_bias > 0.0f || s->desc.depth_bias > 0.0f) {
-        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
-        gl->PolygonOffset(s->desc.slope_bias > 0.0f ? s->desc.slope_bias : 0.0f,
-                          s->desc.depth_bias > 0.0f ? s->desc.depth_bias : 0.0f);
-    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    skgl__depth_pass_state(gl, &s->desc);
     gl->UseProgram(ctx->depth_prog);
     s->stats.passes = 0;
     s->stats.texels = 0.0;

@@ -15,6 +15,7 @@
 #ifndef GL_TEST_UTIL_H
 #define GL_TEST_UTIL_H
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -386,5 +387,45 @@ static inline double gt_res_scale(void) {
 }
 
 static inline float *gt_alloc(const gt_env *e) { return (float *)malloc(sizeof(float) * e->n); }
+
+/* One frame of a directional technique (render + mask of the last G-buffer)
+   scored against ref: the error, the stats, whether every layer matrix is
+   finite, and the share of the reference's shadowed pixels the mask calls
+   lit. pct < 0 when the frame failed. image: out/tests/<image>*.png or NULL. */
+typedef struct gt_run_result {
+    double pct;
+    skgl_stats st;
+    int finite;
+    size_t shadowed;
+    double false_lit_pct;
+} gt_run_result;
+
+static inline gt_run_result gt_run(gt_env *e, const skgl_camera *cam, sk_vec3 light, const float *ref,
+                                   const skgl_shadow_desc *d, const char *image) {
+    gt_run_result w;
+    skgl_shadow *s = gt_shadow(e, d);
+    float *mask = gt_alloc(e);
+    int i, k;
+    memset(&w, 0, sizeof w);
+    w.pct = -1;
+    if (s && mask && gt_mask(e, s, cam, light, mask) == 0) {
+        tb_hard_error he = tb_metric_hard(ref, mask, e->n);
+        size_t j;
+        for (j = 0; j < e->n; j++) w.shadowed += ref[j] >= 0 && tb_visibility_class(ref[j]) == 0;
+        w.pct = he.pct;
+        w.false_lit_pct = w.shadowed ? 100.0 * (double)he.false_lit / (double)w.shadowed : 0.0;
+        w.st = *skgl_shadow_stats(s);
+        w.finite = 1;
+        for (i = 0; i < w.st.maps; i++) {
+            sk_mat4 m = skgl_shadow_matrix(s, i);
+            for (k = 0; k < 16; k++) if (!isfinite(m.m[k])) w.finite = 0;
+        }
+        if (image) gt_images(e, image, ref, mask);
+    }
+    SK_CHECK_MSG(e->gl.GetError() == 0, "GL error");
+    free(mask);
+    skgl_shadow_destroy(e->sk, s);
+    return w;
+}
 
 #endif /* GL_TEST_UTIL_H */

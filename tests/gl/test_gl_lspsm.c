@@ -41,46 +41,16 @@
 #define W 400
 #define H 225
 
-typedef struct lrun {
-    double pct;
-    skgl_stats st;
-    int finite;
-    size_t shadowed;             /* reference-shadowed pixels */
-    double false_lit_pct;        /* % of them the mask calls lit */
-} lrun;
+typedef gt_run_result lrun;
 
 static lrun run(gt_env *e, const skgl_camera *cam, sk_vec3 light, const float *ref, skgl_technique t, int res,
                 int cascades, const char *image) {
-    lrun w;
     skgl_shadow_desc d;
-    skgl_shadow *s;
-    float *mask = gt_alloc(e);
-    int i, k;
-    memset(&w, 0, sizeof w);
-    w.pct = -1;
     memset(&d, 0, sizeof d);
     d.technique = t;
     d.resolution = (int)(res * gt_res_scale());
     d.cascades = cascades;
-    s = gt_shadow(e, &d);
-    if (s && mask && gt_mask(e, s, cam, light, mask) == 0) {
-        tb_hard_error he = tb_metric_hard(ref, mask, e->n);
-        size_t j;
-        for (j = 0; j < e->n; j++) w.shadowed += ref[j] >= 0 && tb_visibility_class(ref[j]) == 0;
-        w.pct = he.pct;
-        w.false_lit_pct = w.shadowed ? 100.0 * (double)he.false_lit / (double)w.shadowed : 0.0;
-        w.st = *skgl_shadow_stats(s);
-        w.finite = 1;
-        for (i = 0; i < w.st.maps; i++) {
-            sk_mat4 m = skgl_shadow_matrix(s, i);
-            for (k = 0; k < 16; k++) if (!isfinite(m.m[k])) w.finite = 0;
-        }
-        if (image) gt_images(e, image, ref, mask);
-    }
-    SK_CHECK_MSG(e->gl.GetError() == 0, "GL error");
-    free(mask);
-    skgl_shadow_destroy(e->sk, s);
-    return w;
+    return gt_run(e, cam, light, ref, &d, image);
 }
 
 typedef struct view_case {

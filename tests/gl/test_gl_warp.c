@@ -54,12 +54,7 @@
 #define H 225
 #define COMPARE_RES 512   /* per-map resolution of the comparison with the standard map */
 
-typedef struct warp_run {
-    double pct;                  /* error, -1 when the frame failed */
-    skgl_stats st;
-    int finite;                  /* every layer matrix finite */
-    double false_lit_pct;        /* % of the reference's shadowed pixels the mask calls lit */
-} warp_run;
+typedef gt_run_result warp_run;
 
 static const char *tech_name(skgl_technique t) {
     switch (t) {
@@ -74,37 +69,13 @@ static const char *tech_name(skgl_technique t) {
 /* one frame of technique t on the env's scene; the reference is ref */
 static warp_run run(gt_env *e, const skgl_camera *cam, sk_vec3 light, const float *ref, skgl_technique t, int res,
                     int cascades, const char *image) {
-    warp_run w;
     skgl_shadow_desc d;
-    skgl_shadow *s;
-    float *mask = gt_alloc(e);
-    int i, k;
-    memset(&w, 0, sizeof w);
-    w.pct = -1;
     memset(&d, 0, sizeof d);
     d.technique = t;
     d.resolution = (int)(res * gt_res_scale());
     d.cascades = cascades;
     if (getenv("SK_PSM_SLIDE")) d.psm_slide = (float)atof(getenv("SK_PSM_SLIDE"));
-    s = gt_shadow(e, &d);
-    if (s && mask && gt_mask(e, s, cam, light, mask) == 0) {
-        tb_hard_error he = tb_metric_hard(ref, mask, e->n);
-        size_t j, shadowed = 0;
-        for (j = 0; j < e->n; j++) shadowed += ref[j] >= 0 && tb_visibility_class(ref[j]) == 0;
-        w.pct = he.pct;
-        w.false_lit_pct = shadowed ? 100.0 * (double)he.false_lit / (double)shadowed : 0.0;
-        w.st = *skgl_shadow_stats(s);
-        w.finite = 1;
-        for (i = 0; i < w.st.maps; i++) {
-            sk_mat4 m = skgl_shadow_matrix(s, i);
-            for (k = 0; k < 16; k++) if (!isfinite(m.m[k])) w.finite = 0;
-        }
-        if (image) gt_images(e, image, ref, mask);
-    }
-    SK_CHECK_MSG(e->gl.GetError() == 0, "%s: GL error", tech_name(t));
-    free(mask);
-    skgl_shadow_destroy(e->sk, s);
-    return w;
+    return gt_run(e, cam, light, ref, &d, image);
 }
 
 #define NO_WORSE_PP 0.01   /* "no worse": at most 0.01 percentage point (~6 of 60000 pixels) more */
