@@ -1,8 +1,9 @@
 # mk/bench.mk - the speed-vs-accuracy bench (bench/bench.c; included by the Makefile).
-#   make bench        full sweep of every shadowkit_gl.h method (145 configurations,
-#                     6 scenes, 3 views; about 10 minutes on 2 cores under llvmpipe):
-#                     out/bench.csv and out/pareto-<scene>.png (gnuplot, bench/pareto.gp)
-#   make bench-demo   the quick sweep (19 configurations; about 1 minute) for `make demo`
+#   make bench        full sweep of every shadowkit_gl.h method (184 configurations,
+#                     6 scenes, 3 views, plus the LSPSM walk; about 20 minutes on
+#                     2 cores under llvmpipe): out/bench.csv, out/bench-walk.{csv,txt}
+#                     and out/pareto-<scene>.png (gnuplot, bench/pareto.gp)
+#   make bench-demo   the quick sweep (33 configurations; about 3 minutes) for `make demo`
 #   make bench-plot   redraw the charts from an existing out/bench.csv
 # Both sweeps write the same files: the last one run is what out/ holds.
 # Extra arguments: make bench BENCH_ARGS="--only fence,terrace --repeat 5"
