@@ -1,9 +1,64 @@
 /* test_gl_omni.c - point lights (King & Newhall, seed 004) through
    skgl_point_*: the native depth cube map and VSDCT against the Embree
    point-light reference, seams, culling against rendering everything, and
-   the scissor. Room scene (tb_scene_build_room) with extra casters. 320 x 240.
+   the scissor. Room scene (tb_scene_build_room) with a 0.4 m box one metre
+   from the light on each axis, and a "cage" (two boxes as one object) whose
+   box holds a light position. 320 x 240, range 10, PCF radius 1.
 
-   MEASURED_FIGURES */
+   Measured (Mesa 22.3 llvmpipe, OSMesa):
+
+   test_faces - one view per face, looking past that axis's box at its
+   shadow on the wall, floor or ceiling (28-36% of the pixels shadowed in
+   the reference), 512 texels per face, face and caster culling on:
+       face        +X      -X      +Y      -Y      +Z      -Z
+       error %   0.1302  0.1719  0.0000  0.1146  0.0977  0.1211  (cube = vsdct)
+       found     0.9957  0.9967  1.0000  0.9968  0.9971  0.9961
+     (found: the share of the reference's shadowed pixels the mask shadows).
+     Asserted: error <= 0.25%, found >= 0.993, cube and VSDCT within 0.1
+     percentage point, and the view sees > 20% shadow. Can fail: at 1/4
+     resolution (SK_GL_TEST_RES_SCALE=0.25, 128 per face) errors 0.19,
+     0.71, 0.00, 0.48, 0.38, 0.18% and found 0.994, 0.987, 1.0, 0.987,
+     0.992, 0.994: faces -X, -Y and +Z fail; with the faces' views swapped
+     in pairs (a local copy rendering face f with sk_cube_face_view(f ^ 1))
+     errors 2.4, 4.9, 0.8, 32.0, 5.5, 3.6%: every face fails.
+
+   test_seams - three overviews of the room, 256 per face: the pixels whose
+   light vector lies within one texel (2/256 in face coordinates) of a face
+   edge, where the pillars' shadows cross the seams: cube 99.21% of 2664
+   agree with the reference (the other pixels 99.42%), VSDCT 99.14%
+   (99.42%). Asserted: >= 98.9%, and at most 0.6 point below the other
+   pixels. Can fail: with the swapped face views above 90.5% (the others
+   78.9%): fails. Not seen by it: faces rendered 3% too narrow (seams 99.1%
+   against 98.4%); at 1/4 resolution the band is four times wider and
+   agrees 99.1% against 97.5%.
+
+   test_culling_exhaustive - 16 random light positions (fixed seed, the
+   first inside the cage's box), random eyes inside the room (so inside the
+   light's range; every other one looking away from the light), random
+   fields of view, 256 per face: face culling plus caster culling against
+   rendering everything: 0 pixels differ (cube: 57 faces and 459
+   (face, caster) pairs culled; VSDCT: 56 and 472). Asserted: no pixel
+   differs, and something was culled. Can fail: the culling the seed warns
+   against (caster box against the view frustum, in the test's callback)
+   changes 361648 pixels on 16 such trials (asserted > 1000). Two fixes
+   came from this test: VSDCT's RG16 coordinates are clamped again per face
+   in the shader (without it 252 pixels of one trial differed by 0.002, a
+   neighbouring sub-rect leaking into the 2x2 filter), and face culling is
+   widened by the filter's reach (not needed by these trials: with the
+   plain sk_cube_visible_faces the cube still matched).
+
+   test_scissor - range 2 light seen from the room's end: rectangle
+   87,9 194x172; every pixel outside it keeps the cleared value, every one
+   inside equals the unscissored mask; eye inside the range box: the full
+   viewport, every pixel written; the range box behind the eye: nothing
+   written, rectangle 0.
+
+   test_resolution_selection - range 1.5 light near a wall, 1024 at most:
+   S = 8188 pixels, 6 faces, M = 64 = sk_cube_resolution(6, S, 2, 1024)
+   (cube and VSDCT); 0 of 1576 covered pixels misclassified.
+
+   test_invalid - bad descs are SK_ERR_INVALID_ARG with nothing created;
+   bad render / mask / bind arguments too; no GL error. */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -56,13 +111,23 @@ static int env_init(gt_env *e) {
     return gt_env_init(e, &s, W, H);
 }
 
-/* per object: only the casters skgl_point_caster_visible passes */
+/* per object: only the casters skgl_point_caster_visible passes; with
+   wrong_cull set, instead the culling the seed warns against (Fig. 5.4.3:
+   the caster's box against the view frustum, so off-screen casters lose
+   their shadows), the negative control of test_culling_exhaustive */
+static int wrong_cull;
+static sk_frustum wrong_cull_view;
 static void point_draw(void *user, const skgl_draw_info *info) {
     gt_env *e = (gt_env *)user;
     uint32_t i;
     for (i = 0; i < e->scene.object_count; i++) {
         const tb_object *o = &e->scene.objects[i];
-        if (skgl_point_caster_visible(info, o->bounds)) tb_gl_mesh_draw(&e->gl, &e->mesh, o->first_index, o->index_count);
+        int vis;
+        if (wrong_cull) {
+            sk_frustum bf;
+            vis = sk_frustum_from_aabb(o->bounds, &bf) != SK_OK || sk_frustum_intersects(&bf, &wrong_cull_view);
+        } else vis = skgl_point_caster_visible(info, o->bounds);
+        if (vis) tb_gl_mesh_draw(&e->gl, &e->mesh, o->first_index, o->index_count);
     }
 }
 
@@ -127,6 +192,7 @@ static void test_faces(void) {
     float *ref, *res;
     sk_vec3 lp = gt_v3(axis_light[0], axis_light[1], axis_light[2]);
     int t, a;
+    double errs[2] = {0, 0};
     if (env_init(&e) != 0) { gt_env_free(&e); return; }
     ref = gt_alloc(&e); res = gt_alloc(&e);
     for (a = 0; a < 6; a++) {
@@ -160,16 +226,23 @@ static void test_faces(void) {
                    ref_shadow ? (double)both / ref_shadow : 0.0, skgl_point_stats(p)->faces_rendered,
                    skgl_point_stats(p)->faces_culled, skgl_point_stats(p)->casters_drawn,
                    skgl_point_stats(p)->casters_culled);
+            errs[t] = err.pct;
+            SK_CHECK_MSG(100.0 * ref_shadow / (double)err.covered > 20.0, "face %d: the view sees too little shadow", a);
+            SK_CHECK_MSG(err.pct <= 0.25, "face %d %s: %.4f%% misclassified", a, tech_names[t], err.pct);
+            SK_CHECK_MSG(ref_shadow && (double)both / ref_shadow >= 0.993, "face %d %s: %.4f of the shadow found", a,
+                         tech_names[t], ref_shadow ? (double)both / ref_shadow : 0.0);
+            SK_CHECK_MSG(skgl_point_stats(p)->faces_rendered >= 1 && skgl_point_stats(p)->faces_culled >= 1,
+                         "face %d %s: %d faces rendered", a, tech_names[t], skgl_point_stats(p)->faces_rendered);
             snprintf(name, sizeof name, "omni-face%d-%s", a, tech_names[t]);
             gt_images(&e, name, ref, res);
             skgl_point_destroy(e.sk, p);
         }
+        SK_CHECK_MSG(fabs(errs[0] - errs[1]) <= 0.1, "face %d: cube %.4f%% against vsdct %.4f%%", a, errs[0], errs[1]);
     }
     SK_CHECK(e.gl.GetError() == 0);
     free(ref); free(res);
     gt_env_free(&e);
 }
-
 
 /* ---- seams: pixels whose light vector is within one texel of a face edge ---- */
 static void test_seams(void) {
@@ -213,6 +286,12 @@ static void test_seams(void) {
         printf("seams %-5s %d: %llu seam pixels agree %.4f%%, %llu others agree %.4f%%\n", tech_names[t], face_res,
                (unsigned long long)seam, 100.0 * seam_ok / (seam ? seam : 1), (unsigned long long)other,
                100.0 * other_ok / (other ? other : 1));
+        SK_CHECK_MSG(seam > 1000, "%s: only %llu seam pixels", tech_names[t], (unsigned long long)seam);
+        SK_CHECK_MSG(100.0 * seam_ok / (seam ? seam : 1) >= 98.9, "%s: seam pixels agree %.4f%%", tech_names[t],
+                     100.0 * seam_ok / (seam ? seam : 1));
+        SK_CHECK_MSG(100.0 * seam_ok / (seam ? seam : 1) >= 100.0 * other_ok / (other ? other : 1) - 0.6,
+                     "%s: seam pixels agree %.4f%%, the others %.4f%%", tech_names[t],
+                     100.0 * seam_ok / (seam ? seam : 1), 100.0 * other_ok / (other ? other : 1));
         skgl_point_destroy(e.sk, p);
     }
     SK_CHECK(e.gl.GetError() == 0);
@@ -265,6 +344,28 @@ static void test_culling_exhaustive(void) {
         printf("cull %-5s: %d trials, %d faces and %d (face, caster) pairs culled, %d pixels differ\n", tech_names[t],
                trials, faces_culled, casters_culled, diff_total);
         SK_CHECK(faces_culled > 0 && casters_culled > 0);
+        if (t == 0) {
+            /* negative control: the wrong caster culling on the same kind
+               of trials must change pixels, or this test could not see it */
+            int wrong = 0;
+            for (k = 0; k < trials; k++) {
+                sk_vec3 lp = gt_v3(frand(-4.5f, 4.5f), frand(0.3f, 3.7f), frand(-4.5f, 4.5f));
+                sk_vec3 eye = gt_v3(frand(-4.6f, 4.6f), frand(0.2f, 3.8f), frand(-4.6f, 4.6f));
+                skgl_camera cam = gt_camera(eye, gt_v3(2 * eye.x - lp.x, eye.y, 2 * eye.z - lp.z), 1.0f, 0.05f, 30.0f,
+                                            W, H);
+                size_t i;
+                wrong_cull_view = sk_frustum_from_matrix(sk_mat4_mul(cam.proj, cam.view));
+                SK_CHECK(gt_gbuffer(&e, &cam) == 0);
+                SK_CHECK(point_mask(&e, naive, &cam, lp, 1.0f, a) == 0);
+                wrong_cull = 1;
+                SK_CHECK(point_mask(&e, culled, &cam, lp, 1.0f, b) == 0);
+                wrong_cull = 0;
+                for (i = 0; i < e.n; i++) if (fabs(a[i] - b[i]) > 1e-3) wrong++;
+            }
+            printf("cull %-5s: the box-against-view culling changes %d pixels over %d trials\n", tech_names[t], wrong,
+                   trials);
+            SK_CHECK_MSG(wrong > 1000, "the wrong culling changed only %d pixels", wrong);
+        }
         skgl_point_destroy(e.sk, naive);
         skgl_point_destroy(e.sk, culled);
     }
