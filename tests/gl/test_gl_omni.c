@@ -57,6 +57,14 @@
    S = 8188 pixels, 6 faces, M = 64 = sk_cube_resolution(6, S, 2, 1024)
    (cube and VSDCT); 0 of 1576 covered pixels misclassified.
 
+   test_forward - skgl_point_glsl_snippet() in a forward shader (VSDCT with
+   its #define) bound by skgl_point_bind, the room drawn from an overview:
+   100% of the 76800 pixels agree with the deferred mask (cube and VSDCT).
+   Asserted: >= 99%. Can fail: without the skgl_point_bind call the cube
+   agrees on 65.3% and VSDCT draws nothing; with the normal offset and the
+   PCF step zeroed (sk_point_texel 0, a local copy of the header) both
+   agree on 94.1% (and test_faces fails at 1.52%, test_seams at 96.1%).
+
    test_invalid - bad descs are SK_ERR_INVALID_ARG with nothing created;
    bad render / mask / bind arguments too; no GL error. */
 #define SHADOWKIT_IMPLEMENTATION
@@ -493,6 +501,92 @@ static void test_resolution_selection(void) {
     gt_env_free(&e);
 }
 
+/* ---- the forward path: skgl_point_glsl_snippet() in a forward shader ---- */
+static const char fwd_fs[] =
+    "in vec3 v_world;\n"
+    "in vec3 v_normal;\n"
+    "in float v_view_depth;\n"
+    "out float o_visibility;\n"
+    "void main() {\n"
+    "    vec3 n = normalize(v_normal);\n"
+    "    o_visibility = sk_point_shadow(v_world, gl_FrontFacing ? n : -n);\n"
+    "}\n";
+
+static void test_forward(void) {
+    gt_env e;
+    float *mask, *fwd, *fdepth;
+    sk_vec3 lp = gt_v3(-0.2f, 2.0f, 0.1f);
+    skgl_camera cam = gt_camera(gt_v3(4.2f, 3.6f, 4.2f), gt_v3(-2, 0.5f, -2), 1.3f, 0.05f, 30.0f, W, H);
+    int t;
+    if (env_init(&e) != 0) { gt_env_free(&e); return; }
+    mask = gt_alloc(&e); fwd = gt_alloc(&e); fdepth = gt_alloc(&e);
+    SK_CHECK(gt_gbuffer(&e, &cam) == 0);
+    for (t = 0; t < 2; t++) {
+        const tb_gl_funcs *gl = &e.gl;
+        const char *vs[1], *fs[4];
+        unsigned v, g, prog;
+        int ok = 0;
+        size_t i, both = 0, agree = 0;
+        tb_gl_fbo fbo;
+        sk_mat4 vp = sk_mat4_mul(cam.proj, cam.view);
+        skgl_point *p = make_point(&e, (skgl_point_technique)t, 256, 1);
+        sk_result r;
+        if (!p) continue;
+        SK_CHECK(point_mask(&e, p, &cam, lp, 1.0f, mask) == 0);
+        vs[0] = gt_forward_vs;
+        fs[0] = "#version 330 core\n";
+        fs[1] = t ? "#define SK_POINT_VSDCT 1\n" : "";
+        fs[2] = skgl_point_glsl_snippet();
+        fs[3] = fwd_fs;
+        v = gt_compile(gl, 0x8B31, 1, vs);
+        g = gt_compile(gl, 0x8B30, 4, fs);
+        SK_CHECK(v && g);
+        prog = gl->CreateProgram();
+        gl->AttachShader(prog, v);
+        gl->AttachShader(prog, g);
+        gl->LinkProgram(prog);
+        gl->DeleteShader(v);
+        gl->DeleteShader(g);
+        gl->GetProgramiv(prog, 0x8B82, &ok);
+        SK_CHECK(ok);
+        SK_CHECK(tb_gl_fbo_create(gl, &fbo, W, H, TB_GL_COLOR_R16F) == 0);
+        tb_gl_fbo_bind(gl, &fbo);
+        gl->ClearColor(-1.0f, 0, 0, 0);
+        gl->ClearDepth(1.0);
+        gl->Clear(0x00004000u | 0x00000100u);
+        gl->Enable(0x0B71);
+        gl->DepthFunc(0x0201);
+        /* as skgl_point_bind documents: seamless filtering on for the cube, off for VSDCT */
+        if (t) gl->Disable(0x884F); else gl->Enable(0x884F);
+        gl->UseProgram(prog);
+        gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_view_proj"), 1, 0, vp.m);
+        gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_view"), 1, 0, cam.view.m);
+        r = skgl_point_bind(e.sk, p, prog, 4);
+        SK_CHECK_MSG(r == SK_OK, "skgl_point_bind: %s (%s)", sk_result_string(r), skgl_error_log(e.sk));
+        tb_gl_mesh_draw(gl, &e.mesh, 0, 0);
+        gl->UseProgram(0);
+        gl->Disable(0x884F);
+        tb_gl_fbo_bind(gl, NULL);
+        SK_CHECK(tb_gl_read_red(gl, fbo.fbo, W, H, fwd) == 0);
+        SK_CHECK(tb_gl_read_depth(gl, fbo.fbo, W, H, fdepth) == 0);
+        for (i = 0; i < e.n; i++) {
+            if (!(fdepth[i] < 1.0f) || mask[i] < 0.0f) continue;
+            both++;
+            agree += tb_visibility_class(fwd[i]) == tb_visibility_class(mask[i]);
+        }
+        printf("forward %-5s: %llu pixels, %.4f%% agree with the mask\n", tech_names[t], (unsigned long long)both,
+               100.0 * agree / (both ? both : 1));
+        SK_CHECK_MSG(both > e.n / 2 && 100.0 * agree / (both ? both : 1) >= 99.0,
+                     "%s: forward agrees with the mask on %.4f%%", tech_names[t], 100.0 * agree / (both ? both : 1));
+        gl->DeleteProgram(prog);
+        tb_gl_fbo_destroy(gl, &fbo);
+        skgl_point_destroy(e.sk, p);
+    }
+    SK_CHECK(e.gl.GetError() == 0);
+    free(mask); free(fwd); free(fdepth);
+    gt_env_free(&e);
+}
+
 /* ---- bad input ---- */
 static void test_invalid(void) {
     gt_env e;
@@ -541,4 +635,5 @@ static void test_invalid(void) {
     gt_env_free(&e);
 }
 
-SK_TEST_MAIN(test_faces, test_seams, test_culling_exhaustive, test_scissor, test_resolution_selection, test_invalid)
+SK_TEST_MAIN(test_faces, test_seams, test_culling_exhaustive, test_scissor, test_resolution_selection, test_forward,
+             test_invalid)
