@@ -67,6 +67,15 @@
      never changes as the camera moves, at the price of covering more than
      the scene (set max_distance).
 
+   POINT LIGHTS (skgl_point_*, seed 004; the flow is in the declarations)
+     SKGL_POINT_CUBE   a GL depth cube map, samplerCubeShadow.
+     SKGL_POINT_VSDCT  the six faces in one 2D depth atlas and an RG16
+                       indirection cube map (Virtual Shadow Depth Cube Texture).
+     Both store window depth per Eq. (5.4.6) and compare the same way. Face
+     culling, caster culling (skgl_point_caster_visible in the callback),
+     the scissored mask and resolution selection are switches in
+     skgl_point_desc, off by default (the naive cube map).
+
    BIAS AND FILTERING
      Casters are drawn with slope-scaled polygon offset (.slope_bias, in
      depth slope units, i.e. texels); receivers are pushed along their normal
@@ -77,7 +86,8 @@
    GL STATE
      Every call saves and restores the state it touches (framebuffer
      bindings, viewport, scissor, program, VAO, active texture and the 2D,
-     2D-array texture and sampler bindings of the units it uses, depth test
+     2D-array, cube-map texture and sampler bindings of the units it uses,
+     GL_TEXTURE_CUBE_MAP_SEAMLESS, depth test
      and function and mask, cull face, blend, polygon offset, colour mask,
      clear depth), like Dear ImGui's OpenGL3 backend. With desc.debug set,
      glGetError is checked after every pass and a GL error is reported as
