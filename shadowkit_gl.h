@@ -82,6 +82,15 @@
      never changes as the camera moves, at the price of covering more than
      the scene (set max_distance).
 
+   POINT LIGHTS (skgl_point_*, seed 004; the flow is in the declarations)
+     SKGL_POINT_CUBE   a GL depth cube map, samplerCubeShadow.
+     SKGL_POINT_VSDCT  the six faces in one 2D depth atlas and an RG16
+                       indirection cube map (Virtual Shadow Depth Cube Texture).
+     Both store window depth per Eq. (5.4.6) and compare the same way. Face
+     culling, caster culling (skgl_point_caster_visible in the callback),
+     the scissored mask and resolution selection are switches in
+     skgl_point_desc, off by default (the naive cube map).
+
    BIAS AND FILTERING
      Casters are drawn with slope-scaled polygon offset (.slope_bias, in
      depth slope units, i.e. texels); receivers are pushed along their normal
@@ -92,7 +101,8 @@
    GL STATE
      Every call saves and restores the state it touches (framebuffer
      bindings, viewport, scissor, program, VAO, active texture and the 2D,
-     2D-array texture and sampler bindings of the units it uses, depth test
+     2D-array, cube-map texture and sampler bindings of the units it uses,
+     GL_TEXTURE_CUBE_MAP_SEAMLESS, depth test
      and function and mask, cull face, blend, polygon offset, colour mask,
      clear depth), like Dear ImGui's OpenGL3 backend. With desc.debug set,
      glGetError is checked after every pass and a GL error is reported as
@@ -125,14 +135,21 @@ extern "C" {
 typedef void *(*skgl_getproc_fn)(const char *name);
 
 typedef enum skgl_pass_kind {
-    SKGL_PASS_DIRECTIONAL = 0     /* a layer of a directional light's map (index = cascade) */
+    SKGL_PASS_DIRECTIONAL = 0,    /* a layer of a directional light's map (index = cascade) */
+    SKGL_PASS_CUBE_FACE = 1       /* a face of a point light's cube (index = face, +X,-X,+Y,-Y,+Z,-Z) */
 } skgl_pass_kind;
+struct skgl_point;
 
 typedef struct skgl_draw_info {
     skgl_pass_kind kind;
     int index;                    /* cascade / layer */
     sk_mat4 view_proj;            /* world -> clip of this pass */
     sk_frustum frustum;           /* of view_proj, for culling */
+    /* SKGL_PASS_CUBE_FACE: the light, and the point light itself for
+       skgl_point_caster_visible() (NULL for other passes) */
+    sk_vec3 light_pos;
+    float light_range;
+    struct skgl_point *point;
 } skgl_draw_info;
 typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
 
@@ -216,6 +233,10 @@ typedef struct skgl_stats {
     int pages_rendered;                   /* RMSM: pages in the pool this frame (the coarsest always) */
     int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
     float psm_slide;                      /* PSM: how far the virtual camera slid back */
+    /* point lights (skgl_point_*): resolution = face side rendered this frame */
+    int faces_rendered, faces_culled;     /* cube faces drawn / skipped by face culling */
+    int casters_drawn, casters_culled;    /* (face, caster) pairs skgl_point_caster_visible passed / culled */
+    int scissor[4];                       /* the last point mask's rectangle x, y, w, h (all 0: nothing drawn) */
 } skgl_stats;
 
 typedef struct skgl_context skgl_context;
@@ -279,6 +300,84 @@ SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap);
 SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s);
 /* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
+
+/* ---- point lights: cube shadow maps and VSDCT (seed 004) ----------------
+   skgl_point *lamp;   once: skgl_point_create(gl, &pdesc, &lamp)
+   every frame:
+     skgl_point_render(gl, lamp, &cam, &scene, light_pos);
+       calls scene.draw once per cube face that is rendered (info->kind =
+       SKGL_PASS_CUBE_FACE, info->index = face); with .cull_casters the
+       callback asks skgl_point_caster_visible(info, caster_aabb) per object
+       and draws only those that pass (it may also draw everything).
+     skgl_point_mask(gl, lamp, &cam, depth_tex, normal_tex, mask_tex);
+       deferred mask, as skgl_shadow_mask; with .scissor only the light's
+       rectangle (sk_light_scissor of the range box) is written: clear the
+       mask to 1 first, or draw the light's lighting with the same scissor.
+     or forward: "#define SK_POINT_VSDCT 1\n" (VSDCT only) before
+       skgl_point_glsl_snippet() in a fragment shader, skgl_point_bind(), and
+       float v = sk_point_shadow(world_pos, world_normal);
+   The seed's four optimizations are switches (all off: the naive cube, six
+   faces, every caster, full resolution, the whole screen), so each can be
+   measured alone. */
+typedef enum skgl_point_technique {
+    SKGL_POINT_CUBE = 0,          /* native GL_TEXTURE_CUBE_MAP depth, samplerCubeShadow */
+    SKGL_POINT_VSDCT = 1          /* six faces in one 2D depth atlas + RG16 indirection cube map */
+} skgl_point_technique;
+
+typedef struct skgl_point_desc {
+    skgl_point_technique technique; /* [SKGL_POINT_CUBE] */
+    int resolution;               /* texels per face side, the most rendered [512]; a power
+                                     of two for SKGL_POINT_CUBE with .select_resolution */
+    float near_plane;             /* of every face [0.05] */
+    float range;                  /* far plane = light range [10] */
+    float slope_bias;             /* polygon offset factor [2.0]; < 0: none */
+    float depth_bias;             /* polygon offset units [1.0]; < 0: none */
+    float normal_bias;            /* receiver normal offset in face texels [1.5]; < 0: none */
+    int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
+    int cull_faces;               /* 1: skip faces whose frustum misses the view (sk_cube_visible_faces) */
+    int cull_casters;             /* 1: skgl_point_caster_visible culls by the caster's shadow
+                                     frustum against the view and by the face frustum */
+    int scissor;                  /* 1: the mask pass only inside sk_light_scissor's rectangle */
+    int select_resolution;        /* 1: face side from sk_cube_resolution (N M^2 >= c S) */
+    float resolution_c;           /* c of the selection [2, the seed's] */
+    int screen_w, screen_h;       /* S of the selection: pixels of the light's rectangle on a
+                                     screen this size [0: the viewport bound at render time] */
+    int vsdct_grey_levels;        /* G of Eq. (5.4.7) for the indirection size (D = 8) [256] */
+} skgl_point_desc;
+
+typedef struct skgl_point skgl_point;
+
+SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out);
+SKGLDEF void skgl_point_destroy(skgl_context *ctx, skgl_point *p);
+/* the desc with its defaults filled in */
+SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p);
+/* Renders the faces the view needs for a light at light_pos. */
+SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                    const skgl_scene *scene, sk_vec3 light_pos);
+/* inside a SKGL_PASS_CUBE_FACE callback: 0 when this caster box's shadow
+   cannot be seen in this frame through this face (its shadow frustum,
+   light to box to range, misses the view frustum, or the box misses the
+   face), 1 otherwise; always 1 without .cull_casters or outside a point
+   pass. Counted in the stats. */
+SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster);
+/* Deferred point-light mask, arguments as skgl_shadow_mask. */
+SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                  unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
+/* GLSL (330 core) declaring the uniforms and
+   float sk_point_shadow(vec3 world_pos, vec3 world_normal);
+   SKGL_POINT_VSDCT needs "#define SK_POINT_VSDCT 1" before it. */
+SKGLDEF const char *skgl_point_glsl_snippet(void);
+/* For a forward shader with the snippet, program current: binds the map to
+   unit `unit` (VSDCT: the indirection cube map to unit + 1) and sets the
+   uniforms. The bindings stay for the draw. Turn GL_TEXTURE_CUBE_MAP_SEAMLESS
+   on for SKGL_POINT_CUBE (filtering across faces) and off for
+   SKGL_POINT_VSDCT (the indirection must not blend faces). */
+SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit);
+SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p);
+/* the depth texture: GL_TEXTURE_CUBE_MAP (cube) or GL_TEXTURE_2D atlas (VSDCT) */
+SKGLDEF unsigned skgl_point_texture(const skgl_point *p);
+/* VSDCT: the atlas layout of the last render (faces at the side rendered) */
+SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p);
 
 #ifdef __cplusplus
 }
@@ -707,6 +806,133 @@ static const char skgl__src_rmsm_request_frag[] =
     "    o_request = 1.0;\n"
     "}\n"
     ;
+static const char skgl__src_point_sample_glsl[] =
+    "/* shadowkit: point-light (omnidirectional) shadow lookup, shared by the\n"
+    "   deferred point mask pass and forward shaders (skgl_point_glsl_snippet()).\n"
+    "   King & Newhall, seed 004.\n"
+    "\n"
+    "   Two storages, chosen at compile time: define SK_POINT_VSDCT 1 before this\n"
+    "   text for the Virtual Shadow Depth Cube Texture, leave it undefined (or 0)\n"
+    "   for the native depth cube map.\n"
+    "   - cube: GL_TEXTURE_CUBE_MAP of depth, samplerCubeShadow looked up with the\n"
+    "     light-to-point vector; hardware 2x2 comparison (seamless cube filtering\n"
+    "     when GL_TEXTURE_CUBE_MAP_SEAMLESS is on, as the mask pass sets it).\n"
+    "   - VSDCT: the six faces as sub-rects of one 2D depth atlas; an RG16\n"
+    "     indirection cube map, bilinearly filtered, turns the direction into the\n"
+    "     atlas (u, v) (face selection, side divide, (s, t) remap, scale and face\n"
+    "     offset in one lookup, seed Fig. 5.4.7), kept half a texel inside the\n"
+    "     face so a 2x2 comparison never reads across a seam (seed: \"Sampling\n"
+    "     across Cube Map Seams\"); then sampler2DShadow in the atlas.\n"
+    "   Both store window depth per Eq. (5.4.6): z = scale / MA + bias, MA the\n"
+    "   major-axis component of the light-to-point vector (the eye depth in the\n"
+    "   face that holds it), so both compare the same way.\n"
+    "\n"
+    "   Bias: casters were drawn with slope-scaled polygon offset; the receiver is\n"
+    "   pushed along its normal by sk_point_normal_bias texels of its face at its\n"
+    "   distance (a face texel is 2 MA / resolution wide). Filtering: one\n"
+    "   hardware 2x2 comparison, or a (2r)x(2r) grid of them spaced one texel in\n"
+    "   the face plane; a tap that leaves the face reads the neighbouring face\n"
+    "   (its direction picks it), compared with the receiver's depth along that\n"
+    "   face's axis. A surface facing away from the light (given a normal) is in\n"
+    "   its own shadow: 0. Beyond sk_point_range: 1 (no shadow from this light;\n"
+    "   attenuation is the shader's business). */\n"
+    "#ifndef SK_POINT_VSDCT\n"
+    "#define SK_POINT_VSDCT 0\n"
+    "#endif\n"
+    "uniform vec3 sk_point_pos;          /* light position, world */\n"
+    "uniform float sk_point_range;       /* far plane of the faces */\n"
+    "uniform vec2 sk_point_depth;        /* Eq. (5.4.6): (scale, bias) of sk_vsdct_depth_coeffs */\n"
+    "uniform float sk_point_texel;       /* 2 / face resolution: one texel at MA = 1 */\n"
+    "uniform float sk_point_normal_bias; /* texels */\n"
+    "uniform int sk_point_pcf;           /* 0: one 2x2 comparison; r: (2r)^2 of them */\n"
+    "#if SK_POINT_VSDCT\n"
+    "uniform sampler2DShadow sk_point_atlas;\n"
+    "uniform samplerCube sk_point_indirection;\n"
+    "uniform vec4 sk_point_faces[6];     /* per face: its sub-rect inset by half a texel, (u0, v0, u1, v1) */\n"
+    "#else\n"
+    "uniform samplerCubeShadow sk_point_cube;\n"
+    "#endif\n"
+    "\n"
+    "/* the major-axis component of |v| along the axis that d's face looks down */\n"
+    "float sk_point_ma(vec3 av, vec3 d)\n"
+    "{\n"
+    "    vec3 ad = abs(d);\n"
+    "    if (ad.x >= ad.y && ad.x >= ad.z) return av.x;\n"
+    "    return ad.y >= ad.z ? av.y : av.z;\n"
+    "}\n"
+    "\n"
+    "/* one hardware 2x2 comparison of depth ref along direction d */\n"
+    "float sk_point_tap(vec3 d, float ref)\n"
+    "{\n"
+    "#if SK_POINT_VSDCT\n"
+    "    /* the indirection keeps (u, v) half a texel inside the face, but its 16\n"
+    "       bits round to 1/65535 of the atlas: clamped again here, in float, or\n"
+    "       the 2x2 filter could give a neighbouring sub-rect a sliver of weight */\n"
+    "    vec3 ad = abs(d);\n"
+    "    int f = ad.x >= ad.y && ad.x >= ad.z ? (d.x >= 0.0 ? 0 : 1) : ad.y >= ad.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5);\n"
+    "    vec4 r = sk_point_faces[f];\n"
+    "    vec2 uv = clamp(texture(sk_point_indirection, d).rg, r.xy, r.zw);\n"
+    "    return texture(sk_point_atlas, vec3(uv, ref));\n"
+    "#else\n"
+    "    return texture(sk_point_cube, vec4(d, ref));\n"
+    "#endif\n"
+    "}\n"
+    "\n"
+    "float sk_point_shadow(vec3 world_pos, vec3 world_normal)\n"
+    "{\n"
+    "    vec3 v = world_pos - sk_point_pos;\n"
+    "    float dist = length(v);\n"
+    "    if (!(dist > 0.0) || dist > sk_point_range) return 1.0;\n"
+    "    if (dot(world_normal, v) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;\n"
+    "    vec3 av = abs(v);\n"
+    "    float ma = max(av.x, max(av.y, av.z));\n"
+    "    v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);\n"
+    "    av = abs(v);\n"
+    "    ma = max(av.x, max(av.y, av.z));\n"
+    "    if (!(ma > 0.0)) return 1.0;\n"
+    "    if (sk_point_pcf <= 0)\n"
+    "        return sk_point_tap(v, sk_point_depth.x / ma + sk_point_depth.y);\n"
+    "    /* the face plane's axes at v (any two axes other than the major one) */\n"
+    "    vec3 t1, t2;\n"
+    "    if (av.x >= av.y && av.x >= av.z) { t1 = vec3(0.0, 0.0, 1.0); t2 = vec3(0.0, 1.0, 0.0); }\n"
+    "    else if (av.y >= av.z) { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 0.0, 1.0); }\n"
+    "    else { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 1.0, 0.0); }\n"
+    "    float step = sk_point_texel * ma;\n"
+    "    int r = sk_point_pcf;\n"
+    "    float sum = 0.0;\n"
+    "    for (int y = -r; y < r; y++)\n"
+    "        for (int x = -r; x < r; x++) {\n"
+    "            vec3 d = v + (t1 * (float(x) + 0.5) + t2 * (float(y) + 0.5)) * step;\n"
+    "            float m = max(sk_point_ma(av, d), 1e-30);\n"
+    "            sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);\n"
+    "        }\n"
+    "    return sum / float(4 * r * r);\n"
+    "}\n"
+    ;
+static const char skgl__src_point_mask_frag[] =
+    "/* Deferred point-light shadow mask: camera depth (and optional world\n"
+    "   normals) in, visibility out (1 lit, 0 shadowed). World positions from\n"
+    "   window depth exactly as shadow_mask.frag reconstructs them. The pass runs\n"
+    "   inside the light's scissor rectangle (sk_light_scissor) when asked: the\n"
+    "   pixels outside it are not written. */\n"
+    "in vec2 v_uv;\n"
+    "out float o_visibility;\n"
+    "uniform sampler2D u_depth;\n"
+    "uniform sampler2D u_normals;\n"
+    "uniform int u_has_normals;\n"
+    "uniform mat4 u_inv_view_proj;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    float d = texelFetch(u_depth, px, 0).r;\n"
+    "    if (d >= 1.0) { o_visibility = 1.0; return; }\n"
+    "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
+    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
+    "    vec3 world = w.xyz / w.w;\n"
+    "    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);\n"
+    "    o_visibility = sk_point_shadow(world, n);\n"
+    "}\n"
+    ;
 /* SKGL_EMBEDDED_SHADERS_END */
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic pop
@@ -793,6 +1019,16 @@ typedef unsigned long long skgl__u64;
 #define SKGL__COLOR_CLEAR_VALUE 0x0C22
 #define SKGL__PIXEL_UNPACK_BUFFER 0x88EC
 #define SKGL__PIXEL_UNPACK_BUFFER_BINDING 0x88EF
+#define SKGL__TEXTURE_CUBE_MAP 0x8513
+#define SKGL__TEXTURE_BINDING_CUBE_MAP 0x8514
+#define SKGL__TEXTURE_CUBE_MAP_POSITIVE_X 0x8515
+#define SKGL__TEXTURE_CUBE_MAP_SEAMLESS 0x884F
+#define SKGL__TEXTURE_BASE_LEVEL 0x813C
+#define SKGL__TEXTURE_MAX_LEVEL 0x813D
+#define SKGL__TEXTURE_WRAP_R 0x8072
+#define SKGL__RG 0x8227
+#define SKGL__RG16 0x822C
+#define SKGL__UNSIGNED_SHORT 0x1403
 #define SKGL__UNITS 4                      /* texture units the mask pass uses: 0 .. 3 */
 
 #define SKGL__FUNCS(X) \
@@ -835,6 +1071,7 @@ typedef unsigned long long skgl__u64;
     X(void, GetBufferSubData, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, void *data)) \
     X(void, Uniform2i, (skgl__int loc, skgl__int a, skgl__int b)) \
     X(void, Uniform4fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, Uniform2fv, (skgl__int loc, skgl__sizei n, const float *v)) \
     X(void, ClearColor, (float r, float g, float b, float a)) \
     X(void, PixelStorei, (skgl__enum pname, skgl__int v)) \
     X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
@@ -923,6 +1160,8 @@ struct skgl_shadow {
 typedef struct skgl__state {
     skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
     skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
+    skgl__int texcube[SKGL__UNITS];            /* point lights' cube maps */
+    skgl__bool cube_seamless;
     skgl__int depth_func, cull_mode, pack_buffer;
     skgl__bool point_size;
     float clear_color[4];
@@ -963,9 +1202,11 @@ static void skgl__save(const skgl__api *gl, skgl__state *st)
         gl->ActiveTexture(SKGL__TEXTURE0 + u);
         gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D, &st->tex2d[u]);
         gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D_ARRAY, &st->tex2da[u]);
+        gl->GetIntegerv(SKGL__TEXTURE_BINDING_CUBE_MAP, &st->texcube[u]);
         gl->GetIntegerv(SKGL__SAMPLER_BINDING, &st->sampler[u]);
     }
     gl->ActiveTexture((skgl__enum)st->active_tex);
+    st->cube_seamless = gl->IsEnabled(SKGL__TEXTURE_CUBE_MAP_SEAMLESS);
     gl->GetIntegerv(SKGL__DEPTH_FUNC, &st->depth_func);
     gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, &st->pack_buffer);
     st->point_size = gl->IsEnabled(SKGL__PROGRAM_POINT_SIZE);
@@ -998,9 +1239,11 @@ static void skgl__restore(const skgl__api *gl, const skgl__state *st)
         gl->ActiveTexture(SKGL__TEXTURE0 + u);
         gl->BindTexture(SKGL__TEXTURE_2D, (skgl__uint)st->tex2d[u]);
         gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, (skgl__uint)st->tex2da[u]);
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, (skgl__uint)st->texcube[u]);
         gl->BindSampler((skgl__uint)u, (skgl__uint)st->sampler[u]);
     }
     gl->ActiveTexture((skgl__enum)st->active_tex);
+    skgl__enable(gl, SKGL__TEXTURE_CUBE_MAP_SEAMLESS, st->cube_seamless);
     gl->DepthFunc((skgl__enum)st->depth_func);
     gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)st->pack_buffer);
     skgl__enable(gl, SKGL__PROGRAM_POINT_SIZE, st->point_size);
@@ -2230,6 +2473,553 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     s->stats.mask_ms = skgl__query_end(ctx);
     skgl__restore(gl, &st);
     return skgl__check(ctx, "skgl_shadow_mask");
+}
+
+/* ---- point lights: cube shadow maps and VSDCT (seed 004) ---------------- */
+#define SKGL__MAX_TEXTURE_SIZE 0x0D33
+#define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
+
+struct skgl_point {
+    skgl_point_desc desc;
+    skgl__uint tex;                /* cube map of depth (mip chain with .select_resolution) or the 2D atlas */
+    skgl__uint indirection;        /* VSDCT: RG16 indirection cube map */
+    skgl__uint prog;               /* the mask program, compiled for this technique */
+    skgl__uint lin_sampler;        /* VSDCT: bilinear, no comparison (the indirection) */
+    int levels;                    /* cube: mip levels allocated */
+    int ni;                        /* VSDCT: indirection side, Eq. (5.4.7) */
+    int filled_res;                /* VSDCT: face side the indirection holds (0: none yet) */
+    int face_res, level;           /* side rendered by the last render; cube: its mip level */
+    int rendered;                  /* 1 once a render succeeded */
+    sk_vec3 light_pos;
+    sk_frustum view;               /* camera frustum of the render under way (caster culling) */
+    float cull_margin;             /* world distance casters are grown by when culled (the filter's reach) */
+    sk_vsdct_layout layout;        /* VSDCT: faces at face_res inside the full-size atlas */
+    skgl_stats stats;
+};
+
+static skgl_point_desc skgl__point_defaults(const skgl_point_desc *d)
+{
+    skgl_point_desc r = *d;
+    if (r.resolution == 0) r.resolution = 512;
+    if (r.near_plane == 0.0f) r.near_plane = 0.05f;
+    if (r.range == 0.0f) r.range = 10.0f;
+    if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
+    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
+    if (r.normal_bias == 0.0f) r.normal_bias = 1.5f;
+    if (r.pcf_radius == 0) r.pcf_radius = 1;
+    if (r.resolution_c == 0.0f) r.resolution_c = 2.0f;
+    if (r.vsdct_grey_levels == 0) r.vsdct_grey_levels = 256;
+    return r;
+}
+
+/* the faces at side m inside the atlas allocated for desc.resolution: the
+   3 x 2 arrangement of sk_vsdct_layout_make, shrunk into the corner */
+static sk_vsdct_layout skgl__point_layout(const skgl_point *p, int m)
+{
+    sk_vsdct_layout l;
+    int f;
+    sk_vsdct_layout_make(p->desc.resolution, &l);
+    l.face_res = m;
+    for (f = 0; f < 6; f++) { l.face_x[f] = (f % 3) * m; l.face_y[f] = (f / 3) * m; }
+    return l;
+}
+
+/* VSDCT: (re)fills the indirection cube map for faces of side m */
+static sk_result skgl__point_fill(skgl_context *ctx, skgl_point *p, int m)
+{
+    skgl__api *gl = &ctx->gl;
+    size_t face_n = (size_t)p->ni * (size_t)p->ni * 2;
+    unsigned short *buf;
+    int f;
+    if (p->filled_res == m) return SK_OK;
+    buf = (unsigned short *)SKGL_MALLOC(sizeof(unsigned short) * face_n * 6);
+    if (!buf) return SK_ERR_CAPACITY;
+    p->layout = skgl__point_layout(p, m);
+    if (sk_vsdct_indirection_fill(&p->layout, p->ni, buf) != SK_OK) { SKGL_FREE(buf); return SK_ERR_INVALID_ARG; }
+    skgl__pixel_store_plain(gl);
+    gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
+    for (f = 0; f < 6; f++)
+        gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, 0, SKGL__RG16, p->ni, p->ni, 0, SKGL__RG,
+                       SKGL__UNSIGNED_SHORT, buf + face_n * (size_t)f);
+    SKGL_FREE(buf);
+    p->filled_res = m;
+    return SK_OK;
+}
+
+static void skgl__point_free(skgl_context *ctx, skgl_point *p)
+{
+    skgl__api *gl = &ctx->gl;
+    if (p->tex) { gl->DeleteTextures(1, &p->tex); ctx->objects--; }
+    if (p->indirection) { gl->DeleteTextures(1, &p->indirection); ctx->objects--; }
+    if (p->prog) { gl->DeleteProgram(p->prog); ctx->objects--; }
+    if (p->lin_sampler) { gl->DeleteSamplers(1, &p->lin_sampler); ctx->objects--; }
+    p->tex = p->indirection = p->prog = p->lin_sampler = 0;
+}
+
+static int skgl__is_pow2(int x) { return x > 0 && (x & (x - 1)) == 0; }
+
+SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out)
+{
+    skgl__api *gl;
+    skgl_point *p;
+    skgl_point_desc d;
+    skgl__state st;
+    skgl__int max_size = 0;
+    char *fs;
+    size_t n;
+    int f, lv;
+    sk_result r = SK_OK;
+    if (out) *out = NULL;
+    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    d = skgl__point_defaults(desc);
+    if ((d.technique != SKGL_POINT_CUBE && d.technique != SKGL_POINT_VSDCT) || d.resolution < 1 ||
+        !sk__finite(d.near_plane) || !sk__finite(d.range) || !(d.near_plane > 0.0f) || !(d.range > d.near_plane) ||
+        !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.normal_bias) ||
+        d.pcf_radius < 0 || d.pcf_radius > 8 || !sk__finite(d.resolution_c) || !(d.resolution_c > 0.0f) ||
+        d.screen_w < 0 || d.screen_h < 0 || d.vsdct_grey_levels < 1 ||
+        (d.technique == SKGL_POINT_CUBE && d.select_resolution && !skgl__is_pow2(d.resolution)))
+        return SK_ERR_INVALID_ARG;
+    gl = &ctx->gl;
+    gl->GetIntegerv(d.technique == SKGL_POINT_CUBE ? SKGL__MAX_CUBE_MAP_TEXTURE_SIZE : SKGL__MAX_TEXTURE_SIZE,
+                    &max_size);
+    if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : d.resolution > max_size / 3)
+        return SK_ERR_INVALID_ARG;
+    p = (skgl_point *)SKGL_MALLOC(sizeof *p);
+    if (!p) return SK_ERR_CAPACITY;
+    memset(p, 0, sizeof *p);
+    p->desc = d;
+    /* the mask program: the technique's define, the snippet, the pass */
+    n = strlen(skgl__src_point_sample_glsl) + 64;
+    fs = (char *)SKGL_MALLOC(n);
+    if (!fs) { SKGL_FREE(p); return SK_ERR_CAPACITY; }
+    strcpy(fs, d.technique == SKGL_POINT_VSDCT ? "#define SK_POINT_VSDCT 1\n" : "#define SK_POINT_VSDCT 0\n");
+    strcat(fs, skgl__src_point_sample_glsl);
+    p->prog = skgl__program(ctx, skgl__src_fullscreen_vert, fs, skgl__src_point_mask_frag);
+    SKGL_FREE(fs);
+    if (!p->prog) { SKGL_FREE(p); return SK_ERR_GL; }
+    skgl__save(gl, &st);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->GenTextures(1, &p->tex); ctx->objects++;
+    if (d.technique == SKGL_POINT_CUBE) {
+        /* the full mip chain only when a smaller level may be chosen */
+        p->levels = 1;
+        if (d.select_resolution) while ((d.resolution >> p->levels) >= 1) p->levels++;
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
+        for (lv = 0; lv < p->levels; lv++) {
+            int s = d.resolution >> lv;
+            for (f = 0; f < 6; f++)
+                gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, lv, SKGL__DEPTH_COMPONENT32F, s, s,
+                               0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+        }
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, 0);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->levels - 1);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+    } else {
+        gl->BindTexture(SKGL__TEXTURE_2D, p->tex);
+        gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, 3 * d.resolution, 2 * d.resolution, 0,
+                       SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+        /* Eq. (5.4.7) with D = 8 bits of filter weight precision; never below
+           the face side, so the linear ramp of the filtered coordinates is
+           clamped for at most half a shadow texel at a face edge */
+        p->ni = sk_vsdct_indirection_size(d.resolution, d.vsdct_grey_levels, 8);
+        if (p->ni < 1) r = SK_ERR_INVALID_ARG;
+        gl->GenTextures(1, &p->indirection); ctx->objects++;
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, 0);
+        if (r == SK_OK) r = skgl__point_fill(ctx, p, d.resolution);
+        gl->GenSamplers(1, &p->lin_sampler); ctx->objects++;
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_COMPARE_MODE, SKGL__NONE);
+    }
+    p->face_res = d.resolution;
+    p->layout = skgl__point_layout(p, d.resolution);
+    skgl__restore(gl, &st);
+    if (r == SK_OK && gl->GetError() != 0) {
+        skgl__set_log(ctx, "skgl_point_create: GL error while allocating the maps", NULL);
+        r = SK_ERR_GL;
+    }
+    if (r != SK_OK) { skgl__point_free(ctx, p); SKGL_FREE(p); return r; }
+    p->stats.shadow_ms = p->stats.mask_ms = p->stats.analysis_ms = -1.0f;
+    *out = p;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_point_destroy(skgl_context *ctx, skgl_point *p)
+{
+    if (!ctx || !p) return;
+    skgl__point_free(ctx, p);
+    SKGL_FREE(p);
+}
+
+SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p)
+{
+    skgl_point_desc d;
+    if (p) return p->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
+SKGLDEF unsigned skgl_point_texture(const skgl_point *p) { return p ? p->tex : 0; }
+SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p)
+{
+    sk_vsdct_layout l;
+    if (p) return p->layout;
+    memset(&l, 0, sizeof l);
+    return l;
+}
+SKGLDEF const char *skgl_point_glsl_snippet(void) { return skgl__src_point_sample_glsl; }
+
+SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster)
+{
+    skgl_point *p;
+    int vis;
+    if (!info || info->kind != SKGL_PASS_CUBE_FACE || !info->point) return 1;
+    p = info->point;
+    if (!p->desc.cull_casters) return 1;
+    /* the seed's caster culling: the light-to-box cone frustum (or the
+       light's range box when the light is inside the box) against the view
+       frustum; then the box against this face's frustum */
+    if (sk__aabb_valid(&caster)) {   /* grown by the filter's reach at the light's range */
+        caster.min = sk__sub(caster.min, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
+        caster.max = sk__add(caster.max, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
+    }
+    vis = sk_caster_visible(info->light_pos, info->light_range, caster, &p->view);
+    if (vis) {
+        sk_frustum bf;
+        if (sk_frustum_from_aabb(caster, &bf) == SK_OK) vis = sk_frustum_intersects(&bf, &info->frustum);
+    }
+    if (vis) p->stats.casters_drawn++; else p->stats.casters_culled++;
+    return vis;
+}
+
+/* The filter's reach in face-plane units (tangent of the angle off a
+   receiver's light vector): the (2r)x(2r) taps, the hardware 2x2 under
+   each, and the normal offset, at face side m. A face or caster that only
+   such a tap can read is still needed for a visible pixel. */
+static double skgl__point_reach(const skgl_point *p, int m)
+{
+    double nb = p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0;
+    return (p->desc.pcf_radius + 1.0 + nb) * 2.0 / m;
+}
+
+/* sk_cube_visible_faces with each face frustum widened by `reach` (its
+   half-width tangent 1 + reach instead of 1), so that the filter taps of a
+   visible receiver near a face edge find the neighbouring face rendered */
+static unsigned skgl__point_faces(sk_vec3 lp, float zn, float zf, const sk_frustum *view, double reach)
+{
+    unsigned bits = 0;
+    int f;
+    if (sk_frustum_contains_point(view, lp)) return 0x3fu;
+    for (f = 0; f < 6; f++) {
+        sk_mat4 proj = sk_cube_face_proj(zn, zf);
+        sk_frustum ff;
+        proj.m[0] = proj.m[5] = (float)(1.0 / (1.0 + reach));
+        ff = sk_frustum_from_matrix(sk_mat4_mul(proj, sk_cube_face_view(f, lp)));
+        if (sk_frustum_intersects(&ff, view)) bits |= 1u << f;
+    }
+    return bits;
+}
+
+static int skgl__popcount6(unsigned b)
+{
+    int f, n = 0;
+    for (f = 0; f < 6; f++) n += (b >> f) & 1u;
+    return n;
+}
+
+/* the pixel count S of the light (its scissor rectangle on the screen) */
+static float skgl__point_pixels(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4])
+{
+    int rect[4], w = p->desc.screen_w, h = p->desc.screen_h;
+    if (w < 1 || h < 1) { w = viewport[2]; h = viewport[3]; }
+    if (w < 1 || h < 1) return 0.0f;
+    if (!sk_light_scissor(p->light_pos, p->desc.range, *vp, w, h, rect)) return 0.0f;
+    return (float)rect[2] * (float)rect[3];
+}
+
+SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                    const skgl_scene *scene, sk_vec3 light_pos)
+{
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    skgl__api *gl;
+    skgl__state st;
+    sk_mat4 vp, proj;
+    unsigned faces;
+    int f, nf = 0, m, vsdct;
+    float zn, zf;
+    sk_result r;
+    if (!ctx || !p || !cam || !scene || !scene->draw || !sk__v3_finite(light_pos) ||
+        !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj))
+        return SK_ERR_INVALID_ARG;
+    gl = &ctx->gl;
+    vsdct = p->desc.technique == SKGL_POINT_VSDCT;
+    zn = p->desc.near_plane;
+    zf = p->desc.range;
+    vp = sk_mat4_mul(cam->proj, cam->view);
+    p->light_pos = light_pos;
+    p->view = sk_frustum_from_matrix(vp);
+    skgl__save(gl, &st);
+    /* face culling: a face whose frustum misses the view frustum casts
+       nothing visible (seed Fig. 5.4.2, frustum-frustum intersection),
+       widened by the filter's reach at the face side m. Resolution
+       selection: the smallest power of two M with N M^2 >= c S, N the
+       faces rendered. A smaller M widens the reach, which may add faces,
+       which may lower M: repeated until both hold (M only decreases). */
+    m = p->desc.resolution;
+    for (f = 0; f < 8; f++) {
+        int sel;
+        faces = p->desc.cull_faces ? skgl__point_faces(light_pos, zn, zf, &p->view, skgl__point_reach(p, m)) : 0x3fu;
+        nf = skgl__popcount6(faces);
+        if (!p->desc.select_resolution || nf == 0) break;
+        sel = sk_cube_resolution(nf, skgl__point_pixels(p, &vp, st.viewport), p->desc.resolution_c,
+                                 p->desc.resolution);
+        if (sel <= 0 || sel >= m) break;
+        m = sel;
+    }
+    p->cull_margin = (float)(skgl__point_reach(p, m) * zf);
+    p->level = 0;
+    if (!vsdct) while ((p->desc.resolution >> p->level) > m) p->level++;
+    m = vsdct ? m : p->desc.resolution >> p->level;
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    if (vsdct) {
+        r = skgl__point_fill(ctx, p, m);
+        if (r != SK_OK) { skgl__restore(gl, &st); return r; }
+    } else {
+        /* sampling reads the level rendered, and only that one */
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->level);
+    }
+    p->face_res = m;
+    proj = sk_cube_face_proj(zn, zf);   /* 90 deg, w = eye depth: window depth is Eq. (5.4.6) */
+    skgl__query_begin(ctx);
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->DrawBuffer(SKGL__NONE);
+    gl->ReadBuffer(SKGL__NONE);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);          /* open meshes cast from both sides */
+    gl->Enable(SKGL__DEPTH_TEST);
+    gl->DepthFunc(SKGL__LESS);
+    gl->DepthMask(1);
+    gl->ClearDepth(1.0);
+    if (p->desc.slope_bias > 0.0f || p->desc.depth_bias > 0.0f) {
+        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
+        gl->PolygonOffset(p->desc.slope_bias > 0.0f ? p->desc.slope_bias : 0.0f,
+                          p->desc.depth_bias > 0.0f ? p->desc.depth_bias : 0.0f);
+    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    if (vsdct) {
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, p->tex, 0);
+        if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+            gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
+            skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
+            skgl__restore(gl, &st);
+            return SK_ERR_GL;
+        }
+        /* the faces' region of the atlas, one clear (culled faces read lit) */
+        gl->Enable(SKGL__SCISSOR_TEST);
+        gl->Scissor(0, 0, 3 * m, 2 * m);
+        gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+    } else gl->Disable(SKGL__SCISSOR_TEST);
+    gl->UseProgram(ctx->depth_prog);
+    p->stats.passes = p->stats.faces_rendered = p->stats.faces_culled = 0;
+    p->stats.casters_drawn = p->stats.casters_culled = 0;
+    p->stats.texels = 0.0;
+    for (f = 0; f < 6; f++) {
+        skgl_draw_info info;
+        if (vsdct) {
+            gl->Viewport(p->layout.face_x[f], p->layout.face_y[f], m, m);
+            gl->Scissor(p->layout.face_x[f], p->layout.face_y[f], m, m);
+        } else {
+            gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
+                                     SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, p->tex, p->level);
+            if (f == 0 && gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+                gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
+                skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
+                skgl__restore(gl, &st);
+                return SK_ERR_GL;
+            }
+            gl->Viewport(0, 0, m, m);
+            /* a culled face is cleared too: a filter tap near a visible
+               face's edge may step into it, and must read "lit" there */
+            gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+        }
+        if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_CUBE_FACE;
+        info.index = f;
+        info.view_proj = sk_mat4_mul(proj, sk_cube_face_view(f, light_pos));
+        info.frustum = sk_frustum_from_matrix(info.view_proj);
+        info.light_pos = light_pos;
+        info.light_range = zf;
+        info.point = p;
+        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, info.view_proj.m);
+        gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
+        scene->draw(scene->user, &info);
+        p->stats.passes++;
+        p->stats.faces_rendered++;
+        p->stats.texels += (double)m * m;
+        gl->UseProgram(ctx->depth_prog);   /* the callback may have bound its own */
+    }
+    if (vsdct) gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
+    else gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_CUBE_MAP_POSITIVE_X, 0, 0);
+    p->stats.shadow_ms = skgl__query_end(ctx);
+    p->stats.maps = p->stats.faces_rendered;
+    p->stats.resolution = p->stats.map_width = p->stats.map_height = m;
+    p->rendered = 1;
+    skgl__restore(gl, &st);
+    return skgl__check(ctx, "skgl_point_render");
+}
+
+static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__uint prog, int unit, int ind_unit)
+{
+    skgl__api *gl = &ctx->gl;
+    float scale, bias, depth[2];
+    sk_vsdct_depth_coeffs(p->desc.near_plane, p->desc.range, &scale, &bias);
+    depth[0] = scale; depth[1] = bias;
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_cube"), unit);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_atlas"), unit);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_indirection"), ind_unit);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "sk_point_pos"), 1, &p->light_pos.x);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_range"), p->desc.range);
+    gl->Uniform2fv(gl->GetUniformLocation(prog, "sk_point_depth"), 1, depth);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_texel"), 2.0f / (float)p->face_res);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_normal_bias"),
+                  p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_pcf"), p->desc.pcf_radius);
+    if (p->desc.technique == SKGL_POINT_VSDCT) {
+        float rects[24];
+        int f;
+        for (f = 0; f < 6; f++) {
+            const sk_vsdct_layout *l = &p->layout;
+            rects[4 * f + 0] = (float)((l->face_x[f] + 0.5) / l->atlas_w);
+            rects[4 * f + 1] = (float)((l->face_y[f] + 0.5) / l->atlas_h);
+            rects[4 * f + 2] = (float)((l->face_x[f] + l->face_res - 0.5) / l->atlas_w);
+            rects[4 * f + 3] = (float)((l->face_y[f] + l->face_res - 0.5) / l->atlas_h);
+        }
+        gl->Uniform4fv(gl->GetUniformLocation(prog, "sk_point_faces"), 6, rects);
+    }
+}
+
+/* binds the map at `unit` and, for VSDCT, the indirection at ind_unit */
+static void skgl__point_textures(skgl_context *ctx, const skgl_point *p, int unit, int ind_unit)
+{
+    skgl__api *gl = &ctx->gl;
+    gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
+    if (p->desc.technique == SKGL_POINT_VSDCT) {
+        gl->BindTexture(SKGL__TEXTURE_2D, p->tex);
+        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+        gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)ind_unit);
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
+        gl->BindSampler((skgl__uint)ind_unit, p->lin_sampler);
+    } else {
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
+        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+    }
+}
+
+SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit)
+{
+    skgl__int active = 0;
+    if (!ctx || !p || !program || unit < 0 || unit > 30 || !p->rendered) return SK_ERR_INVALID_ARG;
+    ctx->gl.GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
+    skgl__point_textures(ctx, p, unit, unit + 1);
+    ctx->gl.ActiveTexture((skgl__enum)active);
+    skgl__point_uniforms(ctx, p, program, unit, unit + 1);
+    return skgl__check(ctx, "skgl_point_bind");
+}
+
+SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                  unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    skgl__api *gl;
+    skgl__state st;
+    skgl__int w = 0, h = 0;
+    sk_mat4 vp, inv;
+    skgl__uint prog;
+    int rect[4];
+    if (!ctx || !p || !cam || !depth_tex || !mask_tex || !p->rendered || !sk__mat_finite(&cam->view) ||
+        !sk__mat_finite(&cam->proj))
+        return SK_ERR_INVALID_ARG;
+    vp = sk_mat4_mul(cam->proj, cam->view);
+    if (!sk_mat4_inverse(vp, &inv)) return SK_ERR_INVALID_ARG;
+    gl = &ctx->gl;
+    prog = p->prog;
+    skgl__save(gl, &st);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
+    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
+    gl->BindSampler(1, ctx->point_sampler);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
+    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
+    gl->BindSampler(2, ctx->point_sampler);
+    skgl__point_textures(ctx, p, 0, 3);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    if (w <= 0 || h <= 0) {
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_point_mask: mask texture has no level 0", NULL);
+        return SK_ERR_INVALID_ARG;
+    }
+    /* the seed's scissor: the light's range box on the screen; the whole
+       viewport when the eye is inside it (sk_light_scissor) */
+    rect[0] = rect[1] = 0; rect[2] = w; rect[3] = h;
+    if (p->desc.scissor && !sk_light_scissor(p->light_pos, p->desc.range, vp, w, h, rect)) {
+        memset(p->stats.scissor, 0, sizeof p->stats.scissor);
+        p->stats.mask_ms = ctx->timing ? 0.0f : -1.0f;
+        skgl__restore(gl, &st);
+        return skgl__check(ctx, "skgl_point_mask");
+    }
+    memcpy(p->stats.scissor, rect, sizeof rect);
+    skgl__query_begin(ctx);
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
+    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
+    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        if (ctx->timing) skgl__query_end(ctx);
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_point_mask: mask texture is not colour-renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->Viewport(0, 0, w, h);
+    if (p->desc.scissor) {
+        gl->Enable(SKGL__SCISSOR_TEST);
+        gl->Scissor(rect[0], rect[1], rect[2], rect[3]);
+    } else gl->Disable(SKGL__SCISSOR_TEST);
+    /* cube: 2x2 filtering walks across face edges; VSDCT: the indirection
+       must never blend two faces' coordinates */
+    skgl__enable(gl, SKGL__TEXTURE_CUBE_MAP_SEAMLESS, p->desc.technique == SKGL_POINT_CUBE);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->UseProgram(prog);
+    skgl__point_uniforms(ctx, p, prog, 0, 3);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv.m);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    p->stats.mask_ms = skgl__query_end(ctx);
+    skgl__restore(gl, &st);
+    return skgl__check(ctx, "skgl_point_mask");
 }
 
 #ifdef __cplusplus

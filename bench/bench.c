@@ -16,7 +16,8 @@
        method,params,scene,view,width,height,error_kind,error,texels,passes,
        shadow_ms,analysis_ms,total_ms,device
        method     standard | standard-stable | pssm | psm | lispsm |
-                  lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm
+                  lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
+                  cube-naive | cube | vsdct (point lights, "room")
                   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
        error_kind hard_pct
@@ -49,7 +50,9 @@
      added here (y = the model's lowest point, 3x its horizontal extent) so
      that its shadows have a receiver. When the folder is missing only the
      procedural scenes run, and stderr says so. Procedural (testbed):
-     ground-boxes, fence, terrace. One directional light per scene.
+     ground-boxes, fence, terrace. One directional light per scene; and the
+     "room" with a point light for the omnidirectional methods (see
+     point_bench: cube-naive, cube, vsdct).
 
    Views (3, derived from the bounds of the non-ground objects, so they work
    for any scene; see make_views): "overview" (the whole content from 35
@@ -984,6 +987,188 @@ static void write_shaded(const char *path, const float *vis, const float *nrm, s
     free(rgb);
 }
 
+/* ------------------------------------------------------- point lights */
+/* The room scene with a point light (seed 004): the native cube map and
+   VSDCT, each of the seed's optimizations alone and all together, against
+   the naive cube map (six faces, every caster, full resolution, the whole
+   screen). Views: "inside" (the light in the view, all faces visible),
+   "away" (the light behind the camera: faces culled; its range still
+   covers the room), "torch" (a small light far off, small on the
+   screen: scissor and resolution selection), "outside" (a small light
+   beside and behind the camera, reaching into the view).
+   Rows as the directional ones; shadow_ms is the six-face depth pass,
+   total_ms adds the mask pass (the lighting pass a point light needs).
+   Methods: cube-naive, cube (params say which optimizations are on),
+   vsdct. */
+typedef struct point_cfg {
+    const char *method;
+    skgl_point_technique technique;
+    int faces, casters, scissor, select;
+} point_cfg;
+
+static const point_cfg point_cfgs[] = {
+    {"cube-naive", SKGL_POINT_CUBE, 0, 0, 0, 0},
+    {"cube", SKGL_POINT_CUBE, 1, 0, 0, 0},
+    {"cube", SKGL_POINT_CUBE, 0, 1, 0, 0},
+    {"cube", SKGL_POINT_CUBE, 0, 0, 1, 0},
+    {"cube", SKGL_POINT_CUBE, 0, 0, 0, 1},
+    {"cube", SKGL_POINT_CUBE, 1, 1, 1, 1},
+    {"vsdct", SKGL_POINT_VSDCT, 0, 0, 0, 0},
+    {"vsdct", SKGL_POINT_VSDCT, 1, 1, 1, 0},
+    {"vsdct", SKGL_POINT_VSDCT, 1, 1, 1, 1},
+};
+
+typedef struct point_view {
+    const char *name;
+    float eye[3], target[3], light[3], range;
+} point_view;
+
+static const point_view point_views[] = {
+    {"inside", {4.2f, 3.2f, 4.2f}, {-1.0f, 1.0f, -1.0f}, {0.5f, 2.0f, 0.5f}, 8.0f},
+    {"away", {3.2f, 1.7f, -1.8f}, {4.9f, 1.0f, -4.9f}, {0.5f, 2.0f, 0.5f}, 8.0f},
+    {"torch", {4.5f, 2.5f, 4.5f}, {-3.0f, 1.0f, -3.0f}, {-3.6f, 1.0f, -3.2f}, 2.5f},
+    {"outside", {0.5f, 2.0f, 4.8f}, {2.5f, 1.2f, -5.0f}, {-4.2f, 1.5f, -1.0f}, 2.0f},
+};
+
+static void point_draw_casters(void *user, const skgl_draw_info *info) {
+    const draw_user *u = (const draw_user *)user;
+    unsigned i;
+    for (i = 0; i < u->scene->object_count; i++) {
+        const tb_object *o = &u->scene->objects[i];
+        if (skgl_point_caster_visible(info, o->bounds)) tb_gl_mesh_draw(u->gl, u->mesh, o->first_index, o->index_count);
+    }
+}
+
+static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *rgba, float *nrm, float *mask_px) {
+    tb_scene s;
+    tb_gl_mesh mesh;
+    tb_reference *ref = NULL;
+    draw_user du;
+    skgl_scene sc;
+    size_t n = (size_t)BENCH_W * BENCH_H, i;
+    float *refv = (float *)malloc(sizeof(float) * n);
+    int v, c, k;
+    double naive_total[4] = {0, 0, 0, 0};
+    memset(&mesh, 0, sizeof mesh);
+    tb_scene_init(&s);
+    if (!refv || tb_scene_build_room(&s) != 0 || tb_gl_mesh_create(&B->gl, &mesh, &s) != 0 ||
+        !(ref = tb_reference_create(&s))) {
+        fprintf(stderr, "bench: room scene setup failed: point-light rows skipped\n");
+        goto out;
+    }
+    du.gl = &B->gl;
+    du.scene = &s;
+    du.mesh = &mesh;
+    sc.draw = point_draw_casters;
+    sc.user = &du;
+    sc.bounds = s.bounds;
+    for (v = 0; v < (int)(sizeof point_views / sizeof point_views[0]); v++) {
+        const point_view *pv = &point_views[v];
+        bench_view bv;
+        tb_gl_fbo gbuf;
+        tb_view tv;
+        tb_light L;
+        sk_vec3 lp = v3(pv->light[0], pv->light[1], pv->light[2]);
+        memset(&bv, 0, sizeof bv);
+        memset(&gbuf, 0, sizeof gbuf);
+        snprintf(bv.name, sizeof bv.name, "%s", pv->name);
+        bv.eye = v3(pv->eye[0], pv->eye[1], pv->eye[2]);
+        bv.target = v3(pv->target[0], pv->target[1], pv->target[2]);
+        finish_view(&bv, &s.bounds);
+        if (tb_gl_fbo_create(&B->gl, &gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0 ||
+            tb_gl_gbuffer_render(&B->gl, &B->gb, &mesh, &gbuf, &bv.view_proj) != 0 ||
+            tb_gl_read_depth(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, depth) != 0 ||
+            tb_gl_read_rgba_float(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) {
+            fprintf(stderr, "bench: room view %s: G-buffer failed\n", pv->name);
+            if (gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &gbuf);
+            continue;
+        }
+        for (i = 0; i < n; i++)
+            for (k = 0; k < 3; k++) nrm[3 * i + k] = rgba[4 * i + k];
+        memset(&tv, 0, sizeof tv);
+        if (!sk_mat4_inverse(bv.view_proj, &tv.inv_view_proj)) { tb_gl_fbo_destroy(&B->gl, &gbuf); continue; }
+        tv.width = BENCH_W;
+        tv.height = BENCH_H;
+        memset(&L, 0, sizeof L);
+        L.type = TB_LIGHT_POINT;
+        L.position = lp;
+        L.range = pv->range;
+        if (tb_reference_trace(ref, &tv, depth, nrm, &L, NULL, refv) != 0) { tb_gl_fbo_destroy(&B->gl, &gbuf); continue; }
+        for (c = 0; c < (int)(sizeof point_cfgs / sizeof point_cfgs[0]); c++) {
+            const point_cfg *pc = &point_cfgs[c];
+            skgl_point_desc d;
+            skgl_point *p = NULL;
+            const skgl_stats *st;
+            float sms[BENCH_MAX_REPEAT], mms[BENCH_MAX_REPEAT];
+            run_rec rr;
+            char params[160];
+            sk_result r;
+            int reps = repeat < 1 ? 1 : repeat > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : repeat;
+            memset(&d, 0, sizeof d);
+            d.technique = pc->technique;
+            d.resolution = 512;
+            d.range = pv->range;
+            d.cull_faces = pc->faces;
+            d.cull_casters = pc->casters;
+            d.scissor = pc->scissor;
+            d.select_resolution = pc->select;
+            d.screen_w = BENCH_W;
+            d.screen_h = BENCH_H;
+            r = skgl_point_create(B->sk, &d, &p);
+            if (r != SK_OK) {
+                fprintf(stderr, "bench: skgl_point_create %s: %s (%s)\n", pc->method, sk_result_string(r),
+                        skgl_error_log(B->sk));
+                continue;
+            }
+            memset(&rr, 0, sizeof rr);
+            for (k = 0; k <= reps; k++) {   /* one warm-up, then the timed ones */
+                r = skgl_point_render(B->sk, p, &bv.cam, &sc, lp);
+                if (r == SK_OK) {
+                    /* the mask starts lit: a scissored pass leaves the rest as it is */
+                    tb_gl_fbo_bind(&B->gl, &B->mask);
+                    B->gl.ClearColor(1, 1, 1, 1);
+                    B->gl.Clear(0x00004000u);
+                    tb_gl_fbo_bind(&B->gl, NULL);
+                    r = skgl_point_mask(B->sk, p, &bv.cam, gbuf.depth_tex, gbuf.color_tex, B->mask.color_tex);
+                }
+                if (r != SK_OK) break;
+                st = skgl_point_stats(p);
+                if (k > 0) { sms[k - 1] = st->shadow_ms; mms[k - 1] = st->mask_ms; }
+            }
+            if (r != SK_OK || tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, mask_px) != 0) {
+                fprintf(stderr, "bench: point %s on %s failed: %s\n", pc->method, pv->name, skgl_error_log(B->sk));
+                skgl_point_destroy(B->sk, p);
+                continue;
+            }
+            st = skgl_point_stats(p);
+            rr.n = 0;
+            rr.mask_ms = median(mms, reps);
+            rr.texels = st->texels;
+            rr.passes = st->passes;
+            rr.err = tb_metric_hard(refv, mask_px, n).pct;
+            snprintf(params, sizeof params, "resolution=%d;face_res=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d;"
+                     "faces_culled=%d;casters_culled=%d", d.resolution, st->resolution, pc->faces, pc->casters,
+                     pc->scissor, pc->select, st->faces_culled, st->casters_culled);
+            {
+                float sm = median(sms, reps);
+                write_row(csv, pc->method, params, "room", pv->name, &rr, sm, B->renderer);
+                if (c == 0) naive_total[v] = sm + rr.mask_ms;
+                fprintf(stderr, "bench: room %-6s %-10s %s: err %.3f%% shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
+                        pv->name, pc->method, params, rr.err, (double)sm, (double)rr.mask_ms,
+                        naive_total[v] > 0 ? (sm + rr.mask_ms) / naive_total[v] : 0.0);
+            }
+            skgl_point_destroy(B->sk, p);
+        }
+        fflush(csv);
+        tb_gl_fbo_destroy(&B->gl, &gbuf);
+    }
+out:
+    free(refv);
+    tb_reference_destroy(ref);
+    if (mesh.vao) tb_gl_mesh_destroy(&B->gl, &mesh);
+    tb_scene_free(&s);
+}
+
 static int load_scene(const bench_scene_def *def, tb_scene *s) {
     tb_scene_init(s);
     if (def->path[0]) {
@@ -1062,7 +1247,7 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
     if (nf > 0) {
         char line[512];
         snprintf(line, sizeof line,
-                 "%-16s %2d frames: lspsm %.2f partitions on average, shadow time %.2fx pssm-8 (%.2f vs %.2f ms "
+                 "%-16.64s %2d frames: lspsm %.2f partitions on average, shadow time %.2fx pssm-8 (%.2f vs %.2f ms "
                  "per frame), error %.3f%% vs %.3f%%\n",
                  def->name, nf, parts / nf, ms[1] > 0 ? ms[0] / ms[1] : 0.0, ms[0] / nf, ms[1] / nf, err[0] / nf,
                  err[1] / nf);
@@ -1162,7 +1347,10 @@ int main(int argc, char **argv) {
             d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
             if (scene_selected(&o, d->name)) ndefs++;
         }
-        if (ndefs == 0) { fprintf(stderr, "bench: no scene selected (--only %s)\n", o.only ? o.only : ""); return 2; }
+        if (ndefs == 0 && !scene_selected(&o, "room")) {
+            fprintf(stderr, "bench: no scene selected (--only %s)\n", o.only ? o.only : "");
+            return 2;
+        }
     }
     build_sweep(o.quick);
     memset(&pg, 0, sizeof pg);
@@ -1232,7 +1420,7 @@ int main(int argc, char **argv) {
     /* charts of an earlier sweep would no longer match bench.csv */
     {
         static const char *known[] = {"stanford-bunny", "sponza-ivy", "sponza-curtains", "ground-boxes", "fence",
-                                      "terrace"};
+                                      "terrace", "room"};
         for (i = 0; i < (int)(sizeof known / sizeof known[0]); i++) {
             snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.out_dir, known[i]);
             remove(path);
@@ -1416,6 +1604,7 @@ int main(int argc, char **argv) {
         tb_gl_mesh_destroy(&B.gl, &mesh);
         tb_scene_free(&s);
     }
+    if (scene_selected(&o, "room")) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
     if (walk) fclose(walk);

@@ -6,7 +6,8 @@ SHADER_SRCS := shaders_embedded/depth.vert shaders_embedded/depth.frag \
                shaders_embedded/fullscreen.vert shaders_embedded/shadow_sample.glsl \
                shaders_embedded/shadow_mask.frag shaders_embedded/ferko_analyze.frag \
                shaders_embedded/ferko_reduce.frag shaders_embedded/rmsm_analyze.frag \
-               shaders_embedded/rmsm_request.vert shaders_embedded/rmsm_request.frag
+               shaders_embedded/rmsm_request.vert shaders_embedded/rmsm_request.frag \
+               shaders_embedded/point_sample.glsl shaders_embedded/point_mask.frag
 EMBED := $(BUILD)/tools/embed
 
 $(EMBED): shaders_embedded/embed.c | deps-test

@@ -23,7 +23,18 @@
    Can fail: in local copies of the header with one restore line removed
    (scissor enable, polygon offset, sampler bindings, active texture in
    skgl_shadow_bind) or the query not deleted, this test failed each time
-   with the state named. */
+   with the state named.
+   Point lights (skgl_point_*: cube and VSDCT, naive and with face and
+   caster culling, scissor and resolution selection on) run create, render,
+   mask and bind under both sets the same way; the sets also differ in the
+   cube-map bindings of every unit and GL_TEXTURE_CUBE_MAP_SEAMLESS.
+   skgl_point_bind may change only the map's binding and sampler on its unit
+   and, for VSDCT, the indirection cube map's and sampler on the next unit.
+   Measured: +1 program and +1 texture per cube light, +1 program, +2
+   textures and +1 sampler per VSDCT light, all deleted by
+   skgl_point_destroy. Can fail: with the restore of the cube-map bindings
+   and of the seamless enable removed from skgl__restore, 27 checks failed
+   (create, render, mask, bind of the point lights). */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -73,6 +84,10 @@
 #define E_ARRAY_BUFFER_BINDING 0x8894
 #define E_BLEND_SRC_RGB 0x80C9
 #define E_CLEAR_COLOR 0x0C22
+#define E_TEXTURE_CUBE_MAP 0x8513
+#define E_TEXTURE_BINDING_CUBE_MAP 0x8514
+#define E_TEXTURE_CUBE_MAP_POSITIVE_X 0x8515
+#define E_TEXTURE_CUBE_MAP_SEAMLESS 0x884F
 
 /* ---- entry points the testbed table lacks ---- */
 typedef struct ext_funcs {
@@ -211,16 +226,16 @@ static int live_objects(int with_shaders) {
 /* ---- the state ---- */
 typedef struct gl_state {
     int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active, array_buffer, pack_buffer;
-    int tex2d[UNITS], tex2da[UNITS], sampler[UNITS];
+    int tex2d[UNITS], tex2da[UNITS], sampler[UNITS], texcube[UNITS];
     int depth_func, cull_mode;
-    unsigned char depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
+    unsigned char seamless, depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
     float poly_factor, poly_units, clear_color[4];
     double clear_depth;
 } gl_state;
 
 typedef struct objs {
     tb_gl_fbo draw_fbo, read_fbo;
-    unsigned tex2d[UNITS], tex2da[UNITS], sampler[UNITS], vao, pack_buffer;
+    unsigned tex2d[UNITS], tex2da[UNITS], sampler[UNITS], texcube[UNITS], vao, pack_buffer;
 } objs;
 
 static void read_state(const tb_gl_funcs *gl, const ext_funcs *x, gl_state *s) {
@@ -240,7 +255,9 @@ static void read_state(const tb_gl_funcs *gl, const ext_funcs *x, gl_state *s) {
         gl->GetIntegerv(E_TEXTURE_BINDING_2D, &s->tex2d[u]);
         gl->GetIntegerv(E_TEXTURE_BINDING_2D_ARRAY, &s->tex2da[u]);
         gl->GetIntegerv(E_SAMPLER_BINDING, &s->sampler[u]);
+        gl->GetIntegerv(E_TEXTURE_BINDING_CUBE_MAP, &s->texcube[u]);
     }
+    s->seamless = gl->IsEnabled(E_TEXTURE_CUBE_MAP_SEAMLESS);
     gl->ActiveTexture((unsigned)s->active);
     gl->GetIntegerv(E_DEPTH_FUNC, &s->depth_func);
     gl->GetIntegerv(E_CULL_FACE_MODE, &s->cull_mode);
@@ -273,7 +290,9 @@ static void set_state(const tb_gl_funcs *gl, const ext_funcs *x, const objs *o, 
         gl->BindTexture(E_TEXTURE_2D, o->tex2d[j]);
         gl->BindTexture(E_TEXTURE_2D_ARRAY, o->tex2da[j]);
         x->BindSampler((unsigned)u, o->sampler[j]);
+        gl->BindTexture(E_TEXTURE_CUBE_MAP, o->texcube[j]);
     }
+    if (v) gl->Disable(E_TEXTURE_CUBE_MAP_SEAMLESS); else gl->Enable(E_TEXTURE_CUBE_MAP_SEAMLESS);
     gl->ActiveTexture(E_TEXTURE0 + (v ? 2u : 5u));
     gl->DepthFunc(v ? E_NOTEQUAL : E_GEQUAL);
     gl->DepthMask(v ? 1 : 0);
@@ -304,10 +323,11 @@ static int compare_state(const gl_state *a, const gl_state *b, const char *what,
     for (u = 0; u < UNITS; u++) {
         if (u == except_table) { SAME_I(tex2da, u); continue; }   /* the RMSM page table: 2D + sampler */
         SAME_I(tex2d, u);
+        SAME_I(texcube, u);
         if (u == except_unit) continue;
         SAME_I(tex2da, u); SAME_I(sampler, u);
     }
-    SAME(depth_func); SAME(cull_mode); SAME(depth_test); SAME(depth_mask); SAME(cull); SAME(blend);
+    SAME(seamless); SAME(depth_func); SAME(cull_mode); SAME(depth_test); SAME(depth_mask); SAME(cull); SAME(blend);
     SAME(scissor); SAME(poly_fill); SAME(poly_factor); SAME(poly_units); SAME(clear_depth);
 #undef SAME
 #undef SAME_I
@@ -365,6 +385,15 @@ static void test_state_and_objects(void) {
         gl->BindTexture(E_TEXTURE_2D_ARRAY, o.tex2da[u]);
         x.TexImage3D(E_TEXTURE_2D_ARRAY, 0, (int)E_RGBA8, 4, 4, 2, 0, E_RGBA, E_UNSIGNED_BYTE, NULL);
     }
+    gl->GenTextures(UNITS, o.texcube);
+    for (u = 0; u < UNITS; u++) {
+        int f;
+        gl->BindTexture(E_TEXTURE_CUBE_MAP, o.texcube[u]);
+        for (f = 0; f < 6; f++)
+            gl->TexImage2D(E_TEXTURE_CUBE_MAP_POSITIVE_X + (unsigned)f, 0, (int)E_RGBA8, 4, 4, 0, E_RGBA,
+                           E_UNSIGNED_BYTE, NULL);
+    }
+    gl->BindTexture(E_TEXTURE_CUBE_MAP, 0);
     gl->BindTexture(E_TEXTURE_2D, 0);
     gl->BindTexture(E_TEXTURE_2D_ARRAY, 0);
     SK_CHECK(gt_forward_create(&e, &fw) == 0);
@@ -453,6 +482,77 @@ static void test_state_and_objects(void) {
         SK_CHECK_MSG(skgl_gl_object_count(sk) == own, "%s: after skgl_shadow_destroy: %d, after create %d", tn,
                      skgl_gl_object_count(sk), own);
     }
+    /* point lights: cube and VSDCT, naive and with every optimization on */
+    for (t = 0; t < 4; t++) {
+        static const char *const names[4] = {"point-cube", "point-vsdct", "point-cube-all", "point-vsdct-all"};
+        skgl_point_desc d;
+        skgl_point *p = NULL;
+        const char *tn = names[t];
+        sk_vec3 lp = gt_v3(0.5f, 2.5f, 0.5f);
+        memset(&d, 0, sizeof d);
+        d.technique = (t & 1) ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE;
+        d.resolution = 256;
+        d.range = 12.0f;
+        d.cull_faces = d.cull_casters = d.scissor = d.select_resolution = t >= 2;
+        for (v = 0; v < 2; v++) {
+            gl_state before, after;
+            char what[96];
+            int ind = d.technique == SKGL_POINT_VSDCT;
+            set_state(gl, &x, &o, fw.program, v);
+            read_state(gl, &x, &before);
+            if (!p) {
+                r = skgl_point_create(sk, &d, &p);
+                SK_CHECK_MSG(r == SK_OK, "%s: skgl_point_create: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
+                if (r != SK_OK) break;
+                read_state(gl, &x, &after);
+                snprintf(what, sizeof what, "%s set %c: skgl_point_create", tn, "AB"[v]);
+                SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
+                SK_CHECK_MSG(skgl_gl_object_count(sk) == live_objects(0), "%s: count %d, tracked %d", tn,
+                             skgl_gl_object_count(sk), live_objects(0));
+            }
+            r = skgl_point_render(sk, p, &cam, &sc, lp);
+            SK_CHECK_MSG(r == SK_OK, "%s: render: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
+            read_state(gl, &x, &after);
+            snprintf(what, sizeof what, "%s set %c: skgl_point_render", tn, "AB"[v]);
+            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
+            SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+
+            r = skgl_point_mask(sk, p, &cam, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex);
+            SK_CHECK_MSG(r == SK_OK, "%s: mask: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
+            read_state(gl, &x, &after);
+            snprintf(what, sizeof what, "%s set %c: skgl_point_mask", tn, "AB"[v]);
+            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
+            SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+
+            /* bind: the map on unit 6 (cube, or the 2D atlas), VSDCT's
+               indirection cube on unit 7, their samplers; nothing else */
+            r = skgl_point_bind(sk, p, fw.program, 6);
+            SK_CHECK_MSG(r == SK_OK, "%s: bind: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
+            read_state(gl, &x, &after);
+            snprintf(what, sizeof what, "%s set %c: skgl_point_bind", tn, "AB"[v]);
+            SK_CHECK_MSG((ind ? after.tex2d[6] : after.texcube[6]) == (int)skgl_point_texture(p),
+                         "%s: unit 6 does not hold the map", what);
+            SK_CHECK_MSG(!ind || after.texcube[7] != before.texcube[7], "%s: unit 7 lacks the indirection", what);
+            after.tex2d[6] = before.tex2d[6]; after.texcube[6] = before.texcube[6]; after.sampler[6] = before.sampler[6];
+            if (ind) { after.texcube[7] = before.texcube[7]; after.sampler[7] = before.sampler[7]; }
+            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
+            SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+            SK_CHECK(tb_gl_read_texture_red(gl, e.mask.color_tex, W, H, mask) == 0);
+            set_state(gl, &x, &o, fw.program, v);
+        }
+        {
+            size_t i, lit = 0, dark = 0;
+            for (i = 0; i < e.n; i++) {
+                if (!(e.depth[i] < 1.0f)) continue;
+                if (mask[i] >= 0.5f) lit++; else dark++;
+            }
+            SK_CHECK_MSG(lit > e.n / 4 && dark > e.n / 100, "%s: mask under set B: %zu lit, %zu shadowed", tn,
+                         lit, dark);
+        }
+        skgl_point_destroy(sk, p);
+        SK_CHECK_MSG(skgl_gl_object_count(sk) == own, "%s: after skgl_point_destroy: %d, after create %d", tn,
+                     skgl_gl_object_count(sk), own);
+    }
     /* restore a sane state before tearing down */
     gl->BindFramebuffer(0x8D40, 0);
     gl->UseProgram(0);
@@ -479,6 +579,7 @@ static void test_state_and_objects(void) {
     tb_gl_fbo_destroy(gl, &o.read_fbo);
     gl->DeleteTextures(UNITS, o.tex2d);
     gl->DeleteTextures(UNITS, o.tex2da);
+    gl->DeleteTextures(UNITS, o.texcube);
     x.DeleteSamplers(UNITS, o.sampler);
     gl->DeleteVertexArrays(1, &o.vao);
     gl->DeleteBuffers(1, &o.pack_buffer);

@@ -1,0 +1,22 @@
+/* Deferred point-light shadow mask: camera depth (and optional world
+   normals) in, visibility out (1 lit, 0 shadowed). World positions from
+   window depth exactly as shadow_mask.frag reconstructs them. The pass runs
+   inside the light's scissor rectangle (sk_light_scissor) when asked: the
+   pixels outside it are not written. */
+in vec2 v_uv;
+out float o_visibility;
+uniform sampler2D u_depth;
+uniform sampler2D u_normals;
+uniform int u_has_normals;
+uniform mat4 u_inv_view_proj;
+void main()
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(u_depth, px, 0).r;
+    if (d >= 1.0) { o_visibility = 1.0; return; }
+    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
+    vec3 world = w.xyz / w.w;
+    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);
+    o_visibility = sk_point_shadow(world, n);
+}

@@ -1,0 +1,101 @@
+/* shadowkit: point-light (omnidirectional) shadow lookup, shared by the
+   deferred point mask pass and forward shaders (skgl_point_glsl_snippet()).
+   King & Newhall, seed 004.
+
+   Two storages, chosen at compile time: define SK_POINT_VSDCT 1 before this
+   text for the Virtual Shadow Depth Cube Texture, leave it undefined (or 0)
+   for the native depth cube map.
+   - cube: GL_TEXTURE_CUBE_MAP of depth, samplerCubeShadow looked up with the
+     light-to-point vector; hardware 2x2 comparison (seamless cube filtering
+     when GL_TEXTURE_CUBE_MAP_SEAMLESS is on, as the mask pass sets it).
+   - VSDCT: the six faces as sub-rects of one 2D depth atlas; an RG16
+     indirection cube map, bilinearly filtered, turns the direction into the
+     atlas (u, v) (face selection, side divide, (s, t) remap, scale and face
+     offset in one lookup, seed Fig. 5.4.7), kept half a texel inside the
+     face so a 2x2 comparison never reads across a seam (seed: "Sampling
+     across Cube Map Seams"); then sampler2DShadow in the atlas.
+   Both store window depth per Eq. (5.4.6): z = scale / MA + bias, MA the
+   major-axis component of the light-to-point vector (the eye depth in the
+   face that holds it), so both compare the same way.
+
+   Bias: casters were drawn with slope-scaled polygon offset; the receiver is
+   pushed along its normal by sk_point_normal_bias texels of its face at its
+   distance (a face texel is 2 MA / resolution wide). Filtering: one
+   hardware 2x2 comparison, or a (2r)x(2r) grid of them spaced one texel in
+   the face plane; a tap that leaves the face reads the neighbouring face
+   (its direction picks it), compared with the receiver's depth along that
+   face's axis. A surface facing away from the light (given a normal) is in
+   its own shadow: 0. Beyond sk_point_range: 1 (no shadow from this light;
+   attenuation is the shader's business). */
+#ifndef SK_POINT_VSDCT
+#define SK_POINT_VSDCT 0
+#endif
+uniform vec3 sk_point_pos;          /* light position, world */
+uniform float sk_point_range;       /* far plane of the faces */
+uniform vec2 sk_point_depth;        /* Eq. (5.4.6): (scale, bias) of sk_vsdct_depth_coeffs */
+uniform float sk_point_texel;       /* 2 / face resolution: one texel at MA = 1 */
+uniform float sk_point_normal_bias; /* texels */
+uniform int sk_point_pcf;           /* 0: one 2x2 comparison; r: (2r)^2 of them */
+#if SK_POINT_VSDCT
+uniform sampler2DShadow sk_point_atlas;
+uniform samplerCube sk_point_indirection;
+uniform vec4 sk_point_faces[6];     /* per face: its sub-rect inset by half a texel, (u0, v0, u1, v1) */
+#else
+uniform samplerCubeShadow sk_point_cube;
+#endif
+
+/* the major-axis component of |v| along the axis that d's face looks down */
+float sk_point_ma(vec3 av, vec3 d)
+{
+    vec3 ad = abs(d);
+    if (ad.x >= ad.y && ad.x >= ad.z) return av.x;
+    return ad.y >= ad.z ? av.y : av.z;
+}
+
+/* one hardware 2x2 comparison of depth ref along direction d */
+float sk_point_tap(vec3 d, float ref)
+{
+#if SK_POINT_VSDCT
+    /* the indirection keeps (u, v) half a texel inside the face, but its 16
+       bits round to 1/65535 of the atlas: clamped again here, in float, or
+       the 2x2 filter could give a neighbouring sub-rect a sliver of weight */
+    vec3 ad = abs(d);
+    int f = ad.x >= ad.y && ad.x >= ad.z ? (d.x >= 0.0 ? 0 : 1) : ad.y >= ad.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5);
+    vec4 r = sk_point_faces[f];
+    vec2 uv = clamp(texture(sk_point_indirection, d).rg, r.xy, r.zw);
+    return texture(sk_point_atlas, vec3(uv, ref));
+#else
+    return texture(sk_point_cube, vec4(d, ref));
+#endif
+}
+
+float sk_point_shadow(vec3 world_pos, vec3 world_normal)
+{
+    vec3 v = world_pos - sk_point_pos;
+    float dist = length(v);
+    if (!(dist > 0.0) || dist > sk_point_range) return 1.0;
+    if (dot(world_normal, v) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;
+    vec3 av = abs(v);
+    float ma = max(av.x, max(av.y, av.z));
+    v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);
+    av = abs(v);
+    ma = max(av.x, max(av.y, av.z));
+    if (!(ma > 0.0)) return 1.0;
+    if (sk_point_pcf <= 0)
+        return sk_point_tap(v, sk_point_depth.x / ma + sk_point_depth.y);
+    /* the face plane's axes at v (any two axes other than the major one) */
+    vec3 t1, t2;
+    if (av.x >= av.y && av.x >= av.z) { t1 = vec3(0.0, 0.0, 1.0); t2 = vec3(0.0, 1.0, 0.0); }
+    else if (av.y >= av.z) { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 0.0, 1.0); }
+    else { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 1.0, 0.0); }
+    float step = sk_point_texel * ma;
+    int r = sk_point_pcf;
+    float sum = 0.0;
+    for (int y = -r; y < r; y++)
+        for (int x = -r; x < r; x++) {
+            vec3 d = v + (t1 * (float(x) + 0.5) + t2 * (float(y) + 0.5)) * step;
+            float m = max(sk_point_ma(av, d), 1e-30);
+            sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);
+        }
+    return sum / float(4 * r * r);
+}
