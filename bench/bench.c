@@ -602,7 +602,15 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
     if ((s = strstr(p->params, "cascades="))) casc = atoi(s + 9);
     if ((s = strstr(p->params, "lambda="))) lambda = atof(s + 7);
     if ((s = strstr(p->params, "blend="))) blend = atof(s + 6);
-    if (strcmp(p->method, "psm") == 0)
+    if (strncmp(p->method, "cube", 4) == 0 || strcmp(p->method, "vsdct") == 0) {
+        /* the point-light switches that are on: faces, casters, scissor, resolution */
+        static const char *const keys[4] = {"faces=1", "casters=1", "scissor=1", "select=1"};
+        static const char *const tags[4] = {" faces", " casters", " scissor", " res"};
+        int k;
+        size_t used = (size_t)snprintf(buf, n, "%s", p->method);
+        for (k = 0; k < 4 && used < n; k++)
+            if (strstr(p->params, keys[k])) used += (size_t)snprintf(buf + used, n - used, "%s", tags[k]);
+    } else if (strcmp(p->method, "psm") == 0)
         snprintf(buf, n, "psm %d slide %g", res, (s = strstr(p->params, "slide=")) ? atof(s + 6) : 0.0);
     else if (strncmp(p->method, "lispsm", 6) == 0)
     {
@@ -1146,16 +1154,17 @@ static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float 
             rr.texels = st->texels;
             rr.passes = st->passes;
             rr.err = tb_metric_hard(refv, mask_px, n).pct;
-            snprintf(params, sizeof params, "resolution=%d;face_res=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d;"
-                     "faces_culled=%d;casters_culled=%d", d.resolution, st->resolution, pc->faces, pc->casters,
-                     pc->scissor, pc->select, st->faces_culled, st->casters_culled);
+            /* the configuration only: what the culling found this view goes to stderr */
+            snprintf(params, sizeof params, "resolution=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d",
+                     d.resolution, pc->faces, pc->casters, pc->scissor, pc->select);
             {
                 float sm = median(sms, reps);
                 write_row(csv, pc->method, params, "room", pv->name, &rr, sm, B->renderer);
                 if (c == 0) naive_total[v] = sm + rr.mask_ms;
-                fprintf(stderr, "bench: room %-6s %-10s %s: err %.3f%% shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
-                        pv->name, pc->method, params, rr.err, (double)sm, (double)rr.mask_ms,
-                        naive_total[v] > 0 ? (sm + rr.mask_ms) / naive_total[v] : 0.0);
+                fprintf(stderr, "bench: room %-6s %-10s %s: face %d^2, %d faces and %d casters culled: err %.3f%% "
+                                "shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
+                        pv->name, pc->method, params, st->resolution, st->faces_culled, st->casters_culled, rr.err,
+                        (double)sm, (double)rr.mask_ms, naive_total[v] > 0 ? (sm + rr.mask_ms) / naive_total[v] : 0.0);
             }
             skgl_point_destroy(B->sk, p);
         }

@@ -8,7 +8,7 @@
 # outfile, methods (space-separated), nviews, repeat, logy, width, height,
 # tmin, tmax, emin, emax.
 
-set terminal pngcairo size 1280,860 noenhanced font 'DejaVu Sans,12'
+set terminal pngcairo size 1280,940 noenhanced font 'DejaVu Sans,12'
 set output outfile
 set encoding utf8
 
@@ -28,7 +28,7 @@ if (logy) {
 }
 set grid xtics ytics mxtics mytics lc rgb '#e0e0e0' lw 1, lc rgb '#f0f0f0' lw 1
 set border lw 1.2
-set key inside top right box opaque samplen 3
+set key outside below center horizontal box samplen 3 maxrows 3
 set xrange [tmin / 2.2 : tmax * 1.6]
 if (logy) { set yrange [emin / 1.4 : emax * 1.3] } else { set yrange [0 : emax * 1.1] }
 
