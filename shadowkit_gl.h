@@ -90,6 +90,9 @@
      culling, caster culling (skgl_point_caster_visible in the callback),
      the scissored mask and resolution selection are switches in
      skgl_point_desc, off by default (the naive cube map).
+     Several VSDCT lights may share one atlas (skgl_point_atlas_create,
+     desc.atlas): skgl_point_atlas_pack places every light's six faces at
+     its selected side each frame, halving the largest side until they fit.
 
    BIAS AND FILTERING
      Casters are drawn with slope-scaled polygon offset (.slope_bias, in
@@ -237,6 +240,8 @@ typedef struct skgl_stats {
     int faces_rendered, faces_culled;     /* cube faces drawn / skipped by face culling */
     int casters_drawn, casters_culled;    /* (face, caster) pairs skgl_point_caster_visible passed / culled */
     int scissor[4];                       /* the last point mask's rectangle x, y, w, h (all 0: nothing drawn) */
+    int atlas_wanted;                     /* shared point atlas: face side selected before packing (greater
+                                             than .resolution when skgl_point_atlas_pack halved it to fit) */
 } skgl_stats;
 
 typedef struct skgl_context skgl_context;
@@ -324,6 +329,8 @@ typedef enum skgl_point_technique {
     SKGL_POINT_VSDCT = 1          /* six faces in one 2D depth atlas + RG16 indirection cube map */
 } skgl_point_technique;
 
+typedef struct skgl_point_atlas skgl_point_atlas;
+
 typedef struct skgl_point_desc {
     skgl_point_technique technique; /* [SKGL_POINT_CUBE] */
     int resolution;               /* texels per face side, the most rendered [512]; a power
@@ -343,6 +350,9 @@ typedef struct skgl_point_desc {
     int screen_w, screen_h;       /* S of the selection: pixels of the light's rectangle on a
                                      screen this size [0: the viewport bound at render time] */
     int vsdct_grey_levels;        /* G of Eq. (5.4.7) for the indirection size (D = 8) [256] */
+    skgl_point_atlas *atlas;      /* SKGL_POINT_VSDCT only: the six faces live in this shared
+                                     atlas, placed by skgl_point_atlas_pack [NULL: an atlas of
+                                     the light's own, 3 x 2 faces of .resolution] */
 } skgl_point_desc;
 
 typedef struct skgl_point skgl_point;
@@ -374,10 +384,40 @@ SKGLDEF const char *skgl_point_glsl_snippet(void);
    SKGL_POINT_VSDCT (the indirection must not blend faces). */
 SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit);
 SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p);
-/* the depth texture: GL_TEXTURE_CUBE_MAP (cube) or GL_TEXTURE_2D atlas (VSDCT) */
+/* the depth texture: GL_TEXTURE_CUBE_MAP (cube) or GL_TEXTURE_2D atlas (VSDCT;
+   the shared atlas's texture with desc.atlas) */
 SKGLDEF unsigned skgl_point_texture(const skgl_point *p);
-/* VSDCT: the atlas layout of the last render (faces at the side rendered) */
+/* VSDCT: the atlas layout of the last render (faces at the side rendered;
+   in a shared atlas, the rectangles of the last skgl_point_atlas_pack) */
 SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p);
+
+/* ---- several point lights in one atlas (seed 004's VSDCT, shared) -------
+   skgl_point_atlas *atlas;  once: skgl_point_atlas_create(gl, 4096, 2048, &atlas)
+   each light: desc.technique = SKGL_POINT_VSDCT, desc.atlas = atlas
+   every frame:
+     skgl_point_atlas_pack(gl, atlas, lights, n, &cam, light_positions);
+     then per light skgl_point_render / skgl_point_mask / skgl_point_bind.
+   The pack selects each light's face side as skgl_point_render would
+   (.resolution, or sk_cube_resolution with .select_resolution), places the
+   6 n square faces on shelves (largest first, left to right, a new shelf
+   above when a row is full) and refills each light's indirection cube map
+   for its rectangles. When they do not fit, the largest side is halved
+   (the first light's on ties) until they do; the stats' atlas_wanted keeps
+   the side selected. skgl_point_render of an atlas light then renders the
+   side packed (it needs a pack first, SK_ERR_INVALID_ARG otherwise) and
+   clears only its own faces; lookups are clamped to each face's rectangle,
+   so a light never reads another's texels. Destroy the lights before the
+   atlas. */
+SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int height, skgl_point_atlas **out);
+SKGLDEF void skgl_point_atlas_destroy(skgl_context *ctx, skgl_point_atlas *a);
+/* light_pos[i] is lights[i]'s position this frame (the one given to its
+   render). SK_ERR_CAPACITY when even faces of one texel do not fit; no
+   light is placed anew then (each keeps its last placement, if any). */
+SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, skgl_point *const *lights, int n,
+                                        const skgl_camera *cam, const sk_vec3 *light_pos);
+/* the GL_TEXTURE_2D depth texture; its size */
+SKGLDEF unsigned skgl_point_atlas_texture(const skgl_point_atlas *a);
+SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *height);
 
 #ifdef __cplusplus
 }
@@ -2494,8 +2534,20 @@ struct skgl_point {
     sk_frustum view;               /* camera frustum of the render under way (caster culling) */
     float cull_margin;             /* world distance casters are grown by when culled (the filter's reach) */
     sk_vsdct_layout layout;        /* VSDCT: faces at face_res inside the full-size atlas */
+    int packed;                    /* shared atlas: 1 once skgl_point_atlas_pack placed the faces */
     skgl_stats stats;
 };
+
+struct skgl_point_atlas {
+    skgl__uint tex;                /* GL_TEXTURE_2D, DEPTH_COMPONENT32F, comparison on */
+    int w, h;
+};
+
+/* the 2D depth texture the light renders into and samples: shared or its own */
+static skgl__uint skgl__point_tex(const skgl_point *p)
+{
+    return p->desc.atlas ? p->desc.atlas->tex : p->tex;
+}
 
 static skgl_point_desc skgl__point_defaults(const skgl_point_desc *d)
 {
@@ -2524,26 +2576,38 @@ static sk_vsdct_layout skgl__point_layout(const skgl_point *p, int m)
     return l;
 }
 
-/* VSDCT: (re)fills the indirection cube map for faces of side m */
-static sk_result skgl__point_fill(skgl_context *ctx, skgl_point *p, int m)
+/* VSDCT: (re)fills the indirection cube map for the faces of layout l
+   (nothing to do when it already holds them) */
+static sk_result skgl__point_fill(skgl_context *ctx, skgl_point *p, const sk_vsdct_layout *l)
 {
     skgl__api *gl = &ctx->gl;
     size_t face_n = (size_t)p->ni * (size_t)p->ni * 2;
     unsigned short *buf;
     int f;
-    if (p->filled_res == m) return SK_OK;
+    if (p->filled_res != 0 && memcmp(&p->layout, l, sizeof *l) == 0) return SK_OK;
     buf = (unsigned short *)SKGL_MALLOC(sizeof(unsigned short) * face_n * 6);
     if (!buf) return SK_ERR_CAPACITY;
-    p->layout = skgl__point_layout(p, m);
-    if (sk_vsdct_indirection_fill(&p->layout, p->ni, buf) != SK_OK) { SKGL_FREE(buf); return SK_ERR_INVALID_ARG; }
+    if (sk_vsdct_indirection_fill(l, p->ni, buf) != SK_OK) { SKGL_FREE(buf); return SK_ERR_INVALID_ARG; }
+    p->layout = *l;
     skgl__pixel_store_plain(gl);
     gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
     for (f = 0; f < 6; f++)
         gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, 0, SKGL__RG16, p->ni, p->ni, 0, SKGL__RG,
                        SKGL__UNSIGNED_SHORT, buf + face_n * (size_t)f);
     SKGL_FREE(buf);
-    p->filled_res = m;
+    p->filled_res = l->face_res;
     return SK_OK;
+}
+
+/* a VSDCT atlas: 2D depth, bilinear comparison (bound texture unit 0 current) */
+static void skgl__atlas_alloc(skgl__api *gl, skgl__uint tex, int w, int h)
+{
+    gl->BindTexture(SKGL__TEXTURE_2D, tex);
+    gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, w, h, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
 }
 
 static void skgl__point_free(skgl_context *ctx, skgl_point *p)
@@ -2577,12 +2641,14 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
         !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.normal_bias) ||
         d.pcf_radius < 0 || d.pcf_radius > 8 || !sk__finite(d.resolution_c) || !(d.resolution_c > 0.0f) ||
         d.screen_w < 0 || d.screen_h < 0 || d.vsdct_grey_levels < 1 ||
-        (d.technique == SKGL_POINT_CUBE && d.select_resolution && !skgl__is_pow2(d.resolution)))
+        (d.technique == SKGL_POINT_CUBE && d.select_resolution && !skgl__is_pow2(d.resolution)) ||
+        (d.atlas && (d.technique != SKGL_POINT_VSDCT || !d.atlas->tex)))
         return SK_ERR_INVALID_ARG;
     gl = &ctx->gl;
     gl->GetIntegerv(d.technique == SKGL_POINT_CUBE ? SKGL__MAX_CUBE_MAP_TEXTURE_SIZE : SKGL__MAX_TEXTURE_SIZE,
                     &max_size);
-    if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : d.resolution > max_size / 3)
+    /* a shared atlas bounds the side by packing (skgl_point_atlas_pack halves it) */
+    if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : !d.atlas && d.resolution > max_size / 3)
         return SK_ERR_INVALID_ARG;
     p = (skgl_point *)SKGL_MALLOC(sizeof *p);
     if (!p) return SK_ERR_CAPACITY;
@@ -2599,7 +2665,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     if (!p->prog) { SKGL_FREE(p); return SK_ERR_GL; }
     skgl__save(gl, &st);
     gl->ActiveTexture(SKGL__TEXTURE0);
-    gl->GenTextures(1, &p->tex); ctx->objects++;
+    if (!d.atlas) { gl->GenTextures(1, &p->tex); ctx->objects++; }
     if (d.technique == SKGL_POINT_CUBE) {
         /* the full mip chain only when a smaller level may be chosen */
         p->levels = 1;
@@ -2618,13 +2684,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
     } else {
-        gl->BindTexture(SKGL__TEXTURE_2D, p->tex);
-        gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, 3 * d.resolution, 2 * d.resolution, 0,
-                       SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+        if (!d.atlas) skgl__atlas_alloc(gl, p->tex, 3 * d.resolution, 2 * d.resolution);
         /* Eq. (5.4.7) with D = 8 bits of filter weight precision; never below
            the face side, so the linear ramp of the filtered coordinates is
            clamped for at most half a shadow texel at a face edge */
@@ -2635,7 +2695,10 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, 0);
-        if (r == SK_OK) r = skgl__point_fill(ctx, p, d.resolution);
+        if (r == SK_OK) {
+            sk_vsdct_layout l = skgl__point_layout(p, d.resolution);
+            r = skgl__point_fill(ctx, p, &l);
+        }
         gl->GenSamplers(1, &p->lin_sampler); ctx->objects++;
         gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
         gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
@@ -2672,7 +2735,10 @@ SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p)
     return d;
 }
 SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
-SKGLDEF unsigned skgl_point_texture(const skgl_point *p) { return p ? p->tex : 0; }
+SKGLDEF unsigned skgl_point_texture(const skgl_point *p)
+{
+    return p ? skgl__point_tex(p) : 0;
+}
 SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p)
 {
     sk_vsdct_layout l;
@@ -2750,6 +2816,30 @@ static float skgl__point_pixels(const skgl_point *p, const sk_mat4 *vp, const sk
     return (float)rect[2] * (float)rect[3];
 }
 
+/* face culling: a face whose frustum misses the view frustum casts
+   nothing visible (seed Fig. 5.4.2, frustum-frustum intersection), widened
+   by the filter's reach at the face side m. Resolution selection: the
+   smallest power of two M with N M^2 >= c S, N the faces rendered. A
+   smaller M widens the reach, which may add faces, which may lower M:
+   repeated until both hold (M only decreases). p->light_pos and p->view
+   hold this frame's light and view. Returns M; *faces the faces' bits. */
+static int skgl__point_select(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4], unsigned *faces)
+{
+    int f, nf, m = p->desc.resolution;
+    for (f = 0; f < 8; f++) {
+        int sel;
+        *faces = p->desc.cull_faces ? skgl__point_faces(p->light_pos, p->desc.near_plane, p->desc.range, &p->view,
+                                                        skgl__point_reach(p, m))
+                                    : 0x3fu;
+        nf = skgl__popcount6(*faces);
+        if (!p->desc.select_resolution || nf == 0) break;
+        sel = sk_cube_resolution(nf, skgl__point_pixels(p, vp, viewport), p->desc.resolution_c, p->desc.resolution);
+        if (sel <= 0 || sel >= m) break;
+        m = sel;
+    }
+    return m;
+}
+
 SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
                                     const skgl_scene *scene, sk_vec3 light_pos)
 {
@@ -2758,12 +2848,19 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     skgl__state st;
     sk_mat4 vp, proj;
     unsigned faces;
-    int f, nf = 0, m, vsdct;
+    int f, m, vsdct, shared;
     float zn, zf;
     sk_result r;
+    skgl__uint tex;
     if (!ctx || !p || !cam || !scene || !scene->draw || !sk__v3_finite(light_pos) ||
         !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj))
         return SK_ERR_INVALID_ARG;
+    shared = p->desc.atlas != NULL;
+    if (shared && !p->packed) {
+        skgl__set_log(ctx, "skgl_point_render: a shared-atlas light needs skgl_point_atlas_pack first", NULL);
+        return SK_ERR_INVALID_ARG;
+    }
+    tex = skgl__point_tex(p);
     gl = &ctx->gl;
     vsdct = p->desc.technique == SKGL_POINT_VSDCT;
     zn = p->desc.near_plane;
@@ -2772,32 +2869,22 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     p->light_pos = light_pos;
     p->view = sk_frustum_from_matrix(vp);
     skgl__save(gl, &st);
-    /* face culling: a face whose frustum misses the view frustum casts
-       nothing visible (seed Fig. 5.4.2, frustum-frustum intersection),
-       widened by the filter's reach at the face side m. Resolution
-       selection: the smallest power of two M with N M^2 >= c S, N the
-       faces rendered. A smaller M widens the reach, which may add faces,
-       which may lower M: repeated until both hold (M only decreases). */
-    m = p->desc.resolution;
-    for (f = 0; f < 8; f++) {
-        int sel;
+    if (shared) {
+        /* the side skgl_point_atlas_pack placed; the faces for its reach
+           (a halved side reaches further, so it may add a face) */
+        m = p->layout.face_res;
         faces = p->desc.cull_faces ? skgl__point_faces(light_pos, zn, zf, &p->view, skgl__point_reach(p, m)) : 0x3fu;
-        nf = skgl__popcount6(faces);
-        if (!p->desc.select_resolution || nf == 0) break;
-        sel = sk_cube_resolution(nf, skgl__point_pixels(p, &vp, st.viewport), p->desc.resolution_c,
-                                 p->desc.resolution);
-        if (sel <= 0 || sel >= m) break;
-        m = sel;
-    }
+    } else m = skgl__point_select(p, &vp, st.viewport, &faces);
     p->cull_margin = (float)(skgl__point_reach(p, m) * zf);
     p->level = 0;
     if (!vsdct) while ((p->desc.resolution >> p->level) > m) p->level++;
     m = vsdct ? m : p->desc.resolution >> p->level;
     gl->ActiveTexture(SKGL__TEXTURE0);
-    if (vsdct) {
-        r = skgl__point_fill(ctx, p, m);
+    if (vsdct && !shared) {
+        sk_vsdct_layout l = skgl__point_layout(p, m);
+        r = skgl__point_fill(ctx, p, &l);
         if (r != SK_OK) { skgl__restore(gl, &st); return r; }
-    } else {
+    } else if (!vsdct) {
         /* sampling reads the level rendered, and only that one */
         gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
@@ -2821,17 +2908,19 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
                           p->desc.depth_bias > 0.0f ? p->desc.depth_bias : 0.0f);
     } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
     if (vsdct) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, p->tex, 0);
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, tex, 0);
         if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
             gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
             skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
             skgl__restore(gl, &st);
             return SK_ERR_GL;
         }
-        /* the faces' region of the atlas, one clear (culled faces read lit) */
+        /* the faces' region of an own atlas, one clear (culled faces read
+           lit); in a shared atlas each face's rectangle, cleared in the loop
+           (the other lights' faces stay) */
         gl->Enable(SKGL__SCISSOR_TEST);
         gl->Scissor(0, 0, 3 * m, 2 * m);
-        gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+        if (!shared) gl->Clear(SKGL__DEPTH_BUFFER_BIT);
     } else gl->Disable(SKGL__SCISSOR_TEST);
     gl->UseProgram(ctx->depth_prog);
     p->stats.passes = p->stats.faces_rendered = p->stats.faces_culled = 0;
@@ -2842,6 +2931,7 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
         if (vsdct) {
             gl->Viewport(p->layout.face_x[f], p->layout.face_y[f], m, m);
             gl->Scissor(p->layout.face_x[f], p->layout.face_y[f], m, m);
+            if (shared) gl->Clear(SKGL__DEPTH_BUFFER_BIT);
         } else {
             gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
                                      SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, p->tex, p->level);
@@ -2919,7 +3009,7 @@ static void skgl__point_textures(skgl_context *ctx, const skgl_point *p, int uni
     skgl__api *gl = &ctx->gl;
     gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
     if (p->desc.technique == SKGL_POINT_VSDCT) {
-        gl->BindTexture(SKGL__TEXTURE_2D, p->tex);
+        gl->BindTexture(SKGL__TEXTURE_2D, skgl__point_tex(p));
         gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
         gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)ind_unit);
         gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
@@ -3020,6 +3110,140 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     p->stats.mask_ms = skgl__query_end(ctx);
     skgl__restore(gl, &st);
     return skgl__check(ctx, "skgl_point_mask");
+}
+
+/* ---- several point lights in one atlas --------------------------------- */
+SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int height, skgl_point_atlas **out)
+{
+    skgl__api *gl;
+    skgl__state st;
+    skgl__int max_size = 0;
+    skgl_point_atlas *a;
+    if (out) *out = NULL;
+    if (!ctx || !out || width < 1 || height < 1) return SK_ERR_INVALID_ARG;
+    gl = &ctx->gl;
+    gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
+    if (width > max_size || height > max_size) return SK_ERR_INVALID_ARG;
+    a = (skgl_point_atlas *)SKGL_MALLOC(sizeof *a);
+    if (!a) return SK_ERR_CAPACITY;
+    memset(a, 0, sizeof *a);
+    a->w = width;
+    a->h = height;
+    skgl__save(gl, &st);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->GenTextures(1, &a->tex); ctx->objects++;
+    skgl__atlas_alloc(gl, a->tex, width, height);
+    skgl__restore(gl, &st);
+    if (gl->GetError() != 0) {
+        skgl__set_log(ctx, "skgl_point_atlas_create: GL error while allocating the atlas", NULL);
+        skgl_point_atlas_destroy(ctx, a);
+        return SK_ERR_GL;
+    }
+    *out = a;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_point_atlas_destroy(skgl_context *ctx, skgl_point_atlas *a)
+{
+    if (!ctx || !a) return;
+    if (a->tex) { ctx->gl.DeleteTextures(1, &a->tex); ctx->objects--; }
+    SKGL_FREE(a);
+}
+
+SKGLDEF unsigned skgl_point_atlas_texture(const skgl_point_atlas *a) { return a ? a->tex : 0; }
+SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *height)
+{
+    if (width) *width = a ? a->w : 0;
+    if (height) *height = a ? a->h : 0;
+}
+
+/* Shelf packing of the lights' faces, all six of a light of side res[i]:
+   lights taken by side, largest first (order[] sorted so), squares placed
+   left to right; a square that would pass the right edge starts a new
+   shelf on top of the last one, as high as its first square, which is the
+   tallest on it since sides only decrease. 1 and the corners in x, y
+   (light i's face f at [6 i + f]) when everything fits in w x h, else 0. */
+static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *order, int *x, int *y)
+{
+    int k, f, cx = 0, sy = 0, shelf = 0;
+    for (k = 0; k < n; k++) {
+        int i = order[k], m = res[i];
+        if (m > w) return 0;
+        for (f = 0; f < 6; f++) {
+            if (cx + m > w) { sy += shelf; cx = 0; shelf = 0; }
+            if (shelf == 0) shelf = m;
+            if (sy + m > h) return 0;
+            x[6 * i + f] = cx;
+            y[6 * i + f] = sy;
+            cx += m;
+        }
+    }
+    return 1;
+}
+
+SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, skgl_point *const *lights, int n,
+                                        const skgl_camera *cam, const sk_vec3 *light_pos)
+{
+    skgl__api *gl;
+    skgl__state st;
+    sk_mat4 vp;
+    sk_frustum view;
+    int *res, *order, *x, *y;
+    int i, k, f, fits;
+    sk_result r = SK_OK;
+    if (!ctx || !a || !lights || n < 1 || !cam || !light_pos || !sk__mat_finite(&cam->view) ||
+        !sk__mat_finite(&cam->proj))
+        return SK_ERR_INVALID_ARG;
+    for (i = 0; i < n; i++)
+        if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i])) return SK_ERR_INVALID_ARG;
+    res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 14);
+    if (!res) return SK_ERR_CAPACITY;
+    order = res + n;
+    x = order + n;
+    y = x + 6 * n;
+    gl = &ctx->gl;
+    skgl__save(gl, &st);
+    /* each light's side, selected as skgl_point_render selects it */
+    vp = sk_mat4_mul(cam->proj, cam->view);
+    view = sk_frustum_from_matrix(vp);
+    for (i = 0; i < n; i++) {
+        skgl_point *p = lights[i];
+        unsigned faces;
+        p->light_pos = light_pos[i];
+        p->view = view;
+        res[i] = skgl__point_select(p, &vp, st.viewport, &faces);
+        if (res[i] < 1) res[i] = 1;
+        lights[i]->stats.atlas_wanted = res[i];
+    }
+    /* pack; while it does not fit, halve the largest side */
+    for (;;) {
+        for (i = 0; i < n; i++) order[i] = i;
+        for (i = 1; i < n; i++)   /* insertion sort by side, descending; stable */
+            for (k = i; k > 0 && res[order[k - 1]] < res[order[k]]; k--) {
+                int t = order[k]; order[k] = order[k - 1]; order[k - 1] = t;
+            }
+        fits = skgl__atlas_shelves(a->w, a->h, n, res, order, x, y);
+        if (fits || res[order[0]] <= 1) break;
+        res[order[0]] /= 2;
+    }
+    if (!fits) {
+        skgl__set_log(ctx, "skgl_point_atlas_pack: the faces do not fit even at one texel", NULL);
+        r = SK_ERR_CAPACITY;
+    }
+    for (i = 0; i < n && r == SK_OK; i++) {
+        sk_vsdct_layout l;
+        l.face_res = res[i];
+        l.atlas_w = a->w;
+        l.atlas_h = a->h;
+        for (f = 0; f < 6; f++) { l.face_x[f] = x[6 * i + f]; l.face_y[f] = y[6 * i + f]; }
+        gl->ActiveTexture(SKGL__TEXTURE0);
+        r = skgl__point_fill(ctx, lights[i], &l);
+        if (r == SK_OK) { lights[i]->packed = 1; lights[i]->face_res = res[i]; }
+    }
+    skgl__restore(gl, &st);
+    SKGL_FREE(res);
+    if (r != SK_OK) return r;
+    return skgl__check(ctx, "skgl_point_atlas_pack");
 }
 
 #ifdef __cplusplus

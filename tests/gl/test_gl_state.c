@@ -34,7 +34,13 @@
    textures and +1 sampler per VSDCT light, all deleted by
    skgl_point_destroy. Can fail: with the restore of the cube-map bindings
    and of the seamless enable removed from skgl__restore, 27 checks failed
-   (create, render, mask, bind of the point lights). */
+   (create, render, mask, bind of the point lights).
+   A fifth point light, VSDCT with every optimization on, lives in a
+   shared atlas (skgl_point_atlas_create, 512 x 512): atlas create and
+   skgl_point_atlas_pack (before each render) leave the state alone too;
+   measured: the atlas +1 texture, its light +1 program, +1 texture (the
+   indirection) and +1 sampler; the count returns to its value after
+   skgl_create once the light and the atlas are destroyed. */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -483,14 +489,16 @@ static void test_state_and_objects(void) {
                      skgl_gl_object_count(sk), own);
     }
     /* point lights: cube and VSDCT, naive and with every optimization on */
-    for (t = 0; t < 4; t++) {
-        static const char *const names[4] = {"point-cube", "point-vsdct", "point-cube-all", "point-vsdct-all"};
+    for (t = 0; t < 5; t++) {
+        static const char *const names[5] = {"point-cube", "point-vsdct", "point-cube-all", "point-vsdct-all",
+                                             "point-vsdct-atlas"};
         skgl_point_desc d;
         skgl_point *p = NULL;
+        skgl_point_atlas *atlas = NULL;
         const char *tn = names[t];
         sk_vec3 lp = gt_v3(0.5f, 2.5f, 0.5f);
         memset(&d, 0, sizeof d);
-        d.technique = (t & 1) ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE;
+        d.technique = (t & 1) || t == 4 ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE;
         d.resolution = 256;
         d.range = 12.0f;
         d.cull_faces = d.cull_casters = d.scissor = d.select_resolution = t >= 2;
@@ -500,6 +508,17 @@ static void test_state_and_objects(void) {
             int ind = d.technique == SKGL_POINT_VSDCT;
             set_state(gl, &x, &o, fw.program, v);
             read_state(gl, &x, &before);
+            if (t == 4 && !atlas) {
+                r = skgl_point_atlas_create(sk, 512, 512, &atlas);
+                SK_CHECK_MSG(r == SK_OK, "%s: atlas: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
+                if (r != SK_OK) break;
+                read_state(gl, &x, &after);
+                snprintf(what, sizeof what, "%s set %c: skgl_point_atlas_create", tn, "AB"[v]);
+                SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
+                SK_CHECK_MSG(skgl_gl_object_count(sk) == live_objects(0), "%s: count %d, tracked %d", tn,
+                             skgl_gl_object_count(sk), live_objects(0));
+                d.atlas = atlas;
+            }
             if (!p) {
                 r = skgl_point_create(sk, &d, &p);
                 SK_CHECK_MSG(r == SK_OK, "%s: skgl_point_create: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
@@ -509,6 +528,14 @@ static void test_state_and_objects(void) {
                 SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
                 SK_CHECK_MSG(skgl_gl_object_count(sk) == live_objects(0), "%s: count %d, tracked %d", tn,
                              skgl_gl_object_count(sk), live_objects(0));
+            }
+            if (atlas) {
+                r = skgl_point_atlas_pack(sk, atlas, &p, 1, &cam, &lp);
+                SK_CHECK_MSG(r == SK_OK, "%s: pack: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
+                read_state(gl, &x, &after);
+                snprintf(what, sizeof what, "%s set %c: skgl_point_atlas_pack", tn, "AB"[v]);
+                SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
+                SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
             }
             r = skgl_point_render(sk, p, &cam, &sc, lp);
             SK_CHECK_MSG(r == SK_OK, "%s: render: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
@@ -550,6 +577,7 @@ static void test_state_and_objects(void) {
                          lit, dark);
         }
         skgl_point_destroy(sk, p);
+        skgl_point_atlas_destroy(sk, atlas);
         SK_CHECK_MSG(skgl_gl_object_count(sk) == own, "%s: after skgl_point_destroy: %d, after create %d", tn,
                      skgl_gl_object_count(sk), own);
     }
