@@ -2449,6 +2449,60 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
     return skgl__check(ctx, "skgl_shadow_bind");
 }
 
+/* ---- the deferred mask passes (inside save/restore) --------------------- */
+/* the G-buffer on units 1 (depth) and 2 (normals, may be 0) with the point
+   sampler; *w, *h: the mask texture's level 0 (0 when it has none) */
+static void skgl__mask_inputs(skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, unsigned mask_tex,
+                              skgl__int *w, skgl__int *h)
+{
+    skgl__api *gl = &ctx->gl;
+    *w = *h = 0;
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, w);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, h);
+    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
+    gl->BindSampler(1, ctx->point_sampler);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
+    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
+    gl->BindSampler(2, ctx->point_sampler);
+}
+
+/* the mask texture as the only colour target, full viewport, no blending,
+   culling, depth or polygon offset; 0 when it is not renderable (detached) */
+static int skgl__mask_target(skgl_context *ctx, unsigned mask_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
+    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
+    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        return 0;
+    }
+    gl->Viewport(0, 0, w, h);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->ColorMask(1, 1, 1, 1);
+    return 1;
+}
+
+/* the G-buffer uniforms of a mask program (current), the full-screen
+   triangle, and the target detached */
+static void skgl__mask_draw(skgl_context *ctx, skgl__uint prog, const sk_mat4 *inv_view_proj, unsigned normal_tex)
+{
+    skgl__api *gl = &ctx->gl;
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv_view_proj->m);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+}
+
 SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
 {
@@ -2463,15 +2517,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     gl = &ctx->gl;
     p = ctx->mask_prog;
     skgl__save(gl, &st);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
-    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
-    gl->BindSampler(1, ctx->point_sampler);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
-    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
-    gl->BindSampler(2, ctx->point_sampler);
+    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
     gl->ActiveTexture(SKGL__TEXTURE0 + 3);
     gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
     gl->BindSampler(3, ctx->point_sampler);
@@ -2484,32 +2530,17 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
         return SK_ERR_INVALID_ARG;
     }
     skgl__query_begin(ctx);
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
-    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
-    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
+        skgl__query_end(ctx);
         skgl__restore(gl, &st);
         skgl__set_log(ctx, "skgl_shadow_mask: mask texture is not colour-renderable", NULL);
         return SK_ERR_GL;
     }
-    gl->Viewport(0, 0, w, h);
     gl->Disable(SKGL__SCISSOR_TEST);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->ColorMask(1, 1, 1, 1);
     gl->UseProgram(p);
     skgl__uniforms(ctx, s, p, 0, 3);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_depth"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_normals"), 2);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_has_normals"), normal_tex != 0);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_inv_view_proj"), 1, 0, inv.m);
     gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_view"), 1, 0, cam->view.m);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    skgl__mask_draw(ctx, p, &inv, normal_tex);
     s->stats.mask_ms = skgl__query_end(ctx);
     skgl__restore(gl, &st);
     return skgl__check(ctx, "skgl_shadow_mask");
@@ -3048,15 +3079,7 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     gl = &ctx->gl;
     prog = p->prog;
     skgl__save(gl, &st);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
-    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
-    gl->BindSampler(1, ctx->point_sampler);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
-    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
-    gl->BindSampler(2, ctx->point_sampler);
+    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
     skgl__point_textures(ctx, p, 0, 3);
     gl->ActiveTexture(SKGL__TEXTURE0);
     if (w <= 0 || h <= 0) {
@@ -3075,17 +3098,12 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     }
     memcpy(p->stats.scissor, rect, sizeof rect);
     skgl__query_begin(ctx);
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
-    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
-    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-        if (ctx->timing) skgl__query_end(ctx);
+    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
+        skgl__query_end(ctx);
         skgl__restore(gl, &st);
         skgl__set_log(ctx, "skgl_point_mask: mask texture is not colour-renderable", NULL);
         return SK_ERR_GL;
     }
-    gl->Viewport(0, 0, w, h);
     if (p->desc.scissor) {
         gl->Enable(SKGL__SCISSOR_TEST);
         gl->Scissor(rect[0], rect[1], rect[2], rect[3]);
@@ -3093,20 +3111,9 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     /* cube: 2x2 filtering walks across face edges; VSDCT: the indirection
        must never blend two faces' coordinates */
     skgl__enable(gl, SKGL__TEXTURE_CUBE_MAP_SEAMLESS, p->desc.technique == SKGL_POINT_CUBE);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->ColorMask(1, 1, 1, 1);
     gl->UseProgram(prog);
     skgl__point_uniforms(ctx, p, prog, 0, 3);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv.m);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    skgl__mask_draw(ctx, prog, &inv, normal_tex);
     p->stats.mask_ms = skgl__query_end(ctx);
     skgl__restore(gl, &st);
     return skgl__check(ctx, "skgl_point_mask");
