@@ -527,6 +527,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered */\n"
     "uniform int sk_rmsm_page;          /* RMSM: page side in texels (+2 border texels in the pool) */\n"
     "uniform float sk_select_extent;    /* a partition's rect in its light NDC: [-e, e]^2 */\n"
+    "uniform vec2 sk_map_extent;        /* the part of each layer this frame rendered, in texture coordinates */\n"
     "\n"
     "/* World size of one texel of the layer at p: 2/res over the gradient of\n"
     "   light NDC x (and y), d(c.x/c.w)/dp = (row0 - ndc.x row3) / c.w; the larger\n"
@@ -549,7 +550,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    if (c.w <= 0.0) return 1.0;\n"
     "    vec3 ndc = c.xyz / c.w;\n"
     "    vec3 uvz = ndc * 0.5 + 0.5;\n"
-    "    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;\n"
+    "    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, sk_map_extent))) return 1.0;\n"
     "    if (uvz.z > 1.0) return 1.0;\n"
     "    float z = max(uvz.z, 0.0);\n"
     "    if (sk_pcf_radius <= 0)\n"
@@ -1551,7 +1552,9 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
         d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
         d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f) ||
         !(d.lspsm.zeta > 0.0f && d.lspsm.zeta < 0.5f) || !(d.lspsm.sigma > 0.0f && d.lspsm.sigma <= 1e3f) ||
-        d.lspsm.h_max < 1 || d.lspsm.nw_max < 1 || d.ferko_latency < 0 || d.ferko_latency > 1)
+        d.lspsm.h_max < 1 || d.lspsm.nw_max < 1 || d.ferko_latency < 0 || d.ferko_latency > 1 ||
+        (d.technique == SKGL_LSPSM && (d.lspsm.h_max > SKGL_MAX_CASCADES || d.lspsm.nw_max > SKGL_MAX_CASCADES ||
+                                       d.lspsm.h_max * d.lspsm.nw_max > SKGL_MAX_CASCADES)))
         return SK_ERR_INVALID_ARG;
     if (d.technique == SKGL_RMSM &&
         (d.rmsm_page_size < 16 || d.rmsm_page_size > 1024 || (d.rmsm_page_size & (d.rmsm_page_size - 1)) ||
@@ -2270,6 +2273,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     (void)cam;
     skgl__save(gl, &st);
     skgl__pixel_store_plain(gl);
+    gl->ActiveTexture(SKGL__TEXTURE0);           /* a unit save/restore covers */
     if (!s->rmsm_analyzed) {
         /* no analysis: the coarsest page alone */
         r = skgl__ferko_light(scene, light_dir, &s->rmsm_lvp);
@@ -2377,6 +2381,8 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
         static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
         gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, s->tex, 0, i);
         if (i == 0 && gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+            gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
+            skgl__query_end(ctx);
             skgl__set_log(ctx, "shadow framebuffer incomplete", NULL);
             skgl__restore(gl, &st);
             return SK_ERR_GL;
@@ -2421,6 +2427,14 @@ static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint p
     gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->maps + 1, s->stats.splits);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_layers"), s->maps);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_select_by_map"), s->desc.technique == SKGL_LSPSM);
+    {
+        /* FERKO draws into the lower-left view_w x view_h texels: beyond them
+           lie older maps' texels, not this frame's */
+        float ext[2];
+        ext[0] = s->desc.technique == SKGL_FERKO ? (float)s->view_w / (float)s->desc.resolution : 1.0f;
+        ext[1] = s->desc.technique == SKGL_FERKO ? (float)s->view_h / (float)s->desc.resolution : 1.0f;
+        gl->Uniform2fv(gl->GetUniformLocation(prog, "sk_map_extent"), 1, ext);
+    }
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_select_extent"), s->select_extent);
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_blend_band"), s->desc.blend_band);
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_normal_bias"), s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
@@ -2432,14 +2446,15 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
 {
     skgl__api *gl;
     skgl__int active = 0;
-    if (!ctx || !s || !program || unit < 0 || unit > 31) return SK_ERR_INVALID_ARG;
+    if (!ctx || !s || !program || unit < 0 || unit > (s->desc.technique == SKGL_RMSM ? 30 : 31))
+        return SK_ERR_INVALID_ARG;
     gl = &ctx->gl;
     gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
     gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
     gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
     gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
     gl->ActiveTexture((skgl__enum)active);
-    if (s->desc.technique == SKGL_RMSM && unit < 31) {
+    if (s->desc.technique == SKGL_RMSM) {
         gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit + 1);
         gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
         gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);

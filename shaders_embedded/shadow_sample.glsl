@@ -38,6 +38,7 @@ uniform int sk_rmsm_levels;        /* RMSM: levels, the last one page */
 uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered */
 uniform int sk_rmsm_page;          /* RMSM: page side in texels (+2 border texels in the pool) */
 uniform float sk_select_extent;    /* a partition's rect in its light NDC: [-e, e]^2 */
+uniform vec2 sk_map_extent;        /* the part of each layer this frame rendered, in texture coordinates */
 
 /* World size of one texel of the layer at p: 2/res over the gradient of
    light NDC x (and y), d(c.x/c.w)/dp = (row0 - ndc.x row3) / c.w; the larger
@@ -60,7 +61,7 @@ float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)
     if (c.w <= 0.0) return 1.0;
     vec3 ndc = c.xyz / c.w;
     vec3 uvz = ndc * 0.5 + 0.5;
-    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, vec2(1.0)))) return 1.0;
+    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, sk_map_extent))) return 1.0;
     if (uvz.z > 1.0) return 1.0;
     float z = max(uvz.z, 0.0);
     if (sk_pcf_radius <= 0)

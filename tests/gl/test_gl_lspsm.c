@@ -181,4 +181,24 @@ static void test_failure_cases(void) {
     }
 }
 
-SK_TEST_MAIN(test_against_pssm, test_failure_cases)
+/* partition limits past the texture array's layers are refused at create */
+static void test_bad_params(void) {
+    gt_env e;
+    int b;
+    if (gt_env_init_named(&e, "ground-boxes", 64, 64) != 0) { gt_env_free(&e); return; }
+    for (b = 0; b < 4; b++) {
+        skgl_shadow_desc d;
+        skgl_shadow *s = NULL;
+        memset(&d, 0, sizeof d);
+        d.technique = SKGL_LSPSM;
+        if (b == 0) d.lspsm.h_max = 100;
+        if (b == 1) d.lspsm.nw_max = 9;
+        if (b == 2) { d.lspsm.h_max = 3; d.lspsm.nw_max = 3; }    /* 9 > 8 layers */
+        if (b == 3) d.lspsm.zeta = 0.5f;
+        SK_CHECK_MSG(skgl_shadow_create(e.sk, &d, &s) == SK_ERR_INVALID_ARG, "bad params %d accepted", b);
+        skgl_shadow_destroy(e.sk, s);
+    }
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_against_pssm, test_failure_cases, test_bad_params)

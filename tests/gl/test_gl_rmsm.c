@@ -222,6 +222,26 @@ static void test_degraded(void) {
             SK_CHECK_MSG(skgl_shadow_create(e.sk, &d, &s) == SK_ERR_INVALID_ARG, "bad desc %d accepted", b);
         }
     }
+    /* a render without analysis uploads the page table: the caller's active
+       unit (here 6, outside the units shadowkit saves) keeps its texture;
+       the table's unit + 1 must exist, so bind refuses unit 31 */
+    {
+        skgl_shadow *s = rmsm_shadow(&e, 16384, 128, 8);
+        unsigned tex = 0;
+        int bound = -1, active = -1;
+        e.gl.GenTextures(1, &tex);
+        e.gl.ActiveTexture(0x84C0 + 6);
+        e.gl.BindTexture(0x0DE1, tex);
+        SK_CHECK(s && rmsm_frame(&e, s, &cam, &sc, l, 0, NULL) == 0);
+        e.gl.GetIntegerv(0x84E0, &active);
+        e.gl.GetIntegerv(0x8069, &bound);
+        SK_CHECK_MSG(active == 0x84C0 + 6 && bound == (int)tex, "active unit 0x%x, its 2D texture %d (was %u)", active,
+                     bound, tex);
+        SK_CHECK(skgl_shadow_bind(e.sk, s, 1, 31) == SK_ERR_INVALID_ARG);
+        e.gl.ActiveTexture(0x84C0);
+        e.gl.DeleteTextures(1, &tex);
+        skgl_shadow_destroy(e.sk, s);
+    }
     free(ref); free(m);
     gt_env_free(&e);
 }
