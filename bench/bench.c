@@ -171,35 +171,6 @@ static int mkdir_p(const char *dir) {
     return tb_image_make_parent_dirs(buf);
 }
 
-/* inverse of a column-major 4x4 in double (Gauss-Jordan, partial pivoting) */
-static int mat4_inverse_d(const double m[16], double inv[16]) {
-    double a[4][8];
-    int i, j, k;
-    for (i = 0; i < 4; i++)
-        for (j = 0; j < 8; j++) a[i][j] = j < 4 ? m[j * 4 + i] : (double)(j - 4 == i);
-    for (i = 0; i < 4; i++) {
-        int p = i;
-        double piv;
-        for (k = i + 1; k < 4; k++)
-            if (fabs(a[k][i]) > fabs(a[p][i])) p = k;
-        if (fabs(a[p][i]) < 1e-300) return 0;
-        for (j = 0; j < 8; j++) {
-            double t = a[i][j];
-            a[i][j] = a[p][j];
-            a[p][j] = t;
-        }
-        piv = a[i][i];
-        for (j = 0; j < 8; j++) a[i][j] /= piv;
-        for (k = 0; k < 4; k++)
-            if (k != i) {
-                double f = a[k][i];
-                for (j = 0; j < 8; j++) a[k][j] -= f * a[i][j];
-            }
-    }
-    for (i = 0; i < 4; i++)
-        for (j = 0; j < 4; j++) inv[j * 4 + i] = a[i][j + 4];
-    return 1;
-}
 
 /* -------------------------------------------------------- configurations */
 typedef struct bench_cfg {
@@ -957,7 +928,7 @@ static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, 
         for (k = 0; k < 3; k++) nrm[3 * i + k] = rgba[4 * i + k];
     /* the exact inverse (double) of the float matrix the G-buffer used */
     for (k = 0; k < 16; k++) vp[k] = vd->v.view_proj.m[k];
-    if (!mat4_inverse_d(vp, ivp)) return -1;
+    if (!tb_mat4_inverse_d(vp, ivp)) return -1;
     memset(&tv, 0, sizeof tv);
     for (k = 0; k < 16; k++) tv.inv_view_proj.m[k] = (float)ivp[k];
     tv.width = BENCH_W;

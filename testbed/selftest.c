@@ -541,29 +541,6 @@ static void mat4_mul(const double a[16], const double b[16], double o[16]) {
         }
 }
 
-static int mat4_inverse(const double m[16], double inv[16]) {
-    double a[4][8];
-    int i, j, k;
-    for (i = 0; i < 4; i++)
-        for (j = 0; j < 8; j++) a[i][j] = j < 4 ? m[j * 4 + i] : (j - 4 == i);
-    for (i = 0; i < 4; i++) {
-        int p = i;
-        double piv;
-        for (k = i + 1; k < 4; k++) if (fabs(a[k][i]) > fabs(a[p][i])) p = k;
-        if (fabs(a[p][i]) < 1e-300) return 0;
-        for (j = 0; j < 8; j++) { double t = a[i][j]; a[i][j] = a[p][j]; a[p][j] = t; }
-        piv = a[i][i];
-        for (j = 0; j < 8; j++) a[i][j] /= piv;
-        for (k = 0; k < 4; k++)
-            if (k != i) {
-                double f = a[k][i];
-                for (j = 0; j < 8; j++) a[k][j] -= f * a[i][j];
-            }
-    }
-    for (i = 0; i < 4; i++)
-        for (j = 0; j < 4; j++) inv[j * 4 + i] = a[i][j + 4];
-    return 1;
-}
 
 /* gluPerspective * gluLookAt (up = +y) in double: VP and its inverse */
 static int perspective_look(double fovy, double aspect, double zn, double zf, const double eye[3],
@@ -583,7 +560,7 @@ static int perspective_look(double fovy, double aspect, double zn, double zf, co
     V[14] = f[0] * eye[0] + f[1] * eye[1] + f[2] * eye[2];
     V[15] = 1;
     mat4_mul(P, V, VP);
-    return mat4_inverse(VP, IVP);
+    return tb_mat4_inverse_d(VP, IVP);
 }
 
 static void test_unproject(void) {

@@ -99,6 +99,35 @@ static void tb_mul_m4_v4_(const sk_mat4 *m, const double v[4], double out[4]) {
     }
 }
 
+int tb_mat4_inverse_d(const double m[16], double inv[16]) {
+    double a[4][8];
+    int i, j, k;
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 8; j++) a[i][j] = j < 4 ? m[j * 4 + i] : (double)(j - 4 == i);
+    for (i = 0; i < 4; i++) {
+        int p = i;
+        double piv;
+        for (k = i + 1; k < 4; k++)
+            if (fabs(a[k][i]) > fabs(a[p][i])) p = k;
+        if (fabs(a[p][i]) < 1e-300) return 0;
+        for (j = 0; j < 8; j++) {
+            double t = a[i][j];
+            a[i][j] = a[p][j];
+            a[p][j] = t;
+        }
+        piv = a[i][i];
+        for (j = 0; j < 8; j++) a[i][j] /= piv;
+        for (k = 0; k < 4; k++)
+            if (k != i) {
+                double f = a[k][i];
+                for (j = 0; j < 8; j++) a[k][j] -= f * a[i][j];
+            }
+    }
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 4; j++) inv[j * 4 + i] = a[i][j + 4];
+    return 1;
+}
+
 int tb_unproject_pixel(const sk_mat4 *ivp, int width, int height, int x, int y, float depth,
                        double out[3]) {
     double ndc[4], w[4];

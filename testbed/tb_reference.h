@@ -88,6 +88,11 @@ void tb_reference_destroy(tb_reference *ref);
 /* eps_rel * scene diagonal (opt may be NULL) */
 double tb_reference_epsilon(const tb_reference *ref, const tb_ref_options *opt);
 
+/* Inverse of a column-major 4x4 in double (Gauss-Jordan, partial
+   pivoting), e.g. of the float view-projection a G-buffer was drawn with;
+   1 ok, 0 if singular. */
+int tb_mat4_inverse_d(const double m[16], double inv[16]);
+
 /* World position of pixel (x, y) at window depth d (see the formula above);
    0 ok, -1 if w is 0 or not finite. */
 int tb_unproject_pixel(const sk_mat4 *inv_view_proj, int width, int height, int x, int y,

@@ -340,6 +340,19 @@ static int compare_state(const gl_state *a, const gl_state *b, const char *what,
     return bad;
 }
 
+/* after one shadowkit call under state set v: it returned SK_OK, left no
+   GL error, and changed none of the state read before it */
+static void check_call(const tb_gl_funcs *gl, const ext_funcs *x, sk_result r, const skgl_context *sk,
+                       const char *tn, int v, const char *fn, const gl_state *before) {
+    gl_state after;
+    char what[128];
+    snprintf(what, sizeof what, "%s set %c: %s", tn, "AB"[v], fn);
+    SK_CHECK_MSG(r == SK_OK, "%s: %s (%s)", what, sk_result_string(r), skgl_error_log(sk));
+    read_state(gl, x, &after);
+    SK_CHECK_MSG(compare_state(before, &after, what, -1, -1) == 0, "%s", what);
+    SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+}
+
 static void test_state_and_objects(void) {
     gt_env e;
     ext_funcs x;
@@ -439,25 +452,13 @@ static void test_state_and_objects(void) {
             }
             if (techs[t] == SKGL_FERKO || techs[t] == SKGL_RMSM) {
                 r = skgl_shadow_analyze(sk, s, &cam, &sc, light, e.gbuf.depth_tex);
-                SK_CHECK_MSG(r == SK_OK, "%s: analyze: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
-                read_state(gl, &x, &after);
-                snprintf(what, sizeof what, "%s set %c: skgl_shadow_analyze", tn, "AB"[v]);
-                SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
-                SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+                check_call(gl, &x, r, sk, tn, v, "skgl_shadow_analyze", &before);
             }
             r = skgl_shadow_render(sk, s, &cam, &sc, light);
-            SK_CHECK_MSG(r == SK_OK, "%s: render: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
-            read_state(gl, &x, &after);
-            snprintf(what, sizeof what, "%s set %c: skgl_shadow_render", tn, "AB"[v]);
-            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
-            SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+            check_call(gl, &x, r, sk, tn, v, "skgl_shadow_render", &before);
 
             r = skgl_shadow_mask(sk, s, &cam, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex);
-            SK_CHECK_MSG(r == SK_OK, "%s: mask: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
-            read_state(gl, &x, &after);
-            snprintf(what, sizeof what, "%s set %c: skgl_shadow_mask", tn, "AB"[v]);
-            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
-            SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+            check_call(gl, &x, r, sk, tn, v, "skgl_shadow_mask", &before);
 
             /* bind needs its program current: it is (fw.program, part of the state) */
             r = skgl_shadow_bind(sk, s, fw.program, 6);
@@ -531,25 +532,13 @@ static void test_state_and_objects(void) {
             }
             if (atlas) {
                 r = skgl_point_atlas_pack(sk, atlas, &p, 1, &cam, &lp);
-                SK_CHECK_MSG(r == SK_OK, "%s: pack: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
-                read_state(gl, &x, &after);
-                snprintf(what, sizeof what, "%s set %c: skgl_point_atlas_pack", tn, "AB"[v]);
-                SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
-                SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+                check_call(gl, &x, r, sk, tn, v, "skgl_point_atlas_pack", &before);
             }
             r = skgl_point_render(sk, p, &cam, &sc, lp);
-            SK_CHECK_MSG(r == SK_OK, "%s: render: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
-            read_state(gl, &x, &after);
-            snprintf(what, sizeof what, "%s set %c: skgl_point_render", tn, "AB"[v]);
-            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
-            SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+            check_call(gl, &x, r, sk, tn, v, "skgl_point_render", &before);
 
             r = skgl_point_mask(sk, p, &cam, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex);
-            SK_CHECK_MSG(r == SK_OK, "%s: mask: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
-            read_state(gl, &x, &after);
-            snprintf(what, sizeof what, "%s set %c: skgl_point_mask", tn, "AB"[v]);
-            SK_CHECK_MSG(compare_state(&before, &after, what, -1, -1) == 0, "%s", what);
-            SK_CHECK_MSG(gl->GetError() == 0, "%s", what);
+            check_call(gl, &x, r, sk, tn, v, "skgl_point_mask", &before);
 
             /* bind: the map on unit 6 (cube, or the 2D atlas), VSDCT's
                indirection cube on unit 7, their samplers; nothing else */
