@@ -3,7 +3,8 @@
 # their summary lines ("<prog>: N passed, M failed", see tests/sk_test.h).
 #
 # Flavours are the folders under $BUILD (default build/): c99 cpp asan-c99
-# asan-cpp compile gl (the default is all of them, in that order). Every
+# asan-cpp compile gl integration fuzz hygiene (the default is all of them,
+# in that order; a folder that was not built is skipped). Every
 # executable file in build/<flavour>/ is run from the repository root.
 # build/gl/<name> comes from tests/gl/<name>.c (GL tests on the testbed, see
 # mk/testbed.mk); they run with LSAN_OPTIONS=suppressions=testbed/lsan.supp
@@ -22,7 +23,7 @@ BUILD=${BUILD:-build}
 JOBS=${SK_TEST_JOBS:-$(nproc 2>/dev/null || echo 2)}
 TIMEOUT=${SK_TEST_TIMEOUT:-300}
 flavours=("$@")
-[ ${#flavours[@]} -gt 0 ] || flavours=(c99 cpp asan-c99 asan-cpp compile gl)
+[ ${#flavours[@]} -gt 0 ] || flavours=(c99 cpp asan-c99 asan-cpp compile gl integration fuzz hygiene)
 
 LOGS=$(mktemp -d "${TMPDIR:-/tmp}/sk_tests.XXXXXX") || exit 2
 trap 'rm -rf "$LOGS"' EXIT
@@ -53,9 +54,9 @@ for f in "${flavours[@]}"; do
         [ -f "$b" ] && [ -x "$b" ] || continue
         # skip a stale binary whose tests/<name>.c was removed or renamed
         case "$f" in
-            compile) ;;
             gl) [ -f "tests/gl/$(basename "$b").c" ] || continue ;;
-            *) [ -f "tests/$(basename "$b").c" ] || continue ;;
+            c99|cpp|asan-*) [ -f "tests/$(basename "$b").c" ] || continue ;;
+            *) ;;   # compile, integration, fuzz, hygiene: whatever mk/*.mk built
         esac
         log="$LOGS/$i.log"; i=$((i + 1))
         entries+=("$f|$b|$log")
