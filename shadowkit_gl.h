@@ -1248,7 +1248,27 @@ static const char skgl__src_soft_kernel_frag[] =
     "\n"
     "    /* blocker search region: the pyramid from the receiver to the light cut\n"
     "       by the near plane, grown by the footprint */\n"
-    "    vec2 region = sk_filter_half(r.zlin, u_light_proj.z) + abs(r.du) + abs(r.dv);\n"
+    "    /* the near plane is the nearest the bounds come; the casters over this\n"
+    "       receiver may be much farther: the region's own minimum (coarse levels\n"
+    "       of the pyramid) moves the cut down, which only shrinks the region */\n"
+    "    float zs = u_light_proj.z;\n"
+    "    for (int it = 0; it < 3; it++) {\n"
+    "        vec2 reg = sk_filter_half(r.zlin, zs) + abs(r.du) + abs(r.dv);\n"
+    "        float t = max(reg.x, reg.y) * float(u_lowres_size);\n"
+    "        int lv = clamp(int(ceil(log2(max(t, 1.0)))), 0, u_lowres_levels - 1);\n"
+    "        int nc = max(u_lowres_size >> lv, 1);\n"
+    "        float cz = 2.0 / float(nc);\n"
+    "        ivec2 a = clamp(ivec2(floor((r.light.xy - reg + 1.0) / cz)), ivec2(0), ivec2(nc - 1));\n"
+    "        ivec2 b = clamp(ivec2(floor((r.light.xy + reg + 1.0) / cz)), ivec2(0), ivec2(nc - 1));\n"
+    "        float m = 1.0;\n"
+    "        for (int y = a.y; y <= b.y; y++)\n"
+    "            for (int x = a.x; x <= b.x; x++)\n"
+    "                m = min(m, textureLod(u_lowres, (vec2(x, y) + 0.5) / float(nc), float(lv)).r);\n"
+    "        float zm = clamp(sk_light_linear(m), zs, r.zlin);\n"
+    "        if (zm <= zs * 1.001) break;\n"
+    "        zs = zm;\n"
+    "    }\n"
+    "    vec2 region = sk_filter_half(r.zlin, zs) + abs(r.du) + abs(r.dv);\n"
     "    float texels = max(region.x, region.y) * float(u_lowres_size);   /* full width in texels */\n"
     "    int level = clamp(int(ceil(log2(max(texels / float(u_blocker_cells), 1.0)))), 0, u_lowres_levels - 1);\n"
     "    int cells = max(u_lowres_size >> level, 1);\n"
@@ -1267,7 +1287,20 @@ static const char skgl__src_soft_kernel_frag[] =
     "            if (m < plane) { sum += sk_light_linear(m); count += 1.0; }\n"
     "        }\n"
     "    if (count == 0.0) { o_kernel = vec4(0.0, 0.0, 0.0, 1.0); return; }   /* fully lit */\n"
-    "\n"
+    "    /* the cells' minima decide \"fully lit\" conservatively but pull the\n"
+    "       average towards the nearest blocker of each cell: the average comes\n"
+    "       from point samples of level 0 where they find blockers */\n"
+    "    {\n"
+    "        float psum = 0.0, pcount = 0.0, nb = float(u_blocker_cells);\n"
+    "        float pslack = (abs(r.grad.x) + abs(r.grad.y)) * 2.0 / float(u_lowres_size) + tol;\n"
+    "        for (int y = 0; y < u_blocker_cells; y++)\n"
+    "            for (int x = 0; x < u_blocker_cells; x++) {\n"
+    "                vec2 o = ((vec2(x, y) + 0.5) / nb * 2.0 - 1.0) * region;\n"
+    "                float m = textureLod(u_lowres, (r.light.xy + o + 1.0) * 0.5, 0.0).r;\n"
+    "                if (m < r.light.z + dot(r.grad, o) - pslack) { psum += sk_light_linear(m); pcount += 1.0; }\n"
+    "            }\n"
+    "        if (pcount > 0.0) { sum = psum; count = pcount; }\n"
+    "    }\n"
     "    float zo = min(sum / count, r.zlin);\n"
     "    vec2 s = u_hard != 0 ? vec2(0.0) : sk_filter_half(r.zlin, zo);\n"
     "    /* appendix: V_h = M_s M_s^T + M_phi M_phi^T, Cholesky columns */\n"
@@ -4275,6 +4308,16 @@ static sk_result skgl__soft_fit(skgl_soft *s, const skgl_camera *cam, const skgl
         if (y1 > lim) y1 = lim;
     }
     if (!(x1 > x0) || !(y1 > y0)) { x0 = y0 = -1.0; x1 = y1 = 1.0; }
+    /* steady under camera motion: the sides snapped outwards to multiples of
+       a power of two near 1/16 of the width, the near plane down to a step
+       of 2^(1/8), so the texel grid only moves when a side crosses a step */
+    {
+        double sx = SK_POW(2.0, SK_FLOOR(SK_LOG2((x1 - x0) / 16.0)));
+        double sy = SK_POW(2.0, SK_FLOOR(SK_LOG2((y1 - y0) / 16.0)));
+        x0 = SK_FLOOR(x0 / sx) * sx; x1 = SK_CEIL(x1 / sx) * sx;
+        y0 = SK_FLOOR(y0 / sy) * sy; y1 = SK_CEIL(y1 / sy) * sy;
+        zn = SK_POW(2.0, SK_FLOOR(SK_LOG2(zn) * 8.0) / 8.0);
+    }
     s->light_proj = skgl__tan_frustum(x0, x1, y0, y1, zn, zf);
     s->light_vp = sk_mat4_mul(s->light_proj, s->light_view);
     s->p00 = s->light_proj.m[0];
@@ -4509,6 +4552,15 @@ static int skgl__soft_read_pyramid(skgl_context *ctx, skgl_soft *s)
     return off;
 }
 
+/* a tile side rounded up to a step of 2^(1/4): under slow motion the
+   predicted sizes drift, the rounded ones (and the texel grid) seldom move */
+static int skgl__soft_round_res(int r, int max_res)
+{
+    double q = SK_POW(2.0, SK_CEIL(SK_LOG2((double)r) * 4.0 - 1e-9) / 4.0);
+    int v = (int)SK_CEIL(q - 1e-9);
+    return v > max_res ? max_res : v < r ? r : v;
+}
+
 /* PVSM step 6: the kd-tree's tiles; more than max_tiles: every required
    texel twice as large (half the resolution) until they fit */
 static int skgl__soft_tiles(skgl_soft *s)
@@ -4519,10 +4571,16 @@ static int skgl__soft_tiles(skgl_soft *s)
     memcpy(s->grid, s->pyramid, sizeof(float) * (size_t)n);
     for (k = 0; k < 24; k++) {
         count = sk_fvsm_tiles(s->grid, g, g, s->desc.resolution, s->tiles, s->tiles_cap);
-        if (count >= 0 && count <= s->desc.max_tiles) return count;
+        if (count >= 0 && count <= s->desc.max_tiles) break;
         for (i = 0; i < n; i++) s->grid[i] *= 2.0f;
     }
-    return count < 0 ? 0 : (count > s->desc.max_tiles ? s->desc.max_tiles : count);
+    if (count < 0) return 0;
+    if (count > s->desc.max_tiles) count = s->desc.max_tiles;
+    for (i = 0; i < count; i++) {
+        s->tiles[i].res_x = skgl__soft_round_res(s->tiles[i].res_x, s->desc.resolution);
+        s->tiles[i].res_y = skgl__soft_round_res(s->tiles[i].res_y, s->desc.resolution);
+    }
+    return count;
 }
 
 static sk_result skgl__soft_screen(skgl_context *ctx, skgl_soft *s, int w, int h)

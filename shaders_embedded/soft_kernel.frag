@@ -48,7 +48,27 @@ void main()
 
     /* blocker search region: the pyramid from the receiver to the light cut
        by the near plane, grown by the footprint */
-    vec2 region = sk_filter_half(r.zlin, u_light_proj.z) + abs(r.du) + abs(r.dv);
+    /* the near plane is the nearest the bounds come; the casters over this
+       receiver may be much farther: the region's own minimum (coarse levels
+       of the pyramid) moves the cut down, which only shrinks the region */
+    float zs = u_light_proj.z;
+    for (int it = 0; it < 3; it++) {
+        vec2 reg = sk_filter_half(r.zlin, zs) + abs(r.du) + abs(r.dv);
+        float t = max(reg.x, reg.y) * float(u_lowres_size);
+        int lv = clamp(int(ceil(log2(max(t, 1.0)))), 0, u_lowres_levels - 1);
+        int nc = max(u_lowres_size >> lv, 1);
+        float cz = 2.0 / float(nc);
+        ivec2 a = clamp(ivec2(floor((r.light.xy - reg + 1.0) / cz)), ivec2(0), ivec2(nc - 1));
+        ivec2 b = clamp(ivec2(floor((r.light.xy + reg + 1.0) / cz)), ivec2(0), ivec2(nc - 1));
+        float m = 1.0;
+        for (int y = a.y; y <= b.y; y++)
+            for (int x = a.x; x <= b.x; x++)
+                m = min(m, textureLod(u_lowres, (vec2(x, y) + 0.5) / float(nc), float(lv)).r);
+        float zm = clamp(sk_light_linear(m), zs, r.zlin);
+        if (zm <= zs * 1.001) break;
+        zs = zm;
+    }
+    vec2 region = sk_filter_half(r.zlin, zs) + abs(r.du) + abs(r.dv);
     float texels = max(region.x, region.y) * float(u_lowres_size);   /* full width in texels */
     int level = clamp(int(ceil(log2(max(texels / float(u_blocker_cells), 1.0)))), 0, u_lowres_levels - 1);
     int cells = max(u_lowres_size >> level, 1);
@@ -67,7 +87,20 @@ void main()
             if (m < plane) { sum += sk_light_linear(m); count += 1.0; }
         }
     if (count == 0.0) { o_kernel = vec4(0.0, 0.0, 0.0, 1.0); return; }   /* fully lit */
-
+    /* the cells' minima decide "fully lit" conservatively but pull the
+       average towards the nearest blocker of each cell: the average comes
+       from point samples of level 0 where they find blockers */
+    {
+        float psum = 0.0, pcount = 0.0, nb = float(u_blocker_cells);
+        float pslack = (abs(r.grad.x) + abs(r.grad.y)) * 2.0 / float(u_lowres_size) + tol;
+        for (int y = 0; y < u_blocker_cells; y++)
+            for (int x = 0; x < u_blocker_cells; x++) {
+                vec2 o = ((vec2(x, y) + 0.5) / nb * 2.0 - 1.0) * region;
+                float m = textureLod(u_lowres, (r.light.xy + o + 1.0) * 0.5, 0.0).r;
+                if (m < r.light.z + dot(r.grad, o) - pslack) { psum += sk_light_linear(m); pcount += 1.0; }
+            }
+        if (pcount > 0.0) { sum = psum; count = pcount; }
+    }
     float zo = min(sum / count, r.zlin);
     vec2 s = u_hard != 0 ? vec2(0.0) : sk_filter_half(r.zlin, zo);
     /* appendix: V_h = M_s M_s^T + M_phi M_phi^T, Cholesky columns */
