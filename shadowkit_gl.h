@@ -486,6 +486,12 @@ typedef struct skgl_soft_desc {
     float slope_bias;             /* polygon offset factor of the depth passes [1.5]; < 0: none */
     float depth_bias;             /* polygon offset units [1.0]; < 0: none */
     float rel_bias;               /* comparison tolerance, fraction of the distance to the light [0.002] */
+    int antialias;                /* PVSM: 1 the warped pixel footprint is convolved into every
+                                     kernel (Sec. 4.2, anisotropic anti-aliasing) [1]; -1 off: the
+                                     kernel is the light's filter alone, as a point-sampled
+                                     reference sees it */
+    float resolution_scale;       /* PVSM: every predicted resolution times this, the quality
+                                     against speed trade-off (Sec. 7), 0.125..8 [1] */
 } skgl_soft_desc;
 
 typedef struct skgl_soft skgl_soft;
@@ -1218,6 +1224,9 @@ static const char skgl__src_soft_kernel_frag[] =
     "uniform int u_blocker_cells;      /* per axis */\n"
     "uniform int u_static_scene;\n"
     "uniform int u_hard;               /* zero-size light: the 1:1 criterion */\n"
+    "uniform float u_res_scale;        /* predicted resolutions times this */\n"
+    "uniform float u_antialias;        /* 1: the filter is h, the pixel footprint included (Sec. 4.2);\n"
+    "                                     0: the filter is s_alpha alone (point samples) */\n"
     "\n"
     "float sk_rho(float n)\n"
     "{\n"
@@ -1263,7 +1272,13 @@ static const char skgl__src_soft_kernel_frag[] =
     "        float m = 1.0;\n"
     "        for (int y = a.y; y <= b.y; y++)\n"
     "            for (int x = a.x; x <= b.x; x++)\n"
-    "                m = min(m, textureLod(u_lowres, (vec2(x, y) + 0.5) / float(nc), float(lv)).r);\n"
+    "                m = min(m, texelFetch(u_lowres, ivec2(x, y), lv).r);\n"
+    "        /* nothing in the cells nearer than the receiver's plane anywhere\n"
+    "           over them: no blocker, fully lit (most pixels end here) */\n"
+    "        if (it == 0 && m >= r.light.z + abs(r.grad.x) * (reg.x + cz) + abs(r.grad.y) * (reg.y + cz) - tol) {\n"
+    "            o_kernel = vec4(0.0, 0.0, 0.0, 1.0);\n"
+    "            return;\n"
+    "        }\n"
     "        float zm = clamp(sk_light_linear(m), zs, r.zlin);\n"
     "        if (zm <= zs * 1.001) break;\n"
     "        zs = zm;\n"
@@ -1282,7 +1297,7 @@ static const char skgl__src_soft_kernel_frag[] =
     "    for (int y = c0.y; y <= c1.y; y++)\n"
     "        for (int x = c0.x; x <= c1.x; x++) {\n"
     "            vec2 centre = (vec2(x, y) + 0.5) * cs - 1.0;\n"
-    "            float m = textureLod(u_lowres, (centre + 1.0) * 0.5, float(level)).r;\n"
+    "            float m = texelFetch(u_lowres, ivec2(x, y), level).r;\n"
     "            float plane = r.light.z + dot(r.grad, centre - r.light.xy) - slack;\n"
     "            if (m < plane) { sum += sk_light_linear(m); count += 1.0; }\n"
     "        }\n"
@@ -1296,7 +1311,9 @@ static const char skgl__src_soft_kernel_frag[] =
     "        for (int y = 0; y < u_blocker_cells; y++)\n"
     "            for (int x = 0; x < u_blocker_cells; x++) {\n"
     "                vec2 o = ((vec2(x, y) + 0.5) / nb * 2.0 - 1.0) * region;\n"
-    "                float m = textureLod(u_lowres, (r.light.xy + o + 1.0) * 0.5, 0.0).r;\n"
+    "                ivec2 t = clamp(ivec2((r.light.xy + o + 1.0) * 0.5 * float(u_lowres_size)), ivec2(0),\n"
+    "                                ivec2(u_lowres_size - 1));\n"
+    "                float m = texelFetch(u_lowres, t, 0).r;\n"
     "                if (m < r.light.z + dot(r.grad, o) - pslack) { psum += sk_light_linear(m); pcount += 1.0; }\n"
     "            }\n"
     "        if (pcount > 0.0) { sum = psum; count = pcount; }\n"
@@ -1310,7 +1327,8 @@ static const char skgl__src_soft_kernel_frag[] =
     "    float ux = sqrt(max(m00, 1e-20));\n"
     "    float uy = m10 / ux;\n"
     "    float vy = sqrt(max(m11 - uy * uy, 1e-20));\n"
-    "    o_kernel = vec4(ux, uy, vy, 2.0);\n"
+    "    /* the prediction always sizes h; without anti-aliasing the filter is s_alpha alone */\n"
+    "    o_kernel = u_antialias > 0.0 ? vec4(ux, uy, vy, 2.0) : vec4(max(s.x, 1e-10), 0.0, max(s.y, 1e-10), 2.0);\n"
     "\n"
     "    /* Eq. (4): kernel size in pixels along e0, e1 through M_phi^-1; Eq. (5) */\n"
     "    float det = r.du.x * r.dv.y - r.dv.x * r.du.y;\n"
@@ -1318,7 +1336,7 @@ static const char skgl__src_soft_kernel_frag[] =
     "    float n1 = abs(det) > 1e-20 ? vy * length(vec2(r.dv.x, r.du.x)) / abs(det) : 1e30;\n"
     "    float rho0 = u_hard != 0 ? 1.0 : sk_rho(n0);\n"
     "    float rho1 = u_hard != 0 ? 1.0 : sk_rho(n1);\n"
-    "    o_pred.zw = vec2(2.0 * ux / rho0, 2.0 * vy / rho1);\n"
+    "    o_pred.zw = vec2(2.0 * ux / rho0, 2.0 * vy / rho1) / u_res_scale;\n"
     "}\n"
     ;
 static const char skgl__src_soft_smtg_vert[] =
@@ -3973,6 +3991,8 @@ static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
     if (r.slope_bias == 0.0f) r.slope_bias = 1.5f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
     if (r.rel_bias == 0.0f) r.rel_bias = 0.002f;
+    if (r.antialias == 0) r.antialias = 1;
+    if (r.resolution_scale == 0.0f) r.resolution_scale = 1.0f;
     return r;
 }
 
@@ -4087,7 +4107,8 @@ SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc
         (d.conservative != 1 && d.conservative != -1) || d.static_scene < 0 || d.static_scene > 1 ||
         d.blocker_cells < 2 || d.blocker_cells > 16 || d.pcf_taps < 1 || d.pcf_taps > 16 ||
         !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.rel_bias) ||
-        d.rel_bias < 0.0f || d.rel_bias > 0.5f)
+        d.rel_bias < 0.0f || d.rel_bias > 0.5f || (d.antialias != 1 && d.antialias != -1) ||
+        !(d.resolution_scale >= 0.125f && d.resolution_scale <= 8.0f))
         return SK_ERR_INVALID_ARG;
     s = (skgl_soft *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
@@ -4632,6 +4653,8 @@ static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_sce
     gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_levels"), s->low_levels);
     gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_static_scene"), s->desc.static_scene);
     gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_hard"), hard);
+    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_antialias"), s->desc.antialias == 1 ? 1.0f : 0.0f);
+    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_res_scale"), s->desc.resolution_scale);
     skgl__soft_bind(ctx, 0, s->low_color, 0);
     gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
     gl->DrawArrays(SKGL__TRIANGLES, 0, 3);

@@ -18,6 +18,9 @@ uniform int u_lowres_levels;
 uniform int u_blocker_cells;      /* per axis */
 uniform int u_static_scene;
 uniform int u_hard;               /* zero-size light: the 1:1 criterion */
+uniform float u_res_scale;        /* predicted resolutions times this */
+uniform float u_antialias;        /* 1: the filter is h, the pixel footprint included (Sec. 4.2);
+                                     0: the filter is s_alpha alone (point samples) */
 
 float sk_rho(float n)
 {
@@ -63,7 +66,13 @@ void main()
         float m = 1.0;
         for (int y = a.y; y <= b.y; y++)
             for (int x = a.x; x <= b.x; x++)
-                m = min(m, textureLod(u_lowres, (vec2(x, y) + 0.5) / float(nc), float(lv)).r);
+                m = min(m, texelFetch(u_lowres, ivec2(x, y), lv).r);
+        /* nothing in the cells nearer than the receiver's plane anywhere
+           over them: no blocker, fully lit (most pixels end here) */
+        if (it == 0 && m >= r.light.z + abs(r.grad.x) * (reg.x + cz) + abs(r.grad.y) * (reg.y + cz) - tol) {
+            o_kernel = vec4(0.0, 0.0, 0.0, 1.0);
+            return;
+        }
         float zm = clamp(sk_light_linear(m), zs, r.zlin);
         if (zm <= zs * 1.001) break;
         zs = zm;
@@ -82,7 +91,7 @@ void main()
     for (int y = c0.y; y <= c1.y; y++)
         for (int x = c0.x; x <= c1.x; x++) {
             vec2 centre = (vec2(x, y) + 0.5) * cs - 1.0;
-            float m = textureLod(u_lowres, (centre + 1.0) * 0.5, float(level)).r;
+            float m = texelFetch(u_lowres, ivec2(x, y), level).r;
             float plane = r.light.z + dot(r.grad, centre - r.light.xy) - slack;
             if (m < plane) { sum += sk_light_linear(m); count += 1.0; }
         }
@@ -96,7 +105,9 @@ void main()
         for (int y = 0; y < u_blocker_cells; y++)
             for (int x = 0; x < u_blocker_cells; x++) {
                 vec2 o = ((vec2(x, y) + 0.5) / nb * 2.0 - 1.0) * region;
-                float m = textureLod(u_lowres, (r.light.xy + o + 1.0) * 0.5, 0.0).r;
+                ivec2 t = clamp(ivec2((r.light.xy + o + 1.0) * 0.5 * float(u_lowres_size)), ivec2(0),
+                                ivec2(u_lowres_size - 1));
+                float m = texelFetch(u_lowres, t, 0).r;
                 if (m < r.light.z + dot(r.grad, o) - pslack) { psum += sk_light_linear(m); pcount += 1.0; }
             }
         if (pcount > 0.0) { sum = psum; count = pcount; }
@@ -110,7 +121,8 @@ void main()
     float ux = sqrt(max(m00, 1e-20));
     float uy = m10 / ux;
     float vy = sqrt(max(m11 - uy * uy, 1e-20));
-    o_kernel = vec4(ux, uy, vy, 2.0);
+    /* the prediction always sizes h; without anti-aliasing the filter is s_alpha alone */
+    o_kernel = u_antialias > 0.0 ? vec4(ux, uy, vy, 2.0) : vec4(max(s.x, 1e-10), 0.0, max(s.y, 1e-10), 2.0);
 
     /* Eq. (4): kernel size in pixels along e0, e1 through M_phi^-1; Eq. (5) */
     float det = r.du.x * r.dv.y - r.dv.x * r.du.y;
@@ -118,5 +130,5 @@ void main()
     float n1 = abs(det) > 1e-20 ? vy * length(vec2(r.dv.x, r.du.x)) / abs(det) : 1e30;
     float rho0 = u_hard != 0 ? 1.0 : sk_rho(n0);
     float rho1 = u_hard != 0 ? 1.0 : sk_rho(n1);
-    o_pred.zw = vec2(2.0 * ux / rho0, 2.0 * vy / rho1);
+    o_pred.zw = vec2(2.0 * ux / rho0, 2.0 * vy / rho1) / u_res_scale;
 }
