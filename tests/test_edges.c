@@ -131,6 +131,12 @@ static void test_frustum_corners_at_infinity(void) {
     SK_CHECK(mat_finite(&vp));
     f = sk_frustum_from_matrix(vp);
     SK_CHECK(frustum_all_zero(&f));
+    /* far 1e38, near 1e31: w stays non-zero (m[10] = -(1 + 2e-7)), but the
+       far corners' x = 1e38 tan(1.55) ~ 5e39 overflow float */
+    vp = sk_mat4_perspective(3.1f, 1.0f, 1e31f, 1e38f);
+    SK_CHECK(mat_finite(&vp) && vp.m[10] != -1.0f);
+    f = sk_frustum_from_matrix(vp);
+    SK_CHECK(frustum_all_zero(&f));
 }
 
 /* A box clipped by the frustum of the same box: every corner of each is
@@ -158,6 +164,31 @@ static void test_clip_box_by_itself(void) {
         sk_aabb g = box3(-1.0f - 1e-6f, 2.0f - 1e-6f, -3.0f - 1e-6f, 4.0f + 1e-6f, 5.0f + 1e-6f, 6.0f + 1e-6f);
         n = sk_clip_frustum_aabb(&f, g, pts, SK_CLIP_MAX_POINTS);
         SK_CHECK_MSG(n == 8, "grown by 1e-6: n = %d", n);
+    }
+}
+
+/* "Planes the whole edge is within tolerance of do not cut it, so faces that
+   touch or coincide keep their vertices": a box [0,1]^3 and a frustum (a box)
+   whose face lies 1e-6 outside the box's face x = 1 (within the 1e-5
+   tolerance), then one whose face lies 1e-6 outside x = 0. The frustum's
+   edges across that face start (or end) within tolerance of it, so their
+   crossing parameter falls just outside [0,1] and is clamped to the end:
+   the intersection is the touching face, its 4 corners, each once. */
+static void test_clip_touching_faces(void) {
+    sk_aabb unit = box3(0, 0, 0, 1, 1, 1);
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    int side, n, i;
+    for (side = 0; side < 2; side++) {
+        float x = side ? -1e-6f : 1.0f + 1e-6f;
+        sk_aabb b = side ? box3(-2.0f, 0.2f, 0.2f, x, 0.8f, 0.8f) : box3(x, 0.2f, 0.2f, 3.0f, 0.8f, 0.8f);
+        sk_frustum f;
+        SK_CHECK(sk_frustum_from_aabb(b, &f) == SK_OK);
+        n = sk_clip_frustum_aabb(&f, unit, pts, SK_CLIP_MAX_POINTS);
+        SK_CHECK_MSG(n == 4, "side %d: n = %d", side, n);
+        for (i = 0; i < n && i < SK_CLIP_MAX_POINTS; i++) {
+            SK_CHECK_MSG(pts[i].x == x, "side %d: x = %.9g", side, pts[i].x);
+            SK_CHECK((pts[i].y == 0.2f || pts[i].y == 0.8f) && (pts[i].z == 0.2f || pts[i].z == 0.8f));
+        }
     }
 }
 
@@ -190,6 +221,11 @@ static void test_crop_matrix_axes(void) {
     m = sk_crop_matrix(rect4(fnan(), 0.0f, 1.0f, 1.0f), fnan(), 1.0f);
     SK_CHECK(m.m[0] == 1.0f && m.m[12] == 0.0f && m.m[10] == 1.0f && m.m[14] == 0.0f);
     SK_CHECK_NEAR(m.m[5], 2.0, 0.0);
+    m = sk_crop_matrix(rect4(0.0f, 0.0f, 1.0f, 1.0f), 0.0f, finf());
+    SK_CHECK(m.m[10] == 1.0f && m.m[14] == 0.0f);
+    m = sk_crop_matrix(rect4(0.0f, 0.0f, 1.0f, 1.0f), 2.0f, 1.0f);   /* empty z range */
+    SK_CHECK(m.m[10] == 1.0f && m.m[14] == 0.0f);
+    SK_CHECK_NEAR(m.m[0], 2.0, 0.0);
     m = sk_crop_matrix(rect4(0.0f, 0.0f, 1e-39f, 1.0f), -1.0f, 1.0f);
     SK_CHECK(is_identity(&m));
 }
@@ -357,6 +393,34 @@ static void test_psm_many_casters(void) {
     }
 }
 
+/* With the light perpendicular to the view the map is orthographic in
+   post-perspective space, fitted to the unit cube, and a caster box only
+   widens its depth range: a caster inside the view frustum (inside the
+   cube) leaves the map as it is, to rounding (the depth scale is recomputed
+   from the range), and its corners have depths inside [-1,1]. */
+static void test_psm_ortho_caster_inside(void) {
+    sk_psm_desc d = psm_base();
+    sk_psm_result r0, r1;
+    sk_aabb c = box3(2.0f, -1.0f, -10.0f, 3.0f, 1.0f, -8.0f);
+    double scale = 0.0;
+    int k;
+    d.light_dir = v3(1.0f, -0.5f, 0.0f);
+    SK_CHECK(sk_psm_matrices(&d, &r0) == SK_OK);
+    d.casters = &c;
+    d.caster_count = 1;
+    SK_CHECK(sk_psm_matrices(&d, &r1) == SK_OK);
+    SK_CHECK(r0.orthographic == 1 && r1.orthographic == 1 && r1.slide == 0.0f);
+    for (k = 0; k < 16; k++) if (fabs(r0.light_view_proj.m[k]) > scale) scale = fabs(r0.light_view_proj.m[k]);
+    for (k = 0; k < 16; k++)
+        SK_CHECK_NEAR(r1.light_view_proj.m[k], r0.light_view_proj.m[k], 1e-5 * scale);
+    for (k = 0; k < 8; k++) {
+        double q[3];
+        clip_of(&r1.light_view_proj, v3((k & 1) ? c.max.x : c.min.x, (k & 2) ? c.max.y : c.min.y,
+                                        (k & 4) ? c.max.z : c.min.z), q);
+        SK_CHECK_MSG(fabs(q[2]) <= 1.0, "corner %d depth %g", k, q[2]);
+    }
+}
+
 /* PSM where no light frustum exists or the chain overflows: an error, never
    a matrix with NaN. (a) far/near = 1e9: the post-perspective light lies on
    z = (f+n)/(f-n), which rounds to 1 in float, on the face of the unit cube
@@ -413,6 +477,36 @@ static void test_lispsm_large_body(void) {
     for (i = 0; i < 300; i++) {
         double c[3];
         clip_of(&r300.light_view_proj, body[i], c);
+        SK_CHECK_MSG(fabs(c[0]) <= 1.0 + 1e-5 && fabs(c[1]) <= 1.0 + 1e-5 && fabs(c[2]) <= 1.0 + 1e-5,
+                     "point %d at %g %g %g", i, c[0], c[1], c[2]);
+    }
+}
+
+/* A body with no depth along the warp axis (d = 0): "beyond n > 1e4 * d the
+   uniform map is used directly", so a flat body gets the uniform focused
+   map (warped 0, n +INFINITY) covering it. The view looks down -z, the light
+   down -y: the warp axis is -z, and the body is the square z = -10. */
+static void test_lispsm_flat_body(void) {
+    sk_vec3 body[4];
+    sk_lispsm_desc d;
+    sk_lispsm_result r;
+    int i;
+    for (i = 0; i < 4; i++) body[i] = v3((i & 1) ? 5.0f : -5.0f, (i & 2) ? 2.0f : 0.0f, -10.0f);
+    memset(&d, 0, sizeof d);
+    d.eye = v3(0.0f, 1.0f, 0.0f);
+    d.view_dir = v3(0.0f, 0.0f, -1.0f);
+    d.zn = 0.5f;
+    d.light_dir = v3(0.0f, -1.0f, 0.0f);
+    d.body = body;
+    d.body_count = 4;
+    SK_CHECK(sk_lispsm_matrices(&d, &r) == SK_OK);
+    SK_CHECK(r.warped == 0);
+    SK_CHECK(r.n == finf());
+    SK_CHECK_NEAR(r.sin_gamma, 1.0, 1e-6);
+    SK_CHECK(mat_finite(&r.light_view_proj));
+    for (i = 0; i < 4; i++) {
+        double c[3];
+        clip_of(&r.light_view_proj, body[i], c);
         SK_CHECK_MSG(fabs(c[0]) <= 1.0 + 1e-5 && fabs(c[1]) <= 1.0 + 1e-5 && fabs(c[2]) <= 1.0 + 1e-5,
                      "point %d at %g %g %g", i, c[0], c[1], c[2]);
     }
@@ -501,6 +595,37 @@ static void test_lspsm_point_region(void) {
     SK_CHECK(n == 1);
     clip_of(&vps[0], pt.min, c);
     SK_CHECK_MSG(fabs(c[0]) <= 1.0 && fabs(c[1]) <= 1.0 && fabs(c[2]) <= 1.0, "at %g %g %g", c[0], c[1], c[2]);
+}
+
+/* Receivers that project onto the trapezoid's axis (a segment along the
+   view direction, light from above): the region has a length but no width,
+   so the trapezoid's bases would be 0 (n = 0, which sk_lspsm_crops refuses).
+   It falls back to one focused map, as a region of no length does, and that
+   map covers the segment. The same for a box 1e-7 wide. */
+static void test_lspsm_zero_width_region(void) {
+    sk_mat4 vp = sk_mat4_mul(sk_mat4_perspective(1.0f, 1.0f, 0.5f, 50.0f),
+                             sk_mat4_look_at(v3(0, 5, 10), v3(0, 0, 0), v3(0, 1, 0)));
+    sk_frustum view = sk_frustum_from_matrix(vp);
+    sk_lspsm_params p = sk_lspsm_default_params();
+    int pass;
+    for (pass = 0; pass < 2; pass++) {
+        float w = pass ? 1e-7f : 0.0f;
+        sk_aabb seg = box3(0.0f, 0.0f, -5.0f, w, 0.0f, 3.0f);
+        sk_lspsm_region r;
+        sk_mat4 vps[16];
+        int n, k;
+        SK_CHECK(sk_lspsm_region_extract(&view, v3(0, -5, -10), seg, NULL, v3(0, -1, 0), &r) == SK_OK);
+        SK_CHECK_MSG(r.fallback == 1, "width %g: fallback %d", w, r.fallback);
+        SK_CHECK_MSG(r.n > 0.0f && r.L > 7.9f && r.L < 8.1f, "width %g: n %g L %g", w, r.n, r.L);
+        n = sk_lspsm_crops(&r, &p, vps, NULL, 16);
+        SK_CHECK_MSG(n == 1, "width %g: %d crops", w, n);
+        for (k = 0; k < 8 && n == 1; k++) {
+            double c[3];
+            clip_of(&vps[0], v3((k & 1) ? seg.max.x : seg.min.x, 0.0f, (k & 4) ? seg.max.z : seg.min.z), c);
+            SK_CHECK_MSG(fabs(c[0]) <= 1.0 + 1e-5 && fabs(c[1]) <= 1.0 + 1e-5 && fabs(c[2]) <= 1.0 + 1e-5,
+                         "width %g: corner %d at %g %g %g", w, k, c[0], c[1], c[2]);
+        }
+    }
 }
 
 /* -------------------------------------------- 6. omnidirectional lights */
@@ -594,6 +719,9 @@ static void test_convolve_overflow(void) {
     sk_convolve_parallelograms(v2(3e38f, 0.0f), v2(0.0f, 1.0f), v2(3e38f, 0.0f), v2(0.0f, 1.0f), &u, &v);
     SK_CHECK(u.x == 0.0f && u.y == 0.0f && v.x == 0.0f && v.y == 0.0f);
     sk_convolve_parallelograms(v2(1.0f, 0.0f), v2(0.0f, 3e38f), v2(1.0f, 0.0f), v2(0.0f, 3e38f), &u, &v);
+    SK_CHECK(u.x == 0.0f && u.y == 0.0f && v.x == 0.0f && v.y == 0.0f);
+    /* u_out.y = m10 / u_out.x: a tiny x against a huge y */
+    sk_convolve_parallelograms(v2(1e-20f, 3e38f), v2(1e-20f, 3e38f), v2(0, 0), v2(0, 0), &u, &v);
     SK_CHECK(u.x == 0.0f && u.y == 0.0f && v.x == 0.0f && v.y == 0.0f);
     /* control: axes (3,0),(0,4) twice: sqrt(18), sqrt(32) */
     sk_convolve_parallelograms(v2(3, 0), v2(0, 4), v2(3, 0), v2(0, 4), &u, &v);
@@ -727,6 +855,24 @@ static void test_fvsm_one_axis_sampled(void) {
     }
 }
 
+/* "<= 0 is an unbounded demand (that cell ends in a 1x1 tile at max_res)",
+   on the x axis as on y; the other axis keeps its own need. */
+static void test_fvsm_unbounded_x(void) {
+    enum { G = 4 };
+    float grid[G * G * 2];
+    sk_tile t[4];
+    int i, n;
+    for (i = 0; i < G * G * 2; i++) grid[i] = finf();
+    grid[(1 * G + 2) * 2] = -1.0f;          /* cell (2,1): x unbounded */
+    grid[(1 * G + 2) * 2 + 1] = 0.25f;      /* y: span 0.5 / 0.25 = 2 */
+    n = sk_fvsm_tiles(grid, G, G, 256, t, 4);
+    SK_CHECK(n == 1);
+    if (n == 1) {
+        SK_CHECK(t[0].x0 == 2 && t[0].x1 == 3 && t[0].y0 == 1 && t[0].y1 == 2);
+        SK_CHECK(t[0].res_x == 256 && t[0].res_y == 2);
+    }
+}
+
 /* ---------------------------------------------------------- 9. RMSM pages */
 
 /* "a sample needs level clamp(floor(lod), 0, log2(virtual_res/page_size))":
@@ -750,10 +896,12 @@ static void test_rmsm_lod_clamp(void) {
 }
 
 SK_TEST_MAIN(test_inverse_overflow, test_projection_overflow, test_frustum_corners_at_infinity,
-             test_clip_box_by_itself, test_aliasing_negative_lengths, test_crop_matrix_axes,
+             test_clip_box_by_itself, test_clip_touching_faces, test_aliasing_negative_lengths, test_crop_matrix_axes,
              test_bounding_sphere_wide_near_face, test_cascade_sphere_bad_input, test_psm_half_turn,
-             test_psm_body_outside_view, test_psm_many_casters, test_psm_degenerate, test_lispsm_large_body,
-             test_lspsm_crops_bad_region, test_lspsm_point_region, test_vsdct_bad_layout,
+             test_psm_body_outside_view, test_psm_many_casters, test_psm_ortho_caster_inside, test_psm_degenerate,
+             test_lispsm_large_body, test_lispsm_flat_body, test_lspsm_crops_bad_region, test_lspsm_point_region,
+             test_lspsm_zero_width_region, test_vsdct_bad_layout,
              test_resest_negated_inverse, test_resest_no_patch, test_convolve_overflow,
              test_smooth_visibility_bad_input, test_pvsm_predict_null_outputs, test_pvsm_merge_bad_input,
-             test_smtg_size_bounds, test_smtg_pyramid_nan, test_fvsm_one_axis_sampled, test_rmsm_lod_clamp)
+             test_smtg_size_bounds, test_smtg_pyramid_nan, test_fvsm_one_axis_sampled, test_fvsm_unbounded_x,
+             test_rmsm_lod_clamp)
