@@ -419,6 +419,17 @@ static void test_psm_ortho_caster_inside(void) {
                                         (k & 4) ? c.max.z : c.min.z), q);
         SK_CHECK_MSG(fabs(q[2]) <= 1.0, "corner %d depth %g", k, q[2]);
     }
+    /* a caster downstream of the view along the light (x = 30 and beyond,
+       the light travelling +x): the depth range is widened to take it */
+    c = box3(30.0f, -1.0f, -10.0f, 31.0f, 1.0f, -8.0f);
+    SK_CHECK(sk_psm_matrices(&d, &r1) == SK_OK);
+    SK_CHECK(r1.orthographic == 1);
+    for (k = 0; k < 8; k++) {
+        double q[3];
+        clip_of(&r1.light_view_proj, v3((k & 1) ? c.max.x : c.min.x, (k & 2) ? c.max.y : c.min.y,
+                                        (k & 4) ? c.max.z : c.min.z), q);
+        SK_CHECK_MSG(fabs(q[2]) <= 1.0 + 1e-6, "downstream corner %d depth %g", k, q[2]);
+    }
 }
 
 /* PSM where no light frustum exists or the chain overflows: an error, never
@@ -625,6 +636,42 @@ static void test_lspsm_zero_width_region(void) {
             SK_CHECK_MSG(fabs(c[0]) <= 1.0 + 1e-5 && fabs(c[1]) <= 1.0 + 1e-5 && fabs(c[2]) <= 1.0 + 1e-5,
                          "width %g: corner %d at %g %g %g", w, k, c[0], c[1], c[2]);
         }
+    }
+}
+
+/* "all are tried, the smallest t winning ties": receivers that are a
+   segment at 45 degrees to the trapezoid's axis in the light plane (a
+   segment along world z, the light straight down, the view's projection
+   on the ground along (1, 0, -1)). The rectangle around it (t = 0, n = W)
+   and the triangle along it (t = W / L, n = 0) have the same area L W;
+   the rectangle is chosen. Here W = L = 6 / sqrt(2). */
+static void test_lspsm_area_tie(void) {
+    sk_mat4 vp = sk_mat4_mul(sk_mat4_perspective(1.0f, 1.0f, 0.5f, 50.0f),
+                             sk_mat4_look_at(v3(-8, 6, 8), v3(0, 0, 0), v3(0, 1, 0)));
+    sk_frustum view = sk_frustum_from_matrix(vp);
+    sk_aabb seg = box3(0.0f, 0.0f, -4.0f, 0.0f, 0.0f, 2.0f);
+    sk_lspsm_region r;
+    sk_lspsm_params p = sk_lspsm_default_params();
+    sk_mat4 vps[16];
+    double w = 6.0 / sqrt(2.0);
+    int n, e, k;
+    SK_CHECK(sk_lspsm_region_extract(&view, v3(8, -6, -8), seg, NULL, v3(0, -1, 0), &r) == SK_OK);
+    SK_CHECK(r.fallback == 0);
+    SK_CHECK(r.theta == 0.0f);
+    SK_CHECK_NEAR(r.n, w, 1e-5);
+    SK_CHECK_NEAR(r.L, w, 1e-5);
+    n = sk_lspsm_crops(&r, &p, vps, NULL, 16);
+    SK_CHECK(n >= 1);
+    /* each end of the segment lies in some crop */
+    for (e = 0; e < 2; e++) {
+        sk_vec3 q = e ? seg.max : seg.min;
+        int inside = 0;
+        for (k = 0; k < n && k < 16; k++) {
+            double c[3];
+            clip_of(&vps[k], q, c);
+            inside |= fabs(c[0]) <= 1.0 + 1e-5 && fabs(c[1]) <= 1.0 + 1e-5 && fabs(c[2]) <= 1.0 + 1e-5;
+        }
+        SK_CHECK_MSG(inside, "end %d in no crop", e);
     }
 }
 
@@ -900,7 +947,7 @@ SK_TEST_MAIN(test_inverse_overflow, test_projection_overflow, test_frustum_corne
              test_bounding_sphere_wide_near_face, test_cascade_sphere_bad_input, test_psm_half_turn,
              test_psm_body_outside_view, test_psm_many_casters, test_psm_ortho_caster_inside, test_psm_degenerate,
              test_lispsm_large_body, test_lispsm_flat_body, test_lspsm_crops_bad_region, test_lspsm_point_region,
-             test_lspsm_zero_width_region, test_vsdct_bad_layout,
+             test_lspsm_zero_width_region, test_lspsm_area_tie, test_vsdct_bad_layout,
              test_resest_negated_inverse, test_resest_no_patch, test_convolve_overflow,
              test_smooth_visibility_bad_input, test_pvsm_predict_null_outputs, test_pvsm_merge_bad_input,
              test_smtg_size_bounds, test_smtg_pyramid_nan, test_fvsm_one_axis_sampled, test_fvsm_unbounded_x,
