@@ -15,27 +15,28 @@
 # mk/testbed.mk) is shared with `make test` and not instrumented.
 # scripts/coverage.sh does the running and the reporting.
 #
-# Which GL test runs which GLSL program of shadowkit_gl.h (skgl__build_program
-# callers; the line counts of their dispatch code in the report show it):
-#   depth pass (depth.vert + depth.frag)          test_gl_accuracy, test_gl_cascades,
-#       every skgl_shadow_render and RMSM page     test_gl_stable, test_gl_bias, test_gl_warp,
-#       render; the point lights' depth too       test_gl_lspsm, test_gl_ferko, test_gl_rmsm,
-#                                                  test_gl_omni, test_gl_multi, test_gl_state, ...
-#   shadow mask (fullscreen.vert +                 every test above that calls skgl_shadow_mask
-#       shadow_sample.glsl + shadow_mask.frag)     (all techniques: standard, PSSM, stable,
-#                                                  PSM/LiSPSM, LSPSM, FERKO, RMSM)
-#   FERKO analysis (fullscreen.vert +              test_gl_ferko, test_gl_state
-#       ferko_analyze.frag)
-#   FERKO reduction (fullscreen.vert +             test_gl_ferko, test_gl_state
-#       ferko_reduce.frag)
-#   RMSM analysis (fullscreen.vert +               test_gl_rmsm, test_gl_state
-#       rmsm_analyze.frag)
-#   RMSM page request (rmsm_request.vert +         test_gl_rmsm, test_gl_state
-#       rmsm_request.frag)
-#   point-light mask, cube and VSDCT (fullscreen   test_gl_omni, test_gl_multi, test_gl_state
-#       .vert + point_sample.glsl + point_mask.frag)
-#   forward snippets (shadow_sample.glsl,          test_gl_forward (directional),
-#       point_sample.glsl in the caller's shader)  test_gl_omni (point lights)
+# Which GL tests run each GLSL program of shadowkit_gl.h (the programs built
+# by skgl_create and skgl_point_create from shaders_embedded/), read from each
+# test's own counters (build/coverage/obj/gl/<test>.gcda) at the program's
+# glUseProgram in the pass that draws with it:
+#   depth (depth.vert + depth.frag)                 accuracy bias cascades ferko forward
+#     directional layers (skgl_shadow_render)        lspsm model offscreen rmsm stable
+#                                                    state warp
+#     u_model other than the identity               model (skgl_set_model)
+#     RMSM pages (skgl__render_rmsm)                rmsm state
+#     point-light faces (skgl_point_render)         omni multi state
+#   shadow mask (fullscreen.vert +                  the tests of the directional layers above
+#     shadow_sample.glsl + shadow_mask.frag)
+#   FERKO analysis (ferko_analyze.frag)             ferko state
+#   FERKO reduction (ferko_reduce.frag)             ferko state
+#   RMSM analysis (rmsm_analyze.frag)               rmsm state
+#   RMSM page requests (rmsm_request.vert/.frag)    rmsm state
+#   point mask, cube and VSDCT variants             omni multi state
+#     (fullscreen.vert + point_sample.glsl + point_mask.frag)
+#   forward snippets in the test's own shader:
+#     shadow_sample.glsl (skgl_glsl_snippet)        forward state
+#     point_sample.glsl (skgl_point_glsl_snippet)   omni
+# (test_ prefixes left out; test_gl_testbed runs no shadowkit_gl.h code.)
 .SECONDEXPANSION:
 
 COV_DIR          := $(BUILD)/coverage
