@@ -318,9 +318,10 @@ typedef struct sk_lspsm_region {
     sk_vec2 origin;               /* centre of the near base in light_view xy */
     float n, L, theta;            /* the trapezoid of sk_lspsm_partition */
     float zmin, zmax;             /* light-view z range (casters included) */
-    int fallback;                 /* 1: view direction parallel to the light or
-                                     zero-length region: one focused map over
-                                     the bounding rectangle instead */
+    int fallback;                 /* 1: view direction parallel to the light,
+                                     zero-length or zero-width region: one
+                                     focused map over the bounding rectangle
+                                     instead */
 } sk_lspsm_region;
 /* The projective region of seed 003 (Sec. 3.1): the view frustum clipped to
    the receivers' box, projected on the light plane; the smallest enclosing
@@ -1826,7 +1827,10 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     r.zmin = (float)zmin;
     r.zmax = (float)zmax;
     L = ymax - ymin;
-    if (!r.fallback && !(L > 1e-6 * (1.0 + (xmax - xmin)))) r.fallback = 1;
+    /* no length, or no width (every point on one line along the axis, where
+       the trapezoid's bases would be 0): one focused map */
+    if (!r.fallback && (!(L > 1e-6 * (1.0 + (xmax - xmin))) || !(xmax - xmin > 1e-6 * (1.0 + L))))
+        r.fallback = 1;
     if (r.fallback) {
         double tiny = 1e-6 * (1.0 + SK_FABS(xmax) + SK_FABS(ymax));
         r.n = (float)(xmax - xmin > tiny ? xmax - xmin : tiny);

@@ -4,6 +4,7 @@
 #   test   compilers, libc headers, sanitizer runtimes      (make test, make check)
 #   gl     test + pkg-config, OSMesa, EGL, Embree, assimp, stb (testbed, GL tests)
 #   demo   gl + gnuplot, GLFW (make demo)
+#   coverage  gl + lcov (genhtml; make coverage, mk/coverage.mk)
 # To add a group or a package, edit the arrays and the case below.
 # Debian 12 (bookworm); needs root (or sudo) only when something is missing.
 set -euo pipefail
@@ -11,6 +12,7 @@ set -euo pipefail
 PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1)
 PKGS_GL=(pkg-config libosmesa6-dev libegl-dev libembree-dev libassimp-dev libstb-dev)
 PKGS_DEMO=(gnuplot-nox libglfw3-dev)
+PKGS_COVERAGE=(lcov)
 
 groups=("$@")
 [ ${#groups[@]} -gt 0 ] || groups=(test)
@@ -21,7 +23,8 @@ for g in "${groups[@]}"; do
         test) want+=("${PKGS_TEST[@]}") ;;
         gl) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}") ;;
         demo) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_DEMO[@]}") ;;
-        *) echo "deps.sh: unknown group '$g' (known: test gl demo)" >&2; exit 2 ;;
+        coverage) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_COVERAGE[@]}") ;;
+        *) echo "deps.sh: unknown group '$g' (known: test gl demo coverage)" >&2; exit 2 ;;
     esac
 done
 
