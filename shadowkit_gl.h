@@ -1403,13 +1403,14 @@ static const char skgl__src_soft_filter_frag[] =
     "   kernel inside the tile counts; the output (V*A, A) is added into the\n"
     "   accumulation target, so kernels spanning several tiles merge as\n"
     "   V = sum(V_i A_i) / sum(A_i). Kernels wider than 24 texels are integrated\n"
-    "   over blocks of 2^k texels, each tested at its centre. */\n"
+    "   over blocks of 2^k texels, each tested with one hardware 2x2 comparison\n"
+    "   at its centre (for k = 1 that covers the block). */\n"
     "in vec2 v_uv;\n"
     "out vec4 o_acc;\n"
     "uniform sampler2D u_kernel;\n"
     "uniform sampler2D u_pred;\n"
     "uniform sampler2D u_plane;\n"
-    "uniform sampler2D u_tile;         /* window depth; the tile fills [0, res) of it */\n"
+    "uniform sampler2DShadow u_tile;   /* window depth, LEQUAL comparison; the tile fills [0, res) of it */\n"
     "uniform vec4 u_tile_rect;         /* NDC x0, y0, x1, y1 of the tile on the base map */\n"
     "uniform vec2 u_tile_res;\n"
     "void main()\n"
@@ -1443,11 +1444,10 @@ static const char skgl__src_soft_filter_frag[] =
     "            float cov = (px1 - px0) * (min(ty + stride, py1) - max(ty, py0));\n"
     "            if (cov <= 0.0) continue;\n"
     "            vec2 t = min(vec2(tx, ty) + 0.5 * stride, u_tile_res - 0.5);\n"
-    "            float z = textureLod(u_tile, t / tex_size, 0.0).r;\n"
     "            vec2 ndc = u_tile_rect.xy + t / scale;\n"
     "            float plane = pl.x + dot(pl.yz, ndc - c) - slack;\n"
     "            area += cov;\n"
-    "            if (z >= plane) lit += cov;\n"
+    "            lit += cov * texture(u_tile, vec3(t / tex_size, plane));\n"
     "        }\n"
     "    }\n"
     "    if (area <= 0.0) discard;\n"
@@ -4733,7 +4733,7 @@ static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_sce
         skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
         skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
         skgl__soft_bind(ctx, 2, s->screen[2], ctx->point_sampler);
-        skgl__soft_bind(ctx, 3, s->map, ctx->point_sampler);
+        skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
         gl->BindVertexArray(ctx->empty_vao);
         gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
         gl->Disable(SKGL__BLEND);

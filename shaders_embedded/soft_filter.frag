@@ -5,13 +5,14 @@
    kernel inside the tile counts; the output (V*A, A) is added into the
    accumulation target, so kernels spanning several tiles merge as
    V = sum(V_i A_i) / sum(A_i). Kernels wider than 24 texels are integrated
-   over blocks of 2^k texels, each tested at its centre. */
+   over blocks of 2^k texels, each tested with one hardware 2x2 comparison
+   at its centre (for k = 1 that covers the block). */
 in vec2 v_uv;
 out vec4 o_acc;
 uniform sampler2D u_kernel;
 uniform sampler2D u_pred;
 uniform sampler2D u_plane;
-uniform sampler2D u_tile;         /* window depth; the tile fills [0, res) of it */
+uniform sampler2DShadow u_tile;   /* window depth, LEQUAL comparison; the tile fills [0, res) of it */
 uniform vec4 u_tile_rect;         /* NDC x0, y0, x1, y1 of the tile on the base map */
 uniform vec2 u_tile_res;
 void main()
@@ -45,11 +46,10 @@ void main()
             float cov = (px1 - px0) * (min(ty + stride, py1) - max(ty, py0));
             if (cov <= 0.0) continue;
             vec2 t = min(vec2(tx, ty) + 0.5 * stride, u_tile_res - 0.5);
-            float z = textureLod(u_tile, t / tex_size, 0.0).r;
             vec2 ndc = u_tile_rect.xy + t / scale;
             float plane = pl.x + dot(pl.yz, ndc - c) - slack;
             area += cov;
-            if (z >= plane) lit += cov;
+            lit += cov * texture(u_tile, vec3(t / tex_size, plane));
         }
     }
     if (area <= 0.0) discard;
