@@ -430,6 +430,9 @@ SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *h
 #ifdef SHADOWKIT_GL_IMPLEMENTATION
 #ifndef SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
 #define SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
+#ifdef SK__STATIC_WITHOUT_IMPLEMENTATION
+#error "SHADOWKIT_STATIC: define SHADOWKIT_IMPLEMENTATION with SHADOWKIT_GL_IMPLEMENTATION before this file's first #include of shadowkit.h"
+#endif
 
 #include <stddef.h>
 #include <stdlib.h>
