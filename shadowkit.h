@@ -15,7 +15,10 @@
      Everywhere else, include it without the define. To keep every symbol
      private to one translation unit, define SHADOWKIT_STATIC as well (then
      each translation unit that defines SHADOWKIT_IMPLEMENTATION gets its own
-     static copy).
+     static copy; define it before the file's first #include of the header).
+     A file that defines SHADOWKIT_STATIC without the implementation has no
+     copy: it gets the types and constants, and plain extern declarations
+     that it must not call (static ones never defined would make GCC warn).
 
      Override before the implementation is included, if you like:
          SK_ASSERT(x)            default assert(x) from <assert.h>
@@ -23,7 +26,8 @@
          SK_SQRT, SK_FABS, SK_FLOOR, SK_CEIL, SK_LOG2, SK_POW, SK_TAN, SK_ATAN,
          SK_COS, SK_FREXP, SK_LDEXP                    double math
                                  all default to the <math.h> functions
-         SKDEF                   default extern (static with SHADOWKIT_STATIC)
+         SKDEF                   default extern (static with SHADOWKIT_STATIC
+                                 and SHADOWKIT_IMPLEMENTATION)
 
    CONVENTIONS
      - No allocation, no global mutable state, no I/O, no GL. Callers pass
@@ -81,7 +85,11 @@
 #define SHADOWKIT_VERSION_PATCH 0
 
 #ifndef SKDEF
-#ifdef SHADOWKIT_STATIC
+#if defined(SHADOWKIT_STATIC) && !defined(SHADOWKIT_IMPLEMENTATION)
+/* no copy of the implementation here: declarations only (see USAGE) */
+#define SKDEF extern
+#define SK__STATIC_WITHOUT_IMPLEMENTATION 1
+#elif defined(SHADOWKIT_STATIC)
 #if defined(__GNUC__) || defined(__clang__)
 #define SKDEF static __attribute__((unused))
 #else
@@ -508,6 +516,9 @@ SKDEF int sk_rmsm_page_requests(const sk_vec3 *samples, int count, int virtual_r
 #ifdef SHADOWKIT_IMPLEMENTATION
 #ifndef SHADOWKIT_IMPLEMENTATION_INCLUDED
 #define SHADOWKIT_IMPLEMENTATION_INCLUDED
+#ifdef SK__STATIC_WITHOUT_IMPLEMENTATION
+#error "SHADOWKIT_STATIC: define SHADOWKIT_IMPLEMENTATION before this file's first #include of shadowkit.h"
+#endif
 
 #include <math.h>
 #include <string.h>

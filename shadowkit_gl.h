@@ -533,6 +533,9 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 #ifdef SHADOWKIT_GL_IMPLEMENTATION
 #ifndef SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
 #define SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
+#ifdef SK__STATIC_WITHOUT_IMPLEMENTATION
+#error "SHADOWKIT_STATIC: define SHADOWKIT_IMPLEMENTATION with SHADOWKIT_GL_IMPLEMENTATION before this file's first #include of shadowkit.h"
+#endif
 
 #include <stddef.h>
 #include <stdlib.h>

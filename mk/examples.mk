@@ -13,25 +13,28 @@ EX_NAMES := 01_hard_shadows 02_cascades 03_warping 04_adaptive 05_point_light 06
 EX_BINS  := $(addprefix $(EX_DIR)/,$(EX_NAMES))
 EX_OBJS  := $(addprefix $(EX_DIR)/obj/,$(addsuffix .o,$(EX_NAMES)))
 EX_HDRS  := shadowkit.h shadowkit_gl.h examples/common.h
-# recursive (=): pkg-config runs when a recipe needs it, after deps-demo
+# recursive (=): pkg-config runs when a recipe needs it, after deps-examples
 # has installed libglfw3-dev
 EX_GLFW_CFLAGS = $(shell pkg-config --cflags glfw3)
 EX_GLFW_LIBS   = $(shell pkg-config --libs glfw3)
 EX_CC          = $(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) -Iexamples
 
-.PHONY: examples examples-demo
+.PHONY: examples examples-demo deps-examples
 
 examples: $(EX_BINS)
 
-$(EX_DIR)/obj/common.o: examples/common.c $(EX_HDRS) | deps-demo
+deps-examples:
+	@bash scripts/deps.sh examples
+
+$(EX_DIR)/obj/common.o: examples/common.c $(EX_HDRS) | deps-examples
 	$(MKDIR)
 	$(EX_CC) $(EX_GLFW_CFLAGS) $(DEPFLAGS) -c $< -o $@
 
-$(EX_OBJS): $(EX_DIR)/obj/%.o: examples/%.c $(EX_HDRS) | deps-demo
+$(EX_OBJS): $(EX_DIR)/obj/%.o: examples/%.c $(EX_HDRS) | deps-examples
 	$(MKDIR)
 	$(EX_CC) $(DEPFLAGS) -c $< -o $@
 
-$(EX_BINS): $(EX_DIR)/%: $(EX_DIR)/obj/%.o $(EX_DIR)/obj/common.o $$(TESTBED_LIB) | deps-demo
+$(EX_BINS): $(EX_DIR)/%: $(EX_DIR)/obj/%.o $(EX_DIR)/obj/common.o $$(TESTBED_LIB) | deps-examples
 	$(MKDIR)
 	$(CC) $< $(EX_DIR)/obj/common.o -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(EX_GLFW_LIBS) $(LDLIBS)
 
