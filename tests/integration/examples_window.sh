@@ -71,6 +71,9 @@ VARIANTS=(
     "04_adaptive-rmsm|04_adaptive --technique rmsm"
     "05_point_light-cube|05_point_light --technique cube"
     "05_point_light-vsdct|05_point_light --technique vsdct"
+    "06_soft_shadows-pvsm|06_soft_shadows --technique pvsm"
+    "06_soft_shadows-pcss|06_soft_shadows --technique pcss"
+    "06_soft_shadows-tiles|06_soft_shadows --technique tiles"
 )
 
 pairs=()
