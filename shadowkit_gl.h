@@ -1339,7 +1339,12 @@ static const char skgl__src_soft_kernel_frag[] =
     "    float n1 = abs(det) > 1e-20 ? vy * length(vec2(r.dv.x, r.du.x)) / abs(det) : 1e30;\n"
     "    float rho0 = u_hard != 0 ? 1.0 : sk_rho(n0);\n"
     "    float rho1 = u_hard != 0 ? 1.0 : sk_rho(n1);\n"
-    "    o_pred.zw = vec2(2.0 * ux / rho0, 2.0 * vy / rho1) / u_res_scale;\n"
+    "    vec2 r_k = vec2(2.0 * ux / rho0, 2.0 * vy / rho1);\n"
+    "    /* a receiver the light grazes has a footprint one pixel thin along one\n"
+    "       axis of the map and long along the other; its demand along the thin\n"
+    "       axis would cut the grid into slivers of tiles: at most 8:1 */\n"
+    "    r_k = max(r_k, vec2(max(r_k.x, r_k.y) / 8.0));\n"
+    "    o_pred.zw = r_k / u_res_scale;\n"
     "}\n"
     ;
 static const char skgl__src_soft_smtg_vert[] =

@@ -130,5 +130,10 @@ void main()
     float n1 = abs(det) > 1e-20 ? vy * length(vec2(r.dv.x, r.du.x)) / abs(det) : 1e30;
     float rho0 = u_hard != 0 ? 1.0 : sk_rho(n0);
     float rho1 = u_hard != 0 ? 1.0 : sk_rho(n1);
-    o_pred.zw = vec2(2.0 * ux / rho0, 2.0 * vy / rho1) / u_res_scale;
+    vec2 r_k = vec2(2.0 * ux / rho0, 2.0 * vy / rho1);
+    /* a receiver the light grazes has a footprint one pixel thin along one
+       axis of the map and long along the other; its demand along the thin
+       axis would cut the grid into slivers of tiles: at most 8:1 */
+    r_k = max(r_k, vec2(max(r_k.x, r_k.y) / 8.0));
+    o_pred.zw = r_k / u_res_scale;
 }
