@@ -1182,10 +1182,10 @@ static int load_scene(const bench_scene_def *def, tb_scene *s) {
    the summary (mean partitions, the shadow-time ratio LSPSM / PSSM-8, the
    mean errors) to bench-walk.txt and stderr. */
 /* ------------------------------------------- area lights: PCSS and PVSM */
-/* Issue 7's rows: on sponza-ivy, sponza-curtains (when ../shared is there)
-   and the procedural fence, one rectangular light above the content at
-   three sizes; PCSS on a 2048^2 and a 4096^2 map against PVSM (tiles up to
-   4096^2, 1024^2 conservative low-res map, 64^2 SMTG); error = mean
+/* The area-light rows: on sponza-ivy, sponza-curtains (when ../shared is
+   there) and the procedural fence, one rectangular light above the content
+   at three sizes; PCSS on a 2048^2 and a 4096^2 map against PVSM in the
+   three variants of soft_cfgs (tiles up to 4096^2, 64^2 SMTG); error = mean
    absolute visibility error against the Embree reference with 16 x 16
    stratified light samples per pixel (soft_mae, in [0,1]). shadow_ms = the
    depth passes (PCSS: its map; PVSM: the low-res map and the tiles),
