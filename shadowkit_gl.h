@@ -94,6 +94,17 @@
      desc.atlas): skgl_point_atlas_pack places every light's six faces at
      its selected side each frame, halving the largest side until they fit.
 
+   AREA LIGHTS (skgl_soft_*, seed 001; the flow is in the declarations)
+     SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
+     SKGL_SOFT_PVSM    predicted virtual soft shadow maps: a conservative
+                       low-resolution map, a kernel per pixel, the predicted
+                       resolution gathered in a tile grid, one map per tile
+                       at that resolution, smooth texel-coverage filtering.
+     A rectangle light at a position (skgl_area_light), deferred: depth and
+     normals in (or rendered by shadowkit), visibility out, in one call.
+     Each of PVSM's steps is timed (stats.step_ms); skgl_soft_tiles() lists
+     the tiles for a debug view.
+
    BIAS AND FILTERING
      Casters are drawn with slope-scaled polygon offset (.slope_bias, in
      depth slope units, i.e. texels); receivers are pushed along their normal
