@@ -1232,7 +1232,8 @@ static const char skgl__src_soft_kernel_frag[] =
     "layout(location = 0) out vec4 o_kernel;\n"
     "layout(location = 1) out vec4 o_pred;\n"
     "layout(location = 2) out vec4 o_plane;\n"
-    "uniform sampler2D u_lowres;       /* R32F MIN pyramid of the low-res map's window depth */\n"
+    "uniform sampler2D u_lowres;       /* R32F MIN pyramid of the low-res map's window depth (conservative) */\n"
+    "uniform sampler2D u_lowres_true;  /* R32F, the same map rasterised plainly */\n"
     "uniform int u_lowres_size;\n"
     "uniform int u_lowres_levels;\n"
     "uniform int u_blocker_cells;      /* per axis */\n"
@@ -1318,19 +1319,25 @@ static const char skgl__src_soft_kernel_frag[] =
     "    if (count == 0.0) { o_kernel = vec4(0.0, 0.0, 0.0, 1.0); return; }   /* fully lit */\n"
     "    /* the cells' minima decide \"fully lit\" conservatively but pull the\n"
     "       average towards the nearest blocker of each cell: the average comes\n"
-    "       from point samples of level 0 where they find blockers */\n"
+    "       from point samples of the plainly rasterised map (no grown borders\n"
+    "       with their extended depths), or of the conservative one when that\n"
+    "       finds none (casters thinner than a texel) */\n"
     "    {\n"
-    "        float psum = 0.0, pcount = 0.0, nb = float(u_blocker_cells);\n"
+    "        float nb = float(u_blocker_cells);\n"
     "        float pslack = (abs(r.grad.x) + abs(r.grad.y)) * 2.0 / float(u_lowres_size) + tol;\n"
+    "        vec2 ps = vec2(0.0), pc = vec2(0.0);      /* plain, conservative */\n"
     "        for (int y = 0; y < u_blocker_cells; y++)\n"
     "            for (int x = 0; x < u_blocker_cells; x++) {\n"
     "                vec2 o = ((vec2(x, y) + 0.5) / nb * 2.0 - 1.0) * region;\n"
     "                ivec2 t = clamp(ivec2((r.light.xy + o + 1.0) * 0.5 * float(u_lowres_size)), ivec2(0),\n"
     "                                ivec2(u_lowres_size - 1));\n"
-    "                float m = texelFetch(u_lowres, t, 0).r;\n"
-    "                if (m < r.light.z + dot(r.grad, o) - pslack) { psum += sk_light_linear(m); pcount += 1.0; }\n"
+    "                float plane = r.light.z + dot(r.grad, o) - pslack;\n"
+    "                float mt = texelFetch(u_lowres_true, t, 0).r, mc = texelFetch(u_lowres, t, 0).r;\n"
+    "                if (mt < plane) { ps.x += sk_light_linear(mt); pc.x += 1.0; }\n"
+    "                if (mc < plane) { ps.y += sk_light_linear(mc); pc.y += 1.0; }\n"
     "            }\n"
-    "        if (pcount > 0.0) { sum = psum; count = pcount; }\n"
+    "        if (pc.x > 0.0) { sum = ps.x; count = pc.x; }\n"
+    "        else if (pc.y > 0.0) { sum = ps.y; count = pc.y; }\n"
     "    }\n"
     "    float zo = min(sum / count, r.zlin);\n"
     "    vec2 s = u_hard != 0 ? vec2(0.0) : sk_filter_half(r.zlin, zo);\n"
@@ -1497,21 +1504,29 @@ static const char skgl__src_soft_cons_geom[] =
     "   semi-diagonal of a texel, so each texel the triangle touches gets a\n"
     "   fragment; the fragment stage clips the overfill at the corners with the\n"
     "   triangle's bounding box grown by half a texel. Depth is the triangle's\n"
-    "   own plane, extended. Triangles crossing the light's plane (w <= 0) are\n"
-    "   passed through unchanged. u_conservative = 0: plain rasterisation. */\n"
+    "   own plane, extended; the fragment stage also gets the original edges,\n"
+    "   so that it can tell the triangle's own texels from the grown border.\n"
+    "   Triangles crossing the light's plane (w <= 0) are passed through\n"
+    "   unchanged. u_conservative = 0: plain rasterisation. */\n"
     "layout(triangles) in;\n"
     "layout(triangle_strip, max_vertices = 3) out;\n"
     "uniform vec2 u_texel;             /* 2 / resolution: one texel in NDC */\n"
     "uniform int u_conservative;\n"
     "flat out vec4 g_box;              /* window-space box of the fragments kept */\n"
+    "flat out vec3 g_edge[3];          /* the original edges in window space: inside when dot(xy, e) <= z */\n"
     "void main()\n"
     "{\n"
     "    vec4 c0 = gl_in[0].gl_Position, c1 = gl_in[1].gl_Position, c2 = gl_in[2].gl_Position;\n"
-    "    g_box = vec4(-1e30, -1e30, 1e30, 1e30);\n"
+    "    /* outputs are undefined after EmitVertex: every vertex sets them all */\n"
+    "    vec4 box = vec4(-1e30, -1e30, 1e30, 1e30);\n"
+    "    vec3 edge[3] = vec3[3](vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0));\n"
     "    if (u_conservative == 0 || min(c0.w, min(c1.w, c2.w)) <= 1e-6) {\n"
-    "        gl_Position = c0; EmitVertex();\n"
-    "        gl_Position = c1; EmitVertex();\n"
-    "        gl_Position = c2; EmitVertex();\n"
+    "        for (int i = 0; i < 3; i++) {\n"
+    "            g_box = box;\n"
+    "            g_edge = edge;\n"
+    "            gl_Position = gl_in[i].gl_Position;\n"
+    "            EmitVertex();\n"
+    "        }\n"
     "        EndPrimitive();\n"
     "        return;\n"
     "    }\n"
@@ -1526,14 +1541,17 @@ static const char skgl__src_soft_cons_geom[] =
     "    float A = (dz1 * e2.y - dz2 * e1.y) / area, B = (e1.x * dz2 - e2.x * dz1) / area;\n"
     "    /* offset edge lines n.x = d, n the outward normal of edge i -> i+1 */\n"
     "    vec2 n[3]; float dist[3];\n"
+    "    vec2 vp = 1.0 / u_texel;      /* NDC -> window: (x + 1) * res / 2 */\n"
     "    for (int i = 0; i < 3; i++) {\n"
     "        vec2 e = p[(i + 1) % 3].xy - p[i].xy;\n"
     "        n[i] = vec2(e.y, -e.x);\n"
-    "        dist[i] = dot(n[i], p[i].xy) + abs(n[i].x) * h.x + abs(n[i].y) * h.y;\n"
+    "        dist[i] = dot(n[i], p[i].xy);\n"
+    "        /* n.x <= d in NDC is (n / vp).w <= d + n.x + n.y in window space */\n"
+    "        edge[i] = vec3(n[i] / vp, dist[i] + n[i].x + n[i].y);\n"
+    "        dist[i] += abs(n[i].x) * h.x + abs(n[i].y) * h.y;\n"
     "    }\n"
     "    vec2 lo = min(p[0].xy, min(p[1].xy, p[2].xy)) - h, hi = max(p[0].xy, max(p[1].xy, p[2].xy)) + h;\n"
-    "    vec2 vp = 1.0 / u_texel;      /* NDC -> window: (x + 1) * res / 2 */\n"
-    "    g_box = vec4((lo + 1.0) * vp, (hi + 1.0) * vp);\n"
+    "    box = vec4((lo + 1.0) * vp, (hi + 1.0) * vp);\n"
     "    for (int i = 0; i < 3; i++) {\n"
     "        int j = (i + 2) % 3;      /* the edge ending at vertex i */\n"
     "        float det = n[j].x * n[i].y - n[j].y * n[i].x;\n"
@@ -1542,6 +1560,8 @@ static const char skgl__src_soft_cons_geom[] =
     "                     : p[i].xy + normalize(n[i]) * length(h);\n"
     "        q = clamp(q, lo - 2.0 * (hi - lo), hi + 2.0 * (hi - lo));\n"
     "        float z = p[0].z + A * (q.x - p[0].x) + B * (q.y - p[0].y);\n"
+    "        g_box = box;\n"
+    "        g_edge = edge;\n"
     "        gl_Position = vec4(q, z, 1.0);\n"
     "        EmitVertex();\n"
     "    }\n"
@@ -1549,15 +1569,23 @@ static const char skgl__src_soft_cons_geom[] =
     "}\n"
     ;
 static const char skgl__src_soft_cons_frag[] =
-    "/* PVSM step 2: window depth into the R32F level 0 of the MIN pyramid\n"
-    "   (the depth attachment does the depth test), overfill outside the\n"
-    "   triangle's grown bounding box discarded. */\n"
+    "/* PVSM step 2: window depth into two R32F targets, both MIN-blended (no\n"
+    "   depth test): o_cons every texel the grown triangle touches (level 0 of\n"
+    "   the blocker-search pyramid), o_true only texels whose centre the\n"
+    "   original triangle covers (the plain map, for the average blocker\n"
+    "   depth); overfill outside the grown bounding box discarded. */\n"
     "flat in vec4 g_box;\n"
-    "out vec4 o_depth;\n"
+    "flat in vec3 g_edge[3];\n"
+    "layout(location = 0) out vec4 o_cons;\n"
+    "layout(location = 1) out vec4 o_true;\n"
     "void main()\n"
     "{\n"
-    "    if (any(lessThan(gl_FragCoord.xy, g_box.xy)) || any(greaterThan(gl_FragCoord.xy, g_box.zw))) discard;\n"
-    "    o_depth = vec4(gl_FragCoord.z);\n"
+    "    vec2 p = gl_FragCoord.xy;\n"
+    "    if (any(lessThan(p, g_box.xy)) || any(greaterThan(p, g_box.zw))) discard;\n"
+    "    bool inside = dot(p, g_edge[0].xy) <= g_edge[0].z && dot(p, g_edge[1].xy) <= g_edge[1].z &&\n"
+    "                  dot(p, g_edge[2].xy) <= g_edge[2].z;\n"
+    "    o_cons = vec4(gl_FragCoord.z);\n"
+    "    o_true = vec4(inside ? gl_FragCoord.z : 1.0);\n"
     "}\n"
     ;
 static const char skgl__src_soft_gbuffer_vert[] =
@@ -3979,7 +4007,7 @@ struct skgl_soft {
     skgl__uint fbo, query_samples;
     skgl__uint map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
     int map_res;
-    skgl__uint low_color, low_depth;   /* PVSM: R32F MIN pyramid of the low-res map, its depth buffer */
+    skgl__uint low_color, low_true;    /* PVSM: R32F MIN pyramid of the conservative low-res map; the plain map */
     int low_levels;
     skgl__uint smtg;               /* PVSM: RG32F SMTG with its pyramid as mip levels */
     int smtg_levels;
@@ -4094,7 +4122,7 @@ static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
     skgl__soft_delete_prog(ctx, &s->prog_gbuf);
     skgl__soft_delete_tex(ctx, &s->map);
     skgl__soft_delete_tex(ctx, &s->low_color);
-    skgl__soft_delete_tex(ctx, &s->low_depth);
+    skgl__soft_delete_tex(ctx, &s->low_true);
     skgl__soft_delete_tex(ctx, &s->smtg);
     for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
     skgl__soft_delete_tex(ctx, &s->gb_depth);
@@ -4149,8 +4177,7 @@ SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc
         while (n > 1) { n /= 2; l++; }
         s->low_levels = l;
         s->low_color = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, l, SKGL__RED, SKGL__FLOAT);
-        s->low_depth = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, d.lowres, d.lowres, 1,
-                                          SKGL__DEPTH_COMPONENT, SKGL__FLOAT);
+        s->low_true = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, 1, SKGL__RED, SKGL__FLOAT);
         l = 1;
         while (g > 1) { g = (g + 1) / 2; l++; }
         s->smtg_levels = l;
@@ -4526,25 +4553,34 @@ static void skgl__soft_reduce(skgl_context *ctx, skgl_soft *s, skgl__uint tex, i
     skgl__soft_detach(ctx, s);
 }
 
-/* PVSM step 2: the low-resolution map, conservative, into the MIN pyramid */
+/* PVSM step 2: the low-resolution map, conservative, into the MIN pyramid
+   (and plain into low_true); MIN blending takes the place of the depth test */
 static void skgl__soft_lowres(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene)
 {
     skgl__api *gl = &ctx->gl;
     skgl_draw_info info;
     static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    skgl__uint targets[2];
     skgl_shadow_desc bias;
     float texel[2];
     int r = s->desc.lowres;
+    targets[0] = s->low_color;
+    targets[1] = s->low_true;
+    skgl__soft_targets(ctx, s, targets, 2, 0, 0);
+    gl->Viewport(0, 0, r, r);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    /* the slope-scaled offset (it moves gl_FragCoord.z), without the depth test */
     memset(&bias, 0, sizeof bias);
     bias.slope_bias = s->desc.slope_bias;
     bias.depth_bias = s->desc.depth_bias;
-    skgl__soft_targets(ctx, s, &s->low_color, 1, 0, s->low_depth);
-    gl->Viewport(0, 0, r, r);
-    gl->Disable(SKGL__SCISSOR_TEST);
     skgl__depth_pass_state(gl, &bias);
+    gl->Disable(SKGL__DEPTH_TEST);
     gl->ColorMask(1, 1, 1, 1);
     gl->ClearColor(1.0f, 1.0f, 1.0f, 1.0f);
-    gl->Clear(SKGL__DEPTH_BUFFER_BIT | SKGL__COLOR_BUFFER_BIT);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->Enable(SKGL__BLEND);
+    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
+    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
     gl->Enable(SKGL__DEPTH_CLAMP);
     gl->UseProgram(s->prog_cons);
     gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_cons, "u_view_proj"), 1, 0, s->light_vp.m);
@@ -4561,8 +4597,9 @@ static void skgl__soft_lowres(skgl_context *ctx, skgl_soft *s, const skgl_scene 
     scene->draw(scene->user, &info);
     ctx->model_loc = ctx->depth_u_model;
     gl->Disable(SKGL__DEPTH_CLAMP);
+    gl->Disable(SKGL__BLEND);
     gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->Disable(SKGL__DEPTH_TEST);
+    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
     s->stats.passes++;
     s->stats.texels += (double)r * r;
     gl->BindVertexArray(ctx->empty_vao);
@@ -4668,6 +4705,7 @@ static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_sce
     gl->UseProgram(s->prog_mask);
     skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
     gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_true"), 3);
     gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_size"), s->desc.lowres);
     gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_levels"), s->low_levels);
     gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_static_scene"), s->desc.static_scene);
@@ -4675,6 +4713,7 @@ static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_sce
     gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_antialias"), s->desc.antialias == 1 ? 1.0f : 0.0f);
     gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_res_scale"), s->desc.resolution_scale);
     skgl__soft_bind(ctx, 0, s->low_color, 0);
+    skgl__soft_bind(ctx, 3, s->low_true, 0);
     gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
     gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
     gl->EndQuery(SKGL__SAMPLES_PASSED);

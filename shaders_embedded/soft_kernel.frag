@@ -12,7 +12,8 @@ in vec2 v_uv;
 layout(location = 0) out vec4 o_kernel;
 layout(location = 1) out vec4 o_pred;
 layout(location = 2) out vec4 o_plane;
-uniform sampler2D u_lowres;       /* R32F MIN pyramid of the low-res map's window depth */
+uniform sampler2D u_lowres;       /* R32F MIN pyramid of the low-res map's window depth (conservative) */
+uniform sampler2D u_lowres_true;  /* R32F, the same map rasterised plainly */
 uniform int u_lowres_size;
 uniform int u_lowres_levels;
 uniform int u_blocker_cells;      /* per axis */
@@ -98,19 +99,25 @@ void main()
     if (count == 0.0) { o_kernel = vec4(0.0, 0.0, 0.0, 1.0); return; }   /* fully lit */
     /* the cells' minima decide "fully lit" conservatively but pull the
        average towards the nearest blocker of each cell: the average comes
-       from point samples of level 0 where they find blockers */
+       from point samples of the plainly rasterised map (no grown borders
+       with their extended depths), or of the conservative one when that
+       finds none (casters thinner than a texel) */
     {
-        float psum = 0.0, pcount = 0.0, nb = float(u_blocker_cells);
+        float nb = float(u_blocker_cells);
         float pslack = (abs(r.grad.x) + abs(r.grad.y)) * 2.0 / float(u_lowres_size) + tol;
+        vec2 ps = vec2(0.0), pc = vec2(0.0);      /* plain, conservative */
         for (int y = 0; y < u_blocker_cells; y++)
             for (int x = 0; x < u_blocker_cells; x++) {
                 vec2 o = ((vec2(x, y) + 0.5) / nb * 2.0 - 1.0) * region;
                 ivec2 t = clamp(ivec2((r.light.xy + o + 1.0) * 0.5 * float(u_lowres_size)), ivec2(0),
                                 ivec2(u_lowres_size - 1));
-                float m = texelFetch(u_lowres, t, 0).r;
-                if (m < r.light.z + dot(r.grad, o) - pslack) { psum += sk_light_linear(m); pcount += 1.0; }
+                float plane = r.light.z + dot(r.grad, o) - pslack;
+                float mt = texelFetch(u_lowres_true, t, 0).r, mc = texelFetch(u_lowres, t, 0).r;
+                if (mt < plane) { ps.x += sk_light_linear(mt); pc.x += 1.0; }
+                if (mc < plane) { ps.y += sk_light_linear(mc); pc.y += 1.0; }
             }
-        if (pcount > 0.0) { sum = psum; count = pcount; }
+        if (pc.x > 0.0) { sum = ps.x; count = pc.x; }
+        else if (pc.y > 0.0) { sum = ps.y; count = pc.y; }
     }
     float zo = min(sum / count, r.zlin);
     vec2 s = u_hard != 0 ? vec2(0.0) : sk_filter_half(r.zlin, zo);
