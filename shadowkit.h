@@ -2370,12 +2370,12 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
                     int in = pin[i] != 0.0, patch = ppa[i] != 0.0;
                     asam[i] += pin[i];
                     apat[i] += ppa[i];
-                    abx0[i] = in & (qx < abx0[i]) ? qx : abx0[i];
-                    abx1[i] = in & (qx > abx1[i]) ? qx : abx1[i];
-                    aby0[i] = in & (qy < aby0[i]) ? qy : aby0[i];
-                    aby1[i] = in & (qy > aby1[i]) ? qy : aby1[i];
-                    atw[i] = patch & (ex < atw[i]) ? ex : atw[i];
-                    ath[i] = patch & (ey < ath[i]) ? ey : ath[i];
+                    abx0[i] = (in & (qx < abx0[i])) ? qx : abx0[i];
+                    abx1[i] = (in & (qx > abx1[i])) ? qx : abx1[i];
+                    aby0[i] = (in & (qy < aby0[i])) ? qy : aby0[i];
+                    aby1[i] = (in & (qy > aby1[i])) ? qy : aby1[i];
+                    atw[i] = (patch & (ex < atw[i])) ? ex : atw[i];
+                    ath[i] = (patch & (ey < ath[i])) ? ey : ath[i];
                 }
             }
             cur ^= 1;
