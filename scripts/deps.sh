@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/deps.sh [GROUP...] - install the Debian packages a make target needs,
 # only those that are missing. Quiet when nothing is missing.
-#   test   compilers, libc headers, sanitizer runtimes      (make test, make check)
+#   test   compilers, libc headers, sanitizer runtimes, clang and its libFuzzer
+#          runtime (make test, make check, make fuzz)
 #   gl     test + pkg-config, OSMesa, EGL, Embree, assimp, stb (testbed, GL tests)
 #   examples  gl + GLFW (the examples in examples/)
 #   demo   examples + gnuplot (make demo)
@@ -12,7 +13,7 @@
 # Debian 12 (bookworm); needs root (or sudo) only when something is missing.
 set -euo pipefail
 
-PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1)
+PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1 clang libclang-rt-14-dev)
 PKGS_GL=(pkg-config libosmesa6-dev libegl-dev libembree-dev libassimp-dev libstb-dev)
 PKGS_EXAMPLES=(libglfw3-dev)
 PKGS_DEMO=(gnuplot-nox)
