@@ -226,8 +226,12 @@ static void test_crop_matrix_axes(void) {
     m = sk_crop_matrix(rect4(0.0f, 0.0f, 1.0f, 1.0f), 2.0f, 1.0f);   /* empty z range */
     SK_CHECK(m.m[10] == 1.0f && m.m[14] == 0.0f);
     SK_CHECK_NEAR(m.m[0], 2.0, 0.0);
+    /* an x range too thin for float: x left alone, y and z still cropped */
     m = sk_crop_matrix(rect4(0.0f, 0.0f, 1e-39f, 1.0f), -1.0f, 1.0f);
-    SK_CHECK(is_identity(&m));
+    SK_CHECK(m.m[0] == 1.0f && m.m[12] == 0.0f);
+    SK_CHECK_NEAR(m.m[5], 2.0, 0.0);
+    SK_CHECK_NEAR(m.m[13], -1.0, 0.0);
+    SK_CHECK(m.m[10] == 1.0f && m.m[14] == 0.0f);
 }
 
 /* sk_frustum_bounding_sphere of a hexahedron whose near face is far larger
