@@ -79,11 +79,16 @@ static inline void gx_env_free(gx_env *x) {
     memset(x, 0, sizeof *x);
 }
 
-/* 0 ok; the env's own skgl context is destroyed (each case makes its own) */
-static inline int gx_env_init(gx_env *x) {
+/* 0 ok; the env's own skgl context is destroyed (each case makes its own).
+   gx_env_init_on: on a context of that backend and tb_gl_context_create_flags
+   flags; gx_env_init: OSMesa, no flags. */
+static inline int gx_env_init_on(gx_env *x, tb_gl_backend backend, int flags) {
     sk_mat4 vp;
+    tb_scene scene;
     memset(x, 0, sizeof *x);
-    if (gt_env_init_named(&x->e, "ground-boxes", GX_W, GX_H) != 0) return -1;
+    tb_scene_init(&scene);
+    if (tb_scene_build(&scene, "ground-boxes") != 0) { tb_scene_free(&scene); SK_CHECK(0); return -1; }
+    if (gt_env_init_context(&x->e, &scene, GX_W, GX_H, backend, flags) != 0) return -1;
     skgl_destroy(x->e.sk);
     x->e.sk = NULL;
     x->light = gt_v3(-0.5f, -1, -0.35f);
@@ -101,6 +106,7 @@ static inline int gx_env_init(gx_env *x) {
     }
     return 0;
 }
+static inline int gx_env_init(gx_env *x) { return gx_env_init_on(x, TB_GL_OSMESA, 0); }
 
 /* set by a test that makes calls fail on purpose: failed calls are counted
    in gx_failed_calls instead of being reported as failed checks */
