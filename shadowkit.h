@@ -15,7 +15,10 @@
      Everywhere else, include it without the define. To keep every symbol
      private to one translation unit, define SHADOWKIT_STATIC as well (then
      each translation unit that defines SHADOWKIT_IMPLEMENTATION gets its own
-     static copy).
+     static copy; define it before the file's first #include of the header).
+     A file that defines SHADOWKIT_STATIC without the implementation has no
+     copy: it gets the types and constants, and plain extern declarations
+     that it must not call (static ones never defined would make GCC warn).
 
      Override before the implementation is included, if you like:
          SK_ASSERT(x)            default assert(x) from <assert.h>
@@ -23,7 +26,8 @@
          SK_SQRT, SK_FABS, SK_FLOOR, SK_CEIL, SK_LOG2, SK_POW, SK_TAN, SK_ATAN,
          SK_COS, SK_FREXP, SK_LDEXP                    double math
                                  all default to the <math.h> functions
-         SKDEF                   default extern (static with SHADOWKIT_STATIC)
+         SKDEF                   default extern (static with SHADOWKIT_STATIC
+                                 and SHADOWKIT_IMPLEMENTATION)
 
    CONVENTIONS
      - No allocation, no global mutable state, no I/O, no GL. Callers pass
@@ -81,7 +85,11 @@
 #define SHADOWKIT_VERSION_PATCH 0
 
 #ifndef SKDEF
-#ifdef SHADOWKIT_STATIC
+#if defined(SHADOWKIT_STATIC) && !defined(SHADOWKIT_IMPLEMENTATION)
+/* no copy of the implementation here: declarations only (see USAGE) */
+#define SKDEF extern
+#define SK__STATIC_WITHOUT_IMPLEMENTATION 1
+#elif defined(SHADOWKIT_STATIC)
 #if defined(__GNUC__) || defined(__clang__)
 #define SKDEF static __attribute__((unused))
 #else
@@ -127,19 +135,24 @@ SKDEF sk_mat4 sk_mat4_perspective(float fovy, float aspect, float zn, float zf);
 /* glOrtho. Fallback for r == l, t == b, zf == zn or non-finite: the identity. */
 SKDEF sk_mat4 sk_mat4_ortho(float l, float r, float b, float t, float zn, float zf);
 /* gluLookAt. An up vector parallel to the view direction is replaced by the
-   world axis least aligned with it; eye == target or non-finite input gives
-   the identity. */
+   world axis least aligned with it; eye == target, non-finite input or a
+   translation too large for float (|eye| near FLT_MAX) gives the identity. */
 SKDEF sk_mat4 sk_mat4_look_at(sk_vec3 eye, sk_vec3 target, sk_vec3 up);
 SKDEF sk_vec3 sk_mat4_transform_point(sk_mat4 m, sk_vec3 p);      /* with w-divide (w == 0: no divide) */
 SKDEF sk_vec4 sk_mat4_transform_vec4(sk_mat4 m, sk_vec4 p);       /* no divide */
 /* corners[i] = unprojected NDC ((i&1)?1:-1, (i&2)?1:-1, (i&4)?1:-1); planes
    point inward (normalised), in the order left, right, bottom, top, near, far.
    A singular or non-finite matrix gives an all-zero frustum, which every test
-   below treats as "unknown" (conservatively intersecting). */
+   below treats as "unknown" (conservatively intersecting); so does one whose
+   clip volume is no bounded frustum in front of its eye (an NDC corner
+   unprojects to clip w <= 0, at or beyond infinity) and one whose corners or
+   planes do not fit a float. */
 SKDEF sk_frustum sk_frustum_from_matrix(sk_mat4 view_proj);
 /* Frustum (any convex hexahedron) from 8 corners in the corner order above.
    Planes are recomputed from the corners and oriented inward.
-   SK_ERR_DEGENERATE if a face is degenerate (zero area). */
+   SK_ERR_INVALID_ARG for a non-finite corner or NULL; SK_ERR_DEGENERATE if a
+   face is degenerate (zero area) or a plane does not fit a float (corners
+   near FLT_MAX); out is untouched on error. */
 SKDEF sk_result sk_frustum_from_corners(const sk_vec3 corners[8], sk_frustum *out);
 /* The 8 corners of an AABB as a frustum (same corner order: bit 0 = x max,
    bit 1 = y max, bit 2 = z max). min > max on an axis: SK_ERR_INVALID_ARG. */
@@ -149,8 +162,11 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p);
 
 /* Vertices of the convex intersection of a frustum and an AABB (the body that
    a shadow map must cover). Writes at most cap points; returns the count
-   (0 when they do not intersect), or -SK_ERR_INVALID_ARG, or
-   -SK_ERR_CAPACITY. SK_CLIP_MAX_POINTS is always enough. */
+   (0 when they do not intersect), or -SK_ERR_INVALID_ARG (NULL, cap < 0,
+   an all-zero or non-finite frustum, an invalid box), or -SK_ERR_CAPACITY;
+   nothing is written on error. SK_CLIP_MAX_POINTS is always enough. The
+   points are finite for any valid input: a box far larger than the frustum
+   (even +-FLT_MAX) is first cut to the frustum's bounds. */
 #define SK_CLIP_MAX_POINTS 144
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap);
 
@@ -171,7 +187,8 @@ SKDEF float sk_rmsm_lod(sk_vec2 dx, sk_vec2 dy);
    ========================================================================= */
 /* maps [r.x0,r.x1] x [r.y0,r.y1] x [zmin,zmax] of light clip space onto
    [-1,1]^3 (zmin maps to -1, zmax to +1). An axis with an empty or
-   non-finite range is left as the identity. */
+   non-finite range, or one too thin for its scale to fit a float (a width
+   below about 6e-39), is left as the identity; the other axes still map. */
 SKDEF sk_mat4 sk_crop_matrix(sk_rect r, float zmin, float zmax);
 /* C_0 = zn, C_m = zf, C_i = lambda*zn*(zf/zn)^(i/m) + (1-lambda)*(zn + (zf-zn)*i/m).
    out has m+1 entries. m in [1, SK_MAX_SPLITS], lambda in [0,1].
@@ -190,13 +207,15 @@ SKDEF sk_result sk_frustum_slice(const sk_frustum *view, float zn, float zf,
    to a multiple of 2^-10 of itself, which absorbs the float noise of the
    corners except when the exact radius lies within that noise of a rounding
    step. For a radius that is bitwise the same wherever the camera is, use
-   sk_cascade_sphere. */
+   sk_cascade_sphere. NULL, a non-finite corner, or a sphere float cannot
+   hold (corners near FLT_MAX): a zero sphere (r = 0). */
 SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f);
 /* The same sphere computed from the camera's parameters: a symmetric
    perspective camera (cam_view rigid, fovy, aspect) and the slice [d0, d1] of
    eye depths. The radius depends on fovy, aspect, d0 and d1 only, so it is
    bitwise identical at every camera position and orientation: what stable
-   cascades need. Bad input: a zero sphere (r = 0). */
+   cascades need. Bad input, or a sphere float cannot hold (a radius or
+   centre beyond FLT_MAX): a zero sphere (r = 0). */
 SKDEF sk_sphere sk_cascade_sphere(sk_mat4 cam_view, float fovy, float aspect, float d0, float d1);
 /* World-to-light view for a directional light (looks along light_dir; the up
    vector is a fixed world axis, never the camera's, so it is stable).
@@ -205,7 +224,11 @@ SKDEF sk_mat4 sk_light_view_directional(sk_vec3 light_dir);
 /* Focused orthographic projection for light_view: x, y fitted to the points
    (e.g. from sk_clip_frustum_aabb) in light view space; the near plane pulled
    back towards the light to include casters (may be NULL) so off-screen
-   casters between the light and the receivers still cast. */
+   casters between the light and the receivers still cast.
+   SK_ERR_INVALID_ARG for NULL, count < 1, a non-finite point or matrix or
+   an invalid caster box; SK_ERR_DEGENERATE when the fitted box does not fit
+   a float projection (light-view coordinates near FLT_MAX). out_proj is
+   untouched on error. */
 SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
                              const sk_aabb *casters, sk_mat4 *out_proj);
 /* Texel-snapped stable crop for a directional light (or one PSSM cascade):
@@ -213,7 +236,11 @@ SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
    is fixed in light-view space: the crop origin is snapped to whole texels
    (texel = 2r/(res-1), so the snapped square still covers the sphere), hence
    a sub-texel camera move never changes which texel covers a world point.
-   Depth range: the sphere, pulled back to the casters' bounds if given. */
+   Depth range: the sphere, pulled back to the casters' bounds if given.
+   SK_ERR_INVALID_ARG for NULL, res < 2, r <= 0, non-finite input or an
+   invalid caster box; SK_ERR_DEGENERATE when the crop does not fit float
+   (bounds beyond FLT_MAX, or a sphere too small for float to resolve at its
+   distance from the light view's origin). out_proj is untouched on error. */
 SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
                                const sk_aabb *casters, sk_mat4 *out_proj);
 /* sk_stable_crop for coordinates relative to a world point (large worlds):
@@ -297,7 +324,12 @@ typedef struct sk_lispsm_result {
    d the body's depth along the warp axis (Wimmer et al. 2004, Sec. 5).
    As the light becomes parallel to the view direction n_opt grows without
    bound and the map degrades smoothly to the uniform focused one; beyond
-   n > 1e4 * d the uniform map is used directly (warped = 0). */
+   n > 1e4 * d, or for a body thinner along the warp axis than 1e-4 of the
+   magnitudes it is computed from (its points and the eye: too flat for
+   float to warp), the uniform map is used directly (warped = 0). SK_ERR_INVALID_ARG for NULL, non-finite or
+   zero directions, zn <= 0, no body, a non-finite body point or
+   n_override, or an invalid caster box (out untouched);
+   SK_ERR_DEGENERATE when the map does not fit float. */
 SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *out);
 
 /* =========================================================================
@@ -316,7 +348,11 @@ SKDEF sk_lspsm_params sk_lspsm_default_params(void);
    Writes rects row by row (near first), returns how many, or
    -SK_ERR_INVALID_ARG (theta outside [0, pi/2), n <= 0, L <= 0, zeta outside
    (0, 0.5), sigma <= 0, h_max or nw_max < 1, NULL, non-finite input),
-   -SK_ERR_CAPACITY when they do not fit in cap. Never loops forever. */
+   -SK_ERR_CAPACITY when they do not fit in cap, -SK_ERR_DEGENERATE when a
+   rect cannot be written in float (a bound beyond FLT_MAX, or a side that
+   rounds to zero length: n far below float resolution at L, or theta at
+   pi/2 with a tiny n). An error writes nothing; every rect written has
+   x0 < x1 and y0 < y1. Never loops forever. */
 SKDEF int sk_lspsm_partition(float n, float L, float theta, const sk_lspsm_params *p,
                              sk_rect *out, int cap);
 
@@ -327,24 +363,32 @@ typedef struct sk_lspsm_region {
     sk_vec2 origin;               /* centre of the near base in light_view xy */
     float n, L, theta;            /* the trapezoid of sk_lspsm_partition */
     float zmin, zmax;             /* light-view z range (casters included) */
-    int fallback;                 /* 1: view direction parallel to the light or
-                                     zero-length region: one focused map over
-                                     the bounding rectangle instead */
+    int fallback;                 /* 1: view direction parallel to the light,
+                                     zero-length or zero-width region: one
+                                     focused map over the bounding rectangle
+                                     instead */
 } sk_lspsm_region;
 /* The projective region of seed 003 (Sec. 3.1): the view frustum clipped to
    the receivers' box, projected on the light plane; the smallest enclosing
    isosceles trapezoid (minimum area) whose axis is the projected view
    direction. Casters (may be NULL) extend the depth range only.
    n is kept >= 1e-2 of the far base: as n -> 0 the rows of Eq. (1) would
-   shrink to nothing (and past float precision).
-   SK_ERR_DEGENERATE when the frustum misses the receivers. */
+   shrink to nothing (and past float precision); and >= 1e-5 of the
+   region's coordinates, so a body of no width across the axis still gets
+   a trapezoid. SK_ERR_INVALID_ARG for NULL, non-finite or zero directions,
+   an invalid view or box; SK_ERR_DEGENERATE when the frustum misses the
+   receivers or the region does not fit float (coordinates near FLT_MAX).
+   out is untouched on error. */
 SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir,
                                         sk_aabb receivers, const sk_aabb *casters,
                                         sk_vec3 light_dir, sk_lspsm_region *out);
 /* One light view-projection (world -> that partition's clip space) per
    partition of the region (or the single focused map of a fallback region),
    and the partition rects in light-view xy. Returns the count, or -sk_result
-   as sk_lspsm_partition. out_rects may be NULL. */
+   as sk_lspsm_partition; -SK_ERR_DEGENERATE also when a rect moved by the
+   origin, or its matrix, does not fit float (a region filled by hand whose
+   fields do not belong together). An error writes nothing. out_rects may
+   be NULL. */
 SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
                          sk_mat4 *out_view_proj, sk_rect *out_rects, int cap);
 
@@ -369,8 +413,12 @@ SKDEF unsigned sk_cube_visible_faces(sk_vec3 light_pos, float zn, float zf, cons
    circumscribing the light-to-box cone, near plane at the box's nearest point
    along the cone axis, far plane at light_range. If the light is inside the
    box (or the cone would be wider than 170 degrees), the light-range box
-   instead. SK_ERR_DEGENERATE when the box lies beyond light_range (casts
-   nothing), SK_ERR_INVALID_ARG for bad input. */
+   instead. The cone is built in double and is never thinner than 1e-6 of
+   the magnitudes at hand, so a caster too small or too far to subtend an
+   angle float resolves (a point) still gets a frustum that holds it; if
+   float cannot hold the pyramid's corners, the light-range box.
+   SK_ERR_DEGENERATE only when the box lies beyond light_range (casts
+   nothing), SK_ERR_INVALID_ARG for bad input; out untouched on error. */
 SKDEF sk_result sk_caster_shadow_frustum(sk_vec3 light_pos, float light_range,
                                          sk_aabb caster, sk_frustum *out);
 /* 1 if the caster's shadow (light-to-box cone, capped at light_range) can
@@ -382,7 +430,9 @@ SKDEF int sk_caster_visible(sk_vec3 light_pos, float light_range, sk_aabb caster
    the minimum, ceil of the maximum, clipped to the viewport) of the light's
    range box (side 2*radius). Some box corners behind the eye (clip w <= 0)
    and some in front: the full viewport; all behind, or the rect empty:
-   returns 0 with the rect zeroed; otherwise 1. Bad input: 0, rect zeroed. */
+   returns 0 with the rect zeroed; otherwise 1. The corners are projected
+   in double (no overflow of light_pos +- radius, no clip w rounding to 0).
+   Bad input: 0, rect zeroed. */
 SKDEF int sk_light_scissor(sk_vec3 light_pos, float radius, sk_mat4 view_proj,
                            int vp_w, int vp_h, int out_rect[4]);
 /* smallest power of two M with faces*M*M >= c*pixels, clamped to [1, the
@@ -392,8 +442,14 @@ SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res);
 
 /* Virtual Shadow Depth Cube Texture: six faces as sub-rects of one 2D depth
    texture, laid out 3 x 2 (face f at column f%3, row f/3, row 0 at the
-   bottom). face_res in [1, SK_VSDCT_MAX_FACE_RES]. */
+   bottom). face_res in [1, SK_VSDCT_MAX_FACE_RES].
+   A layout filled by hand (faces packed into a larger atlas) is valid when
+   face_res is in that range, the atlas is at most SK_VSDCT_MAX_ATLAS texels
+   on a side (float u, v then place a texel to within 1/64 of its width) and
+   every face's sub-rect lies inside it; sk_vsdct_lookup and
+   sk_vsdct_indirection_fill refuse any other. */
 #define SK_VSDCT_MAX_FACE_RES 65536
+#define SK_VSDCT_MAX_ATLAS (4 * SK_VSDCT_MAX_FACE_RES)
 typedef struct sk_vsdct_layout { int face_res, atlas_w, atlas_h; int face_x[6], face_y[6]; } sk_vsdct_layout;
 SKDEF sk_result sk_vsdct_layout_make(int face_res, sk_vsdct_layout *out);
 /* N_i = 2^(ceil(log2 Ns) + min(ceil(log2 G), D) - D)  (Eq. 5.4.7), at least 1;
@@ -406,13 +462,15 @@ SKDEF void sk_vsdct_depth_coeffs(float zn, float zf, float *scale, float *bias);
 /* direction -> face and normalised atlas coords (u right, v up: GL texture
    convention, v = 0 at the atlas's bottom row); within its sub-rect a face is
    laid out exactly as GL lays out that cube face. Coords always stay at least
-   half a texel inside that face's sub-rect (no sampling across seams).
-   Returns the face, or -1 for a zero or non-finite direction or a NULL
-   argument (u, v untouched). */
+   half a texel inside that face's sub-rect (no sampling across seams), up
+   to the rounding of u, v to float. Returns the face, or -1 for a zero or
+   non-finite direction, an invalid layout (see above) or a NULL argument
+   (u, v untouched). */
 SKDEF int sk_vsdct_lookup(const sk_vsdct_layout *l, sk_vec3 dir, float *u, float *v);
 /* fills the RG16 indirection cube map: out[((face*ni + t)*ni + s)*2 + {0,1}]
    = atlas (u,v) * 65535 (rounded) for the direction through that texel's
-   centre. ni in [1, 65536]. */
+   centre. ni in [1, 65536]; SK_ERR_INVALID_ARG (nothing written) for ni out
+   of range, an invalid layout or NULL. */
 SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsigned short *out);
 
 /* =========================================================================
@@ -431,8 +489,10 @@ typedef struct sk_res_estimate {
    inside the light's clip volume (w > 0, |x|,|y|,|z| <= w). Patches come from
    the four pixel corners, their depth bilinearly interpolated from the valid
    pixels around each corner (Sec. 3.2). If no patch has all four corners in
-   front of the light, the texel size is the bounds over max_res (so the map
-   is max_res wide). No sample: SK_OK with samples = 0,
+   front of the light, or none a finite extent along an axis (projections
+   beyond double range), the texel size is the bounds over max_res (so the
+   map is max_res wide); a texel size beyond FLT_MAX reads FLT_MAX: every
+   output is finite. No sample: SK_OK with samples = 0,
    width and height 0, texel sizes 0, bounds and crop the identity of
    [-1,1]^2. w and h in [1, 65536]; max_res >= 1. */
 SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h,
@@ -458,13 +518,18 @@ SKDEF float sk_texel_box_coverage(float x0, float y0, float x1, float y1, int tx
    box [x0,x1]x[y0,y1] (texel units) that is lit, each texel taken as a quad
    weighted by its coverage. lit(user, tx, ty) returns 1 when that texel passes
    the depth test. Texels are visited at most 64 x 64 (a larger box returns
-   -1). Empty box: the lit value of the texel containing its centre. */
+   -1). Empty box: the lit value of the texel containing its centre.
+   Coverage is summed in double, so a box thinner than float's range of
+   areas still reads its true fraction. Bad input (lit NULL, a non-finite
+   coordinate, |coordinate| > 1e9): -1, lit never called. */
 SKDEF float sk_smooth_box_visibility(float x0, float y0, float x1, float y1,
                                      int (*lit)(void *user, int tx, int ty), void *user);
 /* Eq. (4)-(5): required texel size (shadow-map units) along each axis,
    r_k = 2 e_k^T h / rho(n_k), n_k = ||M_phi'^-1 e_k e_k^T h_k||: the SMTG keeps
    the MINIMUM per cell; resolution over a span s is s / r. u_phi, v_phi are the
-   half-axes of the warped pixel footprint. Non-finite input: +INFINITY. */
+   half-axes of the warped pixel footprint. Non-finite input: +INFINITY; a
+   size too large for float: FLT_MAX (finite input never gives +INFINITY,
+   which the SMTG reads as "no sample"). r0 or r1 may be NULL. */
 SKDEF void sk_pvsm_predict(sk_vec2 u_h, sk_vec2 v_h, sk_vec2 u_phi, sk_vec2 v_phi,
                            int dynamic_scene, float *r0, float *r1);
 /* V_dst = V_dst*A_dst + V_src*A_src, A_dst += A_src (Sec. 5.2), with V kept
@@ -516,7 +581,11 @@ SKDEF int sk_rmsm_page_requests(const sk_vec3 *samples, int count, int virtual_r
 #ifdef SHADOWKIT_IMPLEMENTATION
 #ifndef SHADOWKIT_IMPLEMENTATION_INCLUDED
 #define SHADOWKIT_IMPLEMENTATION_INCLUDED
+#ifdef SK__STATIC_WITHOUT_IMPLEMENTATION
+#error "SHADOWKIT_STATIC: define SHADOWKIT_IMPLEMENTATION before this file's first #include of shadowkit.h"
+#endif
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -626,15 +695,23 @@ static sk_vec3 sk__cross(sk_vec3 a, sk_vec3 b)
     return sk__v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 static float sk__len(sk_vec3 a) { return (float)SK_SQRT((double)a.x * a.x + (double)a.y * a.y + (double)a.z * a.z); }
-/* zero vector stays zero */
+/* zero vector stays zero. A length whose reciprocal float cannot hold (a
+   denormal vector, or one longer than FLT_MAX) divides in double instead,
+   so the result is a unit vector for every finite non-zero input. */
 static sk_vec3 sk__normalize(sk_vec3 a)
 {
     float l = sk__len(a);
-    return l > 0.0f ? sk__scale(a, 1.0f / l) : a;
+    double x = a.x, y = a.y, z = a.z, dl;
+    if (l >= 1e-18f && l <= 1e18f) return sk__scale(a, 1.0f / l);
+    dl = SK_SQRT(x * x + y * y + z * z);
+    return dl > 0.0 ? sk__v3((float)(x / dl), (float)(y / dl), (float)(z / dl)) : a;
 }
+/* in double: b - a of two finite floats may not fit a float, the lerp
+   (t in [0,1]) always does */
 static sk_vec3 sk__lerp3(sk_vec3 a, sk_vec3 b, float t)
 {
-    return sk__v3(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t);
+    return sk__v3((float)(a.x + ((double)b.x - a.x) * t), (float)(a.y + ((double)b.y - a.y) * t),
+                  (float)(a.z + ((double)b.z - a.z) * t));
 }
 static float sk__maxabs3(sk_vec3 a)
 {
@@ -794,14 +871,23 @@ SKDEF sk_mat4 sk_mat4_look_at(sk_vec3 eye, sk_vec3 target, sk_vec3 up)
     if (!sk__v3_finite(eye) || !sk__v3_finite(target) || !sk__v3_finite(up))
         return sk_mat4_identity();
     f = sk__sub(target, eye);
-    if (sk__len(f) == 0.0f) return sk_mat4_identity();
-    f = sk__normalize(f);
+    if (f.x == 0.0f && f.y == 0.0f && f.z == 0.0f) return sk_mat4_identity();
+    if (sk__v3_finite(f)) f = sk__normalize(f);
+    else {
+        /* target - eye does not fit a float: the direction in double */
+        double dx = (double)target.x - eye.x, dy = (double)target.y - eye.y, dz = (double)target.z - eye.z;
+        double dl = SK_SQRT(dx * dx + dy * dy + dz * dz);
+        f = sk__v3((float)(dx / dl), (float)(dy / dl), (float)(dz / dl));
+    }
     s = sk__cross(f, up);
     if (!(sk__len(s) > 1e-6f * (sk__len(up) > 0.0f ? sk__len(up) : 1.0f)))
         s = sk__cross(f, sk__least_aligned_axis(f));
     s = sk__normalize(s);
     u = sk__cross(s, f);
-    return sk__basis_view(s, u, sk__scale(f, -1.0f), eye);
+    {
+        sk_mat4 r = sk__basis_view(s, u, sk__scale(f, -1.0f), eye);
+        return sk__mat_finite(&r) ? r : sk_mat4_identity();
+    }
 }
 
 SKDEF sk_vec4 sk_mat4_transform_vec4(sk_mat4 m, sk_vec4 p)
@@ -863,6 +949,19 @@ static sk_plane sk__plane_normalized(double a, double b, double c, double d)
     return p;
 }
 
+/* All-zero (what a singular matrix gives) or non-finite: not a usable frustum. */
+static int sk__frustum_invalid(const sk_frustum *f)
+{
+    /* the 48 floats' exponent bits at once (as sk__finite), then the normals */
+    unsigned u[sizeof(sk_frustum) / sizeof(unsigned)], bad = 0u;
+    int i;
+    memcpy(u, f, sizeof u);
+    for (i = 0; i < (int)(sizeof u / sizeof u[0]); i++) bad |= (unsigned)((u[i] & 0x7f800000u) == 0x7f800000u);
+    for (i = 0; i < 6; i++)
+        bad |= (unsigned)(f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f);
+    return (int)bad;
+}
+
 SKDEF sk_frustum sk_frustum_from_matrix(sk_mat4 vp)
 {
     sk_frustum f;
@@ -876,7 +975,9 @@ SKDEF sk_frustum sk_frustum_from_matrix(sk_mat4 vp)
         c.x = (i & 1) ? 1.0f : -1.0f; c.y = (i & 2) ? 1.0f : -1.0f;
         c.z = (i & 4) ? 1.0f : -1.0f; c.w = 1.0f;
         r = sk_mat4_transform_vec4(inv, c);
-        if (!(r.w != 0.0f)) { memset(&f, 0, sizeof f); return f; }
+        /* clip w = 1 / r.w: a corner at or beyond infinity (w <= 0) leaves a
+           clip volume that is no bounded frustum in front of the eye */
+        if (!(r.w > 0.0f)) { memset(&f, 0, sizeof f); return f; }
         f.corners[i] = sk__v3(r.x / r.w, r.y / r.w, r.z / r.w);
         if (!sk__v3_finite(f.corners[i])) { memset(&f, 0, sizeof f); return f; }
     }
@@ -887,6 +988,7 @@ SKDEF sk_frustum sk_frustum_from_matrix(sk_mat4 vp)
         f.planes[2 * k] = sk__plane_normalized(r3[0] + rk[0], r3[1] + rk[1], r3[2] + rk[2], r3[3] + rk[3]);
         f.planes[2 * k + 1] = sk__plane_normalized(r3[0] - rk[0], r3[1] - rk[1], r3[2] - rk[2], r3[3] - rk[3]);
     }
+    if (sk__frustum_invalid(&f)) memset(&f, 0, sizeof f);   /* a plane offset beyond FLT_MAX */
     return f;
 }
 
@@ -899,19 +1001,6 @@ static const unsigned char sk__face_quads[6][4] = {
 static const unsigned char sk__edges[12][2] = {
     {0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3}, {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}
 };
-
-/* All-zero (what a singular matrix gives) or non-finite: not a usable frustum. */
-static int sk__frustum_invalid(const sk_frustum *f)
-{
-    /* the 48 floats' exponent bits at once (as sk__finite), then the normals */
-    unsigned u[sizeof(sk_frustum) / sizeof(unsigned)], bad = 0u;
-    int i;
-    memcpy(u, f, sizeof u);
-    for (i = 0; i < (int)(sizeof u / sizeof u[0]); i++) bad |= (unsigned)((u[i] & 0x7f800000u) == 0x7f800000u);
-    for (i = 0; i < 6; i++)
-        bad |= (unsigned)(f->planes[i].n.x == 0.0f && f->planes[i].n.y == 0.0f && f->planes[i].n.z == 0.0f);
-    return (int)bad;
-}
 
 SKDEF sk_result sk_frustum_from_corners(const sk_vec3 corners[8], sk_frustum *out)
 {
@@ -947,6 +1036,7 @@ SKDEF sk_result sk_frustum_from_corners(const sk_vec3 corners[8], sk_frustum *ou
         if (nx * cx + ny * cy + nz * cz + d < 0.0) { nx = -nx; ny = -ny; nz = -nz; d = -d; }
         f.planes[k] = sk__plane_normalized(nx, ny, nz, d);
     }
+    if (sk__frustum_invalid(&f)) return SK_ERR_DEGENERATE;   /* a plane offset beyond FLT_MAX */
     *out = f;
     return SK_OK;
 }
@@ -1031,6 +1121,28 @@ SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, i
         return -(int)SK_ERR_INVALID_ARG;
     lo[0] = box.min.x; lo[1] = box.min.y; lo[2] = box.min.z;
     hi[0] = box.max.x; hi[1] = box.max.y; hi[2] = box.max.z;
+    {
+        /* the box cut to the frustum's corner bounds, 1e-4 (1 + their
+           magnitude) wider (beyond the containment tolerance): the same
+           intersection, but an edge of a box far larger than the frustum
+           is no longer too long for float to place a crossing on it */
+        float cl[3], ch[3], mag = 0.0f, tol;
+        for (j = 0; j < 3; j++) cl[j] = ch[j] = (&f->corners[0].x)[j];
+        for (i = 0; i < 8; i++) {
+            for (j = 0; j < 3; j++) {
+                float c = (&f->corners[i].x)[j];
+                if (c < cl[j]) cl[j] = c;
+                if (c > ch[j]) ch[j] = c;
+            }
+            if (sk__maxabs3(f->corners[i]) > mag) mag = sk__maxabs3(f->corners[i]);
+        }
+        tol = 1e-4f * (1.0f + mag);
+        for (j = 0; j < 3; j++) {
+            if (lo[j] < cl[j] - tol) lo[j] = cl[j] - tol;
+            if (hi[j] > ch[j] + tol) hi[j] = ch[j] + tol;
+            if (!(lo[j] <= hi[j])) return 0;   /* apart along this axis */
+        }
+    }
     for (j = 0; j < 3; j++) { alo[j] = SK_FABSF(lo[j]); ahi[j] = SK_FABSF(hi[j]); }
     /* the box corners in sk__aabb_corner order, by coordinate */
     bx[0] = bx[2] = bx[4] = bx[6] = lo[0]; bx[1] = bx[3] = bx[5] = bx[7] = hi[0];
@@ -1124,22 +1236,24 @@ SKDEF float sk_rmsm_lod(sk_vec2 dx, sk_vec2 dy)
 
 /* ---- 3. Crop matrices and parallel splits (seeds 000, 002) ------------- */
 
+/* one axis of sk_crop_matrix: [lo, hi] onto [-1, 1], or left alone */
+static void sk__crop_axis(float lo, float hi, float *scale, float *offset)
+{
+    float s, o;
+    if (!sk__finite(lo) || !sk__finite(hi) || !(hi > lo)) return;
+    s = (float)(2.0 / ((double)hi - lo));
+    o = (float)(-((double)hi + lo) / ((double)hi - lo));
+    if (!sk__finite(s) || !sk__finite(o)) return;   /* a range too thin for float */
+    *scale = s;
+    *offset = o;
+}
+
 SKDEF sk_mat4 sk_crop_matrix(sk_rect r, float zmin, float zmax)
 {
     sk_mat4 m = sk_mat4_identity();
-    if (sk__finite(r.x0) && sk__finite(r.x1) && r.x1 > r.x0) {
-        m.m[0] = (float)(2.0 / ((double)r.x1 - r.x0));
-        m.m[12] = (float)(-((double)r.x1 + r.x0) / ((double)r.x1 - r.x0));
-    }
-    if (sk__finite(r.y0) && sk__finite(r.y1) && r.y1 > r.y0) {
-        m.m[5] = (float)(2.0 / ((double)r.y1 - r.y0));
-        m.m[13] = (float)(-((double)r.y1 + r.y0) / ((double)r.y1 - r.y0));
-    }
-    if (sk__finite(zmin) && sk__finite(zmax) && zmax > zmin) {
-        m.m[10] = (float)(2.0 / ((double)zmax - zmin));
-        m.m[14] = (float)(-((double)zmax + zmin) / ((double)zmax - zmin));
-    }
-    if (!sk__mat_finite(&m)) return sk_mat4_identity();
+    sk__crop_axis(r.x0, r.x1, &m.m[0], &m.m[12]);
+    sk__crop_axis(r.y0, r.y1, &m.m[5], &m.m[13]);
+    sk__crop_axis(zmin, zmax, &m.m[10], &m.m[14]);
     return m;
 }
 
@@ -1223,6 +1337,7 @@ SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f)
     s.c = sk__v3((float)c[0], (float)c[1], (float)c[2]);
     s.r = (float)r;
     if ((double)s.r < r) s.r = (float)(r * (1.0 + 1e-7));
+    if (!sk__v3_finite(s.c) || !sk__finite(s.r)) { s.c = sk__v3(0, 0, 0); s.r = 0.0f; }   /* beyond FLT_MAX */
     return s;
 }
 
@@ -1250,6 +1365,7 @@ SKDEF sk_sphere sk_cascade_sphere(sk_mat4 v, float fovy, float aspect, float d0,
     }
     s.c = sk__v3((float)(eye[0] + zc * fwd[0]), (float)(eye[1] + zc * fwd[1]), (float)(eye[2] + zc * fwd[2]));
     s.r = (float)(r * (1.0 + 1e-4));   /* covers float corners of the same camera */
+    if (!sk__v3_finite(s.c) || !sk__finite(s.r)) { s.c = sk__v3(0, 0, 0); s.r = 0.0f; }   /* beyond FLT_MAX */
     return s;
 }
 
@@ -1263,16 +1379,29 @@ SKDEF sk_mat4 sk_light_view_directional(sk_vec3 light_dir)
 }
 
 /* Orthographic projection of the light-view box [lo, hi]: x, y onto [-1,1],
-   larger z (nearer the light: the view looks down -z) onto depth -1. */
-static sk_mat4 sk__ortho_box(double xlo, double xhi, double ylo, double yhi, double zlo, double zhi)
+   larger z (nearer the light: the view looks down -z) onto depth -1. A
+   side thinner than 1e-4 of the magnitudes at hand (a flat body) is widened
+   to that: the points' float coordinates carry an error of about 1e-7 of
+   them, which a thinner side would magnify past the map's edge. `mag` is
+   the magnitude the coordinates were computed from (world points and the
+   view's translation), or 0. Returns 0 (out untouched) when the box does
+   not fit a float matrix (a bound beyond FLT_MAX). */
+static int sk__ortho_box_fit(double xlo, double xhi, double ylo, double yhi, double zlo, double zhi, double mag,
+                             sk_mat4 *out)
 {
-    double e = 1e-6 * (1.0 + SK_FABS(xlo) + SK_FABS(xhi));
-    if (xhi - xlo < e) { xlo -= e; xhi += e; }
-    e = 1e-6 * (1.0 + SK_FABS(ylo) + SK_FABS(yhi));
-    if (yhi - ylo < e) { ylo -= e; yhi += e; }
-    e = 1e-6 * (1.0 + SK_FABS(zlo) + SK_FABS(zhi));
-    if (zhi - zlo < e) { zlo -= e; zhi += e; }
-    return sk_mat4_ortho((float)xlo, (float)xhi, (float)ylo, (float)yhi, (float)-zhi, (float)-zlo);
+    double e = 1e-4 * (1.0 + SK_FABS(xlo) + SK_FABS(xhi) + mag);
+    float b[6];
+    int i;
+    if (xhi - xlo < e) { xlo -= 0.5 * (e - (xhi - xlo)); xhi += 0.5 * (e - (xhi - xlo)); }
+    e = 1e-4 * (1.0 + SK_FABS(ylo) + SK_FABS(yhi) + mag);
+    if (yhi - ylo < e) { ylo -= 0.5 * (e - (yhi - ylo)); yhi += 0.5 * (e - (yhi - ylo)); }
+    e = 1e-4 * (1.0 + SK_FABS(zlo) + SK_FABS(zhi) + mag);
+    if (zhi - zlo < e) { zlo -= 0.5 * (e - (zhi - zlo)); zhi += 0.5 * (e - (zhi - zlo)); }
+    b[0] = (float)xlo; b[1] = (float)xhi; b[2] = (float)ylo; b[3] = (float)yhi; b[4] = (float)-zhi; b[5] = (float)-zlo;
+    for (i = 0; i < 6; i++) if (!sk__finite(b[i])) return 0;
+    if (!(b[1] > b[0]) || !(b[3] > b[2]) || !(b[5] > b[4])) return 0;
+    *out = sk_mat4_ortho(b[0], b[1], b[2], b[3], b[4], b[5]);
+    return 1;
 }
 
 /* Largest light-view z (nearest the light) of the casters' corners. */
@@ -1290,7 +1419,7 @@ static double sk__casters_zmax(const sk_mat4 *view, const sk_aabb *casters, doub
 SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
                              const sk_aabb *casters, sk_mat4 *out_proj)
 {
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, mag = 0.0;
     int i, k;
     if (!pts || count < 1 || !out_proj || !sk__mat_finite(&light_view) ||
         (casters && !sk__aabb_valid(casters)))
@@ -1298,6 +1427,7 @@ SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
     for (i = 0; i < count; i++) {
         sk_vec3 p;
         if (!sk__v3_finite(pts[i])) return SK_ERR_INVALID_ARG;
+        if (sk__maxabs3(pts[i]) > mag) mag = sk__maxabs3(pts[i]);
         p = sk__xform_affine(&light_view, pts[i]);
         for (k = 0; k < 3; k++) {
             double v = (&p.x)[k];
@@ -1306,8 +1436,8 @@ SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
         }
     }
     hi[2] = sk__casters_zmax(&light_view, casters, hi[2]);
-    *out_proj = sk__ortho_box(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]);
-    return SK_OK;
+    mag += sk__maxabs3(sk__v3(light_view.m[12], light_view.m[13], light_view.m[14]));
+    return sk__ortho_box_fit(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], mag, out_proj) ? SK_OK : SK_ERR_DEGENERATE;
 }
 
 SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
@@ -1346,8 +1476,17 @@ SKDEF sk_result sk_stable_crop_origin(sk_sphere s, sk_mat4 light_view, int res, 
     }
     ext = texel * res;
     zhi = sk__casters_zmax(&light_view, casters, (double)c.z + s.r);
-    *out_proj = sk_mat4_ortho((float)x0, (float)(x0 + ext), (float)y0, (float)(y0 + ext),
-                              (float)-zhi, (float)(-(double)c.z + s.r));
+    {
+        /* bounds float cannot hold, or a sphere too small for float to
+           tell its edges apart at this distance from the light's origin */
+        float b[6];
+        int i;
+        b[0] = (float)x0; b[1] = (float)(x0 + ext); b[2] = (float)y0; b[3] = (float)(y0 + ext);
+        b[4] = (float)-zhi; b[5] = (float)(-(double)c.z + s.r);
+        for (i = 0; i < 6; i++) if (!sk__finite(b[i])) return SK_ERR_DEGENERATE;
+        if (!(b[1] > b[0]) || !(b[3] > b[2]) || !(b[5] > b[4])) return SK_ERR_DEGENERATE;
+        *out_proj = sk_mat4_ortho(b[0], b[1], b[2], b[3], b[4], b[5]);
+    }
     return SK_OK;
 }
 
@@ -1388,9 +1527,15 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
         if (y < b) b = y;
         if (y > t) t = y;
     }
-    /* a small margin so the fitted points land inside, not on, the frustum */
+    /* a small margin so the fitted points land inside, not on, the
+       frustum; and no side thinner than 1e-4 of its offset from the axis
+       (a flat body): below that the float matrix cancels the points'
+       positions away (its m[8] = (r+l)/(r-l) holds only 24 bits) */
     {
         double mx = 1e-4 * (r - l) + 1e-6, my = 1e-4 * (t - b) + 1e-6;
+        double wx = 1e-4 * (SK_FABS(l) + SK_FABS(r)), wy = 1e-4 * (SK_FABS(b) + SK_FABS(t));
+        if (r - l + 2.0 * mx < wx) mx = 0.5 * (wx - (r - l));
+        if (t - b + 2.0 * my < wy) my = 0.5 * (wy - (t - b));
         l -= mx; r += mx; b -= my; t += my;
     }
     zn *= 0.999;
@@ -1530,7 +1675,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
     sk_vec3 l, v, yax, zax, xax, lbody[SK_CLIP_MAX_POINTS];   /* light-space body, when it fits */
     sk_mat4 lv;
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    double cosg, sing, depth, n;
+    double cosg, sing, depth, n, mag;
     int i, k;
     if (!d || !out || !sk__v3_finite(d->eye) || !sk__v3_finite(d->view_dir) ||
         !sk__v3_finite(d->light_dir) || sk__len(d->view_dir) == 0.0f || sk__len(d->light_dir) == 0.0f ||
@@ -1547,6 +1692,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         double cx = vy * lz - vz * ly, cy = vz * lx - vx * lz, cz = vx * ly - vy * lx;
         cosg = vx * lx + vy * ly + vz * lz;
         sing = SK_SQRT(cx * cx + cy * cy + cz * cz);
+        if (sing > 1.0) sing = 1.0;   /* float unit vectors: |v x l| may round past 1 */
         yax = sk__v3((float)(vx - cosg * lx), (float)(vy - cosg * ly), (float)(vz - cosg * lz));
     }
     /* light space: z towards the light, y the view direction projected
@@ -1576,9 +1722,18 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         n = (d->zn + SK_SQRT((double)d->zn * zf)) / sing;   /* n_opt */
     } else n = SK__INF;
     out->sin_gamma = (float)sing;
-    if (!(depth > 0.0) || !sk__finite_d(n) || n > 1e4 * depth) {
+    /* the magnitude the light-space body was computed from (its world
+       points and the eye): its float error is about 1e-7 of that. A body
+       thinner along the warp axis than 1e-4 of it cannot be warped: it is
+       flat, the uniform map holds it */
+    mag = 0.0;
+    for (i = 0; i < d->body_count; i++) if (sk__maxabs3(d->body[i]) > mag) mag = sk__maxabs3(d->body[i]);
+    mag += sk__maxabs3(d->eye);
+    if (!(depth > 1e-4 * (1.0 + SK_FABS(lo[1]) + SK_FABS(hi[1]) + mag)) || !sk__finite_d(n) || n > 1e4 * depth) {
         /* uniform focused map: the limit of the warp as n -> infinity */
-        out->light_view_proj = sk_mat4_mul(sk__ortho_box(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]), lv);
+        sk_mat4 box;
+        if (!sk__ortho_box_fit(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], mag, &box)) return SK_ERR_DEGENERATE;
+        out->light_view_proj = sk_mat4_mul(box, lv);
         out->n = SK__INF;
         out->warped = 0;
         return sk__mat_finite(&out->light_view_proj) ? SK_OK : SK_ERR_DEGENERATE;
@@ -1609,7 +1764,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
            w lies in [n, n + depth]: bound their warped z conservatively */
         if (hi[2] > 0.0) { if (hi[2] / n > whi[2]) whi[2] = hi[2] / n; }
         else if (hi[2] / f > whi[2]) whi[2] = hi[2] / f;
-        crop = sk__ortho_box(wlo[0], whi[0], wlo[1], whi[1], wlo[2], whi[2]);
+        if (!sk__ortho_box_fit(wlo[0], whi[0], wlo[1], whi[1], wlo[2], whi[2], 0.0, &crop)) return SK_ERR_DEGENERATE;
         out->light_view_proj = sk_mat4_mul(sk_mat4_mul(crop, w), lv);
         out->n = (float)n;
         out->warped = 1;
@@ -1632,30 +1787,43 @@ SKDEF sk_lspsm_params sk_lspsm_default_params(void)
 typedef struct sk__lspsm_sink {
     sk_rect *rects;                 /* may be NULL */
     sk_mat4 *vps;                   /* may be NULL */
-    const sk_lspsm_region *region;  /* for vps */
+    const sk_lspsm_region *region;  /* NULL: rects in the trapezoid's own frame */
 } sk__lspsm_sink;
 
-static void sk__lspsm_put(sk__lspsm_sink *s, int i, double x0, double y0, double x1, double y1)
+/* Partition i, [x0,x1] x [y0,y1] in the trapezoid's frame, as the caller
+   gets it: in float, moved by the region's origin, with its view-projection
+   when asked for. Returns 0 if float cannot hold it (a bound beyond
+   FLT_MAX, a side that rounds to zero length, a matrix that overflows);
+   writes only when `write` and the rect is held. */
+static int sk__lspsm_put(const sk__lspsm_sink *s, int write, int i, double x0, double y0, double x1, double y1)
 {
     sk_rect r;
+    sk_mat4 vp;
     r.x0 = (float)x0; r.y0 = (float)y0; r.x1 = (float)x1; r.y1 = (float)y1;
     if (s->region) {
         r.x0 += s->region->origin.x; r.x1 += s->region->origin.x;
         r.y0 += s->region->origin.y; r.y1 += s->region->origin.y;
-        if (s->vps)
-            s->vps[i] = sk_mat4_mul(sk__ortho_box(r.x0, r.x1, r.y0, r.y1, s->region->zmin, s->region->zmax),
-                                    s->region->light_view);
     }
-    if (s->rects) s->rects[i] = r;
+    if (!sk__finite(r.x0) || !sk__finite(r.y0) || !sk__finite(r.x1) || !sk__finite(r.y1) || !(r.x1 > r.x0) ||
+        !(r.y1 > r.y0))
+        return 0;
+    if (s->region && s->vps) {
+        if (!sk__ortho_box_fit(r.x0, r.x1, r.y0, r.y1, s->region->zmin, s->region->zmax, 0.0, &vp)) return 0;
+        vp = sk_mat4_mul(vp, s->region->light_view);
+        if (!sk__mat_finite(&vp)) return 0;
+        if (write) s->vps[i] = vp;
+    }
+    if (write && s->rects) s->rects[i] = r;
+    return 1;
 }
 
 /* Eq. (1): rows of width W_i and height H_i from the near base; each row's
    width is the trapezoid's width at its far edge. Transverse split when
-   W/H > 1 + sigma (Sec. 3.2). With sink == NULL only counts, and stops as
-   soon as the count passes `limit`. Returns the count, or -1 if a value is
-   not finite. */
-static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_params *p, sk__lspsm_sink *sink,
-                          int limit)
+   W/H > 1 + sigma (Sec. 3.2). Counts, and stops as soon as the count passes
+   `limit`; with `write`, also writes (sk__lspsm_put). Returns the count,
+   -1 if a value is not finite, -2 if float cannot hold a partition. */
+static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_params *p, const sk__lspsm_sink *sink,
+                          int write, int limit)
 {
     double t = SK_TAN(theta), zeta = p->zeta, q, hfac, W = n, y = 0.0;
     int i, count = 0;
@@ -1676,14 +1844,23 @@ static int sk__lspsm_rows(double n, double L, double theta, const sk_lspsm_param
             nw = c >= (double)p->nw_max ? p->nw_max : (int)SK_CEIL(c);
         }
         if (nw > limit - count) return limit + 1;    /* more than the caller can take */
-        if (sink)
-            for (j = 0; j < nw; j++)
-                sk__lspsm_put(sink, count + j, -0.5 * row_w + row_w * j / nw, y,
-                              -0.5 * row_w + row_w * (j + 1) / nw, y1);
+        for (j = 0; j < nw; j++)
+            if (!sk__lspsm_put(sink, write, count + j, -0.5 * row_w + row_w * j / nw, y,
+                               -0.5 * row_w + row_w * (j + 1) / nw, y1))
+                return -2;
         count += nw;
         y = y1;
         if (y >= L) break;
     }
+    return count;
+}
+
+/* a count from a counting pass of sk__lspsm_rows as the public result */
+static int sk__lspsm_count_result(int count, int cap)
+{
+    if (count == -1) return -(int)SK_ERR_INVALID_ARG;
+    if (count < 0) return -(int)SK_ERR_DEGENERATE;
+    if (count > cap) return -(int)SK_ERR_CAPACITY;
     return count;
 }
 
@@ -1701,11 +1878,11 @@ SKDEF int sk_lspsm_partition(float n, float L, float theta, const sk_lspsm_param
         !sk__finite(theta) || !(n > 0.0f) || !(L > 0.0f) || !(theta >= 0.0f) ||
         !((double)theta < 0.5 * SK__PI))
         return -(int)SK_ERR_INVALID_ARG;
-    count = sk__lspsm_rows(n, L, theta, p, NULL, cap);
-    if (count < 0) return -(int)SK_ERR_INVALID_ARG;
-    if (count > cap) return -(int)SK_ERR_CAPACITY;
     sink.rects = out; sink.vps = NULL; sink.region = NULL;
-    return sk__lspsm_rows(n, L, theta, p, &sink, cap);
+    /* counted and checked first: an error writes nothing */
+    count = sk__lspsm_count_result(sk__lspsm_rows(n, L, theta, p, &sink, 0, cap), cap);
+    if (count < 0) return count;
+    return sk__lspsm_rows(n, L, theta, p, &sink, 1, cap);
 }
 
 /* An isosceles trapezoid with legs of slope t >= 0 around points (x, s),
@@ -1810,7 +1987,7 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     sk_vec3 pts[SK_CLIP_MAX_POINTS], l, v, yax, zax, xax, centre = sk__v3(0, 0, 0);
     double lx[SK_CLIP_MAX_POINTS], ls[SK_CLIP_MAX_POINTS], rx[SK_CLIP_MAX_POINTS], rs[SK_CLIP_MAX_POINTS];
     sk_lspsm_region r;
-    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300, L;
+    double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300, zmin = 1e300, zmax = -1e300, L, tiny;
     int n, i, nl = 0, nr = 0;
     if (!view || !out || !sk__v3_finite(view_dir) || !sk__v3_finite(light_dir) ||
         sk__len(view_dir) == 0.0f || sk__len(light_dir) == 0.0f || (casters && !sk__aabb_valid(casters)))
@@ -1856,9 +2033,14 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
     r.zmin = (float)zmin;
     r.zmax = (float)zmax;
     L = ymax - ymin;
-    if (!r.fallback && !(L > 1e-6 * (1.0 + (xmax - xmin)))) r.fallback = 1;
+    /* no length, or no width (every point on one line along the axis, where
+       the trapezoid's bases would be 0): one focused map */
+    if (!r.fallback && (!(L > 1e-6 * (1.0 + (xmax - xmin))) || !(xmax - xmin > 1e-6 * (1.0 + L))))
+        r.fallback = 1;
+    /* the narrowest side kept: enough float steps at these coordinates for
+       partition rects that do not round to nothing */
+    tiny = 1e-5 * (1.0 + SK_FABS(xmin) + SK_FABS(xmax) + SK_FABS(ymin) + SK_FABS(ymax));
     if (r.fallback) {
-        double tiny = 1e-6 * (1.0 + SK_FABS(xmax) + SK_FABS(ymax));
         r.n = (float)(xmax - xmin > tiny ? xmax - xmin : tiny);
         r.L = (float)(L > tiny ? L : tiny);
         r.theta = 0.0f;
@@ -1890,12 +2072,17 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
         nn = w - u;
         far_w = nn + 2.0 * L * t;
         if (nn < 1e-2 * far_w) nn = 1e-2 * far_w;     /* n -> 0: rows of usable size */
+        if (nn < tiny) nn = tiny;                       /* a body of no width */
         r.n = (float)nn;
         r.L = (float)L;
         r.theta = (float)SK_ATAN(t);
         r.origin.x = (float)(0.5 * (u + w));
         r.origin.y = (float)ymin;
     }
+    /* coordinates near FLT_MAX: a region float cannot hold */
+    if (!sk__mat_finite(&r.light_view) || !sk__finite(r.n) || !sk__finite(r.L) || !sk__finite(r.zmin) ||
+        !sk__finite(r.zmax) || !sk__finite(r.origin.x) || !sk__finite(r.origin.y) || !(r.n > 0.0f) || !(r.L > 0.0f))
+        return SK_ERR_DEGENERATE;
     *out = r;
     return SK_OK;
 }
@@ -1913,13 +2100,12 @@ SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
     sink.rects = out_rects; sink.vps = out_view_proj; sink.region = r;
     if (r->fallback) {
         if (cap < 1) return -(int)SK_ERR_CAPACITY;
-        sk__lspsm_put(&sink, 0, -0.5 * r->n, 0.0, 0.5 * r->n, r->L);
+        if (!sk__lspsm_put(&sink, 1, 0, -0.5 * r->n, 0.0, 0.5 * r->n, r->L)) return -(int)SK_ERR_DEGENERATE;
         return 1;
     }
-    count = sk__lspsm_rows(r->n, r->L, r->theta, p, NULL, cap);
-    if (count < 0) return -(int)SK_ERR_INVALID_ARG;
-    if (count > cap) return -(int)SK_ERR_CAPACITY;
-    return sk__lspsm_rows(r->n, r->L, r->theta, p, &sink, cap);
+    count = sk__lspsm_count_result(sk__lspsm_rows(r->n, r->L, r->theta, p, &sink, 0, cap), cap);
+    if (count < 0) return count;
+    return sk__lspsm_rows(r->n, r->L, r->theta, p, &sink, 1, cap);
 }
 
 /* ---- 6. Omnidirectional lights (seed 004) ------------------------------ */
@@ -2036,47 +2222,72 @@ SKDEF unsigned sk_cube_visible_faces(sk_vec3 light_pos, float zn, float zf, cons
 
 SKDEF sk_result sk_caster_shadow_frustum(sk_vec3 light_pos, float light_range, sk_aabb caster, sk_frustum *out)
 {
-    sk_vec3 axis, u, v, c[8], nearest;
-    double cos_min = 1.0, near_d = 1e300, tan_a;
-    float dist;
-    int i;
+    /* in double: a small box far away subtends an angle below float
+       resolution, and a cone that rounds to zero width would cull it */
+    double lp[3], lo[3], hi[3], ax[3] = {0, 0, 0}, u[3], v[3], dist2 = 0.0, al = 0.0, tan_a = 0.0, near_d = 1e300;
+    double mag = sk__maxabs3(light_pos);
+    sk_vec3 c[8];
+    int i, k, wide = 1;
     if (!out || !sk__v3_finite(light_pos) || !sk__finite(light_range) || !(light_range > 0.0f) ||
         !sk__aabb_valid(&caster))
         return SK_ERR_INVALID_ARG;
-    nearest.x = light_pos.x < caster.min.x ? caster.min.x : light_pos.x > caster.max.x ? caster.max.x : light_pos.x;
-    nearest.y = light_pos.y < caster.min.y ? caster.min.y : light_pos.y > caster.max.y ? caster.max.y : light_pos.y;
-    nearest.z = light_pos.z < caster.min.z ? caster.min.z : light_pos.z > caster.max.z ? caster.max.z : light_pos.z;
-    dist = sk__len(sk__sub(nearest, light_pos));
-    if (dist >= light_range) return SK_ERR_DEGENERATE;   /* out of reach: no shadow */
-    axis = sk__sub(sk__scale(sk__add(caster.min, caster.max), 0.5f), light_pos);
-    if (dist > 0.0f && sk__len(axis) > 0.0f) {
-        axis = sk__normalize(axis);
-        for (i = 0; i < 8; i++) {
-            sk_vec3 d = sk__sub(sk__aabb_corner(&caster, i), light_pos);
-            double len = sk__len(d), along = sk__dot(d, axis);
-            double cs = len > 0.0 ? along / len : -1.0;
-            if (cs < cos_min) cos_min = cs;
+    lp[0] = light_pos.x; lp[1] = light_pos.y; lp[2] = light_pos.z;
+    lo[0] = caster.min.x; lo[1] = caster.min.y; lo[2] = caster.min.z;
+    hi[0] = caster.max.x; hi[1] = caster.max.y; hi[2] = caster.max.z;
+    for (k = 0; k < 3; k++) {
+        double nearest = lp[k] < lo[k] ? lo[k] : lp[k] > hi[k] ? hi[k] : lp[k];
+        dist2 += (nearest - lp[k]) * (nearest - lp[k]);
+        ax[k] = 0.5 * (lo[k] + hi[k]) - lp[k];
+        al += ax[k] * ax[k];
+    }
+    if (!(SK_SQRT(dist2) < light_range)) return SK_ERR_DEGENERATE;   /* out of reach: no shadow */
+    al = SK_SQRT(al);
+    if (dist2 > 0.0 && al > 0.0) {
+        /* the cone around the axis to the box centre, through the corner
+           farthest off it; near plane at the corner nearest along it */
+        for (k = 0; k < 3; k++) ax[k] /= al;
+        wide = 0;
+        for (i = 0; i < 8 && !wide; i++) {
+            double d[3], along = 0.0, lat = 0.0;
+            for (k = 0; k < 3; k++) { d[k] = ((i >> k & 1) ? hi[k] : lo[k]) - lp[k]; along += d[k] * ax[k]; }
+            for (k = 0; k < 3; k++) lat += (d[k] - along * ax[k]) * (d[k] - along * ax[k]);
+            if (!(along > 0.0)) { wide = 1; break; }
+            if (SK_SQRT(lat) / along > tan_a) tan_a = SK_SQRT(lat) / along;
             if (along < near_d) near_d = along;
         }
-    } else cos_min = -1.0;
+    }
     /* light inside the box, or a cone wider than 170 degrees: the range box */
-    if (cos_min <= 0.0871557427) {
+    if (wide || !(tan_a <= 11.430052302761343)) {
         sk_aabb b;
         b.min = sk__sub(light_pos, sk__v3(light_range, light_range, light_range));
         b.max = sk__add(light_pos, sk__v3(light_range, light_range, light_range));
         return sk_frustum_from_aabb(b, out);
     }
-    tan_a = SK_SQRT(1.0 - cos_min * cos_min) / cos_min;
-    u = sk__normalize(sk__cross(axis, sk__least_aligned_axis(axis)));
-    v = sk__cross(axis, u);
-    for (i = 0; i < 8; i++) {
-        float d = (i & 4) ? light_range : (float)near_d;
-        float h = (float)(d * tan_a) * 1.0001f;
-        sk_vec3 p = sk__add(light_pos, sk__scale(axis, d));
-        p = sk__add(p, sk__scale(u, (i & 1) ? h : -h));
-        c[i] = sk__add(p, sk__scale(v, (i & 2) ? h : -h));
+    {
+        /* u, v: unit axes across the cone */
+        sk_vec3 a = sk__v3((float)ax[0], (float)ax[1], (float)ax[2]), w = sk__least_aligned_axis(a);
+        double ul;
+        u[0] = ax[1] * w.z - ax[2] * w.y; u[1] = ax[2] * w.x - ax[0] * w.z; u[2] = ax[0] * w.y - ax[1] * w.x;
+        ul = SK_SQRT(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+        for (k = 0; k < 3; k++) u[k] /= ul;
+        v[0] = ax[1] * u[2] - ax[2] * u[1]; v[1] = ax[2] * u[0] - ax[0] * u[2]; v[2] = ax[0] * u[1] - ax[1] * u[0];
     }
-    return sk_frustum_from_corners(c, out);
+    for (i = 0; i < 8; i++) {
+        /* a margin of 1e-4 relative, and at least 1e-6 of the magnitudes at
+           hand, so float corners still hold the cone */
+        double d = (i & 4) ? light_range : near_d;
+        double h = d * tan_a * 1.0001 + 1e-6 * (1.0 + mag + d), p[3];
+        for (k = 0; k < 3; k++) p[k] = lp[k] + ax[k] * d + u[k] * ((i & 1) ? h : -h) + v[k] * ((i & 2) ? h : -h);
+        c[i] = sk__v3((float)p[0], (float)p[1], (float)p[2]);
+    }
+    if (sk_frustum_from_corners(c, out) == SK_OK) return SK_OK;
+    {
+        /* corners float cannot hold: the range box, which holds the cone */
+        sk_aabb b;
+        b.min = sk__sub(light_pos, sk__v3(light_range, light_range, light_range));
+        b.max = sk__add(light_pos, sk__v3(light_range, light_range, light_range));
+        return sk_frustum_from_aabb(b, out);
+    }
 }
 
 SKDEF int sk_caster_visible(sk_vec3 light_pos, float light_range, sk_aabb caster, const sk_frustum *view)
@@ -2100,15 +2311,18 @@ SKDEF int sk_light_scissor(sk_vec3 light_pos, float radius, sk_mat4 view_proj, i
         !sk__mat_finite(&view_proj))
         return 0;
     for (i = 0; i < 8; i++) {
-        sk_vec4 p, c;
-        p.x = light_pos.x + ((i & 1) ? radius : -radius);
-        p.y = light_pos.y + ((i & 2) ? radius : -radius);
-        p.z = light_pos.z + ((i & 4) ? radius : -radius);
-        p.w = 1.0f;
-        c = sk_mat4_transform_vec4(view_proj, p);
-        if (c.w <= 0.0f) { behind++; continue; }
+        /* in double: in float the corners may overflow, and tiny clip w
+           underflow to 0 (every corner then "behind") */
+        const float *m = view_proj.m;
+        double p[3], c[4];
+        int r;
+        p[0] = (double)light_pos.x + ((i & 1) ? radius : -radius);
+        p[1] = (double)light_pos.y + ((i & 2) ? radius : -radius);
+        p[2] = (double)light_pos.z + ((i & 4) ? radius : -radius);
+        for (r = 0; r < 4; r++) c[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+        if (c[3] <= 0.0) { behind++; continue; }
         {
-            double x = (0.5 * c.x / c.w + 0.5) * vp_w, y = (0.5 * c.y / c.w + 0.5) * vp_h;
+            double x = (0.5 * c[0] / c[3] + 0.5) * vp_w, y = (0.5 * c[1] / c[3] + 0.5) * vp_h;
             if (x < xmin) xmin = x;
             if (x > xmax) xmax = x;
             if (y < ymin) ymin = y;
@@ -2191,7 +2405,9 @@ SKDEF void sk_vsdct_depth_coeffs(float zn, float zf, float *scale, float *bias)
 static int sk__layout_valid(const sk_vsdct_layout *l)
 {
     int f;
-    if (!l || l->face_res < 1 || l->atlas_w < l->face_res || l->atlas_h < l->face_res) return 0;
+    if (!l || l->face_res < 1 || l->face_res > SK_VSDCT_MAX_FACE_RES || l->atlas_w < l->face_res ||
+        l->atlas_h < l->face_res || l->atlas_w > SK_VSDCT_MAX_ATLAS || l->atlas_h > SK_VSDCT_MAX_ATLAS)
+        return 0;
     for (f = 0; f < 6; f++)
         if (l->face_x[f] < 0 || l->face_y[f] < 0 || l->face_x[f] > l->atlas_w - l->face_res ||
             l->face_y[f] > l->atlas_h - l->face_res)
@@ -2400,12 +2616,12 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
                     int in = pin[i] != 0.0, patch = ppa[i] != 0.0;
                     asam[i] += pin[i];
                     apat[i] += ppa[i];
-                    abx0[i] = in & (qx < abx0[i]) ? qx : abx0[i];
-                    abx1[i] = in & (qx > abx1[i]) ? qx : abx1[i];
-                    aby0[i] = in & (qy < aby0[i]) ? qy : aby0[i];
-                    aby1[i] = in & (qy > aby1[i]) ? qy : aby1[i];
-                    atw[i] = patch & (ex < atw[i]) ? ex : atw[i];
-                    ath[i] = patch & (ey < ath[i]) ? ey : ath[i];
+                    abx0[i] = (in & (qx < abx0[i])) ? qx : abx0[i];
+                    abx1[i] = (in & (qx > abx1[i])) ? qx : abx1[i];
+                    aby0[i] = (in & (qy < aby0[i])) ? qy : aby0[i];
+                    aby1[i] = (in & (qy > aby1[i])) ? qy : aby1[i];
+                    atw[i] = (patch & (ex < atw[i])) ? ex : atw[i];
+                    ath[i] = (patch & (ey < ath[i])) ? ey : ath[i];
                 }
             }
             cur ^= 1;
@@ -2428,7 +2644,10 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
     if (samples == 0) return SK_OK;
     {
         double bw = bx1 - bx0, bh = by1 - by0, rw, rh;
-        if (!(npatches > 0.0)) { tw = bw / max_res; th = bh / max_res; }
+        /* no patch, or (corners at the edge of double range) no patch of
+           finite extent along an axis: the map is max_res wide there */
+        if (!(npatches > 0.0) || !(tw < SK__INF)) tw = bw / max_res;
+        if (!(npatches > 0.0) || !(th < SK__INF)) th = bh / max_res;
         rw = tw > 0.0 ? bw / tw : (double)max_res;
         rh = th > 0.0 ? bh / th : (double)max_res;
         out->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
@@ -2437,8 +2656,10 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
         if (out->height > max_res) out->height = max_res;
     }
     out->bounds.x0 = (float)bx0; out->bounds.y0 = (float)by0; out->bounds.x1 = (float)bx1; out->bounds.y1 = (float)by1;
-    out->texel_w = (float)tw;
-    out->texel_h = (float)th;
+    /* a patch wider than float holds (and wider than the bounds: the map is
+       1 texel there) reads as FLT_MAX */
+    out->texel_w = tw < FLT_MAX ? (float)tw : FLT_MAX;
+    out->texel_h = th < FLT_MAX ? (float)th : FLT_MAX;
     out->samples = samples;
     out->crop = sk_crop_matrix(out->bounds, -1.0f, 1.0f);
     return SK_OK;
@@ -2497,14 +2718,21 @@ SKDEF void sk_convolve_parallelograms(sk_vec2 u0, sk_vec2 v0, sk_vec2 u1, sk_vec
     if (!sk__finite(u_out->x) || !sk__finite(u_out->y) || !sk__finite(v_out->y)) { *u_out = zero; *v_out = zero; }
 }
 
-SKDEF float sk_texel_box_coverage(float x0, float y0, float x1, float y1, int tx, int ty)
+/* sk_texel_box_coverage in double: a box thinner than about 1e-19 texels
+   on both axes covers less than float can hold */
+static double sk__texel_box_coverage_d(float x0, float y0, float x1, float y1, int tx, int ty)
 {
     double ax0, ax1, ay0, ay1;
-    if (x0 != x0 || y0 != y0 || x1 != x1 || y1 != y1) return 0.0f;
+    if (x0 != x0 || y0 != y0 || x1 != x1 || y1 != y1) return 0.0;
     ax0 = x0 > (double)tx ? x0 : (double)tx; ax1 = x1 < (double)tx + 1 ? x1 : (double)tx + 1;
     ay0 = y0 > (double)ty ? y0 : (double)ty; ay1 = y1 < (double)ty + 1 ? y1 : (double)ty + 1;
-    if (!(ax1 > ax0) || !(ay1 > ay0)) return 0.0f;
-    return (float)((ax1 - ax0) * (ay1 - ay0));
+    if (!(ax1 > ax0) || !(ay1 > ay0)) return 0.0;
+    return (ax1 - ax0) * (ay1 - ay0);
+}
+
+SKDEF float sk_texel_box_coverage(float x0, float y0, float x1, float y1, int tx, int ty)
+{
+    return (float)sk__texel_box_coverage_d(x0, y0, x1, y1, tx, ty);
 }
 
 /* Sec. 4.1: texels as quads clipped by the kernel, so the result varies
@@ -2524,7 +2752,7 @@ SKDEF float sk_smooth_box_visibility(float x0, float y0, float x1, float y1,
     if (tx1 - tx0 > 64 || ty1 - ty0 > 64) return -1.0f;
     for (ty = ty0; ty < ty1; ty++)
         for (tx = tx0; tx < tx1; tx++)
-            if (lit(user, tx, ty)) sum += sk_texel_box_coverage(x0, y0, x1, y1, tx, ty);
+            if (lit(user, tx, ty)) sum += sk__texel_box_coverage_d(x0, y0, x1, y1, tx, ty);
     area = ((double)x1 - x0) * ((double)y1 - y0);
     sum /= area;
     return (float)(sum > 1.0 ? 1.0 : sum);
@@ -2552,8 +2780,11 @@ SKDEF void sk_pvsm_predict(sk_vec2 u_h, sk_vec2 v_h, sk_vec2 u_phi, sk_vec2 v_ph
     } else n0 = n1 = 1e30;
     if (!(n0 < 1e30)) n0 = 1e30;
     if (!(n1 < 1e30)) n1 = 1e30;
-    if (r0) *r0 = (float)(2.0 * a / (dynamic_scene ? sk_rho_dynamic((float)n0) : sk_rho_static((float)n0)));
-    if (r1) *r1 = (float)(2.0 * b / (dynamic_scene ? sk_rho_dynamic((float)n1) : sk_rho_static((float)n1)));
+    /* a size past FLT_MAX stays finite: +INFINITY would read as "no sample" */
+    a = 2.0 * a / (dynamic_scene ? sk_rho_dynamic((float)n0) : sk_rho_static((float)n0));
+    b = 2.0 * b / (dynamic_scene ? sk_rho_dynamic((float)n1) : sk_rho_static((float)n1));
+    if (r0) *r0 = a < FLT_MAX ? (float)a : FLT_MAX;
+    if (r1) *r1 = b < FLT_MAX ? (float)b : FLT_MAX;
 }
 
 /* Sec. 5.2: V_dst = V_dst A_dst + V_src A_src, A_dst = A_dst + A_src */

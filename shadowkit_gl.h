@@ -94,6 +94,17 @@
      desc.atlas): skgl_point_atlas_pack places every light's six faces at
      its selected side each frame, halving the largest side until they fit.
 
+   AREA LIGHTS (skgl_soft_*, seed 001; the flow is in the declarations)
+     SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
+     SKGL_SOFT_PVSM    predicted virtual soft shadow maps: a conservative
+                       low-resolution map, a kernel per pixel, the predicted
+                       resolution gathered in a tile grid, one map per tile
+                       at that resolution, smooth texel-coverage filtering.
+     A rectangle light at a position (skgl_area_light), deferred: depth and
+     normals in (or rendered by shadowkit), visibility out, in one call.
+     Each of PVSM's steps is timed (stats.step_ms); skgl_soft_tiles() lists
+     the tiles for a debug view.
+
    BIAS AND FILTERING
      Casters are drawn with slope-scaled polygon offset (.slope_bias, in
      depth slope units, i.e. texels); receivers are pushed along their normal
@@ -145,12 +156,16 @@ extern "C" {
 #endif
 
 #define SKGL_MAX_CASCADES 8
+#define SKGL_SOFT_STEPS 8            /* PVSM steps timed in skgl_stats.step_ms */
 
 typedef void *(*skgl_getproc_fn)(const char *name);
 
 typedef enum skgl_pass_kind {
     SKGL_PASS_DIRECTIONAL = 0,    /* a layer of a directional light's map (index = cascade) */
-    SKGL_PASS_CUBE_FACE = 1       /* a face of a point light's cube (index = face, +X,-X,+Y,-Y,+Z,-Z) */
+    SKGL_PASS_CUBE_FACE = 1,      /* a face of a point light's cube (index = face, +X,-X,+Y,-Y,+Z,-Z) */
+    SKGL_PASS_AREA = 2,           /* an area light's map (skgl_soft): index 0 PCSS's map or PVSM's
+                                     low-resolution map, 1 + i PVSM tile i */
+    SKGL_PASS_CAMERA = 3          /* skgl_soft's own G-buffer (depth_tex = 0): the camera's view */
 } skgl_pass_kind;
 struct skgl_point;
 
@@ -253,6 +268,11 @@ typedef struct skgl_stats {
     int scissor[4];                       /* the last point mask's rectangle x, y, w, h (all 0: nothing drawn) */
     int atlas_wanted;                     /* shared point atlas: face side selected before packing (greater
                                              than .resolution when skgl_point_atlas_pack halved it to fit) */
+    /* area lights (skgl_soft_*) */
+    int tiles;                            /* PVSM: tile maps rendered (resolution: the largest side) */
+    float lit_fraction;                   /* PVSM: covered pixels the low-res map settled without filtering
+                                             (fully lit, facing away, outside the light); -1 for PCSS */
+    float step_ms[SKGL_SOFT_STEPS];       /* PVSM: GPU ms per step (see skgl_soft_*); -1 without timing */
 } skgl_stats;
 
 typedef struct skgl_context skgl_context;
@@ -435,6 +455,100 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
 SKGLDEF unsigned skgl_point_atlas_texture(const skgl_point_atlas *a);
 SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *height);
 
+/* ---- area lights: soft shadows (seed 001) --------------------------------
+   A rectangular light at `position` facing `direction`; its maps are
+   perspective projections from the rectangle's centre, aligned with the
+   rectangle (skgl_area_light_axes gives the world half-axes, e.g. for a
+   ray-traced reference). Both techniques take the camera's G-buffer (window
+   depth + world normals, the size of the mask; depth_tex = 0: rendered
+   through the draw callback) and write visibility into mask_tex in one call:
+
+     skgl_soft *soft;      once: skgl_soft_create(gl, &softdesc, &soft)
+     every frame: skgl_soft_render(gl, soft, &cam, &scene, &light,
+                                   depth_tex, normal_tex, mask_tex);
+
+   SKGL_SOFT_PCSS  percentage-closer soft shadows (Fernando 2005) on one map
+                   of .resolution: blocker search, penumbra estimate, PCF.
+   SKGL_SOFT_PVSM  predicted virtual soft shadow maps (Shen Li et al. 2011,
+                   Sec. 5.2), eight steps, each timed in stats.step_ms:
+                   0 the G-buffer (when rendered here), 1 the .lowres map
+                   with conservative rasterisation, 2 the kernel-shape
+                   buffer (blocker search, filter axes u_h, v_h, fully-lit
+                   pixels flagged), 3 the prediction (Eqs. 4, 5) into the
+                   .grid^2 Shadow Map Tile Grid by one point per pixel with
+                   MIN blending, 4 the SMTG pyramid (GPU) read back and the
+                   kd-tree of tiles (sk_fvsm_tiles), 5 one map per tile at
+                   its predicted resolution up to .resolution, 6 the smooth
+                   texel-coverage filtering of every pixel whose kernel
+                   meets the tile, merged as V*A / A, 7 the resolve.
+                   A zero-size light gives hard shadows through the same
+                   path (one texel per pixel footprint).
+   Receivers behind the light's plane are outside its maps: lit. */
+typedef enum skgl_soft_technique {
+    SKGL_SOFT_PCSS = 0,
+    SKGL_SOFT_PVSM = 1
+} skgl_soft_technique;
+
+typedef struct skgl_area_light {
+    sk_vec3 position;             /* centre of the rectangle */
+    sk_vec3 direction;            /* the way it faces (any length > 0) */
+    sk_vec3 up;                   /* the rectangle's second axis, roughly (zero: any) */
+    float half_width, half_height;/* along direction x up, and up; 0, 0: hard shadows */
+} skgl_area_light;
+
+
+/* Zero-initialised fields take the default in brackets. */
+typedef struct skgl_soft_desc {
+    skgl_soft_technique technique; /* [SKGL_SOFT_PCSS] */
+    int resolution;               /* PCSS: the map's side [2048]; PVSM: the largest tile's [4096] */
+    int lowres;                   /* PVSM: the conservative low-resolution map's side, a power of two [1024] */
+    int grid;                     /* PVSM: the SMTG's side, a power of two in 4..256 [64] */
+    int max_tiles;                /* PVSM: at most this many tiles; more halve every
+                                     predicted resolution until they fit [64] */
+    int conservative;             /* PVSM: 1 conservative rasterisation of the low-res
+                                     map [1]; -1 plain (thin casters can vanish) */
+    int static_scene;             /* PVSM: 1 rho_static (only the camera moves) [0: rho_dynamic] */
+    int blocker_cells;            /* blocker search samples per axis, 2..16 [8] */
+    int pcf_taps;                 /* PCSS: PCF taps per axis at most, 1..16 [12] */
+    float slope_bias;             /* polygon offset factor of the depth passes [1.5]; < 0: none */
+    float depth_bias;             /* polygon offset units [1.0]; < 0: none */
+    float rel_bias;               /* comparison tolerance, fraction of the distance to the light [0.002] */
+    int antialias;                /* PVSM: 1 the warped pixel footprint is convolved into every
+                                     kernel (Sec. 4.2, anisotropic anti-aliasing) [1]; -1 off: the
+                                     kernel is the light's filter alone, as a point-sampled
+                                     reference sees it */
+    float resolution_scale;       /* PVSM: every predicted resolution times this, the quality
+                                     against speed trade-off (Sec. 7), 0.125..8 [1] */
+} skgl_soft_desc;
+
+typedef struct skgl_soft skgl_soft;
+
+SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out);
+SKGLDEF void skgl_soft_destroy(skgl_context *ctx, skgl_soft *s);
+SKGLDEF skgl_soft_desc skgl_soft_get_desc(const skgl_soft *s);
+/* The light's maps and the mask in one call (PVSM renders and uses each
+   tile's map in turn). SK_ERR_DEGENERATE: the whole scene is behind the
+   light's plane (the mask is not written). */
+SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
+                                   const skgl_scene *scene, const skgl_area_light *light,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
+/* stats: shadow_ms = the depth passes (PCSS: its map; PVSM: steps 1 and 5),
+   mask_ms = the rest but the G-buffer; tiles, texels (low-res map included),
+   lit_fraction, step_ms (PVSM) */
+SKGLDEF const skgl_stats *skgl_soft_stats(const skgl_soft *s);
+/* world-space half-axes of the light's rectangle, as its maps see it */
+SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u, sk_vec3 *half_v);
+/* the base frustum of the last render (world -> light clip); PVSM tiles
+   are sk_crop_matrix crops of it in clip units, 2/grid per SMTG cell */
+SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s);
+/* PVSM: the tiles of the last render (cells of the SMTG); writes at most
+   cap, returns how many there are */
+SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap);
+/* PVSM: the SMTG pyramid of the last render as read back, laid out as
+   sk_smtg_pyramid's (+INFINITY: no sample); returns the float count
+   (writes at most cap), 0 before any */
+SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
+
 #ifdef __cplusplus
 }
 #endif
@@ -446,6 +560,9 @@ SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *h
 #ifdef SHADOWKIT_GL_IMPLEMENTATION
 #ifndef SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
 #define SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
+#ifdef SK__STATIC_WITHOUT_IMPLEMENTATION
+#error "SHADOWKIT_STATIC: define SHADOWKIT_IMPLEMENTATION with SHADOWKIT_GL_IMPLEMENTATION before this file's first #include of shadowkit.h"
+#endif
 
 #include <stddef.h>
 #include <stdlib.h>
@@ -990,6 +1107,583 @@ static const char skgl__src_point_mask_frag[] =
     "    o_visibility = sk_point_shadow(world, n);\n"
     "}\n"
     ;
+static const char skgl__src_soft_common_glsl[] =
+    "/* Area-light soft shadows (seed 001): what the kernel-shape pass and the\n"
+    "   PCSS mask share. The light is a rectangle at u_light_pos facing along\n"
+    "   the -z axis of its view (sk_mat4_look_at); its shadow maps are\n"
+    "   perspective projections from the rectangle's centre (u_light_vp, the\n"
+    "   base frustum; PVSM tiles are crops of it, which keep its depth).\n"
+    "   Kernels and footprints are in the base frustum's NDC (clip units,\n"
+    "   2 across a map), depths in window units [0,1]. */\n"
+    "uniform sampler2D u_depth;        /* camera window depth */\n"
+    "uniform sampler2D u_normals;      /* world normals in .xyz */\n"
+    "uniform int u_has_normals;\n"
+    "uniform mat4 u_inv_view_proj;\n"
+    "uniform mat4 u_light_vp;\n"
+    "uniform vec3 u_light_pos;\n"
+    "uniform vec2 u_light_half;        /* world half sizes along the light's x and y */\n"
+    "uniform vec4 u_light_proj;        /* P00, P11, near, far of the base frustum */\n"
+    "uniform float u_rel_bias;         /* comparison tolerance, relative to the light distance */\n"
+    "\n"
+    "vec3 sk_unproject(vec2 frag, float d)\n"
+    "{\n"
+    "    vec2 ndc = frag / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
+    "    vec4 w = u_inv_view_proj * vec4(ndc, d * 2.0 - 1.0, 1.0);\n"
+    "    return w.xyz / w.w;\n"
+    "}\n"
+    "\n"
+    "/* eye distance along the light's axis from window depth */\n"
+    "float sk_light_linear(float win)\n"
+    "{\n"
+    "    float n = u_light_proj.z, f = u_light_proj.w, z = win * 2.0 - 1.0;\n"
+    "    return 2.0 * n * f / ((f + n) - z * (f - n));\n"
+    "}\n"
+    "\n"
+    "/* the light's window-depth tolerance at eye distance z: u_rel_bias * z,\n"
+    "   through d(win)/dz = n f / ((f - n) z^2) */\n"
+    "float sk_light_tolerance(float z)\n"
+    "{\n"
+    "    float n = u_light_proj.z, f = u_light_proj.w;\n"
+    "    return u_rel_bias * n * f / ((f - n) * z);\n"
+    "}\n"
+    "\n"
+    "/* base-frustum NDC xy and window depth of a world point; w <= 0: behind */\n"
+    "vec4 sk_light_project(vec3 p)\n"
+    "{\n"
+    "    vec4 c = u_light_vp * vec4(p, 1.0);\n"
+    "    if (c.w <= 1e-12) return vec4(0.0, 0.0, 0.0, -1.0);\n"
+    "    vec3 ndc = c.xyz / c.w;\n"
+    "    return vec4(ndc.xy, ndc.z * 0.5 + 0.5, c.w);\n"
+    "}\n"
+    "\n"
+    "/* the receiver of one pixel, seen from the light */\n"
+    "struct sk_receiver {\n"
+    "    vec3 world, normal;\n"
+    "    vec4 light;       /* ndc xy, window depth, clip w (<= 0: behind the light) */\n"
+    "    vec2 du, dv;      /* half-axes of the pixel footprint on the map (Fig. 5) */\n"
+    "    vec2 grad;        /* window depth per NDC unit along the receiver's plane */\n"
+    "    float zlin;       /* distance along the light's axis */\n"
+    "    bool facing;      /* the receiver faces the light's centre */\n"
+    "};\n"
+    "\n"
+    "vec3 sk_gbuffer_normal(ivec2 px, vec3 world, float d)\n"
+    "{\n"
+    "    if (u_has_normals != 0) {\n"
+    "        vec3 n = texelFetch(u_normals, px, 0).xyz;\n"
+    "        if (dot(n, n) > 0.0) return normalize(n);\n"
+    "    }\n"
+    "    /* none given: the plane through the neighbours on the nearer side */\n"
+    "    ivec2 size = textureSize(u_depth, 0);\n"
+    "    ivec2 pxr = ivec2(min(px.x + 1, size.x - 1), px.y), pxl = ivec2(max(px.x - 1, 0), px.y);\n"
+    "    ivec2 pyu = ivec2(px.x, min(px.y + 1, size.y - 1)), pyd = ivec2(px.x, max(px.y - 1, 0));\n"
+    "    float dr = texelFetch(u_depth, pxr, 0).r, dl = texelFetch(u_depth, pxl, 0).r;\n"
+    "    float du_ = texelFetch(u_depth, pyu, 0).r, dd = texelFetch(u_depth, pyd, 0).r;\n"
+    "    vec3 ex = abs(dr - d) < abs(dl - d) ? sk_unproject(vec2(pxr) + 0.5, dr) - world\n"
+    "                                        : world - sk_unproject(vec2(pxl) + 0.5, dl);\n"
+    "    vec3 ey = abs(du_ - d) < abs(dd - d) ? sk_unproject(vec2(pyu) + 0.5, du_) - world\n"
+    "                                         : world - sk_unproject(vec2(pyd) + 0.5, dd);\n"
+    "    vec3 n = cross(ex, ey);\n"
+    "    return dot(n, n) > 0.0 ? normalize(n) : vec3(0.0);\n"
+    "}\n"
+    "\n"
+    "/* where the ray through a screen point meets the receiver's tangent plane\n"
+    "   (the affine approximation of the mapping M, Sec. 4.2) */\n"
+    "vec3 sk_on_plane(vec2 frag, vec3 p, vec3 n)\n"
+    "{\n"
+    "    vec3 o = sk_unproject(frag, 0.0), e = sk_unproject(frag, 1.0), dir = e - o;\n"
+    "    float den = dot(n, dir);\n"
+    "    if (abs(den) < 1e-6 * length(dir)) return p;\n"
+    "    float t = dot(n, p - o) / den;\n"
+    "    return o + clamp(t, 0.0, 1.0) * dir;\n"
+    "}\n"
+    "\n"
+    "sk_receiver sk_receiver_at(ivec2 px, float d)\n"
+    "{\n"
+    "    sk_receiver r;\n"
+    "    vec2 frag = vec2(px) + 0.5;\n"
+    "    r.world = sk_unproject(frag, d);\n"
+    "    r.normal = sk_gbuffer_normal(px, r.world, d);\n"
+    "    r.light = sk_light_project(r.world);\n"
+    "    r.zlin = r.light.w;\n"
+    "    r.facing = dot(r.normal, r.normal) == 0.0 || dot(r.normal, u_light_pos - r.world) > 0.0;\n"
+    "    r.du = vec2(0.0); r.dv = vec2(0.0); r.grad = vec2(0.0);\n"
+    "    if (r.light.w <= 0.0 || dot(r.normal, r.normal) == 0.0) return r;\n"
+    "    vec4 lx = sk_light_project(sk_on_plane(frag + vec2(1.0, 0.0), r.world, r.normal));\n"
+    "    vec4 ly = sk_light_project(sk_on_plane(frag + vec2(0.0, 1.0), r.world, r.normal));\n"
+    "    if (lx.w <= 0.0 || ly.w <= 0.0) return r;\n"
+    "    /* a grazing view stretches the footprint without bound: cap it */\n"
+    "    vec2 ax = clamp(lx.xy - r.light.xy, vec2(-0.25), vec2(0.25));\n"
+    "    vec2 ay = clamp(ly.xy - r.light.xy, vec2(-0.25), vec2(0.25));\n"
+    "    r.du = 0.5 * ax;\n"
+    "    r.dv = 0.5 * ay;\n"
+    "    /* window depth is affine in NDC over a plane: solve [ax; ay] g = dz */\n"
+    "    float det = ax.x * ay.y - ax.y * ay.x;\n"
+    "    if (abs(det) > 1e-14) {\n"
+    "        float zx = lx.z - r.light.z, zy = ly.z - r.light.z;\n"
+    "        r.grad = vec2(zx * ay.y - zy * ax.y, ax.x * zy - ay.x * zx) / det;\n"
+    "    }\n"
+    "    return r;\n"
+    "}\n"
+    "\n"
+    "/* Sec. 4: the soft shadowing filter s_alpha on the map plane for a blocker\n"
+    "   at distance zo, as half-axes (light rectangle aligned with the map) */\n"
+    "vec2 sk_filter_half(float zy, float zo)\n"
+    "{\n"
+    "    float k = max(zy - zo, 0.0) / (zy * zo);\n"
+    "    return vec2(u_light_proj.x * u_light_half.x, u_light_proj.y * u_light_half.y) * k;\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_kernel_frag[] =
+    "/* PVSM steps 3 and the first half of 4 (Sec. 4 to 5.1): per pixel, the\n"
+    "   blocker search on the conservative low-resolution map's MIN pyramid, the\n"
+    "   filter s_alpha from the average blocker depth, its convolution with the\n"
+    "   warped pixel footprint (appendix), and the predicted texel size (Eqs. 4\n"
+    "   and 5). Background pixels are discarded (the target keeps its clear\n"
+    "   state 0), so a samples-passed query counts the covered pixels.\n"
+    "   o_kernel: u_h.x, u_h.y, v_h.y (v_h.x is 0), state\n"
+    "             (1 fully lit, 2 in penumbra or umbra: filter, 3 faces away: 0)\n"
+    "   o_pred:   NDC x, y on the base map, r0, r1 (Eq. 5, clip units per texel)\n"
+    "   o_plane:  window depth, its NDC gradient, tolerance */\n"
+    "in vec2 v_uv;\n"
+    "layout(location = 0) out vec4 o_kernel;\n"
+    "layout(location = 1) out vec4 o_pred;\n"
+    "layout(location = 2) out vec4 o_plane;\n"
+    "uniform sampler2D u_lowres;       /* R32F MIN pyramid of the low-res map's window depth (conservative) */\n"
+    "uniform sampler2D u_lowres_true;  /* R32F, the same map rasterised plainly */\n"
+    "uniform int u_lowres_size;\n"
+    "uniform int u_lowres_levels;\n"
+    "uniform int u_blocker_cells;      /* per axis */\n"
+    "uniform int u_static_scene;\n"
+    "uniform int u_hard;               /* zero-size light: the 1:1 criterion */\n"
+    "uniform float u_res_scale;        /* predicted resolutions times this */\n"
+    "uniform float u_antialias;        /* 1: the filter is h, the pixel footprint included (Sec. 4.2);\n"
+    "                                     0: the filter is s_alpha alone (point samples) */\n"
+    "\n"
+    "float sk_rho(float n)\n"
+    "{\n"
+    "    /* seed 001 Sec. 5.1, clamped at the cubic's peak as sk_rho_dynamic/static */\n"
+    "    float x = log2(max(n, 1.0));\n"
+    "    if (u_static_scene != 0) {\n"
+    "        x = min(x, 10.6085);\n"
+    "        return 0.5477 + x * (1.406 + x * (-0.04687 - 0.003944 * x));\n"
+    "    }\n"
+    "    x = min(x, 10.6262);\n"
+    "    return 0.667 + x * (0.7794 + x * (0.3967 - 0.02716 * x));\n"
+    "}\n"
+    "\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    float d = texelFetch(u_depth, px, 0).r;\n"
+    "    if (d >= 1.0) discard;\n"
+    "    sk_receiver r = sk_receiver_at(px, d);\n"
+    "    float tol = sk_light_tolerance(max(r.zlin, 1e-6));\n"
+    "    o_plane = vec4(r.light.z, r.grad, tol);\n"
+    "    o_pred = vec4(r.light.xy, 1e30, 1e30);\n"
+    "    if (r.light.w <= 0.0 || any(greaterThan(abs(r.light.xy), vec2(1.0))) || r.light.z > 1.0) {\n"
+    "        o_kernel = vec4(0.0, 0.0, 0.0, 1.0);      /* outside the light's frustum: lit */\n"
+    "        return;\n"
+    "    }\n"
+    "    if (!r.facing) { o_kernel = vec4(0.0, 0.0, 0.0, 3.0); return; }\n"
+    "\n"
+    "    /* blocker search region: the pyramid from the receiver to the light cut\n"
+    "       by the near plane, grown by the footprint */\n"
+    "    /* the near plane is the nearest the bounds come; the casters over this\n"
+    "       receiver may be much farther: the region's own minimum (coarse levels\n"
+    "       of the pyramid) moves the cut down, which only shrinks the region */\n"
+    "    float zs = u_light_proj.z;\n"
+    "    for (int it = 0; it < 3; it++) {\n"
+    "        vec2 reg = sk_filter_half(r.zlin, zs) + abs(r.du) + abs(r.dv);\n"
+    "        float t = max(reg.x, reg.y) * float(u_lowres_size);\n"
+    "        int lv = clamp(int(ceil(log2(max(t, 1.0)))), 0, u_lowres_levels - 1);\n"
+    "        int nc = max(u_lowres_size >> lv, 1);\n"
+    "        float cz = 2.0 / float(nc);\n"
+    "        ivec2 a = clamp(ivec2(floor((r.light.xy - reg + 1.0) / cz)), ivec2(0), ivec2(nc - 1));\n"
+    "        ivec2 b = clamp(ivec2(floor((r.light.xy + reg + 1.0) / cz)), ivec2(0), ivec2(nc - 1));\n"
+    "        float m = 1.0;\n"
+    "        for (int y = a.y; y <= b.y; y++)\n"
+    "            for (int x = a.x; x <= b.x; x++)\n"
+    "                m = min(m, texelFetch(u_lowres, ivec2(x, y), lv).r);\n"
+    "        /* nothing in the cells nearer than the receiver's plane anywhere\n"
+    "           over them: no blocker, fully lit (most pixels end here) */\n"
+    "        if (it == 0 && m >= r.light.z + abs(r.grad.x) * (reg.x + cz) + abs(r.grad.y) * (reg.y + cz) - tol) {\n"
+    "            o_kernel = vec4(0.0, 0.0, 0.0, 1.0);\n"
+    "            return;\n"
+    "        }\n"
+    "        float zm = clamp(sk_light_linear(m), zs, r.zlin);\n"
+    "        if (zm <= zs * 1.001) break;\n"
+    "        zs = zm;\n"
+    "    }\n"
+    "    vec2 region = sk_filter_half(r.zlin, zs) + abs(r.du) + abs(r.dv);\n"
+    "    float texels = max(region.x, region.y) * float(u_lowres_size);   /* full width in texels */\n"
+    "    int level = clamp(int(ceil(log2(max(texels / float(u_blocker_cells), 1.0)))), 0, u_lowres_levels - 1);\n"
+    "    int cells = max(u_lowres_size >> level, 1);\n"
+    "    float cs = 2.0 / float(cells);                 /* cell side in NDC */\n"
+    "    ivec2 c0 = clamp(ivec2(floor((r.light.xy - region + 1.0) / cs)), ivec2(0), ivec2(cells - 1));\n"
+    "    ivec2 c1 = clamp(ivec2(floor((r.light.xy + region + 1.0) / cs)), ivec2(0), ivec2(cells - 1));\n"
+    "    /* the plane's lowest depth over the cell, and over the half texel the\n"
+    "       conservative rasteriser extends a triangle past its edges */\n"
+    "    float slack = (abs(r.grad.x) + abs(r.grad.y)) * (cs * 0.5 + 1.0 / float(u_lowres_size)) + tol;\n"
+    "    float sum = 0.0, count = 0.0;\n"
+    "    for (int y = c0.y; y <= c1.y; y++)\n"
+    "        for (int x = c0.x; x <= c1.x; x++) {\n"
+    "            vec2 centre = (vec2(x, y) + 0.5) * cs - 1.0;\n"
+    "            float m = texelFetch(u_lowres, ivec2(x, y), level).r;\n"
+    "            float plane = r.light.z + dot(r.grad, centre - r.light.xy) - slack;\n"
+    "            if (m < plane) { sum += sk_light_linear(m); count += 1.0; }\n"
+    "        }\n"
+    "    if (count == 0.0) { o_kernel = vec4(0.0, 0.0, 0.0, 1.0); return; }   /* fully lit */\n"
+    "    /* the cells' minima decide \"fully lit\" conservatively but pull the\n"
+    "       average towards the nearest blocker of each cell: the average comes\n"
+    "       from point samples of the plainly rasterised map (no grown borders\n"
+    "       with their extended depths), or of the conservative one when that\n"
+    "       finds none (casters thinner than a texel) */\n"
+    "    {\n"
+    "        float nb = float(u_blocker_cells);\n"
+    "        float pslack = (abs(r.grad.x) + abs(r.grad.y)) * 2.0 / float(u_lowres_size) + tol;\n"
+    "        vec2 ps = vec2(0.0), pc = vec2(0.0);      /* plain, conservative */\n"
+    "        for (int y = 0; y < u_blocker_cells; y++)\n"
+    "            for (int x = 0; x < u_blocker_cells; x++) {\n"
+    "                vec2 o = ((vec2(x, y) + 0.5) / nb * 2.0 - 1.0) * region;\n"
+    "                ivec2 t = clamp(ivec2((r.light.xy + o + 1.0) * 0.5 * float(u_lowres_size)), ivec2(0),\n"
+    "                                ivec2(u_lowres_size - 1));\n"
+    "                float plane = r.light.z + dot(r.grad, o) - pslack;\n"
+    "                float mt = texelFetch(u_lowres_true, t, 0).r, mc = texelFetch(u_lowres, t, 0).r;\n"
+    "                if (mt < plane) { ps.x += sk_light_linear(mt); pc.x += 1.0; }\n"
+    "                if (mc < plane) { ps.y += sk_light_linear(mc); pc.y += 1.0; }\n"
+    "            }\n"
+    "        if (pc.x > 0.0) { sum = ps.x; count = pc.x; }\n"
+    "        else if (pc.y > 0.0) { sum = ps.y; count = pc.y; }\n"
+    "    }\n"
+    "    float zo = min(sum / count, r.zlin);\n"
+    "    vec2 s = u_hard != 0 ? vec2(0.0) : sk_filter_half(r.zlin, zo);\n"
+    "    /* appendix: V_h = M_s M_s^T + M_phi M_phi^T, Cholesky columns */\n"
+    "    float m00 = s.x * s.x + r.du.x * r.du.x + r.dv.x * r.dv.x;\n"
+    "    float m10 = r.du.x * r.du.y + r.dv.x * r.dv.y;\n"
+    "    float m11 = s.y * s.y + r.du.y * r.du.y + r.dv.y * r.dv.y;\n"
+    "    float ux = sqrt(max(m00, 1e-20));\n"
+    "    float uy = m10 / ux;\n"
+    "    float vy = sqrt(max(m11 - uy * uy, 1e-20));\n"
+    "    /* the prediction always sizes h; without anti-aliasing the filter is s_alpha alone */\n"
+    "    o_kernel = u_antialias > 0.0 ? vec4(ux, uy, vy, 2.0) : vec4(max(s.x, 1e-10), 0.0, max(s.y, 1e-10), 2.0);\n"
+    "\n"
+    "    /* Eq. (4): kernel size in pixels along e0, e1 through M_phi^-1; Eq. (5) */\n"
+    "    float det = r.du.x * r.dv.y - r.dv.x * r.du.y;\n"
+    "    float n0 = abs(det) > 1e-20 ? ux * length(vec2(r.dv.y, r.du.y)) / abs(det) : 1e30;\n"
+    "    float n1 = abs(det) > 1e-20 ? vy * length(vec2(r.dv.x, r.du.x)) / abs(det) : 1e30;\n"
+    "    float rho0 = u_hard != 0 ? 1.0 : sk_rho(n0);\n"
+    "    float rho1 = u_hard != 0 ? 1.0 : sk_rho(n1);\n"
+    "    vec2 r_k = vec2(2.0 * ux / rho0, 2.0 * vy / rho1);\n"
+    "    /* a receiver the light grazes has a footprint one pixel thin along one\n"
+    "       axis of the map and long along the other; its demand along the thin\n"
+    "       axis would cut the grid into slivers of tiles: at most 8:1 */\n"
+    "    r_k = max(r_k, vec2(max(r_k.x, r_k.y) / 8.0));\n"
+    "    o_pred.zw = r_k / u_res_scale;\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_smtg_vert[] =
+    "/* PVSM step 4 (Sec. 5.2): one attribute-less point per screen pixel; the\n"
+    "   pixel's predicted texel sizes land in its SMTG cell, where MIN blending\n"
+    "   keeps the smallest. Pixels that need no filtering fall outside the clip\n"
+    "   volume. */\n"
+    "uniform sampler2D u_kernel;\n"
+    "uniform sampler2D u_pred;\n"
+    "uniform int u_width;\n"
+    "uniform int u_grid;\n"
+    "flat out vec2 v_r;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_VertexID % u_width, gl_VertexID / u_width);\n"
+    "    vec4 k = texelFetch(u_kernel, px, 0);\n"
+    "    vec4 p = texelFetch(u_pred, px, 0);\n"
+    "    v_r = p.zw;\n"
+    "    gl_PointSize = 1.0;\n"
+    "    if (k.w != 2.0 || any(greaterThan(abs(p.xy), vec2(1.0)))) {\n"
+    "        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
+    "        return;\n"
+    "    }\n"
+    "    vec2 cell = min(floor((p.xy * 0.5 + 0.5) * float(u_grid)), vec2(float(u_grid - 1)));\n"
+    "    gl_Position = vec4((cell + 0.5) / float(u_grid) * 2.0 - 1.0, 0.0, 1.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_smtg_frag[] =
+    "/* PVSM step 4: the point's predicted texel sizes (MIN-blended). */\n"
+    "flat in vec2 v_r;\n"
+    "out vec4 o_r;\n"
+    "void main()\n"
+    "{\n"
+    "    o_r = vec4(v_r, 0.0, 1.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_reduce_frag[] =
+    "/* One level of a MIN pyramid: each texel the minimum of the 2x2 texels\n"
+    "   below it (odd sizes: the missing ones are skipped). The source is the\n"
+    "   same texture with its base and max level set to the level below, so\n"
+    "   level 0 of textureLod is that level. PVSM: the low-res map's blocker\n"
+    "   search pyramid and the SMTG pyramid (step 5). */\n"
+    "uniform sampler2D u_src;\n"
+    "uniform ivec2 u_src_size;\n"
+    "out vec4 o_min;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 d = ivec2(gl_FragCoord.xy) * 2;\n"
+    "    vec4 m = vec4(1e30);\n"
+    "    for (int y = 0; y < 2; y++)\n"
+    "        for (int x = 0; x < 2; x++) {\n"
+    "            ivec2 s = d + ivec2(x, y);\n"
+    "            if (s.x < u_src_size.x && s.y < u_src_size.y)\n"
+    "                m = min(m, textureLod(u_src, (vec2(s) + 0.5) / vec2(u_src_size), 0.0));\n"
+    "        }\n"
+    "    o_min = m;\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_filter_frag[] =
+    "/* PVSM step 8 (Sec. 4.1, 4.2, 5.2) for one tile: the smooth texel-coverage\n"
+    "   integration of the pixel's kernel h over the tile's map. Texels are\n"
+    "   quads; the semi-axis-aligned parallelogram is cut into vertical panels\n"
+    "   one texel wide, each taken as an axis-aligned box. Only the part of the\n"
+    "   kernel inside the tile counts; the output (V*A, A) is added into the\n"
+    "   accumulation target, so kernels spanning several tiles merge as\n"
+    "   V = sum(V_i A_i) / sum(A_i). Kernels wider than 24 texels are integrated\n"
+    "   over blocks of 2^k texels, each tested with one hardware 2x2 comparison\n"
+    "   at its centre (for k = 1 that covers the block). */\n"
+    "in vec2 v_uv;\n"
+    "out vec4 o_acc;\n"
+    "uniform sampler2D u_kernel;\n"
+    "uniform sampler2D u_pred;\n"
+    "uniform sampler2D u_plane;\n"
+    "uniform sampler2DShadow u_tile;   /* window depth, LEQUAL comparison; the tile fills [0, res) of it */\n"
+    "uniform vec4 u_tile_rect;         /* NDC x0, y0, x1, y1 of the tile on the base map */\n"
+    "uniform vec2 u_tile_res;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    vec4 k = texelFetch(u_kernel, px, 0);\n"
+    "    if (k.w != 2.0) discard;\n"
+    "    vec4 pr = texelFetch(u_pred, px, 0);\n"
+    "    vec4 pl = texelFetch(u_plane, px, 0);\n"
+    "    float ux = k.x, uy = k.y, vy = k.z;\n"
+    "    vec2 c = pr.xy;\n"
+    "    if (c.x + ux <= u_tile_rect.x || c.x - ux >= u_tile_rect.z ||\n"
+    "        c.y + abs(uy) + vy <= u_tile_rect.y || c.y - abs(uy) - vy >= u_tile_rect.w)\n"
+    "        discard;\n"
+    "    vec2 scale = u_tile_res / (u_tile_rect.zw - u_tile_rect.xy);     /* texels per NDC unit */\n"
+    "    vec2 ct = (c - u_tile_rect.xy) * scale;\n"
+    "    float uxt = ux * scale.x, uyt = uy * scale.y, vyt = vy * scale.y;\n"
+    "    float x0 = max(ct.x - uxt, 0.0), x1 = min(ct.x + uxt, u_tile_res.x);\n"
+    "    float span = max(2.0 * uxt, 2.0 * vyt);\n"
+    "    float stride = exp2(max(ceil(log2(span / 24.0)), 0.0));\n"
+    "    vec2 tex_size = vec2(textureSize(u_tile, 0));\n"
+    "    float slack = (abs(pl.y) / scale.x + abs(pl.z) / scale.y) * stride * 0.5 + pl.w;\n"
+    "    float lit = 0.0, area = 0.0;\n"
+    "    for (float tx = floor(x0 / stride) * stride; tx < x1; tx += stride) {\n"
+    "        float px0 = max(tx, x0), px1 = min(tx + stride, x1);\n"
+    "        if (px1 <= px0) continue;\n"
+    "        float a = (0.5 * (px0 + px1) - ct.x) / uxt;\n"
+    "        float yc = ct.y + a * uyt;\n"
+    "        float py0 = max(yc - vyt, 0.0), py1 = min(yc + vyt, u_tile_res.y);\n"
+    "        for (float ty = floor(py0 / stride) * stride; ty < py1; ty += stride) {\n"
+    "            float cov = (px1 - px0) * (min(ty + stride, py1) - max(ty, py0));\n"
+    "            if (cov <= 0.0) continue;\n"
+    "            vec2 t = min(vec2(tx, ty) + 0.5 * stride, u_tile_res - 0.5);\n"
+    "            vec2 ndc = u_tile_rect.xy + t / scale;\n"
+    "            float plane = pl.x + dot(pl.yz, ndc - c) - slack;\n"
+    "            area += cov;\n"
+    "            lit += cov * texture(u_tile, vec3(t / tex_size, plane));\n"
+    "        }\n"
+    "    }\n"
+    "    if (area <= 0.0) discard;\n"
+    "    float a_ndc = area / (scale.x * scale.y);\n"
+    "    o_acc = vec4(lit / area * a_ndc, a_ndc, 0.0, 0.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_resolve_frag[] =
+    "/* PVSM: the visibility mask from the kernel states and the accumulated\n"
+    "   (V*A, A) of every tile (Sec. 5.2). */\n"
+    "in vec2 v_uv;\n"
+    "out float o_visibility;\n"
+    "uniform sampler2D u_kernel;\n"
+    "uniform sampler2D u_acc;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    float state = texelFetch(u_kernel, px, 0).w;\n"
+    "    vec2 acc = texelFetch(u_acc, px, 0).xy;\n"
+    "    if (state == 3.0) o_visibility = 0.0;\n"
+    "    else if (state == 2.0 && acc.y > 0.0) o_visibility = clamp(acc.x / acc.y, 0.0, 1.0);\n"
+    "    else o_visibility = 1.0;\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_cons_geom[] =
+    "/* PVSM step 2: conservative rasterisation after Hasselgren et al. (GPU\n"
+    "   Gems 2, ch. 42, second algorithm): every edge is pushed out by the\n"
+    "   semi-diagonal of a texel, so each texel the triangle touches gets a\n"
+    "   fragment; the fragment stage clips the overfill at the corners with the\n"
+    "   triangle's bounding box grown by half a texel. Depth is the triangle's\n"
+    "   own plane, extended; the fragment stage also gets the original edges,\n"
+    "   so that it can tell the triangle's own texels from the grown border.\n"
+    "   Triangles crossing the light's plane (w <= 0) are passed through\n"
+    "   unchanged. u_conservative = 0: plain rasterisation. */\n"
+    "layout(triangles) in;\n"
+    "layout(triangle_strip, max_vertices = 3) out;\n"
+    "uniform vec2 u_texel;             /* 2 / resolution: one texel in NDC */\n"
+    "uniform int u_conservative;\n"
+    "flat out vec4 g_box;              /* window-space box of the fragments kept */\n"
+    "flat out vec3 g_edge[3];          /* the original edges in window space: inside when dot(xy, e) <= z */\n"
+    "void main()\n"
+    "{\n"
+    "    vec4 c0 = gl_in[0].gl_Position, c1 = gl_in[1].gl_Position, c2 = gl_in[2].gl_Position;\n"
+    "    /* outputs are undefined after EmitVertex: every vertex sets them all */\n"
+    "    vec4 box = vec4(-1e30, -1e30, 1e30, 1e30);\n"
+    "    vec3 edge[3] = vec3[3](vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0));\n"
+    "    if (u_conservative == 0 || min(c0.w, min(c1.w, c2.w)) <= 1e-6) {\n"
+    "        for (int i = 0; i < 3; i++) {\n"
+    "            g_box = box;\n"
+    "            g_edge = edge;\n"
+    "            gl_Position = gl_in[i].gl_Position;\n"
+    "            EmitVertex();\n"
+    "        }\n"
+    "        EndPrimitive();\n"
+    "        return;\n"
+    "    }\n"
+    "    vec3 p[3] = vec3[3](c0.xyz / c0.w, c1.xyz / c1.w, c2.xyz / c2.w);\n"
+    "    float area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);\n"
+    "    if (area == 0.0) return;\n"
+    "    if (area < 0.0) { vec3 t = p[1]; p[1] = p[2]; p[2] = t; area = -area; }\n"
+    "    vec2 h = 0.5 * u_texel;\n"
+    "    /* depth plane z = A x + B y + C through the three vertices */\n"
+    "    vec2 e1 = p[1].xy - p[0].xy, e2 = p[2].xy - p[0].xy;\n"
+    "    float dz1 = p[1].z - p[0].z, dz2 = p[2].z - p[0].z;\n"
+    "    float A = (dz1 * e2.y - dz2 * e1.y) / area, B = (e1.x * dz2 - e2.x * dz1) / area;\n"
+    "    /* offset edge lines n.x = d, n the outward normal of edge i -> i+1 */\n"
+    "    vec2 n[3]; float dist[3];\n"
+    "    vec2 vp = 1.0 / u_texel;      /* NDC -> window: (x + 1) * res / 2 */\n"
+    "    for (int i = 0; i < 3; i++) {\n"
+    "        vec2 e = p[(i + 1) % 3].xy - p[i].xy;\n"
+    "        n[i] = vec2(e.y, -e.x);\n"
+    "        dist[i] = dot(n[i], p[i].xy);\n"
+    "        /* n.x <= d in NDC is (n / vp).w <= d + n.x + n.y in window space */\n"
+    "        edge[i] = vec3(n[i] / vp, dist[i] + n[i].x + n[i].y);\n"
+    "        dist[i] += abs(n[i].x) * h.x + abs(n[i].y) * h.y;\n"
+    "    }\n"
+    "    vec2 lo = min(p[0].xy, min(p[1].xy, p[2].xy)) - h, hi = max(p[0].xy, max(p[1].xy, p[2].xy)) + h;\n"
+    "    box = vec4((lo + 1.0) * vp, (hi + 1.0) * vp);\n"
+    "    for (int i = 0; i < 3; i++) {\n"
+    "        int j = (i + 2) % 3;      /* the edge ending at vertex i */\n"
+    "        float det = n[j].x * n[i].y - n[j].y * n[i].x;\n"
+    "        vec2 q = abs(det) > 1e-12 * dot(n[i], n[i]) * dot(n[j], n[j])\n"
+    "                     ? vec2(dist[j] * n[i].y - dist[i] * n[j].y, n[j].x * dist[i] - n[i].x * dist[j]) / det\n"
+    "                     : p[i].xy + normalize(n[i]) * length(h);\n"
+    "        q = clamp(q, lo - 2.0 * (hi - lo), hi + 2.0 * (hi - lo));\n"
+    "        float z = p[0].z + A * (q.x - p[0].x) + B * (q.y - p[0].y);\n"
+    "        g_box = box;\n"
+    "        g_edge = edge;\n"
+    "        gl_Position = vec4(q, z, 1.0);\n"
+    "        EmitVertex();\n"
+    "    }\n"
+    "    EndPrimitive();\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_cons_frag[] =
+    "/* PVSM step 2: window depth into two R32F targets, both MIN-blended (no\n"
+    "   depth test): o_cons every texel the grown triangle touches (level 0 of\n"
+    "   the blocker-search pyramid), o_true only texels whose centre the\n"
+    "   original triangle covers (the plain map, for the average blocker\n"
+    "   depth); overfill outside the grown bounding box discarded. */\n"
+    "flat in vec4 g_box;\n"
+    "flat in vec3 g_edge[3];\n"
+    "layout(location = 0) out vec4 o_cons;\n"
+    "layout(location = 1) out vec4 o_true;\n"
+    "void main()\n"
+    "{\n"
+    "    vec2 p = gl_FragCoord.xy;\n"
+    "    if (any(lessThan(p, g_box.xy)) || any(greaterThan(p, g_box.zw))) discard;\n"
+    "    bool inside = dot(p, g_edge[0].xy) <= g_edge[0].z && dot(p, g_edge[1].xy) <= g_edge[1].z &&\n"
+    "                  dot(p, g_edge[2].xy) <= g_edge[2].z;\n"
+    "    o_cons = vec4(gl_FragCoord.z);\n"
+    "    o_true = vec4(inside ? gl_FragCoord.z : 1.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_gbuffer_vert[] =
+    "/* Area-light shadows without a user G-buffer: the camera's depth and\n"
+    "   world normals rendered through the draw callback. */\n"
+    "layout(location = 0) in vec3 a_position;\n"
+    "uniform mat4 u_view_proj;\n"
+    "uniform mat4 u_model;\n"
+    "out vec3 v_world;\n"
+    "void main()\n"
+    "{\n"
+    "    vec4 w = u_model * vec4(a_position, 1.0);\n"
+    "    v_world = w.xyz / w.w;\n"
+    "    gl_Position = u_view_proj * w;\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_gbuffer_frag[] =
+    "/* Flat world normals from the screen derivatives, turned to the camera. */\n"
+    "in vec3 v_world;\n"
+    "out vec4 o_normal;\n"
+    "uniform vec3 u_eye;\n"
+    "void main()\n"
+    "{\n"
+    "    vec3 n = cross(dFdx(v_world), dFdy(v_world));\n"
+    "    n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 1.0, 0.0);\n"
+    "    if (dot(n, u_eye - v_world) < 0.0) n = -n;\n"
+    "    o_normal = vec4(n, 1.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_pcss_mask_frag[] =
+    "/* Percentage-closer soft shadows (Fernando 2005, seed 001 Sec. 4) on one\n"
+    "   map: a blocker search of u_blocker_cells^2 point samples over the region\n"
+    "   the light's pyramid cuts from the near plane, the filter s_alpha from\n"
+    "   the average blocker depth (Eq. 1), and PCF over it with up to\n"
+    "   u_pcf_taps^2 hardware 2x2 comparisons. Depths are compared against the\n"
+    "   receiver's plane at each sample (receiver-plane depth bias). */\n"
+    "in vec2 v_uv;\n"
+    "out float o_visibility;\n"
+    "uniform sampler2D u_map;          /* window depth, no comparison */\n"
+    "uniform sampler2DShadow u_map_cmp;\n"
+    "uniform int u_blocker_cells;\n"
+    "uniform int u_pcf_taps;\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
+    "    float d = texelFetch(u_depth, px, 0).r;\n"
+    "    if (d >= 1.0) { o_visibility = 1.0; return; }\n"
+    "    sk_receiver r = sk_receiver_at(px, d);\n"
+    "    if (r.light.w <= 0.0 || any(greaterThan(abs(r.light.xy), vec2(1.0))) || r.light.z > 1.0) {\n"
+    "        o_visibility = 1.0;\n"
+    "        return;\n"
+    "    }\n"
+    "    if (!r.facing) { o_visibility = 0.0; return; }\n"
+    "    float res = float(textureSize(u_map, 0).x);\n"
+    "    float tol = sk_light_tolerance(max(r.zlin, 1e-6));\n"
+    "    vec2 region = sk_filter_half(r.zlin, u_light_proj.z);\n"
+    "    float n = float(u_blocker_cells), sum = 0.0, count = 0.0;\n"
+    "    for (int y = 0; y < u_blocker_cells; y++)\n"
+    "        for (int x = 0; x < u_blocker_cells; x++) {\n"
+    "            vec2 o = ((vec2(x, y) + 0.5) / n * 2.0 - 1.0) * region;\n"
+    "            vec2 ndc = r.light.xy + o;\n"
+    "            float m = textureLod(u_map, ndc * 0.5 + 0.5, 0.0).r;\n"
+    "            float plane = r.light.z + dot(r.grad, o) - tol - (abs(r.grad.x) + abs(r.grad.y)) / res;\n"
+    "            if (m < plane) { sum += sk_light_linear(m); count += 1.0; }\n"
+    "        }\n"
+    "    if (count == 0.0) { o_visibility = 1.0; return; }\n"
+    "    vec2 s = sk_filter_half(r.zlin, min(sum / count, r.zlin));\n"
+    "    /* taps one texel apart or spread evenly over the kernel, at most u_pcf_taps per axis */\n"
+    "    vec2 texels = s * res;       /* half-width in texels: s NDC * res / 2, times 2 for the full width */\n"
+    "    ivec2 taps = clamp(ivec2(ceil(texels)) + 1, ivec2(1), ivec2(u_pcf_taps));\n"
+    "    float lit = 0.0;\n"
+    "    for (int y = 0; y < taps.y; y++)\n"
+    "        for (int x = 0; x < taps.x; x++) {\n"
+    "            vec2 f = vec2(taps.x > 1 ? float(x) / float(taps.x - 1) : 0.5,\n"
+    "                          taps.y > 1 ? float(y) / float(taps.y - 1) : 0.5);\n"
+    "            vec2 o = (f * 2.0 - 1.0) * s;\n"
+    "            float plane = r.light.z + dot(r.grad, o) - tol - (abs(r.grad.x) + abs(r.grad.y)) / res;\n"
+    "            lit += texture(u_map_cmp, vec3((r.light.xy + o) * 0.5 + 0.5, plane));\n"
+    "        }\n"
+    "    o_visibility = lit / float(taps.x * taps.y);\n"
+    "}\n"
+    ;
 /* SKGL_EMBEDDED_SHADERS_END */
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic pop
@@ -1086,6 +1780,24 @@ typedef unsigned long long skgl__u64;
 #define SKGL__RG 0x8227
 #define SKGL__RG16 0x822C
 #define SKGL__UNSIGNED_SHORT 0x1403
+#define SKGL__GEOMETRY_SHADER 0x8DD9
+#define SKGL__BLEND_EQUATION_RGB 0x8009
+#define SKGL__BLEND_EQUATION_ALPHA 0x883D
+#define SKGL__BLEND_DST_RGB 0x80C8
+#define SKGL__BLEND_SRC_RGB 0x80C9
+#define SKGL__BLEND_DST_ALPHA 0x80CA
+#define SKGL__BLEND_SRC_ALPHA 0x80CB
+#define SKGL__FUNC_ADD 0x8006
+#define SKGL__MIN 0x8007
+#define SKGL__ONE 1
+#define SKGL__DEPTH_CLAMP 0x864F
+#define SKGL__SAMPLES_PASSED 0x8914
+#define SKGL__R32F 0x822E
+#define SKGL__RG32F 0x8230
+#define SKGL__RED 0x1903
+#define SKGL__RGBA16F 0x881A
+#define SKGL__NEAREST_MIPMAP_NEAREST 0x2700
+#define SKGL__COLOR_ATTACHMENT2 0x8CE2
 #define SKGL__UNITS 4                      /* texture units the mask pass uses: 0 .. 3 */
 
 #define SKGL__FUNCS(X) \
@@ -1165,7 +1877,9 @@ typedef unsigned long long skgl__u64;
     X(void, DeleteQueries, (skgl__sizei n, const skgl__uint *ids)) \
     X(void, BeginQuery, (skgl__enum target, skgl__uint id)) \
     X(void, EndQuery, (skgl__enum target)) \
-    X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v))
+    X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v)) \
+    X(void, BlendEquationSeparate, (skgl__enum rgb, skgl__enum alpha)) \
+    X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a))
 
 typedef struct skgl__api {
 #define SKGL__X(ret, name, args) ret (SKGL__APIENTRY *name) args;
@@ -1181,6 +1895,7 @@ struct skgl_context {
     skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 4x4 MIN reduction */
     skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
     skgl__int depth_u_view_proj, depth_u_model;
+    skgl__int model_loc;                   /* where skgl_set_model writes: the current pass's u_model */
     double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
     char log[1024];
 };
@@ -1228,6 +1943,8 @@ typedef struct skgl__state {
     float clear_color[4];
     skgl__int unpack_buffer, pixel_store[8];   /* (UN)PACK_ROW_LENGTH, SKIP_ROWS, SKIP_PIXELS, ALIGNMENT */
     skgl__bool depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
+    skgl__bool depth_clamp;
+    skgl__int blend_eq[2], blend_func[4];      /* RGB, alpha; src RGB, dst RGB, src alpha, dst alpha */
     float poly_factor, poly_units;
     double clear_depth;
 } skgl__state;
@@ -1281,6 +1998,13 @@ static void skgl__save(const skgl__api *gl, skgl__state *st)
     st->blend = gl->IsEnabled(SKGL__BLEND);
     st->scissor = gl->IsEnabled(SKGL__SCISSOR_TEST);
     st->poly_fill = gl->IsEnabled(SKGL__POLYGON_OFFSET_FILL);
+    st->depth_clamp = gl->IsEnabled(SKGL__DEPTH_CLAMP);
+    gl->GetIntegerv(SKGL__BLEND_EQUATION_RGB, &st->blend_eq[0]);
+    gl->GetIntegerv(SKGL__BLEND_EQUATION_ALPHA, &st->blend_eq[1]);
+    gl->GetIntegerv(SKGL__BLEND_SRC_RGB, &st->blend_func[0]);
+    gl->GetIntegerv(SKGL__BLEND_DST_RGB, &st->blend_func[1]);
+    gl->GetIntegerv(SKGL__BLEND_SRC_ALPHA, &st->blend_func[2]);
+    gl->GetIntegerv(SKGL__BLEND_DST_ALPHA, &st->blend_func[3]);
     gl->GetBooleanv(SKGL__COLOR_WRITEMASK, st->color_mask);
     gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &st->poly_factor);
     gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &st->poly_units);
@@ -1318,6 +2042,10 @@ static void skgl__restore(const skgl__api *gl, const skgl__state *st)
     skgl__enable(gl, SKGL__BLEND, st->blend);
     skgl__enable(gl, SKGL__SCISSOR_TEST, st->scissor);
     skgl__enable(gl, SKGL__POLYGON_OFFSET_FILL, st->poly_fill);
+    skgl__enable(gl, SKGL__DEPTH_CLAMP, st->depth_clamp);
+    gl->BlendEquationSeparate((skgl__enum)st->blend_eq[0], (skgl__enum)st->blend_eq[1]);
+    gl->BlendFuncSeparate((skgl__enum)st->blend_func[0], (skgl__enum)st->blend_func[1],
+                          (skgl__enum)st->blend_func[2], (skgl__enum)st->blend_func[3]);
     gl->ColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
     gl->PolygonOffset(st->poly_factor, st->poly_units);
     gl->ClearDepth(st->clear_depth);
@@ -1454,6 +2182,7 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     }
     ctx->depth_u_view_proj = ctx->gl.GetUniformLocation(ctx->depth_prog, "u_view_proj");
     ctx->depth_u_model = ctx->gl.GetUniformLocation(ctx->depth_prog, "u_model");
+    ctx->model_loc = ctx->depth_u_model;
     ctx->gl.GenVertexArrays(1, &ctx->empty_vao); ctx->objects++;
     ctx->gl.GenFramebuffers(1, &ctx->fbo); ctx->objects++;
     ctx->gl.GenQueries(1, &ctx->query); ctx->objects++;
@@ -1541,21 +2270,21 @@ static skgl_scene skgl__scene_rel(const skgl_scene *scene, const double o[3])
     return r;
 }
 
-/* the depth program's model matrix: T(-model_origin) * model, in double */
+/* the current pass's model matrix (model_loc): T(-model_origin) * model, in double */
 static void skgl__model(skgl_context *ctx, const float model[16])
 {
     const double *o = ctx->model_origin;
     float r[16];
     int c, k;
     if (o[0] == 0.0 && o[1] == 0.0 && o[2] == 0.0) {
-        ctx->gl.UniformMatrix4fv(ctx->depth_u_model, 1, 0, model);
+        ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, model);
         return;
     }
     for (c = 0; c < 4; c++) {
         for (k = 0; k < 3; k++) r[c * 4 + k] = (float)((double)model[c * 4 + k] - o[k] * model[c * 4 + 3]);
         r[c * 4 + 3] = model[c * 4 + 3];
     }
-    ctx->gl.UniformMatrix4fv(ctx->depth_u_model, 1, 0, r);
+    ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, r);
 }
 
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
@@ -3413,6 +4142,923 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
     SKGL_FREE(res);
     if (r != SK_OK) return r;
     return skgl__check(ctx, "skgl_point_atlas_pack");
+}
+
+
+/* ---- area lights: PCSS and PVSM (seed 001) ------------------------------ */
+struct skgl_soft {
+    skgl_soft_desc desc;
+    skgl__uint prog_mask;          /* PCSS: the mask; PVSM: the kernel-shape pass */
+    skgl__uint prog_cons, prog_smtg, prog_reduce, prog_filter, prog_resolve, prog_gbuf;
+    skgl__int cons_u_model, gbuf_u_model;
+    skgl__uint fbo, query_samples;
+    skgl__uint map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
+    int map_res;
+    skgl__uint low_color, low_true;    /* PVSM: R32F MIN pyramid of the conservative low-res map; the plain map */
+    int low_levels;
+    skgl__uint smtg;               /* PVSM: RG32F SMTG with its pyramid as mip levels */
+    int smtg_levels;
+    skgl__uint screen[4];          /* PVSM: kernel, prediction, plane, accumulation (RGBA32F) */
+    int sw, sh;
+    skgl__uint gb_depth, gb_normal;    /* the G-buffer rendered here (depth_tex = 0) */
+    int gw, gh;
+    float *pyramid;                /* the SMTG pyramid read back */
+    int pyramid_floats;
+    float *grid;                   /* level 0 as given to sk_fvsm_tiles (after any halving) */
+    sk_tile *tiles;
+    int ntiles, tiles_cap;
+    sk_mat4 light_view, light_proj, light_vp;
+    float p00, p11, zn, zf;
+    skgl_stats stats;
+};
+
+static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
+{
+    skgl_soft_desc r = *d;
+    if (r.resolution == 0) r.resolution = r.technique == SKGL_SOFT_PVSM ? 4096 : 2048;
+    if (r.lowres == 0) r.lowres = 1024;
+    if (r.grid == 0) r.grid = 64;
+    if (r.max_tiles == 0) r.max_tiles = 64;
+    if (r.conservative == 0) r.conservative = 1;
+    if (r.blocker_cells == 0) r.blocker_cells = 8;
+    if (r.pcf_taps == 0) r.pcf_taps = 12;
+    if (r.slope_bias == 0.0f) r.slope_bias = 1.5f;
+    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
+    if (r.rel_bias == 0.0f) r.rel_bias = 0.002f;
+    if (r.antialias == 0) r.antialias = 1;
+    if (r.resolution_scale == 0.0f) r.resolution_scale = 1.0f;
+    return r;
+}
+
+static skgl__uint skgl__program_gs(skgl_context *ctx, const char *vs, const char *gs, const char *fs)
+{
+    skgl__uint v = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL), g, f, p;
+    skgl__int ok = 0;
+    if (!v) return 0;
+    g = skgl__shader(ctx, SKGL__GEOMETRY_SHADER, gs, NULL);
+    f = g ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs, NULL) : 0;
+    if (!g || !f) {
+        ctx->gl.DeleteShader(v);
+        if (g) ctx->gl.DeleteShader(g);
+        return 0;
+    }
+    p = ctx->gl.CreateProgram();
+    ctx->gl.AttachShader(p, v);
+    ctx->gl.AttachShader(p, g);
+    ctx->gl.AttachShader(p, f);
+    ctx->gl.LinkProgram(p);
+    ctx->gl.DeleteShader(v);
+    ctx->gl.DeleteShader(g);
+    ctx->gl.DeleteShader(f);
+    ctx->gl.GetProgramiv(p, SKGL__LINK_STATUS, &ok);
+    if (!ok) {
+        char log[900];
+        log[0] = 0;
+        ctx->gl.GetProgramInfoLog(p, (skgl__sizei)sizeof log, NULL, log);
+        skgl__set_log(ctx, "program link failed", log);
+        ctx->gl.DeleteProgram(p);
+        return 0;
+    }
+    ctx->objects++;
+    return p;
+}
+
+/* a 2D texture with `levels` levels, nearest filtering, clamped */
+static skgl__uint skgl__soft_texture(skgl_context *ctx, skgl__int ifmt, int w, int h, int levels,
+                                     skgl__enum fmt, skgl__enum type)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__uint t = 0;
+    int l;
+    gl->GenTextures(1, &t);
+    ctx->objects++;
+    gl->BindTexture(SKGL__TEXTURE_2D, t);
+    for (l = 0; l < levels; l++) {
+        gl->TexImage2D(SKGL__TEXTURE_2D, l, ifmt, w, h, 0, fmt, type, NULL);
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER,
+                      levels > 1 ? SKGL__NEAREST_MIPMAP_NEAREST : SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
+    return t;
+}
+
+static void skgl__soft_delete_tex(skgl_context *ctx, skgl__uint *t)
+{
+    if (*t) { ctx->gl.DeleteTextures(1, t); ctx->objects--; *t = 0; }
+}
+static void skgl__soft_delete_prog(skgl_context *ctx, skgl__uint *p)
+{
+    if (*p) { ctx->gl.DeleteProgram(*p); ctx->objects--; *p = 0; }
+}
+
+static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
+{
+    int i;
+    skgl__soft_delete_prog(ctx, &s->prog_mask);
+    skgl__soft_delete_prog(ctx, &s->prog_cons);
+    skgl__soft_delete_prog(ctx, &s->prog_smtg);
+    skgl__soft_delete_prog(ctx, &s->prog_reduce);
+    skgl__soft_delete_prog(ctx, &s->prog_filter);
+    skgl__soft_delete_prog(ctx, &s->prog_resolve);
+    skgl__soft_delete_prog(ctx, &s->prog_gbuf);
+    skgl__soft_delete_tex(ctx, &s->map);
+    skgl__soft_delete_tex(ctx, &s->low_color);
+    skgl__soft_delete_tex(ctx, &s->low_true);
+    skgl__soft_delete_tex(ctx, &s->smtg);
+    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
+    skgl__soft_delete_tex(ctx, &s->gb_depth);
+    skgl__soft_delete_tex(ctx, &s->gb_normal);
+    if (s->fbo) { ctx->gl.DeleteFramebuffers(1, &s->fbo); ctx->objects--; s->fbo = 0; }
+    if (s->query_samples) { ctx->gl.DeleteQueries(1, &s->query_samples); ctx->objects--; s->query_samples = 0; }
+    SKGL_FREE(s->pyramid);
+    SKGL_FREE(s->grid);
+    SKGL_FREE(s->tiles);
+    s->pyramid = s->grid = NULL;
+    s->tiles = NULL;
+}
+
+SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out)
+{
+    skgl_soft *s;
+    skgl_soft_desc d;
+    skgl__api *gl;
+    skgl__int max_size = 0, unit;
+    skgl__state st;
+    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    *out = NULL;
+    d = skgl__soft_defaults(desc);
+    gl = &ctx->gl;
+    gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
+    if ((d.technique != SKGL_SOFT_PCSS && d.technique != SKGL_SOFT_PVSM) || d.resolution < 16 ||
+        d.resolution > max_size || d.lowres < 16 || d.lowres > 8192 || (d.lowres & (d.lowres - 1)) != 0 ||
+        d.lowres > max_size || d.grid < 4 || d.grid > 256 || (d.grid & (d.grid - 1)) != 0 || d.max_tiles < 1 || d.max_tiles > 4096 ||
+        (d.conservative != 1 && d.conservative != -1) || d.static_scene < 0 || d.static_scene > 1 ||
+        d.blocker_cells < 2 || d.blocker_cells > 16 || d.pcf_taps < 1 || d.pcf_taps > 16 ||
+        !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.rel_bias) ||
+        d.rel_bias < 0.0f || d.rel_bias > 0.5f || (d.antialias != 1 && d.antialias != -1) ||
+        !(d.resolution_scale >= 0.125f && d.resolution_scale <= 8.0f))
+        return SK_ERR_INVALID_ARG;
+    s = (skgl_soft *)SKGL_MALLOC(sizeof *s);
+    if (!s) return SK_ERR_CAPACITY;
+    memset(s, 0, sizeof *s);
+    s->desc = d;
+    skgl__save(gl, &st);
+    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &unit);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->GenFramebuffers(1, &s->fbo); ctx->objects++;
+    gl->GenQueries(1, &s->query_samples); ctx->objects++;
+    s->map_res = d.resolution;
+    s->map = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, d.resolution, d.resolution, 1,
+                                SKGL__DEPTH_COMPONENT, SKGL__FLOAT);
+    if (d.technique == SKGL_SOFT_PCSS) {
+        s->prog_mask = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_common_glsl,
+                                     skgl__src_pcss_mask_frag);
+    } else {
+        int l = 1, n = d.lowres, g = d.grid;
+        while (n > 1) { n /= 2; l++; }
+        s->low_levels = l;
+        s->low_color = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, l, SKGL__RED, SKGL__FLOAT);
+        s->low_true = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, 1, SKGL__RED, SKGL__FLOAT);
+        l = 1;
+        while (g > 1) { g = (g + 1) / 2; l++; }
+        s->smtg_levels = l;
+        s->smtg = skgl__soft_texture(ctx, (skgl__int)SKGL__RG32F, d.grid, d.grid, l, SKGL__RG, SKGL__FLOAT);
+        s->pyramid_floats = sk_smtg_pyramid_size(d.grid, d.grid);
+        s->pyramid = (float *)SKGL_MALLOC(sizeof(float) * (size_t)s->pyramid_floats);
+        s->grid = (float *)SKGL_MALLOC(sizeof(float) * 2u * (size_t)d.grid * (size_t)d.grid);
+        s->tiles_cap = d.grid * d.grid;
+        s->tiles = (sk_tile *)SKGL_MALLOC(sizeof(sk_tile) * (size_t)s->tiles_cap);
+        s->prog_mask = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_common_glsl,
+                                     skgl__src_soft_kernel_frag);
+        s->prog_cons = skgl__program_gs(ctx, skgl__src_depth_vert, skgl__src_soft_cons_geom,
+                                        skgl__src_soft_cons_frag);
+        s->prog_smtg = skgl__program(ctx, skgl__src_soft_smtg_vert, skgl__src_soft_smtg_frag, NULL);
+        s->prog_reduce = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_reduce_frag, NULL);
+        s->prog_filter = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_filter_frag, NULL);
+        s->prog_resolve = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_resolve_frag, NULL);
+        if (s->prog_cons) s->cons_u_model = gl->GetUniformLocation(s->prog_cons, "u_model");
+    }
+    s->prog_gbuf = skgl__program(ctx, skgl__src_soft_gbuffer_vert, skgl__src_soft_gbuffer_frag, NULL);
+    if (s->prog_gbuf) s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "u_model");
+    gl->ActiveTexture((skgl__enum)unit);
+    skgl__restore(gl, &st);
+    if (!s->prog_mask || !s->prog_gbuf ||
+        (d.technique == SKGL_SOFT_PVSM && (!s->prog_cons || !s->prog_smtg || !s->prog_reduce || !s->prog_filter ||
+                                           !s->prog_resolve || !s->pyramid || !s->grid || !s->tiles)) ||
+        gl->GetError() != 0) {
+        sk_result r = d.technique == SKGL_SOFT_PVSM && (!s->pyramid || !s->grid || !s->tiles) ? SK_ERR_CAPACITY
+                                                                                               : SK_ERR_GL;
+        if (!skgl_error_log(ctx)[0]) skgl__set_log(ctx, "skgl_soft_create: GL error while creating its objects", NULL);
+        skgl__soft_free(ctx, s);
+        SKGL_FREE(s);
+        return r;
+    }
+    s->stats.shadow_ms = s->stats.mask_ms = -1.0f;
+    *out = s;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_soft_destroy(skgl_context *ctx, skgl_soft *s)
+{
+    if (!ctx || !s) return;
+    skgl__soft_free(ctx, s);
+    SKGL_FREE(s);
+}
+
+SKGLDEF skgl_soft_desc skgl_soft_get_desc(const skgl_soft *s)
+{
+    skgl_soft_desc d;
+    if (s) return s->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF const skgl_stats *skgl_soft_stats(const skgl_soft *s) { return s ? &s->stats : NULL; }
+SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s) { return s ? s->light_vp : sk_mat4_identity(); }
+SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap)
+{
+    int i;
+    if (!s) return 0;
+    for (i = 0; out && i < cap && i < s->ntiles; i++) out[i] = s->tiles[i];
+    return s->ntiles;
+}
+SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap)
+{
+    int i;
+    if (!s || !s->pyramid || !s->stats.passes) return 0;
+    for (i = 0; out && i < cap && i < s->pyramid_floats; i++) out[i] = s->pyramid[i];
+    return s->pyramid_floats;
+}
+
+/* the light's frame as sk_mat4_look_at builds it: x = direction x up, y, -z = direction */
+static int skgl__area_frame(const skgl_area_light *l, sk_vec3 *x, sk_vec3 *y, sk_vec3 *f)
+{
+    sk_vec3 s;
+    if (!sk__v3_finite(l->direction) || !sk__v3_finite(l->up) || !(sk__len(l->direction) > 0.0f)) return 0;
+    *f = sk__normalize(l->direction);
+    s = sk__cross(*f, l->up);
+    if (!(sk__len(s) > 1e-6f * (sk__len(l->up) > 0.0f ? sk__len(l->up) : 1.0f)))
+        s = sk__cross(*f, sk__least_aligned_axis(*f));
+    *x = sk__normalize(s);
+    *y = sk__cross(*x, *f);
+    return 1;
+}
+
+SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u, sk_vec3 *half_v)
+{
+    sk_vec3 x, y, f;
+    if (!half_u || !half_v) return;
+    if (!light || !skgl__area_frame(light, &x, &y, &f)) {
+        *half_u = *half_v = sk__v3(0.0f, 0.0f, 0.0f);
+        return;
+    }
+    *half_u = sk__scale(x, light->half_width);
+    *half_v = sk__scale(y, light->half_height);
+}
+
+/* glFrustum from tangents of the light's view: x/z in [x0, x1], y/z in [y0, y1] */
+static sk_mat4 skgl__tan_frustum(double x0, double x1, double y0, double y1, double zn, double zf)
+{
+    sk_mat4 p;
+    memset(&p, 0, sizeof p);
+    p.m[0] = (float)(2.0 / (x1 - x0));
+    p.m[5] = (float)(2.0 / (y1 - y0));
+    p.m[8] = (float)((x1 + x0) / (x1 - x0));
+    p.m[9] = (float)((y1 + y0) / (y1 - y0));
+    p.m[10] = (float)(-(zf + zn) / (zf - zn));
+    p.m[11] = -1.0f;
+    p.m[14] = (float)(-2.0 * zf * zn / (zf - zn));
+    return p;
+}
+
+/* nearest distance along the light's axis of the scene bounds inside the
+   frustum of those tangents (zf when none is) */
+static double skgl__soft_near(const skgl_soft *s, const skgl_scene *scene, double x0, double x1, double y0,
+                              double y1, double zf)
+{
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    sk_frustum f = sk_frustum_from_matrix(sk_mat4_mul(skgl__tan_frustum(x0, x1, y0, y1, zf * 1e-5, zf),
+                                                      s->light_view));
+    double zn = zf;
+    int i, n = sk_clip_frustum_aabb(&f, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+    for (i = 0; i < n; i++) {
+        double z = -(double)sk_mat4_transform_point(s->light_view, pts[i]).z;
+        if (z < zn) zn = z;
+    }
+    return zn;
+}
+
+/* The base frustum: from the light's centre, around the receivers the
+   camera sees (the view clipped to the bounds) grown by the widest blocker
+   search and kept within the bounds; its near plane at the nearest point
+   of the bounds inside it, its far plane at the farthest corner. */
+static sk_result skgl__soft_fit(skgl_soft *s, const skgl_camera *cam, const skgl_scene *scene,
+                                const skgl_area_light *l)
+{
+    sk_vec3 pts[SK_CLIP_MAX_POINTS], corners[8], x, y, f;
+    sk_frustum view;
+    double zmax = -1e300, zn, zf, rx0 = 1e300, rx1 = -1e300, ry0 = 1e300, ry1 = -1e300;
+    double bx0 = 1e300, bx1 = -1e300, by0 = 1e300, by1 = -1e300, mx, my, lim = 5.67;   /* tan 80 degrees */
+    double x0, x1, y0, y1;
+    int i, n;
+    if (!skgl__area_frame(l, &x, &y, &f)) return SK_ERR_INVALID_ARG;
+    s->light_view = sk_mat4_look_at(l->position, sk__add(l->position, f), l->up);
+    for (i = 0; i < 8; i++) {
+        sk_vec3 c = sk__v3(i & 1 ? scene->bounds.max.x : scene->bounds.min.x,
+                           i & 2 ? scene->bounds.max.y : scene->bounds.min.y,
+                           i & 4 ? scene->bounds.max.z : scene->bounds.min.z);
+        corners[i] = sk_mat4_transform_point(s->light_view, c);
+        if (-corners[i].z > zmax) zmax = -corners[i].z;
+    }
+    if (!(zmax > 0.0)) return SK_ERR_DEGENERATE;
+    zf = zmax * 1.01;
+    zn = zf * 1e-3;
+    for (i = 0; i < 8; i++) {
+        double z = -corners[i].z > zn ? -corners[i].z : zn;
+        double tx = corners[i].x / z, ty = corners[i].y / z;
+        if (tx < bx0) bx0 = tx;
+        if (tx > bx1) bx1 = tx;
+        if (ty < by0) by0 = ty;
+        if (ty > by1) by1 = ty;
+    }
+    view = sk_frustum_from_matrix(sk_mat4_mul(cam->proj, cam->view));
+    n = sk_clip_frustum_aabb(&view, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+    for (i = 0; i < n; i++) {
+        sk_vec3 q = sk_mat4_transform_point(s->light_view, pts[i]);
+        double tx, ty;
+        if (!(-q.z > zn)) continue;               /* behind the light's plane: never lit by it */
+        tx = q.x / -q.z; ty = q.y / -q.z;
+        if (tx < rx0) rx0 = tx;
+        if (tx > rx1) rx1 = tx;
+        if (ty < ry0) ry0 = ty;
+        if (ty > ry1) ry1 = ty;
+    }
+    if (!(rx1 >= rx0)) { rx0 = bx0; rx1 = bx1; ry0 = by0; ry1 = by1; }
+    if (rx0 < -lim) rx0 = -lim;
+    if (rx1 > lim) rx1 = lim;
+    if (ry0 < -lim) ry0 = -lim;
+    if (ry1 > lim) ry1 = lim;
+    /* blockers of a receiver lie within half-size / distance of its ray:
+       grow by that at the nearest bounds in front of the receivers, twice
+       (the growth can only bring the near plane closer) */
+    x0 = rx0; x1 = rx1; y0 = ry0; y1 = ry1;
+    for (i = 0; i < 2; i++) {
+        double z = skgl__soft_near(s, scene, x0, x1 > x0 ? x1 : x0 + 1e-6, y0, y1 > y0 ? y1 : y0 + 1e-6, zf);
+        zn = z * 0.99 > zf * 1e-3 ? z * 0.99 : zf * 1e-3;
+        mx = l->half_width / zn;
+        my = l->half_height / zn;
+        x0 = rx0 - mx > bx0 ? rx0 - mx : bx0;
+        x1 = rx1 + mx < bx1 ? rx1 + mx : bx1;
+        y0 = ry0 - my > by0 ? ry0 - my : by0;
+        y1 = ry1 + my < by1 ? ry1 + my : by1;
+        if (x0 < -lim) x0 = -lim;
+        if (x1 > lim) x1 = lim;
+        if (y0 < -lim) y0 = -lim;
+        if (y1 > lim) y1 = lim;
+    }
+    if (!(x1 > x0) || !(y1 > y0)) { x0 = y0 = -1.0; x1 = y1 = 1.0; }
+    /* steady under camera motion: the sides snapped outwards to multiples of
+       a power of two near 1/16 of the width, the near plane down to a step
+       of 2^(1/8), so the texel grid only moves when a side crosses a step */
+    {
+        double sx = SK_POW(2.0, SK_FLOOR(SK_LOG2((x1 - x0) / 16.0)));
+        double sy = SK_POW(2.0, SK_FLOOR(SK_LOG2((y1 - y0) / 16.0)));
+        x0 = SK_FLOOR(x0 / sx) * sx; x1 = SK_CEIL(x1 / sx) * sx;
+        y0 = SK_FLOOR(y0 / sy) * sy; y1 = SK_CEIL(y1 / sy) * sy;
+        zn = SK_POW(2.0, SK_FLOOR(SK_LOG2(zn) * 8.0) / 8.0);
+    }
+    s->light_proj = skgl__tan_frustum(x0, x1, y0, y1, zn, zf);
+    s->light_vp = sk_mat4_mul(s->light_proj, s->light_view);
+    s->p00 = s->light_proj.m[0];
+    s->p11 = s->light_proj.m[5];
+    s->zn = (float)zn;
+    s->zf = (float)zf;
+    return sk__mat_finite(&s->light_vp) ? SK_OK : SK_ERR_DEGENERATE;
+}
+
+static void skgl__soft_begin(skgl_context *ctx) { skgl__query_begin(ctx); }
+static float skgl__soft_end(skgl_context *ctx) { return skgl__query_end(ctx); }
+
+/* colour targets of the soft object's framebuffer (0 ends the list) */
+static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
+                              skgl__uint depth)
+{
+    static const skgl__enum bufs[4] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1,
+                                        SKGL__COLOR_ATTACHMENT2, SKGL__COLOR_ATTACHMENT0 + 3};
+    skgl__api *gl = &ctx->gl;
+    int i;
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
+    for (i = 0; i < 4; i++)
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, bufs[i], SKGL__TEXTURE_2D, i < n ? tex[i] : 0, i < n ? level : 0);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
+    gl->DrawBuffers(n, bufs);
+    return gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+}
+static void skgl__soft_detach(skgl_context *ctx, skgl_soft *s)
+{
+    skgl__soft_targets(ctx, s, NULL, 0, 0, 0);
+    ctx->gl.DrawBuffer(SKGL__NONE);
+}
+
+/* the depth pass of one map (PCSS's, or a PVSM tile) into s->map */
+static void skgl__soft_depth(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene, sk_mat4 vp,
+                             int w, int h, int index)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl_draw_info info;
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    skgl_shadow_desc bias;
+    memset(&bias, 0, sizeof bias);
+    bias.slope_bias = s->desc.slope_bias;
+    bias.depth_bias = s->desc.depth_bias;
+    skgl__soft_targets(ctx, s, NULL, 0, 0, s->map);
+    gl->DrawBuffer(SKGL__NONE);
+    gl->ReadBuffer(SKGL__NONE);
+    gl->Viewport(0, 0, w, h);
+    gl->Enable(SKGL__SCISSOR_TEST);
+    /* one texel more than the tile: the filter's last panel may sample it */
+    gl->Scissor(0, 0, w < s->map_res ? w + 1 : w, h < s->map_res ? h + 1 : h);
+    skgl__depth_pass_state(gl, &bias);
+    gl->ColorMask(0, 0, 0, 0);
+    gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+    gl->UseProgram(ctx->depth_prog);
+    gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
+    gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_AREA;
+    info.index = index;
+    info.view_proj = vp;
+    info.frustum = sk_frustum_from_matrix(vp);
+    scene->draw(scene->user, &info);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->ColorMask(1, 1, 1, 1);
+    s->stats.passes++;
+    s->stats.texels += (double)w * h;
+}
+
+/* the camera's depth and normals through the draw callback (depth_tex = 0) */
+static int skgl__soft_gbuffer(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam, const skgl_scene *scene,
+                              int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view), inv_view;
+    skgl_draw_info info;
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    float eye[3];
+    if (s->gw != w || s->gh != h) {
+        skgl__soft_delete_tex(ctx, &s->gb_depth);
+        skgl__soft_delete_tex(ctx, &s->gb_normal);
+        gl->ActiveTexture(SKGL__TEXTURE0);
+        s->gb_depth = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, w, h, 1, SKGL__DEPTH_COMPONENT,
+                                         SKGL__FLOAT);
+        s->gb_normal = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA16F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
+        s->gw = w; s->gh = h;
+    }
+    if (!skgl__soft_targets(ctx, s, &s->gb_normal, 1, 0, s->gb_depth)) return 0;
+    gl->Viewport(0, 0, w, h);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->Enable(SKGL__DEPTH_TEST);
+    gl->DepthFunc(SKGL__LESS);
+    gl->DepthMask(1);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->ClearDepth(1.0);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->Clear(SKGL__DEPTH_BUFFER_BIT | SKGL__COLOR_BUFFER_BIT);
+    gl->UseProgram(s->prog_gbuf);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_gbuf, "u_view_proj"), 1, 0, vp.m);
+    gl->UniformMatrix4fv(s->gbuf_u_model, 1, 0, identity);
+    if (!sk_mat4_inverse(cam->view, &inv_view)) inv_view = sk_mat4_identity();
+    eye[0] = inv_view.m[12]; eye[1] = inv_view.m[13]; eye[2] = inv_view.m[14];
+    gl->Uniform3fv(gl->GetUniformLocation(s->prog_gbuf, "u_eye"), 1, eye);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_CAMERA;
+    info.view_proj = vp;
+    info.frustum = sk_frustum_from_matrix(vp);
+    ctx->model_loc = s->gbuf_u_model;
+    scene->draw(scene->user, &info);
+    ctx->model_loc = ctx->depth_u_model;
+    s->stats.passes++;
+    skgl__soft_detach(ctx, s);
+    return 1;
+}
+
+/* uniforms of soft_common.glsl */
+static void skgl__soft_common(skgl_context *ctx, const skgl_soft *s, skgl__uint prog, const sk_mat4 *inv,
+                              const skgl_area_light *l, unsigned normal_tex)
+{
+    skgl__api *gl = &ctx->gl;
+    float pos[3], half[2], proj[4];
+    pos[0] = l->position.x; pos[1] = l->position.y; pos[2] = l->position.z;
+    half[0] = l->half_width; half[1] = l->half_height;
+    proj[0] = s->p00; proj[1] = s->p11; proj[2] = s->zn; proj[3] = s->zf;
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv->m);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_light_vp"), 1, 0, s->light_vp.m);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_light_pos"), 1, pos);
+    gl->Uniform2fv(gl->GetUniformLocation(prog, "u_light_half"), 1, half);
+    gl->Uniform4fv(gl->GetUniformLocation(prog, "u_light_proj"), 1, proj);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_rel_bias"), s->desc.rel_bias);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_blocker_cells"), s->desc.blocker_cells);
+}
+
+/* levels 1.. of a MIN pyramid stored as the mip chain of tex (level 0 drawn) */
+static void skgl__soft_reduce(skgl_context *ctx, skgl_soft *s, skgl__uint tex, int w, int h, int levels)
+{
+    skgl__api *gl = &ctx->gl;
+    int l;
+    gl->UseProgram(s->prog_reduce);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_reduce, "u_src"), 0);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->BindSampler(0, 0);
+    gl->BindTexture(SKGL__TEXTURE_2D, tex);
+    for (l = 1; l < levels; l++) {
+        skgl__int size[2];
+        size[0] = w; size[1] = h;
+        w = w > 1 ? (w + 1) / 2 : 1;
+        h = h > 1 ? (h + 1) / 2 : 1;
+        /* sample only level l-1 while level l is drawn */
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, l - 1);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, l - 1);
+        skgl__soft_targets(ctx, s, &tex, 1, l, 0);
+        gl->Viewport(0, 0, w, h);
+        gl->Uniform2i(gl->GetUniformLocation(s->prog_reduce, "u_src_size"), size[0], size[1]);
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
+    skgl__soft_detach(ctx, s);
+}
+
+/* PVSM step 2: the low-resolution map, conservative, into the MIN pyramid
+   (and plain into low_true); MIN blending takes the place of the depth test */
+static void skgl__soft_lowres(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl_draw_info info;
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    skgl__uint targets[2];
+    skgl_shadow_desc bias;
+    float texel[2];
+    int r = s->desc.lowres;
+    targets[0] = s->low_color;
+    targets[1] = s->low_true;
+    skgl__soft_targets(ctx, s, targets, 2, 0, 0);
+    gl->Viewport(0, 0, r, r);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    /* the slope-scaled offset (it moves gl_FragCoord.z), without the depth test */
+    memset(&bias, 0, sizeof bias);
+    bias.slope_bias = s->desc.slope_bias;
+    bias.depth_bias = s->desc.depth_bias;
+    skgl__depth_pass_state(gl, &bias);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->ClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->Enable(SKGL__BLEND);
+    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
+    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+    gl->Enable(SKGL__DEPTH_CLAMP);
+    gl->UseProgram(s->prog_cons);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_cons, "u_view_proj"), 1, 0, s->light_vp.m);
+    gl->UniformMatrix4fv(s->cons_u_model, 1, 0, identity);
+    texel[0] = texel[1] = 2.0f / (float)r;
+    gl->Uniform2fv(gl->GetUniformLocation(s->prog_cons, "u_texel"), 1, texel);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_cons, "u_conservative"), s->desc.conservative == 1);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_AREA;
+    info.index = 0;
+    info.view_proj = s->light_vp;
+    info.frustum = sk_frustum_from_matrix(s->light_vp);
+    ctx->model_loc = s->cons_u_model;
+    scene->draw(scene->user, &info);
+    ctx->model_loc = ctx->depth_u_model;
+    gl->Disable(SKGL__DEPTH_CLAMP);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
+    s->stats.passes++;
+    s->stats.texels += (double)r * r;
+    gl->BindVertexArray(ctx->empty_vao);
+    skgl__soft_reduce(ctx, s, s->low_color, r, r, s->low_levels);
+}
+
+/* PVSM steps 4 and 5: the SMTG's pyramid read back, "no sample" as +INF */
+static int skgl__soft_read_pyramid(skgl_context *ctx, skgl_soft *s)
+{
+    skgl__api *gl = &ctx->gl;
+    int l, w = s->desc.grid, h = s->desc.grid, off = 0, i;
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
+    skgl__pixel_store_plain(gl);
+    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
+    for (l = 0; l < s->smtg_levels; l++) {
+        skgl__soft_targets(ctx, s, &s->smtg, 1, l, 0);
+        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
+        gl->ReadPixels(0, 0, w, h, SKGL__RG, SKGL__FLOAT, s->pyramid + off);
+        off += w * h * 2;
+        w = w > 1 ? (w + 1) / 2 : 1;
+        h = h > 1 ? (h + 1) / 2 : 1;
+    }
+    gl->ReadBuffer(SKGL__NONE);
+    skgl__soft_detach(ctx, s);
+    for (i = 0; i < off; i++)
+        if (!(s->pyramid[i] < 1e29f)) s->pyramid[i] = SK__INF;
+    return off;
+}
+
+/* a tile side rounded up to a step of 2^(1/4): under slow motion the
+   predicted sizes drift, the rounded ones (and the texel grid) seldom move */
+static int skgl__soft_round_res(int r, int max_res)
+{
+    double q = SK_POW(2.0, SK_CEIL(SK_LOG2((double)r) * 4.0 - 1e-9) / 4.0);
+    int v = (int)SK_CEIL(q - 1e-9);
+    return v > max_res ? max_res : v < r ? r : v;
+}
+
+/* PVSM step 6: the kd-tree's tiles; more than max_tiles: every required
+   texel twice as large (half the resolution) until they fit */
+static int skgl__soft_tiles(skgl_soft *s)
+{
+    int g = s->desc.grid, n = g * g * 2, i, k, count = 0;
+    const float *top = s->pyramid + s->pyramid_floats - 2;
+    if (!(top[0] < SK__INF) && !(top[1] < SK__INF)) return 0;      /* the SMTG is empty */
+    memcpy(s->grid, s->pyramid, sizeof(float) * (size_t)n);
+    for (k = 0; k < 24; k++) {
+        count = sk_fvsm_tiles(s->grid, g, g, s->desc.resolution, s->tiles, s->tiles_cap);
+        if (count >= 0 && count <= s->desc.max_tiles) break;
+        for (i = 0; i < n; i++) s->grid[i] *= 2.0f;
+    }
+    if (count < 0) return 0;
+    if (count > s->desc.max_tiles) count = s->desc.max_tiles;
+    for (i = 0; i < count; i++) {
+        s->tiles[i].res_x = skgl__soft_round_res(s->tiles[i].res_x, s->desc.resolution);
+        s->tiles[i].res_y = skgl__soft_round_res(s->tiles[i].res_y, s->desc.resolution);
+    }
+    return count;
+}
+
+static sk_result skgl__soft_screen(skgl_context *ctx, skgl_soft *s, int w, int h)
+{
+    int i;
+    if (s->sw == w && s->sh == h) return SK_OK;
+    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
+    ctx->gl.ActiveTexture(SKGL__TEXTURE0);
+    for (i = 0; i < 4; i++)
+        s->screen[i] = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
+    s->sw = w; s->sh = h;
+    return SK_OK;
+}
+
+static void skgl__soft_bind(skgl_context *ctx, int unit, skgl__uint tex, skgl__uint sampler)
+{
+    ctx->gl.ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
+    ctx->gl.BindTexture(SKGL__TEXTURE_2D, tex);
+    ctx->gl.BindSampler((skgl__uint)unit, sampler);
+}
+
+static float skgl__soft_ms(float a, float b) { return a < 0.0f || b < 0.0f ? -1.0f : a + b; }
+
+static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
+                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
+                                 unsigned mask_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__u64 covered = 0, penumbra = 0;
+    float *ms = s->stats.step_ms;
+    int i, hard = !(l->half_width > 0.0f) && !(l->half_height > 0.0f);
+    skgl__soft_screen(ctx, s, w, h);
+
+    /* 2: the conservative low-resolution map and its MIN pyramid */
+    skgl__soft_begin(ctx);
+    skgl__soft_lowres(ctx, s, scene);
+    ms[1] = skgl__soft_end(ctx);
+
+    /* 3: the kernel-shape buffer (inputs: depth 1, normals 2, pyramid 0) */
+    skgl__soft_begin(ctx);
+    skgl__soft_targets(ctx, s, s->screen, 3, 0, 0);
+    gl->Viewport(0, 0, w, h);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->UseProgram(s->prog_mask);
+    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_true"), 3);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_size"), s->desc.lowres);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_levels"), s->low_levels);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_static_scene"), s->desc.static_scene);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_hard"), hard);
+    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_antialias"), s->desc.antialias == 1 ? 1.0f : 0.0f);
+    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_res_scale"), s->desc.resolution_scale);
+    skgl__soft_bind(ctx, 0, s->low_color, 0);
+    skgl__soft_bind(ctx, 3, s->low_true, 0);
+    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->EndQuery(SKGL__SAMPLES_PASSED);
+    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &covered);
+    ms[2] = skgl__soft_end(ctx);
+
+    /* 4: prediction into the SMTG, one point per pixel, MIN blending */
+    skgl__soft_begin(ctx);
+    skgl__soft_targets(ctx, s, &s->smtg, 1, 0, 0);
+    gl->Viewport(0, 0, s->desc.grid, s->desc.grid);
+    gl->ClearColor(1e30f, 1e30f, 1e30f, 1e30f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->Enable(SKGL__BLEND);
+    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
+    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+    gl->UseProgram(s->prog_smtg);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_kernel"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_pred"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_width"), w);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_grid"), s->desc.grid);
+    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
+    skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
+    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
+    gl->DrawArrays(SKGL__POINTS, 0, w * h);
+    gl->EndQuery(SKGL__SAMPLES_PASSED);
+    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &penumbra);
+    gl->Disable(SKGL__BLEND);
+    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
+    ms[3] = skgl__soft_end(ctx);
+
+    /* 5, 6: the SMTG pyramid on the GPU, read back; the kd-tree */
+    skgl__soft_begin(ctx);
+    skgl__soft_reduce(ctx, s, s->smtg, s->desc.grid, s->desc.grid, s->smtg_levels);
+    ms[4] = skgl__soft_end(ctx);
+    skgl__soft_read_pyramid(ctx, s);
+    s->ntiles = skgl__soft_tiles(s);
+
+    /* 7, 8: per tile, its map, then the filtering of the pixels it serves */
+    ms[5] = ms[6] = ctx->timing ? 0.0f : -1.0f;
+    skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    s->stats.resolution = 0;
+    for (i = 0; i < s->ntiles; i++) {
+        const sk_tile *t = &s->tiles[i];
+        float g = (float)s->desc.grid, rect[4], res[2];
+        sk_rect r;
+        sk_mat4 vp;
+        r.x0 = -1.0f + 2.0f * (float)t->x0 / g; r.x1 = -1.0f + 2.0f * (float)t->x1 / g;
+        r.y0 = -1.0f + 2.0f * (float)t->y0 / g; r.y1 = -1.0f + 2.0f * (float)t->y1 / g;
+        vp = sk_mat4_mul(sk_crop_matrix(r, -1.0f, 1.0f), s->light_vp);
+        skgl__soft_begin(ctx);
+        skgl__soft_depth(ctx, s, scene, vp, t->res_x, t->res_y, 1 + i);
+        ms[5] = skgl__soft_ms(ms[5], skgl__soft_end(ctx));
+        if (t->res_x > s->stats.resolution) s->stats.resolution = t->res_x;
+        if (t->res_y > s->stats.resolution) s->stats.resolution = t->res_y;
+
+        skgl__soft_begin(ctx);
+        skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
+        gl->Viewport(0, 0, w, h);
+        gl->Disable(SKGL__DEPTH_TEST);
+        gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+        gl->Enable(SKGL__BLEND);
+        gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
+        gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+        gl->UseProgram(s->prog_filter);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_kernel"), 0);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_pred"), 1);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_plane"), 2);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_tile"), 3);
+        rect[0] = r.x0; rect[1] = r.y0; rect[2] = r.x1; rect[3] = r.y1;
+        res[0] = (float)t->res_x; res[1] = (float)t->res_y;
+        gl->Uniform4fv(gl->GetUniformLocation(s->prog_filter, "u_tile_rect"), 1, rect);
+        gl->Uniform2fv(gl->GetUniformLocation(s->prog_filter, "u_tile_res"), 1, res);
+        skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
+        skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
+        skgl__soft_bind(ctx, 2, s->screen[2], ctx->point_sampler);
+        skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
+        gl->BindVertexArray(ctx->empty_vao);
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+        gl->Disable(SKGL__BLEND);
+        skgl__soft_bind(ctx, 3, 0, 0);
+        ms[6] = skgl__soft_ms(ms[6], skgl__soft_end(ctx));
+    }
+    skgl__soft_detach(ctx, s);
+
+    /* resolve into the mask */
+    skgl__soft_begin(ctx);
+    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
+        skgl__soft_end(ctx);
+        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->UseProgram(s->prog_resolve);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_kernel"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_acc"), 1);
+    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
+    skgl__soft_bind(ctx, 1, s->screen[3], ctx->point_sampler);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    ms[7] = skgl__soft_end(ctx);
+
+    s->stats.tiles = s->ntiles;
+    s->stats.maps = s->ntiles;
+    s->stats.lit_fraction = covered > 0 ? 1.0f - (float)((double)penumbra / (double)covered) : 1.0f;
+    s->stats.shadow_ms = skgl__soft_ms(ms[1], ms[5]);
+    s->stats.mask_ms = skgl__soft_ms(skgl__soft_ms(skgl__soft_ms(ms[2], ms[3]), skgl__soft_ms(ms[4], ms[6])), ms[7]);
+    return SK_OK;
+}
+
+static sk_result skgl__soft_pcss(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
+                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
+                                 unsigned mask_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__soft_begin(ctx);
+    skgl__soft_depth(ctx, s, scene, s->light_vp, s->map_res, s->map_res, 0);
+    s->stats.shadow_ms = skgl__soft_end(ctx);
+    skgl__soft_begin(ctx);
+    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
+        skgl__soft_end(ctx);
+        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->UseProgram(s->prog_mask);
+    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map_cmp"), 3);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_pcf_taps"), s->desc.pcf_taps);
+    skgl__soft_bind(ctx, 0, s->map, ctx->point_sampler);
+    skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    s->stats.mask_ms = skgl__soft_end(ctx);
+    s->stats.maps = 1;
+    s->stats.resolution = s->map_res;
+    s->stats.tiles = 0;
+    s->stats.lit_fraction = -1.0f;
+    return SK_OK;
+}
+
+SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
+                                   const skgl_scene *scene, const skgl_area_light *light,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    skgl__api *gl;
+    skgl__state st;
+    skgl__int w = 0, h = 0;
+    sk_mat4 inv;
+    sk_result r;
+    int i;
+    if (!ctx || !s || !cam || !scene || !scene->draw || !light || !mask_tex || !sk__mat_finite(&cam->view) ||
+        !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) || !sk__v3_finite(light->position) ||
+        !sk__finite(light->half_width) || !sk__finite(light->half_height) || light->half_width < 0.0f ||
+        light->half_height < 0.0f || !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
+        return SK_ERR_INVALID_ARG;
+    r = skgl__soft_fit(s, cam, scene, light);
+    if (r != SK_OK) return r;
+    gl = &ctx->gl;
+    skgl__save(gl, &st);
+    s->stats.passes = 0;
+    s->stats.texels = 0.0;
+    for (i = 0; i < SKGL_SOFT_STEPS; i++) s->stats.step_ms[i] = ctx->timing ? 0.0f : -1.0f;
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
+    if (w <= 0 || h <= 0) {
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_soft_render: mask texture has no level 0", NULL);
+        return SK_ERR_INVALID_ARG;
+    }
+    gl->BindVertexArray(ctx->empty_vao);
+    if (!depth_tex) {
+        skgl__soft_begin(ctx);
+        if (!skgl__soft_gbuffer(ctx, s, cam, scene, w, h)) {
+            skgl__soft_end(ctx);
+            skgl__soft_detach(ctx, s);
+            skgl__restore(gl, &st);
+            skgl__set_log(ctx, "skgl_soft_render: G-buffer framebuffer incomplete", NULL);
+            return SK_ERR_GL;
+        }
+        s->stats.step_ms[0] = skgl__soft_end(ctx);
+        depth_tex = s->gb_depth;
+        normal_tex = s->gb_normal;
+    }
+    gl->BindVertexArray(ctx->empty_vao);
+    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
+    if (s->desc.technique == SKGL_SOFT_PVSM)
+        r = skgl__soft_pvsm(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
+    else
+        r = skgl__soft_pcss(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
+    skgl__soft_detach(ctx, s);
+    skgl__restore(gl, &st);
+    if (r != SK_OK) return r;
+    return skgl__check(ctx, "skgl_soft_render");
 }
 
 #ifdef __cplusplus

@@ -499,7 +499,7 @@ static void draw_casters(void *user, const skgl_draw_info *info) {
 
 /* ------------------------------------------------------------- options */
 typedef struct bench_opts {
-    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only;
+    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only;
     const char *scenes_dir, *out_dir, *gp, *only;
 } bench_opts;
 
@@ -520,7 +520,7 @@ static int scene_selected(const bench_opts *o, const char *name) {
 static void usage(FILE *f, const char *argv0) {
     fprintf(f,
             "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
-            "          [--views N] [--images] [--views-only] [--gp FILE] [--plot-only] [--dry-run]\n"
+            "          [--views N] [--images] [--views-only] [--soft-only] [--gp FILE] [--plot-only] [--dry-run]\n"
             "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
             "  --repeat N     timing passes, the median is reported (default 5)\n"
             "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
@@ -529,6 +529,7 @@ static void usage(FILE *f, const char *argv0) {
             "  --views N      first N of the views overview,low,close (default 3)\n"
             "  --images       write reference and error PNGs per view to OUT/bench/\n"
             "  --views-only   only the reference PNGs of each view (no sweep, no CSV rows)\n"
+            "  --soft-only    only the area-light rows (PCSS, PVSM; out/bench-soft.txt)\n"
             "  --gp FILE      the gnuplot script (default bench/pareto.gp)\n"
             "  --plot-only    only redraw the charts from OUT/bench.csv\n"
             "  --dry-run      print the sweep and exit\n"
@@ -573,7 +574,12 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
     if ((s = strstr(p->params, "cascades="))) casc = atoi(s + 9);
     if ((s = strstr(p->params, "lambda="))) lambda = atof(s + 7);
     if ((s = strstr(p->params, "blend="))) blend = atof(s + 6);
-    if (strncmp(p->method, "cube", 4) == 0 || strcmp(p->method, "vsdct") == 0) {
+    if (strcmp(p->method, "pcss") == 0 || strncmp(p->method, "pvsm", 4) == 0) {
+        char light[16] = "";
+        if ((s = strstr(p->params, "light="))) sscanf(s + 6, "%15[a-z]", light);
+        if (strcmp(p->method, "pcss") == 0) snprintf(buf, n, "pcss %d %s", res, light);
+        else snprintf(buf, n, "%s %s", p->method, light);
+    } else if (strncmp(p->method, "cube", 4) == 0 || strcmp(p->method, "vsdct") == 0) {
         /* the point-light switches that are on: faces, casters, scissor, resolution */
         static const char *const keys[4] = {"faces=1", "casters=1", "scissor=1", "select=1"};
         static const char *const tags[4] = {" faces", " casters", " scissor", " res"};
@@ -668,12 +674,18 @@ static int plot_read(const char *csv, plot_data *d) {
         char *fld[15];
         int si, k;
         plot_pt *p = NULL;
-        if (csv_split(line, fld) != 14 || strcmp(fld[6], "hard_pct") != 0) continue;
+        char key[64];
+        int soft;
+        if (csv_split(line, fld) != 14) continue;
+        soft = strcmp(fld[6], "soft_mae") == 0;
+        if (!soft && strcmp(fld[6], "hard_pct") != 0) continue;
+        /* soft-shadow rows chart apart: "<scene>-soft", against the total time */
+        snprintf(key, sizeof key, "%.58s%s", fld[2], soft ? "-soft" : "");
         for (si = 0; si < d->nscenes; si++)
-            if (strcmp(d->scenes[si], fld[2]) == 0) break;
+            if (strcmp(d->scenes[si], key) == 0) break;
         if (si == d->nscenes) {
             if (d->nscenes == (int)(sizeof d->scenes / sizeof d->scenes[0])) continue;
-            snprintf(d->scenes[d->nscenes++], sizeof d->scenes[0], "%s", fld[2]);
+            snprintf(d->scenes[d->nscenes++], sizeof d->scenes[0], "%s", key);
         }
         snprintf(d->device, sizeof d->device, "%s", fld[13]);
         for (k = 0; k < d->npts; k++)
@@ -697,7 +709,7 @@ static int plot_read(const char *csv, plot_data *d) {
             snprintf(p->params, sizeof p->params, "%s", fld[1]);
         }
         p->err_sum += atof(fld[7]);
-        p->ms_sum += atof(fld[10]) + atof(fld[11]);   /* depth passes + analysis (FERKO) */
+        p->ms_sum += soft ? atof(fld[12]) : atof(fld[10]) + atof(fld[11]);   /* depth passes + analysis (FERKO) */
         p->n++;
     }
     fclose(f);
@@ -787,6 +799,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
     fprintf(g, "\nmethods = ");
     gp_string(g, list);
     fprintf(g, "\nnviews = %d\nrepeat = %d\nlogy = %d\nwidth = %d\nheight = %d\n", maxn, repeat, logy, BENCH_W, BENCH_H);
+    fprintf(g, "soft = %d\n", strstr(d->scenes[si], "-soft") != NULL);
     fprintf(g, "tmin = %g\ntmax = %g\nemin = %g\nemax = %g\n", tmin, tmax, emin, emax);
     fclose(g);
     snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->gp);
@@ -863,6 +876,7 @@ typedef struct run_rec {
     double err, texels;
     int passes;
     int state;                        /* 0 pending, 1 scored, -1 failed */
+    const char *kind;                 /* error_kind: NULL hard_pct, else e.g. soft_mae */
 } run_rec;
 
 /* the mask of the map just rendered for this view, read back and scored */
@@ -892,8 +906,9 @@ static void write_row(FILE *csv, const char *method, const char *params, const c
     csv_field(csv, scene);
     fputc(',', csv);
     csv_field(csv, view);
-    fprintf(csv, ",%d,%d,hard_pct,%.4f,%.0f,%d,%.4f,%.4f,%.4f,", BENCH_W, BENCH_H, rr->err, rr->texels, rr->passes,
-            (double)sms, (double)ams, (double)(sms + ams + rr->mask_ms));
+    fprintf(csv, ",%d,%d,%s,%.*f,%.0f,%d,%.4f,%.4f,%.4f,", BENCH_W, BENCH_H, rr->kind ? rr->kind : "hard_pct",
+            rr->kind ? 6 : 4, rr->err, rr->texels, rr->passes, (double)sms, (double)ams,
+            (double)(sms + ams + rr->mask_ms));
     csv_field(csv, renderer);
     fputc('\n', csv);
 }
@@ -914,7 +929,8 @@ static sk_result render_frame(bench_gl *B, skgl_shadow *sh, const view_data *vd,
 
 /* G-buffer and reference of one view. 0 ok. */
 static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, const tb_reference *ref,
-                        sk_vec3 light_dir, view_data *vd, float *depth, float *rgba, float *nrm) {
+                        sk_vec3 light_dir, const tb_light *area, view_data *vd, float *depth, float *rgba,
+                        float *nrm) {
     double vp[16], ivp[16];
     tb_view tv;
     tb_light L;
@@ -936,6 +952,7 @@ static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, 
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_DIRECTIONAL;
     L.direction = light_dir;
+    if (area) L = *area;
     vd->ref = (float *)malloc(sizeof(float) * n);
     if (!vd->ref) return -1;
     if (tb_reference_trace(ref, &tv, depth, nrm, &L, NULL, vd->ref) != 0) return -1;
@@ -1164,6 +1181,294 @@ static int load_scene(const bench_scene_def *def, tb_scene *s) {
    scored. Rows go to bench-walk.csv (the bench.csv columns, view walkNN);
    the summary (mean partitions, the shadow-time ratio LSPSM / PSSM-8, the
    mean errors) to bench-walk.txt and stderr. */
+/* ------------------------------------------- area lights: PCSS and PVSM */
+/* The area-light rows: on sponza-ivy, sponza-curtains (when ../shared is
+   there) and the procedural fence, one rectangular light above the content
+   at three sizes; PCSS on a 2048^2 and a 4096^2 map against PVSM in the
+   three variants of soft_cfgs (tiles up to 4096^2, 64^2 SMTG); error = mean
+   absolute visibility error against the Embree reference with 16 x 16
+   stratified light samples per pixel (soft_mae, in [0,1]). shadow_ms = the
+   depth passes (PCSS: its map; PVSM: the low-res map and the tiles),
+   analysis_ms = PVSM's kernel-shape, prediction and pyramid passes (0 for
+   PCSS), total_ms = every pass but the G-buffer (the masks included).
+   Then a slow camera path (3 frames, the medium light) for the flip rate:
+   visibility changes > 0.1 where the reference changes < 0.02.
+   out/bench-soft.txt holds the table and the ratios. */
+#define SOFT_STRATA 16
+static const char *const soft_size_names[3] = {"small", "medium", "large"};
+static const float soft_size_fracs[3] = {0.01f, 0.04f, 0.12f};   /* half size / content half length */
+typedef struct soft_cfg {
+    const char *method, *label;
+    skgl_soft_technique technique;
+    int resolution;
+    int antialias;            /* PVSM: 1 the paper's footprint-convolved kernel, -1 point samples */
+    float scale;              /* PVSM: resolution_scale */
+    int lowres;               /* PVSM: the low-res map's side */
+} soft_cfg;
+/* PVSM three ways: the paper's defaults (1024^2 low-res map, the filter
+   convolved with the pixel footprint); the filter without the footprint
+   (the reference is point-sampled at pixel centres); and that with a
+   2048^2 low-res map at twice the predicted resolutions (the quality knob
+   of Sec. 7) */
+#define SOFT_CFGS 5
+static const soft_cfg soft_cfgs[SOFT_CFGS] = {
+    {"pcss", "pcss-2048", SKGL_SOFT_PCSS, 2048, 0, 0.0f, 0},
+    {"pcss", "pcss-4096", SKGL_SOFT_PCSS, 4096, 0, 0.0f, 0},
+    {"pvsm", "pvsm", SKGL_SOFT_PVSM, 4096, 1, 1.0f, 1024},
+    {"pvsm-point", "pvsm-point", SKGL_SOFT_PVSM, 4096, -1, 1.0f, 1024},
+    {"pvsm-fine", "pvsm-fine", SKGL_SOFT_PVSM, 4096, -1, 2.0f, 2048}};
+
+/* above the content, 1.2 content lengths up and off to one side */
+static skgl_area_light soft_light_for(const tb_scene *s, int size) {
+    sk_aabb cb = content_bounds(s);
+    sk_vec3 c = v3(0.5f * (cb.min.x + cb.max.x), 0.5f * (cb.min.y + cb.max.y), 0.5f * (cb.min.z + cb.max.z));
+    float hx = 0.5f * (cb.max.x - cb.min.x), hz = 0.5f * (cb.max.z - cb.min.z), L = hx > hz ? hx : hz;
+    skgl_area_light l;
+    memset(&l, 0, sizeof l);
+    l.position = v3(c.x + 0.35f * L, cb.max.y + 1.2f * L, c.z + 0.25f * L);
+    l.direction = v3_add(c, v3_scale(l.position, -1.0f));
+    l.up = v3(0, 0, 1);
+    l.half_width = l.half_height = soft_size_fracs[size] * L;
+    return l;
+}
+
+static tb_light soft_tb_light(const skgl_area_light *l) {
+    tb_light t;
+    memset(&t, 0, sizeof t);
+    t.type = TB_LIGHT_RECT;
+    t.position = l->position;
+    skgl_area_light_axes(l, &t.half_u, &t.half_v);
+    t.strata = SOFT_STRATA;
+    t.seed = 11;
+    return t;
+}
+
+/* one method on one prepared view: reps timed frames (after a warm-up),
+   the last mask scored; 0 ok */
+static int soft_run(bench_gl *B, const soft_cfg *cfg, const view_data *vd, const skgl_scene *sc,
+                    const skgl_area_light *l, int reps, float *mask_px, run_rec *rr, skgl_stats *st) {
+    skgl_soft_desc d;
+    skgl_soft *so = NULL;
+    float tot[BENCH_MAX_REPEAT], sh[BENCH_MAX_REPEAT], an[BENCH_MAX_REPEAT];
+    sk_result r;
+    int k;
+    memset(&d, 0, sizeof d);
+    d.technique = cfg->technique;
+    d.resolution = cfg->resolution;
+    d.antialias = cfg->antialias;
+    d.resolution_scale = cfg->scale;
+    d.lowres = cfg->lowres;
+    if (skgl_soft_create(B->sk, &d, &so) != SK_OK) return -1;
+    memset(rr, 0, sizeof *rr);
+    rr->kind = "soft_mae";
+    for (k = 0; k <= reps; k++) {
+        const skgl_stats *s;
+        r = skgl_soft_render(B->sk, so, &vd->v.cam, sc, l, vd->gbuf.depth_tex, vd->gbuf.color_tex, B->mask.color_tex);
+        if (r != SK_OK) {
+            fprintf(stderr, "bench: skgl_soft_render %s: %s (%s)\n", cfg->method, sk_result_string(r),
+                    skgl_error_log(B->sk));
+            skgl_soft_destroy(B->sk, so);
+            return -1;
+        }
+        s = skgl_soft_stats(so);
+        if (k == 0) continue;
+        sh[k - 1] = s->shadow_ms;
+        an[k - 1] = 0.0f;
+        if (cfg->technique == SKGL_SOFT_PVSM) an[k - 1] = s->step_ms[2] + s->step_ms[3] + s->step_ms[4];
+        tot[k - 1] = s->shadow_ms + s->mask_ms;
+    }
+    *st = *skgl_soft_stats(so);
+    skgl_soft_destroy(B->sk, so);
+    if (tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, mask_px) != 0) return -1;
+    rr->n = reps;
+    for (k = 0; k < reps; k++) rr->analysis[k] = an[k];
+    rr->shadow[0] = median(sh, reps);
+    rr->mask_ms = median(tot, reps) - rr->shadow[0] - median(an, reps);
+    rr->texels = st->texels;
+    rr->passes = st->passes;
+    rr->err = tb_metric_soft(vd->ref, mask_px, (size_t)BENCH_W * BENCH_H).mae;
+    rr->state = 1;
+    return 0;
+}
+
+static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth, float *rgba, float *nrm,
+                       float *mask_px) {
+    static const char *const names[3] = {"sponza-ivy", "sponza-curtains", "fence"};
+    static const char *const files[3] = {"sponza-ivy/sponza_ivy.gltf", "sponza-curtains/sponza_curtains.gltf", ""};
+    size_t n = (size_t)BENCH_W * BENCH_H, i;
+    char path[1200];
+    FILE *txt;
+    int sc_i, reps = o->quick ? 1 : (o->repeat < 3 ? o->repeat : 3);
+    snprintf(path, sizeof path, "%.900s/bench-soft.txt", o->out_dir);
+    txt = fopen(path, "w");
+    if (txt)
+        fprintf(txt, "# area-light soft shadows, %dx%d, error = mean absolute visibility error against %d "
+                     "stratified light samples per pixel; total = every pass but the G-buffer (median of %d)\n"
+                     "# device %s%s\n# %-16s %-8s %-6s %-10s %9s %9s %9s %9s %6s %6s\n", BENCH_W, BENCH_H,
+                SOFT_STRATA * SOFT_STRATA, reps, B->renderer,
+                strstr(B->renderer, "llvmpipe") ? " (CPU rendering: times comparable only within this run)" : "",
+                "scene", "view", "light", "method", "mae", "total_ms", "shadow_ms", "texels", "tiles", "lit");
+    for (sc_i = 0; sc_i < 3; sc_i++) {
+        bench_scene_def def;
+        tb_scene s;
+        tb_gl_mesh mesh;
+        tb_reference *ref = NULL;
+        bench_view views[3];
+        draw_user du;
+        skgl_scene sc;
+        int v, z, c, nviews = o->quick ? 1 : 2;
+        double ts = now_s();
+        if (!scene_selected(o, names[sc_i])) continue;
+        if (o->quick && files[sc_i][0]) continue;            /* the demo: the fence only */
+        memset(&def, 0, sizeof def);
+        snprintf(def.name, sizeof def.name, "%s", names[sc_i]);
+        if (files[sc_i][0]) {
+            snprintf(def.path, sizeof def.path, "%.900s/%s", o->scenes_dir, files[sc_i]);
+            if (!file_exists(def.path)) continue;
+        }
+        memset(&mesh, 0, sizeof mesh);
+        if (load_scene(&def, &s) != 0 || tb_gl_mesh_create(&B->gl, &mesh, &s) != 0 || !(ref = tb_reference_create(&s))) {
+            fprintf(stderr, "bench: soft shadows: scene %s failed to load\n", def.name);
+            if (mesh.vao) tb_gl_mesh_destroy(&B->gl, &mesh);
+            tb_scene_free(&s);
+            continue;
+        }
+        make_views(&s, views);
+        du.gl = &B->gl;
+        du.scene = &s;
+        du.mesh = &mesh;
+        sc.draw = draw_casters;
+        sc.user = &du;
+        sc.bounds = s.bounds;
+        for (v = 0; v < nviews; v++) {
+            const int vi = v == 0 ? 0 : 2;                    /* overview, close */
+            for (z = 0; z < 3; z++) {
+                view_data vd;
+                skgl_area_light l = soft_light_for(&s, z);
+                tb_light tl = soft_tb_light(&l);
+                double t0 = now_s(), e4 = -1, t4 = -1;
+                memset(&vd, 0, sizeof vd);
+                vd.v = views[vi];
+                if (prepare_view(B, &s, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
+                    fprintf(stderr, "bench: soft shadows: %s %s: G-buffer / reference failed\n", def.name, vd.v.name);
+                    if (vd.gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
+                    free(vd.ref);
+                    continue;
+                }
+                fprintf(stderr, "bench: soft %s %s %s light (half %.3g): reference in %.1f s\n", def.name,
+                        vd.v.name, soft_size_names[z], (double)l.half_width, now_s() - t0);
+                for (c = 0; c < SOFT_CFGS; c++) {
+                    run_rec rr;
+                    skgl_stats st;
+                    char params[160], view[40];
+                    float tot;
+                    if (soft_run(B, &soft_cfgs[c], &vd, &sc, &l, reps, mask_px, &rr, &st) != 0) continue;
+                    tot = rr.shadow[0] + median(rr.analysis, rr.n) + rr.mask_ms;
+                    if (soft_cfgs[c].technique == SKGL_SOFT_PVSM)
+                        snprintf(params, sizeof params,
+                                 "max_resolution=%d;lowres=%d;grid=64;antialias=%d;scale=%g;light=%s;half=%.4g",
+                                 soft_cfgs[c].resolution, soft_cfgs[c].lowres, soft_cfgs[c].antialias > 0,
+                                 (double)soft_cfgs[c].scale,
+                                 soft_size_names[z], (double)l.half_width);
+                    else
+                        snprintf(params, sizeof params, "resolution=%d;light=%s;half=%.4g", soft_cfgs[c].resolution,
+                                 soft_size_names[z], (double)l.half_width);
+                    snprintf(view, sizeof view, "%s", vd.v.name);
+                    write_row(csv, soft_cfgs[c].method, params, def.name, view, &rr, rr.shadow[0], B->renderer);
+                    fprintf(stderr, "bench: soft %-15s %-8s %-6s %-13s: mae %.5f total %.1f ms (depth %.1f) texels "
+                                    "%.0f (%.2fx 4096^2) tiles %d lit %.2f\n", def.name, vd.v.name,
+                            soft_size_names[z], soft_cfgs[c].label, rr.err, (double)tot,
+                            (double)rr.shadow[0], rr.texels, rr.texels / (4096.0 * 4096.0), st.tiles,
+                            (double)st.lit_fraction);
+                    if (soft_cfgs[c].technique == SKGL_SOFT_PVSM) {
+                        int q;
+                        fprintf(stderr, "bench:   pvsm steps (ms):");
+                        for (q = 1; q < SKGL_SOFT_STEPS; q++) fprintf(stderr, " %d:%.1f", q + 1, (double)st.step_ms[q]);
+                        fprintf(stderr, "\n");
+                    }
+                    if (txt)
+                        fprintf(txt, "  %-16s %-8s %-6s %-10s %9.5f %9.1f %9.1f %9.0f %6d %6.2f%s\n", def.name,
+                                vd.v.name, soft_size_names[z], soft_cfgs[c].label, rr.err, (double)tot,
+                                (double)rr.shadow[0], rr.texels, st.tiles, (double)st.lit_fraction, "");
+                    if (c == 1) { e4 = rr.err; t4 = tot; }
+                    if (c >= 2 && txt && e4 >= 0)
+                        fprintf(txt, "  %-16s %-8s %-6s %s / pcss-4096: error %.2fx (%s), time %.2fx, texels %.2fx "
+                                     "of 4096^2\n", def.name, vd.v.name, soft_size_names[z], soft_cfgs[c].label,
+                                rr.err / e4, rr.err < e4 ? "lower" : "NOT lower", tot / t4,
+                                rr.texels / (4096.0 * 4096.0));
+                }
+                fflush(csv);
+                if (txt) fflush(txt);
+                tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
+                free(vd.ref);
+            }
+        }
+        /* temporal: the overview's eye moving 0.05% of its distance a frame, sideways */
+        {
+            enum { FR = 3 };
+            skgl_area_light l = soft_light_for(&s, 1);
+            tb_light tl = soft_tb_light(&l);
+            float *prev_ref = (float *)malloc(sizeof(float) * n), *prev[SOFT_CFGS], *cur[SOFT_CFGS];
+            size_t flips[SOFT_CFGS], pairs = 0;
+            int f, ok = prev_ref != NULL;
+            memset(flips, 0, sizeof flips);
+            for (c = 0; c < SOFT_CFGS; c++) {
+                prev[c] = (float *)malloc(sizeof(float) * n);
+                cur[c] = (float *)malloc(sizeof(float) * n);
+                ok = ok && prev[c] && cur[c];
+            }
+            for (f = 0; ok && f < FR; f++) {
+                view_data vd;
+                bench_view bv = views[0];
+                sk_vec3 fwd = v3_norm(v3_add(bv.target, v3_scale(bv.eye, -1.0f)));
+                sk_vec3 side = v3_norm(v3(fwd.z, 0.0f, -fwd.x));
+                float d = v3_len(v3_add(bv.target, v3_scale(bv.eye, -1.0f)));
+                bv.eye = v3_add(bv.eye, v3_scale(side, 0.0005f * d * (float)f));
+                bv.target = v3_add(bv.target, v3_scale(side, 0.0005f * d * (float)f));
+                finish_view(&bv, &s.bounds);
+                memset(&vd, 0, sizeof vd);
+                vd.v = bv;
+                if (prepare_view(B, &s, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) { ok = 0; break; }
+                for (c = 0; c < SOFT_CFGS && ok; c++) {
+                    run_rec rr;
+                    skgl_stats st;
+                    if (soft_run(B, &soft_cfgs[c], &vd, &sc, &l, 1, cur[c], &rr, &st) != 0) ok = 0;
+                }
+                if (ok && f > 0)
+                    for (i = 0; i < n; i++) {
+                        if (vd.ref[i] < 0.0f || prev_ref[i] < 0.0f || fabsf(vd.ref[i] - prev_ref[i]) >= 0.02f) continue;
+                        pairs++;
+                        for (c = 0; c < SOFT_CFGS; c++) flips[c] += fabsf(cur[c][i] - prev[c][i]) > 0.1f;
+                    }
+                memcpy(prev_ref, vd.ref, sizeof(float) * n);
+                for (c = 0; c < SOFT_CFGS; c++) memcpy(prev[c], cur[c], sizeof(float) * n);
+                tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
+                free(vd.ref);
+            }
+            if (ok && pairs > 0) {
+                fprintf(stderr, "bench: soft %s temporal (medium light, %d frames, %zu pixel pairs): flip rate",
+                        def.name, FR, pairs);
+                if (txt)
+                    fprintf(txt, "  %-16s temporal (medium light, %d frames, %zu pixel pairs): flip rate", def.name,
+                            FR, pairs);
+                for (c = 0; c < SOFT_CFGS; c++) {
+                    fprintf(stderr, " %s %.4f%%", soft_cfgs[c].label, 100.0 * flips[c] / pairs);
+                    if (txt) fprintf(txt, "  %s %.4f%%", soft_cfgs[c].label, 100.0 * flips[c] / pairs);
+                }
+                fprintf(stderr, "\n");
+                if (txt) fprintf(txt, "\n");
+            }
+            free(prev_ref);
+            for (c = 0; c < SOFT_CFGS; c++) { free(prev[c]); free(cur[c]); }
+        }
+        fprintf(stderr, "bench: soft shadows on %s done in %.1f s\n", def.name, now_s() - ts);
+        tb_reference_destroy(ref);
+        tb_gl_mesh_destroy(&B->gl, &mesh);
+        tb_scene_free(&s);
+    }
+    if (txt) fclose(txt);
+}
+
 static const struct walk_cfg {
     const char *method, *params;
     skgl_technique technique;
@@ -1199,7 +1504,7 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
         vd.v.target = v3_add(v3_scale(views[1].target, 1.0f - t), v3_scale(views[0].target, t));
         snprintf(vd.v.name, sizeof vd.v.name, "walk%02d", k);
         finish_view(&vd.v, &s->bounds);
-        if (prepare_view(B, s, mesh, ref, def->light_dir, &vd, depth, rgba, nrm) == 0) {
+        if (prepare_view(B, s, mesh, ref, def->light_dir, NULL, &vd, depth, rgba, nrm) == 0) {
             for (m = 0; m < 2; m++) {
                 run_rec rr;
                 const char *why = "";
@@ -1271,6 +1576,7 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--only") == 0 && more) o.only = argv[++i];
         else if (strcmp(a, "--gp") == 0 && more) o.gp = argv[++i];
         else if (strcmp(a, "--images") == 0) o.images = 1;
+        else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
         else if (strcmp(a, "--plot-only") == 0) o.plot_only = 1;
         else if (strcmp(a, "--dry-run") == 0) o.dry_run = 1;
         else if (strcmp(a, "--views-only") == 0) { o.views_only = 1; o.images = 1; }
@@ -1327,7 +1633,8 @@ int main(int argc, char **argv) {
             d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
             if (scene_selected(&o, d->name)) ndefs++;
         }
-        if (ndefs == 0 && !scene_selected(&o, "room")) {
+        if (o.soft_only) ndefs = 0;
+        if (ndefs == 0 && !scene_selected(&o, "room") && !o.soft_only) {
             fprintf(stderr, "bench: no scene selected (--only %s)\n", o.only ? o.only : "");
             return 2;
         }
@@ -1454,7 +1761,7 @@ int main(int argc, char **argv) {
         make_views(&s, views);
         for (v = 0; v < o.views; v++) {
             vd[v].v = views[v];
-            if (prepare_view(&B, &s, &mesh, ref, def->light_dir, &vd[v], depth, rgba, nrm) != 0) {
+            if (prepare_view(&B, &s, &mesh, ref, def->light_dir, NULL, &vd[v], depth, rgba, nrm) != 0) {
                 fprintf(stderr, "bench: G-buffer / reference failed for %s view %s\n", def->name, views[v].name);
                 status = 1;
                 goto scene_done;
@@ -1584,7 +1891,8 @@ int main(int argc, char **argv) {
         tb_gl_mesh_destroy(&B.gl, &mesh);
         tb_scene_free(&s);
     }
-    if (scene_selected(&o, "room")) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
+    if (scene_selected(&o, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
+    soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
     if (walk) fclose(walk);

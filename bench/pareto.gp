@@ -6,7 +6,8 @@
 #     gnuplot OUT/bench-data/<scene>.vars.gp bench/pareto.gp
 # Variables: scene, device, database (path prefix of the .dat files),
 # outfile, methods (space-separated), nviews, repeat, logy, width, height,
-# tmin, tmax, emin, emax.
+# tmin, tmax, emin, emax, soft (1: area-light rows, mean absolute
+# visibility error against the whole frame's shadow time).
 
 set terminal pngcairo size 1280,940 noenhanced font 'DejaVu Sans,12'
 set output outfile
@@ -16,6 +17,12 @@ set title sprintf("shadowkit bench, scene %s: hard-shadow error against shadow-m
                   scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
 set xlabel "shadow time per frame: depth passes + analysis (ms, GL timer queries, log scale)"
 set ylabel "hard-shadow error (% of covered pixels misclassified)"
+if (exists("soft") && soft) {
+    set title sprintf("shadowkit bench, scene %s: soft-shadow error against shadow time\n%dx%d, three light sizes, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
+                      scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
+    set xlabel "shadow time per frame: every pass but the G-buffer (ms, GL timer queries, log scale)"
+    set ylabel "mean absolute visibility error against the area-light reference"
+}
 set logscale x
 set format x "%g"
 set format y "%g"
@@ -24,7 +31,8 @@ set xtics add (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 5
 if (logy) {
     set logscale y
     set ylabel "hard-shadow error (% of covered pixels misclassified, log scale)"
-    set ytics add (0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100)
+    if (exists("soft") && soft) { set ylabel "mean absolute visibility error (log scale)" }
+    set ytics add (0.0001, 0.0002, 0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100)
 }
 set grid xtics ytics mxtics mytics lc rgb '#e0e0e0' lw 1, lc rgb '#f0f0f0' lw 1
 set border lw 1.2

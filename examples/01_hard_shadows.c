@@ -4,7 +4,8 @@
      build/examples/01_hard_shadows                  a window; Esc quits
      build/examples/01_hard_shadows --headless       writes out/01_hard_shadows.png
      build/examples/01_hard_shadows --scene FILE     any glTF/OBJ file instead
-   Options: --frames N (quit after N frames), --out FILE (headless PNG path).
+   Options: --frames N (quit after N frames), --out FILE (PNG of the last
+   frame; a window given --out steps its clock like --headless).
 
    The steps, in the order you would write them in your engine:
      1. skgl_create         a shadowkit GL context, loading GL through your getproc

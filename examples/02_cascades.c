@@ -6,7 +6,8 @@
      build/examples/02_cascades --headless           writes out/02_cascades.png
      build/examples/02_cascades --show-cascades      tints each pixel by its cascade
      build/examples/02_cascades --scene FILE         any glTF/OBJ file instead
-   Options: --frames N (quit after N frames), --out FILE (headless PNG path).
+   Options: --frames N (quit after N frames), --out FILE (PNG of the last
+   frame; a window given --out steps its clock like --headless).
 
    Why cascades: with one map (tutorial 01) stretched over a 200 m long view,
    a texel near the camera covers many screen pixels (blocky shadows) while

@@ -86,9 +86,11 @@ int main(int argc, char **argv) {
     while (ex_app_begin_frame(&app)) {
         skgl_camera cam;
         /* in a window the sun circles slowly: watch the warp follow it and
-           fade out when the sun is straight behind the camera */
+           fade out when the sun is straight behind the camera (the saved
+           images, --headless or a window with --out, keep the fixed sun) */
         float a = 0.2f * (float)app.time;
-        sk_vec3 l = opt.headless ? light : ex_normalize(ex_v3(0.6f * sinf(a), -0.55f, -cosf(a)));
+        int fixed_sun = opt.headless || opt.save_window;
+        sk_vec3 l = fixed_sun ? light : ex_normalize(ex_v3(0.6f * sinf(a), -0.55f, -cosf(a)));
         cam.view = sk_mat4_look_at(eye, target, up);
         cam.proj = sk_mat4_perspective(1.0f, (float)app.width / (float)app.height, zn, zf);
         if ((r = skgl_shadow_render(sk, sun, &cam, &scene, l)) != SK_OK) break;

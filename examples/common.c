@@ -22,6 +22,7 @@
 #define EX_GL_FRAGMENT_SHADER 0x8B30
 #define EX_GL_COMPILE_STATUS 0x8B81
 #define EX_GL_LINK_STATUS 0x8B82
+#define EX_GL_BACK 0x0405
 
 sk_vec3 ex_v3(float x, float y, float z) {
     sk_vec3 r;
@@ -42,7 +43,7 @@ float ex_texel_size(sk_mat4 m, int res) {
 /* ------------------------------------------------------------ command line */
 int ex_parse_args(int argc, char **argv, const char *default_out, int allow_cascades,
                   ex_options *o) {
-    int i;
+    int i, out_given = 0;
     memset(o, 0, sizeof *o);
     o->out_path = default_out;
     for (i = 1; i < argc; i++) {
@@ -55,6 +56,7 @@ int ex_parse_args(int argc, char **argv, const char *default_out, int allow_casc
             o->frames = atoi(argv[++i]);
         } else if (strcmp(a, "--out") == 0 && i + 1 < argc) {
             o->out_path = argv[++i];
+            out_given = 1;
         } else if (strcmp(a, "--technique") == 0 && i + 1 < argc) {
             o->technique = argv[++i];
         } else if (allow_cascades && strcmp(a, "--show-cascades") == 0) {
@@ -67,14 +69,17 @@ int ex_parse_args(int argc, char **argv, const char *default_out, int allow_casc
                     "  --headless        render off-screen and write a PNG (default %s)\n"
                     "  --scene FILE      load a glTF/OBJ scene (on a ground plane) instead of the procedural one\n"
                     "  --frames N        quit after N frames\n"
-                    "  --out FILE        PNG path for --headless\n"
+                    "  --out FILE        PNG path for --headless; in a window: save the last frame there\n"
                     "  --technique NAME  the shadow technique, where the example offers a choice\n%s",
                     argv[0], allow_cascades ? " [--show-cascades]" : "", default_out,
                     allow_cascades ? "  --show-cascades   colour each pixel by its cascade\n" : "");
             return help ? 1 : 2;
         }
     }
-    if (o->headless && o->frames <= 0) o->frames = 1;
+    /* a window asked for a PNG renders like --headless (a fixed 60 Hz
+       clock, a set number of frames) so that the two images can be compared */
+    o->save_window = out_given && !o->headless;
+    if ((o->headless || o->save_window) && o->frames <= 0) o->frames = 1;
     return 0;
 }
 
@@ -210,7 +215,7 @@ int ex_app_begin_frame(ex_app *app) {
         if (glfwWindowShouldClose(w) || glfwGetKey(w, GLFW_KEY_ESCAPE) == GLFW_PRESS) return 0;
         glfwGetFramebufferSize(w, &app->width, &app->height);
         if (app->width <= 0 || app->height <= 0) { app->width = 1; app->height = 1; }  /* minimised */
-        app->time = glfwGetTime();
+        app->time = app->opt.save_window ? app->frame / 60.0 : glfwGetTime();
         app->gl.BindFramebuffer(EX_GL_FRAMEBUFFER, 0);
         app->gl.Viewport(0, 0, app->width, app->height);
     } else {
@@ -224,22 +229,29 @@ int ex_app_begin_frame(ex_app *app) {
     return 1;
 }
 
+/* reads the framebuffer being drawn (the window's back buffer, or the
+   headless target) and writes it to opt.out_path */
+static int ex_save_frame(ex_app *app) {
+    int w = app->width, h = app->height, r;
+    unsigned char *rgb = (unsigned char *)malloc((size_t)w * (size_t)h * 3);
+    if (!rgb) return -1;
+    if (app->window) app->gl.ReadBuffer(EX_GL_BACK);   /* the frame before the swap shows it */
+    r = tb_gl_read_rgb8(&app->gl, app->window ? 0 : app->target.fbo, w, h, rgb);
+    if (r == 0) r = tb_image_write_rgb8(app->opt.out_path, w, h, rgb);
+    free(rgb);
+    if (r != 0) { fprintf(stderr, "cannot write %s\n", app->opt.out_path); return -1; }
+    printf("wrote %s (%dx%d)\n", app->opt.out_path, w, h);
+    return 0;
+}
+
 int ex_app_end_frame(ex_app *app) {
-    unsigned char *rgb;
-    int r;
+    int last = app->opt.frames > 0 && app->frame >= app->opt.frames;   /* only the last frame is saved */
     if (app->window) {
+        if (app->opt.save_window && last && ex_save_frame(app) != 0) return -1;
         glfwSwapBuffers((GLFWwindow *)app->window);
         return 0;
     }
-    if (app->frame < app->opt.frames) return 0;     /* only the last frame is saved */
-    rgb = (unsigned char *)malloc((size_t)EX_WIDTH * EX_HEIGHT * 3);
-    if (!rgb) return -1;
-    r = tb_gl_read_rgb8(&app->gl, app->target.fbo, EX_WIDTH, EX_HEIGHT, rgb);
-    if (r == 0) r = tb_image_write_rgb8(app->opt.out_path, EX_WIDTH, EX_HEIGHT, rgb);
-    free(rgb);
-    if (r != 0) { fprintf(stderr, "cannot write %s\n", app->opt.out_path); return -1; }
-    printf("wrote %s (%dx%d)\n", app->opt.out_path, EX_WIDTH, EX_HEIGHT);
-    return 0;
+    return last ? ex_save_frame(app) : 0;
 }
 
 /* --------------------------------------------------------- forward shader */

@@ -6,7 +6,9 @@
      --technique NAME (03), --show-cascades (02 only), --help;
    - a window (GLFW, GL 3.3 core) or, with --headless, an off-screen GL 3.3
      core context from the testbed (OSMesa or EGL) rendering into a 1280x720
-     framebuffer object that is saved as a PNG at the end;
+     framebuffer object that is saved as a PNG at the end; a window given
+     --out saves its last frame the same way (the integration tests compare
+     the two);
    - the scene: a procedural one built by the example, or any glTF/OBJ file
      through the testbed's assimp loader, uploaded as one mesh;
    - the forward shader: lambert lighting times sk_shadow() from the GLSL
@@ -31,8 +33,11 @@
 typedef struct ex_options {
     int headless;              /* --headless: no window, write a PNG */
     const char *scene_path;    /* --scene FILE (NULL: procedural scene) */
-    int frames;                /* --frames N: quit after N frames (0: until closed; headless: 1) */
-    const char *out_path;      /* --out FILE: PNG written in headless mode */
+    int frames;                /* --frames N: quit after N frames (0: until closed; headless
+                                  or a window with --out: 1) */
+    const char *out_path;      /* --out FILE: PNG of the last frame (headless: always written) */
+    int save_window;           /* a window given --out: the clock steps 1/60 s a frame, as
+                                  headless, and the last frame's back buffer is saved */
     int show_cascades;         /* --show-cascades: colour pixels by cascade */
     const char *technique;     /* --technique NAME (NULL: the example's default) */
 } ex_options;
@@ -92,7 +97,8 @@ void ex_camera_from_bounds(sk_aabb b, sk_vec3 *eye, sk_vec3 *target, float *zn, 
    closed, Esc, --frames reached); otherwise it binds the window or the
    off-screen framebuffer, sets the viewport and clears colour and depth.
    ex_app_end_frame shows the frame (window) or, after the last headless
-   frame, reads it back and writes opt.out_path. 0 ok, -1 on failure. */
+   frame, reads it back and writes opt.out_path; a window with save_window
+   reads its back buffer before showing the last frame. 0 ok, -1 on failure. */
 int ex_app_begin_frame(ex_app *app);
 int ex_app_end_frame(ex_app *app);
 

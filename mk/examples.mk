@@ -1,5 +1,5 @@
 # mk/examples.mk - the tutorial programs in examples/ (included by the Makefile).
-#   make examples        build build/examples/01_hard_shadows .. 05_point_light
+#   make examples        build build/examples/01_hard_shadows .. 06_soft_shadows
 #   make examples-demo   render each one headless into out/ (part of make demo)
 # Each example is one C99 file holding the shadowkit implementation, plus
 # examples/common.c, linked with the testbed library and GLFW.
@@ -9,29 +9,32 @@
 .SECONDEXPANSION:
 
 EX_DIR   := $(BUILD)/examples
-EX_NAMES := 01_hard_shadows 02_cascades 03_warping 04_adaptive 05_point_light
+EX_NAMES := 01_hard_shadows 02_cascades 03_warping 04_adaptive 05_point_light 06_soft_shadows
 EX_BINS  := $(addprefix $(EX_DIR)/,$(EX_NAMES))
 EX_OBJS  := $(addprefix $(EX_DIR)/obj/,$(addsuffix .o,$(EX_NAMES)))
 EX_HDRS  := shadowkit.h shadowkit_gl.h examples/common.h
-# recursive (=): pkg-config runs when a recipe needs it, after deps-demo
+# recursive (=): pkg-config runs when a recipe needs it, after deps-examples
 # has installed libglfw3-dev
 EX_GLFW_CFLAGS = $(shell pkg-config --cflags glfw3)
 EX_GLFW_LIBS   = $(shell pkg-config --libs glfw3)
 EX_CC          = $(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) -Iexamples
 
-.PHONY: examples examples-demo
+.PHONY: examples examples-demo deps-examples
 
 examples: $(EX_BINS)
 
-$(EX_DIR)/obj/common.o: examples/common.c $(EX_HDRS) | deps-demo
+deps-examples:
+	@bash scripts/deps.sh examples
+
+$(EX_DIR)/obj/common.o: examples/common.c $(EX_HDRS) | deps-examples
 	$(MKDIR)
 	$(EX_CC) $(EX_GLFW_CFLAGS) $(DEPFLAGS) -c $< -o $@
 
-$(EX_OBJS): $(EX_DIR)/obj/%.o: examples/%.c $(EX_HDRS) | deps-demo
+$(EX_OBJS): $(EX_DIR)/obj/%.o: examples/%.c $(EX_HDRS) | deps-examples
 	$(MKDIR)
 	$(EX_CC) $(DEPFLAGS) -c $< -o $@
 
-$(EX_BINS): $(EX_DIR)/%: $(EX_DIR)/obj/%.o $(EX_DIR)/obj/common.o $$(TESTBED_LIB) | deps-demo
+$(EX_BINS): $(EX_DIR)/%: $(EX_DIR)/obj/%.o $(EX_DIR)/obj/common.o $$(TESTBED_LIB) | deps-examples
 	$(MKDIR)
 	$(CC) $< $(EX_DIR)/obj/common.o -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(EX_GLFW_LIBS) $(LDLIBS)
 
@@ -48,7 +51,10 @@ examples-demo: $(EX_BINS)
 	./$(EX_DIR)/04_adaptive --headless --technique lspsm --out $(OUT)/04_adaptive-lspsm.png
 	./$(EX_DIR)/04_adaptive --headless --technique rmsm --out $(OUT)/04_adaptive-rmsm.png
 	./$(EX_DIR)/05_point_light --headless --technique cube --out $(OUT)/05_point_light-cube.png
+	./$(EX_DIR)/06_soft_shadows --headless --technique pvsm --out $(OUT)/06_soft_shadows-pvsm.png
+	./$(EX_DIR)/06_soft_shadows --headless --technique pcss --out $(OUT)/06_soft_shadows-pcss.png
+	./$(EX_DIR)/06_soft_shadows --headless --technique tiles --out $(OUT)/06_soft_shadows-tiles.png
 	./$(EX_DIR)/05_point_light --headless --technique vsdct --out $(OUT)/05_point_light-vsdct.png
-	@echo "examples: images in $(OUT)/: 01_hard_shadows.png 02_cascades.png 02_cascades-show.png 03_warping-{lispsm,psm,standard}.png 04_adaptive-{ferko,lspsm,rmsm}.png 05_point_light-{cube,vsdct}.png"
+	@echo "examples: images in $(OUT)/: 01_hard_shadows.png 02_cascades.png 02_cascades-show.png 03_warping-{lispsm,psm,standard}.png 04_adaptive-{ferko,lspsm,rmsm}.png 05_point_light-{cube,vsdct}.png 06_soft_shadows-{pvsm,pcss,tiles}.png"
 
 DEMO_TARGETS += examples-demo

@@ -1,16 +1,24 @@
 #!/usr/bin/env bash
 # scripts/deps.sh [GROUP...] - install the Debian packages a make target needs,
 # only those that are missing. Quiet when nothing is missing.
-#   test   compilers, libc headers, sanitizer runtimes      (make test, make check)
+#   test   compilers, libc headers, sanitizer runtimes, clang and its libFuzzer
+#          runtime (make test, make check, make fuzz)
 #   gl     test + pkg-config, OSMesa, EGL, Embree, assimp, stb (testbed, GL tests)
-#   demo   gl + gnuplot, GLFW (make demo)
+#   examples  gl + GLFW (the examples in examples/)
+#   demo   examples + gnuplot (make demo)
+#   integration  examples + GLEW, glad (python3-glad), Xvfb and Mesa's
+#          GLX driver (tests/integration, part of make test)
+#   coverage  gl + lcov (genhtml; make coverage, mk/coverage.mk)
 # To add a group or a package, edit the arrays and the case below.
 # Debian 12 (bookworm); needs root (or sudo) only when something is missing.
 set -euo pipefail
 
-PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1)
+PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1 clang libclang-rt-14-dev)
 PKGS_GL=(pkg-config libosmesa6-dev libegl-dev libembree-dev libassimp-dev libstb-dev)
-PKGS_DEMO=(gnuplot-nox libglfw3-dev)
+PKGS_EXAMPLES=(libglfw3-dev)
+PKGS_DEMO=(gnuplot-nox)
+PKGS_INTEGRATION=(libglew-dev python3-glad xvfb libgl1-mesa-dri)
+PKGS_COVERAGE=(lcov)
 
 groups=("$@")
 [ ${#groups[@]} -gt 0 ] || groups=(test)
@@ -20,8 +28,11 @@ for g in "${groups[@]}"; do
     case "$g" in
         test) want+=("${PKGS_TEST[@]}") ;;
         gl) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}") ;;
-        demo) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_DEMO[@]}") ;;
-        *) echo "deps.sh: unknown group '$g' (known: test gl demo)" >&2; exit 2 ;;
+        examples) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_EXAMPLES[@]}") ;;
+        demo) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_EXAMPLES[@]}" "${PKGS_DEMO[@]}") ;;
+        integration) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_EXAMPLES[@]}" "${PKGS_INTEGRATION[@]}") ;;
+        coverage) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_COVERAGE[@]}") ;;
+        *) echo "deps.sh: unknown group '$g' (known: test gl examples demo integration coverage)" >&2; exit 2 ;;
     esac
 done
 
@@ -55,6 +66,15 @@ if [ "$(id -u)" -ne 0 ]; then
 fi
 export DEBIAN_FRONTEND=noninteractive
 LOCK=(-o DPkg::Lock::Timeout=600)   # wait for another apt/dpkg to finish
+# `make -j` may start several groups at once: one installs at a time, and
+# each looks again at what is missing once it has the turn
+if command -v flock >/dev/null 2>&1 && exec 9> "${TMPDIR:-/tmp}/shadowkit-deps.lock"; then
+    flock -w 900 9 || true
+    still=()
+    for p in "${missing[@]}"; do installed "$p" || still+=("$p"); done
+    [ ${#still[@]} -eq 0 ] && exit 0
+    missing=("${still[@]}")
+fi
 "${SUDO[@]}" apt-get "${LOCK[@]}" update -qq
 "${SUDO[@]}" env DEBIAN_FRONTEND=noninteractive \
     apt-get "${LOCK[@]}" install -y -qq --no-install-recommends "${missing[@]}"

@@ -436,4 +436,55 @@ static inline gt_run_result gt_run(gt_env *e, const skgl_camera *cam, sk_vec3 li
     return w;
 }
 
+/* ---- area lights (skgl_soft_*) ----------------------------------------- */
+/* the reference for an area light: strata^2 stratified samples (>= 256) */
+static inline int gt_area_reference(gt_env *e, const skgl_area_light *light, int strata, float *vis) {
+    tb_view v;
+    tb_light l;
+    memset(&l, 0, sizeof l);
+    l.type = TB_LIGHT_RECT;
+    l.position = light->position;
+    skgl_area_light_axes(light, &l.half_u, &l.half_v);
+    l.strata = strata;
+    l.seed = 7;
+    v.inv_view_proj = e->inv_vp;
+    v.width = e->w;
+    v.height = e->h;
+    return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+}
+
+/* skgl_soft_render over the last G-buffer, read back (-1 on background);
+   the stats into *st when not NULL. 0 ok. */
+static inline int gt_soft_mask(gt_env *e, skgl_soft *s, const skgl_camera *cam, const skgl_area_light *light,
+                               float *vis, skgl_stats *st) {
+    skgl_scene sc = gt_scene(e);
+    sk_result r = skgl_soft_render(e->sk, s, cam, &sc, light, e->gbuf.depth_tex, e->gbuf.color_tex,
+                                   e->mask.color_tex);
+    size_t i;
+    if (r != SK_OK) {
+        printf("skgl_soft_render: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
+        return -1;
+    }
+    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
+    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
+    if (st) *st = *skgl_soft_stats(s);
+    return 0;
+}
+
+/* a soft-shadow object of this technique and resolution, other fields default */
+static inline skgl_soft *gt_soft(gt_env *e, skgl_soft_technique t, int resolution) {
+    skgl_soft_desc d;
+    skgl_soft *s = NULL;
+    sk_result r;
+    memset(&d, 0, sizeof d);
+    d.technique = t;
+    d.resolution = resolution;
+    r = skgl_soft_create(e->sk, &d, &s);
+    if (r != SK_OK) {
+        SK_CHECK_MSG(0, "skgl_soft_create: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
+        return NULL;
+    }
+    return s;
+}
+
 #endif /* GL_TEST_UTIL_H */

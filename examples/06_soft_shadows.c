@@ -1,0 +1,254 @@
+/* 06_soft_shadows.c - shadowkit tutorial 6: an area light, soft shadows
+   with predicted virtual soft shadow maps (Shen Li et al. 2011, seed 001)
+   and with PCSS on one map.
+
+   Run (from the repository root, after `make examples`):
+     build/examples/06_soft_shadows                       a window, PVSM; Esc quits
+     build/examples/06_soft_shadows --technique pcss      PCSS on one 4096^2 map
+     build/examples/06_soft_shadows --technique tiles     PVSM, its tiles drawn over
+                                                          the picture (Fig. 10)
+     build/examples/06_soft_shadows --headless            writes out/06_soft_shadows.png
+   Options: --frames N, --out FILE, --scene FILE (default: the fence).
+
+   Soft shadows are a deferred effect here: skgl_soft_render takes the
+   camera's depth and normals and writes visibility per pixel into a mask
+   texture, which our lighting shader reads at its own pixel. With
+   depth_tex = 0 (as below) shadowkit renders that G-buffer itself through
+   the draw callback; an engine with a G-buffer hands its textures in.
+   PVSM first renders a 1024^2 map with conservative rasterisation, finds
+   per pixel how wide its penumbra is and how many texels that needs (the
+   paper's perceptual rho(n)), collects the needs in a 64x64 grid on the
+   light's plane, cuts the grid into tiles with a kd-tree, and renders one
+   map per tile at just the resolution it asks for: soft shadows need few
+   texels, sharp ones get many. --technique tiles tints each pixel by the
+   tile that shadows it. */
+
+#define SHADOWKIT_IMPLEMENTATION
+#define SHADOWKIT_GL_IMPLEMENTATION
+#include "shadowkit_gl.h"
+
+#include "common.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define MAX_TILES 64
+
+/* the fence of the tests: thin rails and slats, posts behind it */
+static int build_scene(tb_scene *s) {
+    return tb_scene_build_fence(s);
+}
+
+/* our lighting: lambert from the light's centre times the mask's visibility;
+   with u_tiles > 0 each pixel is tinted by the PVSM tile it lies in */
+static const char vs_src[] =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_position;\n"
+    "layout(location = 1) in vec3 a_normal;\n"
+    "uniform mat4 u_view_proj;\n"
+    "out vec3 v_world;\n"
+    "out vec3 v_normal;\n"
+    "void main() {\n"
+    "    v_world = a_position;\n"
+    "    v_normal = a_normal;\n"
+    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
+    "}\n";
+static const char fs_src[] =
+    "#version 330 core\n"
+    "in vec3 v_world;\n"
+    "in vec3 v_normal;\n"
+    "out vec4 o_color;\n"
+    "uniform sampler2D u_mask;\n"
+    "uniform vec3 u_light_pos;\n"
+    "uniform mat4 u_light_vp;\n"
+    "uniform int u_tiles;\n"
+    "uniform float u_rects[4 * 64];\n"
+    "void main() {\n"
+    "    vec3 n = normalize(v_normal);\n"
+    "    if (!gl_FrontFacing) n = -n;\n"
+    "    float lit = max(dot(n, normalize(u_light_pos - v_world)), 0.0);\n"
+    "    float v = texelFetch(u_mask, ivec2(gl_FragCoord.xy), 0).r;\n"
+    "    vec3 albedo = vec3(0.82, 0.8, 0.76);\n"
+    "    for (int i = 0; i < u_tiles; i++) {\n"
+    "        vec4 c = u_light_vp * vec4(v_world, 1.0);\n"
+    "        vec2 p = c.xy / c.w;\n"
+    "        if (c.w > 0.0 && p.x >= u_rects[4 * i] && p.y >= u_rects[4 * i + 1] &&\n"
+    "            p.x < u_rects[4 * i + 2] && p.y < u_rects[4 * i + 3]) {\n"
+    "            float h = fract(float(i) * 0.618034);\n"
+    "            albedo = mix(albedo, clamp(abs(fract(h + vec3(0.0, 0.667, 0.333)) * 6.0 - 3.0) - 1.0, 0.0, 1.0), 0.45);\n"
+    "            break;\n"
+    "        }\n"
+    "    }\n"
+    "    o_color = vec4(albedo * (0.12 + 0.95 * lit * v), 1.0);\n"
+    "}\n";
+
+static unsigned compile(const tb_gl_funcs *gl, unsigned type, const char *src) {
+    unsigned sh = gl->CreateShader(type);
+    int ok = 0;
+    gl->ShaderSource(sh, 1, &src, NULL);
+    gl->CompileShader(sh);
+    gl->GetShaderiv(sh, 0x8B81 /* GL_COMPILE_STATUS */, &ok);
+    if (!ok) {
+        char log[2048] = "";
+        gl->GetShaderInfoLog(sh, (int)sizeof log, NULL, log);
+        fprintf(stderr, "shader: %s\n", log);
+        gl->DeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+static unsigned make_program(const tb_gl_funcs *gl) {
+    unsigned v = compile(gl, 0x8B31 /* GL_VERTEX_SHADER */, vs_src);
+    unsigned f = compile(gl, 0x8B30 /* GL_FRAGMENT_SHADER */, fs_src), p;
+    int ok = 0;
+    if (!v || !f) return 0;
+    p = gl->CreateProgram();
+    gl->AttachShader(p, v);
+    gl->AttachShader(p, f);
+    gl->LinkProgram(p);
+    gl->DeleteShader(v);
+    gl->DeleteShader(f);
+    gl->GetProgramiv(p, 0x8B82 /* GL_LINK_STATUS */, &ok);
+    if (!ok) { gl->DeleteProgram(p); return 0; }
+    return p;
+}
+
+int main(int argc, char **argv) {
+    ex_options opt;
+    ex_app app;
+    skgl_desc desc = {0};
+    skgl_soft_desc sdesc;
+    skgl_context *sk = NULL;
+    skgl_soft *soft = NULL;
+    skgl_scene scene;
+    skgl_area_light light;
+    tb_gl_fbo mask;
+    sk_vec3 eye, target, up = {0, 1, 0}, c;
+    float zn = 0.1f, zf = 80.0f, size;
+    unsigned prog = 0;
+    sk_result r = SK_OK;
+    int status = 1, show_tiles = 0, mask_w = 0, mask_h = 0;
+    int rc = ex_parse_args(argc, argv, "out/06_soft_shadows.png", 0, &opt);
+    if (rc != 0) return rc == 1 ? 0 : 2;
+    memset(&sdesc, 0, sizeof sdesc);   /* zero fields take the defaults */
+    memset(&mask, 0, sizeof mask);
+    sdesc.technique = SKGL_SOFT_PVSM;
+    if (opt.technique && strcmp(opt.technique, "pcss") == 0) {
+        sdesc.technique = SKGL_SOFT_PCSS;
+        sdesc.resolution = 4096;
+    } else if (opt.technique && strcmp(opt.technique, "tiles") == 0) show_tiles = 1;
+    else if (opt.technique && strcmp(opt.technique, "pvsm") != 0) {
+        fprintf(stderr, "--technique: pvsm, pcss or tiles\n");
+        return 2;
+    }
+
+    if (ex_app_open(&app, &opt, "shadowkit 06: soft shadows") != 0) return 1;
+    if (ex_app_load_scene(&app, build_scene) != 0) goto done;
+    desc.getproc = app.getproc;
+    desc.debug = 1;
+    desc.timing = 1;
+    if ((r = skgl_create(&desc, &sk)) != SK_OK) goto done;
+    if ((r = skgl_soft_create(sk, &sdesc, &soft)) != SK_OK) goto done;
+    if (!(prog = make_program(&app.gl))) goto done;
+
+    scene.draw = ex_draw_casters;
+    scene.user = &app;
+    scene.bounds = app.scene.bounds;
+
+    /* the camera, and a square light above the content, 1/12 of its size */
+    if (opt.scene_path) ex_camera_from_bounds(app.model_bounds, &eye, &target, &zn, &zf);
+    else { eye = ex_v3(6.5f, 3.2f, 7.5f); target = ex_v3(-1.5f, 0.4f, 0.5f); }
+    c = ex_v3(0.5f * (app.model_bounds.min.x + app.model_bounds.max.x), app.model_bounds.max.y,
+              0.5f * (app.model_bounds.min.z + app.model_bounds.max.z));
+    size = 0.5f * (app.model_bounds.max.x - app.model_bounds.min.x);
+    if (0.5f * (app.model_bounds.max.z - app.model_bounds.min.z) > size)
+        size = 0.5f * (app.model_bounds.max.z - app.model_bounds.min.z);
+    memset(&light, 0, sizeof light);
+    light.up = ex_v3(0, 0, 1);
+    light.half_width = light.half_height = size / 12.0f;
+
+    while (ex_app_begin_frame(&app)) {
+        skgl_camera cam;
+        sk_mat4 vp, lvp;
+        float rects[4 * MAX_TILES];
+        sk_tile tiles[MAX_TILES];
+        int nt = 0, i;
+        /* the light swings slowly from side to side above the content */
+        float a = 0.35f * sinf(0.4f * (float)app.time);
+        light.position = ex_v3(c.x + 0.5f * size * sinf(a), c.y + 1.1f * size, c.z + 0.35f * size * cosf(a));
+        light.direction = ex_v3(c.x - light.position.x, -light.position.y, c.z - light.position.z);
+        cam.view = sk_mat4_look_at(eye, target, up);
+        cam.proj = sk_mat4_perspective(0.9f, (float)app.width / (float)app.height, zn, zf);
+        vp = sk_mat4_mul(cam.proj, cam.view);
+        if (mask_w != app.width || mask_h != app.height) {   /* the mask follows the framebuffer */
+            if (mask.fbo) tb_gl_fbo_destroy(&app.gl, &mask);
+            if (tb_gl_fbo_create(&app.gl, &mask, app.width, app.height, TB_GL_COLOR_R16F) != 0) goto done;
+            mask_w = app.width;
+            mask_h = app.height;
+            /* creating it bound another framebuffer: ours again */
+            if (app.headless) tb_gl_fbo_bind(&app.gl, &app.target);
+            else {
+                app.gl.BindFramebuffer(0x8D40 /* GL_FRAMEBUFFER */, 0);
+                app.gl.Viewport(0, 0, app.width, app.height);
+            }
+        }
+        /* the soft shadows of this frame, G-buffer included, into the mask */
+        if ((r = skgl_soft_render(sk, soft, &cam, &scene, &light, 0, 0, mask.color_tex)) != SK_OK) break;
+        lvp = skgl_soft_matrix(soft);
+        if (show_tiles) {
+            const float g = (float)skgl_soft_get_desc(soft).grid;
+            nt = skgl_soft_tiles(soft, tiles, MAX_TILES);
+            if (nt > MAX_TILES) nt = MAX_TILES;
+            for (i = 0; i < nt; i++) {
+                rects[4 * i] = -1.0f + 2.0f * (float)tiles[i].x0 / g;
+                rects[4 * i + 1] = -1.0f + 2.0f * (float)tiles[i].y0 / g;
+                rects[4 * i + 2] = -1.0f + 2.0f * (float)tiles[i].x1 / g;
+                rects[4 * i + 3] = -1.0f + 2.0f * (float)tiles[i].y1 / g;
+            }
+        }
+        app.gl.Enable(0x0B71 /* GL_DEPTH_TEST */);
+        app.gl.DepthFunc(0x0201 /* GL_LESS */);
+        app.gl.DepthMask(1);
+        app.gl.UseProgram(prog);
+        app.gl.UniformMatrix4fv(app.gl.GetUniformLocation(prog, "u_view_proj"), 1, 0, vp.m);
+        app.gl.UniformMatrix4fv(app.gl.GetUniformLocation(prog, "u_light_vp"), 1, 0, lvp.m);
+        app.gl.Uniform3f(app.gl.GetUniformLocation(prog, "u_light_pos"), light.position.x, light.position.y,
+                         light.position.z);
+        app.glx.Uniform1i(app.gl.GetUniformLocation(prog, "u_tiles"), nt);
+        if (nt > 0) app.glx.Uniform1fv(app.gl.GetUniformLocation(prog, "u_rects"), 4 * nt, rects);
+        app.glx.Uniform1i(app.gl.GetUniformLocation(prog, "u_mask"), 0);
+        app.gl.ActiveTexture(0x84C0 /* GL_TEXTURE0 */);
+        app.gl.BindTexture(0x0DE1 /* GL_TEXTURE_2D */, mask.color_tex);
+        tb_gl_mesh_draw(&app.gl, &app.mesh, 0, 0);
+        app.gl.BindTexture(0x0DE1, 0);
+        app.gl.UseProgram(0);
+        if (ex_app_end_frame(&app) != 0) goto done;
+    }
+    if (r == SK_OK) {
+        const skgl_stats *st = skgl_soft_stats(soft);
+        int k;
+        if (sdesc.technique == SKGL_SOFT_PVSM) {
+            printf("pvsm: %d tiles (largest side %d), %.2f Mtexels (%.2fx one 4096^2 map), %.0f%% of the pixels "
+                   "settled by the low-res map; ms per step:",
+                   st->tiles, st->resolution, st->texels * 1e-6, st->texels / (4096.0 * 4096.0),
+                   100.0 * st->lit_fraction);
+            for (k = 0; k < SKGL_SOFT_STEPS; k++) printf(" %.2f", st->step_ms[k]);
+            printf("\n");
+        } else {
+            printf("pcss: one %d^2 map, %.3f ms depth pass, %.3f ms mask\n", st->resolution, st->shadow_ms,
+                   st->mask_ms);
+        }
+        status = 0;
+    }
+
+done:
+    if (r != SK_OK) fprintf(stderr, "shadowkit: %s %s\n", sk_result_string(r), sk ? skgl_error_log(sk) : "");
+    if (prog) app.gl.DeleteProgram(prog);
+    if (mask.fbo) tb_gl_fbo_destroy(&app.gl, &mask);
+    if (soft) skgl_soft_destroy(sk, soft);
+    if (sk) skgl_destroy(sk);
+    ex_app_close(&app);
+    return status;
+}
