@@ -4545,7 +4545,7 @@ static void skgl__soft_begin(skgl_context *ctx) { skgl__query_begin(ctx); }
 static float skgl__soft_end(skgl_context *ctx) { return skgl__query_end(ctx); }
 
 /* colour targets of the soft object's framebuffer (0 ends the list) */
-static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
+static void skgl__soft_attach(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
                               skgl__uint depth)
 {
     static const skgl__enum bufs[4] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1,
@@ -4557,11 +4557,18 @@ static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint 
         gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, bufs[i], SKGL__TEXTURE_2D, i < n ? tex[i] : 0, i < n ? level : 0);
     gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
     gl->DrawBuffers(n, bufs);
-    return gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
 }
+static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
+                              skgl__uint depth)
+{
+    skgl__soft_attach(ctx, s, tex, n, level, depth);
+    return ctx->gl.CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+}
+/* everything detached, no status check: the check of a framebuffer with no
+   attachments is a GL_KHR_debug message on Mesa (MEDIUM, "FBO incomplete") */
 static void skgl__soft_detach(skgl_context *ctx, skgl_soft *s)
 {
-    skgl__soft_targets(ctx, s, NULL, 0, 0, 0);
+    skgl__soft_attach(ctx, s, NULL, 0, 0, 0);
     ctx->gl.DrawBuffer(SKGL__NONE);
 }
 

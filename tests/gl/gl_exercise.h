@@ -10,7 +10,9 @@
    render, deferred mask, forward draw through skgl_shadow_bind (directional)
    or skgl_point_bind (point lights), then destroy. Point-light cases move
    the light between frames; the shared-atlas case packs three VSDCT lights
-   (one wanting more than fits, so the pack halves it) before each frame.
+   (one wanting more than fits, so the pack halves it) before each frame;
+   area-light cases (PCSS, PVSM) move the light too and, in the second
+   frame, let skgl_soft_render draw its own G-buffer (depth_tex = 0).
    Every call must return SK_OK; the number of calls checked is returned
    (-1 when the case could not run). */
 #ifndef GL_EXERCISE_H
@@ -22,7 +24,7 @@
 #define GX_SMALL_H 120
 #define GX_FRAMES 3
 
-typedef enum gx_kind { GX_CONTEXT = 0, GX_DIRECTIONAL = 1, GX_POINT = 2, GX_ATLAS = 3 } gx_kind;
+typedef enum gx_kind { GX_CONTEXT = 0, GX_DIRECTIONAL = 1, GX_POINT = 2, GX_ATLAS = 3, GX_SOFT = 4 } gx_kind;
 
 typedef struct gx_case {
     const char *name;
@@ -32,26 +34,29 @@ typedef struct gx_case {
     float blend_band;
     skgl_point_technique point;   /* GX_POINT */
     int optimized;                /* GX_POINT: face and caster culling, scissor, resolution selection */
+    skgl_soft_technique soft;     /* GX_SOFT */
 } gx_case;
 
 static const gx_case gx_cases[] = {
-    {"context", GX_CONTEXT, SKGL_STANDARD, 0, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"standard", GX_DIRECTIONAL, SKGL_STANDARD, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"standard-stable", GX_DIRECTIONAL, SKGL_STANDARD, 512, 0, 1, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"pssm", GX_DIRECTIONAL, SKGL_PSSM, 512, 4, 0, 0, 0.1f, SKGL_POINT_CUBE, 0},
-    {"pssm-stable", GX_DIRECTIONAL, SKGL_PSSM, 512, 3, 1, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"psm", GX_DIRECTIONAL, SKGL_PSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"lispsm", GX_DIRECTIONAL, SKGL_LISPSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"lispsm-pssm", GX_DIRECTIONAL, SKGL_LISPSM, 512, 3, 0, 0, 0.1f, SKGL_POINT_CUBE, 0},
-    {"lspsm", GX_DIRECTIONAL, SKGL_LSPSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"ferko", GX_DIRECTIONAL, SKGL_FERKO, 1024, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"ferko-late", GX_DIRECTIONAL, SKGL_FERKO, 1024, 0, 0, 1, 0.0f, SKGL_POINT_CUBE, 0},
-    {"rmsm", GX_DIRECTIONAL, SKGL_RMSM, 4096, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"point-cube", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0},
-    {"point-cube-all", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 1},
-    {"point-vsdct", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_VSDCT, 0},
-    {"point-vsdct-all", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_VSDCT, 1},
-    {"point-atlas", GX_ATLAS, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_VSDCT, 1},
+    {"context", GX_CONTEXT, SKGL_STANDARD, 0, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"standard", GX_DIRECTIONAL, SKGL_STANDARD, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"standard-stable", GX_DIRECTIONAL, SKGL_STANDARD, 512, 0, 1, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"pssm", GX_DIRECTIONAL, SKGL_PSSM, 512, 4, 0, 0, 0.1f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"pssm-stable", GX_DIRECTIONAL, SKGL_PSSM, 512, 3, 1, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"psm", GX_DIRECTIONAL, SKGL_PSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"lispsm", GX_DIRECTIONAL, SKGL_LISPSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"lispsm-pssm", GX_DIRECTIONAL, SKGL_LISPSM, 512, 3, 0, 0, 0.1f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"lspsm", GX_DIRECTIONAL, SKGL_LSPSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"ferko", GX_DIRECTIONAL, SKGL_FERKO, 1024, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"ferko-late", GX_DIRECTIONAL, SKGL_FERKO, 1024, 0, 0, 1, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"rmsm", GX_DIRECTIONAL, SKGL_RMSM, 4096, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"point-cube", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"point-cube-all", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 1, SKGL_SOFT_PCSS},
+    {"point-vsdct", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_VSDCT, 0, SKGL_SOFT_PCSS},
+    {"point-vsdct-all", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_VSDCT, 1, SKGL_SOFT_PCSS},
+    {"point-atlas", GX_ATLAS, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_VSDCT, 1, SKGL_SOFT_PCSS},
+    {"soft-pcss", GX_SOFT, SKGL_STANDARD, 1024, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"soft-pvsm", GX_SOFT, SKGL_STANDARD, 1024, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PVSM},
 };
 #define GX_NCASES ((int)(sizeof gx_cases / sizeof gx_cases[0]))
 
@@ -198,6 +203,31 @@ static inline int gx_run(gx_env *x, skgl_context *sk, const gx_case *c) {
             }
         }
         skgl_shadow_destroy(sk, s);
+        return calls;
+    }
+    if (c->kind == GX_SOFT) {
+        skgl_soft_desc d;
+        skgl_soft *so = NULL;
+        memset(&d, 0, sizeof d);
+        d.technique = c->soft;
+        d.resolution = c->resolution;
+        if (c->soft == SKGL_SOFT_PVSM) { d.lowres = 256; d.grid = 16; d.max_tiles = 16; }
+        GX_OK("skgl_soft_create", skgl_soft_create(sk, &d, &so));
+        if (!so) return -1;
+        for (f = 0; f < GX_FRAMES; f++) {
+            skgl_area_light l;
+            memset(&l, 0, sizeof l);
+            l.position = gt_v3(2.0f - (float)f, 9.0f, -2.5f + 0.5f * (float)f);
+            l.direction = gt_v3(-0.3f, -1.0f, 0.4f);
+            l.up = gt_v3(0, 0, 1);
+            l.half_width = l.half_height = 0.3f;
+            if (f == 1)   /* its own G-buffer, drawn through the callback */
+                GX_OK("skgl_soft_render", skgl_soft_render(sk, so, &x->cam, &sc, &l, 0, 0, e->mask.color_tex));
+            else
+                GX_OK("skgl_soft_render", skgl_soft_render(sk, so, &x->cam, &sc, &l, e->gbuf.depth_tex,
+                                                           e->gbuf.color_tex, e->mask.color_tex));
+        }
+        skgl_soft_destroy(sk, so);
         return calls;
     }
     if (c->kind == GX_POINT) {

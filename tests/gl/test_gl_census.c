@@ -4,9 +4,9 @@
    Each case of gl_exercise.h (every directional technique, FERKO and RMSM
    through skgl_shadow_analyze at two G-buffer sizes, cube and VSDCT point
    lights naive and with every optimization, three VSDCT lights in one
-   shared atlas, and a bare context) runs on a context of its own, loaded
-   through a getproc of this test that wraps every entry point which makes
-   or frees a GL object: glGen* / glDelete* of textures, framebuffers,
+   shared atlas, area lights PCSS and PVSM, and a bare context) runs on a
+   context of its own, loaded through a getproc of this test that wraps
+   every entry point which makes or frees a GL object: glGen* / glDelete* of textures, framebuffers,
    renderbuffers, samplers, vertex arrays, buffers, queries, transform
    feedbacks and program pipelines, the GL 4.5 glCreate* of each, and
    glCreateProgram, glCreateShader, glCreateShaderProgramv, glDeleteProgram,
@@ -40,9 +40,11 @@
    changes: three times over the frames); RMSM 6 textures (map, request
    atlas, page table, the samples made once per G-buffer size); +1 program
    and +1 texture per cube light, +1 program, +2 textures, +1 sampler per
-   VSDCT light; the atlas case 4 textures, 3 programs, 3 samplers. Nothing
-   is left: this version of shadowkit_gl.h releases everything, on the
-   failure paths too (19 of skgl_create, 57 host allocation failures).
+   VSDCT light; the atlas case 4 textures, 3 programs, 3 samplers; PCSS +3
+   textures, +1 framebuffer, +1 query, +2 programs; PVSM +10 textures, +1
+   framebuffer, +1 query, +7 programs. Nothing is left: this version of
+   shadowkit_gl.h releases everything, on the failure paths too (19 of
+   skgl_create, 64 host allocation failures).
    Can fail: in local copies of the header with skgl__ferko_free's pixel
    buffer delete removed, ferko and ferko-late reported "3 buffer(s) live";
    with skgl__release's query delete removed, every case reported "1
@@ -423,6 +425,16 @@ static void test_object_failures(void) {
                              sk_result_string(r));
                 skgl_point_destroy(sk, p);
             }
+        } else if (gc->kind == GX_SOFT) {
+            skgl_soft_desc d;
+            skgl_soft *so = NULL;
+            memset(&d, 0, sizeof d);
+            d.technique = gc->soft;
+            d.resolution = gc->resolution;
+            r = skgl_soft_create(sk, &d, &so);
+            SK_CHECK_MSG(r == SK_ERR_GL && !so, "%s: skgl_soft_create with a GL error: %s", gc->name,
+                         sk_result_string(r));
+            skgl_soft_destroy(sk, so);
         } else {
             skgl_point_atlas *a = NULL;
             r = skgl_point_atlas_create(sk, 512, 512, &a);
