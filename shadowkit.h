@@ -243,6 +243,15 @@ SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
    distance from the light view's origin). out_proj is untouched on error. */
 SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
                                const sk_aabb *casters, sk_mat4 *out_proj);
+/* sk_stable_crop for coordinates relative to a world point (large worlds):
+   the sphere and the casters are given relative to `origin` (p - origin),
+   so that float keeps its digits near the camera, and the projection
+   applies to light_view * (p - origin). The texel grid stays where
+   sk_stable_crop puts it for the same points in world coordinates: fixed
+   in world light space, whatever the origin (light_view's rotation takes
+   origin to light space in double). origin NULL: exactly sk_stable_crop. */
+SKDEF sk_result sk_stable_crop_origin(sk_sphere s, sk_mat4 light_view, int res, const sk_aabb *casters,
+                                      const double origin[3], sk_mat4 *out_proj);
 
 /* =========================================================================
    4. PSM and LiSPSM warping (seed 002; Stamminger & Drettakis 2002,
@@ -1434,16 +1443,37 @@ SKDEF sk_result sk_fit_ortho(const sk_vec3 *pts, int count, sk_mat4 light_view,
 SKDEF sk_result sk_stable_crop(sk_sphere s, sk_mat4 light_view, int res,
                                const sk_aabb *casters, sk_mat4 *out_proj)
 {
+    return sk_stable_crop_origin(s, light_view, res, casters, NULL, out_proj);
+}
+
+SKDEF sk_result sk_stable_crop_origin(sk_sphere s, sk_mat4 light_view, int res, const sk_aabb *casters,
+                                      const double origin[3], sk_mat4 *out_proj)
+{
     sk_vec3 c;
-    double texel, x0, y0, ext, zhi;
+    double texel, x0, y0, ext, zhi, ox = 0.0, oy = 0.0;
     if (!out_proj || res < 2 || !sk__v3_finite(s.c) || !sk__finite(s.r) || !(s.r > 0.0f) ||
-        !sk__mat_finite(&light_view) || (casters && !sk__aabb_valid(casters)))
+        !sk__mat_finite(&light_view) || (casters && !sk__aabb_valid(casters)) ||
+        (origin && !(SK_FABS(origin[0]) < 1e300 && SK_FABS(origin[1]) < 1e300 && SK_FABS(origin[2]) < 1e300)))
         return SK_ERR_INVALID_ARG;
     c = sk__xform_affine(&light_view, s.c);
     texel = 2.0 * s.r / (res - 1);
-    /* snap the crop origin to whole texels of a grid fixed in light space */
-    x0 = SK_FLOOR(((double)c.x - s.r) / texel) * texel;
-    y0 = SK_FLOOR(((double)c.y - s.r) / texel) * texel;
+    if (origin) {
+        /* where the origin lies in light-view space (the rotation only: the
+           translation cancels between p and origin) */
+        const float *m = light_view.m;
+        ox = (double)m[0] * origin[0] + (double)m[4] * origin[1] + (double)m[8] * origin[2];
+        oy = (double)m[1] * origin[0] + (double)m[5] * origin[1] + (double)m[9] * origin[2];
+    }
+    /* snap the crop origin to whole texels of a grid fixed in light space
+       (in world light space: the origin's own light-space position added
+       before the snap, taken off after, all in double) */
+    if (origin) {
+        x0 = SK_FLOOR(((double)c.x - s.r + ox) / texel) * texel - ox;
+        y0 = SK_FLOOR(((double)c.y - s.r + oy) / texel) * texel - oy;
+    } else {
+        x0 = SK_FLOOR(((double)c.x - s.r) / texel) * texel;
+        y0 = SK_FLOOR(((double)c.y - s.r) / texel) * texel;
+    }
     ext = texel * res;
     zhi = sk__casters_zmax(&light_view, casters, (double)c.z + s.r);
     {

@@ -123,6 +123,17 @@
      SK_ERR_GL. skgl_gl_object_count() tells how many GL objects the context
      holds (0 after every shadow and the context are destroyed).
 
+   LARGE WORLDS
+     Directional lights work relative to an origin near the camera (its
+     position rounded to SKGL_ORIGIN_CELL, 256 m by default; zero near the
+     world origin): crops are fitted there, the depth pass moves your models
+     there in double (skgl_set_model) and the mask reconstructs positions
+     there, so a scene 1e5 from the world origin shadows as one at it, and
+     stable crops keep a texel grid fixed in world space. Everything you
+     pass and get stays in world space. A forward shader that works
+     camera-relative uses skgl_shadow_bind_origin. Point lights work in
+     world space.
+
    TIMING
      With desc.timing set, each pass is wrapped in a GL_TIME_ELAPSED query
      and its result read back at once (a CPU-GPU sync: for measuring, not
@@ -312,6 +323,11 @@ SKGLDEF const char *skgl_glsl_snippet(void);
    Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
    keep it free of samplers of another type in that program. */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
+/* skgl_shadow_bind for a shader whose world positions are relative to
+   `origin` (camera-relative rendering: sk_shadow() then takes
+   world_pos - origin); NULL: world space, as skgl_shadow_bind */
+SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
+                                          const double origin[3]);
 /* the info log of the last shader or framebuffer failure ("" if none) */
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
 /* light view-projection of one layer (world -> light clip) */
@@ -1880,6 +1896,7 @@ struct skgl_context {
     skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
     skgl__int depth_u_view_proj, depth_u_model;
     skgl__int model_loc;                   /* where skgl_set_model writes: the current pass's u_model */
+    double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
     char log[1024];
 };
 
@@ -1908,6 +1925,9 @@ struct skgl_shadow {
     int rmsm_npages, rmsm_analyzed;
     sk_mat4 rmsm_lvp;
     sk_mat4 vp[SKGL_MAX_CASCADES];
+    /* the world point vp and render_vp are relative to (they take p - origin;
+       see skgl__origin), and those of the FERKO estimates and the RMSM frustum */
+    double origin[3], ferko_origin[3], ferko_pending_origin[3], rmsm_origin[3];
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl_stats stats;
 };
@@ -2188,9 +2208,88 @@ SKGLDEF void skgl_destroy(skgl_context *ctx)
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx) { return ctx ? ctx->objects : 0; }
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx) { return ctx ? ctx->log : ""; }
 
+/* ---- large worlds: directional passes relative to an origin near the camera ----
+   A float holds 24 bits: at 1e5 from the world origin a position is good
+   to 8 mm, and a matrix that takes such positions to light clip space
+   subtracts nearly equal large numbers. The directional passes therefore
+   work relative to an origin: the camera's position rounded to a multiple
+   of SKGL_ORIGIN_CELL on each axis (exact in float, so a float world
+   position minus it is exact; zero within half a cell of the world origin,
+   where everything is as without it). Crops are fitted to the camera and
+   the scene bounds taken relative to it, the depth pass moves the models
+   there (T(-origin) * model, in double), the mask reconstructs positions
+   relative to its camera's origin, and matrices cross between origins in
+   double (skgl__shift). Stable crops snap in world light space
+   (sk_stable_crop_origin), so the texel grid does not move with the
+   origin. What the API returns and takes is world space, as before. */
+#ifndef SKGL_ORIGIN_CELL
+#define SKGL_ORIGIN_CELL 256.0        /* <= 0: always the world origin */
+#endif
+static const double skgl__zero3[3] = {0.0, 0.0, 0.0};
+
+static void skgl__origin(const sk_mat4 *view, double o[3])
+{
+    const double cell = SKGL_ORIGIN_CELL;
+    int k;
+    for (k = 0; k < 3; k++) {
+        /* eye = -R^T t of the rigid view matrix */
+        double eye = -((double)view->m[k * 4] * view->m[12] + (double)view->m[k * 4 + 1] * view->m[13] +
+                       (double)view->m[k * 4 + 2] * view->m[14]);
+        o[k] = cell > 0.0 ? SK_FLOOR(eye / cell + 0.5) * cell : 0.0;
+        if (!(SK_FABS(o[k]) < 1e30)) o[k] = 0.0;
+    }
+}
+
+/* m * T(to - from), in double: takes p - to where m took p - from (m itself when from == to) */
+static sk_mat4 skgl__shift(const sk_mat4 *m, const double from[3], const double to[3])
+{
+    sk_mat4 r = *m;
+    double d0 = to[0] - from[0], d1 = to[1] - from[1], d2 = to[2] - from[2];
+    int k;
+    if (d0 == 0.0 && d1 == 0.0 && d2 == 0.0) return r;
+    for (k = 0; k < 4; k++)
+        r.m[12 + k] = (float)((double)m->m[12 + k] + (double)m->m[k] * d0 + (double)m->m[4 + k] * d1 +
+                              (double)m->m[8 + k] * d2);
+    return r;
+}
+
+static skgl_camera skgl__camera_rel(const skgl_camera *cam, const double o[3])
+{
+    skgl_camera c = *cam;
+    c.view = skgl__shift(&cam->view, skgl__zero3, o);
+    return c;
+}
+
+static skgl_scene skgl__scene_rel(const skgl_scene *scene, const double o[3])
+{
+    skgl_scene r = *scene;
+    r.bounds.min = sk__v3((float)(scene->bounds.min.x - o[0]), (float)(scene->bounds.min.y - o[1]),
+                          (float)(scene->bounds.min.z - o[2]));
+    r.bounds.max = sk__v3((float)(scene->bounds.max.x - o[0]), (float)(scene->bounds.max.y - o[1]),
+                          (float)(scene->bounds.max.z - o[2]));
+    return r;
+}
+
+/* the current pass's model matrix (model_loc): T(-model_origin) * model, in double */
+static void skgl__model(skgl_context *ctx, const float model[16])
+{
+    const double *o = ctx->model_origin;
+    float r[16];
+    int c, k;
+    if (o[0] == 0.0 && o[1] == 0.0 && o[2] == 0.0) {
+        ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, model);
+        return;
+    }
+    for (c = 0; c < 4; c++) {
+        for (k = 0; k < 3; k++) r[c * 4 + k] = (float)((double)model[c * 4 + k] - o[k] * model[c * 4 + 3]);
+        r[c * 4 + 3] = model[c * 4 + 3];
+    }
+    ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, r);
+}
+
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
 {
-    if (ctx && model) ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, model);
+    if (ctx && model) skgl__model(ctx, model);
 }
 
 SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__src_shadow_sample_glsl; }
@@ -2352,7 +2451,7 @@ SKGLDEF skgl_shadow_desc skgl_shadow_get_desc(const skgl_shadow *s)
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
 {
     if (!s || layer < 0 || layer >= s->layers) return sk_mat4_identity();
-    return s->vp[layer];
+    return skgl__shift(&s->vp[layer], s->origin, skgl__zero3);
 }
 SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
@@ -2610,17 +2709,17 @@ static void skgl__fit_ferko(skgl_shadow *s, float zf)
     const sk_res_estimate *e = &s->ferko_est;
     int res = s->desc.resolution, w = e->width, h = e->height;
     int margin = s->desc.pcf_radius + 2 + (int)SK_CEIL(s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
-    sk_mat4 m, t = sk_mat4_identity();
+    sk_mat4 m, t = sk_mat4_identity(), lvp = skgl__shift(&s->ferko_lvp, s->ferko_origin, s->origin);
     sk_rect b = e->bounds;
     if (e->samples > 0 && w > 0 && h > 0) {
         float mx = margin * (b.x1 - b.x0) / (float)w, my = margin * (b.y1 - b.y0) / (float)h;
         b.x0 -= mx; b.x1 += mx; b.y0 -= my; b.y1 += my;
         w += 2 * margin;
         h += 2 * margin;
-        m = sk_mat4_mul(sk_crop_matrix(b, -1.0f, 1.0f), s->ferko_lvp);
+        m = sk_mat4_mul(sk_crop_matrix(b, -1.0f, 1.0f), lvp);
     } else {
         w = h = 1;                               /* nothing visible in the light */
-        m = s->ferko_lvp;
+        m = lvp;
     }
     if (w > res) w = res;
     if (h > res) h = res;
@@ -2633,7 +2732,7 @@ static void skgl__fit_ferko(skgl_shadow *s, float zf)
     s->maps = 1;
     s->stats.splits[1] = zf;
     s->stats.estimate = *e;
-    s->stats.estimate_light = s->ferko_lvp;
+    s->stats.estimate_light = skgl__shift(&s->ferko_lvp, s->ferko_origin, skgl__zero3);
 }
 
 /* the uncropped light frustum: an orthographic map around the scene */
@@ -2779,6 +2878,9 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     skgl__int w = 0, h = 0;
     int cw, ch, src = 0, sync;
     float world_w[4], v[8];
+    double o[3];
+    skgl_camera rc;
+    skgl_scene rs;
     sk_result r;
     if (!ctx || !s || !cam || !scene || !depth_tex ||
         (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM) ||
@@ -2786,7 +2888,12 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) ||
         !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
         return SK_ERR_INVALID_ARG;
-    r = skgl__ferko_light(scene, light_dir, &lvp);
+    /* positions and the light frustum relative to the camera's origin */
+    skgl__origin(&cam->view, o);
+    rc = skgl__camera_rel(cam, o);
+    rs = skgl__scene_rel(scene, o);
+    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
     gl = &ctx->gl;
     skgl__save(gl, &st);
@@ -2803,6 +2910,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     skgl__pixel_store_plain(gl);
     if (s->desc.technique == SKGL_RMSM) {
         r = skgl__analyze_rmsm(ctx, s, &inv, &lvp, w, h);
+        if (r == SK_OK) memcpy(s->rmsm_origin, o, sizeof o);
         skgl__restore(gl, &st);
         return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
     }
@@ -2813,6 +2921,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         gl->GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, 8 * sizeof(float), v);
         skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
         s->ferko_lvp = s->ferko_pending_lvp;
+        memcpy(s->ferko_origin, s->ferko_pending_origin, sizeof o);
         s->ferko_state = 1;
     }
     sync = !s->desc.ferko_latency || s->ferko_state == 0;
@@ -2879,6 +2988,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, v + 4);
         skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
         s->ferko_lvp = lvp;
+        memcpy(s->ferko_origin, o, sizeof o);
         s->ferko_state = 1;
     }
     if (s->desc.ferko_latency) {
@@ -2889,6 +2999,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         gl->ReadBuffer(SKGL__COLOR_ATTACHMENT1);
         gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, (void *)(4 * sizeof(float)));
         s->ferko_pending_lvp = lvp;
+        memcpy(s->ferko_pending_origin, o, sizeof o);
         s->ferko_state = 2;
     }
     gl->ReadBuffer(SKGL__NONE);
@@ -2959,7 +3070,11 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
             float fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5])), aspect = cam->proj.m[5] / cam->proj.m[0];
             sk_sphere sph = sk_cascade_sphere(cam->view, fovy, aspect, z0, s->stats.splits[i + 1]);
             if (!(sph.r > 0.0f)) sph = sk_frustum_bounding_sphere(&slice);
-            r = sk_stable_crop(sph, lview, d->resolution, &scene->bounds, &proj);
+            /* the texel grid fixed in world light space, not at the origin */
+            r = sk_stable_crop_origin(sph, lview, d->resolution, &scene->bounds,
+                                      s->origin[0] == 0.0 && s->origin[1] == 0.0 && s->origin[2] == 0.0 ? NULL
+                                                                                                          : s->origin,
+                                      &proj);
         } else {
             sk_vec3 pts[SK_CLIP_MAX_POINTS];
             int n = sk_clip_frustum_aabb(&slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
@@ -3007,6 +3122,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         /* no analysis: the coarsest page alone */
         r = skgl__ferko_light(scene, light_dir, &s->rmsm_lvp);
         if (r != SK_OK) { skgl__restore(gl, &st); return r; }
+        memcpy(s->rmsm_origin, s->origin, sizeof s->rmsm_origin);
         s->rmsm_pages[0].level = s->levels - 1;
         s->rmsm_pages[0].px = s->rmsm_pages[0].py = 0;
         s->rmsm_npages = 1;
@@ -3015,7 +3131,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         skgl__rmsm_table(ctx, s);
     }
     s->light_dir = sk__normalize(light_dir);
-    s->vp[0] = s->rmsm_lvp;
+    s->vp[0] = skgl__shift(&s->rmsm_lvp, s->rmsm_origin, s->origin);
     s->maps = 1;
     skgl__query_begin(ctx);
     gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
@@ -3044,22 +3160,24 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         rc.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
         rc.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
         rc.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
-        vp = sk_mat4_mul(sk_crop_matrix(rc, -1.0f, 1.0f), s->rmsm_lvp);
+        vp = sk_mat4_mul(sk_crop_matrix(rc, -1.0f, 1.0f), s->vp[0]);
         gl->Viewport(x, y, slot, slot);
         gl->Scissor(x, y, slot, slot);
         gl->Clear(SKGL__DEPTH_BUFFER_BIT);
         gl->UseProgram(ctx->depth_prog);
         gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
-        gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
+        memcpy(ctx->model_origin, s->origin, sizeof s->origin);
+        skgl__model(ctx, identity);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
-        info.view_proj = vp;
-        info.frustum = sk_frustum_from_matrix(vp);
+        info.view_proj = skgl__shift(&vp, s->origin, skgl__zero3);   /* world space for the callback */
+        info.frustum = sk_frustum_from_matrix(info.view_proj);
         scene->draw(scene->user, &info);
         s->stats.passes++;
         s->stats.texels += (double)slot * slot;
     }
+    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
     gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
     s->stats.shadow_ms = skgl__query_end(ctx);
     s->stats.maps = 1;
@@ -3077,13 +3195,22 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     skgl__state st;
     sk_result r;
     int i, res;
+    double o[3], was[3];
+    skgl_camera rc;
+    skgl_scene rs;
     if (!ctx || !s || !cam || !scene || !scene->draw || !sk__v3_finite(light_dir) ||
         sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj) ||
         !sk__aabb_valid(&scene->bounds))
         return SK_ERR_INVALID_ARG;
-    r = skgl__fit_layers(s, cam, scene, light_dir);
-    if (r != SK_OK) return r;
-    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, cam, scene, light_dir);
+    /* the maps are fitted and rendered relative to the camera's origin */
+    skgl__origin(&cam->view, o);
+    rc = skgl__camera_rel(cam, o);
+    rs = skgl__scene_rel(scene, o);
+    memcpy(was, s->origin, sizeof was);
+    memcpy(s->origin, o, sizeof o);
+    r = skgl__fit_layers(s, &rc, &rs, light_dir);
+    if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
+    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, &rc, &rs, light_dir);
     if (s->desc.technique != SKGL_FERKO || s->ferko_state == 0)
         for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
     s->light_dir = sk__normalize(light_dir);
@@ -3118,18 +3245,20 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
         }
         gl->Clear(SKGL__DEPTH_BUFFER_BIT);
         gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->render_vp[i].m);
-        gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
+        memcpy(ctx->model_origin, o, sizeof o);
+        skgl__model(ctx, identity);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
-        info.view_proj = s->render_vp[i];
-        info.frustum = sk_frustum_from_matrix(s->render_vp[i]);
+        info.view_proj = skgl__shift(&s->render_vp[i], o, skgl__zero3);   /* world space for the callback */
+        info.frustum = sk_frustum_from_matrix(info.view_proj);
         scene->draw(scene->user, &info);
         s->stats.passes++;
         s->stats.texels += (double)s->view_w * s->view_h;
         /* the callback may have bound its own program: ours again for the next layer */
         gl->UseProgram(ctx->depth_prog);
     }
+    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
     gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
     s->stats.shadow_ms = skgl__query_end(ctx);
     s->stats.maps = s->maps;
@@ -3140,9 +3269,14 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     return skgl__check(ctx, "skgl_shadow_render");
 }
 
-static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint prog, int unit, int table_unit)
+/* origin: the world point the program's positions are relative to */
+static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint prog, int unit, int table_unit,
+                           const double origin[3])
 {
     skgl__api *gl = &ctx->gl;
+    sk_mat4 vp[SKGL_MAX_CASCADES];
+    int i;
+    for (i = 0; i < s->maps && i < SKGL_MAX_CASCADES; i++) vp[i] = skgl__shift(&s->vp[i], s->origin, origin);
     /* the page table's sampler is set whatever the technique: two samplers
        of different types must never share a unit */
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_page_table"), table_unit);
@@ -3152,7 +3286,7 @@ static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint p
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_min_level"), s->stats.rmsm_min_level);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_page"), s->desc.rmsm_page_size);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_shadow_map"), unit);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->maps, 0, s->vp[0].m);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->maps, 0, vp[0].m);
     gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->maps + 1, s->stats.splits);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_layers"), s->maps);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_select_by_map"), s->desc.technique == SKGL_LSPSM);
@@ -3173,9 +3307,16 @@ static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint p
 
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit)
 {
+    return skgl_shadow_bind_origin(ctx, s, program, unit, NULL);
+}
+
+SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
+                                          const double origin[3])
+{
     skgl__api *gl;
     skgl__int active = 0;
-    if (!ctx || !s || !program || unit < 0 || unit > (s->desc.technique == SKGL_RMSM ? 30 : 31))
+    if (!ctx || !s || !program || unit < 0 || unit > (s->desc.technique == SKGL_RMSM ? 30 : 31) ||
+        (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30)))
         return SK_ERR_INVALID_ARG;
     gl = &ctx->gl;
     gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
@@ -3189,7 +3330,7 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
         gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
         gl->ActiveTexture((skgl__enum)active);
     }
-    skgl__uniforms(ctx, s, program, unit, unit + 1);
+    skgl__uniforms(ctx, s, program, unit, unit + 1, origin ? origin : skgl__zero3);
     return skgl__check(ctx, "skgl_shadow_bind");
 }
 
@@ -3255,9 +3396,15 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     skgl__int w = 0, h = 0;
     sk_mat4 inv;
     skgl__uint p;
+    double o[3];
+    skgl_camera rc;
     if (!ctx || !s || !cam || !depth_tex || !mask_tex || !sk__mat_finite(&cam->view) ||
         !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
         return SK_ERR_INVALID_ARG;
+    /* positions reconstructed relative to this camera's origin */
+    skgl__origin(&cam->view, o);
+    rc = skgl__camera_rel(cam, o);
+    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
     gl = &ctx->gl;
     p = ctx->mask_prog;
     skgl__save(gl, &st);
@@ -3282,8 +3429,8 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     }
     gl->Disable(SKGL__SCISSOR_TEST);
     gl->UseProgram(p);
-    skgl__uniforms(ctx, s, p, 0, 3);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_view"), 1, 0, cam->view.m);
+    skgl__uniforms(ctx, s, p, 0, 3, o);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_view"), 1, 0, rc.view.m);
     skgl__mask_draw(ctx, p, &inv, normal_tex);
     s->stats.mask_ms = skgl__query_end(ctx);
     skgl__restore(gl, &st);
@@ -4398,7 +4545,7 @@ static void skgl__soft_begin(skgl_context *ctx) { skgl__query_begin(ctx); }
 static float skgl__soft_end(skgl_context *ctx) { return skgl__query_end(ctx); }
 
 /* colour targets of the soft object's framebuffer (0 ends the list) */
-static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
+static void skgl__soft_attach(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
                               skgl__uint depth)
 {
     static const skgl__enum bufs[4] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1,
@@ -4410,11 +4557,18 @@ static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint 
         gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, bufs[i], SKGL__TEXTURE_2D, i < n ? tex[i] : 0, i < n ? level : 0);
     gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
     gl->DrawBuffers(n, bufs);
-    return gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
 }
+static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
+                              skgl__uint depth)
+{
+    skgl__soft_attach(ctx, s, tex, n, level, depth);
+    return ctx->gl.CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+}
+/* everything detached, no status check: the check of a framebuffer with no
+   attachments is a GL_KHR_debug message on Mesa (MEDIUM, "FBO incomplete") */
 static void skgl__soft_detach(skgl_context *ctx, skgl_soft *s)
 {
-    skgl__soft_targets(ctx, s, NULL, 0, 0, 0);
+    skgl__soft_attach(ctx, s, NULL, 0, 0, 0);
     ctx->gl.DrawBuffer(SKGL__NONE);
 }
 

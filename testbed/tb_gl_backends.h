@@ -22,8 +22,9 @@ void tb_gl_osmesa_destroy(tb_gl_backend_handle *h);
 int tb_gl_osmesa_make_current(tb_gl_backend_handle *h);
 void *tb_gl_osmesa_getproc(const char *name);
 
-/* hardware_only: skip Mesa's software device and the surfaceless platform */
-int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, char *err, size_t errlen);
+/* hardware_only: skip Mesa's software device and the surfaceless platform;
+   debug: ask for a debug context (EGL_CONTEXT_OPENGL_DEBUG) */
+int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int debug, char *err, size_t errlen);
 void tb_gl_egl_destroy(tb_gl_backend_handle *h);
 int tb_gl_egl_make_current(tb_gl_backend_handle *h);
 void *tb_gl_egl_getproc(const char *name);

@@ -17,7 +17,7 @@ struct tb_gl_context {
     tb_gl_backend_handle h;
     char renderer[256];
     char version[256];
-    int major, minor, core;
+    int major, minor, core, debug;
 };
 
 typedef const unsigned char *(TB_APIENTRY *tb_pfn_get_string_)(unsigned name);
@@ -45,6 +45,9 @@ static void tb_query_strings_(tb_gl_context *c) {
         get_integerv(0x821C /* GL_MINOR_VERSION */, &c->minor);
         get_integerv(0x9126 /* GL_CONTEXT_PROFILE_MASK */, &mask);
         c->core = (mask & 1 /* GL_CONTEXT_CORE_PROFILE_BIT */) ? 1 : 0;
+        mask = 0;
+        get_integerv(0x821E /* GL_CONTEXT_FLAGS */, &mask);
+        c->debug = (mask & 2 /* GL_CONTEXT_FLAG_DEBUG_BIT */) ? 1 : 0;
     }
 }
 
@@ -56,6 +59,10 @@ static void tb_append_(char *err, size_t errlen, const char *what, const char *m
 }
 
 tb_gl_context *tb_gl_context_create(tb_gl_backend want, char *err, size_t errlen) {
+    return tb_gl_context_create_flags(want, 0, err, errlen);
+}
+
+tb_gl_context *tb_gl_context_create_flags(tb_gl_backend want, int flags, char *err, size_t errlen) {
     char msg[256];
     tb_gl_context *c = (tb_gl_context *)calloc(1, sizeof *c);
     int try_egl_hw = 0, try_egl_any = 0, try_osmesa = 0;
@@ -80,7 +87,7 @@ tb_gl_context *tb_gl_context_create(tb_gl_backend want, char *err, size_t errlen
 
     msg[0] = 0;
     if (try_egl_hw || try_egl_any) {
-        if (tb_gl_egl_create(&c->h, try_egl_hw, msg, sizeof msg) == 0) {
+        if (tb_gl_egl_create(&c->h, try_egl_hw, (flags & TB_GL_CONTEXT_DEBUG) != 0, msg, sizeof msg) == 0) {
             c->backend = TB_GL_EGL;
             tb_query_strings_(c);
             return c;
@@ -123,6 +130,8 @@ const char *tb_gl_context_backend_name(const tb_gl_context *c) {
 
 const char *tb_gl_context_renderer(const tb_gl_context *c) { return c ? c->renderer : ""; }
 const char *tb_gl_context_version(const tb_gl_context *c) { return c ? c->version : ""; }
+
+int tb_gl_context_debug(const tb_gl_context *c) { return c ? c->debug : 0; }
 
 void tb_gl_context_gl_version(const tb_gl_context *c, int *major, int *minor, int *core) {
     if (major) *major = c ? c->major : 0;

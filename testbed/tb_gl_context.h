@@ -41,6 +41,12 @@ typedef struct tb_gl_context tb_gl_context;
 
 /* NULL on failure, with a reason in err (may be NULL) */
 tb_gl_context *tb_gl_context_create(tb_gl_backend want, char *err, size_t errlen);
+/* flags for tb_gl_context_create_flags */
+#define TB_GL_CONTEXT_DEBUG 1   /* a debug context (EGL: EGL_CONTEXT_OPENGL_DEBUG). OSMesa has no
+                                   attribute for one: its context is made as usual, and
+                                   GL_KHR_debug output still works there once GL_DEBUG_OUTPUT is
+                                   enabled; tb_gl_context_debug() tells which one you got */
+tb_gl_context *tb_gl_context_create_flags(tb_gl_backend want, int flags, char *err, size_t errlen);
 void tb_gl_context_destroy(tb_gl_context *ctx);          /* NULL is fine */
 int tb_gl_context_make_current(tb_gl_context *ctx);      /* 0 ok, -1 failure */
 
@@ -52,6 +58,8 @@ const char *tb_gl_context_renderer(const tb_gl_context *ctx);
 const char *tb_gl_context_version(const tb_gl_context *ctx);
 /* GL_MAJOR_VERSION, GL_MINOR_VERSION and whether the context is core profile */
 void tb_gl_context_gl_version(const tb_gl_context *ctx, int *major, int *minor, int *core);
+/* 1 when GL_CONTEXT_FLAGS has GL_CONTEXT_FLAG_DEBUG_BIT (a debug context) */
+int tb_gl_context_debug(const tb_gl_context *ctx);
 
 #ifdef __cplusplus
 }

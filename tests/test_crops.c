@@ -1104,5 +1104,104 @@ static void test_stable_crop(void) {
     }
 }
 
+/* sk_stable_crop_origin: coordinates relative to a world origin (large
+   worlds). The texel grid must be the one sk_stable_crop gives for the same
+   points in world coordinates, whatever the origin, so moving the origin
+   (a camera crossing into another cell) never shifts the grid; and with
+   the origin at 1e5 sub-texel moves of the sphere give whole-texel shifts
+   only, as at the world origin. */
+static double texel_shift_frac_rel(const sk_mat4 *P1, const double o1[3], const sk_mat4 *P2, const double o2[3],
+                                   const sk_mat4 *L, const dv3 *world, int n, int res) {
+    double worst = 0;
+    int i;
+    for (i = 0; i < n; i++) {
+        double u1, v1, u2, v2, f;
+        texel_uv(P1, L, dsub(world[i], dv(o1[0], o1[1], o1[2])), res, &u1, &v1);
+        texel_uv(P2, L, dsub(world[i], dv(o2[0], o2[1], o2[2])), res, &u2, &v2);
+        f = frac_dist(u2 - u1); if (f > worst) worst = f;
+        f = frac_dist(v2 - v1); if (f > worst) worst = f;
+    }
+    return worst;
+}
+
+static void test_stable_crop_origin(void) {
+    const int res = 1024;
+    sk_mat4 L = sk_light_view_directional(v3(0.3f, -1.0f, 0.2f)), P, P2;
+    dv3 xa = dv(L.m[0], L.m[4], L.m[8]), ya = dv(L.m[1], L.m[5], L.m[9]);
+    /* origins: multiples of 256 (exact floats) around a world point 1e5 out */
+    static const double origins[3][3] = {{60160.0, 47872.0, -64000.0}, {60416.0, 47872.0, -64000.0},
+                                         {60160.0, 48128.0, -63744.0}};
+    const dv3 centre = dv(60230.37, 47913.11, -63871.55);
+    dv3 world[24];
+    double texel, w;
+    int i, j;
+    sk_sphere s0 = sphere(0, 0, 0, 12.5f);
+    texel = 2.0 * s0.r / (res - 1);
+    for (i = 0; i < 24; i++) world[i] = dadd(centre, dv(rnd(-8, 8), rnd(-8, 8), rnd(-8, 8)));
+
+    /* NULL origin: exactly sk_stable_crop */
+    {
+        sk_sphere s = sphere(3.2f, 1.1f, -4.7f, 12.5f);
+        SK_CHECK(sk_stable_crop(s, L, res, NULL, &P) == SK_OK);
+        SK_CHECK(sk_stable_crop_origin(s, L, res, NULL, NULL, &P2) == SK_OK);
+        SK_CHECK(memcmp(&P, &P2, sizeof P) == 0);
+    }
+    /* the same world sphere relative to three origins: one grid */
+    {
+        sk_mat4 Ps[3];
+        for (j = 0; j < 3; j++) {
+            sk_sphere s = s0;
+            s.c = tof(dsub(centre, dv(origins[j][0], origins[j][1], origins[j][2])));
+            SK_CHECK(sk_stable_crop_origin(s, L, res, NULL, origins[j], &Ps[j]) == SK_OK);
+            SK_CHECK(all_finite_mat(&Ps[j]));
+            SK_CHECK(sphere_inside(&Ps[j], &L, s, 1e-5));
+        }
+        for (j = 1; j < 3; j++) {
+            w = texel_shift_frac_rel(&Ps[0], origins[0], &Ps[j], origins[j], &L, world, 24, res);
+            SK_CHECK_MSG(w <= 1e-3, "origin %d: fractional texel shift %g against origin 0", j, w);
+        }
+    }
+    /* sub-texel moves of the sphere at 1e5, origin fixed: whole-texel shifts */
+    {
+        sk_sphere s = s0;
+        s.c = tof(dsub(centre, dv(origins[0][0], origins[0][1], origins[0][2])));
+        SK_CHECK(sk_stable_crop_origin(s, L, res, NULL, origins[0], &P) == SK_OK);
+        for (j = 1; j <= 10; j++) {
+            sk_sphere s2 = s;
+            s2.c = tof(dadd(tod(s.c), dadd(dmul(xa, 0.37 * j * texel), dmul(ya, -0.23 * j * texel))));
+            SK_CHECK(sk_stable_crop_origin(s2, L, res, NULL, origins[0], &P2) == SK_OK);
+            w = texel_shift_frac_rel(&P, origins[0], &P2, origins[0], &L, world, 24, res);
+            SK_CHECK_MSG(w <= 1e-3, "step %d at 1e5: fractional texel shift %g", j, w);
+            SK_CHECK(sphere_inside(&P2, &L, s2, 1e-5));
+        }
+    }
+    /* near the world origin, where world floats are still exact enough: the
+       grid of sk_stable_crop on world coordinates */
+    {
+        static const double o[3] = {512.0, 0.0, -256.0};
+        sk_sphere sw = sphere(530.25f, 3.5f, -241.75f, 12.5f), sr = sw;
+        dv3 near_pts[24];
+        for (i = 0; i < 24; i++) near_pts[i] = dadd(tod(sw.c), dv(rnd(-8, 8), rnd(-8, 8), rnd(-8, 8)));
+        sr.c = tof(dsub(tod(sw.c), dv(o[0], o[1], o[2])));
+        SK_CHECK(sk_stable_crop(sw, L, res, NULL, &P) == SK_OK);
+        SK_CHECK(sk_stable_crop_origin(sr, L, res, NULL, o, &P2) == SK_OK);
+        {
+            static const double zero[3] = {0, 0, 0};
+            w = texel_shift_frac_rel(&P, zero, &P2, o, &L, near_pts, 24, res);
+        }
+        SK_CHECK_MSG(w <= 2e-3, "world-anchored grid: fractional texel shift %g against sk_stable_crop", w);
+    }
+    /* bad origin */
+    {
+        const double bad[3] = {0.0, fnan(), 0.0}, inf3[3] = {finf(), 0.0, 0.0};
+        fill_sentinel(&P, sizeof P);
+        SK_CHECK(sk_stable_crop_origin(s0, L, res, NULL, bad, &P) == SK_ERR_INVALID_ARG);
+        SK_CHECK(sk_stable_crop_origin(s0, L, res, NULL, inf3, &P) == SK_ERR_INVALID_ARG);
+        SK_CHECK(sk_stable_crop_origin(s0, L, 1, NULL, origins[0], &P) == SK_ERR_INVALID_ARG);
+        SK_CHECK(is_sentinel(&P, sizeof P));
+    }
+}
+
 SK_TEST_MAIN(test_aliasing_error, test_rmsm_lod, test_crop_matrix, test_pssm_splits, test_frustum_slice,
-             test_frustum_bounding_sphere, test_light_view_directional, test_fit_ortho, test_stable_crop)
+             test_frustum_bounding_sphere, test_light_view_directional, test_fit_ortho, test_stable_crop,
+             test_stable_crop_origin)

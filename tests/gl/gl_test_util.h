@@ -94,9 +94,17 @@ static inline void gt_env_free(gt_env *e) {
     memset(e, 0, sizeof *e);
 }
 
+/* gt_env_init on a context of the given backend and tb_gl_context_create_flags
+   flags (TB_GL_CONTEXT_DEBUG) */
+static inline int gt_env_init_context(gt_env *e, tb_scene *scene, int w, int h, tb_gl_backend backend, int flags);
+
 /* Takes ownership of *scene (left empty). OSMesa forced: what CI runs.
    0 ok; -1 with the reason printed (and counted as a failed check). */
 static inline int gt_env_init(gt_env *e, tb_scene *scene, int w, int h) {
+    return gt_env_init_context(e, scene, w, h, TB_GL_OSMESA, 0);
+}
+
+static inline int gt_env_init_context(gt_env *e, tb_scene *scene, int w, int h, tb_gl_backend backend, int flags) {
     char err[1024] = "";
     skgl_desc d;
     sk_result r;
@@ -110,8 +118,8 @@ static inline int gt_env_init(gt_env *e, tb_scene *scene, int w, int h) {
     e->normals = (float *)malloc(sizeof(float) * 3 * e->n);
     e->rgba = (float *)malloc(sizeof(float) * 4 * e->n);
     if (!e->depth || !e->normals || !e->rgba) { SK_CHECK_MSG(0, "out of memory"); return -1; }
-    e->ctx = tb_gl_context_create(TB_GL_OSMESA, err, sizeof err);
-    if (!e->ctx) { SK_CHECK_MSG(0, "OSMesa context: %s", err); return -1; }
+    e->ctx = tb_gl_context_create_flags(backend, flags, err, sizeof err);
+    if (!e->ctx) { SK_CHECK_MSG(0, "GL context: %s", err); return -1; }
     if (tb_gl_funcs_load(&e->gl, tb_gl_context_getproc(e->ctx)) != 0 ||
         tb_gl_fbo_create(&e->gl, &e->gbuf, w, h, TB_GL_COLOR_RGBA16F) != 0 ||
         tb_gl_fbo_create(&e->gl, &e->mask, w, h, TB_GL_COLOR_R16F) != 0 ||
