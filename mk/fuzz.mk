@@ -21,6 +21,11 @@ FUZZ_CC           ?= clang
 FUZZ_SECONDS      ?= 60
 FUZZ_TEST_SECONDS ?= 60
 FUZZ_TIMEOUT      ?= 10
+# make test fuzzes from a fixed seed and stops at this many runs (or its
+# time share): the same inputs on every machine of this speed or faster, so
+# a CI run fails on a change, not on the luck of the draw; `make fuzz` is
+# the open-ended search
+FUZZ_TEST_RUNS    ?= 20000
 FUZZ_ARGS         ?=
 FUZZ_NAMES   := $(sort $(patsubst tests/fuzz/fuzz_%.c,%,$(wildcard tests/fuzz/fuzz_*.c)))
 FUZZ_TARGETS ?= $(FUZZ_NAMES)
@@ -45,8 +50,8 @@ $(addprefix $(FUZZ_BIN)/,$(FUZZ_NAMES)): $(FUZZ_BIN)/%: tests/fuzz/fuzz_%.c $(FU
 FUZZ_WRAPPERS := $(addprefix $(BUILD)/fuzz/,$(FUZZ_NAMES))
 $(FUZZ_WRAPPERS): $(BUILD)/fuzz/%: $(FUZZ_BIN)/% tests/fuzz/run_target.sh mk/fuzz.mk
 	@mkdir -p $(@D)
-	@printf '#!/usr/bin/env bash\n# written by mk/fuzz.mk: replay the corpus of %s, then fuzz it for %s s\nexec bash tests/fuzz/run_target.sh --bin %s --seconds %s --timeout %s %s\n' \
-	    '$*' '$(FUZZ_EACH)' '$(FUZZ_BIN)/$*' '$(FUZZ_EACH)' '$(FUZZ_TIMEOUT)' '$*' > $@
+	@printf '#!/usr/bin/env bash\n# written by mk/fuzz.mk: replay the corpus of %s, then fuzz it for %s s (seed 1, at most %s runs)\nexec bash tests/fuzz/run_target.sh --bin %s --seconds %s --timeout %s %s -seed=1 -runs=%s\n' \
+	    '$*' '$(FUZZ_EACH)' '$(FUZZ_TEST_RUNS)' '$(FUZZ_BIN)/$*' '$(FUZZ_EACH)' '$(FUZZ_TIMEOUT)' '$*' '$(FUZZ_TEST_RUNS)' > $@
 	@chmod +x $@
 
 test: $(FUZZ_WRAPPERS)

@@ -241,6 +241,27 @@ static inline int fz_frustum_moderate(const sk_frustum *f, float lim)
     for (i = 0; i < 6; i++) if (!fz_moderate(f->planes[i].d, lim)) return 0;
     return 1;
 }
+/* the corners span a solid: along every axis their extent is at least
+   rel times the largest. A matrix close to singular gives corners that
+   collapse onto a plane or a line while its rows still give six planes;
+   those planes and corners need not agree, so the geometric checks of a
+   clip against its planes only hold for a solid frustum. */
+static inline int fz_frustum_solid(const sk_frustum *f, double rel)
+{
+    double lo[3], hi[3], e[3], emax;
+    int i, k;
+    for (k = 0; k < 3; k++) lo[k] = hi[k] = (&f->corners[0].x)[k];
+    for (i = 1; i < 8; i++)
+        for (k = 0; k < 3; k++) {
+            double v = (&f->corners[i].x)[k];
+            if (v < lo[k]) lo[k] = v;
+            if (v > hi[k]) hi[k] = v;
+        }
+    for (k = 0; k < 3; k++) e[k] = hi[k] - lo[k];
+    emax = e[0] > e[1] ? e[0] : e[1];
+    if (e[2] > emax) emax = e[2];
+    return emax > 0.0 && e[0] >= rel * emax && e[1] >= rel * emax && e[2] >= rel * emax;
+}
 /* signed distance of p to plane k, in double */
 static inline double fz_plane_dist(const sk_plane *pl, sk_vec3 p)
 {

@@ -152,6 +152,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             FZ_CHECK(fz_guard_ok(out, (size_t)n * sizeof(sk_vec3)), "written past %d points", n);
             for (i = 0; i < n; i++) FZ_CHECK(fz_v3_finite(out[i]), "point %d (%g %g %g)", i, out[i].x, out[i].y, out[i].z);
             if ((fmode == FZ_F_MATRIX || fmode == FZ_F_AABB) && fz_frustum_moderate(&f, 1e5f) &&
+                fz_frustum_solid(&f, 1e-3) &&
                 fz_v3_moderate(b.min, 1e5f) && fz_v3_moderate(b.max, 1e5f)) {
                 double s = fz_frustum_scale(&f), sb = fz_maxabs3(b.min) > fz_maxabs3(b.max) ? fz_maxabs3(b.min)
                                                                                            : fz_maxabs3(b.max);
