@@ -80,6 +80,8 @@
 #ifndef SHADOWKIT_H
 #define SHADOWKIT_H
 
+/* the release (shadowkit_gl.h checks that it is its own; CMakeLists.txt and
+   shadowkit.pc take their version from these three lines) */
 #define SHADOWKIT_VERSION_MAJOR 0
 #define SHADOWKIT_VERSION_MINOR 1
 #define SHADOWKIT_VERSION_PATCH 0

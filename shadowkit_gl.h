@@ -131,8 +131,8 @@
      there, so a scene 1e5 from the world origin shadows as one at it, and
      stable crops keep a texel grid fixed in world space. Everything you
      pass and get stays in world space. A forward shader that works
-     camera-relative uses skgl_shadow_bind_origin. Point lights work in
-     world space.
+     camera-relative uses skgl_shadow_bind_origin. Point and area lights
+     work in world space.
 
    TIMING
      With desc.timing set, each pass is wrapped in a GL_TIME_ELAPSED query
@@ -145,7 +145,17 @@
 #ifndef SHADOWKIT_GL_H
 #define SHADOWKIT_GL_H
 
+/* the release of this header; shadowkit.h must be the same one */
+#define SHADOWKIT_GL_VERSION_MAJOR 0
+#define SHADOWKIT_GL_VERSION_MINOR 1
+#define SHADOWKIT_GL_VERSION_PATCH 0
+
 #include "shadowkit.h"
+
+#if !defined(SHADOWKIT_VERSION_MAJOR) || SHADOWKIT_VERSION_MAJOR != SHADOWKIT_GL_VERSION_MAJOR || \
+    SHADOWKIT_VERSION_MINOR != SHADOWKIT_GL_VERSION_MINOR || SHADOWKIT_VERSION_PATCH != SHADOWKIT_GL_VERSION_PATCH
+#error "shadowkit_gl.h and the shadowkit.h it includes are of different releases: use the pair shipped together"
+#endif
 
 #ifndef SKGLDEF
 #define SKGLDEF SKDEF
@@ -562,6 +572,10 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 #define SHADOWKIT_GL_IMPLEMENTATION_INCLUDED
 #ifdef SK__STATIC_WITHOUT_IMPLEMENTATION
 #error "SHADOWKIT_STATIC: define SHADOWKIT_IMPLEMENTATION with SHADOWKIT_GL_IMPLEMENTATION before this file's first #include of shadowkit.h"
+#endif
+/* the GL implementation uses shadowkit.h's internal helpers: both in one file */
+#ifndef SHADOWKIT_IMPLEMENTATION_INCLUDED
+#error "SHADOWKIT_GL_IMPLEMENTATION needs SHADOWKIT_IMPLEMENTATION defined in the same file (before the #include)"
 #endif
 
 #include <stddef.h>

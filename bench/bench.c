@@ -38,7 +38,7 @@
                                 Pareto front (configurations no other beats
                                 in both time and error) drawn as a staircase
                                 through circled points
-     bench-data/sweep.txt       repeat count, sweep, views, runs, device
+     bench-data/sweep.txt       repeat count, sweep, views, runs, device, timing
      bench/<scene>-<view>-*.png with --images: a shaded picture of the
                                 reference and the error image of the first
                                 configuration (tb_image_write_error colours)
@@ -71,7 +71,13 @@
    of one. The last pass also runs the mask pass once per view (its time is
    mask_ms in total_ms; one sample) and scores the mask. On llvmpipe
    (OSMesa, CPU) the times are comparable only within one run of the bench
-   on one machine; on a GPU (SK_GL=egl) they are absolute GPU times.
+   on one machine; on a GPU (SK_GL=egl) they are absolute GPU times. The
+   GL_RENDERER string decides which (software_renderer(): "llvmpipe" or
+   "softpipe" in it means relative), and every output says so: the notes
+   on stderr at the start and the end, the "timing" line of
+   bench-data/sweep.txt, the first line of bench-walk.txt and
+   bench-soft.txt, the time axis of each chart; bench.csv's device column
+   holds the renderer string of every row.
 
    Usage (from the repository root; `make bench`, `make bench-demo`):
      build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
@@ -120,6 +126,19 @@
     "method,params,scene,view,width,height,error_kind,error,texels,passes,shadow_ms,analysis_ms,total_ms,device"
 
 /* ------------------------------------------------------------------ utils */
+/* 1 when the GL renderer rasterises on the CPU (Mesa's llvmpipe or
+   softpipe): its timer-query times depend on the machine's cores and load,
+   so they compare configurations within one run only. Any other renderer
+   (a GPU, Mesa's hardware drivers included) gives absolute GPU times. */
+static int software_renderer(const char *renderer) {
+    return renderer && (strstr(renderer, "llvmpipe") != NULL || strstr(renderer, "softpipe") != NULL);
+}
+/* how every output of this run labels its times */
+static const char *timing_label(const char *renderer) {
+    return software_renderer(renderer) ? "relative (CPU rasteriser: compare within this run only, not absolute ms)"
+                                       : "absolute (GPU ms, GL timer queries)";
+}
+
 static double now_s(void) {
     struct timespec t;
     clock_gettime(CLOCK_MONOTONIC, &t);
@@ -791,6 +810,9 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
     gp_string(g, d->scenes[si]);
     fprintf(g, "\ndevice = ");
     gp_string(g, d->device);
+    fprintf(g, "\ntiming = ");
+    gp_string(g, software_renderer(d->device) ? "relative: CPU rasteriser, compare within this chart only"
+                                              : "absolute GPU ms");
     fprintf(g, "\ndatabase = ");
     gp_string(g, base);
     fprintf(g, "\noutfile = ");
@@ -1304,9 +1326,8 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
     if (txt)
         fprintf(txt, "# area-light soft shadows, %dx%d, error = mean absolute visibility error against %d "
                      "stratified light samples per pixel; total = every pass but the G-buffer (median of %d)\n"
-                     "# device %s%s\n# %-16s %-8s %-6s %-10s %9s %9s %9s %9s %6s %6s\n", BENCH_W, BENCH_H,
-                SOFT_STRATA * SOFT_STRATA, reps, B->renderer,
-                strstr(B->renderer, "llvmpipe") ? " (CPU rendering: times comparable only within this run)" : "",
+                     "# device %s, times %s\n# %-16s %-8s %-6s %-10s %9s %9s %9s %9s %6s %6s\n", BENCH_W, BENCH_H,
+                SOFT_STRATA * SOFT_STRATA, reps, B->renderer, timing_label(B->renderer),
                 "scene", "view", "light", "method", "mae", "total_ms", "shadow_ms", "texels", "tiles", "lit");
     for (sc_i = 0; sc_i < 3; sc_i++) {
         bench_scene_def def;
@@ -1674,10 +1695,11 @@ int main(int argc, char **argv) {
     B.renderer = tb_gl_context_renderer(B.ctx);
     fprintf(stderr, "bench: GL %s on %s (%s)\n", tb_gl_context_version(B.ctx), B.renderer,
             tb_gl_context_backend_name(B.ctx));
-    if (strstr(B.renderer, "llvmpipe") || strstr(B.renderer, "softpipe") || strstr(B.renderer, "Mesa")) {
+    if (software_renderer(B.renderer))
         fprintf(stderr, "bench: NOTE: %s renders on the CPU: its times are comparable only within this run "
                         "(same machine, same load); compare ratios, not absolute ms\n", B.renderer);
-    }
+    else
+        fprintf(stderr, "bench: times are absolute GPU milliseconds on %s (GL timer queries)\n", B.renderer);
     {
         skgl_desc sd;
         sk_result r;
@@ -1720,6 +1742,7 @@ int main(int argc, char **argv) {
     if (walk) fprintf(walk, "%s\n", BENCH_CSV_HEADER);
     snprintf(path, sizeof path, "%.900s/bench-walk.txt", o.out_dir);
     walk_txt = fopen(path, "w");
+    if (walk_txt) fprintf(walk_txt, "# device %s, times %s\n", B.renderer, timing_label(B.renderer));
     if (!csv) { fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno)); status = 1; goto done; }
     fprintf(csv, "%s\n", BENCH_CSV_HEADER);
     fflush(csv);
@@ -1909,14 +1932,13 @@ int main(int argc, char **argv) {
         mkdir_p(path);
         snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
         if ((m = fopen(path, "w"))) {
-            fprintf(m, "repeat %d\nsweep %s\nviews %d\nruns %d\ndevice %s\n", o.repeat, o.quick ? "quick" : "full",
-                    o.views, pg.done, B.renderer);
+            fprintf(m, "repeat %d\nsweep %s\nviews %d\nruns %d\ndevice %s\ntiming %s\n", o.repeat,
+                    o.quick ? "quick" : "full", o.views, pg.done, B.renderer, timing_label(B.renderer));
             fclose(m);
         }
     }
     if (plot_all(&o, o.repeat) != 0) status = 1;
-    if (B.renderer && strstr(B.renderer, "llvmpipe"))
-        fprintf(stderr, "bench: device %s: times are comparable only within this run\n", B.renderer);
+    fprintf(stderr, "bench: device %s: times %s\n", B.renderer, timing_label(B.renderer));
 
 done:
     if (csv) fclose(csv);

@@ -4,7 +4,8 @@
 # configuration: means over the views) and <scene>.front.dat (the Pareto
 # front: shadow_ms, error, label), then runs:
 #     gnuplot OUT/bench-data/<scene>.vars.gp bench/pareto.gp
-# Variables: scene, device, database (path prefix of the .dat files),
+# Variables: scene, device, timing (how to read the times: relative on a
+# CPU rasteriser, absolute on a GPU), database (path prefix of the .dat files),
 # outfile, methods (space-separated), nviews, repeat, logy, width, height,
 # tmin, tmax, emin, emax, soft (1: area-light rows, mean absolute
 # visibility error against the whole frame's shadow time).
@@ -15,12 +16,13 @@ set encoding utf8
 
 set title sprintf("shadowkit bench, scene %s: hard-shadow error against shadow-map time\n%dx%d, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
                   scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
-set xlabel "shadow time per frame: depth passes + analysis (ms, GL timer queries, log scale)"
+if (!exists("timing")) { timing = "GL timer queries" }
+set xlabel sprintf("shadow time per frame: depth passes + analysis (ms, %s; log scale)", timing)
 set ylabel "hard-shadow error (% of covered pixels misclassified)"
 if (exists("soft") && soft) {
     set title sprintf("shadowkit bench, scene %s: soft-shadow error against shadow time\n%dx%d, three light sizes, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
                       scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
-    set xlabel "shadow time per frame: every pass but the G-buffer (ms, GL timer queries, log scale)"
+    set xlabel sprintf("shadow time per frame: every pass but the G-buffer (ms, %s; log scale)", timing)
     set ylabel "mean absolute visibility error against the area-light reference"
 }
 set logscale x

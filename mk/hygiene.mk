@@ -1,5 +1,6 @@
-# mk/hygiene.mk - GL hygiene: the `hygiene` flavour of tests/run_tests.sh
-# (part of `make test`; also `make test-hygiene` alone).
+# mk/hygiene.mk - GL hygiene and packaging: the `hygiene` flavour of
+# tests/run_tests.sh (part of `make test`; also `make test-hygiene` alone,
+# `make test-packaging` for the packaging test by itself).
 #   build/hygiene/<name>   every GL test (tests/gl/test_gl_*.c) built again
 #                          with AddressSanitizer + LeakSanitizer + UBSan
 #                          ($(SANITIZE)), so that a heap error or a host-side
@@ -25,8 +26,18 @@ $(HYG_GL_BINS): $(HYG_DIR)/%: tests/gl/%.c $(HYG_OPTIONS) $$(GL_TEST_DEPS) $$(TE
 	$(CC) -std=c99 $(SANITIZE) $(WARN) $(TESTBED_CFLAGS) -Itests $(DEPFLAGS) $< $(HYG_OPTIONS) -o $@ \
 	    $(TESTBED_LIB) $(TESTBED_LIBS)
 
-.PHONY: test-hygiene
-test-hygiene: $(HYG_GL_BINS)
-	@bash tests/run_tests.sh hygiene
+# the packaging test (tests/packaging/run.sh: CMake package, pkg-config file,
+# add_subdirectory), run from here as build/hygiene/test_packaging
+HYG_PACKAGING := $(HYG_DIR)/test_packaging
+$(HYG_PACKAGING): tests/packaging/run.sh | deps-test
+	$(MKDIR)
+	printf '#!/bin/sh\n# built by mk/hygiene.mk\nexec bash tests/packaging/run.sh "$$@"\n' > $@
+	chmod +x $@
 
-test: $(HYG_GL_BINS)
+.PHONY: test-hygiene test-packaging
+test-hygiene: $(HYG_GL_BINS) $(HYG_PACKAGING)
+	@bash tests/run_tests.sh hygiene
+test-packaging: $(HYG_PACKAGING)
+	@bash tests/packaging/run.sh
+
+test: $(HYG_GL_BINS) $(HYG_PACKAGING)

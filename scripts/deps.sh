@@ -13,7 +13,7 @@
 # Debian 12 (bookworm); needs root (or sudo) only when something is missing.
 set -euo pipefail
 
-PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1 clang libclang-rt-14-dev)
+PKGS_TEST=(gcc g++ make libc6-dev libasan8 libubsan1 clang libclang-rt-14-dev cmake)
 PKGS_GL=(pkg-config libosmesa6-dev libegl-dev libembree-dev libassimp-dev libstb-dev)
 PKGS_EXAMPLES=(libglfw3-dev)
 PKGS_DEMO=(gnuplot-nox)
