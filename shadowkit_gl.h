@@ -2101,19 +2101,22 @@ static skgl__uint skgl__shader(skgl_context *ctx, skgl__enum type, const char *a
     return sh;
 }
 
-static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *fs_a, const char *fs_b)
+/* Links n compiled shaders into a program and deletes the shaders. A 0
+   among them (its compile failed) deletes the others and returns 0. */
+static skgl__uint skgl__link(skgl_context *ctx, const skgl__uint *sh, int n)
 {
-    skgl__uint v = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL), f, p;
+    skgl__uint p = 0;
     skgl__int ok = 0;
-    if (!v) return 0;
-    f = skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs_a, fs_b);
-    if (!f) { ctx->gl.DeleteShader(v); return 0; }
-    p = ctx->gl.CreateProgram();
-    ctx->gl.AttachShader(p, v);
-    ctx->gl.AttachShader(p, f);
-    ctx->gl.LinkProgram(p);
-    ctx->gl.DeleteShader(v);
-    ctx->gl.DeleteShader(f);
+    int i, complete = 1;
+    for (i = 0; i < n; i++) complete &= sh[i] != 0;
+    if (complete) {
+        p = ctx->gl.CreateProgram();
+        for (i = 0; i < n; i++) ctx->gl.AttachShader(p, sh[i]);
+        ctx->gl.LinkProgram(p);
+    }
+    for (i = 0; i < n; i++)
+        if (sh[i]) ctx->gl.DeleteShader(sh[i]);
+    if (!complete) return 0;
     ctx->gl.GetProgramiv(p, SKGL__LINK_STATUS, &ok);
     if (!ok) {
         char log[900];
@@ -2125,6 +2128,15 @@ static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *f
     }
     ctx->objects++;
     return p;
+}
+
+/* vertex + fragment (fs_a then fs_b); compiling stops at the first failure */
+static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *fs_a, const char *fs_b)
+{
+    skgl__uint sh[2];
+    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL);
+    sh[1] = sh[0] ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs_a, fs_b) : 0;
+    return skgl__link(ctx, sh, 2);
 }
 
 static skgl__uint skgl__sampler(skgl_context *ctx, int compare)
@@ -4204,37 +4216,14 @@ static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
     return r;
 }
 
+/* vertex + geometry + fragment */
 static skgl__uint skgl__program_gs(skgl_context *ctx, const char *vs, const char *gs, const char *fs)
 {
-    skgl__uint v = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL), g, f, p;
-    skgl__int ok = 0;
-    if (!v) return 0;
-    g = skgl__shader(ctx, SKGL__GEOMETRY_SHADER, gs, NULL);
-    f = g ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs, NULL) : 0;
-    if (!g || !f) {
-        ctx->gl.DeleteShader(v);
-        if (g) ctx->gl.DeleteShader(g);
-        return 0;
-    }
-    p = ctx->gl.CreateProgram();
-    ctx->gl.AttachShader(p, v);
-    ctx->gl.AttachShader(p, g);
-    ctx->gl.AttachShader(p, f);
-    ctx->gl.LinkProgram(p);
-    ctx->gl.DeleteShader(v);
-    ctx->gl.DeleteShader(g);
-    ctx->gl.DeleteShader(f);
-    ctx->gl.GetProgramiv(p, SKGL__LINK_STATUS, &ok);
-    if (!ok) {
-        char log[900];
-        log[0] = 0;
-        ctx->gl.GetProgramInfoLog(p, (skgl__sizei)sizeof log, NULL, log);
-        skgl__set_log(ctx, "program link failed", log);
-        ctx->gl.DeleteProgram(p);
-        return 0;
-    }
-    ctx->objects++;
-    return p;
+    skgl__uint sh[3];
+    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL);
+    sh[1] = sh[0] ? skgl__shader(ctx, SKGL__GEOMETRY_SHADER, gs, NULL) : 0;
+    sh[2] = sh[1] ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs, NULL) : 0;
+    return skgl__link(ctx, sh, 3);
 }
 
 /* a 2D texture with `levels` levels, nearest filtering, clamped */
