@@ -686,6 +686,18 @@ static int sk__aabb_valid(const sk_aabb *b)
     return sk__v3_finite(b->min) && sk__v3_finite(b->max) &&
            b->min.x <= b->max.x && b->min.y <= b->max.y && b->min.z <= b->max.z;
 }
+/* the smallest float >= r, for finite r >= 0 (FLT_MAX and beyond round to
+   infinity): a bound held in float stays a bound, subnormals included */
+static float sk__float_up(double r)
+{
+    float f = (float)r;
+    int e;
+    if ((double)f < r) {
+        SK_FREXP((double)f, &e);
+        f += (float)SK_LDEXP(1.0, f > 0.0f && e - 24 > -149 ? e - 24 : -149);
+    }
+    return f;
+}
 static sk_vec3 sk__v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
 static sk_vec3 sk__add(sk_vec3 a, sk_vec3 b) { return sk__v3(a.x + b.x, a.y + b.y, a.z + b.z); }
 static sk_vec3 sk__sub(sk_vec3 a, sk_vec3 b) { return sk__v3(a.x - b.x, a.y - b.y, a.z - b.z); }
@@ -1322,14 +1334,16 @@ SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f)
     t = l2 > 0.0 ? (b2 - a2 + l2) / (2.0 * l2) : 0.5;
     if (t < 0.0) t = 0.0;
     if (t > 1.0) t = 1.0;
-    for (k = 0; k < 3; k++) c[k] = cn[k] + t * (cf[k] - cn[k]);
+    /* the radius is measured from the centre as stored (float), so that its
+       rounding cannot leave a corner outside, even for subnormal frusta */
+    for (k = 0; k < 3; k++) c[k] = (float)(cn[k] + t * (cf[k] - cn[k]));
     for (i = 0; i < 8; i++) {
         const float *p = &f->corners[i].x;
         double d2 = 0;
         for (k = 0; k < 3; k++) d2 += (p[k] - c[k]) * (p[k] - c[k]);
         if (d2 > r2) r2 = d2;
     }
-    r = SK_SQRT(r2);
+    r = SK_SQRT(r2) * (1.0 + 4e-16);
     if (r > 0.0) {
         double q;
         SK_FREXP(r, &e);
@@ -1337,8 +1351,7 @@ SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f)
         r = SK_CEIL(r / q) * q;
     }
     s.c = sk__v3((float)c[0], (float)c[1], (float)c[2]);
-    s.r = (float)r;
-    if ((double)s.r < r) s.r = (float)(r * (1.0 + 1e-7));
+    s.r = sk__float_up(r);
     if (!sk__v3_finite(s.c) || !sk__finite(s.r)) { s.c = sk__v3(0, 0, 0); s.r = 0.0f; }   /* beyond FLT_MAX */
     return s;
 }

@@ -580,9 +580,47 @@ static void test_ortho_crops_overflow(void)
     SK_CHECK(all_bytes(&out, sizeof out, 0x5a));
 }
 
+/* fuzz_crops (crash-9cb1d413): a flat frustum of subnormal size. The
+   centre was rounded to float after the radius was measured from the exact
+   one, and r * (1 + 1e-7) rounds back to the same subnormal: a corner lay
+   0.2% outside. Now every corner is inside the sphere as returned, with no
+   tolerance, here and on frusta of subnormal to normal size around it. */
+static void test_sphere_subnormal(void)
+{
+    const sk_vec3 c[8] = {v3(0, 0, 0), v3(2.67648007e-43f, 0, 0), v3(0, 8.96831017e-44f, 0),
+                          v3(2.67648007e-43f, 8.96831017e-44f, 0), v3(0, 0, 0), v3(2.67648007e-43f, 0, 0),
+                          v3(0, 8.96831017e-44f, 0), v3(2.67648007e-43f, 8.96831017e-44f, 0)};
+    sk_vec3 d[8];
+    sk_frustum f;
+    unsigned seed = 12345u;
+    int i, k, t, outside = 0, solid = 0;
+    for (t = 0; t < 2000; t++) {
+        float unit = t == 0 ? 1.0f : ldexpf(1.0f, -149 + (t % 160));
+        for (i = 0; i < 8; i++) {
+            float *p = &d[i].x;
+            for (k = 0; k < 3; k++) {
+                seed = seed * 1664525u + 1013904223u;
+                p[k] = t == 0 ? (&c[i].x)[k] : (float)(seed >> 24) * unit;
+            }
+        }
+        if (sk_frustum_from_corners(d, &f) != SK_OK) continue;   /* coincident corners */
+        solid++;
+        {
+            sk_sphere s = sk_frustum_bounding_sphere(&f);
+            for (i = 0; i < 8; i++) {
+                double dx = (double)f.corners[i].x - s.c.x, dy = (double)f.corners[i].y - s.c.y,
+                       dz = (double)f.corners[i].z - s.c.z;
+                if (sqrt(dx * dx + dy * dy + dz * dz) > s.r) outside++;
+            }
+        }
+    }
+    SK_CHECK_MSG(solid > 1900, "%d of 2000 frusta accepted", solid);
+    SK_CHECK_MSG(outside == 0, "%d corners outside their sphere", outside);
+}
+
 SK_TEST_MAIN(test_denormal_directions, test_psm_denormal_pp_light, test_clip_huge_box, test_partition_unrepresentable,
              test_crops_unrepresentable, test_region_flat_body, test_vsdct_huge_atlas, test_frustum_through_infinity,
              test_frustum_plane_overflow, test_caster_tiny, test_scissor_underflow, test_psm_flat_body,
              test_lispsm_sin_gamma, test_crop_matrix_thin_axis, test_spheres_overflow, test_pvsm_huge_footprint,
              test_smooth_box_thin, test_resolution_texel_overflow, test_psm_flat_body_ortho, test_lispsm_flat_bodies,
-             test_look_at_overflow, test_ortho_crops_overflow)
+             test_look_at_overflow, test_ortho_crops_overflow, test_sphere_subnormal)

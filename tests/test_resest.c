@@ -827,6 +827,14 @@ static void test_bad_input(void) {
 #undef BADR
     r = sk_estimate_resolution(d, W, H, inv, lv, 1024, NULL);
     SK_CHECK_MSG(r == SK_ERR_INVALID_ARG, "NULL out -> %d", (int)r);
+    {   /* the limits themselves: a row and a column of 65536 pixels */
+        static float line[65536];
+        for (k = 0; k < 65536; k++) line[k] = 0.5f;
+        r = sk_estimate_resolution(line, 65536, 1, inv, lv, 1024, &e);
+        SK_CHECK_MSG(r == SK_OK && e.samples == 65536, "65536 x 1: %d, %d samples", (int)r, e.samples);
+        r = sk_estimate_resolution(line, 1, 65536, inv, lv, 1024, &e);
+        SK_CHECK_MSG(r == SK_OK && e.samples == 65536, "1 x 65536: %d, %d samples", (int)r, e.samples);
+    }
 }
 
 SK_TEST_MAIN(test_identical_frusta, test_zoom_scalings, test_left_half_light, test_naive_agreement, test_wide_buffers,

@@ -1,6 +1,7 @@
 /* fuzz_estimate_resolution: sk_estimate_resolution(depth, w, h,
    cam_inv_view_proj, light_view_proj, max_res, out).
-   Input: w, h (int 0..40; w*h kept <= 65536), max_res (int 0..8192), a byte
+   Input: w (int 0..72: one strip of 64 columns and part of a second), h
+   (int 0..6), or any int for either (w*h kept <= 4096), max_res (int 0..8192), a byte
    (bit 0: the camera matrix is inverted here first, as a caller does), the
    camera and light matrices (fz_mat4), a depth mode byte (0: one palette
    entry per pixel, 1: a plane a + b x + c y, 2: constant) and its data.
@@ -15,7 +16,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     fz_in in = {data, size};
-    int w = fz_int(&in, 0, 40), h = fz_int(&in, 0, 40), max_res = fz_int(&in, 0, 8192);
+    int w = fz_int(&in, 0, 72), h = fz_int(&in, 0, 6), max_res = fz_int(&in, 0, 8192);
     int invert = fz_u8(&in) & 1, mode, valid, i;
     sk_mat4 cam = fz_mat4(&in), light = fz_mat4(&in), inv;
     size_t n;
@@ -23,7 +24,12 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sk_res_estimate e, e2;
     sk_result r;
     valid = w >= 1 && h >= 1 && w <= 65536 && h <= 65536;
-    if (valid && (long)w * h > 65536) h = 65536 / w;        /* valid, but small work */
+    /* valid, but small work: at most 4096 pixels (a wider image gets h = 0,
+       refused; tests/test_resest.c runs the 65536-pixel limits) */
+    if (valid && (long)w * h > 4096) {
+        h = 4096 / w;
+        valid = h >= 1;
+    }
     inv = cam;
     if (invert && !sk_mat4_inverse(cam, &inv)) inv = cam;
     n = valid ? (size_t)w * h : 1;

@@ -91,8 +91,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         int tx, ty;
         for (ty = l.ty0; ty < l.ty1; ty++)
             for (tx = l.tx0; tx < l.tx1; tx++) {
-                double ax0 = x0 > tx ? x0 : tx, ax1 = x1 < tx + 1.0 ? x1 : tx + 1.0;
-                double ay0 = y0 > ty ? y0 : ty, ay1 = y1 < ty + 1.0 ? y1 : ty + 1.0;
+                /* in double: past 2^24 a texel index converted to float is
+                   not the index any more */
+                double ax0 = x0 > (double)tx ? x0 : (double)tx, ax1 = x1 < tx + 1.0 ? x1 : tx + 1.0;
+                double ay0 = y0 > (double)ty ? y0 : (double)ty, ay1 = y1 < ty + 1.0 ? y1 : ty + 1.0;
                 if (ax1 > ax0 && ay1 > ay0 && fz_lit_value(&l, tx, ty)) sum += (ax1 - ax0) * (ay1 - ay0);
             }
         want = sum / area;
