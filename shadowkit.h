@@ -2090,7 +2090,9 @@ SKDEF sk_result sk_lspsm_region_extract(const sk_frustum *view, sk_vec3 view_dir
         if (nn < tiny) nn = tiny;                       /* a body of no width */
         r.n = (float)nn;
         r.L = (float)L;
-        r.theta = (float)SK_ATAN(t);
+        /* rounded up: near pi/2 a float step of theta is 0.1% of tan theta,
+           and a narrower trapezoid would cut off the body's far corners */
+        r.theta = sk__float_up(SK_ATAN(t));
         r.origin.x = (float)(0.5 * (u + w));
         r.origin.y = (float)ymin;
     }

@@ -618,9 +618,46 @@ static void test_sphere_subnormal(void)
     SK_CHECK_MSG(outside == 0, "%d corners outside their sphere", outside);
 }
 
+/* fuzz_lspsm_region (crash-166dc055): a body 3 wide and 0.00024 long gives
+   a trapezoid of theta = atan(12300), 8e-5 short of pi/2, where one float
+   step of theta is 0.07% of tan theta; rounded to nearest, the legs passed
+   inside the body's far corners by 0.0009. Now theta is rounded up and
+   every clipped point is inside the trapezoid. */
+static void test_region_steep_theta(void)
+{
+    const sk_vec3 c[8] = {v3(-1, -0.414213717f, -5.96046519e-08f), v3(1, -0.414213717f, -5.96046519e-08f),
+                          v3(-1, 1, -1.41421366f),                  v3(1, 1, -1.41421366f),
+                          v3(-1, 0.999999881f, 1.41421366f),        v3(1, 0.999999881f, 1.41421366f),
+                          v3(-1, 2.41421366f, 5.96046412e-08f),     v3(1, 2.41421366f, 5.96046412e-08f)};
+    sk_frustum view;
+    sk_lspsm_region reg;
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    sk_aabb rec = box3(-1, -1136.4375f, -15.25f, -1, 2140.4375f, 15.25f);
+    double t, worst = -1e30;
+    int n, i;
+    SK_CHECK(sk_frustum_from_corners(c, &view) == SK_OK);
+    SK_CHECK(sk_lspsm_region_extract(&view, v3(-2, 0, 6.88542013e-41f), rec, NULL, v3(-2, 23038, 2048), &reg) == SK_OK);
+    SK_CHECK_MSG(!reg.fallback && reg.theta > 1.5706f && (double)reg.theta < 0.5 * 3.14159265358979323846,
+                 "theta %.9g fallback %d", reg.theta, reg.fallback);
+    n = sk_clip_frustum_aabb(&view, rec, pts, SK_CLIP_MAX_POINTS);
+    SK_CHECK(n > 0);
+    t = tan((double)reg.theta);
+    for (i = 0; i < n; i++) {
+        const float *m = reg.light_view.m;
+        double x = (double)m[0] * pts[i].x + (double)m[4] * pts[i].y + (double)m[8] * pts[i].z + m[12];
+        double y = (double)m[1] * pts[i].x + (double)m[5] * pts[i].y + (double)m[9] * pts[i].z + m[13];
+        double out = fabs(x - reg.origin.x) - (0.5 * reg.n + (y - reg.origin.y) * t);
+        if (out > worst) worst = out;
+    }
+    /* within float placement of the points (1e-6 of the region's 3 units),
+       not 0.0009 outside */
+    SK_CHECK_MSG(worst <= 3e-6, "a point %.3g outside the trapezoid", worst);
+}
+
 SK_TEST_MAIN(test_denormal_directions, test_psm_denormal_pp_light, test_clip_huge_box, test_partition_unrepresentable,
              test_crops_unrepresentable, test_region_flat_body, test_vsdct_huge_atlas, test_frustum_through_infinity,
              test_frustum_plane_overflow, test_caster_tiny, test_scissor_underflow, test_psm_flat_body,
              test_lispsm_sin_gamma, test_crop_matrix_thin_axis, test_spheres_overflow, test_pvsm_huge_footprint,
              test_smooth_box_thin, test_resolution_texel_overflow, test_psm_flat_body_ortho, test_lispsm_flat_bodies,
-             test_look_at_overflow, test_ortho_crops_overflow, test_sphere_subnormal)
+             test_look_at_overflow, test_ortho_crops_overflow, test_sphere_subnormal,
+             test_region_steep_theta)
