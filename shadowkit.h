@@ -1779,6 +1779,31 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
            w lies in [n, n + depth]: bound their warped z conservatively */
         if (hi[2] > 0.0) { if (hi[2] / n > whi[2]) whi[2] = hi[2] / n; }
         else if (hi[2] / f > whi[2]) whi[2] = hi[2] / f;
+        {
+            /* the light-space coordinates carry a float error of about 1e-7
+               of mag (and the matrix applies the same translations in
+               float); the warp divides it by w >= n: the warped x and z =
+               x / w are off by about 1e-7 of mag (1 + |x / w|) / n, the
+               warped y = a + b / w by 1e-7 of mag |b| / n^2 =
+               mag 2 f / (depth n). A warped side thinner than 1e-4 of its
+               magnitude is widened to that, as sk__ortho_box_fit does for
+               an unwarped box (a body seen end-on from the projection
+               centre is a sliver in x or z however wide it is in light
+               space) */
+            double wm = 0.0, e[3];
+            for (k = 0; k < 3; k += 2) {
+                if (SK_FABS(wlo[k]) > wm) wm = SK_FABS(wlo[k]);
+                if (SK_FABS(whi[k]) > wm) wm = SK_FABS(whi[k]);
+            }
+            e[0] = e[2] = 1e-4 * mag * (1.0 + wm) / n;
+            e[1] = 1e-4 * mag * 2.0 * f / (depth * n);
+            for (k = 0; k < 3; k++)
+                if (whi[k] - wlo[k] < e[k]) {
+                    double grow = 0.5 * (e[k] - (whi[k] - wlo[k]));
+                    wlo[k] -= grow;
+                    whi[k] += grow;
+                }
+        }
         if (!sk__ortho_box_fit(wlo[0], whi[0], wlo[1], whi[1], wlo[2], whi[2], 0.0, &crop)) return SK_ERR_DEGENERATE;
         out->light_view_proj = sk_mat4_mul(sk_mat4_mul(crop, w), lv);
         out->n = (float)n;

@@ -654,10 +654,45 @@ static void test_region_steep_theta(void)
     SK_CHECK_MSG(worst <= 3e-6, "a point %.3g outside the trapezoid", worst);
 }
 
+/* fuzz_lispsm (crash-ade32137): a segment from (0,0,0) to (0.25,0.25,0),
+   256 from the eye, seen almost end-on from the warp's projection centre
+   (n = 0.6): in the warped space it is 5.5e-4 wide in x at x = 0.68, while
+   the light-space coordinates it was warped from carry float errors of
+   1e-5 (magnitude 256), 7e-5 once divided by w = n. The crop was fitted as
+   if the warped points were exact and (0,0,0) landed at x = -1.035.
+   Warped sides are now widened by the magnitude their float error comes
+   from, and every body point is in the map. */
+static void test_lispsm_warped_sliver(void)
+{
+    sk_lispsm_desc d;
+    sk_lispsm_result r;
+    sk_vec3 body[9];
+    int i;
+    body[0] = v3(0.25f, 0.25f, 0);
+    for (i = 1; i < 9; i++) body[i] = v3(0, 0, 0);
+    memset(&d, 0, sizeof d);
+    d.eye = v3(256, 0, 0.25f);
+    d.view_dir = v3(1000, 1.57079637f, 0.25f);
+    d.zn = 0.25f;
+    d.light_dir = v3(0.25f, 2.64992679e+17f, 2.4810418e+17f);
+    d.body = body;
+    d.body_count = 9;
+    SK_CHECK(sk_lispsm_matrices(&d, &r) == SK_OK);
+    SK_CHECK_MSG(r.warped == 1, "warped %d n %g", r.warped, r.n);
+    for (i = 0; i < 2; i++) {
+        sk_vec4 p, q;
+        p.x = body[i].x; p.y = body[i].y; p.z = body[i].z; p.w = 1.0f;
+        q = sk_mat4_transform_vec4(r.light_view_proj, p);
+        SK_CHECK_MSG(q.w > 0.0f && fabsf(q.x / q.w) <= 1.001f && fabsf(q.y / q.w) <= 1.001f &&
+                         fabsf(q.z / q.w) <= 1.001f,
+                     "body %d maps to (%g %g %g; w %g)", i, q.x / q.w, q.y / q.w, q.z / q.w, q.w);
+    }
+}
+
 SK_TEST_MAIN(test_denormal_directions, test_psm_denormal_pp_light, test_clip_huge_box, test_partition_unrepresentable,
              test_crops_unrepresentable, test_region_flat_body, test_vsdct_huge_atlas, test_frustum_through_infinity,
              test_frustum_plane_overflow, test_caster_tiny, test_scissor_underflow, test_psm_flat_body,
              test_lispsm_sin_gamma, test_crop_matrix_thin_axis, test_spheres_overflow, test_pvsm_huge_footprint,
              test_smooth_box_thin, test_resolution_texel_overflow, test_psm_flat_body_ortho, test_lispsm_flat_bodies,
              test_look_at_overflow, test_ortho_crops_overflow, test_sphere_subnormal,
-             test_region_steep_theta)
+             test_region_steep_theta, test_lispsm_warped_sliver)
