@@ -1516,16 +1516,23 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
 {
     sk_mat4 view = sk_mat4_look_at(eye, sk__add(eye, dir), sk__least_aligned_axis(dir));
     double l = 1e300, r = -1e300, b = 1e300, t = -1e300, zn = 1e300, zf = -1e300;
-    double eps = 1e-7 * (1.0 + sk__maxabs3(eye));
+    double eps = 1e-7 * (1.0 + sk__maxabs3(eye)), cond = 1.0;
     int i;
     sk_mat4 p;
     /* depths first (all points, then the casters' corners): a point behind
-       fails the fit early */
+       fails the fit early. `cond` = max (|point| + |eye|) / depth, at least
+       1: how much a tangent coordinate x / depth magnifies the float error
+       of the coordinates it comes from. It is large when the light is close
+       to the body in post-perspective space: a light behind the viewer lies
+       on z = (f+n)/(f-n), about 2n/D beyond a body at eye depth D (and
+       n/D is small when the camera slid back for casters behind it) */
     for (i = 0; i < n; i++) {
-        double depth = -(double)sk__xform_z(&view, pts[i]);
+        double depth = -(double)sk__xform_z(&view, pts[i]), c;
         if (!(depth > eps)) return 0;
         if (depth < zn) zn = depth;
         if (depth > zf) zf = depth;
+        c = ((double)sk__maxabs3(pts[i]) + sk__maxabs3(eye)) / depth;
+        if (c > cond) cond = c;
     }
     for (i = 0; i < 8 * nc; i++) {
         sk_vec3 q = cpts ? cpts[i] : sk__xform_point(pp, sk__aabb_corner(&casters[i / 8], i & 7));
@@ -1543,12 +1550,17 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
         if (y > t) t = y;
     }
     /* a small margin so the fitted points land inside, not on, the
-       frustum; and no side thinner than 1e-4 of its offset from the axis
-       (a flat body): below that the float matrix cancels the points'
-       positions away (its m[8] = (r+l)/(r-l) holds only 24 bits) */
+       frustum; and no side thinner than 1e-4 cond of its offset from the
+       axis (a flat body). The points' float coordinates, and the eye's,
+       carry an error of about 1e-7 of their magnitudes, 1e-7 cond of the
+       offset in tangent space; the float matrices made from them (m[8] =
+       (r+l)/(r-l) holds only 24 bits, and the product with the camera's
+       post-perspective matrix cancels as much) lose about as much again:
+       a point lands about 1e-7 cond |m[8]| off in clip space. The floor
+       keeps |m[8]| below 1e4 / cond, that error near 1e-3 */
     {
         double mx = 1e-4 * (r - l) + 1e-6, my = 1e-4 * (t - b) + 1e-6;
-        double wx = 1e-4 * (SK_FABS(l) + SK_FABS(r)), wy = 1e-4 * (SK_FABS(b) + SK_FABS(t));
+        double wx = 1e-4 * cond * (SK_FABS(l) + SK_FABS(r)), wy = 1e-4 * cond * (SK_FABS(b) + SK_FABS(t));
         if (r - l + 2.0 * mx < wx) mx = 0.5 * (wx - (r - l));
         if (t - b + 2.0 * my < wy) my = 0.5 * (wy - (t - b));
         l -= mx; r += mx; b -= my; t += my;

@@ -689,10 +689,58 @@ static void test_lispsm_warped_sliver(void)
     }
 }
 
+/* fuzz_psm (crash-5231f331): the light behind the viewer, the virtual
+   camera slid back 59 for a caster behind it (near 0.5): the light on
+   z = (f+n)/(f-n) lay 0.017 beyond the body in post-perspective space, so
+   the body's tangent coordinates, x / depth, carried some 120 times the
+   float error of its coordinates. The fit kept a side 0.0147 wide at an
+   offset of 21.6 (the floor was 1e-4 of the offset), and the body point in
+   view landed at y = -1.0185. The floor now grows with that magnification
+   and the point lands inside. */
+static void test_psm_light_near_body(void)
+{
+    static const float cv[16] = {3.62199892e-37f, -0.99999994f, -0.0f, 0, 0.956673861f, 3.46507165e-37f, 0.291161627f, 0,
+                                 -0.291161627f, -1.05458707e-37f, 0.956673861f, 0, -0.0f, -0.0f, -4.4157507e-39f, 1};
+    sk_aabb casters[4];
+    sk_vec3 body[4];
+    sk_psm_desc d;
+    sk_psm_result r;
+    sk_mat4 cvp;
+    int i, in_view = 0;
+    casters[0] = box3(9.18354962e-41f, 0, -4.02677127e-41f, 9.18354962e-41f, 0, 4.60074312e-41f);
+    casters[1] = box3(-144.570312f, -144.570312f, -289.140625f, 144.570312f, 144.570312f, 0);
+    casters[2] = box3(0, 0, 3.53127213e-43f, 0.00384521484f, 0, 5.83155401e-39f);
+    casters[3] = box3(127.5f, 0.50378418f, 59, 127.5f, 0.50378418f, 61);
+    body[0] = v3(2.36472815e-38f, 2.35371507e-38f, -2);
+    body[1] = v3(510, 0.0116577148f, 0);
+    body[2] = v3(0, 0, 0);
+    body[3] = v3(0, 0, 0);
+    memset(&d, 0, sizeof d);
+    memcpy(d.cam_view.m, cv, sizeof cv);
+    d.fovy = 1.0f; d.aspect = 1.5f; d.zn = 0.50378418f; d.zf = 44.0078125f;
+    d.light_dir = v3(0, 0, -1);
+    d.casters = casters; d.caster_count = 4;
+    d.body = body; d.body_count = 4;
+    SK_CHECK(sk_psm_matrices(&d, &r) == SK_OK);
+    SK_CHECK(r.inverted == 1 && r.orthographic == 0 && r.slide > 59.0f);
+    cvp = sk_mat4_mul(sk_mat4_perspective(d.fovy, d.aspect, d.zn, d.zf), d.cam_view);
+    for (i = 0; i < 4; i++) {   /* the body points in the camera's own view */
+        sk_vec4 p, c, q;
+        p.x = body[i].x; p.y = body[i].y; p.z = body[i].z; p.w = 1.0f;
+        c = sk_mat4_transform_vec4(cvp, p);
+        if (!(c.w > 0.0f && fabsf(c.x) < c.w && fabsf(c.y) < c.w && fabsf(c.z) < c.w)) continue;
+        in_view++;
+        q = sk_mat4_transform_vec4(r.light_view_proj, p);
+        SK_CHECK_MSG(q.w > 0.0f && fabsf(q.x / q.w) <= 1.001f && fabsf(q.y / q.w) <= 1.001f, "body %d maps to (%g %g)",
+                     i, q.x / q.w, q.y / q.w);
+    }
+    SK_CHECK(in_view == 1);
+}
+
 SK_TEST_MAIN(test_denormal_directions, test_psm_denormal_pp_light, test_clip_huge_box, test_partition_unrepresentable,
              test_crops_unrepresentable, test_region_flat_body, test_vsdct_huge_atlas, test_frustum_through_infinity,
              test_frustum_plane_overflow, test_caster_tiny, test_scissor_underflow, test_psm_flat_body,
              test_lispsm_sin_gamma, test_crop_matrix_thin_axis, test_spheres_overflow, test_pvsm_huge_footprint,
              test_smooth_box_thin, test_resolution_texel_overflow, test_psm_flat_body_ortho, test_lispsm_flat_bodies,
              test_look_at_overflow, test_ortho_crops_overflow, test_sphere_subnormal,
-             test_region_steep_theta, test_lispsm_warped_sliver)
+             test_region_steep_theta, test_lispsm_warped_sliver, test_psm_light_near_body)
