@@ -208,8 +208,10 @@ SKDEF sk_result sk_frustum_slice(const sk_frustum *view, float zn, float zf,
    face centres, balanced between the near and far corners; radius rounded up
    to a multiple of 2^-10 of itself, which absorbs the float noise of the
    corners except when the exact radius lies within that noise of a rounding
-   step. For a radius that is bitwise the same wherever the camera is, use
-   sk_cascade_sphere. NULL, a non-finite corner, or a sphere float cannot
+   step. Every corner lies inside the sphere as returned (the radius is
+   measured from the float centre and rounded up in float, subnormal
+   frusta included). For a radius that is bitwise the same wherever the
+   camera is, use sk_cascade_sphere. NULL, a non-finite corner, or a sphere float cannot
    hold (corners near FLT_MAX): a zero sphere (r = 0). */
 SKDEF sk_sphere sk_frustum_bounding_sphere(const sk_frustum *f);
 /* The same sphere computed from the camera's parameters: a symmetric
