@@ -208,6 +208,15 @@ typedef enum skgl_technique {
     SKGL_RMSM = 6                 /* virtual map rendered page by page at the requested levels (seed 002) */
 } skgl_technique;
 
+/* How a receiver is kept out of its own shadow (BIAS AND FILTERING) */
+typedef enum skgl_bias {
+    SKGL_BIAS_RECEIVER_PLANE = 0, /* each filtered texel compared with the receiver's tangent
+                                     plane at the texel's centre: no acne on flat receivers,
+                                     no shadow moved (the default) */
+    SKGL_BIAS_NORMAL_OFFSET = 1   /* the receiver pushed along its normal by .normal_bias
+                                     texels: moves every shadow edge toward the light */
+} skgl_bias;
+
 /* Zero-initialised fields take the default in brackets. */
 typedef struct skgl_shadow_desc {
     skgl_technique technique;     /* [SKGL_STANDARD] */
@@ -219,7 +228,12 @@ typedef struct skgl_shadow_desc {
     int stable;                   /* 1: texel-snapped crops (sphere fit) [0] */
     float slope_bias;             /* polygon offset factor [2.0]; < 0: none */
     float depth_bias;             /* polygon offset units [1.0]; < 0: none */
-    float normal_bias;            /* receiver normal offset in texels [1.5]; < 0: none */
+    float normal_bias;            /* receiver normal offset in texels [1.5 with
+                                     SKGL_BIAS_NORMAL_OFFSET, none with the receiver
+                                     plane]; < 0: none */
+    skgl_bias bias;               /* [SKGL_BIAS_RECEIVER_PLANE] */
+    float plane_bias;             /* receiver plane: comparison tolerance in texels of the
+                                     plane's own depth slope [0.5]; < 0: none */
     int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
     float max_distance;           /* shadows end at this view depth [camera far] */
     sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
@@ -385,7 +399,13 @@ typedef struct skgl_point_desc {
     float range;                  /* far plane = light range [10] */
     float slope_bias;             /* polygon offset factor [2.0]; < 0: none */
     float depth_bias;             /* polygon offset units [1.0]; < 0: none */
-    float normal_bias;            /* receiver normal offset in face texels [1.5]; < 0: none */
+    float normal_bias;            /* receiver normal offset in face texels [1.5 with
+                                     SKGL_BIAS_NORMAL_OFFSET, none with the receiver
+                                     plane]; < 0: none */
+    skgl_bias bias;               /* [SKGL_BIAS_RECEIVER_PLANE] */
+    float plane_bias;             /* receiver plane: extra tolerance in texels of the plane's
+                                     depth slope, beyond the one texel a 2x2 comparison
+                                     reaches [0.5]; < 0: none */
     int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
     int cull_faces;               /* 1: skip faces whose frustum misses the view (sk_cube_visible_faces) */
     int cull_casters;             /* 1: skgl_point_caster_visible culls by the caster's shadow
@@ -645,25 +665,39 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   the view depth, the first layer whose partition rect holds it; or, for\n"
     "   RMSM (seed 002), a virtual map: the page of the point's level of detail\n"
     "   through the page table into a pool of pages (layer 0), or the nearest\n"
-    "   coarser page resident. sk_shadow() takes screen derivatives for RMSM:\n"
-    "   call it in uniform control flow (not after a discard or an early return).\n"
+    "   coarser page resident. sk_shadow() takes screen derivatives (RMSM's level\n"
+    "   of detail; the receiver's plane when the normal is zero): call it in\n"
+    "   uniform control flow (not after a discard or an early return).\n"
     "\n"
     "   Maps may be orthographic (standard, PSSM) or perspective-warped (PSM,\n"
     "   LiSPSM): the light-clip w is divided out per pixel.\n"
     "\n"
-    "   Bias, in texels so it follows resolution: the receiver is pushed along its\n"
-    "   normal by sk_normal_bias texels of its layer at that point (normal\n"
-    "   offset; a warped map's texels change size across the view), and the\n"
-    "   casters were rendered with slope-scaled polygon offset. Filtering: one\n"
-    "   hardware 2x2 comparison (bilinear PCF), or a (2r)x(2r) grid of them.\n"
-    "   A surface facing away from the light (given a normal) is in its own\n"
-    "   shadow: 0, whatever the map says near its silhouette. */\n"
+    "   Bias (sk_bias_mode): 0, the receiver plane (the default): every texel of\n"
+    "   the filter footprint is compared with the depth that the receiver's\n"
+    "   tangent plane has at that texel's centre (adaptive depth bias, Dou, Yan,\n"
+    "   Kerzner, Dai and Wyman 2014, Sec. 3), less a tolerance of sk_plane_bias\n"
+    "   texels of the plane's own depth slope plus a few float ulps. A flat\n"
+    "   receiver is then neither in its own shadow (no acne) nor moved (no\n"
+    "   displacement of any shadow edge). The plane comes from the normal, or,\n"
+    "   when the normal is zero, from the screen derivatives of the position\n"
+    "   (receiver-plane depth bias, Isidoro 2006). 1, normal offset: the receiver\n"
+    "   is pushed along its normal by sk_normal_bias texels of its layer at that\n"
+    "   point (a warped map's texels change size across the view); this moves\n"
+    "   every shadow edge toward the light by about sk_normal_bias texels times\n"
+    "   the cotangent of the light's elevation. In both, the casters were drawn\n"
+    "   with slope-scaled polygon offset (skgl_shadow_desc.slope_bias).\n"
+    "   Filtering: the bilinear 2x2 comparison (radius 0), or a (2r)x(2r) grid of\n"
+    "   them; mode 0 weighs the same texels with the same weights, one\n"
+    "   comparison each. A surface facing away from the light (given a normal) is\n"
+    "   in its own shadow: 0, whatever the map says near its silhouette. */\n"
     "uniform sampler2DArrayShadow sk_shadow_map;\n"
     "uniform mat4 sk_light_vp[8];\n"
     "uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */\n"
     "uniform int sk_layers;\n"
     "uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */\n"
-    "uniform float sk_normal_bias;      /* texels */\n"
+    "uniform int sk_bias_mode;          /* 0 receiver plane, 1 normal offset */\n"
+    "uniform float sk_normal_bias;      /* texels (mode 1; mode 0 adds it if > 0) */\n"
+    "uniform float sk_plane_bias;       /* mode 0: tolerance in texels of the plane's depth slope */\n"
     "uniform int sk_pcf_radius;\n"
     "uniform vec3 sk_light_dir;         /* travel direction, unit */\n"
     "uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */\n"
@@ -690,9 +724,63 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    return g > 0.0 ? 2.0 / (float(textureSize(sk_shadow_map, 0).x) * g) : 0.0;\n"
     "}\n"
     "\n"
-    "float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)\n"
+    "/* The receiver's tangent plane (normal n, any length; p's light clip c) as\n"
+    "   a depth slope of the map: (dz/du, dz/dv) in window depth per texture\n"
+    "   coordinate. With J the Jacobian of light NDC over world position at p\n"
+    "   (rows j0, j1, j2; perspective maps included), the plane's points satisfy\n"
+    "   n . J^-1 dndc = 0, and J^-1's columns are cross(j1, j2), cross(j2, j0),\n"
+    "   cross(j0, j1) over det J. cross(j0, j1) is the map's ray through p: the\n"
+    "   slope grows as tan of the angle between n and that ray, and is capped at\n"
+    "   SK_PLANE_MAX_TAN (88 degrees), beyond which the surface is its own\n"
+    "   silhouette. Window z and texture uv are both NDC / 2 + 1/2: the NDC ratio\n"
+    "   is the window ratio. Zero for a zero normal. */\n"
+    "const float SK_PLANE_MAX_TAN = 28.6;\n"
+    "vec2 sk_plane_slope(mat4 m, vec4 c, vec3 n)\n"
     "{\n"
-    "    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_size(world_pos, layer));\n"
+    "    vec3 ndc = c.xyz / c.w;\n"
+    "    vec3 r3 = vec3(m[0][3], m[1][3], m[2][3]);\n"
+    "    vec3 j0 = vec3(m[0][0], m[1][0], m[2][0]) - ndc.x * r3;\n"
+    "    vec3 j1 = vec3(m[0][1], m[1][1], m[2][1]) - ndc.y * r3;\n"
+    "    vec3 j2 = vec3(m[0][2], m[1][2], m[2][2]) - ndc.z * r3;\n"
+    "    vec3 ray = cross(j0, j1);\n"
+    "    float nr = dot(n, ray), len = length(n) * length(ray);\n"
+    "    if (!(abs(nr) > 1e-30 * len) || !(len > 0.0)) return vec2(0.0);\n"
+    "    vec2 g = -vec2(dot(n, cross(j1, j2)), dot(n, cross(j2, j0))) / nr;\n"
+    "    float cosv = abs(nr) / len;\n"
+    "    float tanv = sqrt(max(1.0 - cosv * cosv, 0.0)) / cosv;\n"
+    "    return tanv > SK_PLANE_MAX_TAN ? g * (SK_PLANE_MAX_TAN / tanv) : g;\n"
+    "}\n"
+    "\n"
+    "/* Percentage-closer filtering against the receiver's plane. p: the lookup\n"
+    "   in texel space of the sampled texture (texel j's centre at j + 0.5); z:\n"
+    "   its window depth; gt: the plane's depth change per texel. The footprint\n"
+    "   and weights are those of the hardware path: radius 0 one bilinear 2x2,\n"
+    "   radius r the (2r)x(2r) bilinear taps at p + k + 1/2 (k = -r .. r-1),\n"
+    "   i.e. (2r+1)^2 texels with separable weights. Each texel is compared with\n"
+    "   the plane's depth at its own centre, less the tolerance. */\n"
+    "float sk_pcf_plane(vec2 p, float z, vec2 gt, float layer, vec2 size, int r)\n"
+    "{\n"
+    "    int m = max(2 * r, 1);\n"
+    "    vec2 b = p - (r > 0 ? 0.0 : 0.5);\n"
+    "    vec2 base = floor(b), fr = b - base;\n"
+    "    float tol = sk_plane_bias * (abs(gt.x) + abs(gt.y)) + 4.0e-7;\n"
+    "    float sum = 0.0;\n"
+    "    for (int ky = -r; ky <= m - r; ky++) {\n"
+    "        float wy = (ky <= m - r - 1 ? 1.0 - fr.y : 0.0) + (ky >= 1 - r ? fr.y : 0.0);\n"
+    "        for (int kx = -r; kx <= m - r; kx++) {\n"
+    "            float wx = (kx <= m - r - 1 ? 1.0 - fr.x : 0.0) + (kx >= 1 - r ? fr.x : 0.0);\n"
+    "            vec2 tc = base + vec2(float(kx), float(ky)) + 0.5;\n"
+    "            float zt = max(z + dot(gt, tc - p) - tol, 0.0);\n"
+    "            if (wx * wy > 0.0) sum += wx * wy * texture(sk_shadow_map, vec4(tc / size, layer, zt));\n"
+    "        }\n"
+    "    }\n"
+    "    return sum / float(m * m);\n"
+    "}\n"
+    "\n"
+    "float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int layer)\n"
+    "{\n"
+    "    float nb = sk_bias_mode == 1 || sk_normal_bias > 0.0 ? sk_normal_bias : 0.0;\n"
+    "    vec3 p = nb > 0.0 ? world_pos + world_normal * (nb * sk_texel_size(world_pos, layer)) : world_pos;\n"
     "    vec4 c = sk_light_vp[layer] * vec4(p, 1.0);\n"
     "    if (c.w <= 0.0) return 1.0;\n"
     "    vec3 ndc = c.xyz / c.w;\n"
@@ -700,9 +788,14 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, sk_map_extent))) return 1.0;\n"
     "    if (uvz.z > 1.0) return 1.0;\n"
     "    float z = max(uvz.z, 0.0);\n"
+    "    vec2 size = vec2(textureSize(sk_shadow_map, 0).xy);\n"
+    "    if (sk_bias_mode == 0) {\n"
+    "        vec2 g = sk_plane_slope(sk_light_vp[layer], c, plane_normal);\n"
+    "        return sk_pcf_plane(uvz.xy * size, z, g / size, float(layer), size, sk_pcf_radius);\n"
+    "    }\n"
     "    if (sk_pcf_radius <= 0)\n"
     "        return texture(sk_shadow_map, vec4(uvz.xy, float(layer), z));\n"
-    "    vec2 texel = 1.0 / vec2(textureSize(sk_shadow_map, 0).xy);\n"
+    "    vec2 texel = 1.0 / size;\n"
     "    float sum = 0.0;\n"
     "    int r = sk_pcf_radius;\n"
     "    for (int y = -r; y < r; y++)\n"
@@ -714,7 +807,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "/* RMSM: the point through the page table, from its level up to the\n"
     "   coarsest; each pool page has a border of one texel, which bounds the\n"
     "   normal offset's reach and the filter to a 2x2 comparison */\n"
-    "float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, float lod)\n"
+    "float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, vec3 plane_normal, float lod)\n"
     "{\n"
     "    vec4 c0 = sk_light_vp[0] * vec4(world_pos, 1.0);\n"
     "    vec2 st = c0.xy / c0.w * 0.5 + 0.5;\n"
@@ -729,13 +822,16 @@ static const char skgl__src_shadow_sample_glsl[] =
     "        /* texels of this level: the map at vres / 2^level */\n"
     "        float lres = vres / exp2(float(level));\n"
     "        float texel = sk_texel_size(world_pos, 0) * (pool.x / lres);\n"
-    "        vec4 c = sk_light_vp[0] * vec4(world_pos + world_normal * (min(sk_normal_bias, 0.9) * texel), 1.0);\n"
+    "        float nb = sk_bias_mode == 1 || sk_normal_bias > 0.0 ? min(sk_normal_bias, 0.9) : 0.0;\n"
+    "        vec4 c = sk_light_vp[0] * vec4(world_pos + world_normal * (nb * texel), 1.0);\n"
     "        vec3 uvz = c.xyz / c.w * 0.5 + 0.5;\n"
     "        if (uvz.z > 1.0) return 1.0;\n"
     "        vec2 f = clamp(uvz.xy * lres - vec2(pg) * page, vec2(-0.5), vec2(page + 0.5));\n"
     "        vec2 slot = floor(e.rg * 255.0 + 0.5);\n"
-    "        vec2 puv = (slot * (page + 2.0) + 1.0 + f) / pool;\n"
-    "        return texture(sk_shadow_map, vec4(puv, 0.0, max(uvz.z, 0.0)));\n"
+    "        vec2 pp = slot * (page + 2.0) + 1.0 + f;\n"
+    "        if (sk_bias_mode == 0)\n"
+    "            return sk_pcf_plane(pp, max(uvz.z, 0.0), sk_plane_slope(sk_light_vp[0], c, plane_normal) / lres, 0.0, pool, 0);\n"
+    "        return texture(sk_shadow_map, vec4(pp / pool, 0.0, max(uvz.z, 0.0)));\n"
     "    }\n"
     "    return 1.0;\n"
     "}\n"
@@ -751,14 +847,18 @@ static const char skgl__src_shadow_sample_glsl[] =
     "        vec2 dx = dFdx(st) * vres, dy = dFdy(st) * vres;\n"
     "        rmsm_lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));\n"
     "    }\n"
+    "    /* the receiver's plane: its normal, else the screen derivatives of the\n"
+    "       position (taken here, before any branch) */\n"
+    "    vec3 pn = cross(dFdx(world_pos), dFdy(world_pos));\n"
+    "    if (dot(world_normal, world_normal) > 0.0) pn = world_normal;\n"
     "    if (dot(world_normal, sk_light_dir) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;\n"
-    "    if (sk_rmsm != 0) return sk_shadow_rmsm(world_pos, world_normal, rmsm_lod);\n"
+    "    if (sk_rmsm != 0) return sk_shadow_rmsm(world_pos, world_normal, pn, rmsm_lod);\n"
     "    if (sk_select_by_map != 0) {\n"
     "        if (view_depth < sk_splits[0] || view_depth >= sk_splits[1]) return 1.0;\n"
     "        for (int i = 0; i < sk_layers; i++) {\n"
     "            vec4 c = sk_light_vp[i] * vec4(world_pos, 1.0);\n"
     "            if (all(lessThanEqual(abs(c.xy), vec2(sk_select_extent * c.w))))\n"
-    "                return sk_shadow_layer(world_pos, world_normal, i);\n"
+    "                return sk_shadow_layer(world_pos, world_normal, pn, i);\n"
     "        }\n"
     "        return 1.0;\n"
     "    }\n"
@@ -766,13 +866,13 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    int layer = 0;\n"
     "    for (int i = 1; i < sk_layers; i++)\n"
     "        if (view_depth >= sk_splits[i]) layer = i;\n"
-    "    float v = sk_shadow_layer(world_pos, world_normal, layer);\n"
+    "    float v = sk_shadow_layer(world_pos, world_normal, pn, layer);\n"
     "    if (sk_blend_band > 0.0 && layer + 1 < sk_layers) {\n"
     "        float end = sk_splits[layer + 1];\n"
     "        float band = sk_blend_band * (end - sk_splits[layer]);\n"
     "        float t = (view_depth - (end - band)) / band;\n"
     "        if (t > 0.0)\n"
-    "            v = mix(v, sk_shadow_layer(world_pos, world_normal, layer + 1), t);\n"
+    "            v = mix(v, sk_shadow_layer(world_pos, world_normal, pn, layer + 1), t);\n"
     "    }\n"
     "    return v;\n"
     "}\n"
@@ -794,10 +894,11 @@ static const char skgl__src_shadow_mask_frag[] =
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    float d = texelFetch(u_depth, px, 0).r;\n"
-    "    /* background: done, except for RMSM, whose sk_shadow() takes screen\n"
-    "       derivatives, which need every pixel of a 2x2 quad (sk_rmsm is\n"
-    "       uniform: this branch keeps the control flow uniform) */\n"
-    "    if (d >= 1.0 && sk_rmsm == 0) { o_visibility = 1.0; return; }\n"
+    "    /* background: done, except where sk_shadow() needs screen derivatives\n"
+    "       (RMSM's level of detail; the receiver's plane without normals), which\n"
+    "       need every pixel of a 2x2 quad (both conditions are uniform: this\n"
+    "       branch keeps the control flow uniform) */\n"
+    "    if (d >= 1.0 && sk_rmsm == 0 && u_has_normals != 0) { o_visibility = 1.0; return; }\n"
     "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
     "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
     "    vec3 world = w.xyz / w.w;\n"
@@ -1015,9 +1116,16 @@ static const char skgl__src_point_sample_glsl[] =
     "   major-axis component of the light-to-point vector (the eye depth in the\n"
     "   face that holds it), so both compare the same way.\n"
     "\n"
-    "   Bias: casters were drawn with slope-scaled polygon offset; the receiver is\n"
-    "   pushed along its normal by sk_point_normal_bias texels of its face at its\n"
-    "   distance (a face texel is 2 MA / resolution wide). Filtering: one\n"
+    "   Bias (sk_point_bias_mode): 0, the receiver plane (the default): each tap\n"
+    "   compares the depth that the receiver's tangent plane has along the tap's\n"
+    "   own direction (where that ray meets the plane), less the plane's depth\n"
+    "   change over the one texel a hardware 2x2 comparison reaches in each face\n"
+    "   axis, times (1 + sk_point_plane_bias); the receiver is not moved, so no\n"
+    "   shadow is displaced (after Dou, Yan, Kerzner, Dai and Wyman 2014). 1,\n"
+    "   normal offset: the receiver is pushed along its normal by\n"
+    "   sk_point_normal_bias texels of its face at its distance (a face texel is\n"
+    "   2 MA / resolution wide), which moves shadow edges toward the light. In\n"
+    "   both, casters were drawn with slope-scaled polygon offset. Filtering: one\n"
     "   hardware 2x2 comparison, or a (2r)x(2r) grid of them spaced one texel in\n"
     "   the face plane; a tap that leaves the face reads the neighbouring face\n"
     "   (its direction picks it), compared with the receiver's depth along that\n"
@@ -1031,7 +1139,9 @@ static const char skgl__src_point_sample_glsl[] =
     "uniform float sk_point_range;       /* far plane of the faces */\n"
     "uniform vec2 sk_point_depth;        /* Eq. (5.4.6): (scale, bias) of sk_vsdct_depth_coeffs */\n"
     "uniform float sk_point_texel;       /* 2 / face resolution: one texel at MA = 1 */\n"
-    "uniform float sk_point_normal_bias; /* texels */\n"
+    "uniform float sk_point_normal_bias; /* texels (mode 1; mode 0 adds it if > 0) */\n"
+    "uniform int sk_point_bias_mode;     /* 0 receiver plane, 1 normal offset */\n"
+    "uniform float sk_point_plane_bias;  /* mode 0: extra tolerance, in texels of the plane's depth slope */\n"
     "uniform int sk_point_pcf;           /* 0: one 2x2 comparison; r: (2r)^2 of them */\n"
     "#if SK_POINT_VSDCT\n"
     "uniform sampler2DShadow sk_point_atlas;\n"
@@ -1066,6 +1176,28 @@ static const char skgl__src_point_sample_glsl[] =
     "#endif\n"
     "}\n"
     "\n"
+    "/* the window depth (Eq. 5.4.6) of the receiver's tangent plane (normal n\n"
+    "   through v, both relative to the light) along direction d, the ray's\n"
+    "   distance to the plane kept within [1/2, 2] of v's (at grazing incidence\n"
+    "   the plane leaves the tap's neighbourhood) */\n"
+    "float sk_point_plane_depth(vec3 v, vec3 n, vec3 d)\n"
+    "{\n"
+    "    float t = dot(n, v) / dot(n, d);\n"
+    "    float t0 = max(abs(v.x), max(abs(v.y), abs(v.z))) / max(sk_point_ma(abs(d), d), 1e-30);\n"
+    "    t = clamp(t, 0.5 * t0, 2.0 * t0);\n"
+    "    return sk_point_depth.x / max(t * sk_point_ma(abs(d), d), 1e-30) + sk_point_depth.y;\n"
+    "}\n"
+    "\n"
+    "/* one tap along d compared with the receiver plane: the plane's depth\n"
+    "   along d, less its change over one texel in each face axis (t1, t2 of\n"
+    "   length one texel at d) */\n"
+    "float sk_point_plane_tap(vec3 v, vec3 n, vec3 d, vec3 t1, vec3 t2)\n"
+    "{\n"
+    "    float z = sk_point_plane_depth(v, n, d);\n"
+    "    float slope = abs(sk_point_plane_depth(v, n, d + t1) - z) + abs(sk_point_plane_depth(v, n, d + t2) - z);\n"
+    "    return sk_point_tap(d, z - (1.0 + sk_point_plane_bias) * slope - 4.0e-7);\n"
+    "}\n"
+    "\n"
     "float sk_point_shadow(vec3 world_pos, vec3 world_normal)\n"
     "{\n"
     "    vec3 v = world_pos - sk_point_pos;\n"
@@ -1074,25 +1206,33 @@ static const char skgl__src_point_sample_glsl[] =
     "    if (dot(world_normal, v) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;\n"
     "    vec3 av = abs(v);\n"
     "    float ma = max(av.x, max(av.y, av.z));\n"
-    "    v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);\n"
+    "    bool plane = sk_point_bias_mode == 0 && dot(world_normal, world_normal) > 0.0;\n"
+    "    vec3 n = world_normal;\n"
+    "    if (sk_point_bias_mode == 1 || sk_point_normal_bias > 0.0)\n"
+    "        v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);\n"
     "    av = abs(v);\n"
     "    ma = max(av.x, max(av.y, av.z));\n"
     "    if (!(ma > 0.0)) return 1.0;\n"
-    "    if (sk_point_pcf <= 0)\n"
-    "        return sk_point_tap(v, sk_point_depth.x / ma + sk_point_depth.y);\n"
     "    /* the face plane's axes at v (any two axes other than the major one) */\n"
     "    vec3 t1, t2;\n"
     "    if (av.x >= av.y && av.x >= av.z) { t1 = vec3(0.0, 0.0, 1.0); t2 = vec3(0.0, 1.0, 0.0); }\n"
     "    else if (av.y >= av.z) { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 0.0, 1.0); }\n"
     "    else { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 1.0, 0.0); }\n"
     "    float step = sk_point_texel * ma;\n"
+    "    if (sk_point_pcf <= 0)\n"
+    "        return plane ? sk_point_plane_tap(v, n, v, t1 * step, t2 * step)\n"
+    "                     : sk_point_tap(v, sk_point_depth.x / ma + sk_point_depth.y);\n"
     "    int r = sk_point_pcf;\n"
     "    float sum = 0.0;\n"
     "    for (int y = -r; y < r; y++)\n"
     "        for (int x = -r; x < r; x++) {\n"
     "            vec3 d = v + (t1 * (float(x) + 0.5) + t2 * (float(y) + 0.5)) * step;\n"
-    "            float m = max(sk_point_ma(av, d), 1e-30);\n"
-    "            sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);\n"
+    "            if (plane) {\n"
+    "                sum += sk_point_plane_tap(v, n, d, t1 * step, t2 * step);\n"
+    "            } else {\n"
+    "                float m = max(sk_point_ma(av, d), 1e-30);\n"
+    "                sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);\n"
+    "            }\n"
     "        }\n"
     "    return sum / float(4 * r * r);\n"
     "}\n"
@@ -2386,7 +2526,8 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     else if (r.lambda < 0.0f) r.lambda = 0.0f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
-    if (r.normal_bias == 0.0f) r.normal_bias = 1.5f;
+    if (r.normal_bias == 0.0f) r.normal_bias = r.bias == SKGL_BIAS_NORMAL_OFFSET ? 1.5f : -1.0f;
+    if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
     if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
     else if (r.psm_slide < 0.0f) r.psm_slide = 0.0f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
@@ -2405,6 +2546,8 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_RMSM || (d.technique != SKGL_RMSM && d.resolution > 16384) ||
         d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
         d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f) ||
+        (int)d.bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d.bias > (int)SKGL_BIAS_NORMAL_OFFSET ||
+        !(d.plane_bias <= 64.0f) ||
         !(d.lspsm.zeta > 0.0f && d.lspsm.zeta < 0.5f) || !(d.lspsm.sigma > 0.0f && d.lspsm.sigma <= 1e3f) ||
         d.lspsm.h_max < 1 || d.lspsm.nw_max < 1 || d.ferko_latency < 0 || d.ferko_latency > 1 ||
         (d.technique == SKGL_LSPSM && (d.lspsm.h_max > SKGL_MAX_CASCADES || d.lspsm.nw_max > SKGL_MAX_CASCADES ||
@@ -3327,6 +3470,8 @@ static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint p
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_select_extent"), s->select_extent);
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_blend_band"), s->desc.blend_band);
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_normal_bias"), s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_bias_mode"), (skgl__int)s->desc.bias);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_plane_bias"), s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_pcf_radius"), s->desc.pcf_radius);
     gl->Uniform3fv(gl->GetUniformLocation(prog, "sk_light_dir"), 1, &s->light_dir.x);
 }
@@ -3505,7 +3650,8 @@ static skgl_point_desc skgl__point_defaults(const skgl_point_desc *d)
     if (r.range == 0.0f) r.range = 10.0f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
-    if (r.normal_bias == 0.0f) r.normal_bias = 1.5f;
+    if (r.normal_bias == 0.0f) r.normal_bias = r.bias == SKGL_BIAS_NORMAL_OFFSET ? 1.5f : -1.0f;
+    if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
     if (r.resolution_c == 0.0f) r.resolution_c = 2.0f;
     if (r.vsdct_grey_levels == 0) r.vsdct_grey_levels = 256;
@@ -3587,6 +3733,8 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     if ((d.technique != SKGL_POINT_CUBE && d.technique != SKGL_POINT_VSDCT) || d.resolution < 1 ||
         !sk__finite(d.near_plane) || !sk__finite(d.range) || !(d.near_plane > 0.0f) || !(d.range > d.near_plane) ||
         !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.normal_bias) ||
+        (int)d.bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d.bias > (int)SKGL_BIAS_NORMAL_OFFSET ||
+        !(d.plane_bias <= 64.0f) ||
         d.pcf_radius < 0 || d.pcf_radius > 8 || !sk__finite(d.resolution_c) || !(d.resolution_c > 0.0f) ||
         d.screen_w < 0 || d.screen_h < 0 || d.vsdct_grey_levels < 1 ||
         (d.technique == SKGL_POINT_CUBE && d.select_resolution && !skgl__is_pow2(d.resolution)) ||
@@ -3937,6 +4085,9 @@ static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__u
     gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_normal_bias"),
                   p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f);
     gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_pcf"), p->desc.pcf_radius);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_bias_mode"), (skgl__int)p->desc.bias);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_plane_bias"),
+                  p->desc.plane_bias > 0.0f ? p->desc.plane_bias : 0.0f);
     if (p->desc.technique == SKGL_POINT_VSDCT) {
         float rects[24];
         int f;

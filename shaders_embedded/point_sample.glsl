@@ -18,9 +18,16 @@
    major-axis component of the light-to-point vector (the eye depth in the
    face that holds it), so both compare the same way.
 
-   Bias: casters were drawn with slope-scaled polygon offset; the receiver is
-   pushed along its normal by sk_point_normal_bias texels of its face at its
-   distance (a face texel is 2 MA / resolution wide). Filtering: one
+   Bias (sk_point_bias_mode): 0, the receiver plane (the default): each tap
+   compares the depth that the receiver's tangent plane has along the tap's
+   own direction (where that ray meets the plane), less the plane's depth
+   change over the one texel a hardware 2x2 comparison reaches in each face
+   axis, times (1 + sk_point_plane_bias); the receiver is not moved, so no
+   shadow is displaced (after Dou, Yan, Kerzner, Dai and Wyman 2014). 1,
+   normal offset: the receiver is pushed along its normal by
+   sk_point_normal_bias texels of its face at its distance (a face texel is
+   2 MA / resolution wide), which moves shadow edges toward the light. In
+   both, casters were drawn with slope-scaled polygon offset. Filtering: one
    hardware 2x2 comparison, or a (2r)x(2r) grid of them spaced one texel in
    the face plane; a tap that leaves the face reads the neighbouring face
    (its direction picks it), compared with the receiver's depth along that
@@ -34,7 +41,9 @@ uniform vec3 sk_point_pos;          /* light position, world */
 uniform float sk_point_range;       /* far plane of the faces */
 uniform vec2 sk_point_depth;        /* Eq. (5.4.6): (scale, bias) of sk_vsdct_depth_coeffs */
 uniform float sk_point_texel;       /* 2 / face resolution: one texel at MA = 1 */
-uniform float sk_point_normal_bias; /* texels */
+uniform float sk_point_normal_bias; /* texels (mode 1; mode 0 adds it if > 0) */
+uniform int sk_point_bias_mode;     /* 0 receiver plane, 1 normal offset */
+uniform float sk_point_plane_bias;  /* mode 0: extra tolerance, in texels of the plane's depth slope */
 uniform int sk_point_pcf;           /* 0: one 2x2 comparison; r: (2r)^2 of them */
 #if SK_POINT_VSDCT
 uniform sampler2DShadow sk_point_atlas;
@@ -69,6 +78,28 @@ float sk_point_tap(vec3 d, float ref)
 #endif
 }
 
+/* the window depth (Eq. 5.4.6) of the receiver's tangent plane (normal n
+   through v, both relative to the light) along direction d, the ray's
+   distance to the plane kept within [1/2, 2] of v's (at grazing incidence
+   the plane leaves the tap's neighbourhood) */
+float sk_point_plane_depth(vec3 v, vec3 n, vec3 d)
+{
+    float t = dot(n, v) / dot(n, d);
+    float t0 = max(abs(v.x), max(abs(v.y), abs(v.z))) / max(sk_point_ma(abs(d), d), 1e-30);
+    t = clamp(t, 0.5 * t0, 2.0 * t0);
+    return sk_point_depth.x / max(t * sk_point_ma(abs(d), d), 1e-30) + sk_point_depth.y;
+}
+
+/* one tap along d compared with the receiver plane: the plane's depth
+   along d, less its change over one texel in each face axis (t1, t2 of
+   length one texel at d) */
+float sk_point_plane_tap(vec3 v, vec3 n, vec3 d, vec3 t1, vec3 t2)
+{
+    float z = sk_point_plane_depth(v, n, d);
+    float slope = abs(sk_point_plane_depth(v, n, d + t1) - z) + abs(sk_point_plane_depth(v, n, d + t2) - z);
+    return sk_point_tap(d, z - (1.0 + sk_point_plane_bias) * slope - 4.0e-7);
+}
+
 float sk_point_shadow(vec3 world_pos, vec3 world_normal)
 {
     vec3 v = world_pos - sk_point_pos;
@@ -77,25 +108,33 @@ float sk_point_shadow(vec3 world_pos, vec3 world_normal)
     if (dot(world_normal, v) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;
     vec3 av = abs(v);
     float ma = max(av.x, max(av.y, av.z));
-    v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);
+    bool plane = sk_point_bias_mode == 0 && dot(world_normal, world_normal) > 0.0;
+    vec3 n = world_normal;
+    if (sk_point_bias_mode == 1 || sk_point_normal_bias > 0.0)
+        v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);
     av = abs(v);
     ma = max(av.x, max(av.y, av.z));
     if (!(ma > 0.0)) return 1.0;
-    if (sk_point_pcf <= 0)
-        return sk_point_tap(v, sk_point_depth.x / ma + sk_point_depth.y);
     /* the face plane's axes at v (any two axes other than the major one) */
     vec3 t1, t2;
     if (av.x >= av.y && av.x >= av.z) { t1 = vec3(0.0, 0.0, 1.0); t2 = vec3(0.0, 1.0, 0.0); }
     else if (av.y >= av.z) { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 0.0, 1.0); }
     else { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 1.0, 0.0); }
     float step = sk_point_texel * ma;
+    if (sk_point_pcf <= 0)
+        return plane ? sk_point_plane_tap(v, n, v, t1 * step, t2 * step)
+                     : sk_point_tap(v, sk_point_depth.x / ma + sk_point_depth.y);
     int r = sk_point_pcf;
     float sum = 0.0;
     for (int y = -r; y < r; y++)
         for (int x = -r; x < r; x++) {
             vec3 d = v + (t1 * (float(x) + 0.5) + t2 * (float(y) + 0.5)) * step;
-            float m = max(sk_point_ma(av, d), 1e-30);
-            sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);
+            if (plane) {
+                sum += sk_point_plane_tap(v, n, d, t1 * step, t2 * step);
+            } else {
+                float m = max(sk_point_ma(av, d), 1e-30);
+                sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);
+            }
         }
     return sum / float(4 * r * r);
 }

@@ -14,10 +14,11 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     float d = texelFetch(u_depth, px, 0).r;
-    /* background: done, except for RMSM, whose sk_shadow() takes screen
-       derivatives, which need every pixel of a 2x2 quad (sk_rmsm is
-       uniform: this branch keeps the control flow uniform) */
-    if (d >= 1.0 && sk_rmsm == 0) { o_visibility = 1.0; return; }
+    /* background: done, except where sk_shadow() needs screen derivatives
+       (RMSM's level of detail; the receiver's plane without normals), which
+       need every pixel of a 2x2 quad (both conditions are uniform: this
+       branch keeps the control flow uniform) */
+    if (d >= 1.0 && sk_rmsm == 0 && u_has_normals != 0) { o_visibility = 1.0; return; }
     vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
     vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
     vec3 world = w.xyz / w.w;

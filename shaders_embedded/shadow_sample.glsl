@@ -9,25 +9,39 @@
    the view depth, the first layer whose partition rect holds it; or, for
    RMSM (seed 002), a virtual map: the page of the point's level of detail
    through the page table into a pool of pages (layer 0), or the nearest
-   coarser page resident. sk_shadow() takes screen derivatives for RMSM:
-   call it in uniform control flow (not after a discard or an early return).
+   coarser page resident. sk_shadow() takes screen derivatives (RMSM's level
+   of detail; the receiver's plane when the normal is zero): call it in
+   uniform control flow (not after a discard or an early return).
 
    Maps may be orthographic (standard, PSSM) or perspective-warped (PSM,
    LiSPSM): the light-clip w is divided out per pixel.
 
-   Bias, in texels so it follows resolution: the receiver is pushed along its
-   normal by sk_normal_bias texels of its layer at that point (normal
-   offset; a warped map's texels change size across the view), and the
-   casters were rendered with slope-scaled polygon offset. Filtering: one
-   hardware 2x2 comparison (bilinear PCF), or a (2r)x(2r) grid of them.
-   A surface facing away from the light (given a normal) is in its own
-   shadow: 0, whatever the map says near its silhouette. */
+   Bias (sk_bias_mode): 0, the receiver plane (the default): every texel of
+   the filter footprint is compared with the depth that the receiver's
+   tangent plane has at that texel's centre (adaptive depth bias, Dou, Yan,
+   Kerzner, Dai and Wyman 2014, Sec. 3), less a tolerance of sk_plane_bias
+   texels of the plane's own depth slope plus a few float ulps. A flat
+   receiver is then neither in its own shadow (no acne) nor moved (no
+   displacement of any shadow edge). The plane comes from the normal, or,
+   when the normal is zero, from the screen derivatives of the position
+   (receiver-plane depth bias, Isidoro 2006). 1, normal offset: the receiver
+   is pushed along its normal by sk_normal_bias texels of its layer at that
+   point (a warped map's texels change size across the view); this moves
+   every shadow edge toward the light by about sk_normal_bias texels times
+   the cotangent of the light's elevation. In both, the casters were drawn
+   with slope-scaled polygon offset (skgl_shadow_desc.slope_bias).
+   Filtering: the bilinear 2x2 comparison (radius 0), or a (2r)x(2r) grid of
+   them; mode 0 weighs the same texels with the same weights, one
+   comparison each. A surface facing away from the light (given a normal) is
+   in its own shadow: 0, whatever the map says near its silhouette. */
 uniform sampler2DArrayShadow sk_shadow_map;
 uniform mat4 sk_light_vp[8];
 uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */
 uniform int sk_layers;
 uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */
-uniform float sk_normal_bias;      /* texels */
+uniform int sk_bias_mode;          /* 0 receiver plane, 1 normal offset */
+uniform float sk_normal_bias;      /* texels (mode 1; mode 0 adds it if > 0) */
+uniform float sk_plane_bias;       /* mode 0: tolerance in texels of the plane's depth slope */
 uniform int sk_pcf_radius;
 uniform vec3 sk_light_dir;         /* travel direction, unit */
 uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */
@@ -54,9 +68,63 @@ float sk_texel_size(vec3 p, int layer)
     return g > 0.0 ? 2.0 / (float(textureSize(sk_shadow_map, 0).x) * g) : 0.0;
 }
 
-float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)
+/* The receiver's tangent plane (normal n, any length; p's light clip c) as
+   a depth slope of the map: (dz/du, dz/dv) in window depth per texture
+   coordinate. With J the Jacobian of light NDC over world position at p
+   (rows j0, j1, j2; perspective maps included), the plane's points satisfy
+   n . J^-1 dndc = 0, and J^-1's columns are cross(j1, j2), cross(j2, j0),
+   cross(j0, j1) over det J. cross(j0, j1) is the map's ray through p: the
+   slope grows as tan of the angle between n and that ray, and is capped at
+   SK_PLANE_MAX_TAN (88 degrees), beyond which the surface is its own
+   silhouette. Window z and texture uv are both NDC / 2 + 1/2: the NDC ratio
+   is the window ratio. Zero for a zero normal. */
+const float SK_PLANE_MAX_TAN = 28.6;
+vec2 sk_plane_slope(mat4 m, vec4 c, vec3 n)
 {
-    vec3 p = world_pos + world_normal * (sk_normal_bias * sk_texel_size(world_pos, layer));
+    vec3 ndc = c.xyz / c.w;
+    vec3 r3 = vec3(m[0][3], m[1][3], m[2][3]);
+    vec3 j0 = vec3(m[0][0], m[1][0], m[2][0]) - ndc.x * r3;
+    vec3 j1 = vec3(m[0][1], m[1][1], m[2][1]) - ndc.y * r3;
+    vec3 j2 = vec3(m[0][2], m[1][2], m[2][2]) - ndc.z * r3;
+    vec3 ray = cross(j0, j1);
+    float nr = dot(n, ray), len = length(n) * length(ray);
+    if (!(abs(nr) > 1e-30 * len) || !(len > 0.0)) return vec2(0.0);
+    vec2 g = -vec2(dot(n, cross(j1, j2)), dot(n, cross(j2, j0))) / nr;
+    float cosv = abs(nr) / len;
+    float tanv = sqrt(max(1.0 - cosv * cosv, 0.0)) / cosv;
+    return tanv > SK_PLANE_MAX_TAN ? g * (SK_PLANE_MAX_TAN / tanv) : g;
+}
+
+/* Percentage-closer filtering against the receiver's plane. p: the lookup
+   in texel space of the sampled texture (texel j's centre at j + 0.5); z:
+   its window depth; gt: the plane's depth change per texel. The footprint
+   and weights are those of the hardware path: radius 0 one bilinear 2x2,
+   radius r the (2r)x(2r) bilinear taps at p + k + 1/2 (k = -r .. r-1),
+   i.e. (2r+1)^2 texels with separable weights. Each texel is compared with
+   the plane's depth at its own centre, less the tolerance. */
+float sk_pcf_plane(vec2 p, float z, vec2 gt, float layer, vec2 size, int r)
+{
+    int m = max(2 * r, 1);
+    vec2 b = p - (r > 0 ? 0.0 : 0.5);
+    vec2 base = floor(b), fr = b - base;
+    float tol = sk_plane_bias * (abs(gt.x) + abs(gt.y)) + 4.0e-7;
+    float sum = 0.0;
+    for (int ky = -r; ky <= m - r; ky++) {
+        float wy = (ky <= m - r - 1 ? 1.0 - fr.y : 0.0) + (ky >= 1 - r ? fr.y : 0.0);
+        for (int kx = -r; kx <= m - r; kx++) {
+            float wx = (kx <= m - r - 1 ? 1.0 - fr.x : 0.0) + (kx >= 1 - r ? fr.x : 0.0);
+            vec2 tc = base + vec2(float(kx), float(ky)) + 0.5;
+            float zt = max(z + dot(gt, tc - p) - tol, 0.0);
+            if (wx * wy > 0.0) sum += wx * wy * texture(sk_shadow_map, vec4(tc / size, layer, zt));
+        }
+    }
+    return sum / float(m * m);
+}
+
+float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int layer)
+{
+    float nb = sk_bias_mode == 1 || sk_normal_bias > 0.0 ? sk_normal_bias : 0.0;
+    vec3 p = nb > 0.0 ? world_pos + world_normal * (nb * sk_texel_size(world_pos, layer)) : world_pos;
     vec4 c = sk_light_vp[layer] * vec4(p, 1.0);
     if (c.w <= 0.0) return 1.0;
     vec3 ndc = c.xyz / c.w;
@@ -64,9 +132,14 @@ float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, sk_map_extent))) return 1.0;
     if (uvz.z > 1.0) return 1.0;
     float z = max(uvz.z, 0.0);
+    vec2 size = vec2(textureSize(sk_shadow_map, 0).xy);
+    if (sk_bias_mode == 0) {
+        vec2 g = sk_plane_slope(sk_light_vp[layer], c, plane_normal);
+        return sk_pcf_plane(uvz.xy * size, z, g / size, float(layer), size, sk_pcf_radius);
+    }
     if (sk_pcf_radius <= 0)
         return texture(sk_shadow_map, vec4(uvz.xy, float(layer), z));
-    vec2 texel = 1.0 / vec2(textureSize(sk_shadow_map, 0).xy);
+    vec2 texel = 1.0 / size;
     float sum = 0.0;
     int r = sk_pcf_radius;
     for (int y = -r; y < r; y++)
@@ -78,7 +151,7 @@ float sk_shadow_layer(vec3 world_pos, vec3 world_normal, int layer)
 /* RMSM: the point through the page table, from its level up to the
    coarsest; each pool page has a border of one texel, which bounds the
    normal offset's reach and the filter to a 2x2 comparison */
-float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, float lod)
+float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, vec3 plane_normal, float lod)
 {
     vec4 c0 = sk_light_vp[0] * vec4(world_pos, 1.0);
     vec2 st = c0.xy / c0.w * 0.5 + 0.5;
@@ -93,13 +166,16 @@ float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, float lod)
         /* texels of this level: the map at vres / 2^level */
         float lres = vres / exp2(float(level));
         float texel = sk_texel_size(world_pos, 0) * (pool.x / lres);
-        vec4 c = sk_light_vp[0] * vec4(world_pos + world_normal * (min(sk_normal_bias, 0.9) * texel), 1.0);
+        float nb = sk_bias_mode == 1 || sk_normal_bias > 0.0 ? min(sk_normal_bias, 0.9) : 0.0;
+        vec4 c = sk_light_vp[0] * vec4(world_pos + world_normal * (nb * texel), 1.0);
         vec3 uvz = c.xyz / c.w * 0.5 + 0.5;
         if (uvz.z > 1.0) return 1.0;
         vec2 f = clamp(uvz.xy * lres - vec2(pg) * page, vec2(-0.5), vec2(page + 0.5));
         vec2 slot = floor(e.rg * 255.0 + 0.5);
-        vec2 puv = (slot * (page + 2.0) + 1.0 + f) / pool;
-        return texture(sk_shadow_map, vec4(puv, 0.0, max(uvz.z, 0.0)));
+        vec2 pp = slot * (page + 2.0) + 1.0 + f;
+        if (sk_bias_mode == 0)
+            return sk_pcf_plane(pp, max(uvz.z, 0.0), sk_plane_slope(sk_light_vp[0], c, plane_normal) / lres, 0.0, pool, 0);
+        return texture(sk_shadow_map, vec4(pp / pool, 0.0, max(uvz.z, 0.0)));
     }
     return 1.0;
 }
@@ -115,14 +191,18 @@ float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
         vec2 dx = dFdx(st) * vres, dy = dFdy(st) * vres;
         rmsm_lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));
     }
+    /* the receiver's plane: its normal, else the screen derivatives of the
+       position (taken here, before any branch) */
+    vec3 pn = cross(dFdx(world_pos), dFdy(world_pos));
+    if (dot(world_normal, world_normal) > 0.0) pn = world_normal;
     if (dot(world_normal, sk_light_dir) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;
-    if (sk_rmsm != 0) return sk_shadow_rmsm(world_pos, world_normal, rmsm_lod);
+    if (sk_rmsm != 0) return sk_shadow_rmsm(world_pos, world_normal, pn, rmsm_lod);
     if (sk_select_by_map != 0) {
         if (view_depth < sk_splits[0] || view_depth >= sk_splits[1]) return 1.0;
         for (int i = 0; i < sk_layers; i++) {
             vec4 c = sk_light_vp[i] * vec4(world_pos, 1.0);
             if (all(lessThanEqual(abs(c.xy), vec2(sk_select_extent * c.w))))
-                return sk_shadow_layer(world_pos, world_normal, i);
+                return sk_shadow_layer(world_pos, world_normal, pn, i);
         }
         return 1.0;
     }
@@ -130,13 +210,13 @@ float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
     int layer = 0;
     for (int i = 1; i < sk_layers; i++)
         if (view_depth >= sk_splits[i]) layer = i;
-    float v = sk_shadow_layer(world_pos, world_normal, layer);
+    float v = sk_shadow_layer(world_pos, world_normal, pn, layer);
     if (sk_blend_band > 0.0 && layer + 1 < sk_layers) {
         float end = sk_splits[layer + 1];
         float band = sk_blend_band * (end - sk_splits[layer]);
         float t = (view_depth - (end - band)) / band;
         if (t > 0.0)
-            v = mix(v, sk_shadow_layer(world_pos, world_normal, layer + 1), t);
+            v = mix(v, sk_shadow_layer(world_pos, world_normal, pn, layer + 1), t);
     }
     return v;
 }
