@@ -106,11 +106,42 @@
      the tiles for a debug view.
 
    BIAS AND FILTERING
-     Casters are drawn with slope-scaled polygon offset (.slope_bias, in
-     depth slope units, i.e. texels); receivers are pushed along their normal
-     by .normal_bias texels of their map at that point (warped maps have
-     texels of varying size). .pcf_radius = 0 takes one
-     hardware 2x2 comparison (bilinear PCF); r > 0 takes (2r)x(2r) of them.
+     The default (.bias = SKGL_BIAS_RECEIVER_PLANE, directional and point
+     lights) keeps a receiver out of its own shadow without moving it: each
+     texel the filter reads is compared with the depth that the receiver's
+     tangent plane has at that texel's centre (Dou et al. 2014), less
+     .plane_bias texels of the plane's own depth slope. A flat receiver gets
+     no acne at any light elevation, and no shadow edge is displaced. The
+     plane comes from the normal you pass (the G-buffer normal in the mask
+     pass); with a zero normal, from the screen derivatives of the position
+     (Isidoro 2006), so call sk_shadow() in uniform control flow. Point
+     lights compare the plane's depth along each hardware tap, less the
+     plane's change over the one texel a 2x2 comparison reaches.
+     SKGL_BIAS_NORMAL_OFFSET is the classic scheme: receivers pushed along
+     their normal by .normal_bias texels of their map (warped maps have
+     texels of varying size); it moves every shadow edge toward the light by
+     about .normal_bias texels times the cotangent of the light's elevation
+     (10 texels at 8 degrees). In both, casters are drawn with slope-scaled
+     polygon offset (.slope_bias, in depth slope units, i.e. texels).
+     .pcf_radius = 0 takes one bilinear 2x2 comparison; r > 0 takes (2r)x(2r)
+     of them (the receiver plane weighs the same (2r+1)^2 texels the same
+     way, one comparison each). Area lights (skgl_soft_*) use their own
+     receiver-plane comparison inside their filters.
+
+   REFERENCES
+     Ferko 2013, "Resolution Estimation for Shadow Mapping".
+     Shen, Guennebaud, Yang and Feng 2011, "Predicted Virtual Soft Shadow
+       Maps with High Quality Filtering" (PVSM).
+     Stamminger and Drettakis 2002, "Perspective Shadow Maps"; Wimmer,
+       Scherzer and Purgathofer 2004, "Light Space Perspective Shadow Maps";
+       Zhang, Sun, Xu and Lun 2006, "Parallel-Split Shadow Maps"; Lefohn,
+       Sengupta and Owens 2007, "Resolution-Matched Shadow Maps" (RMSM); as
+       taught in Romanick's VGP353 course notes.
+     Tang, Luo, Ni, Duan and Gao 2017, "Light Space Partitioned Shadow Maps".
+     King and Newhall 2004, "Efficient Omnidirectional Shadow Maps" (VSDCT).
+     Dou, Yan, Kerzner, Dai and Wyman 2014, "Adaptive Depth Bias for Shadow
+       Maps", JCGT 3(4).
+     Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques", GDC.
 
    GL STATE
      Every call saves and restores the state it touches (framebuffer
