@@ -119,21 +119,24 @@ tb_footprint_stats tb_metric_footprint(const float *fp, size_t n) {
 /* Squared Euclidean distance transform after Felzenszwalb and Huttenlocher,
    "Distance Transforms of Sampled Functions", Theory of Computing 8 (2012):
    D(p) = min_q (|p - q|^2 + f(q)) is separable, so it runs as a 1-D
-   transform along every column, then along every row of the result. The
-   1-D transform is the lower envelope of the parabolas (x - q)^2 + f(q),
-   built left to right in one pass, then read off in a second: O(n).
-   Here f is 0 at sites and +infinity elsewhere; infinite samples are left
-   out of the envelope instead of standing in as a large number, so every
-   output is exact (sums of squares of integers, far below 2^53) or
-   +infinity when the line holds no finite sample. */
+   transform along every column, then along every row of the result.
+   Here f is 0 at sites and +infinity elsewhere. For such a function the
+   column transform is the squared distance to the nearest site in the
+   column, which two sweeps over the rows find (contiguous in memory); the
+   row transform is the paper's lower envelope of the parabolas
+   (x - q)^2 + f(q), built left to right in one pass and read off in a
+   second: O(n). Infinite samples (columns without a site) are left out of
+   the envelope instead of standing in as a large number, so every output
+   is exact (sums of squares of integers, far below 2^53) or +infinity
+   when the frame holds no site. */
 
-/* 1-D transform of n samples read from f[i * stride], written to
-   d[i * stride]; v (n ints) and z (n + 1 doubles) are scratch */
-static void tb_dt1d_(const double *f, double *d, int n, size_t stride, int *v, double *z, double *tmp) {
+/* 1-D transform of the n samples of f into d (f == d allowed); v (n ints),
+   z (n + 1 doubles) and tmp (n doubles) are scratch */
+static void tb_dt1d_(const double *f, double *d, int n, int *v, double *z, double *tmp) {
     int q, k = -1, j;
     for (q = 0; q < n; q++) {
-        double fq = f[(size_t)q * stride], s;
-        if (isinf(fq)) continue;
+        double s;
+        if (isinf(f[q])) continue;
         if (k < 0) {
             k = 0;
             v[0] = q;
@@ -141,11 +144,10 @@ static void tb_dt1d_(const double *f, double *d, int n, size_t stride, int *v, d
             z[1] = INFINITY;
             continue;
         }
-        /* intersection of the parabola from q with the rightmost one kept;
-           z[0] = -inf stops the loop with k >= 0 */
+        /* where the parabola from q overtakes the rightmost one kept;
+           z[0] = -inf ends the loop with k >= 0 */
         for (;;) {
-            double fv = f[(size_t)v[k] * stride];
-            s = ((fq + (double)q * q) - (fv + (double)v[k] * v[k])) / (2.0 * (double)(q - v[k]));
+            s = ((f[q] + (double)q * q) - (f[v[k]] + (double)v[k] * v[k])) / (2.0 * (double)(q - v[k]));
             if (s > z[k]) break;
             k--;
         }
@@ -154,7 +156,6 @@ static void tb_dt1d_(const double *f, double *d, int n, size_t stride, int *v, d
         z[k] = s;
         z[k + 1] = INFINITY;
     }
-    /* f and d may be the same array: results go to tmp first */
     if (k < 0) {
         for (q = 0; q < n; q++) tmp[q] = INFINITY;
     } else {
@@ -163,26 +164,43 @@ static void tb_dt1d_(const double *f, double *d, int n, size_t stride, int *v, d
             double dq;
             while (z[j + 1] < (double)q) j++;
             dq = (double)(q - v[j]);
-            tmp[q] = dq * dq + f[(size_t)v[j] * stride];
+            tmp[q] = dq * dq + f[v[j]];
         }
     }
-    for (q = 0; q < n; q++) d[(size_t)q * stride] = tmp[q];
+    memcpy(d, tmp, sizeof(double) * (size_t)n);
 }
 
 /* in place: grid (w x h, row-major) holds 0 at sites and +infinity
    elsewhere on entry, the squared distance to the nearest site on return
    (+infinity everywhere when there is none). -1 when out of memory. */
 static int tb_edt_sq_(double *grid, int w, int h) {
-    int n = w > h ? w : h, x, y;
-    int *v = (int *)malloc(sizeof(int) * (size_t)n);
-    double *z = (double *)malloc(sizeof(double) * ((size_t)n + 1));
-    double *tmp = (double *)malloc(sizeof(double) * (size_t)n);
+    int x, y;
+    int *v = (int *)malloc(sizeof(int) * (size_t)w);
+    double *z = (double *)malloc(sizeof(double) * ((size_t)w + 1));
+    double *tmp = (double *)malloc(sizeof(double) * (size_t)w);
     if (!v || !z || !tmp) {
         free(v); free(z); free(tmp);
         return -1;
     }
-    for (x = 0; x < w; x++) tb_dt1d_(grid + x, grid + x, h, (size_t)w, v, z, tmp);
-    for (y = 0; y < h; y++) tb_dt1d_(grid + (size_t)y * w, grid + (size_t)y * w, w, 1, v, z, tmp);
+    /* columns: distance in rows to the nearest site below, then above */
+    for (y = 1; y < h; y++) {
+        double *row = grid + (size_t)y * w;
+        const double *below = row - w;
+        for (x = 0; x < w; x++)
+            if (row[x] != 0.0 && below[x] + 1.0 < row[x]) row[x] = below[x] + 1.0;
+    }
+    for (y = h - 2; y >= 0; y--) {
+        double *row = grid + (size_t)y * w;
+        const double *above = row + w;
+        for (x = 0; x < w; x++)
+            if (above[x] + 1.0 < row[x]) row[x] = above[x] + 1.0;
+    }
+    /* rows: the envelope over the squared column distances */
+    for (y = 0; y < h; y++) {
+        double *row = grid + (size_t)y * w;
+        for (x = 0; x < w; x++) row[x] *= row[x];
+        tb_dt1d_(row, row, w, v, z, tmp);
+    }
     free(v); free(z); free(tmp);
     return 0;
 }
