@@ -6,7 +6,8 @@
    "covered": every metric ignores it. A pixel's class is lit when
    visibility >= 0.5 (TB_LIT_THRESHOLD), else shadowed. A result value that
    is NaN or infinite on a covered pixel always counts as wrong (`invalid`).
-   Percentages are in [0,100]; 0 covered pixels give 0. */
+   Percentages of covered pixels are in [0,100]; 0 covered pixels give 0
+   (percentages of the reference's shadow can exceed 100: tb_shadow_error). */
 #ifndef TB_METRICS_H
 #define TB_METRICS_H
 
