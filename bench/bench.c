@@ -8,19 +8,31 @@
      (skgl_desc.timing = 1), read the R16F mask back and compare it with the
      exact Embree reference (tb_reference_trace, hard shadows, traced ONCE
      per (scene, view) from the same depth buffer and normals the mask pass
-     reads). Error = tb_metric_hard(): % of covered pixels whose lit/shadowed
-     class differs from the reference.
+     reads). Scores (testbed/tb_metrics.h): tb_metric_hard(), the % of
+     covered pixels whose lit/shadowed class differs from the reference (the
+     `error` column, kept for continuity), and tb_metric_shadow(), the same
+     errors against the reference's shadow: the lit majority of a frame
+     dilutes the covered %, so the charts plot the shadow-area error.
+     Area-light rows: tb_metric_soft() (`error`) and tb_metric_penumbra().
 
    Output (everything under --out, default out/)
-     bench.csv                  one row per run, exactly the columns
+     bench.csv                  one row per run, the columns (the first 14
+                                fixed by DESIGN.md "Output", the rest
+                                appended after them, never inserted)
        method,params,scene,view,width,height,error_kind,error,texels,passes,
-       shadow_ms,analysis_ms,total_ms,device
+       shadow_ms,analysis_ms,total_ms,device,shadow_area_pct,false_shadow_pct,
+       false_light_pct,edge_mean_px,edge_p95_px,covered_pct,penumbra_mae,
+       penumbra_max,umbra_mae,lit_mae,excluded_px
        method     standard | standard-stable | pssm | psm | lispsm |
                   lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
                   cube-naive | cube | vsdct (point lights, "room")
                   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
-       error_kind hard_pct
+       error_kind hard_pct (directional and point lights, the walk) or
+                  soft_mae (area lights)
+       error      hard_pct: tb_metric_hard's % of covered pixels misclassified;
+                  soft_mae: tb_metric_soft's mean absolute visibility error over
+                  the covered pixels
        texels     shadow texels rendered (skgl_stats.texels)
        passes     draw callbacks made (skgl_stats.passes)
        shadow_ms  GPU time of the depth passes (timer query), median of
@@ -30,11 +42,37 @@
        total_ms   shadow_ms + analysis_ms + mask_ms (the deferred mask pass,
                   one sample)
        device     GL renderer string (CSV-quoted: llvmpipe's has commas)
+       hard rows only (tb_metric_shadow; empty on soft rows):
+       shadow_area_pct   misclassified (false shadow + false light + non-finite)
+                         / the reference's shadow pixels, %; may exceed 100
+       false_shadow_pct  result shadowed, reference lit, % of the shadow pixels
+       false_light_pct   result lit, reference shadowed, % of the shadow pixels
+                         (these three empty when the reference has no shadow)
+       edge_mean_px      mean distance of the wrong pixels to the exact shadow
+                         edge, pixels (nearest covered pixel centre of the other
+                         reference class, minus 0.5); 0 when nothing is wrong,
+                         empty when the reference has one class only
+       edge_p95_px       its 95th percentile (same cases)
+       covered_pct       = error: the % of covered pixels misclassified
+       soft rows only (tb_metric_penumbra, the penumbra grown by 2 px, a
+       Euclidean disc; empty on hard rows, and where the reference frame has
+       no pixel of that region):
+       penumbra_mae      mean |result - reference| in the grown penumbra
+                         (0 < reference < 1)
+       penumbra_max      its largest value
+       umbra_mae         mean over reference 0 outside the grown penumbra
+       lit_mae           mean over reference 1 outside the grown penumbra
+       every row:
+       excluded_px       reference pixels marked back-facing (-3) or
+                         silhouette (-4): left out of every denominator
      bench-data/<scene>.*.dat   the chart data: per configuration the mean
-                                error and mean shadow_ms + analysis_ms over
-                                the views
-     pareto-<scene>.png         gnuplot (bench/pareto.gp): error against
-                                shadow time, one series per method, the
+                                shadow_area_pct (soft: penumbra_mae) over the
+                                views where it is defined and the mean
+                                shadow_ms + analysis_ms over the views
+     pareto-<scene>.png         gnuplot (bench/pareto.gp): shadow-area error
+                                (soft charts, pareto-<scene>-soft.png: the
+                                penumbra MAE) against shadow time, one
+                                series per method, the
                                 Pareto front (configurations no other beats
                                 in both time and error) drawn as a staircase
                                 through circled points
@@ -122,8 +160,27 @@
 #define BENCH_MAX_SCENES 16
 #define BENCH_MAX_VIEWS 3
 #define BENCH_MAX_REPEAT 31
+/* the first 14 columns are DESIGN.md's; the others are appended after them */
 #define BENCH_CSV_HEADER \
-    "method,params,scene,view,width,height,error_kind,error,texels,passes,shadow_ms,analysis_ms,total_ms,device"
+    "method,params,scene,view,width,height,error_kind,error,texels,passes,shadow_ms,analysis_ms,total_ms,device," \
+    "shadow_area_pct,false_shadow_pct,false_light_pct,edge_mean_px,edge_p95_px,covered_pct," \
+    "penumbra_mae,penumbra_max,umbra_mae,lit_mae,excluded_px"
+#define BENCH_CSV_COLS 25
+#define BENCH_COL_SHADOW_AREA 14   /* 0-based: the hard charts' y */
+#define BENCH_COL_PENUMBRA_MAE 20  /* the soft charts' y */
+#define BENCH_PENUMBRA_GROW 2      /* px, DESIGN.md "Measuring" */
+/* the reference's marks for pixels it leaves out (tb_reference.h), besides
+   background and out of range */
+#ifdef TB_VIS_BACKFACING
+#define BENCH_VIS_BACKFACING TB_VIS_BACKFACING
+#else
+#define BENCH_VIS_BACKFACING (-3.0f)
+#endif
+#ifdef TB_VIS_SILHOUETTE
+#define BENCH_VIS_SILHOUETTE TB_VIS_SILHOUETTE
+#else
+#define BENCH_VIS_SILHOUETTE (-4.0f)
+#endif
 
 /* ------------------------------------------------------------------ utils */
 /* 1 when the GL renderer rasterises on the CPU (Mesa's llvmpipe or
@@ -558,12 +615,15 @@ static void usage(FILE *f, const char *argv0) {
 
 
 /* ---------------------------------------------------------------- plot */
-/* one chart point: a configuration on a scene, averaged over its views */
+/* one chart point: a configuration on a scene, averaged over its views.
+   err is the chart's y: shadow_area_pct (hard) or penumbra_mae (soft),
+   averaged over the views where the reference defines it (err_n). */
 typedef struct plot_pt {
     int scene;                /* index into the scene names */
     char method[32], params[160];
     double err_sum, ms_sum;
     int n;                    /* views */
+    int err_n;                /* views with a y value */
     double err, ms;           /* means */
     int front;
 } plot_pt;
@@ -649,14 +709,15 @@ static void csv_field(FILE *f, const char *s) {
     fputc('"', f);
 }
 
-/* splits one line of bench.csv into its 14 fields (any may be quoted) */
+/* splits one line of bench.csv into its BENCH_CSV_COLS fields (any may be
+   quoted); returns the count, BENCH_CSV_COLS + 1 when there are more */
 static int csv_split(char *line, char **f) {
     int n = 0;
     char *p = line;
     size_t l = strlen(line);
     while (l && (line[l - 1] == '\n' || line[l - 1] == '\r')) line[--l] = 0;
     for (;;) {
-        if (n == 14) return 15;   /* too many */
+        if (n == BENCH_CSV_COLS) return BENCH_CSV_COLS + 1;   /* too many */
         if (*p == '"') {
             char *w = ++p;
             f[n++] = w;
@@ -685,17 +746,20 @@ static int plot_read(const char *csv, plot_data *d) {
     memset(d, 0, sizeof *d);
     if (!f) { fprintf(stderr, "bench: cannot read %s: %s\n", csv, strerror(errno)); return -1; }
     if (!fgets(line, sizeof line, f) || strncmp(line, BENCH_CSV_HEADER, strlen(BENCH_CSV_HEADER)) != 0) {
-        fprintf(stderr, "bench: %s does not start with the bench header\n", csv);
+        fprintf(stderr, "bench: %s does not start with the bench header (%s); one without shadow_area_pct and "
+                        "the columns after it comes from an older bench: run the bench again\n", csv,
+                BENCH_CSV_HEADER);
         fclose(f);
         return -1;
     }
     while (fgets(line, sizeof line, f)) {
-        char *fld[15];
+        char *fld[BENCH_CSV_COLS + 1];
+        const char *y;
         int si, k;
         plot_pt *p = NULL;
         char key[64];
         int soft;
-        if (csv_split(line, fld) != 14) continue;
+        if (csv_split(line, fld) != BENCH_CSV_COLS) continue;
         soft = strcmp(fld[6], "soft_mae") == 0;
         if (!soft && strcmp(fld[6], "hard_pct") != 0) continue;
         /* soft-shadow rows chart apart: "<scene>-soft", against the total time */
@@ -727,7 +791,13 @@ static int plot_read(const char *csv, plot_data *d) {
             snprintf(p->method, sizeof p->method, "%s", fld[0]);
             snprintf(p->params, sizeof p->params, "%s", fld[1]);
         }
-        p->err_sum += atof(fld[7]);
+        /* y: the shadow-area error, or the penumbra MAE; empty where the
+           reference frame has no shadow (no penumbra): that view adds no y */
+        y = fld[soft ? BENCH_COL_PENUMBRA_MAE : BENCH_COL_SHADOW_AREA];
+        if (*y) {
+            p->err_sum += atof(y);
+            p->err_n++;
+        }
         p->ms_sum += soft ? atof(fld[12]) : atof(fld[10]) + atof(fld[11]);   /* depth passes + analysis (FERKO) */
         p->n++;
     }
@@ -741,14 +811,17 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
     char methods[16][32], path[1400], base[1200], list[600] = "", cmd[3000];
     int nsel = 0, nm = 0, m, k, maxn = 0, logy = 1, nfront = 0, rc = 0;
     double best = 1e300, emin = 1e300, emax = 0, tmin = 1e300, tmax = 0;
+    const int soft = strstr(d->scenes[si], "-soft") != NULL;
+    const char *ykind = soft ? "penumbra_mae" : "shadow_area_pct";
     FILE *g;
     if (!sel) return -1;
     for (k = 0; k < d->npts; k++)
         if (d->pts[k].scene == si && d->pts[k].n > maxn) maxn = d->pts[k].n;
     for (k = 0; k < d->npts; k++) {
         plot_pt *p = &d->pts[k];
-        if (p->scene != si || p->n < maxn) continue;   /* only configurations seen from every view */
-        p->err = p->err_sum / p->n;
+        /* only configurations seen from every view, with a y in at least one */
+        if (p->scene != si || p->n < maxn || p->err_n == 0) continue;
+        p->err = p->err_sum / p->err_n;
         p->ms = p->ms_sum / p->n;
         if (p->ms < 1e-3) p->ms = 1e-3;
         if (!(p->err > 0.0)) logy = 0;
@@ -777,7 +850,8 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
     for (m = 0; m < nm; m++) {
         snprintf(path, sizeof path, "%s.%s.dat", base, methods[m]);
         if (!(g = fopen(path, "w"))) { rc = -1; continue; }
-        fprintf(g, "# %s on %s, mean over %d view(s): shadow_ms hard_pct params\n", methods[m], d->scenes[si], maxn);
+        fprintf(g, "# %s on %s, mean over %d view(s): shadow_ms %s params\n", methods[m], d->scenes[si], maxn,
+                ykind);
         for (k = 0; k < nsel; k++)
             if (strcmp(sel[k]->method, methods[m]) == 0)
                 fprintf(g, "%.4f %.4f %s\n", sel[k]->ms, sel[k]->err, sel[k]->params);
@@ -790,8 +864,8 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
         /* labels only where they do not crowd the previous label: chart
            coordinates in [0,1] (log time; log or linear error) */
         double lu = -1.0, lv = -1.0, ut = log(tmax / tmin), ue = logy ? log(emax / emin) : emax;
-        fprintf(g, "# Pareto front on %s: shadow_ms hard_pct label (\"\" where it would crowd) method params\n",
-                d->scenes[si]);
+        fprintf(g, "# Pareto front on %s: shadow_ms %s label (\"\" where it would crowd) method params\n",
+                d->scenes[si], ykind);
         for (k = 0; k < nsel; k++)
             if (sel[k]->front) {
                 char lab[64];
@@ -821,7 +895,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
     fprintf(g, "\nmethods = ");
     gp_string(g, list);
     fprintf(g, "\nnviews = %d\nrepeat = %d\nlogy = %d\nwidth = %d\nheight = %d\n", maxn, repeat, logy, BENCH_W, BENCH_H);
-    fprintf(g, "soft = %d\n", strstr(d->scenes[si], "-soft") != NULL);
+    fprintf(g, "soft = %d\n", soft);
     fprintf(g, "tmin = %g\ntmax = %g\nemin = %g\nemax = %g\n", tmin, tmax, emin, emax);
     fclose(g);
     snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->gp);
@@ -899,7 +973,37 @@ typedef struct run_rec {
     int passes;
     int state;                        /* 0 pending, 1 scored, -1 failed */
     const char *kind;                 /* error_kind: NULL hard_pct, else e.g. soft_mae */
+    tb_shadow_error hard;             /* hard rows: against the reference's shadow */
+    tb_penumbra_error pen;            /* soft rows: penumbra, umbra, lit */
+    uint64_t excluded;                /* reference pixels marked back-facing or silhouette */
 } run_rec;
+
+/* pixels the reference left out for what they are (back-facing,
+   silhouette), not for having no receiver */
+static uint64_t count_excluded(const float *ref, size_t n) {
+    uint64_t c = 0;
+    size_t i;
+    for (i = 0; i < n; i++) c += ref[i] == BENCH_VIS_BACKFACING || ref[i] == BENCH_VIS_SILHOUETTE;
+    return c;
+}
+
+/* the scores of a hard-shadow frame: error = tb_metric_hard's covered %,
+   plus tb_metric_shadow's figures for the appended columns */
+static void score_hard(const float *ref, const float *res, run_rec *rr) {
+    rr->err = tb_metric_hard(ref, res, (size_t)BENCH_W * BENCH_H).pct;
+    rr->hard = tb_metric_shadow(ref, res, BENCH_W, BENCH_H);
+    rr->excluded = count_excluded(ref, (size_t)BENCH_W * BENCH_H);
+    if (!rr->hard.ok) fprintf(stderr, "bench: tb_metric_shadow failed (out of memory): shadow columns left empty\n");
+}
+
+/* the scores of a soft-shadow frame: error = tb_metric_soft's covered mae,
+   plus tb_metric_penumbra's */
+static void score_soft(const float *ref, const float *res, run_rec *rr) {
+    rr->err = tb_metric_soft(ref, res, (size_t)BENCH_W * BENCH_H).mae;
+    rr->pen = tb_metric_penumbra(ref, res, BENCH_W, BENCH_H, BENCH_PENUMBRA_GROW);
+    rr->excluded = count_excluded(ref, (size_t)BENCH_W * BENCH_H);
+    if (!rr->pen.ok) fprintf(stderr, "bench: tb_metric_penumbra failed (out of memory): penumbra columns left empty\n");
+}
 
 /* the mask of the map just rendered for this view, read back and scored */
 static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px, run_rec *rr, const char **why) {
@@ -911,7 +1015,7 @@ static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px
     rr->mask_ms = st->mask_ms;
     rr->texels = st->texels;
     rr->passes = st->passes;
-    rr->err = tb_metric_hard(vd->ref, mask_px, (size_t)BENCH_W * BENCH_H).pct;
+    score_hard(vd->ref, mask_px, rr);
     return 0;
 }
 
@@ -932,7 +1036,34 @@ static void write_row(FILE *csv, const char *method, const char *params, const c
             rr->kind ? 6 : 4, rr->err, rr->texels, rr->passes, (double)sms, (double)ams,
             (double)(sms + ams + rr->mask_ms));
     csv_field(csv, renderer);
-    fputc('\n', csv);
+    /* the appended columns: hard ones, soft ones (empty where they do not
+       apply), excluded_px */
+    if (!rr->kind && rr->hard.ok) {
+        const tb_shadow_error *h = &rr->hard;
+        if (h->shadow > 0)
+            fprintf(csv, ",%.4f,%.4f,%.4f", h->area_pct, h->false_shadow_pct, h->false_light_pct);
+        else
+            fputs(",,,", csv);
+        if (h->wrong == 0 || h->edge_count > 0)
+            fprintf(csv, ",%.4f,%.4f", h->edge_mean_px, h->edge_p95_px);
+        else
+            fputs(",,", csv);
+        fprintf(csv, ",%.4f", h->covered_pct);
+    } else {
+        fputs(",,,,,,", csv);
+    }
+    if (rr->kind && rr->pen.ok) {
+        const tb_penumbra_error *q = &rr->pen;
+        if (q->penumbra > 0) fprintf(csv, ",%.6f,%.6f", q->penumbra_mae, q->penumbra_max);
+        else fputs(",,", csv);
+        if (q->umbra > 0) fprintf(csv, ",%.6f", q->umbra_mae);
+        else fputc(',', csv);
+        if (q->lit > 0) fprintf(csv, ",%.6f", q->lit_mae);
+        else fputc(',', csv);
+    } else {
+        fputs(",,,,", csv);
+    }
+    fprintf(csv, ",%llu\n", (unsigned long long)rr->excluded);
 }
 
 /* one frame's shadow work: FERKO and RMSM first analyse the view's depth buffer;
@@ -1163,7 +1294,7 @@ static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float 
             rr.mask_ms = median(mms, reps);
             rr.texels = st->texels;
             rr.passes = st->passes;
-            rr.err = tb_metric_hard(refv, mask_px, n).pct;
+            score_hard(refv, mask_px, &rr);
             /* the configuration only: what the culling found this view goes to stderr */
             snprintf(params, sizeof params, "resolution=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d",
                      d.resolution, pc->faces, pc->casters, pc->scissor, pc->select);
@@ -1172,9 +1303,10 @@ static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float 
                 write_row(csv, pc->method, params, "room", pv->name, &rr, sm, B->renderer);
                 if (c == 0) naive_total[v] = sm + rr.mask_ms;
                 fprintf(stderr, "bench: room %-6s %-10s %s: face %d^2, %d faces and %d casters culled: err %.3f%% "
-                                "shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
+                                "(shadow area %.3f%%, edge p95 %.2f px) shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
                         pv->name, pc->method, params, st->resolution, st->faces_culled, st->casters_culled, rr.err,
-                        (double)sm, (double)rr.mask_ms, naive_total[v] > 0 ? (sm + rr.mask_ms) / naive_total[v] : 0.0);
+                        rr.hard.area_pct, rr.hard.edge_p95_px, (double)sm, (double)rr.mask_ms,
+                        naive_total[v] > 0 ? (sm + rr.mask_ms) / naive_total[v] : 0.0);
             }
             skgl_point_destroy(B->sk, p);
         }
@@ -1202,14 +1334,19 @@ static int load_scene(const bench_scene_def *def, tb_scene *s) {
    PSSM with 8 cascades at the same per-map resolution (1024) render and are
    scored. Rows go to bench-walk.csv (the bench.csv columns, view walkNN);
    the summary (mean partitions, the shadow-time ratio LSPSM / PSSM-8, the
-   mean errors) to bench-walk.txt and stderr. */
+   mean errors: covered %, shadow-area % over the frames whose reference
+   has shadow, edge p95) to bench-walk.txt and stderr. */
 /* ------------------------------------------- area lights: PCSS and PVSM */
 /* The area-light rows: on sponza-ivy, sponza-curtains (when ../shared is
    there) and the procedural fence, one rectangular light above the content
    at three sizes; PCSS on a 2048^2 and a 4096^2 map against PVSM in the
    three variants of soft_cfgs (tiles up to 4096^2, 64^2 SMTG); error = mean
    absolute visibility error against the Embree reference with 16 x 16
-   stratified light samples per pixel (soft_mae, in [0,1]). shadow_ms = the
+   stratified light samples per pixel (soft_mae, in [0,1]) over the covered
+   pixels, and apart inside the penumbra (0 < reference < 1, grown by
+   BENCH_PENUMBRA_GROW px), the umbra and the lit part (tb_metric_penumbra:
+   the covered mean is mostly exact lit and umbra pixels, so it is many
+   times smaller than the error where the methods differ). shadow_ms = the
    depth passes (PCSS: its map; PVSM: the low-res map and the tiles),
    analysis_ms = PVSM's kernel-shape, prediction and pyramid passes (0 for
    PCSS), total_ms = every pass but the G-buffer (the masks included).
@@ -1308,7 +1445,7 @@ static int soft_run(bench_gl *B, const soft_cfg *cfg, const view_data *vd, const
     rr->mask_ms = median(tot, reps) - rr->shadow[0] - median(an, reps);
     rr->texels = st->texels;
     rr->passes = st->passes;
-    rr->err = tb_metric_soft(vd->ref, mask_px, (size_t)BENCH_W * BENCH_H).mae;
+    score_soft(vd->ref, mask_px, rr);
     rr->state = 1;
     return 0;
 }
@@ -1325,10 +1462,13 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
     txt = fopen(path, "w");
     if (txt)
         fprintf(txt, "# area-light soft shadows, %dx%d, error = mean absolute visibility error against %d "
-                     "stratified light samples per pixel; total = every pass but the G-buffer (median of %d)\n"
-                     "# device %s, times %s\n# %-16s %-8s %-6s %-10s %9s %9s %9s %9s %6s %6s\n", BENCH_W, BENCH_H,
-                SOFT_STRATA * SOFT_STRATA, reps, B->renderer, timing_label(B->renderer),
-                "scene", "view", "light", "method", "mae", "total_ms", "shadow_ms", "texels", "tiles", "lit");
+                     "stratified light samples per pixel: mae over the covered pixels; pen_mae, pen_max inside the "
+                     "penumbra (0 < reference < 1, grown by %d px); umbra_mae, lit_mae outside it (\"-\": the "
+                     "reference has no such pixel); total = every pass but the G-buffer (median of %d)\n"
+                     "# device %s, times %s\n# %-16s %-8s %-6s %-10s %9s %9s %9s %9s %9s %9s %9s %9s %6s %6s\n",
+                BENCH_W, BENCH_H, SOFT_STRATA * SOFT_STRATA, BENCH_PENUMBRA_GROW, reps, B->renderer,
+                timing_label(B->renderer), "scene", "view", "light", "method", "mae", "pen_mae", "pen_max",
+                "umbra_mae", "lit_mae", "total_ms", "shadow_ms", "texels", "tiles", "lit");
     for (sc_i = 0; sc_i < 3; sc_i++) {
         bench_scene_def def;
         tb_scene s;
@@ -1367,7 +1507,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                 view_data vd;
                 skgl_area_light l = soft_light_for(&s, z);
                 tb_light tl = soft_tb_light(&l);
-                double t0 = now_s(), e4 = -1, t4 = -1;
+                double t0 = now_s(), e4 = -1, p4 = -1, t4 = -1;
                 memset(&vd, 0, sizeof vd);
                 vd.v = views[vi];
                 if (prepare_view(B, &s, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
@@ -1396,9 +1536,11 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                                  soft_size_names[z], (double)l.half_width);
                     snprintf(view, sizeof view, "%s", vd.v.name);
                     write_row(csv, soft_cfgs[c].method, params, def.name, view, &rr, rr.shadow[0], B->renderer);
-                    fprintf(stderr, "bench: soft %-15s %-8s %-6s %-13s: mae %.5f total %.1f ms (depth %.1f) texels "
-                                    "%.0f (%.2fx 4096^2) tiles %d lit %.2f\n", def.name, vd.v.name,
-                            soft_size_names[z], soft_cfgs[c].label, rr.err, (double)tot,
+                    fprintf(stderr, "bench: soft %-15s %-8s %-6s %-13s: mae %.5f (penumbra %.5f, max %.3f; umbra "
+                                    "%.5f; lit %.5f) total %.1f ms (depth %.1f) texels %.0f (%.2fx 4096^2) tiles %d "
+                                    "lit %.2f\n", def.name, vd.v.name, soft_size_names[z], soft_cfgs[c].label,
+                            rr.err, rr.pen.penumbra_mae, rr.pen.penumbra_max, rr.pen.umbra_mae, rr.pen.lit_mae,
+                            (double)tot,
                             (double)rr.shadow[0], rr.texels, rr.texels / (4096.0 * 4096.0), st.tiles,
                             (double)st.lit_fraction);
                     if (soft_cfgs[c].technique == SKGL_SOFT_PVSM) {
@@ -1407,16 +1549,29 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                         for (q = 1; q < SKGL_SOFT_STEPS; q++) fprintf(stderr, " %d:%.1f", q + 1, (double)st.step_ms[q]);
                         fprintf(stderr, "\n");
                     }
-                    if (txt)
-                        fprintf(txt, "  %-16s %-8s %-6s %-10s %9.5f %9.1f %9.1f %9.0f %6d %6.2f%s\n", def.name,
-                                vd.v.name, soft_size_names[z], soft_cfgs[c].label, rr.err, (double)tot,
-                                (double)rr.shadow[0], rr.texels, st.tiles, (double)st.lit_fraction, "");
-                    if (c == 1) { e4 = rr.err; t4 = tot; }
-                    if (c >= 2 && txt && e4 >= 0)
-                        fprintf(txt, "  %-16s %-8s %-6s %s / pcss-4096: error %.2fx (%s), time %.2fx, texels %.2fx "
-                                     "of 4096^2\n", def.name, vd.v.name, soft_size_names[z], soft_cfgs[c].label,
-                                rr.err / e4, rr.err < e4 ? "lower" : "NOT lower", tot / t4,
-                                rr.texels / (4096.0 * 4096.0));
+                    if (txt) {
+                        char pm[16] = "-", px[16] = "-", um[16] = "-", lm[16] = "-";
+                        if (rr.pen.penumbra > 0) {
+                            snprintf(pm, sizeof pm, "%.5f", rr.pen.penumbra_mae);
+                            snprintf(px, sizeof px, "%.4f", rr.pen.penumbra_max);
+                        }
+                        if (rr.pen.umbra > 0) snprintf(um, sizeof um, "%.5f", rr.pen.umbra_mae);
+                        if (rr.pen.lit > 0) snprintf(lm, sizeof lm, "%.5f", rr.pen.lit_mae);
+                        fprintf(txt, "  %-16s %-8s %-6s %-10s %9.5f %9s %9s %9s %9s %9.1f %9.1f %9.0f %6d %6.2f\n",
+                                def.name, vd.v.name, soft_size_names[z], soft_cfgs[c].label, rr.err, pm, px, um, lm,
+                                (double)tot, (double)rr.shadow[0], rr.texels, st.tiles, (double)st.lit_fraction);
+                    }
+                    if (c == 1) { e4 = rr.err; p4 = rr.pen.penumbra > 0 ? rr.pen.penumbra_mae : -1; t4 = tot; }
+                    if (c >= 2 && txt && e4 >= 0) {
+                        char pr[64] = "no penumbra";
+                        if (p4 > 0 && rr.pen.penumbra > 0)
+                            snprintf(pr, sizeof pr, "%.2fx (%s)", rr.pen.penumbra_mae / p4,
+                                     rr.pen.penumbra_mae < p4 ? "lower" : "NOT lower");
+                        fprintf(txt, "  %-16s %-8s %-6s %s / pcss-4096: error %.2fx (%s), penumbra error %s, "
+                                     "time %.2fx, texels %.2fx of 4096^2\n", def.name, vd.v.name,
+                                soft_size_names[z], soft_cfgs[c].label, rr.err / e4, rr.err < e4 ? "lower" : "NOT lower",
+                                pr, tot / t4, rr.texels / (4096.0 * 4096.0));
+                    }
                 }
                 fflush(csv);
                 if (txt) fflush(txt);
@@ -1503,8 +1658,8 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
                        const tb_reference *ref, const bench_view *views, const skgl_scene *sc, int frames,
                        int repeat, float *depth, float *rgba, float *nrm, float *mask_px, FILE *csv, FILE *txt) {
     skgl_shadow *sh[2] = {NULL, NULL};
-    double ms[2] = {0, 0}, err[2] = {0, 0}, parts = 0;
-    int k, m, i, nf = 0;
+    double ms[2] = {0, 0}, err[2] = {0, 0}, area[2] = {0, 0}, p95[2] = {0, 0}, parts = 0;
+    int k, m, i, nf = 0, na[2] = {0, 0};
     for (m = 0; m < 2; m++) {
         skgl_shadow_desc d;
         memset(&d, 0, sizeof d);
@@ -1542,6 +1697,11 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
                           median(rr.shadow, rr.n), B->renderer);
                 ms[m] += median(rr.shadow, rr.n);
                 err[m] += rr.err;
+                if (rr.hard.ok && rr.hard.shadow > 0) {
+                    area[m] += rr.hard.area_pct;
+                    p95[m] += rr.hard.edge_p95_px;
+                    na[m]++;
+                }
                 if (m == 0) parts += rr.passes;
             }
             nf++;
@@ -1551,12 +1711,14 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
     }
     fflush(csv);
     if (nf > 0) {
-        char line[512];
+        char line[640];
         snprintf(line, sizeof line,
                  "%-16.64s %2d frames: lspsm %.2f partitions on average, shadow time %.2fx pssm-8 (%.2f vs %.2f ms "
-                 "per frame), error %.3f%% vs %.3f%%\n",
+                 "per frame), error %.3f%% vs %.3f%% of covered pixels, shadow area %.3f%% vs %.3f%%, edge p95 "
+                 "%.2f vs %.2f px\n",
                  def->name, nf, parts / nf, ms[1] > 0 ? ms[0] / ms[1] : 0.0, ms[0] / nf, ms[1] / nf, err[0] / nf,
-                 err[1] / nf);
+                 err[1] / nf, na[0] ? area[0] / na[0] : 0.0, na[1] ? area[1] / na[1] : 0.0,
+                 na[0] ? p95[0] / na[0] : 0.0, na[1] ? p95[1] / na[1] : 0.0);
         fprintf(stderr, "bench: walk %s", line);
         if (txt) { fputs(line, txt); fflush(txt); }
     }
@@ -1862,9 +2024,11 @@ int main(int argc, char **argv) {
                         rr->state = 1;
                         pg.done++;
                         progress_times(&pg, el_s, eta_s, sizeof el_s);
-                        fprintf(stderr, "[%4d/%d %s, eta %s] %-15s %-8s %-15s %-48s err %7.3f%%  shadow %8.2f ms"
-                                        "  mask %7.2f ms\n", pg.done, pg.total, el_s, eta_s, def->name, vd[v].v.name,
-                                cfg->method, cfg->params, rr->err, (double)median(tmp, rr->n), (double)rr->mask_ms);
+                        fprintf(stderr, "[%4d/%d %s, eta %s] %-15s %-8s %-15s %-48s err %7.3f%% (shadow area "
+                                        "%7.3f%%, edge p95 %5.2f px)  shadow %8.2f ms  mask %7.2f ms\n", pg.done,
+                                pg.total, el_s, eta_s, def->name, vd[v].v.name, cfg->method, cfg->params, rr->err,
+                                rr->hard.area_pct, rr->hard.edge_p95_px, (double)median(tmp, rr->n),
+                                (double)rr->mask_ms);
                         if (o.images && c == 0) {
                             snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.out_dir,
                                      def->name, vd[v].v.name, cfg->method);

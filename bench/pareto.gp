@@ -7,23 +7,27 @@
 # Variables: scene, device, timing (how to read the times: relative on a
 # CPU rasteriser, absolute on a GPU), database (path prefix of the .dat files),
 # outfile, methods (space-separated), nviews, repeat, logy, width, height,
-# tmin, tmax, emin, emax, soft (1: area-light rows, mean absolute
-# visibility error against the whole frame's shadow time).
+# tmin, tmax, emin, emax, soft (1: area-light rows).
+# The error (y) is bench.csv's shadow_area_pct on hard-shadow charts: wrong
+# pixels as a % of the reference's shadow pixels, which the lit majority of
+# the frame does not dilute (it can exceed 100); on soft charts
+# (soft = 1) its penumbra_mae: the mean absolute visibility error inside the
+# reference's penumbra grown by 2 px, against the whole frame's shadow time.
 
 set terminal pngcairo size 1280,940 noenhanced font 'DejaVu Sans,12'
 set output outfile
 set encoding utf8
 
-set title sprintf("shadowkit bench, scene %s: hard-shadow error against shadow-map time\n%dx%d, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
+set title sprintf("shadowkit bench, scene %s: shadow-area error against shadow-map time\n%dx%d, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
                   scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
 if (!exists("timing")) { timing = "GL timer queries" }
 set xlabel sprintf("shadow time per frame: depth passes + analysis (ms, %s; log scale)", timing)
-set ylabel "hard-shadow error (% of covered pixels misclassified)"
+set ylabel "shadow-area error (% of the reference's shadow pixels misclassified)"
 if (exists("soft") && soft) {
-    set title sprintf("shadowkit bench, scene %s: soft-shadow error against shadow time\n%dx%d, three light sizes, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
+    set title sprintf("shadowkit bench, scene %s: penumbra error against shadow time\n%dx%d, three light sizes, each point the mean of %d view(s); GPU time the median of %d renders; GL renderer: %s", \
                       scene, width, height, nviews, repeat, device) font 'DejaVu Sans,13'
     set xlabel sprintf("shadow time per frame: every pass but the G-buffer (ms, %s; log scale)", timing)
-    set ylabel "mean absolute visibility error against the area-light reference"
+    set ylabel "penumbra MAE (mean |visibility error| in the reference's penumbra grown 2 px)"
 }
 set logscale x
 set format x "%g"
@@ -32,9 +36,9 @@ set format y "%g"
 set xtics add (0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000)
 if (logy) {
     set logscale y
-    set ylabel "hard-shadow error (% of covered pixels misclassified, log scale)"
-    if (exists("soft") && soft) { set ylabel "mean absolute visibility error (log scale)" }
-    set ytics add (0.0001, 0.0002, 0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100)
+    set ylabel "shadow-area error (% of the reference's shadow pixels misclassified; log scale)"
+    if (exists("soft") && soft) { set ylabel "penumbra MAE (mean |visibility error| in the penumbra grown 2 px; log scale)" }
+    set ytics add (0.0001, 0.0002, 0.0005, 0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 500)
 }
 set grid xtics ytics mxtics mytics lc rgb '#e0e0e0' lw 1, lc rgb '#f0f0f0' lw 1
 set border lw 1.2

@@ -4,8 +4,14 @@
 #                     2 cores under llvmpipe): out/bench.csv, out/bench-walk.{csv,txt}
 #                     and out/pareto-<scene>.png (gnuplot, bench/pareto.gp)
 #   make bench-demo   the quick sweep (33 configurations; about 3 minutes) for `make demo`
-#   make bench-plot   redraw the charts from an existing out/bench.csv
+#   make bench-plot   redraw the charts from an existing out/bench.csv (one written
+#                     by this bench: an older CSV without shadow_area_pct is refused)
 # Both sweeps write the same files: the last one run is what out/ holds.
+# bench.csv: DESIGN.md's 14 columns, then (appended) the hard-shadow scores
+# shadow_area_pct,false_shadow_pct,false_light_pct,edge_mean_px,edge_p95_px,
+# covered_pct, the soft ones penumbra_mae,penumbra_max,umbra_mae,lit_mae and
+# excluded_px; the header comment of bench/bench.c defines each. The charts
+# plot shadow_area_pct (soft charts: penumbra_mae) against shadow time.
 # Extra arguments: make bench BENCH_ARGS="--only fence,terrace --repeat 5"
 # The shared scenes are read from ../shared/scenes when it exists (else
 # procedural scenes only, said on stderr). SK_GL=osmesa|egl picks the GL backend.

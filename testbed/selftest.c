@@ -629,6 +629,435 @@ static void test_metrics(void) {
     CHECK_NEAR(st.mean, 50.5, 1e-9);
 }
 
+/* ---- tb_metric_shadow / tb_metric_penumbra on synthetic frames ---- */
+
+/* the reference's other not-covered values (back-facing, silhouette): any
+   negative value is out of every count, these two included */
+#define ST_VIS_BACKFACING (-3.0f)
+#define ST_VIS_SILHOUETTE (-4.0f)
+
+static int shadow_zeroed(const tb_shadow_error *e) {
+    return e->ok == 0 && e->area_pct == 0 && e->false_shadow_pct == 0 && e->false_light_pct == 0 &&
+           e->edge_mean_px == 0 && e->edge_p95_px == 0 && e->covered_pct == 0 && e->covered == 0 &&
+           e->shadow == 0 && e->lit == 0 && e->wrong == 0 && e->false_shadow == 0 && e->false_light == 0 &&
+           e->invalid == 0 && e->edge_count == 0;
+}
+
+static int penumbra_zeroed(const tb_penumbra_error *e) {
+    return e->ok == 0 && e->penumbra_mae == 0 && e->penumbra_max == 0 && e->umbra_mae == 0 && e->umbra_max == 0 &&
+           e->lit_mae == 0 && e->lit_max == 0 && e->covered_mae == 0 && e->covered == 0 && e->penumbra_core == 0 &&
+           e->penumbra == 0 && e->umbra == 0 && e->lit == 0 && e->invalid == 0;
+}
+
+/* shadowed (0) where x < edge_x, lit (1) elsewhere */
+static void half_plane_x(float *img, int w, int h, int edge_x) {
+    int x, y;
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) img[y * w + x] = x < edge_x ? 0.0f : 1.0f;
+}
+
+/* the half-plane x < 32 on 64 x 32 against the same edge moved by k pixels:
+   |k| columns wrong, at 0.5, 1.5, .., |k| - 0.5 px from the edge */
+static void test_metric_shadow_half_plane(void) {
+    enum { W = 64, H = 32 };
+    static float ref[W * H], res[W * H];
+    static const struct { int k; double p95; } cases[] = {{1, 0.5}, {3, 2.5}, {4, 3.5}, {-1, 0.5}, {-3, 2.5}, {-4, 3.5}};
+    size_t c;
+    half_plane_x(ref, W, H, 32);
+    for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        int k = cases[c].k, ak = k < 0 ? -k : k;
+        tb_shadow_error e;
+        tb_hard_error hd;
+        half_plane_x(res, W, H, 32 + k);
+        e = tb_metric_shadow(ref, res, W, H);
+        hd = tb_metric_hard(ref, res, (size_t)W * H);
+        CHECK_MSG(e.ok == 1, "shift %d", k);
+        CHECK_MSG(e.covered == W * H && e.shadow == 32 * H && e.lit == 32 * H, "shift %d: covered %llu shadow %llu",
+                  k, (unsigned long long)e.covered, (unsigned long long)e.shadow);
+        CHECK_MSG(e.wrong == (uint64_t)(ak * H) && e.invalid == 0, "shift %d: wrong %llu", k,
+                  (unsigned long long)e.wrong);
+        /* k > 0: the result's shadow reaches into the lit side (false shadow);
+           k < 0: it stops short (false light) */
+        CHECK_MSG(e.false_shadow == (uint64_t)(k > 0 ? ak * H : 0) && e.false_light == (uint64_t)(k < 0 ? ak * H : 0),
+                  "shift %d: false shadow %llu, false light %llu", k, (unsigned long long)e.false_shadow,
+                  (unsigned long long)e.false_light);
+        CHECK_NEAR(e.area_pct, 100.0 * ak / 32.0, 1e-12);
+        CHECK_NEAR(e.false_shadow_pct, k > 0 ? 100.0 * ak / 32.0 : 0.0, 1e-12);
+        CHECK_NEAR(e.false_light_pct, k < 0 ? 100.0 * ak / 32.0 : 0.0, 1e-12);
+        CHECK_NEAR(e.covered_pct, 100.0 * ak / 64.0, 1e-12);
+        CHECK_NEAR(e.covered_pct, hd.pct, 1e-12);
+        CHECK(e.edge_count == e.wrong);
+        CHECK_NEAR(e.edge_mean_px, ak / 2.0, 1e-12);
+        CHECK_NEAR(e.edge_p95_px, cases[c].p95, 1e-12);
+    }
+    {
+        /* the dilution the shadow-area error removes: 3 of 32 shadow columns
+           wrong read as 4.7% of the frame but 9.4% of the shadow */
+        tb_shadow_error e;
+        half_plane_x(res, W, H, 35);
+        e = tb_metric_shadow(ref, res, W, H);
+        printf("metrics: half-plane shifted 3 px: covered %.3f%%, shadow area %.3f%%, edge mean %.2f px p95 %.2f px\n",
+               e.covered_pct, e.area_pct, e.edge_mean_px, e.edge_p95_px);
+    }
+    {
+        /* the edge along rows: shadow y < 10 against y < 12 (row 0 at the bottom) */
+        tb_shadow_error e;
+        int x, y;
+        for (y = 0; y < H; y++)
+            for (x = 0; x < W; x++) {
+                ref[y * W + x] = y < 10 ? 0.0f : 1.0f;
+                res[y * W + x] = y < 12 ? 0.0f : 1.0f;
+            }
+        e = tb_metric_shadow(ref, res, W, H);
+        CHECK(e.ok && e.shadow == 10 * W && e.false_shadow == 2 * W && e.false_light == 0);
+        CHECK_NEAR(e.area_pct, 20.0, 1e-12);
+        CHECK_NEAR(e.edge_mean_px, 1.0, 1e-12);
+        CHECK_NEAR(e.edge_p95_px, 1.5, 1e-12);   /* 128 values, h = 120.65: both neighbours 1.5 */
+    }
+}
+
+/* distances are Euclidean: one shadow pixel at (10,10); the result lights it
+   (false light, 0.5 px: its lit neighbour is 1 px away) and shadows (13,14)
+   (false shadow, 5 px from (10,10): 4.5; Chebyshev would say 3.5) */
+static void test_metric_shadow_euclid(void) {
+    enum { W = 32, H = 24 };
+    static float ref[W * H], res[W * H];
+    tb_shadow_error e;
+    int i;
+    for (i = 0; i < W * H; i++) ref[i] = res[i] = 1.0f;
+    ref[10 * W + 10] = 0.0f;
+    res[14 * W + 13] = 0.0f;
+    e = tb_metric_shadow(ref, res, W, H);
+    CHECK(e.ok && e.shadow == 1 && e.lit == W * H - 1 && e.false_light == 1 && e.false_shadow == 1 && e.wrong == 2);
+    CHECK_NEAR(e.area_pct, 200.0, 1e-12);   /* not clamped: more wrong than shadow */
+    CHECK_NEAR(e.false_shadow_pct, 100.0, 1e-12);
+    CHECK_NEAR(e.false_light_pct, 100.0, 1e-12);
+    CHECK(e.edge_count == 2);
+    CHECK_NEAR(e.edge_mean_px, 2.5, 1e-12);
+    CHECK_NEAR(e.edge_p95_px, 0.5 + 0.95 * 4.0, 1e-12);   /* between 0.5 and 4.5 at h = 0.95 */
+    /* a false shadow 3 px to the right and 4 px down of the shadow pixel: row 0 at the bottom, same distance */
+    res[14 * W + 13] = 1.0f;
+    res[6 * W + 13] = 0.0f;
+    e = tb_metric_shadow(ref, res, W, H);
+    CHECK_NEAR(e.edge_mean_px, 2.5, 1e-12);
+}
+
+/* non-covered reference pixels (negative, NaN) are in no count, no
+   denominator and no edge: on the 3-column shift, column 32 (the first lit
+   one) is back-facing, column 0 silhouette, column 1 NaN, 24 pixels of the
+   top row background; the result is wrong on all of them */
+static void test_metric_shadow_excluded(void) {
+    enum { W = 64, H = 32 };
+    static float ref[W * H], res[W * H];
+    tb_shadow_error e;
+    tb_hard_error hd;
+    int x, y;
+    half_plane_x(ref, W, H, 32);
+    half_plane_x(res, W, H, 35);
+    for (y = 0; y < H; y++) {
+        ref[y * W + 0] = ST_VIS_SILHOUETTE;
+        res[y * W + 0] = 1.0f;
+        ref[y * W + 1] = (float)NAN;
+        res[y * W + 1] = 1.0f;
+        ref[y * W + 32] = ST_VIS_BACKFACING;
+    }
+    for (x = 40; x < W; x++) {
+        ref[(H - 1) * W + x] = TB_VIS_BACKGROUND;
+        res[(H - 1) * W + x] = 0.0f;
+    }
+    e = tb_metric_shadow(ref, res, W, H);
+    hd = tb_metric_hard(ref, res, (size_t)W * H);
+    CHECK(e.ok);
+    CHECK_MSG(e.shadow == 30 * H && e.lit == 31 * H - 24 && e.covered == 30 * H + 31 * H - 24,
+              "shadow %llu lit %llu covered %llu", (unsigned long long)e.shadow, (unsigned long long)e.lit,
+              (unsigned long long)e.covered);
+    CHECK(e.wrong == 2 * H && e.false_shadow == 2 * H && e.false_light == 0 && e.invalid == 0);
+    CHECK_NEAR(e.area_pct, 100.0 * 64.0 / 960.0, 1e-12);
+    CHECK_NEAR(e.covered_pct, 100.0 * 64.0 / 1928.0, 1e-12);
+    CHECK_NEAR(e.covered_pct, hd.pct, 1e-12);
+    /* columns 33 and 34 measure to column 31 (32 is no site): 1.5 and 2.5 */
+    CHECK(e.edge_count == 2 * H);
+    CHECK_NEAR(e.edge_mean_px, 2.0, 1e-12);
+    CHECK_NEAR(e.edge_p95_px, 2.5, 1e-12);
+}
+
+/* no shadow in the reference: the shadow-area figures are 0 and `shadow`
+   says why; the false shadow still counts; no edge to measure */
+static void test_metric_shadow_empty(void) {
+    enum { W = 16, H = 8 };
+    static float ref[W * H], res[W * H];
+    tb_shadow_error e;
+    int i;
+    for (i = 0; i < W * H; i++) ref[i] = res[i] = 1.0f;
+    e = tb_metric_shadow(ref, res, W, H);
+    CHECK(e.ok && e.covered == W * H && e.shadow == 0 && e.wrong == 0);
+    CHECK(e.area_pct == 0 && e.covered_pct == 0 && e.edge_mean_px == 0 && e.edge_p95_px == 0);
+    for (i = 0; i < 5; i++) res[7 * i + 3] = 0.0f;
+    e = tb_metric_shadow(ref, res, W, H);
+    CHECK(e.ok && e.shadow == 0 && e.false_shadow == 5 && e.wrong == 5 && e.edge_count == 0);
+    CHECK(e.area_pct == 0 && e.false_shadow_pct == 0 && e.false_light_pct == 0);
+    CHECK(e.edge_mean_px == 0 && e.edge_p95_px == 0);
+    CHECK_NEAR(e.covered_pct, 100.0 * 5 / (W * H), 1e-12);
+    /* all shadow, 6 pixels lit by the result: false light, no lit class, no edge */
+    for (i = 0; i < W * H; i++) { ref[i] = 0.0f; res[i] = i % 20 == 0 ? 1.0f : 0.0f; }
+    e = tb_metric_shadow(ref, res, W, H);
+    CHECK(e.ok && e.shadow == W * H && e.lit == 0 && e.false_light == 7 && e.edge_count == 0);
+    CHECK_NEAR(e.area_pct, 100.0 * 7 / (W * H), 1e-12);
+    CHECK_NEAR(e.false_light_pct, 100.0 * 7 / (W * H), 1e-12);
+    /* nothing covered */
+    for (i = 0; i < W * H; i++) ref[i] = TB_VIS_BACKGROUND;
+    e = tb_metric_shadow(ref, res, W, H);
+    CHECK(e.ok && e.covered == 0 && e.wrong == 0 && e.area_pct == 0 && e.covered_pct == 0);
+}
+
+/* NaN and infinite results are wrong (invalid), neither false shadow nor
+   false light, and measured to the edge by their reference class */
+static void test_metric_shadow_nan(void) {
+    enum { W = 64, H = 32 };
+    static float ref[W * H], res[W * H];
+    tb_shadow_error e;
+    half_plane_x(ref, W, H, 32);
+    half_plane_x(res, W, H, 32);
+    res[5 * W + 40] = (float)NAN;        /* lit, 9 px from column 31: 8.5 */
+    res[7 * W + 10] = (float)INFINITY;   /* shadowed, 22 px from column 32: 21.5 */
+    res[0 * W + 31] = -(float)INFINITY;  /* shadowed, next to the edge: 0.5 */
+    e = tb_metric_shadow(ref, res, W, H);
+    CHECK(e.ok && e.invalid == 3 && e.wrong == 3 && e.false_shadow == 0 && e.false_light == 0);
+    CHECK_NEAR(e.area_pct, 100.0 * 3 / (32 * H), 1e-12);
+    CHECK(e.edge_count == 3);
+    CHECK_NEAR(e.edge_mean_px, (8.5 + 21.5 + 0.5) / 3.0, 1e-12);
+    CHECK_NEAR(e.edge_p95_px, 8.5 + 0.9 * 13.0, 1e-12);   /* h = 1.9 between 8.5 and 21.5 */
+}
+
+static void test_metric_shadow_bad_input(void) {
+    float one[4] = {0, 1, 0, 1};
+    tb_shadow_error e;
+    e = tb_metric_shadow(NULL, one, 2, 2);
+    CHECK(shadow_zeroed(&e));
+    e = tb_metric_shadow(one, NULL, 2, 2);
+    CHECK(shadow_zeroed(&e));
+    e = tb_metric_shadow(one, one, 0, 2);
+    CHECK(shadow_zeroed(&e));
+    e = tb_metric_shadow(one, one, 2, -1);
+    CHECK(shadow_zeroed(&e));
+    e = tb_metric_shadow(one, one, 2, 2);
+    CHECK(e.ok && e.covered == 4 && e.wrong == 0);
+}
+
+static uint32_t lcg_next(uint32_t *s) {
+    *s = *s * 1664525u + 1013904223u;
+    return *s >> 8;
+}
+
+/* against a brute-force search over every pixel pair: random discs of
+   shadow, random flips in the result, some pixels not covered. The
+   distance transform must agree to rounding. */
+static void test_metric_shadow_brute(void) {
+    enum { W = 47, H = 39 };
+    static float ref[W * H], res[W * H];
+    static double d[W * H];
+    int trial;
+    for (trial = 0; trial < 6; trial++) {
+        uint32_t s = 12345u + 977u * (uint32_t)trial;
+        int i, j, m = 0, discs = 1 + trial % 4;
+        double sum = 0, mean, p95, hp;
+        tb_shadow_error e;
+        for (i = 0; i < W * H; i++) ref[i] = 1.0f;
+        for (j = 0; j < discs; j++) {
+            double cx = lcg_next(&s) % W, cy = lcg_next(&s) % H, r = 1 + lcg_next(&s) % (trial < 3 ? 12 : 3);
+            for (i = 0; i < W * H; i++) {
+                double dx = i % W + 0.5 - cx, dy = i / W + 0.5 - cy;
+                if (dx * dx + dy * dy < r * r) ref[i] = 0.0f;
+            }
+        }
+        for (i = 0; i < W * H; i++) {
+            uint32_t u = lcg_next(&s) % 100;
+            res[i] = u < 7 ? 1.0f - ref[i] : ref[i];
+            if (u >= 97) ref[i] = u == 99 ? ST_VIS_BACKFACING : TB_VIS_BACKGROUND;
+        }
+        for (i = 0; i < W * H; i++) {
+            int k;
+            double best = INFINITY;
+            if (ref[i] < 0 || (res[i] >= 0.5f) == (ref[i] >= 0.5f)) continue;
+            for (k = 0; k < W * H; k++) {
+                double dx, dy, q;
+                if (ref[k] < 0 || (ref[k] >= 0.5f) == (ref[i] >= 0.5f)) continue;
+                dx = k % W - i % W;
+                dy = k / W - i / W;
+                q = sqrt(dx * dx + dy * dy) - 0.5;
+                if (q < best) best = q;
+            }
+            if (best == INFINITY) continue;
+            d[m++] = best < 0 ? 0 : best;
+            sum += d[m - 1];
+        }
+        /* insertion sort, then the quantile definition of tb_metrics.h */
+        for (i = 1; i < m; i++)
+            for (j = i; j > 0 && d[j - 1] > d[j]; j--) { double t = d[j]; d[j] = d[j - 1]; d[j - 1] = t; }
+        mean = m ? sum / m : 0;
+        hp = (m - 1) * 0.95;
+        p95 = m ? d[(int)hp] + (hp - floor(hp)) * ((int)hp + 1 < m ? d[(int)hp + 1] - d[(int)hp] : 0) : 0;
+        e = tb_metric_shadow(ref, res, W, H);
+        CHECK_MSG(e.ok && e.edge_count == (uint64_t)m && e.wrong == (uint64_t)m, "trial %d: %llu measured, brute %d",
+                  trial, (unsigned long long)e.edge_count, m);
+        CHECK_NEAR(e.edge_mean_px, mean, 1e-9);
+        CHECK_NEAR(e.edge_p95_px, p95, 1e-9);
+    }
+}
+
+/* one penumbra pixel in the middle of a lit 9 x 9 frame: its growth is a
+   disc of lattice points, 1, 5, 13, 29 pixels for grow 0..3 (a square
+   would give 1, 9, 25, 49) */
+static void test_metric_penumbra_disc_growth(void) {
+    enum { W = 9, H = 9 };
+    float ref[W * H], res[W * H];
+    static const uint64_t want[4] = {1, 5, 13, 29};
+    tb_penumbra_error e;
+    int i, g;
+    for (i = 0; i < W * H; i++) ref[i] = res[i] = 1.0f;
+    ref[4 * W + 4] = 0.5f;
+    res[4 * W + 4] = 0.5f;
+    for (g = 0; g < 4; g++) {
+        e = tb_metric_penumbra(ref, res, W, H, g);
+        CHECK_MSG(e.ok && e.penumbra_core == 1 && e.penumbra == want[g] && e.lit == W * H - want[g] && e.umbra == 0,
+                  "grow %d: penumbra %llu, expected %llu", g, (unsigned long long)e.penumbra,
+                  (unsigned long long)want[g]);
+    }
+    /* an uncovered pixel 2 px above never joins */
+    ref[6 * W + 4] = TB_VIS_BACKGROUND;
+    e = tb_metric_penumbra(ref, res, W, H, 2);
+    CHECK(e.ok && e.covered == W * H - 1 && e.penumbra == 12 && e.lit == W * H - 13);
+}
+
+/* a disc penumbra: umbra r < 10, visibility (r - 10) / 10 up to r = 20,
+   lit beyond, background beyond r = 30 (r from the frame centre). The
+   result errs by 0.2 deep in the umbra (r < 5), by 0.05 in the penumbra's
+   core, by 0.1 far out in the lit part (r >= 25), and is exact elsewhere
+   (the 2-px grown rim included). */
+static void test_metric_penumbra_disc(void) {
+    enum { W = 64, H = 64 };
+    static float ref[W * H], res[W * H];
+    long core = 0, grown = 0, umbra = 0, lit = 0, deep = 0, far = 0, covered = 0;
+    int x, y;
+    tb_penumbra_error e, e0;
+    tb_soft_error so;
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            double r = hypot(x + 0.5 - 32.0, y + 0.5 - 32.0);
+            float v = r < 10 ? 0.0f : r < 20 ? (float)((r - 10) / 10) : 1.0f;
+            float o = v;
+            if (r > 30) { v = TB_VIS_BACKGROUND; o = 0.0f; }
+            else if (r < 5) o = 0.2f;
+            else if (v > 0.0f && v < 1.0f) o = v + 0.05f;
+            else if (r >= 25) o = 0.9f;
+            ref[y * W + x] = v;
+            res[y * W + x] = o;
+        }
+    /* the expected regions, by direct search of the 5 x 5 neighbourhood */
+    for (y = 0; y < H; y++)
+        for (x = 0; x < W; x++) {
+            float v = ref[y * W + x];
+            int dx, dy, near = 0;
+            double r = hypot(x + 0.5 - 32.0, y + 0.5 - 32.0);
+            if (v < 0) continue;
+            covered++;
+            for (dy = -2; dy <= 2; dy++)
+                for (dx = -2; dx <= 2; dx++) {
+                    int xx = x + dx, yy = y + dy;
+                    float q;
+                    if (dx * dx + dy * dy > 4 || xx < 0 || yy < 0 || xx >= W || yy >= H) continue;
+                    q = ref[yy * W + xx];
+                    if (q > 0.0f && q < 1.0f) near = 1;
+                }
+            if (v > 0.0f && v < 1.0f) core++;
+            if (near) grown++;
+            else if (v == 0.0f) { umbra++; deep += r < 5; }
+            else { lit++; far += r >= 25; }
+        }
+    e = tb_metric_penumbra(ref, res, W, H, 2);
+    so = tb_metric_soft(ref, res, (size_t)W * H);
+    printf("metrics: disc penumbra: %ld core, %ld grown, %ld umbra, %ld lit pixels; penumbra mae %.5f,"
+           " covered mae %.5f\n", core, grown, umbra, lit, e.penumbra_mae, e.covered_mae);
+    CHECK(e.ok && e.invalid == 0);
+    CHECK(grown > core && core > 850 && deep > 60 && far > 750);
+    CHECK_MSG(e.covered == (uint64_t)covered && e.penumbra_core == (uint64_t)core && e.penumbra == (uint64_t)grown &&
+              e.umbra == (uint64_t)umbra && e.lit == (uint64_t)lit,
+              "covered %llu core %llu penumbra %llu umbra %llu lit %llu", (unsigned long long)e.covered,
+              (unsigned long long)e.penumbra_core, (unsigned long long)e.penumbra, (unsigned long long)e.umbra,
+              (unsigned long long)e.lit);
+    CHECK(e.penumbra + e.umbra + e.lit == e.covered);
+    CHECK_NEAR(e.penumbra_mae, 0.05 * core / grown, 2e-7);
+    CHECK_NEAR(e.penumbra_max, 0.05, 2e-7);
+    CHECK_NEAR(e.umbra_mae, 0.2 * deep / umbra, 1e-7);
+    CHECK_NEAR(e.umbra_max, 0.2, 1e-7);
+    CHECK_NEAR(e.lit_mae, 0.1 * far / lit, 1e-7);
+    CHECK_NEAR(e.lit_max, 0.1, 1e-7);
+    CHECK_NEAR(e.covered_mae, so.mae, 1e-12);
+    CHECK_NEAR(e.covered_mae, (0.05 * core + 0.2 * deep + 0.1 * far) / covered, 1e-7);
+    /* grow 0: the core alone, its pixels all off by 0.05 */
+    e0 = tb_metric_penumbra(ref, res, W, H, 0);
+    CHECK(e0.ok && e0.penumbra == (uint64_t)core && e0.penumbra + e0.umbra + e0.lit == e0.covered);
+    CHECK_NEAR(e0.penumbra_mae, 0.05, 2e-7);
+}
+
+/* NaN and infinite results count as error 1 */
+static void test_metric_penumbra_nan(void) {
+    enum { W = 8, H = 8 };
+    float ref[W * H], res[W * H];
+    tb_penumbra_error e;
+    int i;
+    for (i = 0; i < W * H; i++) ref[i] = res[i] = 1.0f;
+    ref[3 * W + 3] = 0.5f;                 /* the core: its grown disc holds 13 pixels */
+    ref[6 * W + 6] = res[6 * W + 6] = 0.0f;   /* umbra, sqrt(18) px from the core */
+    res[3 * W + 3] = (float)NAN;
+    res[0] = (float)INFINITY;              /* lit */
+    e = tb_metric_penumbra(ref, res, W, H, 2);
+    CHECK(e.ok && e.invalid == 2 && e.penumbra == 13 && e.umbra == 1 && e.lit == 50 && e.covered == 64);
+    CHECK_NEAR(e.penumbra_mae, 1.0 / 13, 1e-12);
+    CHECK_NEAR(e.penumbra_max, 1.0, 0);
+    CHECK_NEAR(e.lit_mae, 1.0 / 50, 1e-12);
+    CHECK_NEAR(e.lit_max, 1.0, 0);
+    CHECK(e.umbra_mae == 0 && e.umbra_max == 0);
+    CHECK_NEAR(e.covered_mae, 2.0 / 64, 1e-12);
+    /* a hard reference: no penumbra, the regions are umbra and lit */
+    ref[3 * W + 3] = 0.0f;
+    res[3 * W + 3] = 0.0f;
+    e = tb_metric_penumbra(ref, res, W, H, 2);
+    CHECK(e.ok && e.penumbra == 0 && e.penumbra_core == 0 && e.penumbra_mae == 0 && e.umbra == 2 && e.lit == 62);
+    CHECK_NEAR(e.lit_mae, 1.0 / 62, 1e-12);
+}
+
+static void test_metric_penumbra_bad_input(void) {
+    float one[4] = {0, 0.5f, 1, 1};
+    tb_penumbra_error e;
+    e = tb_metric_penumbra(NULL, one, 2, 2, 2);
+    CHECK(penumbra_zeroed(&e));
+    e = tb_metric_penumbra(one, NULL, 2, 2, 2);
+    CHECK(penumbra_zeroed(&e));
+    e = tb_metric_penumbra(one, one, -2, 2, 2);
+    CHECK(penumbra_zeroed(&e));
+    e = tb_metric_penumbra(one, one, 2, 0, 2);
+    CHECK(penumbra_zeroed(&e));
+    e = tb_metric_penumbra(one, one, 2, 2, -1);
+    CHECK(penumbra_zeroed(&e));
+    e = tb_metric_penumbra(one, one, 2, 2, 2);
+    CHECK(e.ok && e.covered == 4 && e.penumbra == 4 && e.penumbra_mae == 0);
+}
+
+static void test_metric_frames(void) {
+    test_metric_shadow_half_plane();
+    test_metric_shadow_euclid();
+    test_metric_shadow_excluded();
+    test_metric_shadow_empty();
+    test_metric_shadow_nan();
+    test_metric_shadow_bad_input();
+    test_metric_shadow_brute();
+    test_metric_penumbra_disc_growth();
+    test_metric_penumbra_disc();
+    test_metric_penumbra_nan();
+    test_metric_penumbra_bad_input();
+}
+
 static void test_image(void) {
     /* 2 x 2, bottom row red, top row green: the PNG's first row must be green */
     const unsigned char px[12] = {255, 0, 0, 255, 0, 0, 0, 255, 0, 0, 255, 0};
@@ -822,6 +1251,7 @@ int main(void) {
     test_reference_area();
     test_reference_point();
     test_metrics();
+    test_metric_frames();
     test_image();
     test_gl();
     printf("wrote out/testbed-selftest.png, out/testbed-selftest-error.png, out/testbed-selftest-gl.png\n");

@@ -114,3 +114,234 @@ tb_footprint_stats tb_metric_footprint(const float *fp, size_t n) {
     free(c);
     return s;
 }
+
+/* ---------------------------------------------- exact distance transform */
+/* Squared Euclidean distance transform after Felzenszwalb and Huttenlocher,
+   "Distance Transforms of Sampled Functions", Theory of Computing 8 (2012):
+   D(p) = min_q (|p - q|^2 + f(q)) is separable, so it runs as a 1-D
+   transform along every column, then along every row of the result.
+   Here f is 0 at sites and +infinity elsewhere. For such a function the
+   column transform is the squared distance to the nearest site in the
+   column, which two sweeps over the rows find (contiguous in memory); the
+   row transform is the paper's lower envelope of the parabolas
+   (x - q)^2 + f(q), built left to right in one pass and read off in a
+   second: O(n). Infinite samples (columns without a site) are left out of
+   the envelope instead of standing in as a large number, so every output
+   is exact (sums of squares of integers, far below 2^53) or +infinity
+   when the frame holds no site. */
+
+/* 1-D transform of the n samples of f into d (f == d allowed); v (n ints),
+   z (n + 1 doubles) and tmp (n doubles) are scratch */
+static void tb_dt1d_(const double *f, double *d, int n, int *v, double *z, double *tmp) {
+    int q, k = -1, j;
+    for (q = 0; q < n; q++) {
+        double s;
+        if (isinf(f[q])) continue;
+        if (k < 0) {
+            k = 0;
+            v[0] = q;
+            z[0] = -INFINITY;
+            z[1] = INFINITY;
+            continue;
+        }
+        /* where the parabola from q overtakes the rightmost one kept;
+           z[0] = -inf ends the loop with k >= 0 */
+        for (;;) {
+            s = ((f[q] + (double)q * q) - (f[v[k]] + (double)v[k] * v[k])) / (2.0 * (double)(q - v[k]));
+            if (s > z[k]) break;
+            k--;
+        }
+        k++;
+        v[k] = q;
+        z[k] = s;
+        z[k + 1] = INFINITY;
+    }
+    if (k < 0) {
+        for (q = 0; q < n; q++) tmp[q] = INFINITY;
+    } else {
+        j = 0;
+        for (q = 0; q < n; q++) {
+            double dq;
+            while (z[j + 1] < (double)q) j++;
+            dq = (double)(q - v[j]);
+            tmp[q] = dq * dq + f[v[j]];
+        }
+    }
+    memcpy(d, tmp, sizeof(double) * (size_t)n);
+}
+
+/* in place: grid (w x h, row-major) holds 0 at sites and +infinity
+   elsewhere on entry, the squared distance to the nearest site on return
+   (+infinity everywhere when there is none). -1 when out of memory. */
+static int tb_edt_sq_(double *grid, int w, int h) {
+    int x, y;
+    int *v = (int *)malloc(sizeof(int) * (size_t)w);
+    double *z = (double *)malloc(sizeof(double) * ((size_t)w + 1));
+    double *tmp = (double *)malloc(sizeof(double) * (size_t)w);
+    if (!v || !z || !tmp) {
+        free(v); free(z); free(tmp);
+        return -1;
+    }
+    /* columns: distance in rows to the nearest site below, then above */
+    for (y = 1; y < h; y++) {
+        double *row = grid + (size_t)y * w;
+        const double *below = row - w;
+        for (x = 0; x < w; x++)
+            if (row[x] != 0.0 && below[x] + 1.0 < row[x]) row[x] = below[x] + 1.0;
+    }
+    for (y = h - 2; y >= 0; y--) {
+        double *row = grid + (size_t)y * w;
+        const double *above = row + w;
+        for (x = 0; x < w; x++)
+            if (above[x] + 1.0 < row[x]) row[x] = above[x] + 1.0;
+    }
+    /* rows: the envelope over the squared column distances */
+    for (y = 0; y < h; y++) {
+        double *row = grid + (size_t)y * w;
+        for (x = 0; x < w; x++) row[x] *= row[x];
+        tb_dt1d_(row, row, w, v, z, tmp);
+    }
+    free(v); free(z); free(tmp);
+    return 0;
+}
+
+/* covered: reference finite and >= 0 */
+static int tb_covered_(float r) { return tb_finite_(r) && r >= 0.0f; }
+
+static int tb_frame_ok_(const void *ref, const void *res, int w, int h) {
+    if (!ref || !res || w <= 0 || h <= 0) return 0;
+    /* w * h and (w * h + 1) doubles must fit a size_t */
+    return (size_t)w <= ((size_t)-1 / sizeof(double) - 1) / (size_t)h;
+}
+
+static int tb_cmp_double_(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* tb_quantile_sorted's definition on doubles */
+static double tb_quantile_sorted_d_(const double *x, size_t n, double p) {
+    double hp, fl;
+    size_t k;
+    if (n == 0) return 0.0;
+    if (p <= 0) return x[0];
+    if (p >= 1) return x[n - 1];
+    hp = (double)(n - 1) * p;
+    fl = floor(hp);
+    k = (size_t)fl;
+    if (k + 1 >= n) return x[n - 1];
+    return x[k] + (hp - fl) * (x[k + 1] - x[k]);
+}
+
+tb_shadow_error tb_metric_shadow(const float *ref, const float *res, int w, int h) {
+    tb_shadow_error e;
+    size_t n, i, m = 0;
+    double *grid = NULL, *dist = NULL, sum = 0.0;
+    uint64_t wrong_in[2] = {0, 0};   /* wrong pixels by reference class */
+    int cls;
+    memset(&e, 0, sizeof e);
+    if (!tb_frame_ok_(ref, res, w, h)) return e;
+    n = (size_t)w * (size_t)h;
+    for (i = 0; i < n; i++) {
+        int rc;
+        if (!tb_covered_(ref[i])) continue;
+        rc = tb_visibility_class(ref[i]);
+        e.covered++;
+        if (rc == 1) e.lit++;
+        else e.shadow++;
+        if (!tb_finite_(res[i])) e.invalid++;
+        else if (res[i] >= TB_LIT_THRESHOLD) { if (rc == 0) e.false_light++; else continue; }
+        else if (rc == 1) e.false_shadow++;
+        else continue;
+        wrong_in[rc]++;
+    }
+    e.wrong = e.false_shadow + e.false_light + e.invalid;
+    e.covered_pct = e.covered ? 100.0 * (double)e.wrong / (double)e.covered : 0.0;
+    if (e.shadow) {
+        e.area_pct = 100.0 * (double)e.wrong / (double)e.shadow;
+        e.false_shadow_pct = 100.0 * (double)e.false_shadow / (double)e.shadow;
+        e.false_light_pct = 100.0 * (double)e.false_light / (double)e.shadow;
+    }
+    e.ok = 1;
+    /* edges exist only when the reference has covered pixels of both classes */
+    if (e.wrong == 0 || e.shadow == 0 || e.lit == 0) return e;
+    grid = (double *)malloc(sizeof(double) * n);
+    dist = (double *)malloc(sizeof(double) * (size_t)e.wrong);
+    if (!grid || !dist) goto oom;
+    /* wrong pixels of reference class cls measure to the sites of class 1 - cls */
+    for (cls = 0; cls < 2; cls++) {
+        if (wrong_in[cls] == 0) continue;
+        for (i = 0; i < n; i++)
+            grid[i] = tb_covered_(ref[i]) && tb_visibility_class(ref[i]) == 1 - cls ? 0.0 : INFINITY;
+        if (tb_edt_sq_(grid, w, h) != 0) goto oom;
+        for (i = 0; i < n; i++) {
+            double d;
+            if (!tb_covered_(ref[i]) || tb_visibility_class(ref[i]) != cls) continue;
+            if (tb_finite_(res[i]) && (res[i] >= TB_LIT_THRESHOLD) == (cls == 1)) continue;   /* right */
+            d = sqrt(grid[i]) - 0.5;
+            dist[m++] = d > 0.0 ? d : 0.0;
+            sum += dist[m - 1];
+        }
+    }
+    qsort(dist, m, sizeof *dist, tb_cmp_double_);
+    e.edge_count = m;
+    e.edge_mean_px = m ? sum / (double)m : 0.0;
+    e.edge_p95_px = tb_quantile_sorted_d_(dist, m, 0.95);
+    free(grid);
+    free(dist);
+    return e;
+oom:
+    free(grid);
+    free(dist);
+    memset(&e, 0, sizeof e);
+    return e;
+}
+
+tb_penumbra_error tb_metric_penumbra(const float *ref, const float *res, int w, int h, int grow_px) {
+    tb_penumbra_error e;
+    size_t n, i;
+    double *grid, sum_p = 0.0, sum_u = 0.0, sum_l = 0.0, sum_all = 0.0;
+    const double reach = (double)grow_px * (double)grow_px;
+    memset(&e, 0, sizeof e);
+    if (!tb_frame_ok_(ref, res, w, h) || grow_px < 0) return e;
+    n = (size_t)w * (size_t)h;
+    grid = (double *)malloc(sizeof(double) * n);
+    if (!grid) return e;
+    for (i = 0; i < n; i++) {
+        int core = tb_covered_(ref[i]) && ref[i] > 0.0f && ref[i] < 1.0f;
+        grid[i] = core ? 0.0 : INFINITY;
+        e.penumbra_core += (uint64_t)core;
+    }
+    if (grow_px > 0 && e.penumbra_core > 0 && tb_edt_sq_(grid, w, h) != 0) {
+        free(grid);
+        return e;
+    }
+    for (i = 0; i < n; i++) {
+        double d;
+        if (!tb_covered_(ref[i])) continue;
+        e.covered++;
+        if (!tb_finite_(res[i])) { e.invalid++; d = 1.0; }
+        else d = fabs((double)res[i] - (double)ref[i]);
+        sum_all += d;
+        if (grid[i] <= reach) {
+            e.penumbra++;
+            sum_p += d;
+            if (d > e.penumbra_max) e.penumbra_max = d;
+        } else if (ref[i] <= 0.0f) {
+            e.umbra++;
+            sum_u += d;
+            if (d > e.umbra_max) e.umbra_max = d;
+        } else {
+            e.lit++;
+            sum_l += d;
+            if (d > e.lit_max) e.lit_max = d;
+        }
+    }
+    free(grid);
+    e.penumbra_mae = e.penumbra ? sum_p / (double)e.penumbra : 0.0;
+    e.umbra_mae = e.umbra ? sum_u / (double)e.umbra : 0.0;
+    e.lit_mae = e.lit ? sum_l / (double)e.lit : 0.0;
+    e.covered_mae = e.covered ? sum_all / (double)e.covered : 0.0;
+    e.ok = 1;
+    return e;
+}

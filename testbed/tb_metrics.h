@@ -6,7 +6,8 @@
    "covered": every metric ignores it. A pixel's class is lit when
    visibility >= 0.5 (TB_LIT_THRESHOLD), else shadowed. A result value that
    is NaN or infinite on a covered pixel always counts as wrong (`invalid`).
-   Percentages are in [0,100]; 0 covered pixels give 0. */
+   Percentages of covered pixels are in [0,100]; 0 covered pixels give 0
+   (percentages of the reference's shadow can exceed 100: tb_shadow_error). */
 #ifndef TB_METRICS_H
 #define TB_METRICS_H
 
@@ -52,6 +53,53 @@ typedef struct tb_footprint_stats {
     uint64_t count;           /* values that were finite and >= 0 */
 } tb_footprint_stats;
 
+/* Hard shadows measured against the reference's shadow instead of the whole
+   frame (tb_metric_shadow). The reference classes are those of
+   tb_visibility_class; a covered pixel is one whose reference value is
+   finite and >= 0 (back-facing, silhouette, background and out-of-range
+   pixels are negative: in no count and no denominator). A result that is
+   NaN or infinite on a covered pixel is wrong (`invalid`) but neither false
+   shadow nor false light. */
+typedef struct tb_shadow_error {
+    int ok;                   /* 1 computed; 0 bad input or out of memory (all else 0) */
+    double area_pct;          /* shadow-area error: 100 * wrong / shadow; 0 when shadow == 0
+                                 (read `shadow` to tell). Can exceed 100: false shadow
+                                 in the lit part is not bounded by the shadow's area */
+    double false_shadow_pct;  /* 100 * false_shadow / shadow (0 when shadow == 0) */
+    double false_light_pct;   /* 100 * false_light / shadow (0 when shadow == 0) */
+    double edge_mean_px;      /* mean edge displacement of the measured wrong pixels, px */
+    double edge_p95_px;       /* its 95th percentile (tb_quantile_sorted's definition) */
+    double covered_pct;       /* 100 * wrong / covered: tb_metric_hard()'s pct */
+    uint64_t covered;         /* reference finite and >= 0 */
+    uint64_t shadow;          /* covered, reference shadowed (< TB_LIT_THRESHOLD) */
+    uint64_t lit;             /* covered, reference lit */
+    uint64_t wrong;           /* false_shadow + false_light + invalid */
+    uint64_t false_shadow;    /* result shadowed, reference lit */
+    uint64_t false_light;     /* result lit, reference shadowed */
+    uint64_t invalid;         /* result not finite */
+    uint64_t edge_count;      /* wrong pixels with an edge distance: all of them unless the
+                                 reference has covered pixels of one class only (no edge) */
+} tb_shadow_error;
+
+/* Soft shadows measured where soft methods differ (tb_metric_penumbra).
+   Every covered pixel (reference finite and >= 0) is in exactly one region:
+   penumbra = reference in (0,1), grown by grow_px (Euclidean, see below);
+   umbra = reference 0 outside it; lit = reference >= 1 outside it. The
+   error of a pixel is |result - reference|, 1 when the result is NaN or
+   infinite. A region with no pixel has mean and max 0. */
+typedef struct tb_penumbra_error {
+    int ok;                   /* 1 computed; 0 bad input or out of memory (all else 0) */
+    double penumbra_mae, penumbra_max;
+    double umbra_mae, umbra_max;
+    double lit_mae, lit_max;
+    double covered_mae;       /* over every covered pixel: tb_metric_soft()'s mae */
+    uint64_t covered;
+    uint64_t penumbra_core;   /* covered with 0 < reference < 1 */
+    uint64_t penumbra;        /* the grown penumbra (core included) */
+    uint64_t umbra, lit;
+    uint64_t invalid;         /* covered pixels whose result is not finite */
+} tb_penumbra_error;
+
 int tb_visibility_class(float v);   /* 1 lit, 0 shadowed, -1 not covered (v < 0) */
 
 tb_hard_error tb_metric_hard(const float *ref, const float *result, size_t n);
@@ -65,6 +113,28 @@ tb_flip_rate tb_metric_flip(const float *ref0, const float *ref1, const float *r
 tb_footprint_stats tb_metric_footprint(const float *footprint, size_t n);
 /* quantile p in [0,1] of an ascending sorted array, as defined above */
 double tb_quantile_sorted(const float *sorted, size_t n, double p);
+
+/* Hard-shadow error of one frame of w x h pixels, row-major, row 0 at the
+   bottom (index y * w + x), against the reference's shadow.
+   Edge displacement: for each wrong pixel, the distance from its centre to
+   the nearest centre of a covered pixel whose reference class is the
+   opposite of its own, minus 0.5 (the exact edge lies between the two
+   centres), at least 0; in pixels, Euclidean, from an exact Euclidean
+   distance transform (Felzenszwalb and Huttenlocher 2012), O(w h).
+   A pixel one step on the wrong side of the edge is 0.5; one sitting
+   k pixels into the other class is k - 0.5.
+   NULL pointers, w <= 0 or h <= 0: a zeroed result (ok = 0). */
+tb_shadow_error tb_metric_shadow(const float *ref, const float *res, int w, int h);
+
+/* Soft-shadow error of one frame (layout as tb_metric_shadow). The
+   penumbra's core (covered, 0 < reference < 1) grows by grow_px pixels
+   into covered pixels: a covered pixel joins when the Euclidean distance
+   between its centre and a core pixel's centre is <= grow_px (a disc, not
+   a square: at grow_px = 2, offsets (2,0) and (1,1) join, (2,1) does not).
+   Distances are in the image plane, across uncovered pixels too, which
+   never join. grow_px = 0: the core alone.
+   NULL pointers, w <= 0, h <= 0 or grow_px < 0: a zeroed result (ok = 0). */
+tb_penumbra_error tb_metric_penumbra(const float *ref, const float *res, int w, int h, int grow_px);
 
 #ifdef __cplusplus
 }
