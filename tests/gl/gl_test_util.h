@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tb_closed_form.h"
 #include "tb_gl_context.h"
 #include "tb_gl_fbo.h"
 #include "tb_gl_funcs.h"
@@ -451,6 +452,62 @@ static inline int gt_area_reference(gt_env *e, const skgl_area_light *light, int
     v.width = e->w;
     v.height = e->h;
     return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+}
+
+/* ---- closed-form cases (tb_closed_form.h) ------------------------------- */
+/* An env on one of the closed-form scenes ("plate", "pole", "box"); cf gets
+   the analytic description. 0 ok; -1 counted as a failed check. */
+static inline int gt_env_init_cf(gt_env *e, tb_cf_scene *cf, const char *name, int w, int h) {
+    tb_scene s;
+    tb_scene_init(&s);
+    if (tb_cf_build(&s, cf, name) != 0) {
+        SK_CHECK_MSG(0, "closed-form scene %s", name);
+        tb_scene_free(&s);
+        memset(e, 0, sizeof *e);
+        return -1;
+    }
+    return gt_env_init(e, &s, w, h);
+}
+
+/* the tb_view of the last G-buffer */
+static inline tb_view gt_view(const gt_env *e) {
+    tb_view v;
+    v.inv_view_proj = e->inv_vp;
+    v.width = e->w;
+    v.height = e->h;
+    return v;
+}
+
+/* travel direction of a sun at this elevation above the horizon and
+   azimuth (degrees; azimuth 0 = the sun in +x, 90 = in +z) */
+static inline sk_vec3 gt_sun_dir(double elevation_deg, double azimuth_deg) {
+    double e = elevation_deg * 3.14159265358979323846 / 180.0, a = azimuth_deg * 3.14159265358979323846 / 180.0;
+    return gt_v3((float)(-cos(e) * cos(a)), (float)(-sin(e)), (float)(-cos(e) * sin(a)));
+}
+
+/* the exact reference (tb_reference_trace_exact) of any light over the last
+   G-buffer, with its raster depth; stats may be NULL */
+static inline int gt_reference_exact(gt_env *e, const tb_light *l, float *vis, tb_ref_stats *stats) {
+    tb_view v = gt_view(e);
+    return tb_reference_trace_exact(e->ref, &v, e->depth, l, NULL, vis, stats);
+}
+
+/* Hard-shadow agreement of two visibility images over the pixels both
+   cover (both >= 0): how many, and how many differ in class. */
+typedef struct gt_agreement {
+    size_t both, differ;
+} gt_agreement;
+
+static inline gt_agreement gt_agree(const float *a, const float *b, size_t n) {
+    gt_agreement g;
+    size_t i;
+    g.both = g.differ = 0;
+    for (i = 0; i < n; i++) {
+        if (!(a[i] >= 0) || !(b[i] >= 0)) continue;
+        g.both++;
+        g.differ += tb_visibility_class(a[i]) != tb_visibility_class(b[i]);
+    }
+    return g;
 }
 
 /* skgl_soft_render over the last G-buffer, read back (-1 on background);
