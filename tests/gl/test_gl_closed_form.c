@@ -1,8 +1,7 @@
 /* test_gl_closed_form.c - the exact reference (tb_reference_trace_exact)
    against closed-form truth (tb_closed_form.h), 400 x 225 on OSMesa.
 
-   Scenes "plate", "pole" and "box" on a ground plane, each seen by one
-   camera; lights: a sun at elevations 80, 45, 20 and 8 degrees, each at
+   Scenes "plate", "pole" and "box" on a ground plane; lights: a sun at elevations 80, 45, 20 and 8 degrees, each at
    azimuths 30, 150 and 260 degrees, a point light above the object and one
    beside it (range-limited, so some ground is out of range), and for the
    plate a square area light parallel to it. Per configuration the G-buffer
@@ -19,14 +18,36 @@
      closed form| stays under AREA_MAE_BOUND, and the reference's own noise
      (mean |difference| of two seeds / sqrt 2) under AREA_NOISE_BOUND.
 
-   Measured (Mesa 22.3 llvmpipe): see the constants below for the figures.
-   The legacy reference (depth-buffer positions, eps = 1e-4 x scene
-   diagonal along the normal) is traced too and its disagreement with the
-   closed form printed per elevation, for the record.
+   Each sun gets a camera that looks at the caster and its whole shadow
+   (shadows are long at 8 degrees); the point and area lights one fixed
+   camera per scene.
 
-   CAN FAIL: SK_GL_TEST_CF_OLD=1 ./build/gl/test_gl_closed_form asserts
-   with the legacy reference in place of the exact one; measured: see
-   CAN_FAIL below.
+   Measured (Mesa 22.3 llvmpipe, OSMesa, 400 x 225):
+   - exact reference vs closed form: 0 of 3,126,629 pooled pixels differ
+     (100%), in every one of the 42 hard configurations; codes 0 of
+     3,779,980 differ; silhouette exclusions 0.0005% pooled, at most 2
+     pixels (0.002%) a configuration. The bound 99.998% is the issue's
+     target: it allows 1 pixel in about 50,000.
+   - legacy reference vs closed form, % of pixels covered in both that
+     differ, pooled per elevation 80 / 45 / 20 / 8 degrees:
+         0.0025  0.0151  0.0285  0.0413
+     (plate alone up to 0.14% at 8 degrees; point lights up to 0.13%).
+   - area light (half side 0.5, 3 above the ground, 24 x 24 samples):
+     3281 penumbra pixels, noise 0.00261, mean |reference - closed form|
+     0.00267; umbra and full light: 0 of 86,719 pixels differ. Bounds
+     AREA_NOISE_BOUND and AREA_MAE_BOUND 0.004 (the target for the noise).
+   - run time: about 8 s on an unloaded 2-core machine (test_hard 6 s,
+     test_area 2 s).
+
+   CAN FAIL (the runs are part of the record):
+   - SK_GL_TEST_CF_OLD=1 ./build/gl/test_gl_closed_form asserts the class
+     agreement with the legacy reference in place of the exact one: 722 of
+     3,126,632 pooled pixels differ (99.97691% < 99.998%), 26 of the 42
+     configurations fail (e.g. plate, sun 8/260: 109 of 76,887, 99.8582%),
+     and the pooled check fails: 27 failed checks.
+   - SK_GL_TEST_CF_STRATA=16 (the legacy default) puts the area light's noise
+     at 0.00469 and its mean error at 0.00477: both checks fail (20: 0.00343
+     and 0.00354, passing narrowly; hence the default 24).
 
    Techniques (printed, not asserted): SKGL_STANDARD, SKGL_PSSM, SKGL_PSM,
    SKGL_LISPSM and SKGL_LSPSM at default settings, maps 2048^2 (PSSM
@@ -65,20 +86,40 @@ static const char *const tech_names[N_TECH] = {"standard", "pssm", "psm", "lisps
 
 typedef struct cf_case {
     const char *scene;
-    float eye[3], target[3];
+    float eye[3], target[3];      /* the point-light camera */
+    float height;                 /* of the caster's top */
     float above[3], beside[3];    /* point lights */
     float beside_range;
 } cf_case;
 
 static const cf_case cases[] = {
-    {"plate", {4.5f, 3.5f, 6}, {0, 0.5f, 0}, {0.25f, 3, 0.125f}, {3, 2.5f, -1}, 9},
-    {"pole", {5, 3, 7}, {0, 1, 0}, {0.375f, 4.5f, 0.25f}, {1.5f, 2, 1.25f}, 9},
-    {"box", {5, 4, 6.5f}, {0, 0.5f, 0}, {0.25f, 3, 0.125f}, {3, 2.5f, -1.5f}, 9},
+    {"plate", {4.5f, 3.5f, 6}, {0, 0.5f, 0}, 1, {0.25f, 3, 0.125f}, {3, 2.5f, -1}, 9},
+    {"pole", {5, 3, 7}, {0, 1, 0}, 3, {0.375f, 4.5f, 0.25f}, {1.5f, 2, 1.25f}, 9},
+    {"box", {5, 4, 6.5f}, {0, 0.5f, 0}, 1.5f, {0.25f, 3, 0.125f}, {3, 2.5f, -1.5f}, 9},
 };
+
+/* The camera of a sun: it looks at the middle of the caster and its shadow
+   (the shadow of the caster's top lies h / tan(elevation) away), from the
+   same side for every light, far enough back to hold both. */
+static skgl_camera sun_camera(const cf_case *c, sk_vec3 dir) {
+    double k = c->height / -dir.y, sx = dir.x * k, sz = dir.z * k;
+    double len = sqrt(sx * sx + sz * sz), dist = 7.0 + 0.9 * len;
+    sk_vec3 target = gt_v3((float)(0.5 * sx), 0.3f, (float)(0.5 * sz));
+    sk_vec3 eye = gt_v3((float)(target.x + 0.55 * dist), (float)(0.45 * dist), (float)(target.z + 0.70 * dist));
+    return gt_camera(eye, target, 0.9f, 0.1f, 120, W, H);
+}
 
 static int use_old(void) {
     const char *s = getenv("SK_GL_TEST_CF_OLD");
     return s && *s && *s != '0';
+}
+
+/* SK_GL_TEST_CF_STRATA=n: the area light's strata per axis (unset: the
+   reference's default, TB_REF_EXACT_STRATA) */
+static int env_strata(void) {
+    const char *s = getenv("SK_GL_TEST_CF_STRATA");
+    int v = s && *s ? atoi(s) : 0;
+    return v > 0 && v <= 256 ? v : 0;
 }
 
 static double now_s(void) {
@@ -163,8 +204,7 @@ static void check_light(gt_env *e, const tb_cf_scene *cf, const tb_light *l, con
 static void run_case(const cf_case *c, cf_totals *T) {
     gt_env e;
     tb_cf_scene cf;
-    skgl_camera cam = gt_camera(gt_v3(c->eye[0], c->eye[1], c->eye[2]), gt_v3(c->target[0], c->target[1], c->target[2]),
-                                0.9f, 0.1f, 120, W, H);
+    skgl_camera cam;
     skgl_shadow *sh[N_TECH];
     float *ref, *truth, *old, *mask, *cfm;
     int i, a, t;
@@ -180,7 +220,7 @@ static void run_case(const cf_case *c, cf_totals *T) {
         if (techs[t] == SKGL_PSSM) d.cascades = 4;
         sh[t] = gt_shadow(&e, &d);
     }
-    if (!ref || !truth || !old || !mask || !cfm || gt_gbuffer(&e, &cam) != 0) {
+    if (!ref || !truth || !old || !mask || !cfm) {
         SK_CHECK_MSG(0, "%s: setup", c->scene);
         goto done;
     }
@@ -189,6 +229,8 @@ static void run_case(const cf_case *c, cf_totals *T) {
         for (a = 0; a < N_AZIM; a++) {
             sk_vec3 dir = gt_sun_dir(elevations[i], azimuths[a]);
             tb_light l = gt_sun(dir);
+            cam = sun_camera(c, dir);
+            if (gt_gbuffer(&e, &cam) != 0) { SK_CHECK_MSG(0, "%s: G-buffer", c->scene); continue; }
             snprintf(label, sizeof label, "sun %g/%g", elevations[i], azimuths[a]);
             check_light(&e, &cf, &l, label, i, ref, truth, old, T);
             if (a == 0) {
@@ -213,6 +255,9 @@ static void run_case(const cf_case *c, cf_totals *T) {
         memset(&l, 0, sizeof l);
         l.type = TB_LIGHT_POINT;
         l.position = gt_v3(c->above[0], c->above[1], c->above[2]);
+        cam = gt_camera(gt_v3(c->eye[0], c->eye[1], c->eye[2]), gt_v3(c->target[0], c->target[1], c->target[2]),
+                        0.9f, 0.1f, 120, W, H);
+        if (gt_gbuffer(&e, &cam) != 0) { SK_CHECK_MSG(0, "%s: G-buffer", c->scene); goto done; }
         check_light(&e, &cf, &l, "point above", -1, ref, truth, old, T);
         l.position = gt_v3(c->beside[0], c->beside[1], c->beside[2]);
         l.range = c->beside_range;
@@ -283,6 +328,7 @@ static void test_area(void) {
     l.position = gt_v3(0.25f, 3, -0.125f);
     l.half_u = gt_v3(0.5f, 0, 0);
     l.half_v = gt_v3(0, 0, 0.5f);
+    l.strata = env_strata();
     if (!r1 || !r2 || !truth || gt_gbuffer(&e, &cam) != 0) { SK_CHECK_MSG(0, "area: setup"); goto done; }
     v = gt_view(&e);
     l.seed = 1;
@@ -305,7 +351,8 @@ static void test_area(void) {
     mae = pen ? mae / (double)pen : 1.0;
     printf("area light over the plate (%d x %d samples): %zu penumbra pixels, noise %.5f, mean |ref - closed form| "
            "%.5f; umbra/lit %zu of %zu differ; silhouettes %llu; %.1f s\n",
-           TB_REF_EXACT_STRATA, TB_REF_EXACT_STRATA, pen, noise, mae, ends_differ, ends,
+           l.strata ? (l.strata < TB_REF_MIN_STRATA ? TB_REF_MIN_STRATA : l.strata) : TB_REF_EXACT_STRATA,
+           l.strata ? (l.strata < TB_REF_MIN_STRATA ? TB_REF_MIN_STRATA : l.strata) : TB_REF_EXACT_STRATA, pen, noise, mae, ends_differ, ends,
            (unsigned long long)st.silhouette, now_s() - t0);
     SK_CHECK(pen > 2000);
     SK_CHECK(ends > e.n / 3);
