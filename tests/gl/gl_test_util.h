@@ -1,14 +1,16 @@
 /* gl_test_util.h - what the GL tests share: an OSMesa context, a scene on
-   the GPU, the camera G-buffer (window depth + world normals), the Embree
-   reference traced from that same depth buffer, and shadowkit_gl.h's
-   deferred mask read back. Include after shadowkit_gl.h (with its
+   the GPU, the camera G-buffer (window depth + world normals), the exact
+   Embree reference (tb_reference_trace_exact: primary rays through the
+   pixel centres, pixels whose rasterised surface differs from the traced
+   one left out as TB_VIS_SILHOUETTE, back-facing receivers left out as
+   TB_VIS_BACKFACING), and shadowkit_gl.h's deferred mask read back. Include after shadowkit_gl.h (with its
    implementation) and sk_test.h. All functions are static inline.
 
    One frame of a test:
        gt_env e;  gt_env_init(&e, scene, W, H)      (takes the scene)
        skgl_camera cam = gt_camera(eye, target, fovy, zn, zf, W, H);
        gt_gbuffer(&e, &cam);                       depth + normals of this view
-       gt_reference(&e, &cam, light_dir, ref);     exact visibility per pixel
+       gt_reference(&e, light_dir, ref);           exact visibility per pixel
        gt_mask(&e, shadow, &cam, light_dir, res);  skgl_shadow_render + skgl_shadow_mask
        tb_hard_error err = tb_metric_hard(ref, res, W * H);
    Images go under out/tests/ (error image: red false lit, blue false shadow). */
@@ -46,6 +48,7 @@ typedef struct gt_env {
     float *rgba;           /* scratch */
     sk_mat4 inv_vp;        /* of the last gt_gbuffer */
     sk_mat4 view;          /* of the last gt_gbuffer */
+    tb_ref_stats ref_stats;/* pixel counts of the last gt_reference */
 } gt_env;
 
 static inline sk_vec3 gt_v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
@@ -174,14 +177,27 @@ static inline tb_light gt_sun(sk_vec3 dir) {
     return l;
 }
 
-/* reference visibility of the last G-buffer: 1 lit, 0 shadowed, < 0 background */
+/* The exact reference of a sun over the last G-buffer (its raster depth
+   decides the silhouettes): 1 lit, 0 shadowed, < 0 not counted
+   (TB_VIS_BACKGROUND, TB_VIS_BACKFACING, TB_VIS_SILHOUETTE). The counts go
+   to e->ref_stats; SK_GL_TEST_REF_STATS=1 prints them. */
 static inline int gt_reference(gt_env *e, sk_vec3 light_dir, float *vis) {
     tb_view v;
     tb_light l = gt_sun(light_dir);
+    const char *pr = getenv("SK_GL_TEST_REF_STATS");
+    int r;
     v.inv_view_proj = e->inv_vp;
     v.width = e->w;
     v.height = e->h;
-    return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+    r = tb_reference_trace_exact(e->ref, &v, e->depth, &l, NULL, vis, &e->ref_stats);
+    if (pr && *pr && *pr != '0')
+        printf("gt_reference: %llu pixels, %llu covered, %llu background, %llu back-facing, %llu silhouette "
+               "(%.4f%%)\n",
+               (unsigned long long)e->ref_stats.pixels, (unsigned long long)e->ref_stats.covered,
+               (unsigned long long)e->ref_stats.background, (unsigned long long)e->ref_stats.backfacing,
+               (unsigned long long)e->ref_stats.silhouette,
+               e->ref_stats.pixels ? 100.0 * (double)e->ref_stats.silhouette / (double)e->ref_stats.pixels : 0.0);
+    return r;
 }
 
 /* skgl_shadow_render for cam, then skgl_shadow_mask over the last G-buffer
