@@ -408,7 +408,8 @@ typedef struct tb_xctx_ {
 
 /* Embree 3 context filter (rtcOccluded1 / rtcOccluded16): rejects hits on
    the receiver's triangle and on any triangle lying in the receiver's plane
-   (all three vertices within tol of it). */
+   (all three vertices within the ulp bound of it, at the larger of the
+   receiver's and the vertex's magnitude). */
 static void tb_receiver_filter_(const struct RTCFilterFunctionNArguments *args) {
     const tb_xctx_ *x = (const tb_xctx_ *)(const void *)args->context;
     unsigned i;
@@ -422,9 +423,13 @@ static void tb_receiver_filter_(const struct RTCFilterFunctionNArguments *args) 
         if (prim == x->self) { args->valid[i] = 0; continue; }
         if (prim >= x->ref->tri_count) continue;
         for (k = 0; k < 3 && in_plane; k++) {
-            double v[3];
+            double v[3], tol;
             tb_tri_vertex_(x->ref, prim, k, v);
-            if (fabs(tb_dot_(x->n, v) - x->d) > x->tol) in_plane = 0;
+            /* a vertex meant to lie in the plane is off it by its own
+               rounding: the bound at the larger of |p| and |v| */
+            tol = TB_REF_ULP_BOUND * tb_ulpf_(tb_maxabs3_(v));
+            if (tol < x->tol) tol = x->tol;
+            if (fabs(tb_dot_(x->n, v) - x->d) > tol) in_plane = 0;
         }
         if (in_plane) args->valid[i] = 0;
     }
@@ -774,7 +779,10 @@ int tb_reference_trace_exact(const tb_reference *ref, const tb_view *view, const
     if (stats) memset(stats, 0, sizeof *stats);
     if (!ref || !view || !vis || !tb_light_ok_(light) || view->width <= 0 || view->height <= 0)
         return -1;
-    if ((light->type == TB_LIGHT_DIRECTIONAL && !tb_vec3_finite_(light->direction)) ||
+    if ((light->type == TB_LIGHT_DIRECTIONAL &&
+         (!tb_vec3_finite_(light->direction) ||
+          !(light->direction.x != 0 || light->direction.y != 0 || light->direction.z != 0))) ||
+        (light->type == TB_LIGHT_RECT && light->strata > TB_REF_MAX_STRATA) ||
         (light->type != TB_LIGHT_DIRECTIONAL && !tb_vec3_finite_(light->position)) ||
         (light->type == TB_LIGHT_RECT && (!tb_vec3_finite_(light->half_u) || !tb_vec3_finite_(light->half_v))) ||
         (light->type == TB_LIGHT_POINT && isnan(light->range)))

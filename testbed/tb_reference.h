@@ -132,6 +132,8 @@ extern "C" {
    of about 0.02); 16 x 16: 0.0047-0.0050, 20 x 20: 0.0034-0.0035,
    32 x 32: 0.0017. */
 #define TB_REF_EXACT_STRATA 24
+/* exact method: rect lights with more strata per axis are refused (-1) */
+#define TB_REF_MAX_STRATA 1024
 #define TB_VIS_BACKGROUND (-1.0f)
 #define TB_VIS_OUT_OF_RANGE (-2.0f)
 #define TB_VIS_BACKFACING  (-3.0f)  /* the receiver's geometric normal faces away from the light (every light sample, for area lights): in no metric's denominator */
@@ -207,7 +209,8 @@ typedef struct tb_ref_stats {
    (then no pixel is TB_VIS_SILHOUETTE). opt: only .threads is read (may be
    NULL). vis: width*height floats. stats (may be NULL) gets the counts.
    0 ok, -1 bad arguments (NULL, sizes <= 0, unknown light type, a
-   non-finite light, a singular inv_view_proj) or out of memory. */
+   non-finite light, a zero sun direction, rect strata above
+   TB_REF_MAX_STRATA, a non-finite or singular inv_view_proj). */
 int tb_reference_trace_exact(const tb_reference *ref, const tb_view *view, const float *raster_depth,
                              const tb_light *light, const tb_ref_options *opt, float *vis,
                              tb_ref_stats *stats);

@@ -36,8 +36,9 @@
      3281 penumbra pixels, noise 0.00261, mean |reference - closed form|
      0.00267; umbra and full light: 0 of 86,719 pixels differ. Bounds
      AREA_NOISE_BOUND and AREA_MAE_BOUND 0.004 (the target for the noise).
-   - run time: about 8 s on an unloaded 2-core machine (test_hard 6 s,
-     test_area 2 s).
+   - run time: about 13 s on an unloaded 2-core machine (test_hard 7 s,
+     test_area 6 s, of which 4 s trace the area light on one thread to
+     check that the result does not depend on the thread count).
 
    CAN FAIL (the runs are part of the record):
    - SK_GL_TEST_CF_OLD=1 ./build/gl/test_gl_closed_form asserts the class
@@ -336,6 +337,16 @@ static void test_area(void) {
     l.seed = 2;
     SK_CHECK(gt_reference_exact(&e, &l, r2, NULL) == 0);
     SK_CHECK(tb_cf_visibility(&cf, &v, &l, truth) == 0);
+    {
+        /* deterministic: one thread gives the same image as all of them */
+        tb_ref_options one;
+        memset(&one, 0, sizeof one);
+        one.threads = 1;
+        l.seed = 2;
+        SK_CHECK(tb_reference_trace_exact(e.ref, &v, e.depth, &l, &one, truth, NULL) == 0);
+        SK_CHECK_MSG(memcmp(truth, r2, sizeof(float) * e.n) == 0, "one thread differs from many");
+        SK_CHECK(tb_cf_visibility(&cf, &v, &l, truth) == 0);
+    }
     for (i = 0; i < e.n; i++) {
         if (!(r1[i] >= 0) || !(truth[i] >= 0)) continue;
         if (truth[i] > 0 && truth[i] < 1) {
@@ -393,6 +404,9 @@ static void test_bad_input(void) {
     SK_CHECK(tb_reference_trace_exact(ref, &v, NULL, &l, NULL, NULL, NULL) == -1);
     l.direction.x = NAN;
     SK_CHECK(tb_reference_trace_exact(ref, &v, NULL, &l, NULL, vis, NULL) == -1);
+    l.direction = gt_v3(0, 0, 0);
+    SK_CHECK(tb_reference_trace_exact(ref, &v, NULL, &l, NULL, vis, NULL) == -1);
+    l.direction.x = NAN;
     SK_CHECK(tb_cf_visibility(&cf, &v, &l, vis) == -1);
     l = gt_sun(gt_v3(0, -1, 0));
     l.type = (tb_light_type)7;
@@ -415,6 +429,9 @@ static void test_bad_input(void) {
     SK_CHECK(tb_cf_visibility(&cf, &v, &l, vis) == -1);
     l.half_u = gt_v3(0.5f, 0, 0);
     SK_CHECK(tb_cf_visibility(&cf, &v, &l, vis) == 0);
+    l.strata = TB_REF_MAX_STRATA + 1;
+    SK_CHECK(tb_reference_trace_exact(ref, &v, NULL, &l, NULL, vis, NULL) == -1);
+    l.strata = 0;
     l.position = gt_v3(0, 0.5f, 0);   /* below the plate */
     SK_CHECK(tb_cf_visibility(&cf, &v, &l, vis) == -1);
     tb_reference_destroy(ref);
