@@ -31,7 +31,8 @@
      half_u and half_v along x and z): from a ground point p the plate
      projects onto the light's plane as the axis-aligned rectangle
      p + (corner - p) h / y_plate (h the light's height), and
-         visibility = 1 - area(light rectangle ∩ projected plate) / area(light),
+         visibility = 1 - area(light rectangle intersected with the
+                                   projected plate) / area(light),
      the fraction of the light the point sees: a true closed form (the plate
      top sees the whole light). This is the expectation of the reference's
      unweighted stratified estimate.
