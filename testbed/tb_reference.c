@@ -24,6 +24,9 @@ struct tb_reference {
     RTCDevice device;
     RTCScene scene;
     double diagonal;
+    float *pos;              /* copy of the vertex positions (exact method) */
+    unsigned *idx;           /* copy of the triangle indices */
+    unsigned tri_count;
 };
 
 static void tb_embree_error_(void *user, enum RTCError code, const char *msg) {
@@ -36,7 +39,10 @@ tb_reference *tb_reference_create(const tb_scene *s) {
     RTCGeometry g;
     float *vb;
     unsigned *ib;
+    uint32_t k;
     if (!s || s->index_count < 3 || !s->positions || !s->indices) return NULL;
+    for (k = 0; k < s->index_count; k++)
+        if (s->indices[k] >= s->vertex_count) return NULL;
     r = (tb_reference *)calloc(1, sizeof *r);
     if (!r) return NULL;
     r->device = rtcNewDevice(NULL);
@@ -47,7 +53,9 @@ tb_reference *tb_reference_create(const tb_scene *s) {
     }
     rtcSetDeviceErrorFunction(r->device, tb_embree_error_, NULL);
     r->scene = rtcNewScene(r->device);
-    rtcSetSceneFlags(r->scene, RTC_SCENE_FLAG_ROBUST);
+    /* the context filter is used only by the exact method's shadow rays; a
+       context without one (the legacy calls) is not filtered */
+    rtcSetSceneFlags(r->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(r->scene, RTC_BUILD_QUALITY_HIGH);
     g = rtcNewGeometry(r->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     vb = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -61,6 +69,16 @@ tb_reference *tb_reference_create(const tb_scene *s) {
     }
     memcpy(vb, s->positions, (size_t)s->vertex_count * 3 * sizeof(float));
     memcpy(ib, s->indices, (size_t)(s->index_count / 3) * 3 * sizeof(unsigned));
+    r->tri_count = s->index_count / 3;
+    r->pos = (float *)malloc((size_t)s->vertex_count * 3 * sizeof(float));
+    r->idx = (unsigned *)malloc((size_t)r->tri_count * 3 * sizeof(unsigned));
+    if (!r->pos || !r->idx) {
+        rtcReleaseGeometry(g);
+        tb_reference_destroy(r);
+        return NULL;
+    }
+    memcpy(r->pos, s->positions, (size_t)s->vertex_count * 3 * sizeof(float));
+    memcpy(r->idx, s->indices, (size_t)r->tri_count * 3 * sizeof(unsigned));
     rtcCommitGeometry(g);
     rtcAttachGeometry(r->scene, g);
     rtcReleaseGeometry(g);
@@ -77,6 +95,8 @@ void tb_reference_destroy(tb_reference *r) {
     if (!r) return;
     if (r->scene) rtcReleaseScene(r->scene);
     if (r->device) rtcReleaseDevice(r->device);
+    free(r->pos);
+    free(r->idx);
     free(r);
 }
 
@@ -190,6 +210,10 @@ typedef struct tb_job_ {
     int count;
     /* normals mode (tb_reference_normals) */
     float *out_normals;
+    /* exact mode (tb_reference_trace_exact) */
+    int exact;
+    const float *raster;     /* raster window depth or NULL */
+    double vp[16];           /* double inverse of view->inv_view_proj (column-major) */
     int rows;            /* work items */
     int nthreads;
     float *vis;
@@ -331,6 +355,269 @@ static int tb_primary_normal_(const tb_job_ *j, int x, int y, const double p[3],
     return 1;
 }
 
+
+/* ---- the exact method (tb_reference_trace_exact) ---- */
+
+/* one float ulp at magnitude m: 2^(e-24) for m in [2^(e-1), 2^e) */
+static double tb_ulpf_(double m) {
+    int ex;
+    if (!(m > 0) || !isfinite(m)) return ldexp(1.0, -149);
+    frexp(m, &ex);
+    return ldexp(1.0, ex - 24);
+}
+
+static double tb_maxabs3_(const double p[3]) {
+    double m = fabs(p[0]);
+    if (fabs(p[1]) > m) m = fabs(p[1]);
+    if (fabs(p[2]) > m) m = fabs(p[2]);
+    return m;
+}
+
+/* the float error bound e of point 4 in the header, at point p */
+static double tb_ulp_bound_(const double p[3]) { return TB_REF_ULP_BOUND * tb_ulpf_(tb_maxabs3_(p)); }
+
+static void tb_tri_vertex_(const tb_reference *r, unsigned prim, int k, double v[3]) {
+    const float *f = r->pos + 3 * (size_t)r->idx[3 * (size_t)prim + (size_t)k];
+    v[0] = f[0]; v[1] = f[1]; v[2] = f[2];
+}
+
+/* unit geometric normal of triangle prim (double cross product of its float
+   edges, the winding's orientation); 0 when degenerate */
+static int tb_tri_normal_(const tb_reference *r, unsigned prim, double n[3]) {
+    double v0[3], v1[3], v2[3], e1[3], e2[3];
+    tb_tri_vertex_(r, prim, 0, v0);
+    tb_tri_vertex_(r, prim, 1, v1);
+    tb_tri_vertex_(r, prim, 2, v2);
+    e1[0] = v1[0] - v0[0]; e1[1] = v1[1] - v0[1]; e1[2] = v1[2] - v0[2];
+    e2[0] = v2[0] - v0[0]; e2[1] = v2[1] - v0[1]; e2[2] = v2[2] - v0[2];
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    return tb_normalize_(n);
+}
+
+/* The extended intersection context of a shadow query: Embree passes the
+   context pointer to the filter, which reads the receiver from it. */
+typedef struct tb_xctx_ {
+    struct RTCIntersectContext ctx;   /* first member */
+    const tb_reference *ref;
+    unsigned self;                    /* the receiver's triangle */
+    double n[3], d;                   /* the receiver's plane: dot(n, x) = d, |n| = 1 */
+    double tol;                       /* the ulp bound e at the receiver */
+} tb_xctx_;
+
+/* Embree 3 context filter (rtcOccluded1 / rtcOccluded16): rejects hits on
+   the receiver's triangle and on any triangle lying in the receiver's plane
+   (all three vertices within the ulp bound of it, at the larger of the
+   receiver's and the vertex's magnitude). */
+static void tb_receiver_filter_(const struct RTCFilterFunctionNArguments *args) {
+    const tb_xctx_ *x = (const tb_xctx_ *)(const void *)args->context;
+    unsigned i;
+    for (i = 0; i < args->N; i++) {
+        unsigned prim;
+        int k, in_plane = 1;
+        if (args->valid[i] != -1) continue;
+        /* RTCHitN is SOA: Ng_x, Ng_y, Ng_z, u, v, primID, ... each N wide
+           (rtcore_ray.h; its RTCHitN_primID accessor is C++ only) */
+        prim = ((const unsigned *)(const void *)args->hit)[5 * args->N + i];
+        if (prim == x->self) { args->valid[i] = 0; continue; }
+        if (prim >= x->ref->tri_count) continue;
+        for (k = 0; k < 3 && in_plane; k++) {
+            double v[3], tol;
+            tb_tri_vertex_(x->ref, prim, k, v);
+            /* a vertex meant to lie in the plane is off it by its own
+               rounding: the bound at the larger of |p| and |v| */
+            tol = TB_REF_ULP_BOUND * tb_ulpf_(tb_maxabs3_(v));
+            if (tol < x->tol) tol = x->tol;
+            if (fabs(tb_dot_(x->n, v) - x->d) > tol) in_plane = 0;
+        }
+        if (in_plane) args->valid[i] = 0;
+    }
+}
+
+static void tb_ray_fill_(struct RTCRay *ray, const double o[3], const double d[3], double tnear, double tfar) {
+    ray->org_x = (float)o[0]; ray->org_y = (float)o[1]; ray->org_z = (float)o[2];
+    ray->dir_x = (float)d[0]; ray->dir_y = (float)d[1]; ray->dir_z = (float)d[2];
+    ray->tnear = (float)tnear;
+    ray->tfar = isfinite(tfar) ? (float)tfar : INFINITY;
+    ray->time = 0;
+    ray->mask = 0xFFFFFFFFu;
+    ray->id = 0;
+    ray->flags = 0;
+}
+
+/* visibility of the exact hit p (camera-facing unit normal n, triangle
+   prim), or TB_VIS_BACKFACING / TB_VIS_OUT_OF_RANGE; sample stream `index` */
+static float tb_shade_exact_(const tb_job_ *j, const double p[3], const double n[3], unsigned prim,
+                             uint64_t index) {
+    const tb_light *L = j->light;
+    RTCScene scene = j->ref->scene;
+    double e = tb_ulp_bound_(p);
+    tb_xctx_ xc;
+    rtcInitIntersectContext(&xc.ctx);
+    xc.ctx.filter = tb_receiver_filter_;
+    xc.ref = j->ref;
+    xc.self = prim;
+    xc.n[0] = n[0]; xc.n[1] = n[1]; xc.n[2] = n[2];
+    xc.d = tb_dot_(n, p);
+    xc.tol = e;
+    if (L->type == TB_LIGHT_DIRECTIONAL) {
+        double d[3], c;
+        struct RTCRay ray;
+        d[0] = -(double)L->direction.x; d[1] = -(double)L->direction.y; d[2] = -(double)L->direction.z;
+        if (!tb_normalize_(d)) return 0.0f;
+        c = tb_dot_(n, d);
+        if (c <= 0) return TB_VIS_BACKFACING;
+        tb_ray_fill_(&ray, p, d, e / c, INFINITY);
+        rtcOccluded1(scene, &xc.ctx, &ray);
+        return ray.tfar < 0 ? 0.0f : 1.0f;
+    }
+    if (L->type == TB_LIGHT_POINT) {
+        double q[3], d[3], dist, c, tnear, tfar;
+        struct RTCRay ray;
+        q[0] = L->position.x; q[1] = L->position.y; q[2] = L->position.z;
+        d[0] = q[0] - p[0]; d[1] = q[1] - p[1]; d[2] = q[2] - p[2];
+        dist = sqrt(tb_dot_(d, d));
+        if (L->range > 0 && dist > L->range) return TB_VIS_OUT_OF_RANGE;
+        if (!tb_normalize_(d)) return 1.0f;   /* at the light */
+        c = tb_dot_(n, d);
+        if (c <= 0) return TB_VIS_BACKFACING;
+        tnear = e / c;
+        tfar = dist - tb_ulp_bound_(q);
+        if (tfar <= tnear) return 1.0f;   /* nothing between, at float resolution */
+        tb_ray_fill_(&ray, p, d, tnear, tfar);
+        rtcOccluded1(scene, &xc.ctx, &ray);
+        return ray.tfar < 0 ? 0.0f : 1.0f;
+    }
+    {
+        /* rect light: strata x strata jittered samples, 16-ray packets */
+        int s = L->strata <= 0 ? TB_REF_EXACT_STRATA : (L->strata < TB_REF_MIN_STRATA ? TB_REF_MIN_STRATA : L->strata);
+        int total = s * s, k = 0, unocc = 0, i, front = 0;
+        double nl[3], c0[3];
+        tb_pcg_ rng;
+        RTC_ALIGN(64) int valid[16];
+        RTC_ALIGN(64) struct RTCRay16 ray;
+        c0[0] = L->position.x; c0[1] = L->position.y; c0[2] = L->position.z;
+        /* back-facing when all four corners lie behind the receiver's plane */
+        for (i = 0; i < 4; i++) {
+            double a = (i & 1) ? 1.0 : -1.0, b = (i & 2) ? 1.0 : -1.0, q[3];
+            q[0] = c0[0] + a * L->half_u.x + b * L->half_v.x - p[0];
+            q[1] = c0[1] + a * L->half_u.y + b * L->half_v.y - p[1];
+            q[2] = c0[2] + a * L->half_u.z + b * L->half_v.z - p[2];
+            if (tb_dot_(n, q) > 0) front = 1;
+        }
+        if (!front) return TB_VIS_BACKFACING;
+        /* the light's plane, for the bound at its end */
+        nl[0] = (double)L->half_u.y * L->half_v.z - (double)L->half_u.z * L->half_v.y;
+        nl[1] = (double)L->half_u.z * L->half_v.x - (double)L->half_u.x * L->half_v.z;
+        nl[2] = (double)L->half_u.x * L->half_v.y - (double)L->half_u.y * L->half_v.x;
+        if (!tb_normalize_(nl)) nl[0] = nl[1] = nl[2] = 0;
+        tb_pcg_seed_(&rng, ((uint64_t)L->seed << 32) ^ 0x9E3779B97F4A7C15ull, index);
+        memset(&ray, 0, sizeof ray);
+        while (k < total) {
+            int m = total - k < 16 ? total - k : 16, any = 0;
+            for (i = 0; i < 16; i++) {
+                valid[i] = 0;
+                ray.tfar[i] = 0;
+                if (i < m) {
+                    int cell = k + i, cx = cell % s, cy = cell / s;
+                    double a = 2.0 * (cx + tb_pcg_unit_(&rng)) / s - 1.0;
+                    double b = 2.0 * (cy + tb_pcg_unit_(&rng)) / s - 1.0;
+                    double q[3], d[3], dist, c, cl, tnear, tfar;
+                    q[0] = c0[0] + a * L->half_u.x + b * L->half_v.x;
+                    q[1] = c0[1] + a * L->half_u.y + b * L->half_v.y;
+                    q[2] = c0[2] + a * L->half_u.z + b * L->half_v.z;
+                    d[0] = q[0] - p[0]; d[1] = q[1] - p[1]; d[2] = q[2] - p[2];
+                    dist = sqrt(tb_dot_(d, d));
+                    if (!tb_normalize_(d)) { unocc++; continue; }
+                    c = tb_dot_(n, d);
+                    if (c <= 0) continue;   /* behind the receiver: occluded */
+                    cl = fabs(tb_dot_(nl, d));
+                    tnear = e / c;
+                    tfar = dist - tb_ulp_bound_(q) / (cl > 0 ? cl : 1.0);
+                    if (tfar <= tnear) { unocc++; continue; }
+                    ray.org_x[i] = (float)p[0]; ray.org_y[i] = (float)p[1]; ray.org_z[i] = (float)p[2];
+                    ray.dir_x[i] = (float)d[0]; ray.dir_y[i] = (float)d[1]; ray.dir_z[i] = (float)d[2];
+                    ray.tnear[i] = (float)tnear;
+                    ray.tfar[i] = (float)tfar;
+                    ray.time[i] = 0;
+                    ray.mask[i] = 0xFFFFFFFFu;
+                    ray.id[i] = (unsigned)i;
+                    ray.flags[i] = 0;
+                    valid[i] = -1;
+                    any = 1;
+                }
+            }
+            if (any) {
+                rtcOccluded16(valid, scene, &xc.ctx, &ray);
+                for (i = 0; i < m; i++)
+                    if (valid[i] && ray.tfar[i] >= 0) unocc++;
+            }
+            k += m;
+        }
+        return (float)((double)unocc / total);
+    }
+}
+
+/* window depth of world point p under the double matrix vp; NaN if w <= 0 */
+static double tb_window_depth_(const double vp[16], const double p[3]) {
+    double z = vp[2] * p[0] + vp[6] * p[1] + vp[10] * p[2] + vp[14];
+    double w = vp[3] * p[0] + vp[7] * p[1] + vp[11] * p[2] + vp[15];
+    if (!(w > 0)) return NAN;
+    return 0.5 * (z / w) + 0.5;
+}
+
+/* one pixel of the exact method (header, points 1-5) */
+static float tb_exact_pixel_(const tb_job_ *j, int x, int y, size_t i) {
+    const tb_view *v = j->view;
+    double a[3], b[3], d[3], len, n[3], v0[3], p[3], den, t;
+    struct RTCIntersectContext ctx;
+    struct RTCRayHit rh;
+    int raster_hit = 0, traced_hit = 0;
+    unsigned prim = 0;
+    float dr = 0.0f;
+    if (j->raster) {
+        dr = j->raster[i];
+        raster_hit = dr < 1.0f && dr >= 0.0f;
+    }
+    if (tb_unproject_pixel(&v->inv_view_proj, v->width, v->height, x, y, 0.0f, a) == 0 &&
+        tb_unproject_pixel(&v->inv_view_proj, v->width, v->height, x, y, 1.0f, b) == 0) {
+        d[0] = b[0] - a[0]; d[1] = b[1] - a[1]; d[2] = b[2] - a[2];
+        len = sqrt(tb_dot_(d, d));
+        if (tb_normalize_(d)) {
+            rtcInitIntersectContext(&ctx);
+            tb_ray_fill_(&rh.ray, a, d, 0.0, len);
+            rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            rtcIntersect1(j->ref->scene, &ctx, &rh);
+            if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID && rh.hit.primID < j->ref->tri_count &&
+                tb_tri_normal_(j->ref, rh.hit.primID, n)) {
+                /* the double ray against the hit triangle's plane */
+                prim = rh.hit.primID;
+                tb_tri_vertex_(j->ref, prim, 0, v0);
+                den = tb_dot_(n, d);
+                t = den != 0 ? (tb_dot_(n, v0) - tb_dot_(n, a)) / den : (double)rh.ray.tfar;
+                if (!(t >= 0) || !(t <= len)) t = rh.ray.tfar;
+                p[0] = a[0] + t * d[0]; p[1] = a[1] + t * d[1]; p[2] = a[2] + t * d[2];
+                if (den > 0) { n[0] = -n[0]; n[1] = -n[1]; n[2] = -n[2]; }
+                traced_hit = 1;
+            }
+        }
+    }
+    if (!j->raster) {
+        if (!traced_hit) return TB_VIS_BACKGROUND;
+    } else {
+        if (!traced_hit && !raster_hit) return TB_VIS_BACKGROUND;
+        if (traced_hit != raster_hit) return TB_VIS_SILHOUETTE;
+        {
+            double dt = tb_window_depth_(j->vp, p);
+            if (!(fabs(dt - (double)dr) <= TB_REF_SAME_SURFACE_ULPS * ldexp(1.0, -24))) return TB_VIS_SILHOUETTE;
+        }
+    }
+    return tb_shade_exact_(j, p, n, prim, (uint64_t)i);
+}
+
 typedef struct tb_worker_ { const tb_job_ *job; int tid; } tb_worker_;
 
 static void *tb_worker_main_(void *arg) {
@@ -349,7 +636,12 @@ static void *tb_worker_main_(void *arg) {
                 size_t i = (size_t)row * (size_t)v->width + (size_t)x;
                 double p[3], nd[3];
                 const double *np = NULL;
-                float dep = j->depth[i];
+                float dep;
+                if (j->exact) {
+                    j->vis[i] = tb_exact_pixel_(j, x, row, i);
+                    continue;
+                }
+                dep = j->depth[i];
                 if (j->out_normals) {
                     float *o = j->out_normals + 3 * i;
                     o[0] = o[1] = o[2] = 0.0f;
@@ -473,4 +765,54 @@ int tb_reference_normals(const tb_reference *ref, const tb_view *view, const flo
     j.out_normals = normals;
     j.rows = view->height;
     return tb_run_(&j, opt);
+}
+
+static int tb_vec3_finite_(sk_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
+
+int tb_reference_trace_exact(const tb_reference *ref, const tb_view *view, const float *raster_depth,
+                             const tb_light *light, const tb_ref_options *opt, float *vis,
+                             tb_ref_stats *stats) {
+    tb_job_ j;
+    double ivp[16];
+    size_t i, n;
+    int k;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (!ref || !view || !vis || !tb_light_ok_(light) || view->width <= 0 || view->height <= 0)
+        return -1;
+    if ((light->type == TB_LIGHT_DIRECTIONAL &&
+         (!tb_vec3_finite_(light->direction) ||
+          !(light->direction.x != 0 || light->direction.y != 0 || light->direction.z != 0))) ||
+        (light->type == TB_LIGHT_RECT && light->strata > TB_REF_MAX_STRATA) ||
+        (light->type != TB_LIGHT_DIRECTIONAL && !tb_vec3_finite_(light->position)) ||
+        (light->type == TB_LIGHT_RECT && (!tb_vec3_finite_(light->half_u) || !tb_vec3_finite_(light->half_v))) ||
+        (light->type == TB_LIGHT_POINT && isnan(light->range)))
+        return -1;
+    if ((size_t)view->width > ((size_t)-1) / (size_t)view->height) return -1;
+    memset(&j, 0, sizeof j);
+    for (k = 0; k < 16; k++) {
+        ivp[k] = view->inv_view_proj.m[k];
+        if (!isfinite(ivp[k])) return -1;
+    }
+    if (!tb_mat4_inverse_d(ivp, j.vp)) return -1;
+    j.ref = ref;
+    j.light = light;
+    j.view = view;
+    j.exact = 1;
+    j.raster = raster_depth;
+    j.rows = view->height;
+    j.vis = vis;
+    if (tb_run_(&j, opt) != 0) return -1;
+    if (stats) {
+        n = (size_t)view->width * (size_t)view->height;
+        stats->pixels = n;
+        for (i = 0; i < n; i++) {
+            float f = vis[i];
+            if (f >= 0) stats->covered++;
+            else if (f == TB_VIS_BACKGROUND) stats->background++;
+            else if (f == TB_VIS_BACKFACING) stats->backfacing++;
+            else if (f == TB_VIS_SILHOUETTE) stats->silhouette++;
+            else if (f == TB_VIS_OUT_OF_RANGE) stats->out_of_range++;
+        }
+    }
+    return 0;
 }

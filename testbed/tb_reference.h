@@ -1,38 +1,98 @@
-/* tb_reference.h - the exact shadow reference: Embree 3 shadow rays.
+/* tb_reference.h - the exact shadow reference: Embree 3 primary and shadow rays.
 
-   For each camera pixel, the world position is reconstructed from the same
-   GL window-depth buffer the renderer used (so renderer and reference see
-   the same positions), then shadow rays are traced against the same
-   triangles (a tb_scene) with rtcOccluded1 / rtcOccluded16:
+   EXACT METHOD (tb_reference_trace_exact; what the GL tests and the DESIGN
+   call "the reference"):
 
-     pixel (x, y), row 0 at the bottom, depth d in [0,1] (glDepthRange 0..1):
-       ndc   = (2 (x + 0.5) / width - 1,  2 (y + 0.5) / height - 1,  2 d - 1, 1)
-       world = inv_view_proj * ndc, then divided by its w      (in double)
-     d >= 1 (cleared depth) is background: visibility TB_VIS_BACKGROUND.
+   1. Primary ray. For pixel (x, y), row 0 at the bottom, the camera ray runs
+      through the pixel centre from the near-plane point to the far-plane
+      point of view->inv_view_proj, both unprojected in double:
+        ndc(d) = (2 (x + 0.5) / width - 1,  2 (y + 0.5) / height - 1,  2 d - 1, 1)
+        a = unproject(ndc(0)),  b = unproject(ndc(1))      (divided by w)
+      It is traced with Embree (rtcIntersect1, t in [0, |b - a|]). The hit
+      triangle's plane is rebuilt in double from its float vertices and the
+      double ray a + t (b - a)/|b - a| is intersected with it, so the hit
+      point does not carry Embree's float t. The normal is the triangle's
+      geometric normal (double cross product), turned to face the camera.
+      No hit: TB_VIS_BACKGROUND.
 
-   Offset (documented epsilon): eps = eps_rel * scene diagonal, eps_rel =
-   TB_REF_EPS_REL (1e-4) unless options say otherwise. The ray origin is
-   moved eps along the unit normal when a normal buffer is given, and the
-   ray starts at distance eps along itself (tnear). Toward a point or area
-   light sample the ray stops eps short of the light.
-   With normals, a surface facing away from the light (dot(n, to_light) <= 0)
-   counts as shadowed (per sample for area lights), unless ignore_facing.
+   2. Raster consistency (raster_depth given, the window depth the technique
+      used). A pixel whose rasterised surface and traced surface differ is
+      TB_VIS_SILHOUETTE: left out of every metric and counted. Rasterised
+      background with a traced hit, or the reverse, is a silhouette pixel;
+      when both hit, the traced point is projected with the double inverse
+      of inv_view_proj and its window depth compared with raster_depth:
+      the same surface when they differ by at most TB_REF_SAME_SURFACE_ULPS
+      units of 2^-24 (one ulp of a depth in [0.5, 1), where perspective
+      depth buffers hold nearly every pixel; see the value for the figures).
 
-   Lights:
+   3. Facing. A receiver whose geometric normal faces away from the light
+      (dot(n, to_light) <= 0; for a rect light: for all four corners, so for
+      every sample) is TB_VIS_BACKFACING, in no metric's denominator. Point
+      lights: farther than `range` (> 0) is TB_VIS_OUT_OF_RANGE (tested
+      before facing).
+
+   4. Shadow rays (Embree 3 rtcOccluded1 / rtcOccluded16) start AT the hit
+      point p, never offset along the normal and never by a fraction of the
+      scene. Their origin is p rounded to float, off p by at most half a
+      float ulp per coordinate, i.e. at most e0 = (sqrt 3 / 2) ulp(m) off
+      the receiver's plane, m = max |p_i|. A ray leaving at angle theta to
+      the plane (sin theta = |dot(n, dir)|) and starting e below it crosses
+      the plane at t = e / sin theta, so
+          tnear = e / sin theta,   e = TB_REF_ULP_BOUND ulp(m) = 2 ulp(m) >= e0
+      (the factor 2 over 0.87 covers the double arithmetic of p). The part
+      of the ray skipped this way lies within e of the receiver's plane: an
+      occluder there cannot be told from one touching the plane in float
+      geometry. As a complement that is exact, an intersection filter
+      (the Embree 3 context filter, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION)
+      rejects hits on the receiver's own triangle and on every triangle lying
+      in the receiver's plane (its three vertices within e of it): a ray that
+      leaves a plane at a non-zero angle meets that plane only at its origin,
+      so such a triangle can never occlude; this removes the self-hits of the
+      receiver's neighbours (ground grids) whatever Embree's own t error.
+      Toward a point light or a rect light sample q the ray stops the same
+      bound short of q: tfar = |q - p| - ulp bound of q (divided by the sine
+      at the light's plane for rect lights), so geometry the light lies on
+      does not occlude it.
+
+   5. Rect (area) lights: strata x strata jittered samples (see
+      TB_REF_EXACT_STRATA for the default and its measured noise), a per
+      pixel PCG32 stream as below; a sample behind the receiver's plane
+      counts as occluded. Visibility = unoccluded fraction (unweighted).
+
+   The reference has been checked against closed-form scenes
+   (tb_closed_form.h; tests/gl/test_gl_closed_form.c).
+
+   LEGACY APPROXIMATION (tb_reference_trace, tb_reference_trace_points,
+   tb_reference_normals; kept for callers that have only a depth buffer):
+   the world position is reconstructed from the window-depth buffer,
+       world = inv_view_proj * ndc(depth), divided by its w    (in double),
+   d >= 1 (cleared depth) is background: TB_VIS_BACKGROUND. Offset:
+   eps = eps_rel * scene diagonal, eps_rel = TB_REF_EPS_REL (1e-4) unless
+   options say otherwise. The ray origin is moved eps along the unit normal
+   when a normal buffer is given, and the ray starts at distance eps along
+   itself (tnear). Toward a point or area light sample the ray stops eps
+   short of the light. With normals, a surface facing away from the light
+   (dot(n, to_light) <= 0) counts as shadowed (per sample for area lights),
+   unless ignore_facing. The normal offset moves every shadow edge toward
+   the light by eps cot(elevation), the way a technique's own normal-offset
+   bias moves its edges, so errors measured against it come out low.
+
+   Lights (both methods):
    - directional: `direction` is the direction the light TRAVELS (light ->
      scene), as in shadowkit.h's sk_light_view_directional(); rays go to -dir.
    - point: `position`; pixels farther than `range` (> 0) from it are
      TB_VIS_OUT_OF_RANGE; range <= 0 means unlimited.
    - rect (area): the parallelogram centre + a*half_u + b*half_v, a,b in
-     [-1,1], sampled on strata x strata cells (strata >= 16, so >= 256
-     samples), one sample jittered uniformly inside each cell; the jitter
-     comes from a fixed-seed PRNG (PCG32) seeded by (seed, pixel index), so
-     results do not depend on thread count. Visibility = fraction of samples
-     unoccluded, in [0,1] (unweighted: no cosine or distance terms).
+     [-1,1], sampled on strata x strata cells, one sample jittered uniformly
+     inside each cell; the jitter comes from a fixed-seed PRNG (PCG32)
+     seeded by (seed, pixel index), so results do not depend on thread
+     count. Visibility = fraction of samples unoccluded, in [0,1]
+     (unweighted: no cosine or distance terms).
 
    Output per pixel: 1 lit, 0 shadowed (hard), [0,1] (area), negative for
-   pixels without a visible receiver (TB_VIS_BACKGROUND, TB_VIS_OUT_OF_RANGE);
-   tb_metrics ignores negative reference pixels.
+   pixels without a receiver that counts (TB_VIS_BACKGROUND,
+   TB_VIS_OUT_OF_RANGE, TB_VIS_BACKFACING, TB_VIS_SILHOUETTE); tb_metrics
+   ignores negative reference pixels.
 
    Threads: rows are interleaved over `threads` pthreads (0: all online CPUs).
    Depends on: shadowkit.h (types only), tb_scene.h, Embree 3, pthreads. */
@@ -49,8 +109,35 @@ extern "C" {
 
 #define TB_REF_EPS_REL 1e-4
 #define TB_REF_MIN_STRATA 16
+/* Exact method: the shadow-ray start bound e in float ulps of max |p_i|
+   (point 4). On the closed-form scenes (tests/gl/test_gl_closed_form.c)
+   the tnear bound alone and the receiver-plane filter alone each give 100%
+   agreement; with neither (tnear 0, no filter) 89-91% of the pixels shadow
+   themselves. */
+#define TB_REF_ULP_BOUND 2.0
+/* Exact method: same-surface tolerance on window depth, in units of 2^-24
+   (point 2). Measured on 400 x 225 views of the closed-form scenes
+   (llvmpipe, DEPTH_COMPONENT32F): the raster depth of ground pixels and the
+   traced hit's window depth differ by at most 2.69 units (rasteriser
+   interpolation plus the float inverse of the view-projection); 16 units
+   leaves a margin of 6x, and two surfaces closer than that along the ray
+   are ones the depth buffer itself barely separates. Pixels excluded as
+   silhouettes: 0.0004% pooled over those views (at most 1 pixel a view). */
+#define TB_REF_SAME_SURFACE_ULPS 16.0
+/* Exact method: default strata per axis for rect lights (point 5). The
+   reference's own noise, mean |difference of two seeds| / sqrt 2 over the
+   penumbra (0 < closed form < 1), on the plate scene under a square light of
+   half side 0.25, 0.5 and 1 m, 400 x 225: 24 x 24 samples 0.0026 (the
+   target: at most 0.004, a fifth of the best soft method's penumbra error
+   of about 0.02); 16 x 16: 0.0047-0.0050, 20 x 20: 0.0034-0.0035,
+   32 x 32: 0.0017. */
+#define TB_REF_EXACT_STRATA 24
+/* exact method: rect lights with more strata per axis are refused (-1) */
+#define TB_REF_MAX_STRATA 1024
 #define TB_VIS_BACKGROUND (-1.0f)
 #define TB_VIS_OUT_OF_RANGE (-2.0f)
+#define TB_VIS_BACKFACING  (-3.0f)  /* the receiver's geometric normal faces away from the light (every light sample, for area lights): in no metric's denominator */
+#define TB_VIS_SILHOUETTE  (-4.0f)  /* the rasterised and the traced primary hit are different surfaces: left out, counted */
 
 typedef enum tb_light_type {
     TB_LIGHT_DIRECTIONAL = 0,
@@ -64,7 +151,8 @@ typedef struct tb_light {
     sk_vec3 position;         /* POINT: position; RECT: centre */
     float range;              /* POINT: <= 0 unlimited */
     sk_vec3 half_u, half_v;   /* RECT: half-axes */
-    int strata;               /* RECT: per axis; values < 16 mean 16 */
+    int strata;               /* RECT: per axis; values < 16 mean 16 (legacy); exact:
+                                 <= 0 means TB_REF_EXACT_STRATA, 1..15 mean 16 */
     uint32_t seed;            /* RECT: jitter seed */
 } tb_light;
 
@@ -105,6 +193,27 @@ int tb_unproject_pixel(const sk_mat4 *inv_view_proj, int width, int height, int 
 int tb_reference_trace(const tb_reference *ref, const tb_view *view, const float *depth,
                        const float *normals, const tb_light *light,
                        const tb_ref_options *opt, float *vis);
+
+/* Pixel counts of one exact trace; every pixel is in exactly one of
+   covered (vis >= 0), background, backfacing, silhouette, out_of_range. */
+typedef struct tb_ref_stats {
+    uint64_t pixels, covered, background, backfacing, silhouette, out_of_range;
+} tb_ref_stats;
+
+/* The exact reference (method at the top): camera rays through pixel
+   centres (near-plane point to far-plane point of view->inv_view_proj, in
+   double) traced with Embree, the hit recomputed in double on the hit
+   triangle's plane, shadow rays from it with the float-error tnear bound
+   and the receiver-plane filter. raster_depth: the window depth
+   (width*height floats, row 0 at the bottom) the technique used, or NULL
+   (then no pixel is TB_VIS_SILHOUETTE). opt: only .threads is read (may be
+   NULL). vis: width*height floats. stats (may be NULL) gets the counts.
+   0 ok, -1 bad arguments (NULL, sizes <= 0, unknown light type, a
+   non-finite light, a zero sun direction, rect strata above
+   TB_REF_MAX_STRATA, a non-finite or singular inv_view_proj). */
+int tb_reference_trace_exact(const tb_reference *ref, const tb_view *view, const float *raster_depth,
+                             const tb_light *light, const tb_ref_options *opt, float *vis,
+                             tb_ref_stats *stats);
 
 /* The same for arbitrary world points (3 doubles each) and optional normals
    (3 doubles each, NULL = none); the jitter seed uses the point index. */

@@ -1,14 +1,16 @@
 /* gl_test_util.h - what the GL tests share: an OSMesa context, a scene on
-   the GPU, the camera G-buffer (window depth + world normals), the Embree
-   reference traced from that same depth buffer, and shadowkit_gl.h's
-   deferred mask read back. Include after shadowkit_gl.h (with its
+   the GPU, the camera G-buffer (window depth + world normals), the exact
+   Embree reference (tb_reference_trace_exact: primary rays through the
+   pixel centres, pixels whose rasterised surface differs from the traced
+   one left out as TB_VIS_SILHOUETTE, back-facing receivers left out as
+   TB_VIS_BACKFACING), and shadowkit_gl.h's deferred mask read back. Include after shadowkit_gl.h (with its
    implementation) and sk_test.h. All functions are static inline.
 
    One frame of a test:
        gt_env e;  gt_env_init(&e, scene, W, H)      (takes the scene)
        skgl_camera cam = gt_camera(eye, target, fovy, zn, zf, W, H);
        gt_gbuffer(&e, &cam);                       depth + normals of this view
-       gt_reference(&e, &cam, light_dir, ref);     exact visibility per pixel
+       gt_reference(&e, light_dir, ref);           exact visibility per pixel
        gt_mask(&e, shadow, &cam, light_dir, res);  skgl_shadow_render + skgl_shadow_mask
        tb_hard_error err = tb_metric_hard(ref, res, W * H);
    Images go under out/tests/ (error image: red false lit, blue false shadow). */
@@ -19,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "tb_closed_form.h"
 #include "tb_gl_context.h"
 #include "tb_gl_fbo.h"
 #include "tb_gl_funcs.h"
@@ -45,6 +48,7 @@ typedef struct gt_env {
     float *rgba;           /* scratch */
     sk_mat4 inv_vp;        /* of the last gt_gbuffer */
     sk_mat4 view;          /* of the last gt_gbuffer */
+    tb_ref_stats ref_stats;/* pixel counts of the last gt_reference */
 } gt_env;
 
 static inline sk_vec3 gt_v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
@@ -173,14 +177,27 @@ static inline tb_light gt_sun(sk_vec3 dir) {
     return l;
 }
 
-/* reference visibility of the last G-buffer: 1 lit, 0 shadowed, < 0 background */
+/* The exact reference of a sun over the last G-buffer (its raster depth
+   decides the silhouettes): 1 lit, 0 shadowed, < 0 not counted
+   (TB_VIS_BACKGROUND, TB_VIS_BACKFACING, TB_VIS_SILHOUETTE). The counts go
+   to e->ref_stats; SK_GL_TEST_REF_STATS=1 prints them. */
 static inline int gt_reference(gt_env *e, sk_vec3 light_dir, float *vis) {
     tb_view v;
     tb_light l = gt_sun(light_dir);
+    const char *pr = getenv("SK_GL_TEST_REF_STATS");
+    int r;
     v.inv_view_proj = e->inv_vp;
     v.width = e->w;
     v.height = e->h;
-    return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+    r = tb_reference_trace_exact(e->ref, &v, e->depth, &l, NULL, vis, &e->ref_stats);
+    if (pr && *pr && *pr != '0')
+        printf("gt_reference: %llu pixels, %llu covered, %llu background, %llu back-facing, %llu silhouette "
+               "(%.4f%%)\n",
+               (unsigned long long)e->ref_stats.pixels, (unsigned long long)e->ref_stats.covered,
+               (unsigned long long)e->ref_stats.background, (unsigned long long)e->ref_stats.backfacing,
+               (unsigned long long)e->ref_stats.silhouette,
+               e->ref_stats.pixels ? 100.0 * (double)e->ref_stats.silhouette / (double)e->ref_stats.pixels : 0.0);
+    return r;
 }
 
 /* skgl_shadow_render for cam, then skgl_shadow_mask over the last G-buffer
@@ -451,6 +468,62 @@ static inline int gt_area_reference(gt_env *e, const skgl_area_light *light, int
     v.width = e->w;
     v.height = e->h;
     return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+}
+
+/* ---- closed-form cases (tb_closed_form.h) ------------------------------- */
+/* An env on one of the closed-form scenes ("plate", "pole", "box"); cf gets
+   the analytic description. 0 ok; -1 counted as a failed check. */
+static inline int gt_env_init_cf(gt_env *e, tb_cf_scene *cf, const char *name, int w, int h) {
+    tb_scene s;
+    tb_scene_init(&s);
+    if (tb_cf_build(&s, cf, name) != 0) {
+        SK_CHECK_MSG(0, "closed-form scene %s", name);
+        tb_scene_free(&s);
+        memset(e, 0, sizeof *e);
+        return -1;
+    }
+    return gt_env_init(e, &s, w, h);
+}
+
+/* the tb_view of the last G-buffer */
+static inline tb_view gt_view(const gt_env *e) {
+    tb_view v;
+    v.inv_view_proj = e->inv_vp;
+    v.width = e->w;
+    v.height = e->h;
+    return v;
+}
+
+/* travel direction of a sun at this elevation above the horizon and
+   azimuth (degrees; azimuth 0 = the sun in +x, 90 = in +z) */
+static inline sk_vec3 gt_sun_dir(double elevation_deg, double azimuth_deg) {
+    double e = elevation_deg * 3.14159265358979323846 / 180.0, a = azimuth_deg * 3.14159265358979323846 / 180.0;
+    return gt_v3((float)(-cos(e) * cos(a)), (float)(-sin(e)), (float)(-cos(e) * sin(a)));
+}
+
+/* the exact reference (tb_reference_trace_exact) of any light over the last
+   G-buffer, with its raster depth; stats may be NULL */
+static inline int gt_reference_exact(gt_env *e, const tb_light *l, float *vis, tb_ref_stats *stats) {
+    tb_view v = gt_view(e);
+    return tb_reference_trace_exact(e->ref, &v, e->depth, l, NULL, vis, stats);
+}
+
+/* Hard-shadow agreement of two visibility images over the pixels both
+   cover (both >= 0): how many, and how many differ in class. */
+typedef struct gt_agreement {
+    size_t both, differ;
+} gt_agreement;
+
+static inline gt_agreement gt_agree(const float *a, const float *b, size_t n) {
+    gt_agreement g;
+    size_t i;
+    g.both = g.differ = 0;
+    for (i = 0; i < n; i++) {
+        if (!(a[i] >= 0) || !(b[i] >= 0)) continue;
+        g.both++;
+        g.differ += tb_visibility_class(a[i]) != tb_visibility_class(b[i]);
+    }
+    return g;
 }
 
 /* skgl_soft_render over the last G-buffer, read back (-1 on background);
