@@ -17,6 +17,9 @@ void main()
     vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
     vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
     vec3 world = w.xyz / w.w;
+    /* the position four float ulps of depth away: the receiver's uncertainty */
+    vec4 w2 = u_inv_view_proj * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * 2.0 - 1.0, 1.0);
+    sk_point_receiver_slack = distance(w2.xyz / w2.w, world);
     vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);
     o_visibility = sk_point_shadow(world, n);
 }

@@ -44,6 +44,10 @@ uniform float sk_point_texel;       /* 2 / face resolution: one texel at MA = 1 
 uniform float sk_point_normal_bias; /* texels (mode 1; mode 0 adds it if > 0) */
 uniform int sk_point_bias_mode;     /* 0 receiver plane, 1 normal offset */
 uniform float sk_point_plane_bias;  /* mode 0: extra tolerance, in texels of the plane's depth slope */
+/* How far (world units) the receiver position may lie from the true
+   surface: the deferred mask sets it from its depth buffer's precision
+   before calling sk_point_shadow(); 0 for a forward shader's positions */
+float sk_point_receiver_slack = 0.0;
 uniform int sk_point_pcf;           /* 0: one 2x2 comparison; r: (2r)^2 of them */
 #if SK_POINT_VSDCT
 uniform sampler2DShadow sk_point_atlas;
@@ -97,7 +101,10 @@ float sk_point_plane_tap(vec3 v, vec3 n, vec3 d, vec3 t1, vec3 t2)
 {
     float z = sk_point_plane_depth(v, n, d);
     float slope = abs(sk_point_plane_depth(v, n, d + t1) - z) + abs(sk_point_plane_depth(v, n, d + t2) - z);
-    return sk_point_tap(d, z - (1.0 + sk_point_plane_bias) * slope - 4.0e-7);
+    /* the receiver's own uncertainty: dz/dMA = -scale / MA^2 at v */
+    float ma = max(abs(v.x), max(abs(v.y), abs(v.z)));
+    float slack = abs(sk_point_depth.x) / max(ma * ma, 1e-30) * sk_point_receiver_slack;
+    return sk_point_tap(d, z - (1.0 + sk_point_plane_bias) * slope - slack - 4.0e-7);
 }
 
 float sk_point_shadow(vec3 world_pos, vec3 world_normal)

@@ -42,6 +42,12 @@ uniform float sk_blend_band;       /* fraction of a layer's depth range blended 
 uniform int sk_bias_mode;          /* 0 receiver plane, 1 normal offset */
 uniform float sk_normal_bias;      /* texels (mode 1; mode 0 adds it if > 0) */
 uniform float sk_plane_bias;       /* mode 0: tolerance in texels of the plane's depth slope */
+/* How far (world units) the receiver position may lie from the true
+   surface: the deferred mask sets it from its depth buffer's precision
+   before calling sk_shadow(); a forward shader's interpolated positions are
+   exact (0). The receiver plane's tolerance grows by the depth this
+   distance spans in the map. */
+float sk_receiver_slack = 0.0;
 uniform int sk_pcf_radius;
 uniform vec3 sk_light_dir;         /* travel direction, unit */
 uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */
@@ -66,6 +72,14 @@ float sk_texel_size(vec3 p, int layer)
     vec3 r3 = vec3(m[0][3], m[1][3], m[2][3]);
     float g = min(length(r0 - (c.x / c.w) * r3), length(r1 - (c.y / c.w) * r3)) / c.w;
     return g > 0.0 ? 2.0 / (float(textureSize(sk_shadow_map, 0).x) * g) : 0.0;
+}
+
+/* the window depth that sk_receiver_slack spans in the map at p's light
+   clip c: half the length of NDC z's gradient over world position */
+float sk_slack_depth(mat4 m, vec4 c)
+{
+    vec3 jz = vec3(m[0][2], m[1][2], m[2][2]) - (c.z / c.w) * vec3(m[0][3], m[1][3], m[2][3]);
+    return 0.5 * length(jz) / c.w * sk_receiver_slack;
 }
 
 /* The receiver's tangent plane (normal n, any length; p's light clip c) as
@@ -101,13 +115,14 @@ vec2 sk_plane_slope(mat4 m, vec4 c, vec3 n)
    and weights are those of the hardware path: radius 0 one bilinear 2x2,
    radius r the (2r)x(2r) bilinear taps at p + k + 1/2 (k = -r .. r-1),
    i.e. (2r+1)^2 texels with separable weights. Each texel is compared with
-   the plane's depth at its own centre, less the tolerance. */
-float sk_pcf_plane(vec2 p, float z, vec2 gt, float layer, vec2 size, int r)
+   the plane's depth at its own centre, less the tolerance (plus slack,
+   the depth uncertainty of the receiver itself). */
+float sk_pcf_plane(vec2 p, float z, vec2 gt, float slack, float layer, vec2 size, int r)
 {
     int m = max(2 * r, 1);
     vec2 b = p - (r > 0 ? 0.0 : 0.5);
     vec2 base = floor(b), fr = b - base;
-    float tol = sk_plane_bias * (abs(gt.x) + abs(gt.y)) + 4.0e-7;
+    float tol = sk_plane_bias * (abs(gt.x) + abs(gt.y)) + slack + 4.0e-7;
     float sum = 0.0;
     for (int ky = -r; ky <= m - r; ky++) {
         float wy = (ky <= m - r - 1 ? 1.0 - fr.y : 0.0) + (ky >= 1 - r ? fr.y : 0.0);
@@ -135,7 +150,8 @@ float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int 
     vec2 size = vec2(textureSize(sk_shadow_map, 0).xy);
     if (sk_bias_mode == 0) {
         vec2 g = sk_plane_slope(sk_light_vp[layer], c, plane_normal);
-        return sk_pcf_plane(uvz.xy * size, z, g / size, float(layer), size, sk_pcf_radius);
+        return sk_pcf_plane(uvz.xy * size, z, g / size, sk_slack_depth(sk_light_vp[layer], c), float(layer), size,
+                            sk_pcf_radius);
     }
     if (sk_pcf_radius <= 0)
         return texture(sk_shadow_map, vec4(uvz.xy, float(layer), z));
@@ -174,7 +190,8 @@ float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, vec3 plane_normal, float
         vec2 slot = floor(e.rg * 255.0 + 0.5);
         vec2 pp = slot * (page + 2.0) + 1.0 + f;
         if (sk_bias_mode == 0)
-            return sk_pcf_plane(pp, max(uvz.z, 0.0), sk_plane_slope(sk_light_vp[0], c, plane_normal) / lres, 0.0, pool, 0);
+            return sk_pcf_plane(pp, max(uvz.z, 0.0), sk_plane_slope(sk_light_vp[0], c, plane_normal) / lres,
+                                sk_slack_depth(sk_light_vp[0], c), 0.0, pool, 0);
         return texture(sk_shadow_map, vec4(pp / pool, 0.0, max(uvz.z, 0.0)));
     }
     return 1.0;
