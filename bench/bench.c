@@ -6,9 +6,11 @@
      G-buffer (window depth + world normals, 1280x720), then
      skgl_shadow_render + skgl_shadow_mask with GL timer queries
      (skgl_desc.timing = 1), read the R16F mask back and compare it with the
-     exact Embree reference (tb_reference_trace, hard shadows, traced ONCE
-     per (scene, view) from the same depth buffer and normals the mask pass
-     reads). Scores (testbed/tb_metrics.h): tb_metric_hard(), the % of
+     exact Embree reference (tb_reference_trace_exact, traced ONCE per
+     (scene, view): primary rays through the pixel centres, shadow rays from
+     the exact hits with only a float-error offset; back-facing receivers and
+     pixels whose rasterised surface differs from the traced one are left
+     out and counted in excluded_px). Scores (testbed/tb_metrics.h): tb_metric_hard(), the % of
      covered pixels whose lit/shadowed class differs from the reference (the
      `error` column, kept for continuity), and tb_metric_shadow(), the same
      errors against the reference's shadow: the lit majority of a frame
@@ -257,6 +259,9 @@ typedef struct bench_cfg {
 
 static int g_ncfg;
 static bench_cfg g_cfg[BENCH_MAX_CFG];
+/* --bias: every directional and point configuration's bias scheme (the
+   default receiver plane, or the normal offset, to compare the two) */
+static skgl_bias g_bias = SKGL_BIAS_RECEIVER_PLANE;
 
 /* pcf: the radius to measure (0 = one hardware 2x2 comparison). In
    skgl_shadow_desc a zero pcf_radius means "default" (1), so 0 is asked
@@ -596,7 +601,8 @@ static int scene_selected(const bench_opts *o, const char *name) {
 static void usage(FILE *f, const char *argv0) {
     fprintf(f,
             "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
-            "          [--views N] [--images] [--views-only] [--soft-only] [--gp FILE] [--plot-only] [--dry-run]\n"
+            "          [--views N] [--images] [--views-only] [--soft-only] [--bias B] [--gp FILE] [--plot-only]\n"
+            "          [--dry-run]\n"
             "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
             "  --repeat N     timing passes, the median is reported (default 5)\n"
             "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
@@ -606,6 +612,8 @@ static void usage(FILE *f, const char *argv0) {
             "  --images       write reference and error PNGs per view to OUT/bench/\n"
             "  --views-only   only the reference PNGs of each view (no sweep, no CSV rows)\n"
             "  --soft-only    only the area-light rows (PCSS, PVSM; out/bench-soft.txt)\n"
+            "  --bias B       directional and point lights' bias: plane (the default receiver\n"
+            "                 plane) or normal (the normal offset), for comparing the two\n"
             "  --gp FILE      the gnuplot script (default bench/pareto.gp)\n"
             "  --plot-only    only redraw the charts from OUT/bench.csv\n"
             "  --dry-run      print the sweep and exit\n"
@@ -1108,7 +1116,7 @@ static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, 
     if (area) L = *area;
     vd->ref = (float *)malloc(sizeof(float) * n);
     if (!vd->ref) return -1;
-    if (tb_reference_trace(ref, &tv, depth, nrm, &L, NULL, vd->ref) != 0) return -1;
+    if (tb_reference_trace_exact(ref, &tv, depth, &L, NULL, vd->ref, NULL) != 0) return -1;
     vd->covered = 0;
     for (i = 0; i < n; i++)
         if (vd->ref[i] >= 0.0f) vd->covered++;
@@ -1242,7 +1250,10 @@ static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float 
         L.type = TB_LIGHT_POINT;
         L.position = lp;
         L.range = pv->range;
-        if (tb_reference_trace(ref, &tv, depth, nrm, &L, NULL, refv) != 0) { tb_gl_fbo_destroy(&B->gl, &gbuf); continue; }
+        if (tb_reference_trace_exact(ref, &tv, depth, &L, NULL, refv, NULL) != 0) {
+            tb_gl_fbo_destroy(&B->gl, &gbuf);
+            continue;
+        }
         for (c = 0; c < (int)(sizeof point_cfgs / sizeof point_cfgs[0]); c++) {
             const point_cfg *pc = &point_cfgs[c];
             skgl_point_desc d;
@@ -1255,6 +1266,7 @@ static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float 
             int reps = repeat < 1 ? 1 : repeat > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : repeat;
             memset(&d, 0, sizeof d);
             d.technique = pc->technique;
+            d.bias = g_bias;
             d.resolution = 512;
             d.range = pv->range;
             d.cull_faces = pc->faces;
@@ -1353,7 +1365,7 @@ static int load_scene(const bench_scene_def *def, tb_scene *s) {
    Then a slow camera path (3 frames, the medium light) for the flip rate:
    visibility changes > 0.1 where the reference changes < 0.02.
    out/bench-soft.txt holds the table and the ratios. */
-#define SOFT_STRATA 16
+#define SOFT_STRATA TB_REF_EXACT_STRATA   /* the reference's noise in the penumbra: tb_reference.h */
 static const char *const soft_size_names[3] = {"small", "medium", "large"};
 static const float soft_size_fracs[3] = {0.01f, 0.04f, 0.12f};   /* half size / content half length */
 typedef struct soft_cfg {
@@ -1760,6 +1772,12 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--gp") == 0 && more) o.gp = argv[++i];
         else if (strcmp(a, "--images") == 0) o.images = 1;
         else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
+        else if (strcmp(a, "--bias") == 0 && more) {
+            const char *b = argv[++i];
+            if (strcmp(b, "plane") == 0) g_bias = SKGL_BIAS_RECEIVER_PLANE;
+            else if (strcmp(b, "normal") == 0) g_bias = SKGL_BIAS_NORMAL_OFFSET;
+            else { fprintf(stderr, "bench: --bias takes plane or normal, not %s\n", b); return 2; }
+        }
         else if (strcmp(a, "--plot-only") == 0) o.plot_only = 1;
         else if (strcmp(a, "--dry-run") == 0) o.dry_run = 1;
         else if (strcmp(a, "--views-only") == 0) { o.views_only = 1; o.images = 1; }
@@ -1823,6 +1841,7 @@ int main(int argc, char **argv) {
         }
     }
     build_sweep(o.quick);
+    for (i = 0; i < g_ncfg; i++) g_cfg[i].desc.bias = g_bias;
     memset(&pg, 0, sizeof pg);
     pg.total = ndefs * o.views * g_ncfg;
     pg.total_units = (long)pg.total * o.repeat;
@@ -2096,8 +2115,9 @@ int main(int argc, char **argv) {
         mkdir_p(path);
         snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
         if ((m = fopen(path, "w"))) {
-            fprintf(m, "repeat %d\nsweep %s\nviews %d\nruns %d\ndevice %s\ntiming %s\n", o.repeat,
-                    o.quick ? "quick" : "full", o.views, pg.done, B.renderer, timing_label(B.renderer));
+            fprintf(m, "repeat %d\nsweep %s\nviews %d\nruns %d\ndevice %s\ntiming %s\nbias %s\n", o.repeat,
+                    o.quick ? "quick" : "full", o.views, pg.done, B.renderer, timing_label(B.renderer),
+                    g_bias == SKGL_BIAS_NORMAL_OFFSET ? "normal" : "plane");
             fclose(m);
         }
     }
