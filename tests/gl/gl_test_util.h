@@ -501,6 +501,18 @@ static inline sk_vec3 gt_sun_dir(double elevation_deg, double azimuth_deg) {
     return gt_v3((float)(-cos(e) * cos(a)), (float)(-sin(e)), (float)(-cos(e) * sin(a)));
 }
 
+/* A camera w x h for a sun over a closed-form caster whose top is `height`
+   above the ground: it looks at the middle of the caster and its shadow
+   (the shadow of the top lies height / tan(elevation) away), from the same
+   side for every light, far enough back to hold both. */
+static inline skgl_camera gt_cf_sun_camera(float height, sk_vec3 dir, int w, int h) {
+    double k = height / -dir.y, sx = dir.x * k, sz = dir.z * k;
+    double len = sqrt(sx * sx + sz * sz), dist = 7.0 + 0.9 * len;
+    sk_vec3 target = gt_v3((float)(0.5 * sx), 0.3f, (float)(0.5 * sz));
+    sk_vec3 eye = gt_v3((float)(target.x + 0.55 * dist), (float)(0.45 * dist), (float)(target.z + 0.70 * dist));
+    return gt_camera(eye, target, 0.9f, 0.1f, 120, w, h);
+}
+
 /* the exact reference (tb_reference_trace_exact) of any light over the last
    G-buffer, with its raster depth; stats may be NULL */
 static inline int gt_reference_exact(gt_env *e, const tb_light *l, float *vis, tb_ref_stats *stats) {

@@ -99,17 +99,6 @@ static const cf_case cases[] = {
     {"box", {5, 4, 6.5f}, {0, 0.5f, 0}, 1.5f, {0.25f, 3, 0.125f}, {3, 2.5f, -1.5f}, 9},
 };
 
-/* The camera of a sun: it looks at the middle of the caster and its shadow
-   (the shadow of the caster's top lies h / tan(elevation) away), from the
-   same side for every light, far enough back to hold both. */
-static skgl_camera sun_camera(const cf_case *c, sk_vec3 dir) {
-    double k = c->height / -dir.y, sx = dir.x * k, sz = dir.z * k;
-    double len = sqrt(sx * sx + sz * sz), dist = 7.0 + 0.9 * len;
-    sk_vec3 target = gt_v3((float)(0.5 * sx), 0.3f, (float)(0.5 * sz));
-    sk_vec3 eye = gt_v3((float)(target.x + 0.55 * dist), (float)(0.45 * dist), (float)(target.z + 0.70 * dist));
-    return gt_camera(eye, target, 0.9f, 0.1f, 120, W, H);
-}
-
 static int use_old(void) {
     const char *s = getenv("SK_GL_TEST_CF_OLD");
     return s && *s && *s != '0';
@@ -230,7 +219,7 @@ static void run_case(const cf_case *c, cf_totals *T) {
         for (a = 0; a < N_AZIM; a++) {
             sk_vec3 dir = gt_sun_dir(elevations[i], azimuths[a]);
             tb_light l = gt_sun(dir);
-            cam = sun_camera(c, dir);
+            cam = gt_cf_sun_camera(c->height, dir, W, H);
             if (gt_gbuffer(&e, &cam) != 0) { SK_CHECK_MSG(0, "%s: G-buffer", c->scene); continue; }
             snprintf(label, sizeof label, "sun %g/%g", elevations[i], azimuths[a]);
             check_light(&e, &cf, &l, label, i, ref, truth, old, T);
