@@ -100,7 +100,8 @@
    23 (VSDCT 28) a call, budget 24. Timing on adds 6 calls and 2 QueryResult
    stalls a render + mask (FERKO, RMSM: 9 and 3 with the analysis; PVSM 21
    and 7), nothing to the binds. The table is printed and written to
-   out/tests/gl-calls.md. Run time 33-46 s (two busy cores, nice).
+   out/tests/gl-calls.md. Run time: 29 s of CPU (llvmpipe's threads
+   included), 33-58 s of wall time on two cores shared with other builds.
 
    CAN FAIL (each shown once, on a copy of this file): STANDARD's guard on
    calls lowered to 322: "STANDARD, timing 0: 323 GL calls a frame, guard
