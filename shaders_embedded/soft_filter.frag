@@ -49,7 +49,8 @@ void main()
             vec2 ndc = u_tile_rect.xy + t / scale;
             float plane = pl.x + dot(pl.yz, ndc - c) - slack;
             area += cov;
-            lit += cov * texture(u_tile, vec3(t / tex_size, plane));
+            /* a plane past the far plane (> 1) must not shadow the empty texels (1) */
+            lit += cov * texture(u_tile, vec3(t / tex_size, min(plane, 1.0)));
         }
     }
     if (area <= 0.0) discard;
