@@ -3,7 +3,12 @@
    the light's pyramid cuts from the near plane, the filter s_alpha from
    the average blocker depth (Eq. 1), and PCF over it with up to
    u_pcf_taps^2 hardware 2x2 comparisons. Depths are compared against the
-   receiver's plane at each sample (receiver-plane depth bias). */
+   receiver's plane at each sample (receiver-plane depth bias). A steep
+   receiver's plane, carried across a wide kernel, can pass the far plane
+   (window depth > 1): a texel the depth pass left at its clear value 1 is
+   nothing, never a blocker, so blockers are m < min(plane, 1) and the
+   comparison reference is clamped to 1 (DEPTH_COMPONENT32F does not clamp
+   it, and 1 <= 1 is lit). */
 in vec2 v_uv;
 out float o_visibility;
 uniform sampler2D u_map;          /* window depth, no comparison */
@@ -31,7 +36,7 @@ void main()
             vec2 ndc = r.light.xy + o;
             float m = textureLod(u_map, ndc * 0.5 + 0.5, 0.0).r;
             float plane = r.light.z + dot(r.grad, o) - tol - (abs(r.grad.x) + abs(r.grad.y)) / res;
-            if (m < plane) { sum += sk_light_linear(m); count += 1.0; }
+            if (m < min(plane, 1.0)) { sum += sk_light_linear(m); count += 1.0; }
         }
     if (count == 0.0) { o_visibility = 1.0; return; }
     vec2 s = sk_filter_half(r.zlin, min(sum / count, r.zlin));
@@ -45,7 +50,7 @@ void main()
                           taps.y > 1 ? float(y) / float(taps.y - 1) : 0.5);
             vec2 o = (f * 2.0 - 1.0) * s;
             float plane = r.light.z + dot(r.grad, o) - tol - (abs(r.grad.x) + abs(r.grad.y)) / res;
-            lit += texture(u_map_cmp, vec3((r.light.xy + o) * 0.5 + 0.5, plane));
+            lit += texture(u_map_cmp, vec3((r.light.xy + o) * 0.5 + 0.5, min(plane, 1.0)));
         }
     o_visibility = lit / float(taps.x * taps.y);
 }

@@ -6,7 +6,13 @@
    accumulation target, so kernels spanning several tiles merge as
    V = sum(V_i A_i) / sum(A_i). Kernels wider than 24 texels are integrated
    over blocks of 2^k texels, each tested with one hardware 2x2 comparison
-   at its centre (for k = 1 that covers the block). */
+   at its centre (for k = 1 that covers the block), so a blocker's edge is
+   resolved to a block, not a texel. A block is never larger than the texel
+   the prediction asked for this pixel (o_pred.zw, Eq. 5, divided by the
+   resolution scale): the tile may be finer than that (another pixel's
+   demand, or a resolution scale above 1), and a block sized by the kernel
+   alone (1/24 of it) would discard that resolution once rho(n) > 12 or the
+   scale > 1. At most 128 blocks per axis, whatever is asked. */
 in vec2 v_uv;
 out vec4 o_acc;
 uniform sampler2D u_kernel;
@@ -32,7 +38,9 @@ void main()
     float uxt = ux * scale.x, uyt = uy * scale.y, vyt = vy * scale.y;
     float x0 = max(ct.x - uxt, 0.0), x1 = min(ct.x + uxt, u_tile_res.x);
     float span = max(2.0 * uxt, 2.0 * vyt);
-    float stride = exp2(max(ceil(log2(span / 24.0)), 0.0));
+    float need = min(pr.z * scale.x, pr.w * scale.y);         /* this pixel's texel, in tile texels */
+    float stride = min(exp2(max(ceil(log2(span / 24.0)), 0.0)), exp2(max(floor(log2(need)), 0.0)));
+    stride = max(stride, exp2(max(ceil(log2(span / 128.0)), 0.0)));
     vec2 tex_size = vec2(textureSize(u_tile, 0));
     float slack = (abs(pl.y) / scale.x + abs(pl.z) / scale.y) * stride * 0.5 + pl.w;
     float lit = 0.0, area = 0.0;
@@ -49,7 +57,8 @@ void main()
             vec2 ndc = u_tile_rect.xy + t / scale;
             float plane = pl.x + dot(pl.yz, ndc - c) - slack;
             area += cov;
-            lit += cov * texture(u_tile, vec3(t / tex_size, plane));
+            /* a plane past the far plane (> 1) must not shadow the empty texels (1) */
+            lit += cov * texture(u_tile, vec3(t / tex_size, min(plane, 1.0)));
         }
     }
     if (area <= 0.0) discard;

@@ -69,8 +69,11 @@ void main()
             for (int x = a.x; x <= b.x; x++)
                 m = min(m, texelFetch(u_lowres, ivec2(x, y), lv).r);
         /* nothing in the cells nearer than the receiver's plane anywhere
-           over them: no blocker, fully lit (most pixels end here) */
-        if (it == 0 && m >= r.light.z + abs(r.grad.x) * (reg.x + cz) + abs(r.grad.y) * (reg.y + cz) - tol) {
+           over them: no blocker, fully lit (most pixels end here). Texels
+           left at the clear depth 1 hold nothing: a steep receiver's plane
+           carried across the region can pass the far plane (> 1), and
+           must not make empty texels blockers, here and below */
+        if (it == 0 && m >= min(r.light.z + abs(r.grad.x) * (reg.x + cz) + abs(r.grad.y) * (reg.y + cz) - tol, 1.0)) {
             o_kernel = vec4(0.0, 0.0, 0.0, 1.0);
             return;
         }
@@ -94,7 +97,7 @@ void main()
             vec2 centre = (vec2(x, y) + 0.5) * cs - 1.0;
             float m = texelFetch(u_lowres, ivec2(x, y), level).r;
             float plane = r.light.z + dot(r.grad, centre - r.light.xy) - slack;
-            if (m < plane) { sum += sk_light_linear(m); count += 1.0; }
+            if (m < min(plane, 1.0)) { sum += sk_light_linear(m); count += 1.0; }
         }
     if (count == 0.0) { o_kernel = vec4(0.0, 0.0, 0.0, 1.0); return; }   /* fully lit */
     /* the cells' minima decide "fully lit" conservatively but pull the
@@ -113,8 +116,8 @@ void main()
                                 ivec2(u_lowres_size - 1));
                 float plane = r.light.z + dot(r.grad, o) - pslack;
                 float mt = texelFetch(u_lowres_true, t, 0).r, mc = texelFetch(u_lowres, t, 0).r;
-                if (mt < plane) { ps.x += sk_light_linear(mt); pc.x += 1.0; }
-                if (mc < plane) { ps.y += sk_light_linear(mc); pc.y += 1.0; }
+                if (mt < min(plane, 1.0)) { ps.x += sk_light_linear(mt); pc.x += 1.0; }
+                if (mc < min(plane, 1.0)) { ps.y += sk_light_linear(mc); pc.y += 1.0; }
             }
         if (pc.x > 0.0) { sum = ps.x; count = pc.x; }
         else if (pc.y > 0.0) { sum = ps.y; count = pc.y; }
