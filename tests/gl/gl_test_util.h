@@ -225,19 +225,28 @@ static inline int gt_mask(gt_env *e, skgl_shadow *s, const skgl_camera *cam, sk_
     return gt_mask_only(e, s, cam, vis);
 }
 
-/* the can-fail experiments' bias knob: SK_GL_TEST_BIAS=normal-offset
-   turns every shadow gt_shadow creates (and every point light a test
-   creates through gt_point_bias) to the normal-offset bias
-   (SKGL_BIAS_NORMAL_OFFSET, its default 1.5 texels), whatever the test
-   asked for; the tests' comments give the figures. Unset: the desc as
-   given. 1 when the knob is on. */
+/* the can-fail experiments' bias knob, applied to every shadow gt_shadow
+   creates (and every point light a test creates through gt_point_bias),
+   whatever the test asked for; the tests' comments give the figures:
+     SK_GL_TEST_BIAS=normal-offset  the normal-offset bias
+                                    (SKGL_BIAS_NORMAL_OFFSET, its defaults)
+     SK_GL_TEST_BIAS=none           no bias at all: the plain depth
+                                    comparison (normal-offset mode with no
+                                    offset, no polygon offset)
+   Unset: the desc as given. Returns 1 (normal-offset), 2 (none) or 0. */
 static inline int gt_bias_knob(void) {
     const char *s = getenv("SK_GL_TEST_BIAS");
-    return s && strcmp(s, "normal-offset") == 0;
+    if (!s) return 0;
+    return strcmp(s, "normal-offset") == 0 ? 1 : strcmp(s, "none") == 0 ? 2 : 0;
 }
 
 static inline void gt_point_bias(skgl_point_desc *d) {
-    if (gt_bias_knob()) d->bias = SKGL_BIAS_NORMAL_OFFSET;
+    int k = gt_bias_knob();
+    if (k == 1) d->bias = SKGL_BIAS_NORMAL_OFFSET;
+    if (k == 2) {
+        d->bias = SKGL_BIAS_NORMAL_OFFSET;
+        d->normal_bias = d->slope_bias = d->depth_bias = -1.0f;
+    }
 }
 
 static inline skgl_shadow *gt_shadow(gt_env *e, const skgl_shadow_desc *desc) {
@@ -245,7 +254,12 @@ static inline skgl_shadow *gt_shadow(gt_env *e, const skgl_shadow_desc *desc) {
     skgl_shadow_desc dd = *desc;
     const skgl_shadow_desc *d = &dd;
     sk_result r;
-    if (gt_bias_knob()) dd.bias = SKGL_BIAS_NORMAL_OFFSET;
+    int k = gt_bias_knob();
+    if (k == 1) dd.bias = SKGL_BIAS_NORMAL_OFFSET;
+    if (k == 2) {
+        dd.bias = SKGL_BIAS_NORMAL_OFFSET;
+        dd.normal_bias = dd.slope_bias = dd.depth_bias = -1.0f;
+    }
     r = skgl_shadow_create(e->sk, d, &s);
     if (r != SK_OK) {
         SK_CHECK_MSG(0, "skgl_shadow_create: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
