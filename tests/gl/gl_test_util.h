@@ -225,9 +225,42 @@ static inline int gt_mask(gt_env *e, skgl_shadow *s, const skgl_camera *cam, sk_
     return gt_mask_only(e, s, cam, vis);
 }
 
-static inline skgl_shadow *gt_shadow(gt_env *e, const skgl_shadow_desc *d) {
+/* the can-fail experiments' bias knob, applied to every shadow gt_shadow
+   creates (and every point light a test creates through gt_point_bias),
+   whatever the test asked for; the tests' comments give the figures:
+     SK_GL_TEST_BIAS=normal-offset  the normal-offset bias
+                                    (SKGL_BIAS_NORMAL_OFFSET, its defaults)
+     SK_GL_TEST_BIAS=none           no bias at all: the plain depth
+                                    comparison (normal-offset mode with no
+                                    offset, no polygon offset)
+   Unset: the desc as given. Returns 1 (normal-offset), 2 (none) or 0. */
+static inline int gt_bias_knob(void) {
+    const char *s = getenv("SK_GL_TEST_BIAS");
+    if (!s) return 0;
+    return strcmp(s, "normal-offset") == 0 ? 1 : strcmp(s, "none") == 0 ? 2 : 0;
+}
+
+static inline void gt_point_bias(skgl_point_desc *d) {
+    int k = gt_bias_knob();
+    if (k == 1) d->bias = SKGL_BIAS_NORMAL_OFFSET;
+    if (k == 2) {
+        d->bias = SKGL_BIAS_NORMAL_OFFSET;
+        d->normal_bias = d->slope_bias = d->depth_bias = -1.0f;
+    }
+}
+
+static inline skgl_shadow *gt_shadow(gt_env *e, const skgl_shadow_desc *desc) {
     skgl_shadow *s = NULL;
-    sk_result r = skgl_shadow_create(e->sk, d, &s);
+    skgl_shadow_desc dd = *desc;
+    const skgl_shadow_desc *d = &dd;
+    sk_result r;
+    int k = gt_bias_knob();
+    if (k == 1) dd.bias = SKGL_BIAS_NORMAL_OFFSET;
+    if (k == 2) {
+        dd.bias = SKGL_BIAS_NORMAL_OFFSET;
+        dd.normal_bias = dd.slope_bias = dd.depth_bias = -1.0f;
+    }
+    r = skgl_shadow_create(e->sk, d, &s);
     if (r != SK_OK) {
         SK_CHECK_MSG(0, "skgl_shadow_create: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
         return NULL;
@@ -413,12 +446,34 @@ static inline double gt_res_scale(void) {
 
 static inline float *gt_alloc(const gt_env *e) { return (float *)malloc(sizeof(float) * e->n); }
 
+/* The hard-shadow scores of one result against the exact reference: the
+   shadow-area error (tb_metric_shadow: misclassified pixels over the
+   reference's shadowed ones, false shadow and false light apart, edge
+   displacement) and the covered % (tb_metric_hard's pct, the same wrong
+   pixels over every covered one). ok = 0 when it could not be computed. */
+static inline tb_shadow_error gt_shadow_error(const gt_env *e, const float *ref, const float *res) {
+    return tb_metric_shadow(ref, res, e->w, e->h);
+}
+
+/* "area 0.1234% (covered 0.0123%; false shadow 0.05%, false light 0.07%,
+   edge mean 0.62 p95 1.21 px; 12 wrong of 9731 shadow px)" into buf */
+static inline const char *gt_shadow_error_str(const tb_shadow_error *se, char *buf, size_t size) {
+    snprintf(buf, size,
+             "area %.4f%% (covered %.4f%%; false shadow %.4f%%, false light %.4f%%, edge mean %.2f p95 %.2f px; "
+             "%llu wrong of %llu shadow px)",
+             se->area_pct, se->covered_pct, se->false_shadow_pct, se->false_light_pct, se->edge_mean_px,
+             se->edge_p95_px, (unsigned long long)se->wrong, (unsigned long long)se->shadow);
+    return buf;
+}
+
 /* One frame of a directional technique (render + mask of the last G-buffer)
-   scored against ref: the error, the stats, whether every layer matrix is
-   finite, and the share of the reference's shadowed pixels the mask calls
-   lit. pct < 0 when the frame failed. image: out/tests/<image>*.png or NULL. */
+   scored against ref: the error (covered % and the shadow-area error), the
+   stats, whether every layer matrix is finite, and the share of the
+   reference's shadowed pixels the mask calls lit. pct < 0 when the frame
+   failed. image: out/tests/<image>*.png or NULL. */
 typedef struct gt_run_result {
     double pct;
+    tb_shadow_error se;
     skgl_stats st;
     int finite;
     size_t shadowed;
@@ -438,6 +493,7 @@ static inline gt_run_result gt_run(gt_env *e, const skgl_camera *cam, sk_vec3 li
         size_t j;
         for (j = 0; j < e->n; j++) w.shadowed += ref[j] >= 0 && tb_visibility_class(ref[j]) == 0;
         w.pct = he.pct;
+        w.se = gt_shadow_error(e, ref, mask);
         w.false_lit_pct = w.shadowed ? 100.0 * (double)he.false_lit / (double)w.shadowed : 0.0;
         w.st = *skgl_shadow_stats(s);
         w.finite = 1;

@@ -1,12 +1,13 @@
 /* test_gl_bias.c - the two complaints users file most against shadow bias,
-   measured apart, with the default bias (slope 2, constant 1, normal offset
-   1.5 texels), for both techniques, against the Embree reference:
+   measured apart, for both bias modes (the default receiver plane, and the
+   normal offset: slope 2, constant 1, normal offset 1.5 texels) and both
+   techniques, against the exact Embree reference:
 
    ACNE: false shadow on lit surfaces at grazing light. The "contact" scene
-   (ground + a 2 m box) lit 80 degrees from the ground normal; among the
-   pixels the reference says are lit and that are more than 3 pixels from
-   any reference shadow boundary (so edge aliasing is not counted), the
-   share the mask calls shadowed.
+   (ground + a 2 m box) lit 80 and 85 degrees from the ground normal; among
+   the pixels the reference says are lit and that are more than 3 pixels
+   from any reference shadow boundary (so edge aliasing is not counted),
+   the share the mask calls shadowed.
 
    PETER-PANNING: false light next to a contact. The contact scene plus a
    5 cm plank lying on the ground, light 67 degrees from the normal; among
@@ -17,15 +18,27 @@
    plank is where a light-leaking gap shows.
 
    Bounds, set from measurement (400 x 225, maps 1024^2 / PSSM 4 x 1024^2,
-   Mesa 22.3 llvmpipe); the can-fail runs use the SB / DB / NB environment
-   variables (slope, constant and normal bias; -1 = none):
-     acne, 80 and 85 deg, both techniques: measured 0 of ~64000 lit pixels
-       (0.0000%); bound 0.05%. With no bias at all (SB=DB=NB=-1) 50.0%
-       (80 deg standard: 32204 of 64442): the test fails.
-     peter-panning near the box: 0 of 284 (0.000%), both techniques; bound
-       2%. Near the plank: standard 55 of 128 (43.0%), pssm 42 of 128
-       (32.8%); bound 65%. With 4x the default bias (SB=8 DB=4 NB=6): plank
-       81.3% (standard) / 79.7% (pssm): the test fails. With no bias: 0%.
+   Mesa 22.3 llvmpipe); the can-fail runs use the SB / DB / NB / PB
+   environment variables (slope, constant, normal bias and receiver-plane
+   tolerance; -1 = none):
+     acne, 80 and 85 deg, both techniques, both modes: measured 0 of
+       ~64000 lit pixels (0.0000%, as with the previous reference); bound
+       0.005%, 3 pixels (previously 0.05%). With no bias at all
+       (SB=DB=NB=PB=-1) the normal offset gives 50.0% (80 deg standard:
+       32209 of 64439) and the receiver plane 0.0093% (6 pixels), 0.21%,
+       17.4% and 26.0%: all eight fail.
+     peter-panning near the box: 0 of 282 (0.000%), every case; bound 1%,
+       2 pixels (previously 2%). With 4x the default bias (SB=8 DB=4 NB=6)
+       3 of 282 (1.06%): fails; with a receiver-plane tolerance of 8
+       texels (PB=8) 6 and 4 of 282: fails.
+     peter-panning near the plank: receiver plane: standard 1 of 131
+       (0.76%), pssm 4 of 131 (3.05%); bound 5% (6 pixels, 1.5x). Normal
+       offset: standard 60 of 131 (45.8%), pssm 47 of 131 (35.9%); bound
+       65% (1.42x; previously measured, with the old reference, 55 and 42
+       of 128: 43.0% and 32.8%). With 4x the default bias (SB=8 DB=4 NB=6)
+       81.7% (standard) / 80.2% (pssm), both modes: every plank bound
+       fails; with PB=4 the receiver plane's standard case gives 72.5%:
+       fails. With no bias: 0%.
    Pictures: out/tests/peter-*.png and -error.png (red = false light). */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
@@ -35,12 +48,15 @@
 
 #define W 400
 #define H 225
-#define ACNE_BOUND_PCT 0.05
-#define PETER_BOX_BOUND_PCT 2.0
+/* figures in the comment above */
+#define ACNE_BOUND_PCT 0.005
+#define PETER_BOX_BOUND_PCT 1.0
 #define PETER_PLANK_BOUND_PCT 65.0
 #define PETER_PLANK_PLANE_BOUND_PCT 5.0
 
-/* the can-fail experiments: bias overrides from the environment (unset: default) */
+/* the can-fail experiments: bias overrides from the environment (unset:
+   default): SB slope, DB constant, NB normal offset, PB receiver-plane
+   tolerance (-1 = none) */
 static float envf(const char *n, float def) { const char *s = getenv(n); return s && *s ? (float)atof(s) : def; }
 
 static void desc_bias(skgl_shadow_desc *d, skgl_bias mode) {
@@ -48,6 +64,7 @@ static void desc_bias(skgl_shadow_desc *d, skgl_bias mode) {
     d->slope_bias = envf("SB", 0);
     d->depth_bias = envf("DB", 0);
     d->normal_bias = envf("NB", 0);
+    d->plane_bias = envf("PB", 0);
 }
 
 static const char *mode_name(skgl_bias m) { return m == SKGL_BIAS_NORMAL_OFFSET ? "normal-offset" : "receiver-plane"; }
@@ -80,7 +97,7 @@ static void acne(skgl_technique tech, skgl_bias mode, float angle_deg) {
     printf("acne %s %s, light %g deg: false shadow on %zu of %zu lit pixels away from edges = %.4f%%\n",
            tech == SKGL_PSSM ? "pssm" : "standard", mode_name(mode), angle_deg, fs, lit, pct);
     SK_CHECK(lit > e.n / 2);
-    SK_CHECK_MSG(pct < ACNE_BOUND_PCT, "acne %.4f%% >= %.2f%%", pct, ACNE_BOUND_PCT);
+    SK_CHECK_MSG(pct < ACNE_BOUND_PCT, "acne %.4f%% >= %.3f%%", pct, ACNE_BOUND_PCT);
     free(ref); free(res);
     skgl_shadow_destroy(e.sk, s);
     gt_env_free(&e);

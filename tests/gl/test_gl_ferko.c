@@ -23,12 +23,27 @@
      of ferko_analyze.frag) boxes gives 835x811 against 2353x2192: fails.
 
    test_against_4096 - FERKO with a 4096 maximum against the focused 4096^2
-   map:  boxes 0.0278% (0.31 of the texels) vs 0.0156%, boxes-close 0.0028%
-   (1.00, clamped) vs 0.0112%, terrace 0.1265% (0.32) vs 0.1777%, fence
-   0.9564% (1.00, clamped) vs 1.0103%. Asserted: within +0.1 pp of the
-   4096 map, never more texels, under 0.05 / 0.01 / 0.21 / 1.6%. Can fail:
-   at 1/4 resolution (SK_GL_TEST_RES_SCALE=0.25: maximum 1024) 0.0748%,
-   0.1054%, 0.8775%, 6.3053%: all four fail their thresholds.
+   map, on the exact reference with the default bias (receiver plane),
+   covered % (tb_metric_hard) and shadow-area error (tb_metric_shadow),
+   wrong pixels:
+       view         ferko (texels)                  4096^2              old (ferko vs 4096)
+       boxes        0.0162% 0.758%  9 px (0.31)     0.0144% 0.673% 8    0.0278% vs 0.0156%
+       boxes-close  0.0076% 0.213%  5 px (1.00)     0.0076% 0.213% 5    0.0028% vs 0.0112%
+       terrace      0.0869% 3.277% 27 px (0.32)     0.1126% 4.248% 35   0.1265% vs 0.1777%
+       fence        0.3335% 4.078% 192 px (1.00)    0.3266% 3.993% 188  0.9564% vs 1.0103%
+     ((1.00): clamped at the maximum.) Asserted: never more texels than
+     the 4096 map, at most NO_WORSE_PX (6) wrong pixels more than it
+     (previously +0.1 pp: 60 pixels of a 60000-pixel view), and about
+     1.4x: covered under 0.023 / 0.011 / 0.125 / 0.47% (previously 0.05 /
+     0.01 / 0.21 / 1.6%), area under 1.07 / 0.30 / 4.6 / 5.7%.
+     Can fail: at 1/4 resolution (SK_GL_TEST_RES_SCALE=0.25: maximum
+     1024) covered 0.0396, 0.0273, 0.5856, 1.5494%, area 1.85, 0.77, 22.1,
+     18.9%: all eight bounds fail; with the normal-offset bias
+     (SK_GL_TEST_BIAS=normal-offset) boxes 0.0450% / 2.10%, 7 pixels more
+     than the 4096 map (terrace 0.1899%, fence 1.9924%); in a local copy of
+     the header rendering half the estimated resolution on each side,
+     10, 5, 12 and 228 pixels more than the 4096 map: boxes, terrace and
+     fence fail.
 
    test_failure_cases - empty G-buffer (sky only), every sample outside the
    light frustum (scene bounds away from the view), a 2-pixel object, a
@@ -64,15 +79,21 @@ static int ferko_frame(gt_env *e, skgl_shadow *s, const skgl_camera *cam, const 
 typedef struct view_case {
     const char *label, *scene;
     float eye[3], target[3], light[3];
-    double max_pct;              /* FERKO's error threshold (test_against_4096) */
+    double max_pct;              /* FERKO's error bounds (test_against_4096): covered % */
+    double max_area_pct;         /* and shadow-area error % */
 } view_case;
 
+/* bounds about 1.4x the measurement (figures at the top) */
 static const view_case views[] = {
-    {"boxes", "ground-boxes", {-9, 7, 12}, {0, 1, 0}, {-0.5f, -1, -0.35f}, 0.05},
-    {"boxes-close", "ground-boxes", {-3, 2.5f, 4}, {0, 0.5f, 0}, {-0.5f, -1, -0.35f}, 0.01},
-    {"terrace", "terrace", {0, 2, 1}, {0, 0.5f, -30}, {0.7f, -1, 0.4f}, 0.21},
-    {"fence", "fence", {1, 1.6f, 3.5f}, {0, 0.5f, 0}, {0.3f, -1, 0.6f}, 1.6},
+    {"boxes", "ground-boxes", {-9, 7, 12}, {0, 1, 0}, {-0.5f, -1, -0.35f}, 0.023, 1.07},
+    {"boxes-close", "ground-boxes", {-3, 2.5f, 4}, {0, 0.5f, 0}, {-0.5f, -1, -0.35f}, 0.011, 0.30},
+    {"terrace", "terrace", {0, 2, 1}, {0, 0.5f, -30}, {0.7f, -1, 0.4f}, 0.125, 4.6},
+    {"fence", "fence", {1, 1.6f, 3.5f}, {0, 0.5f, 0}, {0.3f, -1, 0.6f}, 0.47, 5.7},
 };
+
+/* FERKO may misclassify this many pixels more than the focused 4096^2
+   map: measured at most 4 (fence) */
+#define NO_WORSE_PX 6
 
 static void test_matches_cpu(void) {
     size_t c;
@@ -146,10 +167,13 @@ static void test_against_4096(void) {
         skgl_scene sc;
         float *ref, *mf, *ms;
         double ef = -1, es = -1, tf = 0, ts = 0;
-        char img[64];
+        tb_shadow_error sef, ses;
+        char img[64], buf[256];
         if (gt_env_init_named(&e, k->scene, W, H) != 0) { gt_env_free(&e); continue; }
         sc = gt_scene(&e);
         ref = gt_alloc(&e); mf = gt_alloc(&e); ms = gt_alloc(&e);
+        memset(&sef, 0, sizeof sef);
+        memset(&ses, 0, sizeof ses);
         memset(&d, 0, sizeof d);
         d.technique = SKGL_FERKO;
         d.resolution = (int)(4096 * gt_res_scale());
@@ -159,17 +183,24 @@ static void test_against_4096(void) {
         if (sf && ss && ref && mf && ms && gt_gbuffer(&e, &cam) == 0 && gt_reference(&e, l, ref) == 0 &&
             ferko_frame(&e, sf, &cam, &sc, l, mf) == 0 && gt_mask(&e, ss, &cam, l, ms) == 0) {
             ef = tb_metric_hard(ref, mf, e.n).pct;
+            sef = gt_shadow_error(&e, ref, mf);
             tf = skgl_shadow_stats(sf)->texels;
             es = tb_metric_hard(ref, ms, e.n).pct;
+            ses = gt_shadow_error(&e, ref, ms);
             ts = skgl_shadow_stats(ss)->texels;
             snprintf(img, sizeof img, "ferko-%s", k->label);
             gt_images(&e, img, ref, mf);
         }
-        printf("%-12s ferko %.4f%% (%dx%d, %.2f of the texels)  standard-4096 %.4f%%\n", k->label, ef,
-               skgl_shadow_stats(sf)->map_width, skgl_shadow_stats(sf)->map_height, ts > 0 ? tf / ts : -1.0, es);
+        printf("%-12s ferko %.4f%% (%dx%d, %.2f of the texels)  standard-4096 %.4f%% (area %.4f%%, %llu px); ferko %s\n",
+               k->label, ef, skgl_shadow_stats(sf)->map_width, skgl_shadow_stats(sf)->map_height,
+               ts > 0 ? tf / ts : -1.0, es, ses.area_pct, (unsigned long long)ses.wrong,
+               gt_shadow_error_str(&sef, buf, sizeof buf));
         SK_CHECK(ef >= 0 && es >= 0);
-        SK_CHECK_MSG(ef < k->max_pct, "%s: ferko %.4f%% >= %.2f%%", k->label, ef, k->max_pct);
-        SK_CHECK_MSG(ef <= es + 0.1, "%s: ferko %.4f%% more than 0.1 pp above the 4096 map's %.4f%%", k->label, ef, es);
+        SK_CHECK_MSG(ef < k->max_pct, "%s: ferko %.4f%% >= %.3f%%", k->label, ef, k->max_pct);
+        SK_CHECK_MSG(sef.ok && sef.area_pct < k->max_area_pct, "%s: ferko shadow-area error %.4f%% >= %.2f%%", k->label,
+                     sef.area_pct, k->max_area_pct);
+        SK_CHECK_MSG(sef.wrong <= ses.wrong + NO_WORSE_PX, "%s: ferko %llu pixels wrong (%.4f%%), the 4096 map %llu (%.4f%%)",
+                     k->label, (unsigned long long)sef.wrong, ef, (unsigned long long)ses.wrong, es);
         SK_CHECK(tf <= ts);
         SK_CHECK(e.gl.GetError() == 0);
         skgl_shadow_destroy(e.sk, sf);

@@ -9,28 +9,43 @@
    class (lit / shadowed) differs are counted, and those of them not within
    one pixel of a shadow boundary of the own-atlas mask.
 
-   Measured (Mesa llvmpipe, OSMesa), lights wanting 256, 128, 64 per face:
+   Measured (Mesa llvmpipe, OSMesa), lights wanting 256, 128, 64 per face,
+   against the exact reference (tb_reference_trace_exact with each point
+   light: surfaces facing away from it and silhouette pixels left out),
+   default bias (receiver plane). Errors: covered % (tb_metric_hard) and
+   shadow-area error (tb_metric_shadow, misclassified over the reference's
+   shadowed pixels).
 
-   test_shared_matches_own - 1024 x 1024 atlas, no halving: 2, 14, 15 of
+   test_shared_matches_own - 1024 x 1024 atlas, no halving: 1, 13, 14 of
    76800 pixels differ from the own atlases, every one on a shadow
    boundary (the face rectangles sit at other atlas offsets and the
    indirection's RG16 coordinates are relative to another atlas size, so
-   a filter tap can round the other way); against the Embree reference
-   0.47, 1.18, 1.69% misclassified (29, 41, 28% of the pixels shadowed).
+   a filter tap can round the other way); against the reference covered
+   0.2114, 0.6365, 1.2997%, area 1.36, 2.33, 8.20% (29, 41, 28% of the
+   pixels shadowed). Previously (old reference, normal-offset bias) 2, 14,
+   15 pixels differed and the error was 0.47, 1.18, 1.69%.
    test_too_small - 512 x 256 atlas: halved to 64, 64, 64 (atlas_wanted
-   still 256, 128, 64); 15, 7, 1 pixels differ from own atlases at 64, all
-   on a boundary; reference 2.12, 2.45, 1.68%.
+   still 256, 128, 64); 12, 4, 5 pixels differ from own atlases at 64, all
+   on a boundary; covered 1.4534, 1.7736, 1.2950%, area 9.32, 6.48, 8.17%
+   (previously 15, 7, 1 pixels; 2.12, 2.45, 1.68%).
    Asserted in both: the 18 faces inside the atlas and pairwise disjoint,
-   each layout's side = the side rendered, the sides expected, at most 40
-   pixels differing and none off a boundary, reference error <= 2.0%
-   (fit) / 3.0% (small), more than 1% shadowed.
-   Can fail: in local copies of the header, a light's render clearing the
-   3 x 2 corner of the atlas as an own atlas does: light 0's faces (drawn
-   first) are erased, 1894 pixels differ (1542 off a boundary; 4996 and
-   7489 for lights 0 and 1 when small); the pack not refilling the
-   indirection: the layouts are the lights' own 3 x 2 corners, overlap, and
-   42000-51000 pixels differ; the shelf order ascending instead of
-   descending: 54 overlapping face pairs, and the small atlas does not fit
+   each layout's side = the side rendered, the sides expected, at most 20
+   pixels differing (previously 40) and none off a boundary, more than 1%
+   shadowed, and per light about 1.4x its error: covered <= 0.30, 0.90,
+   1.8% and area <= 1.9, 3.3, 11.5% (fit), covered <= 2.0, 2.5, 1.8% and
+   area <= 13, 9.1, 11.5% (small); previously one bound for all lights,
+   2.0% (fit) and 3.0% (small).
+   Can fail: with the normal-offset bias (SK_GL_TEST_BIAS=normal-offset)
+   covered 0.58, 1.46, 2.02% and area 3.70, 5.34, 12.75% (fit), 2.54,
+   3.03, 2.01% and 16.3, 11.1, 12.7% (small): every error bound fails. In
+   local copies of the header: a light's render clearing the 3 x 2 corner
+   of the atlas as an own atlas does: light 0's faces (drawn first) are
+   erased, 1986 pixels differ (1627 off a boundary), error 3.17% / area
+   20.4%; when small 4814 and 7379 for lights 0 and 1 (8.59%, 13.52%);
+   previously measured: the pack not refilling the indirection: the
+   layouts are the lights' own 3 x 2 corners, overlap, and 42000-51000
+   pixels differ; the shelf order ascending instead of descending: 54
+   overlapping face pairs, and the small atlas does not fit
    (SK_ERR_CAPACITY, renders refused).
 
    test_invalid - an atlas light before any pack, a cube light with an
@@ -93,6 +108,7 @@ static skgl_point *make_point(gt_env *e, int res, skgl_point_atlas *atlas) {
     d.range = RANGE;
     d.cull_faces = d.cull_casters = 1;
     d.atlas = atlas;
+    gt_point_bias(&d);
     r = skgl_point_create(e->sk, &d, &p);
     SK_CHECK_MSG(r == SK_OK, "skgl_point_create: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
     return p;
@@ -162,22 +178,21 @@ static void check_rects(skgl_point *const *lights, int aw, int ah, const char *w
     }
 }
 
+/* the exact reference of light i over the last G-buffer (its raster depth
+   decides the silhouettes; back-facing receivers are left out) */
 static int point_reference(gt_env *e, int i, float *vis) {
-    tb_view v;
     tb_light l;
     memset(&l, 0, sizeof l);
     l.type = TB_LIGHT_POINT;
     l.position = gt_v3(light_xyz[i][0], light_xyz[i][1], light_xyz[i][2]);
     l.range = RANGE;
-    v.inv_view_proj = e->inv_vp;
-    v.width = e->w;
-    v.height = e->h;
-    return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+    return gt_reference_exact(e, &l, vis, NULL);
 }
 
 /* atlas aw x ah; expect[] the sides packed; max_diff the pixels a light's
    mask may differ from its own atlas's */
-static void run_shared(int aw, int ah, const int *expect, size_t max_diff, double max_ref_pct, const char *what) {
+static void run_shared(int aw, int ah, const int *expect, size_t max_diff, const double *max_ref_pct,
+                       const double *max_area_pct, const char *what) {
     gt_env e;
     skgl_point_atlas *atlas = NULL;
     skgl_point *shared[NL], *own[NL];
@@ -207,6 +222,8 @@ static void run_shared(int aw, int ah, const int *expect, size_t max_diff, doubl
         const skgl_stats *st = skgl_point_stats(shared[i]);
         size_t covered, diff, off, shadow = 0, k;
         tb_hard_error err;
+        tb_shadow_error se;
+        char buf[256];
         SK_CHECK_MSG(st->atlas_wanted == light_res[i] && st->resolution == expect[i],
                      "%s: light %d wanted %d rendered %d, expected %d / %d", what, i, st->atlas_wanted,
                      st->resolution, light_res[i], expect[i]);
@@ -217,15 +234,20 @@ static void run_shared(int aw, int ah, const int *expect, size_t max_diff, doubl
         diff = class_diff(&e, a[i], b, &covered, &off);
         SK_CHECK(point_reference(&e, i, ref) == 0);
         err = tb_metric_hard(ref, a[i], e.n);
+        se = gt_shadow_error(&e, ref, a[i]);
         for (k = 0; k < e.n; k++) shadow += tb_visibility_class(a[i][k]) == 0;
         printf("%s light %d: side %d (wanted %d), %llu of %llu pixels differ from its own atlas (%llu off a boundary); "
-               "%.4f%% against the reference; %.2f%% shadowed; faces %d\n",
+               "%.4f%% against the reference, %s; %.2f%% shadowed; faces %d\n",
                what, i, st->resolution, st->atlas_wanted, (unsigned long long)diff, (unsigned long long)covered,
-               (unsigned long long)off, err.pct, 100.0 * shadow / (double)(covered ? covered : 1), st->faces_rendered);
+               (unsigned long long)off, err.pct, gt_shadow_error_str(&se, buf, sizeof buf),
+               100.0 * shadow / (double)(covered ? covered : 1), st->faces_rendered);
         SK_CHECK_MSG(diff <= max_diff, "%s light %d: %llu pixels differ", what, i, (unsigned long long)diff);
         SK_CHECK_MSG(off == 0, "%s light %d: %llu differing pixels off a shadow boundary", what, i,
                      (unsigned long long)off);
-        SK_CHECK_MSG(err.pct <= max_ref_pct, "%s light %d: %.4f%% against the reference", what, i, err.pct);
+        SK_CHECK_MSG(err.pct <= max_ref_pct[i], "%s light %d: %.4f%% against the reference (bound %.2f%%)", what, i,
+                     err.pct, max_ref_pct[i]);
+        SK_CHECK_MSG(se.ok && se.area_pct <= max_area_pct[i], "%s light %d: shadow-area error %.4f%% (bound %.1f%%)",
+                     what, i, se.area_pct, max_area_pct[i]);
         SK_CHECK_MSG(shadow > covered / 100, "%s light %d: no shadow seen", what, i);
         skgl_point_destroy(e.sk, own[i]);
     }
@@ -238,14 +260,21 @@ static void run_shared(int aw, int ah, const int *expect, size_t max_diff, doubl
     gt_env_free(&e);
 }
 
+/* at most this many pixels of a light's mask may differ from its own
+   atlas's: measured at most 14 (fit) and 12 (small) */
+#define MAX_DIFF 20
+
+/* per light, about 1.4x the measurement (figures at the top) */
 static void test_shared_matches_own(void) {
     static const int sides[NL] = {256, 128, 64};
-    run_shared(1024, 1024, sides, 40, 2.0, "fit");
+    static const double max_pct[NL] = {0.30, 0.90, 1.8}, max_area[NL] = {1.9, 3.3, 11.5};
+    run_shared(1024, 1024, sides, MAX_DIFF, max_pct, max_area, "fit");
 }
 
 static void test_too_small(void) {
     static const int sides[NL] = {64, 64, 64};
-    run_shared(512, 256, sides, 40, 3.0, "small");
+    static const double max_pct[NL] = {2.0, 2.5, 1.8}, max_area[NL] = {13.0, 9.1, 11.5};
+    run_shared(512, 256, sides, MAX_DIFF, max_pct, max_area, "small");
 }
 
 static void test_invalid(void) {

@@ -5,32 +5,68 @@
    from the light on each axis, and a "cage" (two boxes as one object) whose
    box holds a light position. 320 x 240, range 10, PCF radius 1.
 
-   Measured (Mesa 22.3 llvmpipe, OSMesa):
+   Measured (Mesa 22.3 llvmpipe, OSMesa), against the exact reference
+   (tb_reference_trace_exact with the point light: surfaces facing away
+   from the light and silhouette pixels left out), default bias (receiver
+   plane). "n-o": the normal-offset bias (SK_GL_TEST_BIAS=normal-offset);
+   "1/4": a quarter of the face resolution (SK_GL_TEST_RES_SCALE=0.25).
 
-   test_faces - one view per face, looking past that axis's box at its
-   shadow on the wall, floor or ceiling (28-36% of the pixels shadowed in
-   the reference), 512 texels per face, face and caster culling on:
-       face        +X      -X      +Y      -Y      +Z      -Z
-       error %   0.1302  0.1719  0.0000  0.1146  0.0977  0.1211  (cube = vsdct)
-       found     0.9957  0.9967  1.0000  0.9968  0.9971  0.9961
-     (found: the share of the reference's shadowed pixels the mask shadows).
-     Asserted: error <= 0.25%, found >= 0.993, cube and VSDCT within 0.1
-     percentage point, and the view sees > 20% shadow. Can fail: at 1/4
-     resolution (SK_GL_TEST_RES_SCALE=0.25, 128 per face) errors 0.19,
-     0.71, 0.00, 0.48, 0.38, 0.18% and found 0.994, 0.987, 1.0, 0.987,
-     0.992, 0.994: faces -X, -Y and +Z fail; with the faces' views swapped
-     in pairs (a local copy rendering face f with sk_cube_face_view(f ^ 1))
-     errors 2.4, 4.9, 0.8, 32.0, 5.5, 3.6%: every face fails.
+   test_faces - one view per face from beside and behind the light (clear
+   of the neighbouring axis box), looking past that axis's box at its
+   shadow on the wall, floor or ceiling (4.0-15.4% of the covered pixels
+   shadowed in the reference; 17% of the view is a neighbouring box's faces
+   turned from the light, left out), 512 texels per face, face and caster
+   culling on. Cube and VSDCT within one pixel of each other:
+       face          +X      -X      +Y      -Y      +Z      -Z
+       covered %   0.0125  0.0453  0.0016  0.0471  0.0313  0.0156  (cube)
+       area %      0.119   0.371   0.039   0.305   0.231   0.145
+       found       0.9988  0.9974  1.0000  0.9973  0.9992  1.0000
+     (found: the share of the reference's shadowed pixels the mask shadows;
+     area: the shadow-area error, tb_metric_shadow.) Asserted, about 1.5x:
+     covered % <= 0.07, area % <= 0.55, found >= 0.996, cube and VSDCT
+     within 0.01 percentage point, and the view sees > 3% shadow.
+     Previously (the old reference, which counted a surface facing away
+     from the light as shadowed, and the normal-offset bias) the views sat
+     next to a neighbouring box whose back faces filled 28% of the image and
+     made up most of its "28-36% shadowed"; the +Y view held no cast shadow
+     at all. Bounds then: error <= 0.25% (measured 0.00-0.17%), found >=
+     0.993, cube and VSDCT within 0.1 point, > 20% shadow.
+     Can fail: n-o covered 0.144, 0.320, 0.008, 0.259, 0.191, 0.202%, area
+     1.37, 2.62, 0.19, 1.68, 1.41, 1.87%, found down to 0.9819: five faces
+     fail all three; 1/4: covered up to 0.167%, area up to 1.55%, found down
+     to 0.9845: faces -X, -Y, +Z, -Z fail; with the faces' views swapped in
+     pairs (a local copy rendering face f with sk_cube_face_view(f ^ 1))
+     covered 4.2-41.6%, found 0.0-0.998: every face fails; with the VSDCT's
+     atlas lookups spread 2% outward from each face's centre (a local copy:
+     taps near a face edge read the neighbouring sub-rect) the VSDCT's
+     covered % is 21.7-31.7% and cube and VSDCT differ by > 20 points.
 
    test_seams - three overviews of the room, 256 per face: the pixels whose
    light vector lies within one texel (2/256 in face coordinates) of a face
-   edge, where the pillars' shadows cross the seams: cube 99.21% of 2664
-   agree with the reference (the other pixels 99.42%), VSDCT 99.14%
-   (99.42%). Asserted: >= 98.9%, and at most 0.6 point below the other
-   pixels. Can fail: with the swapped face views above 90.5% (the others
-   78.9%): fails. Not seen by it: faces rendered 3% too narrow (seams 99.1%
-   against 98.4%); at 1/4 resolution the band is four times wider and
-   agrees 99.1% against 97.5%.
+   edge, where the pillars' shadows cross the seams (the light sits so that
+   pillar edges run along the diagonal seams): 1112 such pixels; cube
+   99.91% agree with the reference (1 wrong; the other pixels 99.73%),
+   VSDCT 98.20% (20 wrong; 99.73%). Every wrong seam pixel lies within one
+   pixel of the reference's shadow edge. The VSDCT's are all ties (mask
+   exactly 0.5 where the reference is shadowed) on a pillar edge that runs
+   along a seam: its lookups are kept half a texel inside each face, so a
+   2x2 comparison never reads across the seam, and there the edge moves by
+   up to half a texel; the cube without seamless filtering (a local copy
+   leaving GL_TEXTURE_CUBE_MAP_SEAMLESS off) gives the same 98.20%.
+   Asserted: > 800 seam pixels; seam agreement >= 99.7% (cube) / 97.6%
+   (VSDCT), at most 0.3 / 2.0 points below the other pixels' (about 1.3x
+   the VSDCT's 20 pixels and its 1.53-point gap); no seam pixel wrong
+   farther than one pixel from a shadow edge. Previously (old reference,
+   normal offset) 2664 seam pixels, cube 99.21% (others 99.42%), VSDCT
+   99.14% (99.42%); bounds >= 98.9% and at most 0.6 point below, both.
+   Can fail: n-o cube 97.57% (others 99.28%), VSDCT 97.39% (99.29%): both
+   fail the absolute bound, the cube the relative one; the cube without
+   seamless filtering 98.20%: fails both of the cube's; swapped face views
+   78.3% / 79.6% agree, with 207 / 193 seam pixels wrong off an edge;
+   VSDCT lookups spread outward: 79.9% against 98.3% elsewhere, 195 off an
+   edge: every VSDCT bound fails; at 1/4 the band (5050 pixels) has 21 /
+   29 wrong off an edge. Not seen by it: faces rendered 3% too narrow
+   (previously measured: seams 99.1% against 98.4%).
 
    test_culling_exhaustive - 16 random light positions (fixed seed, the
    first inside the cage's box), random eyes inside the room (so inside the
@@ -55,15 +91,17 @@
 
    test_resolution_selection - range 1.5 light near a wall, 1024 at most:
    S = 8188 pixels, 6 faces, M = 64 = sk_cube_resolution(6, S, 2, 1024)
-   (cube and VSDCT); 0 of 1576 covered pixels misclassified.
+   (cube and VSDCT); 0 of 1576 covered pixels misclassified (reported).
 
    test_forward - skgl_point_glsl_snippet() in a forward shader (VSDCT with
    its #define) bound by skgl_point_bind, the room drawn from an overview:
-   100% of the 76800 pixels agree with the deferred mask (cube and VSDCT).
+   100% (cube) and 99.9987% (VSDCT) of the 76800 pixels agree with the
+   deferred mask.
    Asserted: >= 99%. Can fail: without the skgl_point_bind call the cube
    agrees on 65.3% and VSDCT draws nothing; with the normal offset and the
    PCF step zeroed (sk_point_texel 0, a local copy of the header) both
-   agree on 94.1% (and test_faces fails at 1.52%, test_seams at 96.1%).
+   agree on 94.1% (measured with the previous reference and bias, when
+   test_faces failed at 1.52% and test_seams at 96.1% with it).
 
    test_invalid - bad descs are SK_ERR_INVALID_ARG with nothing created;
    bad render / mask / bind arguments too; no GL error. */
@@ -139,18 +177,18 @@ static void point_draw(void *user, const skgl_draw_info *info) {
     }
 }
 
-static int point_reference(gt_env *e, sk_vec3 lp, float *vis) {
-    tb_view v;
+/* the exact reference of a point light of this range over the last
+   G-buffer (its raster depth decides the silhouettes; back-facing receivers
+   are left out) */
+static int point_reference_range(gt_env *e, sk_vec3 lp, float range, float *vis) {
     tb_light l;
     memset(&l, 0, sizeof l);
     l.type = TB_LIGHT_POINT;
     l.position = lp;
-    l.range = RANGE;
-    v.inv_view_proj = e->inv_vp;
-    v.width = e->w;
-    v.height = e->h;
-    return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+    l.range = range;
+    return gt_reference_exact(e, &l, vis, NULL);
 }
+static int point_reference(gt_env *e, sk_vec3 lp, float *vis) { return point_reference_range(e, lp, RANGE, vis); }
 
 /* render + mask (the mask cleared to `clear` first), read back; background -1 */
 static int point_mask_raw(gt_env *e, skgl_point *p, const skgl_camera *cam, sk_vec3 lp, float clear, float *vis, int raw) {
@@ -184,6 +222,7 @@ static skgl_point *make_point(gt_env *e, skgl_point_technique t, int res, int cu
     d.resolution = res;
     d.range = RANGE;
     d.cull_faces = d.cull_casters = culling;
+    gt_point_bias(&d);
     r = skgl_point_create(e->sk, &d, &p);
     SK_CHECK_MSG(r == SK_OK, "skgl_point_create: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
     return p;
@@ -193,6 +232,12 @@ static const char *const tech_names[2] = {"cube", "vsdct"};
 static int res_scaled(int r) { int s = (int)(r * gt_res_scale()); return s < 4 ? 4 : s; }
 
 /* ---- every face orientation ---- */
+/* bounds; the figures are in the comment at the top */
+#define FACE_MIN_SHADOW_PCT 3.0   /* the view holds a shadow: measured 4.03-15.41% */
+#define FACE_MAX_PCT 0.07         /* covered %: measured at most 0.0471% (face 3), ~1.5x */
+#define FACE_MAX_AREA_PCT 0.55    /* shadow-area error: measured at most 0.3705% (face 1), ~1.5x */
+#define FACE_MIN_FOUND 0.996      /* measured at least 0.9973: 1.5x the share missed */
+#define FACE_TECH_PP 0.01         /* cube against VSDCT: measured at most 0.0016 pp (1 pixel) */
 static void test_faces(void) {
     static const int axes[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
     static const int side[6][3] = {{0, 0, 1}, {0, 0, 1}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}};
@@ -207,8 +252,15 @@ static void test_faces(void) {
         sk_vec3 eye, target;
         skgl_camera cam;
         size_t i, ref_shadow = 0, both = 0;
-        eye = gt_v3(lp.x + 1.3f * side[a][0] - 0.6f * axes[a][0], lp.y + 1.3f * side[a][1] - 0.6f * axes[a][1],
-                    lp.z + 1.3f * side[a][2] - 0.6f * axes[a][2]);
+        int o[3];
+        /* beside the light, behind it, and off the side box (o = axis x side),
+           so that the side box does not fill the view */
+        o[0] = axes[a][1] * side[a][2] - axes[a][2] * side[a][1];
+        o[1] = axes[a][2] * side[a][0] - axes[a][0] * side[a][2];
+        o[2] = axes[a][0] * side[a][1] - axes[a][1] * side[a][0];
+        eye = gt_v3(lp.x + 1.3f * side[a][0] - 0.6f * axes[a][0] - 0.5f * o[0],
+                    lp.y + 1.3f * side[a][1] - 0.6f * axes[a][1] - 0.5f * o[1],
+                    lp.z + 1.3f * side[a][2] - 0.6f * axes[a][2] - 0.5f * o[2]);
         target = gt_v3(lp.x + 3.0f * axes[a][0], lp.y + 3.0f * axes[a][1], lp.z + 3.0f * axes[a][2]);
         cam = gt_camera(eye, target, 1.2f, 0.05f, 30.0f, W, H);
         if (axes[a][1] != 0) cam.view = sk_mat4_look_at(eye, target, gt_v3(0, 0, 1));
@@ -217,10 +269,12 @@ static void test_faces(void) {
         for (t = 0; t < 2; t++) {
             skgl_point *p = make_point(&e, (skgl_point_technique)t, res_scaled(512), 1);
             tb_hard_error err;
-            char name[64];
+            tb_shadow_error se;
+            char name[64], buf[256];
             if (!p) continue;
             SK_CHECK(point_mask(&e, p, &cam, lp, 1.0f, res) == 0);
             err = tb_metric_hard(ref, res, e.n);
+            se = gt_shadow_error(&e, ref, res);
             ref_shadow = both = 0;
             for (i = 0; i < e.n; i++) {
                 if (tb_visibility_class(ref[i]) == 0) {
@@ -228,16 +282,19 @@ static void test_faces(void) {
                     if (tb_visibility_class(res[i]) == 0) both++;
                 }
             }
-            printf("face %d %-5s err %.4f%% (lit %llu shadow %llu of %llu) ref shadow %.2f%% found %.4f faces %d culled %d casters %d/%d\n",
+            printf("face %d %-5s err %.4f%% (lit %llu shadow %llu of %llu) ref shadow %.2f%% found %.4f faces %d culled %d casters %d/%d; %s\n",
                    a, tech_names[t], err.pct, (unsigned long long)err.false_lit, (unsigned long long)err.false_shadow,
                    (unsigned long long)err.covered, 100.0 * ref_shadow / (double)err.covered,
                    ref_shadow ? (double)both / ref_shadow : 0.0, skgl_point_stats(p)->faces_rendered,
                    skgl_point_stats(p)->faces_culled, skgl_point_stats(p)->casters_drawn,
-                   skgl_point_stats(p)->casters_culled);
+                   skgl_point_stats(p)->casters_culled, gt_shadow_error_str(&se, buf, sizeof buf));
             errs[t] = err.pct;
-            SK_CHECK_MSG(100.0 * ref_shadow / (double)err.covered > 20.0, "face %d: the view sees too little shadow", a);
-            SK_CHECK_MSG(err.pct <= 0.25, "face %d %s: %.4f%% misclassified", a, tech_names[t], err.pct);
-            SK_CHECK_MSG(ref_shadow && (double)both / ref_shadow >= 0.993, "face %d %s: %.4f of the shadow found", a,
+            SK_CHECK_MSG(100.0 * ref_shadow / (double)err.covered > FACE_MIN_SHADOW_PCT,
+                         "face %d: the view sees too little shadow (%.2f%%)", a, 100.0 * ref_shadow / (double)err.covered);
+            SK_CHECK_MSG(err.pct <= FACE_MAX_PCT, "face %d %s: %.4f%% misclassified", a, tech_names[t], err.pct);
+            SK_CHECK_MSG(se.ok && se.area_pct <= FACE_MAX_AREA_PCT, "face %d %s: shadow-area error %.4f%%", a,
+                         tech_names[t], se.area_pct);
+            SK_CHECK_MSG(ref_shadow && (double)both / ref_shadow >= FACE_MIN_FOUND, "face %d %s: %.4f of the shadow found", a,
                          tech_names[t], ref_shadow ? (double)both / ref_shadow : 0.0);
             SK_CHECK_MSG(skgl_point_stats(p)->faces_rendered >= 1 && skgl_point_stats(p)->faces_culled >= 1,
                          "face %d %s: %d faces rendered", a, tech_names[t], skgl_point_stats(p)->faces_rendered);
@@ -245,7 +302,8 @@ static void test_faces(void) {
             gt_images(&e, name, ref, res);
             skgl_point_destroy(e.sk, p);
         }
-        SK_CHECK_MSG(fabs(errs[0] - errs[1]) <= 0.1, "face %d: cube %.4f%% against vsdct %.4f%%", a, errs[0], errs[1]);
+        SK_CHECK_MSG(fabs(errs[0] - errs[1]) <= FACE_TECH_PP, "face %d: cube %.4f%% against vsdct %.4f%%", a, errs[0],
+                     errs[1]);
     }
     SK_CHECK(e.gl.GetError() == 0);
     free(ref); free(res);
@@ -253,6 +311,15 @@ static void test_faces(void) {
 }
 
 /* ---- seams: pixels whose light vector is within one texel of a face edge ---- */
+/* bounds; the figures are in the comment at the top */
+#define SEAM_MIN_PIXELS 800       /* the band is there: measured 1112 */
+/* seam pixels agreeing with the reference, % (cube, VSDCT): measured
+   99.91% (1 wrong of 1112) and 98.20% (20 wrong) */
+static const double seam_min_pct[2] = {99.7, 97.6};
+/* how far below the other pixels' agreement (percentage points): measured
+   0.18 above (cube) and 1.53 below (VSDCT: its taps clamped inside each face) */
+static const double seam_below_pp[2] = {0.3, 2.0};
+
 static void test_seams(void) {
     static const float views[3][6] = {{4.2f, 3.6f, 4.2f, -2, 0.5f, -2}, {-4.2f, 0.6f, -4.0f, 2, 2.5f, 2},
                                       {4.0f, 1.0f, -4.2f, -3, 3.0f, 3}};
@@ -263,7 +330,7 @@ static void test_seams(void) {
     if (env_init(&e) != 0) { gt_env_free(&e); return; }
     ref = gt_alloc(&e); res = gt_alloc(&e);
     for (t = 0; t < 2; t++) {
-        size_t seam = 0, seam_ok = 0, other = 0, other_ok = 0;
+        size_t seam = 0, seam_ok = 0, other = 0, other_ok = 0, seam_off = 0, other_off = 0;
         skgl_point *p = make_point(&e, (skgl_point_technique)t, face_res, 1);
         if (!p) continue;
         for (v = 0; v < 3; v++) {
@@ -275,15 +342,18 @@ static void test_seams(void) {
             SK_CHECK(point_mask(&e, p, &cam, lp, 1.0f, res) == 0);
             for (i = 0; i < e.n; i++) {
                 double w[3], d[3], ma, lo;
-                int c = tb_visibility_class(ref[i]), k, near_edge;
+                int c = tb_visibility_class(ref[i]), k, near_edge, ok, off;
                 if (c < 0 || gt_world(&e, i, w)) continue;
                 for (k = 0; k < 3; k++) d[k] = fabs(w[k] - (k == 0 ? lp.x : k == 1 ? lp.y : lp.z));
                 ma = d[0] > d[1] ? (d[0] > d[2] ? d[0] : d[2]) : (d[1] > d[2] ? d[1] : d[2]);
                 /* the larger of the two minor components: the nearest face edge */
                 lo = d[0] + d[1] + d[2] - ma - (d[0] < d[1] ? (d[0] < d[2] ? d[0] : d[2]) : (d[1] < d[2] ? d[1] : d[2]));
                 near_edge = ma > 0.0 && 1.0 - lo / ma < 2.0 / face_res;
-                if (near_edge) { seam++; seam_ok += tb_visibility_class(res[i]) == c; }
-                else { other++; other_ok += tb_visibility_class(res[i]) == c; }
+                ok = tb_visibility_class(res[i]) == c;
+                /* wrong and more than one pixel from the reference's shadow edge */
+                off = !ok && !gt_near_boundary(&e, ref, i, 1);
+                if (near_edge) { seam++; seam_ok += (size_t)ok; seam_off += (size_t)off; }
+                else { other++; other_ok += (size_t)ok; other_off += (size_t)off; }
             }
             if (v == 0) {
                 char name[64];
@@ -291,15 +361,18 @@ static void test_seams(void) {
                 gt_images(&e, name, ref, res);
             }
         }
-        printf("seams %-5s %d: %llu seam pixels agree %.4f%%, %llu others agree %.4f%%\n", tech_names[t], face_res,
-               (unsigned long long)seam, 100.0 * seam_ok / (seam ? seam : 1), (unsigned long long)other,
-               100.0 * other_ok / (other ? other : 1));
-        SK_CHECK_MSG(seam > 1000, "%s: only %llu seam pixels", tech_names[t], (unsigned long long)seam);
-        SK_CHECK_MSG(100.0 * seam_ok / (seam ? seam : 1) >= 98.9, "%s: seam pixels agree %.4f%%", tech_names[t],
-                     100.0 * seam_ok / (seam ? seam : 1));
-        SK_CHECK_MSG(100.0 * seam_ok / (seam ? seam : 1) >= 100.0 * other_ok / (other ? other : 1) - 0.6,
-                     "%s: seam pixels agree %.4f%%, the others %.4f%%", tech_names[t],
-                     100.0 * seam_ok / (seam ? seam : 1), 100.0 * other_ok / (other ? other : 1));
+        printf("seams %-5s %d: %llu seam pixels agree %.4f%% (%llu wrong off a shadow edge), %llu others agree %.4f%% "
+               "(%llu wrong off a shadow edge)\n", tech_names[t], face_res, (unsigned long long)seam,
+               100.0 * seam_ok / (seam ? seam : 1), (unsigned long long)seam_off, (unsigned long long)other,
+               100.0 * other_ok / (other ? other : 1), (unsigned long long)other_off);
+        SK_CHECK_MSG(seam > SEAM_MIN_PIXELS, "%s: only %llu seam pixels", tech_names[t], (unsigned long long)seam);
+        SK_CHECK_MSG(100.0 * seam_ok / (seam ? seam : 1) >= seam_min_pct[t], "%s: seam pixels agree %.4f%% < %.1f%%",
+                     tech_names[t], 100.0 * seam_ok / (seam ? seam : 1), seam_min_pct[t]);
+        SK_CHECK_MSG(100.0 * seam_ok / (seam ? seam : 1) >= 100.0 * other_ok / (other ? other : 1) - seam_below_pp[t],
+                     "%s: seam pixels agree %.4f%%, the others %.4f%% (at most %.1f point below)", tech_names[t],
+                     100.0 * seam_ok / (seam ? seam : 1), 100.0 * other_ok / (other ? other : 1), seam_below_pp[t]);
+        SK_CHECK_MSG(seam_off == 0, "%s: %llu seam pixels wrong off a shadow edge", tech_names[t],
+                     (unsigned long long)seam_off);
         skgl_point_destroy(e.sk, p);
     }
     SK_CHECK(e.gl.GetError() == 0);
@@ -476,16 +549,7 @@ static void test_resolution_selection(void) {
         SK_CHECK(sk_light_scissor(lp, d.range, sk_mat4_mul(cam.proj, cam.view), W, H, rect) == 1);
         s_pixels = (float)rect[2] * (float)rect[3];
         expect = sk_cube_resolution(st->faces_rendered, s_pixels, 2.0f, 1024);
-        {
-            tb_view v;
-            tb_light l;
-            memset(&l, 0, sizeof l);
-            l.type = TB_LIGHT_POINT;
-            l.position = lp;
-            l.range = d.range;
-            v.inv_view_proj = e.inv_vp; v.width = W; v.height = H;
-            SK_CHECK(tb_reference_trace(e.ref, &v, e.depth, e.normals, &l, NULL, ref) == 0);
-        }
+        SK_CHECK(point_reference_range(&e, lp, d.range, ref) == 0);
         err = tb_metric_hard(ref, res, e.n);
         for (i = 0; i < e.n; i++) bad += !(res[i] >= -1.0f && res[i] <= 1.0f);
         printf("select %-5s S %.0f faces %d -> M %d (expected %d), texels %.0f, err %.3f%% of %llu\n", tech_names[t],

@@ -10,19 +10,36 @@
    exactly sk_rmsm_page_requests over the analysis texture's samples, in
    order, plus the coarsest page: boxes 70, terrace 83, fence 139 pages.
 
-   test_accuracy - pool of 24^2 pages, against the focused 2048^2 map:
-       boxes    0.0921% (70 pages, 1.18 Mtexels)   vs 0.0608% (4.19 Mtexels)
-       terrace  0.5330% (83 pages, 1.40 Mtexels)   vs 0.3472%
-       fence    2.3010% (139 pages, 2.35 Mtexels)  vs 2.8277%
-     Thresholds 0.16 / 0.9 / 3.5%. A 4x smaller virtual map changes nothing
-     here (the view's pages sit at levels the smaller map still has: the
-     same errors), so the can-fail run drops the analysis instead
-     (SK_RMSM_NO_ANALYSIS=1: only the coarsest page): 0.7614%, 2.2100%,
-     8.0842%: all three fail.
+   test_accuracy - pool of 24^2 pages, against the focused 2048^2 map, on
+   the exact reference with the default bias (receiver plane); covered %
+   (tb_metric_hard) and shadow-area error (tb_metric_shadow):
+       view     rmsm                                  standard-2048         old (rmsm vs 2048)
+       boxes    0.0522%  2.44% (70 pages, 1.18 Mtex)  0.0288%  1.35% (4.19)  0.0921% vs 0.0608%
+       terrace  0.4473% 16.87% (83 pages, 1.40 Mtex)  0.1899%  7.16%         0.5330% vs 0.3472%
+       fence    1.7457% 21.35% (139 pages, 2.35 Mtex) 0.7400%  9.05%         2.3010% vs 2.8277%
+     (reference shadow 1188, 824, 4708 pixels). With the receiver-plane
+     bias the focused 2048 map gains more than RMSM: RMSM is now 1.8x
+     (boxes) to 2.4x (terrace, fence) its error, where with the normal
+     offset it was within 1.5x of it (fence: below it); on the terrace its
+     wrong pixels reach
+     4.7 px from the reference's edges (p95; 0.5 px for the 2048 map).
+     Bounds about 1.4x: covered 0.075 / 0.63 / 2.45% (previously 0.16 /
+     0.9 / 3.5%), area 3.4 / 23.6 / 30%. A 4x smaller virtual map changes
+     nothing here (the view's pages sit at levels the smaller map still
+     has: the same errors), so the can-fail runs drop the analysis
+     (SK_RMSM_NO_ANALYSIS=1: only the coarsest page): 0.4986% / 23.3%,
+     1.3193% / 49.8%, 9.3208% / 114%, or use the normal-offset bias
+     (SK_GL_TEST_BIAS=normal-offset): 0.1116% / 5.22%, 0.6725% / 25.4%,
+     3.3820% / 41.4%: every bound fails both ways.
 
    test_degraded - the boxes view with a pool of 2x2 pages: the finest level
-   rises to 7 (one page), error 0.7614%; 4x4: level 5, 14 pages, 0.1391%;
-   no analysis: the coarsest page, 0.7614%. Bad descriptions (virtual size
+   rises to 7 (one page), error 0.4986% (area 23.3%); 4x4: level 5, 14
+   pages, 0.1260% (5.89%); no analysis: the coarsest page, 0.4986% (23.3%)
+   (old 0.7614%, 0.1391%, 0.7614%). Bounds about 1.4x: 0.70 / 0.18 /
+   0.70% and 33 / 8.3 / 33% (previously 10 / 5 / 10%, covered only). Can
+   fail: normal-offset bias 0.8045% / 37.6% (2x2 and no analysis) fail;
+   the 4x4 pool halved to 2x2 (the first case) gives 0.4986% / 23.3%
+   against the 4x4 bounds: fails. Bad descriptions (virtual size
    not a power of two, page size 100, page larger than the map, pool 1 or
    65, 2048 pages a side) are refused with SK_ERR_INVALID_ARG.
    Pictures: out/tests/rmsm-*.png and -error.png. */
@@ -62,13 +79,14 @@ static skgl_shadow *rmsm_shadow(gt_env *e, int vres, int page, int pool) {
 typedef struct view_case {
     const char *label, *scene;
     float eye[3], target[3], light[3];
-    double max_pct;
+    double max_pct, max_area_pct;   /* test_accuracy: covered %, shadow-area error % */
 } view_case;
 
+/* bounds about 1.4x the measurement (figures at the top) */
 static const view_case views[] = {
-    {"boxes", "ground-boxes", {-9, 7, 12}, {0, 1, 0}, {-0.5f, -1, -0.35f}, 0.16},
-    {"terrace", "terrace", {0, 2, 1}, {0, 0.5f, -30}, {0.7f, -1, 0.4f}, 0.9},
-    {"fence", "fence", {1, 1.6f, 3.5f}, {0, 0.5f, 0}, {0.3f, -1, 0.6f}, 3.5},
+    {"boxes", "ground-boxes", {-9, 7, 12}, {0, 1, 0}, {-0.5f, -1, -0.35f}, 0.075, 3.4},
+    {"terrace", "terrace", {0, 2, 1}, {0, 0.5f, -30}, {0.7f, -1, 0.4f}, 0.63, 23.6},
+    {"fence", "fence", {1, 1.6f, 3.5f}, {0, 0.5f, 0}, {0.3f, -1, 0.6f}, 2.45, 30},
 };
 
 /* the GPU's pages are exactly sk_rmsm_page_requests over the analysis's own
@@ -142,10 +160,13 @@ static void test_accuracy(void) {
         skgl_scene sc;
         float *ref, *m, *ms;
         double er = -1, es = -1;
-        char img[64];
+        tb_shadow_error ser, ses;
+        char img[64], buf[256];
         if (gt_env_init_named(&e, k->scene, W, H) != 0) { gt_env_free(&e); continue; }
         sc = gt_scene(&e);
         ref = gt_alloc(&e); m = gt_alloc(&e); ms = gt_alloc(&e);
+        memset(&ser, 0, sizeof ser);
+        memset(&ses, 0, sizeof ses);
         s = rmsm_shadow(&e, (int)(16384 * gt_res_scale()), 128, 24);
         memset(&d, 0, sizeof d);
         d.resolution = 2048;
@@ -154,15 +175,20 @@ static void test_accuracy(void) {
             rmsm_frame(&e, s, &cam, &sc, l, !getenv("SK_RMSM_NO_ANALYSIS"), m) == 0 &&
             gt_mask(&e, ss, &cam, l, ms) == 0) {
             er = tb_metric_hard(ref, m, e.n).pct;
+            ser = gt_shadow_error(&e, ref, m);
             es = tb_metric_hard(ref, ms, e.n).pct;
+            ses = gt_shadow_error(&e, ref, ms);
             snprintf(img, sizeof img, "rmsm-%s", k->label);
             gt_images(&e, img, ref, m);
         }
-        printf("%-8s rmsm %.4f%% (%d pages, %.2f Mtexels, min level %d)  standard-2048 %.4f%% (4.19 Mtexels)\n",
-               k->label, er, s ? skgl_shadow_stats(s)->pages_rendered : 0, s ? skgl_shadow_stats(s)->texels / 1e6 : 0.0,
-               s ? skgl_shadow_stats(s)->rmsm_min_level : -1, es);
+        printf("%-8s rmsm %.4f%% (%d pages, %.2f Mtexels, min level %d)  standard-2048 %.4f%% (area %.4f%%; 4.19 "
+               "Mtexels); rmsm %s\n", k->label, er, s ? skgl_shadow_stats(s)->pages_rendered : 0,
+               s ? skgl_shadow_stats(s)->texels / 1e6 : 0.0, s ? skgl_shadow_stats(s)->rmsm_min_level : -1, es,
+               ses.area_pct, gt_shadow_error_str(&ser, buf, sizeof buf));
         SK_CHECK(er >= 0 && es >= 0);
-        SK_CHECK_MSG(er < k->max_pct, "%s: rmsm %.4f%% >= %.2f%%", k->label, er, k->max_pct);
+        SK_CHECK_MSG(er < k->max_pct, "%s: rmsm %.4f%% >= %.3f%%", k->label, er, k->max_pct);
+        SK_CHECK_MSG(ser.ok && ser.area_pct < k->max_area_pct, "%s: rmsm shadow-area error %.4f%% >= %.1f%%", k->label,
+                     ser.area_pct, k->max_area_pct);
         SK_CHECK(e.gl.GetError() == 0);
         skgl_shadow_destroy(e.sk, s);
         skgl_shadow_destroy(e.sk, ss);
@@ -172,7 +198,12 @@ static void test_accuracy(void) {
 }
 
 /* a pool too small for the view: the finest level rises until the pages
-   fit; no analysis at all: the coarsest page alone. Both stay valid. */
+   fit; no analysis at all: the coarsest page alone. Both stay valid.
+   Bounds per case (pool 2x2, pool 4x4, no analysis), about 1.4x the
+   measurement: covered % 0.4986, 0.1260, 0.4986; area % 23.3, 5.89, 23.3 */
+static const double degraded_max_pct[3] = {0.70, 0.18, 0.70};
+static const double degraded_max_area_pct[3] = {33, 8.3, 33};
+
 static void test_degraded(void) {
     const view_case *k = &views[0];
     gt_env e;
@@ -191,17 +222,23 @@ static void test_degraded(void) {
         skgl_shadow *s = rmsm_shadow(&e, 16384, 128, t == 0 ? 2 : t == 1 ? 4 : 24);
         const skgl_stats *st;
         double er;
+        tb_shadow_error se;
+        char buf[256];
         size_t i, bad = 0;
         if (!s || rmsm_frame(&e, s, &cam, &sc, l, t < 2, m) != 0) { SK_CHECK(0); skgl_shadow_destroy(e.sk, s); continue; }
         st = skgl_shadow_stats(s);
         er = tb_metric_hard(ref, m, e.n).pct;
+        se = gt_shadow_error(&e, ref, m);
         for (i = 0; i < e.n; i++) bad += !(m[i] >= 0.0f && m[i] <= 1.0f) && m[i] != -1.0f;
-        printf("%-12s %d pages requested, %d resident, min level %d: error %.4f%%\n", names[t], st->pages_requested,
-               st->pages_rendered, st->rmsm_min_level, er);
+        printf("%-12s %d pages requested, %d resident, min level %d: error %.4f%%, %s\n", names[t], st->pages_requested,
+               st->pages_rendered, st->rmsm_min_level, er, gt_shadow_error_str(&se, buf, sizeof buf));
         SK_CHECK(bad == 0 && er >= 0);
-        if (t == 0) SK_CHECK(st->pages_rendered <= 4 && st->rmsm_min_level > 0 && er < 10.0);
-        if (t == 1) SK_CHECK(st->pages_rendered <= 16 && st->rmsm_min_level > 0 && er < 5.0);
-        if (t == 2) SK_CHECK(st->pages_rendered == 1 && er < 10.0);
+        if (t == 0) SK_CHECK(st->pages_rendered <= 4 && st->rmsm_min_level > 0);
+        if (t == 1) SK_CHECK(st->pages_rendered <= 16 && st->rmsm_min_level > 0);
+        if (t == 2) SK_CHECK(st->pages_rendered == 1);
+        SK_CHECK_MSG(er < degraded_max_pct[t] && se.ok && se.area_pct < degraded_max_area_pct[t],
+                     "%s: %.4f%% (bound %.2f%%), area %.4f%% (bound %.1f%%)", names[t], er, degraded_max_pct[t],
+                     se.area_pct, degraded_max_area_pct[t]);
         SK_CHECK(e.gl.GetError() == 0);
         skgl_shadow_destroy(e.sk, s);
     }

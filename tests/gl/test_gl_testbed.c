@@ -1,8 +1,11 @@
 /* test_gl_testbed.c - smoke test of the machinery every GL test stands on
    (no shadowkit_gl.h code runs here): an OSMesa GL 3.3 core context, the
-   testbed's FBO and G-buffer, and a tiny Embree reference case whose answer
-   is known in closed form. If this fails, the other GL tests' failures say
-   nothing about shadowkit. */
+   testbed's FBO and G-buffer, and tiny Embree reference cases whose answer
+   is known in closed form: the legacy reference (tb_reference_trace_points,
+   tb_reference_trace) and the exact one every GL test scores against
+   (tb_reference_trace_exact: back-facing receivers and silhouette pixels
+   left out, counted in tb_ref_stats). If this fails, the other GL tests'
+   failures say nothing about shadowkit. */
 #define SHADOWKIT_IMPLEMENTATION
 #include "shadowkit.h"
 #include "sk_test.h"
@@ -82,8 +85,15 @@ static void test_reference_points(void) {
    from above at an angle, the sun 45 degrees from +x: the box's shadow on
    the ground is its footprint sheared 1 m toward +x. Ground pixels well
    inside that region are shadowed, ground on the far side of the box and
-   the box top are lit, background pixels are "not covered". */
-static void test_gbuffer_reference(void) {
+   the box top are lit, background pixels are "not covered". The box's +z
+   side, the one the camera sees, is edge-on to the light (dot(n, to_light)
+   = 0): the legacy reference (tb_reference_trace with the normals) calls
+   it shadowed, the exact one (tb_reference_trace_exact with the raster
+   depth) leaves it out as TB_VIS_BACKFACING. The exact trace's counts
+   partition the image and match the pixels it returns; its silhouette
+   pixels (raster and traced surfaces differ) lie on the box's outline and
+   the ground's far edge only: fewer than 1% of the image. */
+static void gbuffer_reference(int exact) {
     const int W = 160, H = 90;
     char err[512] = "";
     tb_gl_context *ctx = tb_gl_context_create(TB_GL_OSMESA, err, sizeof err);
@@ -100,7 +110,11 @@ static void test_gbuffer_reference(void) {
     float *rgba = (float *)malloc(sizeof(float) * 4 * W * H);
     float *nrm = (float *)malloc(sizeof(float) * 3 * W * H);
     float *vis = (float *)malloc(sizeof(float) * W * H);
-    long i, covered = 0, shadow_ground = 0, lit_top = 0, top = 0, bad = 0, far_ground = 0;
+    long i, covered = 0, shadow_ground = 0, lit_top = 0, top = 0, bad = 0, far_ground = 0, side = 0, side_bad = 0;
+    long counted[5] = {0, 0, 0, 0, 0};   /* vis >= 0, background, out of range, back-facing, silhouette */
+    tb_ref_stats stats;
+    const char *name = exact ? "exact" : "legacy";
+    memset(&stats, 0, sizeof stats);
     tb_scene_init(&s);
     SK_CHECK_MSG(ctx != NULL, "OSMesa context: %s", err);
     if (!ctx || !depth || !rgba || !nrm || !vis) goto done;
@@ -131,11 +145,22 @@ static void test_gbuffer_reference(void) {
     sun.type = TB_LIGHT_DIRECTIONAL;
     /* 45 degrees from +x: the shadow is the footprint sheared 1 m toward +x */
     sun.direction = v3(1, -1, 0);
-    SK_CHECK(tb_reference_trace(ref, &view, depth, nrm, &sun, NULL, vis) == 0);
+    if (exact)
+        SK_CHECK(tb_reference_trace_exact(ref, &view, depth, &sun, NULL, vis, &stats) == 0);
+    else
+        SK_CHECK(tb_reference_trace(ref, &view, depth, nrm, &sun, NULL, vis) == 0);
     for (i = 0; i < (long)W * H; i++) {
         double w[3];
+        int k = vis[i] >= 0.0f ? 0 : vis[i] == TB_VIS_BACKGROUND ? 1 : vis[i] == TB_VIS_OUT_OF_RANGE ? 2
+              : vis[i] == TB_VIS_BACKFACING ? 3 : vis[i] == TB_VIS_SILHOUETTE ? 4 : -1;
+        if (k < 0) bad++; else counted[k]++;
         if (!(depth[i] < 1.0f)) { if (!(vis[i] < 0.0f)) bad++; continue; }
+        if (exact && vis[i] == TB_VIS_SILHOUETTE) continue;      /* outline pixels: no closed-form class */
         if (tb_unproject_pixel(&view.inv_view_proj, W, H, (int)(i % W), (int)(i / W), depth[i], w)) continue;
+        if (nrm[3 * i + 2] > 0.9f && w[1] > 0.05 && w[1] < 0.95 && fabs(w[0]) < 0.95) {   /* the +z side */
+            side++;
+            if (vis[i] != (exact ? TB_VIS_BACKFACING : 0.0f)) side_bad++;
+        }
         if (nrm[3 * i + 1] < 0.9f) continue;                     /* box sides */
         if (w[1] > 0.95) { top++; if (vis[i] == 1.0f) lit_top++; }
         if (w[1] < 0.01 && w[0] > 1.05 && w[0] < 1.95 && fabs(w[2]) < 0.95) {
@@ -144,15 +169,35 @@ static void test_gbuffer_reference(void) {
         }
         if (w[1] < 0.01 && w[0] < -1.05) { far_ground++; if (vis[i] != 1.0f) bad++; }
     }
-    printf("gbuffer+reference: %ld covered, box top %ld (lit %ld), ground in the shadow %ld, "
-           "ground beyond the box %ld, wrong %ld\n", covered, top, lit_top, shadow_ground, far_ground, bad);
-    SK_CHECK(top > 100 && lit_top == top);
+    printf("gbuffer+reference (%s): %ld covered, box top %ld (lit %ld), ground in the shadow %ld, "
+           "ground beyond the box %ld, +z side %ld (wrong %ld), wrong %ld; returned: %ld >= 0, %ld background, "
+           "%ld back-facing, %ld silhouette\n", name, covered, top, lit_top, shadow_ground, far_ground, side,
+           side_bad, bad, counted[0], counted[1], counted[3], counted[4]);
+    SK_CHECK_MSG(top > 100 && lit_top == top, "%s: box top %ld, lit %ld", name, top, lit_top);
     SK_CHECK(shadow_ground > 100 && far_ground > 100);
-    SK_CHECK_MSG(bad == 0, "%ld pixels disagree with the closed-form answer", bad);
+    SK_CHECK_MSG(bad == 0, "%s: %ld pixels disagree with the closed-form answer", name, bad);
+    SK_CHECK_MSG(side > 100 && side_bad == 0, "%s: %ld of %ld pixels of the +z side not %s", name, side_bad, side,
+                 exact ? "back-facing" : "shadowed");
     SK_CHECK(gl.GetError() == 0);
     {
         tb_hard_error e = tb_metric_hard(vis, vis, (size_t)W * H);
-        SK_CHECK(e.wrong == 0 && e.covered == (uint64_t)covered);
+        SK_CHECK(e.wrong == 0 && e.covered == (uint64_t)counted[0]);
+        if (!exact) SK_CHECK(e.covered == (uint64_t)covered);
+    }
+    if (exact) {
+        SK_CHECK(stats.pixels == (uint64_t)W * H &&
+                 stats.covered + stats.background + stats.backfacing + stats.silhouette + stats.out_of_range ==
+                     stats.pixels);
+        SK_CHECK_MSG(stats.covered == (uint64_t)counted[0] && stats.background == (uint64_t)counted[1] &&
+                         stats.out_of_range == 0 && counted[2] == 0 && stats.backfacing == (uint64_t)counted[3] &&
+                         stats.silhouette == (uint64_t)counted[4],
+                     "stats %llu %llu %llu %llu against the image's %ld %ld %ld %ld",
+                     (unsigned long long)stats.covered, (unsigned long long)stats.background,
+                     (unsigned long long)stats.backfacing, (unsigned long long)stats.silhouette, counted[0],
+                     counted[1], counted[3], counted[4]);
+        SK_CHECK_MSG(stats.silhouette * 100 < stats.pixels, "%llu silhouette pixels",
+                     (unsigned long long)stats.silhouette);
+        SK_CHECK(stats.backfacing >= (uint64_t)side);
     }
 done:
     tb_reference_destroy(ref);
@@ -166,4 +211,7 @@ done:
     free(depth); free(rgba); free(nrm); free(vis);
 }
 
-SK_TEST_MAIN(test_context, test_reference_points, test_gbuffer_reference)
+static void test_gbuffer_reference(void) { gbuffer_reference(0); }
+static void test_gbuffer_reference_exact(void) { gbuffer_reference(1); }
+
+SK_TEST_MAIN(test_context, test_reference_points, test_gbuffer_reference, test_gbuffer_reference_exact)

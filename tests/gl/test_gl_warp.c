@@ -1,46 +1,70 @@
-/* test_gl_warp.c - PSM and LiSPSM (seed 002) through shadowkit_gl.h,
-   against the exact Embree reference, at the configurations where they are
-   known to fail. Error = % of covered pixels misclassified (tb_metric_hard),
-   400 x 225, default bias and PCF, PSM's default psm_slide 0.5.
+/* test_gl_warp.c - PSM and LiSPSM through shadowkit_gl.h, against the
+   exact Embree reference, at the configurations where they are known to
+   fail. 400 x 225, default bias (receiver plane) and PCF, PSM's default
+   psm_slide 0.5. Errors: covered % (pixels misclassified over the covered
+   ones, tb_metric_hard) and the shadow-area error (the same pixels over
+   the reference's shadowed ones, tb_metric_shadow).
 
-   Measured (Mesa 22.3 llvmpipe, OSMesa):
+   Measured (Mesa 22.3 llvmpipe, OSMesa); "old": the previous reference
+   and the normal-offset bias; "n-o": this reference with the normal-offset
+   bias (SK_GL_TEST_BIAS=normal-offset); "1/4": a quarter of the resolution
+   (SK_GL_TEST_RES_SCALE=0.25); "plain": PSM without its virtual-camera
+   slide (SK_PSM_SLIDE=-1).
 
    test_terrace_angles - the terrace from 2 m above its end, looking 200 m
    down it; maps of 512^2 (COMPARE_RES), one per method. Lights at 30..60
-   degrees to the view direction (asserted: PSM and LiSPSM strictly below the
-   standard map) and two from in front (reported; depth order checked):
-       light    angle   standard    psm      lispsm
-       front30  145      0.1507%   0.0861%   0.0538%
-       front45  131      0.2907%   0.0269%   0.0377%
-       side45    59      4.3149%   0.3257%   0.5195%
-       back30    31      1.2948%   0.1265%   0.1965%
-       back45    38      0.2369%   0.0538%   0.0754%
-       back60    56      0.4576%   0.0646%   0.0485%
-     Can fail: plain PSM (SK_PSM_SLIDE=-1: no virtual-camera slide) gives
-     side45 5.92%, back45 0.2369% (a tie), back60 0.5168%: fails.
+   degrees to the view direction (asserted: PSM and LiSPSM strictly below
+   the standard map) and two from in front (reported; depth order checked),
+   covered % (area %):
+       light    angle   standard         psm             lispsm          old (std / psm / lispsm)
+       front30  145     0.1944 (13.1)    0.0778 (5.24)   0.0324 (2.18)   0.1507 / 0.0861 / 0.0538
+       front45  131     0.2138 (22.1)    0.0583 (6.04)   0.0518 (5.37)   0.2907 / 0.0269 / 0.0377
+       side45    59     2.6450 (43.7)    0.1543 (2.55)   0.2085 (3.44)   4.3149 / 0.3257 / 0.5195
+       back30    31     0.9394 (33.2)    0.0975 (3.45)   0.1110 (3.92)   1.2948 / 0.1265 / 0.1965
+       back45    38     0.1252 (13.0)    0.0327 (3.39)   0.0381 (3.96)   0.2369 / 0.0538 / 0.0754
+       back60    56     0.2545 (35.2)    0.0487 (6.74)   0.0379 (5.24)   0.4576 / 0.0646 / 0.0485
+     Can fail: plain PSM gives side45 5.81%, back30 0.958%, back60 0.414%:
+     each above the standard map's, fails (back45 0.114%, just below).
 
-   test_thresholds - the same views at 1024^2, thresholds ~1.7x the figure:
-       side45 psm 0.1077% (< 0.20), lispsm 0.1561% (< 0.25),
-       back30 psm 0.0592% (< 0.10), lispsm 0.0646% (< 0.11).
-     Can fail: at a quarter of the resolution (SK_GL_TEST_RES_SCALE=0.25)
-     0.7968%, 1.0659%, 0.2988%, 0.4199%: all four fail; plain PSM at full
-     resolution: side45 2.2450%, back30 0.4603%: fail.
+   test_thresholds - the same views at 1024^2, bounds about 1.4x:
+       case           covered % (bound)   area % (bound)   old covered (bound)   n-o / 1/4 covered, area
+       side45 psm     0.0731 (0.105)      1.21 (1.7)       0.1077 (0.20)         0.171 / 0.357, 2.82 / 5.90
+       side45 lispsm  0.1164 (0.165)      1.92 (2.7)       0.1561 (0.25)         0.230 / 0.533, 3.80 / 8.81
+       back30 psm     0.0433 (0.062)      1.53 (2.15)      0.0592 (0.10)         0.103 / 0.225, 3.64 / 7.94
+       back30 lispsm  0.0406 (0.058)      1.44 (2.0)       0.0646 (0.11)         0.114 / 0.211, 4.02 / 7.46
+     (reference shadow 2237 and 1045 pixels.) Can fail: n-o and 1/4 both
+     fail every bound; plain PSM: side45 1.46% / 24.2%, back30 0.309% /
+     10.9%: fail.
 
    test_singular - "ground-boxes" with the light exactly along the view
    (40 degrees down; PSM: light behind the viewer, reversed depth) and
-   exactly against it (15 degrees up, light in the eye), 1024^2:
-       parallel      standard 0.0604%  psm 0.0629%  lispsm 0.0604% (uniform, n = inf)
-       antiparallel  standard 0.1899%  psm 0.1948%  lispsm 0.1899% (uniform)
+   exactly against it (15 degrees up, light in the eye), 1024^2, covered %
+   (area %):
+       parallel      standard 0.0508 (41 px)  psm 0.0533 (5.68)  lispsm 0.0508 (5.42; uniform, n = inf)
+       antiparallel  standard 0.2647 (38 px)  psm 0.2717 (1.06)  lispsm 0.2647 (1.04; uniform)
+     (reference shadow 757 and 3664 pixels; old: parallel 0.0604 / 0.0629
+     / 0.0604%, antiparallel 0.1899 / 0.1948 / 0.1899%, bounds 0.15% and
+     0.35% for both methods.)
      Asserted: finite matrices, LiSPSM falls back to the uniform map and is
-     no worse than the standard map (+0.01 pp), thresholds 0.15% / 0.35%.
-     Can fail: at 1/4 resolution 0.2768%, 0.2744%, 1.3732%, 1.3829%: fail.
+     no worse than the standard map (+0.01 pp; it is the same map: 0 pixels
+     apart in every run here), and about 1.4x: parallel psm 0.075% / 8.0%,
+     lispsm 0.072% / 7.6%; antiparallel psm 0.38% / 1.5%, lispsm 0.37% /
+     1.45%. Can fail: at 1/4 parallel 0.254% / 27.1% (psm), 0.252% / 26.8%
+     (lispsm), antiparallel 1.212% / 4.75%, 1.226% / 4.80%: all fail (n-o:
+     parallel 0.0645%, 0.0620%; antiparallel unchanged).
 
    test_casters_behind - a 10 m tower behind the camera (light from behind
-   the viewer) whose shadow runs into the view, 1024^2:
-       standard 0.1817%, psm 0.2223% (reversed, virtual camera slid 15.08 m),
-       lispsm 0.0776%; false light on at most 2% of the shadowed pixels.
-     Can fail: at 1/4 resolution psm 0.3951% (< 0.35 fails), lispsm 0.3422%
-     (< 0.15 fails), standard false light 2.05% (fails).
+   the viewer) whose shadow runs into the view, 1024^2; covered %, area %
+   and false light (share of the reference's 12909 shadowed pixels lit):
+       standard  0.1693%  0.744%  0.341%     (old 0.1817%)
+       psm       0.2275%  0.999%  0.651%     (reversed, virtual camera slid 15.08 m; old 0.2223%)
+       lispsm    0.0635%  0.279%  0.139%     (old 0.0776%)
+     Asserted, about 1.4x: psm covered < 0.32% (previously 0.35%) and area
+     < 1.4%, lispsm covered < 0.09% (previously 0.15%) and area < 0.4%;
+     false light <= 0.50 / 0.95 / 0.20% (standard / psm / lispsm;
+     previously 2% for all three). Can fail: at 1/4 standard false light
+     1.32%, psm area 1.53%, lispsm 0.252% / 1.11% / false light 0.55%: fail;
+     at 1/8 psm 2.79% / 12.3% / false light 7.06%: every psm bound fails.
    Pictures: out/tests/warp-*.png and -error.png. */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
@@ -122,8 +146,9 @@ static void test_terrace_angles(void) {
         rp = run(&e, &cam, l, ref, SKGL_PSM, COMPARE_RES, 1, img);
         snprintf(img, sizeof img, "warp-terrace-%s-lispsm", lights[i].label);
         rl = run(&e, &cam, l, ref, SKGL_LISPSM, COMPARE_RES, 1, img);
-        printf("terrace %-8s angle %5.1f deg: standard %.4f%%  psm %.4f%% (reversed %d, slide %.2f)  lispsm %.4f%% (n %.2f)\n",
-               lights[i].label, angle_deg(v, l), rs.pct, rp.pct, rp.st.depth_reversed, rp.st.psm_slide, rl.pct,
+        printf("terrace %-8s angle %5.1f deg: standard %.4f%% (area %.3f%%)  psm %.4f%% (area %.3f%%; reversed %d, "
+               "slide %.2f)  lispsm %.4f%% (area %.3f%%; n %.2f)\n", lights[i].label, angle_deg(v, l), rs.pct,
+               rs.se.area_pct, rp.pct, rp.se.area_pct, rp.st.depth_reversed, rp.st.psm_slide, rl.pct, rl.se.area_pct,
                rl.st.warp_n[0]);
         SK_CHECK(rs.pct >= 0 && rp.pct >= 0 && rl.pct >= 0 && rp.finite && rl.finite);
         SK_CHECK_MSG(rp.st.depth_reversed == lights[i].reversed, "%s: psm depth_reversed %d", lights[i].label,
@@ -141,12 +166,22 @@ static void test_terrace_angles(void) {
 
 /* ---- each method against the reference, with a threshold ------------- */
 static void test_thresholds(void) {
-    static const struct { const char *label; float l[3]; skgl_technique t; double max_pct; } cases[] = {
-        {"side45", {0.8f, -0.75f, -0.6f}, SKGL_PSM, 0.20},
-        {"side45", {0.8f, -0.75f, -0.6f}, SKGL_LISPSM, 0.25},
-        {"back30", {0.35f, -0.55f, -1.0f}, SKGL_PSM, 0.10},
-        {"back30", {0.35f, -0.55f, -1.0f}, SKGL_LISPSM, 0.11},
+    static const struct {
+        const char *label;
+        float l[3];
+        skgl_technique t;
+        double max_pct, max_area_pct;   /* covered %, shadow-area error % */
+    } cases[] = {
+        /* measured 0.0731% / 1.21% (old 0.1077%) */
+        {"side45", {0.8f, -0.75f, -0.6f}, SKGL_PSM, 0.105, 1.7},
+        /* measured 0.1164% / 1.92% (old 0.1561%) */
+        {"side45", {0.8f, -0.75f, -0.6f}, SKGL_LISPSM, 0.165, 2.7},
+        /* measured 0.0433% / 1.53% (old 0.0592%) */
+        {"back30", {0.35f, -0.55f, -1.0f}, SKGL_PSM, 0.062, 2.15},
+        /* measured 0.0406% / 1.44% (old 0.0646%) */
+        {"back30", {0.35f, -0.55f, -1.0f}, SKGL_LISPSM, 0.058, 2.0},
     };
+    char buf[256];
     gt_env e;
     skgl_camera cam = gt_camera(gt_v3(0, 2, 1), gt_v3(0, 0.5f, -30), 1.0f, 0.1f, 250, W, H);
     float *ref;
@@ -159,10 +194,13 @@ static void test_thresholds(void) {
         warp_run r;
         if (gt_reference(&e, l, ref) != 0) { SK_CHECK_MSG(0, "reference"); continue; }
         r = run(&e, &cam, l, ref, cases[i].t, 1024, 1, NULL);
-        printf("threshold: terrace %-7s %-7s 1024^2: %.4f%% (threshold %.2f%%)\n", cases[i].label,
-               tech_name(cases[i].t), r.pct, cases[i].max_pct);
-        SK_CHECK_MSG(r.pct >= 0 && r.pct < cases[i].max_pct, "%s %s: %.4f%% >= %.2f%%", cases[i].label,
+        printf("threshold: terrace %-7s %-7s 1024^2: %.4f%% (threshold %.3f%%), %s (threshold %.2f%%)\n",
+               cases[i].label, tech_name(cases[i].t), r.pct, cases[i].max_pct,
+               gt_shadow_error_str(&r.se, buf, sizeof buf), cases[i].max_area_pct);
+        SK_CHECK_MSG(r.pct >= 0 && r.pct < cases[i].max_pct, "%s %s: %.4f%% >= %.3f%%", cases[i].label,
                      tech_name(cases[i].t), r.pct, cases[i].max_pct);
+        SK_CHECK_MSG(r.se.ok && r.se.area_pct < cases[i].max_area_pct, "%s %s: shadow-area error %.4f%% >= %.2f%%",
+                     cases[i].label, tech_name(cases[i].t), r.se.area_pct, cases[i].max_area_pct);
     }
     free(ref);
     gt_env_free(&e);
@@ -173,15 +211,18 @@ typedef struct sing_case {
     const char *label, *scene;
     float eye[3], target[3];
     int light_is_view;           /* +1: light travels along the view direction, -1: against it */
-    double max_psm, max_lispsm;  /* error thresholds, % */
+    double max_psm, max_lispsm;  /* covered % bounds */
+    double max_psm_area, max_lispsm_area;   /* shadow-area error bounds, % */
 } sing_case;
 
 static void test_singular(void) {
     static const sing_case cases[] = {
         /* looking 40 degrees down at the boxes, the light exactly behind the eye */
-        {"parallel", "ground-boxes", {0, 8, 11}, {0, 0, 1.5f}, 1, 0.15, 0.15},
-        /* looking 15 degrees up past the boxes, the light shining straight at the eye */
-        {"antiparallel", "ground-boxes", {0, 2, 16}, {0, 2 + 4.02f, 1}, -1, 0.35, 0.35},
+        /* measured psm 0.0533% / 5.68%, lispsm 0.0508% / 5.42% */
+        {"parallel", "ground-boxes", {0, 8, 11}, {0, 0, 1.5f}, 1, 0.075, 0.072, 8.0, 7.6},
+        /* looking 15 degrees up past the boxes, the light shining straight at the eye;
+           measured psm 0.2717% / 1.06%, lispsm 0.2647% / 1.04% */
+        {"antiparallel", "ground-boxes", {0, 2, 16}, {0, 2 + 4.02f, 1}, -1, 0.38, 0.37, 1.5, 1.45},
     };
     size_t c;
     for (c = 0; c < sizeof cases / sizeof cases[0]; c++) {
@@ -202,15 +243,21 @@ static void test_singular(void) {
         rp = run(&e, &cam, l, ref, SKGL_PSM, 1024, 1, img);
         snprintf(img, sizeof img, "warp-%s-lispsm", k->label);
         rl = run(&e, &cam, l, ref, SKGL_LISPSM, 1024, 1, img);
-        printf("%-12s: standard %.4f%%  psm %.4f%% (reversed %d, warped %d, slide %.2f)  lispsm %.4f%% (n %g, warped %d)\n",
-               k->label, rs.pct, rp.pct, rp.st.depth_reversed, rp.st.warped[0], rp.st.psm_slide, rl.pct,
-               rl.st.warp_n[0], rl.st.warped[0]);
+        printf("%-12s: standard %.4f%% (%llu px)  psm %.4f%% (area %.3f%%; reversed %d, warped %d, slide %.2f)  lispsm "
+               "%.4f%% (area %.3f%%, %llu px; n %g, warped %d); reference shadow %llu px\n", k->label, rs.pct,
+               (unsigned long long)rs.se.wrong, rp.pct, rp.se.area_pct, rp.st.depth_reversed, rp.st.warped[0],
+               rp.st.psm_slide, rl.pct, rl.se.area_pct, (unsigned long long)rl.se.wrong, rl.st.warp_n[0],
+               rl.st.warped[0], (unsigned long long)rl.se.shadow);
         SK_CHECK(rs.pct >= 0 && rp.pct >= 0 && rl.pct >= 0 && rp.finite && rl.finite);
         SK_CHECK_MSG(rl.st.warped[0] == 0, "%s: lispsm warped with the light along the view", k->label);
         SK_CHECK_MSG(rl.pct <= rs.pct + NO_WORSE_PP, "%s: lispsm %.4f%% worse than standard %.4f%%", k->label,
                      rl.pct, rs.pct);
-        SK_CHECK_MSG(rp.pct < k->max_psm, "%s: psm %.4f%% >= %.2f%%", k->label, rp.pct, k->max_psm);
-        SK_CHECK_MSG(rl.pct < k->max_lispsm, "%s: lispsm %.4f%% >= %.2f%%", k->label, rl.pct, k->max_lispsm);
+        SK_CHECK_MSG(rp.pct < k->max_psm, "%s: psm %.4f%% >= %.3f%%", k->label, rp.pct, k->max_psm);
+        SK_CHECK_MSG(rl.pct < k->max_lispsm, "%s: lispsm %.4f%% >= %.3f%%", k->label, rl.pct, k->max_lispsm);
+        SK_CHECK_MSG(rp.se.ok && rp.se.area_pct < k->max_psm_area, "%s: psm shadow-area error %.4f%% >= %.2f%%",
+                     k->label, rp.se.area_pct, k->max_psm_area);
+        SK_CHECK_MSG(rl.se.ok && rl.se.area_pct < k->max_lispsm_area, "%s: lispsm shadow-area error %.4f%% >= %.2f%%",
+                     k->label, rl.se.area_pct, k->max_lispsm_area);
         free(ref);
         gt_env_free(&e);
     }
@@ -224,7 +271,10 @@ static void test_casters_behind(void) {
     skgl_camera cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, W, H);
     float *ref;
     int t;
-    const double MAX_FALSE_LIT_PCT = 2.0;
+    char buf[256];
+    /* false light, % of the reference's shadow, per technique (standard,
+       psm, lispsm): measured 0.341, 0.651, 0.139 */
+    static const double max_false_lit_pct[3] = {0.50, 0.95, 0.20};
     tb_scene_init(&sc);
     tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
     tb_scene_add_box(&sc, "tower", gt_v3(-1, 0, 12), gt_v3(1, 10, 14));
@@ -238,16 +288,22 @@ static void test_casters_behind(void) {
         warp_run r;
         snprintf(img, sizeof img, "warp-behind-%s", tech_name(tech));
         r = run(&e, &cam, light, ref, tech, 1024, 1, img);
-        printf("casters behind, %-8s: %.4f%% (reversed %d, slide %.2f, n %g)\n", tech_name(tech), r.pct,
-               r.st.depth_reversed, r.st.psm_slide, r.st.warp_n[0]);
+        printf("casters behind, %-8s: %.4f%% (reversed %d, slide %.2f, n %g); %s\n", tech_name(tech), r.pct,
+               r.st.depth_reversed, r.st.psm_slide, r.st.warp_n[0], gt_shadow_error_str(&r.se, buf, sizeof buf));
         SK_CHECK(r.pct >= 0 && r.finite);
-        SK_CHECK_MSG(r.false_lit_pct <= MAX_FALSE_LIT_PCT, "%s: false light on %.2f%% of the shadowed pixels",
-                     tech_name(tech), r.false_lit_pct);
+        SK_CHECK_MSG(r.false_lit_pct <= max_false_lit_pct[t], "%s: false light on %.4f%% of the shadowed pixels (bound %.2f%%)",
+                     tech_name(tech), r.false_lit_pct, max_false_lit_pct[t]);
         if (tech == SKGL_PSM) {
             SK_CHECK_MSG(r.st.depth_reversed == 1, "psm: the light is behind the viewer");
-            SK_CHECK_MSG(r.pct < 0.35, "psm: %.4f%% >= 0.35%%", r.pct);
+            /* measured 0.2275% / 0.999% (old 0.2223%) */
+            SK_CHECK_MSG(r.pct < 0.32, "psm: %.4f%% >= 0.32%%", r.pct);
+            SK_CHECK_MSG(r.se.ok && r.se.area_pct < 1.4, "psm: shadow-area error %.4f%% >= 1.4%%", r.se.area_pct);
         }
-        if (tech == SKGL_LISPSM) SK_CHECK_MSG(r.pct < 0.15, "lispsm: %.4f%% >= 0.15%%", r.pct);
+        if (tech == SKGL_LISPSM) {
+            /* measured 0.0635% / 0.279% (old 0.0776%) */
+            SK_CHECK_MSG(r.pct < 0.09, "lispsm: %.4f%% >= 0.09%%", r.pct);
+            SK_CHECK_MSG(r.se.ok && r.se.area_pct < 0.4, "lispsm: shadow-area error %.4f%% >= 0.4%%", r.se.area_pct);
+        }
     }
     free(ref);
     gt_env_free(&e);
