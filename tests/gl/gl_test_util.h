@@ -523,7 +523,7 @@ static inline int gt_area_reference(gt_env *e, const skgl_area_light *light, int
     v.inv_view_proj = e->inv_vp;
     v.width = e->w;
     v.height = e->h;
-    return tb_reference_trace(e->ref, &v, e->depth, e->normals, &l, NULL, vis);
+    return tb_reference_trace_exact(e->ref, &v, e->depth, &l, NULL, vis, NULL);
 }
 
 /* ---- closed-form cases (tb_closed_form.h) ------------------------------- */
