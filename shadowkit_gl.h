@@ -356,9 +356,10 @@ SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
 /* inside a draw callback: model matrix of the next objects (column-major) */
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16]);
 /* skgl_*_bind looks a program's uniform locations up once and remembers
-   them (and which light's constants it holds) by program name: call this
-   after linking that program again, or before deleting it, so that a new
-   program under the same name is looked up anew */
+   them (and which light's constants it holds) by program name. The default
+   mode notices a program linked again or made anew under a freed name (two
+   reads a bind); with caller_owns_state it reads nothing: call this after
+   linking the program again, or when deleting it */
 SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program);
 /* the masks and the analysis remember a texture's size (when the camera
    gives none) and that it is renderable, by name: call this after giving
@@ -2066,6 +2067,7 @@ typedef unsigned long long skgl__u64;
 #define SKGL__DEPTH 0x1801
 #define SKGL__R8 0x8229
 #define SKGL__QUERY_RESULT_AVAILABLE 0x8867
+#define SKGL__ACTIVE_UNIFORMS 0x8B86
 #define SKGL__SYNC_GPU_COMMANDS_COMPLETE 0x9117
 #define SKGL__SYNC_FLUSH_COMMANDS_BIT 0x00000001
 #define SKGL__ALREADY_SIGNALED 0x911A
@@ -2191,6 +2193,7 @@ typedef struct skgl__progent {
     int kind;                              /* SKGL__PK_SHADOW, SKGL__PK_POINT */
     unsigned tick;                         /* last use: the least recent goes first */
     skgl__int loc[SKGL__LOCS];
+    skgl__int uniforms;                    /* GL_ACTIVE_UNIFORMS at look-up (the default mode's check) */
     unsigned owner;                        /* the light whose constants the program holds (0: none) */
     int unit;                              /* the texture unit those name */
     skgl__int sentinel_i;                  /* sk_rmsm_page / sk_point_range as last set (the debug check) */
@@ -2726,6 +2729,29 @@ static void skgl__st_texture(skgl_context *ctx, skgl__st *st, int unit, int targ
     skgl__st_set1(ctx, st, SKGL__S_TEX(unit, target), (skgl__int)tex);
     skgl__st_set1(ctx, st, SKGL__S_TEX(unit, SKGL__T_SAMPLER), (skgl__int)sampler);
 }
+/* Textures on several units, in an order that saves unit switches: the
+   default mode starts on the unit the caller has active (read once, as
+   the restore needs it anyway), so that neither the binds nor the restore
+   switch to it; caller-owns mode binds unit 0 last and leaves it active. */
+typedef struct skgl__unitbind {
+    int unit, target;
+    skgl__uint tex, sampler;
+} skgl__unitbind;
+static void skgl__st_units(skgl_context *ctx, skgl__st *st, const skgl__unitbind *b, int n)
+{
+    int i, first = -1;
+    if (st->restore) {
+        skgl__st_save(ctx, st, SKGL__S_ACTIVE);
+        first = st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0;
+    }
+    for (i = 0; i < n; i++)
+        if (b[i].unit == first) skgl__st_texture(ctx, st, b[i].unit, b[i].target, b[i].tex, b[i].sampler);
+    for (i = 0; i < n; i++)
+        if (b[i].unit != first && b[i].unit != 0) skgl__st_texture(ctx, st, b[i].unit, b[i].target, b[i].tex, b[i].sampler);
+    for (i = 0; i < n; i++)
+        if (b[i].unit != first && b[i].unit == 0) skgl__st_texture(ctx, st, b[i].unit, b[i].target, b[i].tex, b[i].sampler);
+}
+
 /* both framebuffer targets: one call when neither is there yet */
 static void skgl__st_framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint fb)
 {
@@ -2913,19 +2939,34 @@ static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint
     e->kind = kind;
     for (i = 0; i < SKGL__LOCS; i++) e->loc[i] = -1;
     for (i = 0; i < n; i++) e->loc[i] = ctx->gl.GetUniformLocation(program, names[i]);
+    ctx->gl.GetProgramiv(program, SKGL__ACTIVE_UNIFORMS, &e->uniforms);
 }
 
-/* debug mode: the program still is the one whose locations were cached.
-   Its locations are looked up again, and the constant the last bind set
-   that can never be 0 (sk_rmsm_page, sk_point_range) read back: a program
-   linked again has every uniform back at 0. */
-static int skgl__progent_stale(skgl_context *ctx, const skgl__progent *e)
+/* Is the program under this name still the one whose locations were
+   cached? A program linked again, or deleted and made anew under the same
+   name (GL hands freed names out again), has its uniforms back at 0 and
+   maybe other locations. Default mode, one bind = two reads: the active
+   uniform count (a different program has, in practice, another one), then
+   the constant the last bind set that can never be 0 (sk_rmsm_page,
+   sk_point_range), read at its cached location (valid when the count
+   matched). desc.debug: every location looked up again, then that constant.
+   Caller-owns mode (no debug) reads nothing and trusts the cache: call
+   skgl_forget_program. */
+static int skgl__progent_changed(skgl_context *ctx, const skgl__progent *e)
 {
-    skgl__progent fresh;
+    skgl__int n = -1;
     int i;
-    skgl__progent_lookup(ctx, &fresh, e->program, e->kind);
-    for (i = 0; i < SKGL__LOCS; i++)
-        if (fresh.loc[i] != e->loc[i]) return 1;
+    if (ctx->debug) {
+        skgl__progent fresh;
+        skgl__progent_lookup(ctx, &fresh, e->program, e->kind);
+        for (i = 0; i < SKGL__LOCS; i++)
+            if (fresh.loc[i] != e->loc[i]) return 1;
+    } else if (ctx->caller_owns) {
+        return 0;
+    } else {
+        ctx->gl.GetProgramiv(e->program, SKGL__ACTIVE_UNIFORMS, &n);
+        if (n != e->uniforms) return 1;
+    }
     if (e->owner != 0 && e->kind == SKGL__PK_SHADOW && e->loc[SKGL__L_PAGE] >= 0) {
         skgl__int v = 0;
         ctx->gl.GetUniformiv(e->program, e->loc[SKGL__L_PAGE], &v);
@@ -2939,9 +2980,9 @@ static int skgl__progent_stale(skgl_context *ctx, const skgl__progent *e)
     return 0;
 }
 
-/* the cache entry of a user program (looked up on a miss); NULL when the
-   debug check finds the entry stale (the log says what to do) */
-static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, int kind, const char *fn)
+/* the cache entry of a user program, looked up anew on a miss or when the
+   program changed under its name */
+static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, int kind)
 {
     skgl__progent *e, *victim = &ctx->progs[0];
     int i;
@@ -2949,11 +2990,7 @@ static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, 
     for (i = 0; i < SKGL__PROG_CACHE; i++) {
         e = &ctx->progs[i];
         if (e->program == program && e->kind == kind) {
-            if (ctx->debug && skgl__progent_stale(ctx, e)) {
-                skgl__set_log(ctx, fn, "the program is not the one its uniform locations were cached for "
-                              "(linked again, or deleted and its name reused): call skgl_forget_program first");
-                return NULL;
-            }
+            if (skgl__progent_changed(ctx, e)) skgl__progent_lookup(ctx, e, program, kind);
             e->tick = ctx->tick;
             return e;
         }
@@ -3072,8 +3109,11 @@ static void skgl__timer_begin(skgl_context *ctx, skgl__timer *t)
     t->running = 0;
     if (!ctx->timing || !t->q[0]) return;
     slot = (int)(t->frame % SKGL__TIMER_RING);
-    (void)skgl__timer_read(ctx, t, (int)((t->frame + 1) % SKGL__TIMER_RING));   /* two passes ago */
-    if (!skgl__timer_read(ctx, t, slot)) return;                                 /* three: still busy */
+    /* the slot to reuse (three passes ago; usually read already), then two
+       passes ago: the newer result read last, and queries end in order, so
+       a busy older one means the newer is busy too */
+    if (!skgl__timer_read(ctx, t, slot)) return;                                 /* still busy: untimed */
+    (void)skgl__timer_read(ctx, t, (int)((t->frame + 1) % SKGL__TIMER_RING));
     ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, t->q[slot]);
     t->running = 1;
 }
@@ -4603,8 +4643,7 @@ SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *
     if (!ctx || !s || !program || unit < 0 || unit > (s->desc.technique == SKGL_RMSM ? 30 : 31) ||
         (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30)))
         return SK_ERR_INVALID_ARG;
-    e = skgl__user_program(ctx, program, SKGL__PK_SHADOW, "skgl_shadow_bind");
-    if (!e) return SK_ERR_INVALID_ARG;
+    e = skgl__user_program(ctx, program, SKGL__PK_SHADOW);
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
     last = SKGL__TEXTURE0 + unit;
@@ -4655,14 +4694,24 @@ static sk_result skgl__mask_begin(skgl_context *ctx, skgl__st *st, unsigned mask
     return SK_OK;
 }
 
+static void skgl__bind_unit(skgl__unitbind *b, int unit, int target, skgl__uint tex, skgl__uint sampler)
+{
+    b->unit = unit;
+    b->target = target;
+    b->tex = tex;
+    b->sampler = sampler;
+}
+
 /* the G-buffer on units 1 (depth) and 2 (normals, when there are) through
    the point sampler: texelFetch reads them, and a sampler object of the
    caller's (comparison on, or a mipmapped filter without mipmaps) would
-   make those reads undefined or 0 */
-static void skgl__mask_gbuffer(skgl_context *ctx, skgl__st *st, unsigned depth_tex, unsigned normal_tex)
+   make those reads undefined or 0; returns the binds written to b */
+static int skgl__mask_gbuffer(const skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, skgl__unitbind *b)
 {
-    skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
-    if (normal_tex) skgl__st_texture(ctx, st, 2, SKGL__T_2D, normal_tex, ctx->point_sampler);
+    skgl__bind_unit(&b[0], 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    if (!normal_tex) return 1;
+    skgl__bind_unit(&b[1], 2, SKGL__T_2D, normal_tex, ctx->point_sampler);
+    return 2;
 }
 
 /* the camera's matrices of a mask program: [0] inverse view-projection, [1] view */
@@ -4694,10 +4743,12 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     skgl__timer_begin(ctx, &s->t_mask);
     r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask");
     if (r == SK_OK) {
+        skgl__unitbind b[4];
+        int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
         skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        skgl__mask_gbuffer(ctx, &st, depth_tex, normal_tex);
-        if (s->desc.technique == SKGL_RMSM) skgl__st_texture(ctx, &st, 3, SKGL__T_2D, s->rmsm_table, 0);
-        skgl__st_texture(ctx, &st, 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
+        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm_table, 0);
+        skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
+        skgl__st_units(ctx, &st, b, n);
         skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
         skgl__shadow_uniforms(ctx, s, &ctx->mask_ent, 0, 3, o);
         if (ctx->mask_ent.has_normals != (normal_tex != 0)) {
@@ -4863,6 +4914,10 @@ static void skgl__atlas_alloc(skgl_context *ctx, skgl__st *st, skgl__uint tex, i
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+    /* GL's default wrap is GL_REPEAT: a bilinear tap at the atlas's edge
+       would blend in the opposite edge's texels */
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
 }
 
 static void skgl__point_free(skgl_context *ctx, skgl_point *p)
@@ -4997,6 +5052,11 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+        /* edges clamped, as the comparison sampler has them (the default
+           GL_REPEAT matters wherever seamless filtering is off) */
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
         if (!skgl__point_cube_fbos(ctx, &st, p, 0)) {
             skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
             r = SK_ERR_GL;
@@ -5360,8 +5420,7 @@ SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsign
     skgl__int active, last;
     skgl__progent *e;
     if (!ctx || !p || !program || unit < 0 || unit > 30 || !p->rendered) return SK_ERR_INVALID_ARG;
-    e = skgl__user_program(ctx, program, SKGL__PK_POINT, "skgl_point_bind");
-    if (!e) return SK_ERR_INVALID_ARG;
+    e = skgl__user_program(ctx, program, SKGL__PK_POINT);
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
     last = SKGL__TEXTURE0 + unit;
@@ -5386,7 +5445,8 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
 {
     skgl__st st;
-    int w = 0, h = 0, vsdct;
+    skgl__unitbind b[4];
+    int w = 0, h = 0, vsdct, n;
     sk_mat4 vp, inv;
     int rect[4];
     sk_result r;
@@ -5422,11 +5482,12 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
         /* cube: 2x2 filtering walks across face edges; VSDCT: the indirection
            must never blend two faces' coordinates */
         skgl__st_set1(ctx, &st, SKGL__S_SEAMLESS, !vsdct);
-        skgl__mask_gbuffer(ctx, &st, depth_tex, normal_tex);
         /* the map and the indirection through their own texture parameters
            (comparison, filtering), no sampler object */
-        if (vsdct) skgl__st_texture(ctx, &st, 3, SKGL__T_CUBE, p->indirection, 0);
-        skgl__st_texture(ctx, &st, 0, vsdct ? SKGL__T_2D : SKGL__T_CUBE, vsdct ? skgl__point_tex(p) : p->tex, 0);
+        n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
+        if (vsdct) skgl__bind_unit(&b[n++], 3, SKGL__T_CUBE, p->indirection, 0);
+        skgl__bind_unit(&b[n++], 0, vsdct ? SKGL__T_2D : SKGL__T_CUBE, vsdct ? skgl__point_tex(p) : p->tex, 0);
+        skgl__st_units(ctx, &st, b, n);
         skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
         skgl__point_uniforms(ctx, p, &p->ent, 0, 3);
         if (p->ent.has_normals != (normal_tex != 0)) {

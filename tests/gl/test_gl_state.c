@@ -432,7 +432,7 @@ static void test_state_and_objects(void) {
         d.technique = techs[t];
         d.resolution = techs[t] == SKGL_RMSM ? 4096 : 512;
         d.cascades = t == 4 ? 3 : 0;
-        d.ferko_latency = t == 7;
+        d.ferko_latency = t == 7 ? 1 : SKGL_LATENCY_SYNC;   /* "ferko": this frame's estimate, read at once */
         d.blend_band = t == 1 || t == 4 ? 0.1f : 0.0f;
         for (v = 0; v < 2; v++) {
             gl_state before, after;
