@@ -9,7 +9,7 @@
          #define SHADOWKIT_IMPLEMENTATION
          #define SHADOWKIT_GL_IMPLEMENTATION
          #include "shadowkit_gl.h"          (includes shadowkit.h)
-     No system GL header is needed: the ~50 entry points shadowkit uses are
+     No system GL header is needed: the ~90 entry points shadowkit uses are
      loaded into a private table through the getproc function you pass
      (glfwGetProcAddress, eglGetProcAddress, OSMesaGetProcAddress...), so it
      coexists with glad, GLEW or anything else.
@@ -39,6 +39,19 @@
      call skgl_set_model(gl, matrix) before an object whose model matrix is
      not the identity. info gives the pass's view-projection, its kind and
      index (cascade) and its frustum, so you can cull.
+     A pass of several layers, faces or pages binds its program and sets
+     the identity model once, before the first callback; after a callback
+     that called skgl_set_model it sets the identity again. So the callback
+     may change: the model (skgl_set_model), the vertex array, buffer and
+     texture bindings, the active texture unit and sampler bindings (the
+     depth program samples nothing), and the current program, if it binds
+     info->program again before it returns (a caster program of its own
+     for skinning or alpha-tested foliage: then it sets its own view-
+     projection from info->view_proj). Everything else (framebuffer,
+     viewport, scissor, depth, culling, polygon offset and mode) it must
+     leave as it found it. With desc.debug the program is checked after
+     each callback (SK_ERR_INVALID_ARG, and skgl_error_log says so). The
+     default mode puts the caller's vertex array back after the passes.
 
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
@@ -66,15 +79,22 @@
                     stats.maps = partitions), the partition picked per pixel.
      SKGL_FERKO     one map whose crop and size come from the camera's depth
                     buffer (Ferko, seed 000): call skgl_shadow_analyze()
-                    first; .resolution is the largest size it may take;
-                    .ferko_latency = 1 reads the estimate a frame late
-                    (no CPU-GPU stall).
+                    first; .resolution is the largest size it may take.
+                    By default (.ferko_latency 1) the estimate comes back
+                    through the read-back ring (READ-BACKS) and is used a
+                    frame later: no CPU-GPU stall, but fast motion can
+                    clip the crop; SKGL_LATENCY_SYNC uses this frame's.
      SKGL_RMSM      a virtual map (.resolution, 16384 by default) of pages
                     (.rmsm_page_size) rendered only where the view needs them,
                     at the level of detail it needs (seed 002): call
                     skgl_shadow_analyze() first; pages live in a pool of
                     .rmsm_pool_pages^2 slots, found through a page table
-                    (texture unit `unit` + 1 in skgl_shadow_bind).
+                    (texture unit `unit` + 1 in skgl_shadow_bind). The page
+                    requests come back through the read-back ring: the
+                    pages of the last frame's requests are rendered
+                    (.rmsm_latency 1, the default; SKGL_LATENCY_SYNC: this
+                    frame's); where a page is missing the lookup falls back
+                    to a coarser resident one.
      Focused crops end the shadow range where the scene ends and fit the view
      clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
      sphere that depends only on the camera's projection and the split
@@ -144,15 +164,77 @@
      Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques", GDC.
 
    GL STATE
-     Every call saves and restores the state it touches (framebuffer
-     bindings, viewport, scissor, program, VAO, active texture and the 2D,
-     2D-array, cube-map texture and sampler bindings of the units it uses,
-     GL_TEXTURE_CUBE_MAP_SEAMLESS, depth test
-     and function and mask, cull face, blend, polygon offset, colour mask,
-     clear depth), like Dear ImGui's OpenGL3 backend. With desc.debug set,
-     glGetError is checked after every pass and a GL error is reported as
-     SK_ERR_GL. skgl_gl_object_count() tells how many GL objects the context
-     holds (0 after every shadow and the context are destroyed).
+     Two modes, skgl_desc.caller_owns_state:
+     0 (the default): every call leaves the GL state as it found it. It
+       reads only what it touches, once, the first time (glGet*, glIsEnabled),
+       sets only what differs, and puts back only what it changed (a
+       standard map's render and mask: 73 GL calls a frame, 29 of them
+       reads; skgl_shadow_bind 10).
+     1: nothing is read and nothing put back: each call sets what it needs
+       (40 GL calls a frame for the same render and mask; skgl_shadow_bind
+       6) and leaves it, but for framebuffer 0 (draw and read) and no
+       pixel pack or unpack buffer, so that your next calls cannot land in
+       shadowkit's objects. Set the state your own passes need after
+       shadowkit's calls. What a call may leave:
+         render (directional, point): depth test on, GL_LESS, depth writes
+           on, culling off, polygon offset on with the light's bias (off
+           without), polygon mode GL_FILL, scissor test off (FERKO's
+           smaller maps, VSDCT: on, with its rectangle), its viewport,
+           shadowkit's depth program, the vertex array your callback left;
+         mask, analyze: blending and culling off, colour mask all on,
+           polygon mode GL_FILL, scissor off (a point light's .scissor: on,
+           with the light's rectangle), its viewport, its program, its
+           empty vertex array, GL_PROGRAM_POINT_SIZE on (RMSM's analyze),
+           GL_TEXTURE_CUBE_MAP_SEAMLESS on for a cube light's mask and off
+           for VSDCT's, the pixel pack skips 0 (analyze; RMSM's also the
+           pack alignment 1 and row length 0); textures on units 0-3: unit 0 the map (directional:
+           with shadowkit's comparison sampler; point: sampler 0, the map
+           compares by itself), 1 the depth texture, 2 the normals (both
+           with shadowkit's nearest-texel sampler), 3 RMSM's page table or
+           VSDCT's indirection (sampler 0); the analysis uses unit 1 only
+           (left active); unit 0 active after a mask;
+         create calls: texture unit 0 bindings, unpack alignment 1, row
+           length and skips 0, the last program linked (skgl_create);
+         skgl_*_bind: the map and its sampler on `unit`, RMSM's page table
+           or VSDCT's indirection on `unit` + 1, which stays active.
+       The one read this mode makes: a point light's resolution selection
+       without .screen_w/.screen_h reads the viewport. Program locations
+       are trusted from the cache (skgl_forget_program).
+     In both modes a pass sets glPolygonMode(GL_FILL) (a host drawing in
+     wireframe gets filled maps and masks) and puts the caller's program
+     back only if glIsProgram says it still exists (a program deleted while
+     current lives only as long as it stays current: Dear ImGui's issue
+     #6220). Framebuffers are checked complete when they are made (and a
+     cube light's again when its mip level changes); the mask texture is
+     attached to shadowkit's mask framebuffer at every mask call, checked
+     the first time its name comes by, and stays attached until the next
+     mask call (skgl_forget_texture lets go of it at once). Sizes of your
+     textures are asked once per name (skgl_forget_texture after giving one
+     new storage). Uniform locations are looked up at link time for
+     shadowkit's programs and on the first skgl_*_bind of yours (a cache of
+     16 programs); constants (sampler units, filter, bias) are sent when a
+     program holds another light's, the rest when it changes or, for the
+     matrices, split depths, light direction and position, every call.
+     Area lights (skgl_soft_*) save and restore the whole state in both
+     modes. With desc.debug set, glGetError is checked after every pass
+     and a GL error is reported as SK_ERR_GL. skgl_gl_object_count() tells
+     how many GL objects the context holds (0 after every shadow and the
+     context are destroyed).
+
+   READ-BACKS
+     What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
+     page requests, a byte per page of every level: 32 KB for 16384 /
+     128) is read into the next of three pixel pack buffers, followed by a
+     fence. Later calls poll the fences with a zero timeout (never waiting;
+     the poll flushes, or a fence might never reach the GPU) and use the
+     newest buffer that has landed: a frame late on a GPU that keeps up,
+     more on one that does not, and the last result stays in use until a
+     newer one lands. When all three are still in flight no new read-back
+     is issued. Read back in the same frame, with the stall that costs
+     (the CPU waits for the GPU to finish every command before it):
+     SKGL_LATENCY_SYNC, every frame; the first analysis of a light (no
+     earlier result exists), once. A FERKO light never analysed renders
+     the focused map at full resolution; an RMSM light, the coarsest page.
 
    LARGE WORLDS
      Directional lights work relative to an origin near the camera (its
@@ -166,10 +248,14 @@
      work in world space.
 
    TIMING
-     With desc.timing set, each pass is wrapped in a GL_TIME_ELAPSED query
-     and its result read back at once (a CPU-GPU sync: for measuring, not
-     shipping). skgl_shadow_stats() returns ms per pass, shadow texels
-     rendered and draw passes.
+     With desc.timing set, each timed pass (render, mask, analyze) of a
+     directional or point light takes the next of three GL_TIME_ELAPSED
+     queries. Before it, the query three passes old (about to be reused)
+     and the one two passes old are read if GL_QUERY_RESULT_AVAILABLE says
+     they are done; if the older is not, the pass goes untimed rather than
+     wait. skgl_shadow_stats() reports the latest result read (two frames
+     old; -1 before the first), shadow texels rendered and draw passes.
+     Area lights read their queries at once (a sync: for measuring).
 
    LICENSE: see the end of the file.
 */
@@ -312,8 +398,9 @@ typedef struct skgl_scene {
 } skgl_scene;
 
 typedef struct skgl_stats {
-    float shadow_ms;              /* GPU time of the depth passes; -1 without timing */
-    float mask_ms;                /* GPU time of the last skgl_shadow_mask; -1 without timing */
+    float shadow_ms;              /* GPU time of the depth passes (the latest measured: two frames
+                                     old, TIMING); -1 without timing or before the first */
+    float mask_ms;                /* GPU time of a skgl_shadow_mask, likewise */
     double texels;                /* shadow texels rendered (sum of viewport areas) */
     int passes;                   /* draw callbacks made */
     int maps;                     /* layers rendered */
@@ -324,7 +411,7 @@ typedef struct skgl_stats {
     int warped[SKGL_MAX_CASCADES];        /* 1: the layer's map is perspective-warped */
     int depth_reversed;                   /* PSM: light behind the viewer (depth order flipped back) */
     int lspsm_fallback;                   /* LSPSM: no trapezoid axis (view along the light): one focused map */
-    float analysis_ms;                    /* FERKO: GPU time of the last skgl_shadow_analyze; -1 without timing */
+    float analysis_ms;                    /* FERKO, RMSM: GPU time of a skgl_shadow_analyze, as shadow_ms */
     sk_res_estimate estimate;             /* FERKO: the estimate the last render used, in the clip
                                              space of estimate_light (see skgl_shadow_analyze) */
     sk_mat4 estimate_light;               /* FERKO: the uncropped light frustum of that estimate */
@@ -384,16 +471,22 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
 /* SKGL_RMSM: the same call finds the pages of the virtual map the view
    needs (per pixel level of detail from the screen derivatives of its
-   virtual-map texel coordinates, requests reduced on the GPU, read back);
-   the render draws them into the page pool. Without a call, only the
-   coarsest page (the whole map at pool-page resolution) is rendered.
-   SKGL_FERKO: estimates the crop and the resolution of the next
+   virtual-map texel coordinates, requests reduced on the GPU, read back:
+   by default through the ring, the render then draws the pages of the
+   latest requests landed, READ-BACKS); the render draws them into the page
+   pool. Without a call, only the coarsest page (the whole map at pool-page
+   resolution) is rendered.
+   SKGL_FERKO: estimates the crop and the resolution of a later
    skgl_shadow_render from the camera's depth texture (window depth, the
-   G-buffer of the frame; seed 000). The light frustum before the crop is an
-   orthographic map around scene->bounds; the estimate (stats.estimate) is
-   in its clip space. Call it before skgl_shadow_render with the same camera,
-   scene and light. Nothing visible in the light: a 1x1 map. Without a call,
-   the render falls back to the focused map at full resolution. */
+   G-buffer of the frame; seed 000): the next render's with
+   SKGL_LATENCY_SYNC and on the first call, else the render after it lands
+   (READ-BACKS). The light frustum before the crop is an orthographic map
+   around scene->bounds; the estimate (stats.estimate, set by the render
+   that uses it) is in its clip space. Call it before skgl_shadow_render
+   with the same camera, scene and light. Nothing visible in the light: a
+   1x1 map. Without a call, the render falls back to the focused map at
+   full resolution. The depth texture's size is asked of GL once per name
+   (skgl_forget_texture). */
 SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                       const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex);
 /* GLSL (330 core) declaring the uniforms and
@@ -2739,17 +2832,17 @@ typedef struct skgl__unitbind {
 } skgl__unitbind;
 static void skgl__st_units(skgl_context *ctx, skgl__st *st, const skgl__unitbind *b, int n)
 {
-    int i, first = -1;
+    int i, pass, first = -1;
     if (st->restore) {
         skgl__st_save(ctx, st, SKGL__S_ACTIVE);
         first = st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0;
     }
-    for (i = 0; i < n; i++)
-        if (b[i].unit == first) skgl__st_texture(ctx, st, b[i].unit, b[i].target, b[i].tex, b[i].sampler);
-    for (i = 0; i < n; i++)
-        if (b[i].unit != first && b[i].unit != 0) skgl__st_texture(ctx, st, b[i].unit, b[i].target, b[i].tex, b[i].sampler);
-    for (i = 0; i < n; i++)
-        if (b[i].unit != first && b[i].unit == 0) skgl__st_texture(ctx, st, b[i].unit, b[i].target, b[i].tex, b[i].sampler);
+    for (pass = 0; pass < 3; pass++)   /* the active unit, then the others but 0, then 0 */
+        for (i = 0; i < n; i++) {
+            int u = b[i].unit;
+            if (pass == 0 ? u == first : u != first && (pass == 1 ? u != 0 : u == 0))
+                skgl__st_texture(ctx, st, u, b[i].target, b[i].tex, b[i].sampler);
+        }
 }
 
 /* both framebuffer targets: one call when neither is there yet */
@@ -3071,11 +3164,12 @@ static int skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, i
 
 /* ---- GPU timers: a ring of queries read late ------------------------------
    With desc.timing, each timed pass of a light takes the next of
-   SKGL__TIMER_RING GL_TIME_ELAPSED queries. Before it, the query of two
-   passes ago is read if GL_QUERY_RESULT_AVAILABLE says it is done; the one
-   about to be reused (three passes ago) likewise, and if even that one is
-   not done, this pass goes untimed rather than wait. The stats report the
-   latest result read: two or three frames old, -1 before the first. */
+   SKGL__TIMER_RING GL_TIME_ELAPSED queries. Before it, the query about to
+   be reused (three passes ago) is read if GL_QUERY_RESULT_AVAILABLE says
+   it is done, and if it is not, this pass goes untimed rather than wait;
+   then the one of two passes ago, likewise. The stats report the latest
+   result read: two frames old (three when the GPU is behind), -1 before
+   the first. */
 static void skgl__timer_free(skgl_context *ctx, skgl__timer *t)
 {
     int i;
@@ -4041,7 +4135,8 @@ static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
         count = 0;
         for (py = 0; py < n; py++)
             for (px = 0; px < n; px++)
-                if (req[skgl__atlas_index(s, min_level, px, py)]) req[skgl__atlas_index(s, min_level + 1, px / 2, py / 2)] = 1;
+                if (req[skgl__atlas_index(s, min_level, px, py)])
+                    req[skgl__atlas_index(s, min_level + 1, px / 2, py / 2)] = 1;
         min_level++;
         for (l = min_level; l < s->levels; l++)
             for (py = 0; py < (s->pages0 >> l); py++)

@@ -199,7 +199,8 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
     V(ActiveTexture, (cg_enum unit), (unit), CG_CALL, (void)0, (void)0) \
     V(TexImage2D, (cg_enum target, cg_int level, cg_int ifmt, cg_sizei w, cg_sizei h, cg_int border, \
                    cg_enum fmt, cg_enum type, const void *data), \
-      (target, level, ifmt, w, h, border, fmt, type, data), CG_UPLOAD, cg_tex_upload(w, h, 1, fmt, type, data), (void)0) \
+      (target, level, ifmt, w, h, border, fmt, type, data), CG_UPLOAD, cg_tex_upload(w, h, 1, fmt, type, data), \
+      (void)0) \
     V(ReadPixels, (cg_int x, cg_int y, cg_sizei w, cg_sizei h, cg_enum fmt, cg_enum type, void *data), \
       (x, y, w, h, fmt, type, data), CG_CALL, cg_pack_readback(ST_READPIXELS), (void)0) \
     V(DrawBuffers, (cg_sizei n, const cg_enum *bufs), (n, bufs), CG_CALL, (void)0, (void)0) \
@@ -217,7 +218,8 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
     V(PixelStorei, (cg_enum pname, cg_int v), (pname, v), CG_CALL, (void)0, (void)0) \
     V(TexImage3D, (cg_enum target, cg_int level, cg_int ifmt, cg_sizei w, cg_sizei h, cg_sizei d, cg_int border, \
                    cg_enum fmt, cg_enum type, const void *data), \
-      (target, level, ifmt, w, h, d, border, fmt, type, data), CG_UPLOAD, cg_tex_upload(w, h, d, fmt, type, data), (void)0) \
+      (target, level, ifmt, w, h, d, border, fmt, type, data), CG_UPLOAD, cg_tex_upload(w, h, d, fmt, type, data), \
+      (void)0) \
     V(TexParameteri, (cg_enum target, cg_enum pname, cg_int v), (target, pname, v), CG_CALL, (void)0, (void)0) \
     V(GetTexLevelParameteriv, (cg_enum target, cg_int level, cg_enum pname, cg_int *v), (target, level, pname, v), \
       CG_TEXLEVEL, (void)0, (void)0) \
@@ -230,13 +232,15 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
       (void)0, (void)0) \
     V(CompileShader, (cg_uint sh), (sh), CG_CALL, (void)0, (void)0) \
     V(GetShaderiv, (cg_uint sh, cg_enum pname, cg_int *v), (sh, pname, v), CG_QUERY, (void)0, (void)0) \
-    V(GetShaderInfoLog, (cg_uint sh, cg_sizei max, cg_sizei *len, char *log), (sh, max, len, log), CG_QUERY, (void)0, (void)0) \
+    V(GetShaderInfoLog, (cg_uint sh, cg_sizei max, cg_sizei *len, char *log), (sh, max, len, log), CG_QUERY, (void)0, \
+      (void)0) \
     V(DeleteShader, (cg_uint sh), (sh), CG_CALL, (void)0, (void)0) \
     R(cg_uint, CreateProgram, (void), (), CG_CALL, (void)0, (void)0) \
     V(AttachShader, (cg_uint p, cg_uint sh), (p, sh), CG_CALL, (void)0, (void)0) \
     V(LinkProgram, (cg_uint p), (p), CG_CALL, (void)0, (void)0) \
     V(GetProgramiv, (cg_uint p, cg_enum pname, cg_int *v), (p, pname, v), CG_QUERY, (void)0, (void)0) \
-    V(GetProgramInfoLog, (cg_uint p, cg_sizei max, cg_sizei *len, char *log), (p, max, len, log), CG_QUERY, (void)0, (void)0) \
+    V(GetProgramInfoLog, (cg_uint p, cg_sizei max, cg_sizei *len, char *log), (p, max, len, log), CG_QUERY, (void)0, \
+      (void)0) \
     V(DeleteProgram, (cg_uint p), (p), CG_CALL, (void)0, (void)0) \
     V(UseProgram, (cg_uint p), (p), CG_CALL, (void)0, (void)0) \
     R(cg_int, GetUniformLocation, (cg_uint p, const char *name), (p, name), CG_LOCATION, (void)0, (void)0) \
@@ -254,7 +258,8 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
     V(DeleteQueries, (cg_sizei n, const cg_uint *ids), (n, ids), CG_CALL, (void)0, (void)0) \
     V(BeginQuery, (cg_enum target, cg_uint id), (target, id), CG_CALL, cg_begin_query(id), (void)0) \
     V(EndQuery, (cg_enum target), (target), CG_CALL, (void)0, (void)0) \
-    V(GetQueryObjectui64v, (cg_uint id, cg_enum pname, cg_u64 *v), (id, pname, v), CG_CALL, cg_query_object(id, pname), \
+    V(GetQueryObjectui64v, (cg_uint id, cg_enum pname, cg_u64 *v), (id, pname, v), CG_CALL, \
+      cg_query_object(id, pname), \
       cg_query_avail(id, pname, *v != 0)) \
     V(BlendEquationSeparate, (cg_enum rgb, cg_enum alpha), (rgb, alpha), CG_CALL, (void)0, (void)0) \
     V(BlendFuncSeparate, (cg_enum src_rgb, cg_enum dst_rgb, cg_enum src_a, cg_enum dst_a), \
@@ -563,37 +568,46 @@ typedef struct cg_row {
 enum { R_STANDARD, R_PSM, R_LISPSM, R_PSSM, R_LSPSM, R_FERKO_SYNC, R_FERKO, R_RMSM_SYNC, R_RMSM, R_CUBE, R_VSDCT,
        R_PCSS, R_PVSM, R_BIND_STANDARD, R_BIND_PSSM, R_BIND_RMSM, R_BIND_CUBE, R_BIND_VSDCT, R_N };
 
-#define G_OPEN {999999, 999999, 999999, 999999, 999999, 999999, 999999999, 999999}
 static const cg_row cg_rows[R_N] = {
     /* name, kind, technique, cascades, FERKO and RMSM latency, bind row, budget base, per unit, unit, free
        units, budget on, stall ok, measured {calls, queries, locations, fb checks, tex levels, uploads,
        bytes, stalls}: restored, timing on, caller owns */
-    {"STANDARD", K_DIR, SKGL_STANDARD, 0, 0, 0, R_BIND_STANDARD, 40, 0, U_NONE, 0, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
-    {"PSM", K_DIR, SKGL_PSM, 0, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
-    {"LiSPSM", K_DIR, SKGL_LISPSM, 0, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
-    {"PSSM, 4 cascades", K_DIR, SKGL_PSSM, 4, 0, 0, R_BIND_PSSM, 40, 8, U_LAYERS, 1, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
-    {"LSPSM", K_DIR, SKGL_LSPSM, 0, 0, 0, -1, 40, 8, U_LAYERS, 1, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
-    {"FERKO, SKGL_LATENCY_SYNC", K_DIR, SKGL_FERKO, 0, SKGL_LATENCY_SYNC, 0, -1, 60, 0, U_NONE, 0, 1,
-     1 << ST_READPIXELS, {G_OPEN, G_OPEN, G_OPEN}},
-    {"FERKO (latency 1)", K_DIR, SKGL_FERKO, 0, 0, 0, -1, 60, 0, U_NONE, 0, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
+    {"STANDARD", K_DIR, SKGL_STANDARD, 0, 0, 0, R_BIND_STANDARD, 40, 0, U_NONE, 0, 1, 0,
+     {{73, 29, 0, 0, 0, 0, 0, 0}, {81, 29, 0, 0, 0, 0, 0, 0}, {40, 0, 0, 0, 0, 0, 0, 0}}},
+    {"PSM", K_DIR, SKGL_PSM, 0, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0,
+     {{73, 29, 0, 0, 0, 0, 0, 0}, {81, 29, 0, 0, 0, 0, 0, 0}, {40, 0, 0, 0, 0, 0, 0, 0}}},
+    {"LiSPSM", K_DIR, SKGL_LISPSM, 0, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0,
+     {{73, 29, 0, 0, 0, 0, 0, 0}, {81, 29, 0, 0, 0, 0, 0, 0}, {40, 0, 0, 0, 0, 0, 0, 0}}},
+    {"PSSM, 4 cascades", K_DIR, SKGL_PSSM, 4, 0, 0, R_BIND_PSSM, 40, 8, U_LAYERS, 1, 1, 0,
+     {{82, 29, 0, 0, 0, 0, 0, 0}, {90, 29, 0, 0, 0, 0, 0, 0}, {49, 0, 0, 0, 0, 0, 0, 0}}},
+    {"LSPSM", K_DIR, SKGL_LSPSM, 0, 0, 0, -1, 40, 8, U_LAYERS, 1, 1, 0,
+     {{82, 29, 0, 0, 0, 0, 0, 0}, {90, 29, 0, 0, 0, 0, 0, 0}, {49, 0, 0, 0, 0, 0, 0, 0}}},
+    {"FERKO, SKGL_LATENCY_SYNC", K_DIR, SKGL_FERKO, 0, SKGL_LATENCY_SYNC, 0, -1, 60, 0, U_NONE, 0, 0,
+     1 << ST_READPIXELS, {{119, 46, 0, 0, 0, 0, 0, 1}, {131, 46, 0, 0, 0, 0, 0, 1}, {70, 0, 0, 0, 0, 0, 0, 1}}},
+    {"FERKO (latency 1)", K_DIR, SKGL_FERKO, 0, 0, 0, -1, 60, 0, U_NONE, 0, 0, 0,
+     {{126, 46, 0, 0, 0, 0, 0, 0}, {138, 46, 0, 0, 0, 0, 0, 0}, {76, 0, 0, 0, 0, 0, 0, 0}}},
     {"RMSM, SKGL_LATENCY_SYNC", K_DIR, SKGL_RMSM, 0, 0, SKGL_LATENCY_SYNC, -1, 60, 6, U_PAGES, 0, 1,
-     1 << ST_READPIXELS, {G_OPEN, G_OPEN, G_OPEN}},
-    {"RMSM (latency 1)", K_DIR, SKGL_RMSM, 0, 0, 0, R_BIND_RMSM, 60, 6, U_PAGES, 0, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
-    {"POINT_CUBE", K_POINT, SKGL_POINT_CUBE, 0, 0, 0, R_BIND_CUBE, 40, 6, U_FACES, 0, 1, 0, {G_OPEN, G_OPEN, G_OPEN}},
+     1 << ST_READPIXELS, {{1194, 51, 0, 0, 0, 0, 0, 1}, {1206, 51, 0, 0, 0, 0, 0, 1}, {1137, 0, 0, 0, 0, 0, 0, 1}}},
+    {"RMSM (latency 1)", K_DIR, SKGL_RMSM, 0, 0, 0, R_BIND_RMSM, 60, 6, U_PAGES, 0, 1, 0,
+     {{1201, 51, 0, 0, 0, 0, 0, 0}, {1213, 51, 0, 0, 0, 0, 0, 0}, {1143, 0, 0, 0, 0, 0, 0, 0}}},
+    {"POINT_CUBE", K_POINT, SKGL_POINT_CUBE, 0, 0, 0, R_BIND_CUBE, 40, 6, U_FACES, 0, 1, 0,
+     {{89, 30, 0, 0, 0, 0, 0, 0}, {97, 30, 0, 0, 0, 0, 0, 0}, {54, 0, 0, 0, 0, 0, 0, 0}}},
     {"POINT_VSDCT", K_POINT, SKGL_POINT_VSDCT, 0, 0, 0, R_BIND_VSDCT, 40, 6, U_FACES, 0, 1, 0,
-     {G_OPEN, G_OPEN, G_OPEN}},
-    {"SOFT_PCSS", K_SOFT, SKGL_SOFT_PCSS, 0, 0, 0, -1, 40, 0, U_NONE, 0, 0, 0, {G_OPEN, G_OPEN, G_OPEN}},
-    {"SOFT_PVSM", K_SOFT, SKGL_SOFT_PVSM, 0, 0, 0, -1, 100, 25, U_TILES, 0, 0, 0, {G_OPEN, G_OPEN, G_OPEN}},
+     {{99, 33, 0, 0, 0, 0, 0, 0}, {107, 33, 0, 0, 0, 0, 0, 0}, {59, 0, 0, 0, 0, 0, 0, 0}}},
+    {"SOFT_PCSS", K_SOFT, SKGL_SOFT_PCSS, 0, 0, 0, -1, 40, 0, U_NONE, 0, 0, 0,
+     {{212, 55, 13, 2, 4, 0, 0, 0}, {218, 55, 13, 2, 4, 0, 0, 2}, {212, 55, 13, 2, 4, 0, 0, 0}}},
+    {"SOFT_PVSM", K_SOFT, SKGL_SOFT_PVSM, 0, 0, 0, -1, 100, 25, U_TILES, 0, 0, 0,
+     {{732, 55, 51, 30, 4, 0, 0, 9}, {753, 55, 51, 30, 4, 0, 0, 16}, {732, 55, 51, 30, 4, 0, 0, 9}}},
     {"skgl_shadow_bind (STANDARD)", K_BIND_SHADOW, SKGL_STANDARD, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
-     {G_OPEN, G_OPEN, G_OPEN}},
+     {{10, 3, 0, 0, 0, 0, 0, 0}, {10, 3, 0, 0, 0, 0, 0, 0}, {6, 0, 0, 0, 0, 0, 0, 0}}},
     {"skgl_shadow_bind (PSSM, 4)", K_BIND_SHADOW, SKGL_PSSM, 4, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
-     {G_OPEN, G_OPEN, G_OPEN}},
+     {{10, 3, 0, 0, 0, 0, 0, 0}, {10, 3, 0, 0, 0, 0, 0, 0}, {6, 0, 0, 0, 0, 0, 0, 0}}},
     {"skgl_shadow_bind (RMSM)", K_BIND_SHADOW, SKGL_RMSM, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
-     {G_OPEN, G_OPEN, G_OPEN}},
+     {{13, 3, 0, 0, 0, 0, 0, 0}, {13, 3, 0, 0, 0, 0, 0, 0}, {9, 0, 0, 0, 0, 0, 0, 0}}},
     {"skgl_point_bind (CUBE)", K_BIND_POINT, SKGL_POINT_CUBE, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
-     {G_OPEN, G_OPEN, G_OPEN}},
+     {{8, 3, 0, 0, 0, 0, 0, 0}, {8, 3, 0, 0, 0, 0, 0, 0}, {4, 0, 0, 0, 0, 0, 0, 0}}},
     {"skgl_point_bind (VSDCT)", K_BIND_POINT, SKGL_POINT_VSDCT, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
-     {G_OPEN, G_OPEN, G_OPEN}},
+     {{11, 3, 0, 0, 0, 0, 0, 0}, {11, 3, 0, 0, 0, 0, 0, 0}, {7, 0, 0, 0, 0, 0, 0, 0}}},
 };
 
 /* what a row measured, per timing setting */

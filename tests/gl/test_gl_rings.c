@@ -670,7 +670,8 @@ static void test_state_modes(void) {
             for (diff = 0, i = 0; i < e.n; i++) diff += vis[i] != ref[i];
             SK_CHECK_MSG(diff == 0, "%s, %s, wireframe host: %d mask values differ from the filled host's",
                          tech_names[t], m ? "caller owns" : "restored", diff);
-            if (m == 0) SK_CHECK_MSG(mode[0] == 0x1B01, "%s: polygon mode 0x%x, not given back", tech_names[t], mode[0]);
+            if (m == 0)
+                SK_CHECK_MSG(mode[0] == 0x1B01, "%s: polygon mode 0x%x, not given back", tech_names[t], mode[0]);
             else SK_CHECK_MSG(mode[0] == 0x1B02 && fb[0] == 0 && fb[1] == 0 && pack == 0,
                               "%s, caller owns: left polygon mode 0x%x, framebuffers %d %d, pack buffer %d",
                               tech_names[t], mode[0], fb[0], fb[1], pack);
