@@ -13,52 +13,71 @@
 
    test_ferko_ring: a reference shadow with ferko_latency SKGL_LATENCY_SYNC
    gives the estimates of views A (-9, 7, 12) and B (-3, 2.5, 4), which
-   differ (measured 1046x1022 and 2048x2048). A default shadow (latency 1):
-   frame 1 (view A) reads at once, one glReadPixels into client memory, and
-   has A's estimate; with the fences "not ready", frames 2-5 on view B keep
-   A's estimate (the render uses it: the map is A's size), read nothing
-   back and stall nowhere, issue a read-back into the ring in frames 2, 3
-   and 4 and none in frame 5 (all three buffers in flight); the fences
-   "ready" again, frame 6 reads one buffer, the newest (frame 4's: view B),
-   and has B's estimate. A shadow never analysed renders the focused map at
-   full resolution (no estimate).
-   test_rmsm_ring: the same with RMSM page lists (reference: rmsm_latency
-   SKGL_LATENCY_SYNC): A's pages kept while the fences are not ready, no
-   page-table upload in those frames (the table did not change), B's pages
-   and one upload of changed rows once they land.
+   differ (measured 1907x1745 and 2048x2048, the latter clamped to the
+   maximum). A default shadow (latency 1): frame 1 (view A) reads at once,
+   one glReadPixels into client memory, and has A's estimate; with every
+   fence "not ready", frames 2 and 3 (view A) and 4 and 5 (view B) keep A's
+   estimate (the render draws A's map size), read nothing back and stall
+   nowhere, and issue a read-back into the ring in frames 2, 3 and 4 but
+   not in 5 (all three buffers in flight); the fences "ready" again, frame
+   6 reads one buffer, the newest (frame 4's: view B), and has B's
+   estimate. A shadow never analysed renders the focused map at full
+   resolution, with no estimate.
+   test_rmsm_ring: the same with RMSM page lists (the reference: rmsm_latency
+   SKGL_LATENCY_SYNC; view A 45 pages, B 59): A's pages kept while the
+   fences are not ready, no page-table upload in those frames (the table
+   did not change), B's pages and one upload of the changed rows once they
+   land, none in the next frame of the same view.
    test_timer_ring: desc.timing = 1, a standard map, glFinish after each
-   frame: stats.shadow_ms and mask_ms are -1 for frames 1 and 2 and a time
-   from frame 3 (frame 1's pass, read two frames late); with the results
-   "not available" the value is kept, no GL_QUERY_RESULT is read, and from
-   the frame whose slot is still busy no query is begun (frame 5); once
+   frame: stats.shadow_ms and mask_ms are -1 after frames 1 and 2 and a
+   time from frame 3 (frame 1's passes, read two frames late); with the
+   results "not available" the values are kept and no GL_QUERY_RESULT is
+   read, and in frame 5, whose slots are still busy, no query is begun;
    available again, frame 6 reads the two pending results of each ring.
    test_program_cache: skgl_shadow_bind looks up 19 locations on a program's
    first bind, none on the next; two lights with different .pcf_radius bound
-   in turn to one program each leave their own radius (read back with
-   glGetUniformiv); the program linked again (its uniforms back at 0) and
-   deleted and made anew under a name GL hands out again (both found by the
-   default mode's check: 19 look-ups, the units set again); in caller-owns
-   mode the cache is trusted (the relinked program's sampler stays at 0)
-   until skgl_forget_program; 17 programs in a 16-entry cache: the least
-   recently bound is looked up again, the most recent is not.
+   in turn to one program leave their own radius each (read back with
+   glGetUniformiv); the program linked again (its uniforms back at 0) is
+   found by the default mode's check (19 look-ups, the units set again), as
+   is a program deleted and made anew (Mesa gave the new one another name
+   here, 72 for 69; a reused name takes the same check); in caller-owns
+   mode the cache is trusted (the relinked program's sampler stays 0) until
+   skgl_forget_program; 17 programs in a 16-entry cache: the least recently
+   bound is looked up again, the most recent is not.
    test_state_modes: for STANDARD, PSSM (3), FERKO and RMSM (each
    SKGL_LATENCY_SYNC), POINT_CUBE and POINT_VSDCT, the mask from a host left
    in wireframe (glPolygonMode GL_LINE) equals the one from a filled host,
    value for value, in both modes; the default mode gives GL_LINE back, the
    caller-owns mode leaves GL_FILL, framebuffer 0 (draw and read) and no
    pixel pack buffer, as the manual lists. The caller's program deleted
-   while current (it lives as long as it stays current; Dear ImGui's issue
-   #6220): render, mask and analyze leave no GL error and program 0 current.
-   The draw callback's contract: with desc.debug, a callback that leaves its
-   own program current gets SK_ERR_INVALID_ARG and the log says to bind
-   info->program again; one that does bind it again gets SK_OK and the same
-   mask as the plain callback.
+   while current (it lives only as long as it stays current; Dear ImGui's
+   issue #6220): analyze, render and mask leave no GL error and program 0
+   current. The draw callback's contract: with desc.debug, a callback that
+   leaves its own program current gets SK_ERR_INVALID_ARG and the log names
+   info->program; one that binds info->program again gets SK_OK and the
+   same mask as the plain callback.
 
-   Measured (Mesa llvmpipe, OSMesa): every check above as stated.
+   Measured (Mesa llvmpipe, OSMesa): every check above as stated, 244 in
+   about 1 s.
    Can fail (each shown once, in a local copy of shadowkit_gl.h):
-   skgl__ring_poll reading its oldest landed buffer instead of the newest:
-   test_ferko_ring's frame 6 has frame 2's estimate... (see the list at the
-   end of this comment, filled in from the runs). */
+   - the ring poll taking the oldest buffer landed instead of the newest:
+     "frame 6: 1907x1745, view B's 2048x2048" (FERKO) and "frame 6: 45
+     pages (B: 59)" (RMSM), 3 checks;
+   - the ring reusing a buffer still in flight (its fence dropped): "frame
+     5: ... 1 read-backs into the ring" (FERKO and RMSM);
+   - the timer reading GL_QUERY_RESULT without waiting for
+     GL_QUERY_RESULT_AVAILABLE: "frame 4: 1.65477 / 8.62532 ms (frame 3:
+     6.13493 / 13.0085), 2 results, 2 begun", 3 checks;
+   - no check of a cached program: "relinked: 0 look-ups, unit 0, radius 0";
+   - the depth passes without glPolygonMode(GL_FILL): "standard, restored,
+     wireframe host: 855 mask values differ from the filled host's", 10
+     checks (every technique in both modes but FERKO's and RMSM's in
+     caller-owns mode, whose analysis pass had set GL_FILL before the
+     render);
+   - the program restored without glIsProgram: "deleted current program:
+     program 39 current after" and a GL_INVALID_VALUE caught by desc.debug
+     in the point-light frames, where a caller-owns light's mask program,
+     left current, was deleted with its light (5 checks). */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -273,13 +292,14 @@ static void test_ferko_ring(void) {
                  R.pbo_reads, R.buffer_reads);
     SK_CHECK(same_estimate(&skgl_shadow_stats(s)->estimate, &est_a));
     e.gl.Finish();
-    /* frames 2-5 on view B with every fence "not ready" */
+    /* frames 2 and 3 on view A, 4 and 5 on view B, every fence "not ready" */
     R.not_ready = 1;
-    SK_CHECK(gt_gbuffer(&e, &cb) == 0);
     for (f = 2; f <= 5; f++) {
+        const skgl_camera *c = f < 4 ? &ca : &cb;
+        if (f == 4) SK_CHECK(gt_gbuffer(&e, &cb) == 0);
         counts_reset();
-        SK_CHECK(skgl_shadow_analyze(sk, s, &cb, &sc, light_dir(), e.gbuf.depth_tex) == SK_OK);
-        SK_CHECK(skgl_shadow_render(sk, s, &cb, &sc, light_dir()) == SK_OK);
+        SK_CHECK(skgl_shadow_analyze(sk, s, c, &sc, light_dir(), e.gbuf.depth_tex) == SK_OK);
+        SK_CHECK(skgl_shadow_render(sk, s, c, &sc, light_dir()) == SK_OK);
         SK_CHECK_MSG(same_estimate(&skgl_shadow_stats(s)->estimate, &est_a), "frame %d: not view A's estimate", f);
         SK_CHECK_MSG(skgl_shadow_stats(s)->map_width == map_a, "frame %d: map %d wide, A's is %d", f,
                      skgl_shadow_stats(s)->map_width, map_a);
@@ -362,11 +382,12 @@ static void test_rmsm_ring(void) {
                  R.client_reads, R.pbo_reads, R.subimages);
     e.gl.Finish();
     R.not_ready = 1;
-    SK_CHECK(gt_gbuffer(&e, &cb) == 0);
     for (f = 2; f <= 5; f++) {
+        const skgl_camera *c = f < 4 ? &ca : &cb;
+        if (f == 4) SK_CHECK(gt_gbuffer(&e, &cb) == 0);
         counts_reset();
-        SK_CHECK(skgl_shadow_analyze(sk, s, &cb, &sc, light_dir(), e.gbuf.depth_tex) == SK_OK);
-        SK_CHECK(skgl_shadow_render(sk, s, &cb, &sc, light_dir()) == SK_OK);
+        SK_CHECK(skgl_shadow_analyze(sk, s, c, &sc, light_dir(), e.gbuf.depth_tex) == SK_OK);
+        SK_CHECK(skgl_shadow_render(sk, s, c, &sc, light_dir()) == SK_OK);
         n = skgl_shadow_pages(s, got, MAX_PAGES);
         SK_CHECK_MSG(same_pages(got, n, pa, na) && skgl_shadow_stats(s)->pages_rendered == na,
                      "frame %d: %d pages, not view A's %d", f, n, na);
