@@ -210,7 +210,8 @@
      the first time its name comes by, and stays attached until the next
      mask call (skgl_forget_texture lets go of it at once). Sizes of your
      textures are asked once per name (skgl_forget_texture after giving one
-     new storage). Uniform locations are looked up at link time for
+     new storage; desc.debug asks every time and refuses a size that
+     changed under the same name). Uniform locations are looked up at link time for
      shadowkit's programs and on the first skgl_*_bind of yours (a cache of
      16 programs); constants (sampler units, filter, bias) are sent when a
      program holds another light's, the rest when it changes or, for the
@@ -3142,24 +3143,29 @@ SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
     }
 }
 
-/* the size of a texture the caller made: level 0's, as GL had it the
-   first time (bound on unit 1's GL_TEXTURE_2D to ask) */
-static int skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, int *w, int *h)
+/* The size of a texture the caller made: level 0's, as GL had it the
+   first time (bound on unit 1's GL_TEXTURE_2D to ask). NULL, or what is
+   wrong: no level 0; with desc.debug, which asks every time, a size that
+   changed under the same name. */
+static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, int *w, int *h)
 {
     skgl__texent *e = skgl__texture(ctx, tex);
-    if (e->w <= 0 || e->h <= 0) {
+    if (e->w <= 0 || e->h <= 0 || ctx->debug) {
         skgl__int tw = 0, th = 0;
         skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D), (skgl__int)tex);
         skgl__st_unit(ctx, st, SKGL__S_TEX(1, SKGL__T_2D));
         ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &tw);
         ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &th);
-        if (tw <= 0 || th <= 0 || tw > 65536 || th > 65536) return 0;
+        if (tw <= 0 || th <= 0 || tw > 65536 || th > 65536) return "the texture has no level 0";
+        if (e->w > 0 && (e->w != tw || e->h != th))
+            return "the texture's size changed since it was remembered: call skgl_forget_texture after giving "
+                   "a texture new storage";
         e->w = tw;
         e->h = th;
     }
     *w = e->w;
     *h = e->h;
-    return 1;
+    return NULL;
 }
 
 /* ---- GPU timers: a ring of queries read late ------------------------------
@@ -4352,6 +4358,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     skgl_camera rc;
     skgl_scene rs;
     sk_result r;
+    const char *why;
     if (!ctx || !s || !cam || !scene || !depth_tex ||
         (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM) ||
         !sk__v3_finite(light_dir) || sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) ||
@@ -4366,9 +4373,10 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
     skgl__st_begin(ctx, &st);
-    if (!skgl__texture_size(ctx, &st, depth_tex, &w, &h)) {
+    why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
+    if (why) {
         skgl__st_end(ctx, &st);
-        skgl__set_log(ctx, "skgl_shadow_analyze: depth texture has no level 0", NULL);
+        skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
         return SK_ERR_INVALID_ARG;
     }
     if (s->desc.technique == SKGL_RMSM) r = skgl__analyze_rmsm(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
@@ -4767,8 +4775,9 @@ static sk_result skgl__mask_begin(skgl_context *ctx, skgl__st *st, unsigned mask
                                   const char *fn)
 {
     skgl__texent *e;
-    if (!skgl__texture_size(ctx, st, mask_tex, w, h)) {
-        skgl__set_log(ctx, fn, "the mask texture has no level 0");
+    const char *why = skgl__texture_size(ctx, st, mask_tex, w, h);
+    if (why) {
+        skgl__set_log(ctx, fn, why);
         return SK_ERR_INVALID_ARG;
     }
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)ctx->mask_fbo);
@@ -4836,7 +4845,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
     skgl__st_begin(ctx, &st);
     skgl__timer_begin(ctx, &s->t_mask);
-    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask");
+    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask: mask_tex");
     if (r == SK_OK) {
         skgl__unitbind b[4];
         int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
@@ -5545,6 +5554,7 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     sk_mat4 vp, inv;
     int rect[4];
     sk_result r;
+    const char *why;
     if (!ctx || !p || !cam || !depth_tex || !mask_tex || !p->rendered || !sk__mat_finite(&cam->view) ||
         !sk__mat_finite(&cam->proj))
         return SK_ERR_INVALID_ARG;
@@ -5552,9 +5562,10 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     if (!sk_mat4_inverse(vp, &inv)) return SK_ERR_INVALID_ARG;
     vsdct = p->desc.technique == SKGL_POINT_VSDCT;
     skgl__st_begin(ctx, &st);
-    if (!skgl__texture_size(ctx, &st, mask_tex, &w, &h)) {
+    why = skgl__texture_size(ctx, &st, mask_tex, &w, &h);
+    if (why) {
         skgl__st_end(ctx, &st);
-        skgl__set_log(ctx, "skgl_point_mask", "the mask texture has no level 0");
+        skgl__set_log(ctx, "skgl_point_mask: mask_tex", why);
         return SK_ERR_INVALID_ARG;
     }
     /* the seed's scissor: the light's range box on the screen; the whole
@@ -5568,7 +5579,7 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     }
     memcpy(p->stats.scissor, rect, sizeof rect);
     skgl__timer_begin(ctx, &p->t_mask);
-    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_point_mask");
+    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_point_mask: mask_tex");
     if (r == SK_OK) {
         if (p->desc.scissor) {
             skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);

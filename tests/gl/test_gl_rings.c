@@ -56,8 +56,14 @@
    leaves its own program current gets SK_ERR_INVALID_ARG and the log names
    info->program; one that binds info->program again gets SK_OK and the
    same mask as the plain callback.
+   test_texture_cache: a mask texture of the test's, first half the
+   G-buffer's size, then given the full size under the same name: with
+   desc.debug (which asks for the size every time) the mask after the new
+   storage is refused (SK_ERR_INVALID_ARG, the log names
+   skgl_forget_texture); after skgl_forget_texture it is drawn, equal value
+   for value to the mask drawn into the testbed's own target.
 
-   Measured (Mesa llvmpipe, OSMesa): every check above as stated, 244 in
+   Measured (Mesa llvmpipe, OSMesa): every check above as stated, 256 in
    about 1 s.
    Can fail (each shown once, in a local copy of shadowkit_gl.h):
    - the ring poll taking the oldest buffer landed instead of the newest:
@@ -77,7 +83,9 @@
    - the program restored without glIsProgram: "deleted current program:
      program 39 current after" and a GL_INVALID_VALUE caught by desc.debug
      in the point-light frames, where a caller-owns light's mask program,
-     left current, was deleted with its light (5 checks). */
+     left current, was deleted with its light (5 checks);
+   - desc.debug not asking for a remembered texture's size: "new storage,
+     not forgotten, debug: ok ()". */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -758,4 +766,64 @@ done:
     gt_env_free(&e);
 }
 
-SK_TEST_MAIN(test_ferko_ring, test_rmsm_ring, test_timer_ring, test_program_cache, test_state_modes)
+/* ---- the user's textures, remembered by name ---- */
+static void test_texture_cache(void) {
+    gt_env e;
+    skgl_context *dbg;
+    skgl_shadow_desc d;
+    skgl_shadow *s = NULL;
+    skgl_scene sc;
+    skgl_camera ca = view_a();
+    float *ref, *vis;
+    unsigned tex = 0;
+    sk_result r;
+    size_t i;
+    int diff = 0;
+    if (env_init(&e) != 0) return;
+    sc = gt_scene(&e);
+    ref = gt_alloc(&e);
+    vis = gt_alloc(&e);
+    dbg = ring_context(1, 0, 0);
+    memset(&d, 0, sizeof d);
+    d.resolution = 1024;
+    SK_CHECK(dbg && ref && vis && skgl_shadow_create(dbg, &d, &s) == SK_OK);
+    if (!s) goto done;
+    SK_CHECK(gt_gbuffer(&e, &ca) == 0);
+    SK_CHECK(skgl_shadow_render(dbg, s, &ca, &sc, light_dir()) == SK_OK);
+    SK_CHECK(gt_mask_only(&e, s, &ca, ref) == 0);
+    /* a mask texture of the test's, first half the size, then given the
+       G-buffer's size under the same name */
+    e.gl.GenTextures(1, &tex);
+    e.gl.BindTexture(0x0DE1, tex);
+    e.gl.TexImage2D(0x0DE1, 0, 0x822D /* R16F */, W / 2, H / 2, 0, 0x1903 /* RED */, 0x1406 /* FLOAT */, NULL);
+    e.gl.TexParameteri(0x0DE1, 0x2801, 0x2600);   /* MIN_FILTER NEAREST */
+    SK_CHECK(skgl_shadow_mask(dbg, s, &ca, e.gbuf.depth_tex, e.gbuf.color_tex, tex) == SK_OK);
+    e.gl.BindTexture(0x0DE1, tex);
+    e.gl.TexImage2D(0x0DE1, 0, 0x822D, W, H, 0, 0x1903, 0x1406, NULL);
+    e.gl.BindTexture(0x0DE1, 0);
+    r = skgl_shadow_mask(dbg, s, &ca, e.gbuf.depth_tex, e.gbuf.color_tex, tex);
+    SK_CHECK_MSG(r == SK_ERR_INVALID_ARG && strstr(skgl_error_log(dbg), "skgl_forget_texture"),
+                 "new storage, not forgotten, debug: %s (%s)", sk_result_string(r), skgl_error_log(dbg));
+    skgl_forget_texture(dbg, tex);
+    r = skgl_shadow_mask(dbg, s, &ca, e.gbuf.depth_tex, e.gbuf.color_tex, tex);
+    SK_CHECK_MSG(r == SK_OK, "forgotten: %s (%s)", sk_result_string(r), skgl_error_log(dbg));
+    SK_CHECK(tb_gl_read_texture_red(&e.gl, tex, W, H, vis) == 0);
+    for (i = 0; i < e.n; i++) {
+        if (!(e.depth[i] < 1.0f)) vis[i] = -1.0f;
+        diff += vis[i] != ref[i];
+    }
+    SK_CHECK_MSG(diff == 0, "the mask in the texture given new storage: %d values differ", diff);
+    /* forgotten, it is no longer held by shadowkit's framebuffer */
+    skgl_forget_texture(dbg, tex);
+    e.gl.DeleteTextures(1, &tex);
+    SK_CHECK(skgl_shadow_mask(dbg, s, &ca, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex) == SK_OK);
+    SK_CHECK(e.gl.GetError() == 0);
+done:
+    skgl_shadow_destroy(dbg, s);
+    skgl_destroy(dbg);
+    free(ref);
+    free(vis);
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_ferko_ring, test_rmsm_ring, test_timer_ring, test_program_cache, test_state_modes, test_texture_cache)
