@@ -2846,7 +2846,9 @@ static void skgl__st_units(skgl_context *ctx, skgl__st *st, const skgl__unitbind
         }
 }
 
-/* both framebuffer targets: one call when neither is there yet */
+/* both framebuffer targets (a read-back reads GL_READ_FRAMEBUFFER):
+   glBindFramebuffer(GL_FRAMEBUFFER) sets both in one call when neither is
+   there yet */
 static void skgl__st_framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint fb)
 {
     skgl__st_save(ctx, st, SKGL__S_DRAW_FB);
@@ -2940,7 +2942,10 @@ static void skgl__st_end(skgl_context *ctx, skgl__st *st)
 
 /* the state of every depth pass: both faces (open meshes cast from both
    sides), LESS with writes, slope-scaled bias, filled polygons. Blending
-   and the colour mask do not matter: the framebuffer has no colour buffer. */
+   and the colour mask do not matter: the framebuffer has no colour buffer.
+   The passes clear with glClearBufferfv(GL_DEPTH, 0, 1.0), which leaves
+   GL_DEPTH_CLEAR_VALUE alone (glClear would need it set and put back) but
+   still obeys the depth write mask and the scissor test, both set here. */
 static void skgl__st_depth_pass(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias)
 {
     skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
@@ -4251,7 +4256,9 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
     skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
     gl->DrawArrays(SKGL__POINTS, 0, w * h);
     if (sync) {
-        /* this frame's requests: the read-back waits for the GPU */
+        /* this frame's requests: the read-back waits for the GPU. A byte
+           a texel (GL_RED of the R8 atlas): rows of atlas_w bytes, hence
+           the pack alignment of 1 (the default 4 would pad them) */
         skgl__st_pack(ctx, st, 0, s->atlas_h);
         gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm_req_cpu);
         skgl__rmsm_pages(s, s->rmsm_req_cpu);
@@ -4337,6 +4344,8 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
         memcpy(s->ferko_origin, o, sizeof s->ferko_origin);
         s->ferko_state = 1;
     } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko_ring)) >= 0) {
+        /* with a pixel pack buffer bound, glReadPixels' pointer is an
+           offset into it, and the call returns without waiting */
         skgl__st_pack(ctx, st, s->ferko_ring.buf[slot], 1);
         gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
         s->ferko_ring.lvp[slot] = *lvp;
