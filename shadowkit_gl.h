@@ -4493,8 +4493,9 @@ static void skgl__depth_pass_state(const skgl__api *gl, const skgl_shadow_desc *
    it binds info->program again before it returns (the manual's SCENE
    ACCESS). After each callback the identity model is set again only if
    the callback set a model; with desc.debug, the program it left current
-   is checked. The vertex array it may have bound is no longer known (the
-   default mode puts the caller's back at the end). */
+   is checked. The vertex array it may have bound and the unit it may have
+   made active are no longer known (the default mode puts the caller's
+   vertex array back at the end). */
 static const float skgl__identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
 static void skgl__model_begin(skgl_context *ctx, const double origin[3])
@@ -4522,7 +4523,11 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
         skgl__model(ctx, skgl__identity);
         ctx->model_dirty = 0;
     }
+    /* the callback may have bound a vertex array and switched the active
+       unit: neither is known any more (what shadowkit set on a unit before
+       is then put back on the right one) */
     skgl__st_forget(st, SKGL__S_VAO);
+    skgl__st_forget(st, SKGL__S_ACTIVE);
     return r;
 }
 

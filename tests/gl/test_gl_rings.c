@@ -56,6 +56,10 @@
    leaves its own program current gets SK_ERR_INVALID_ARG and the log names
    info->program; one that binds info->program again gets SK_OK and the
    same mask as the plain callback.
+   test_callback_units: the caller's textures on units 0 and 3 and unit 5
+   active; an RMSM render without analysis (its page table uploaded on
+   unit 0 first) whose callback leaves unit 3 active: afterwards unit 0
+   holds the caller's texture again, unit 3 its own, unit 5 is active.
    test_texture_cache: a mask texture of the test's, first half the
    G-buffer's size, then given the full size under the same name: with
    desc.debug (which asks for the size every time) the mask after the new
@@ -63,7 +67,7 @@
    skgl_forget_texture); after skgl_forget_texture it is drawn, equal value
    for value to the mask drawn into the testbed's own target.
 
-   Measured (Mesa llvmpipe, OSMesa): every check above as stated, 256 in
+   Measured (Mesa llvmpipe, OSMesa): every check above as stated, 261 in
    about 1 s.
    Can fail (each shown once, in a local copy of shadowkit_gl.h):
    - the ring poll taking the oldest buffer landed instead of the newest:
@@ -84,6 +88,9 @@
      program 39 current after" and a GL_INVALID_VALUE caught by desc.debug
      in the point-light frames, where a caller-owns light's mask program,
      left current, was deleted with its light (5 checks);
+   - the active unit still taken as known after a callback: "after a
+     callback switching units: active 0x84c5, unit 0 holds 7 (was 8), unit
+     3 8 (was 9)" (the table's unit put back on unit 3);
    - desc.debug not asking for a remembered texture's size: "new storage,
      not forgotten, debug: ok ()". */
 #define SHADOWKIT_IMPLEMENTATION
@@ -766,6 +773,59 @@ done:
     gt_env_free(&e);
 }
 
+/* ---- a callback that leaves another unit active ---- */
+static void unit_draw(void *user, const skgl_draw_info *info) {
+    gt_env *e = (gt_env *)user;
+    (void)info;
+    tb_gl_mesh_draw(&e->gl, &e->mesh, 0, 0);
+    e->gl.ActiveTexture(0x84C0 + 3);   /* allowed: the contract leaves units to the callback */
+}
+
+static void test_callback_units(void) {
+    gt_env e;
+    skgl_context *sk;
+    skgl_shadow_desc d;
+    skgl_shadow *s = NULL;
+    skgl_scene sc;
+    skgl_camera ca = view_a();
+    unsigned t0 = 0, t3 = 0;
+    int b0 = -1, b3 = -1, active = -1;
+    if (env_init(&e) != 0) return;
+    sc = gt_scene(&e);
+    sc.draw = unit_draw;
+    sk = ring_context(1, 0, 0);
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_RMSM;
+    d.resolution = 4096;
+    SK_CHECK(sk && skgl_shadow_create(sk, &d, &s) == SK_OK);
+    if (!s) { skgl_destroy(sk); gt_env_free(&e); return; }
+    /* the caller: its textures on units 0 and 3, unit 5 active; an RMSM
+       render without analysis uploads its page table on unit 0 first */
+    e.gl.GenTextures(1, &t0);
+    e.gl.GenTextures(1, &t3);
+    e.gl.ActiveTexture(0x84C0 + 3);
+    e.gl.BindTexture(0x0DE1, t3);
+    e.gl.ActiveTexture(0x84C0);
+    e.gl.BindTexture(0x0DE1, t0);
+    e.gl.ActiveTexture(0x84C0 + 5);
+    SK_CHECK(skgl_shadow_render(sk, s, &ca, &sc, light_dir()) == SK_OK);
+    e.gl.GetIntegerv(0x84E0 /* ACTIVE_TEXTURE */, &active);
+    e.gl.ActiveTexture(0x84C0);
+    e.gl.GetIntegerv(0x8069 /* TEXTURE_BINDING_2D */, &b0);
+    e.gl.ActiveTexture(0x84C0 + 3);
+    e.gl.GetIntegerv(0x8069, &b3);
+    SK_CHECK_MSG(active == 0x84C0 + 5 && b0 == (int)t0 && b3 == (int)t3,
+                 "after a callback switching units: active 0x%x, unit 0 holds %d (was %u), unit 3 %d (was %u)",
+                 (unsigned)active, b0, t0, b3, t3);
+    e.gl.ActiveTexture(0x84C0);
+    e.gl.DeleteTextures(1, &t0);
+    e.gl.DeleteTextures(1, &t3);
+    SK_CHECK(e.gl.GetError() == 0);
+    skgl_shadow_destroy(sk, s);
+    skgl_destroy(sk);
+    gt_env_free(&e);
+}
+
 /* ---- the user's textures, remembered by name ---- */
 static void test_texture_cache(void) {
     gt_env e;
@@ -826,4 +886,5 @@ done:
     gt_env_free(&e);
 }
 
-SK_TEST_MAIN(test_ferko_ring, test_rmsm_ring, test_timer_ring, test_program_cache, test_state_modes, test_texture_cache)
+SK_TEST_MAIN(test_ferko_ring, test_rmsm_ring, test_timer_ring, test_program_cache, test_state_modes,
+             test_callback_units, test_texture_cache)
