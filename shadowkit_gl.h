@@ -9,7 +9,7 @@
          #define SHADOWKIT_IMPLEMENTATION
          #define SHADOWKIT_GL_IMPLEMENTATION
          #include "shadowkit_gl.h"          (includes shadowkit.h)
-     No system GL header is needed: the ~50 entry points shadowkit uses are
+     No system GL header is needed: the ~90 entry points shadowkit uses are
      loaded into a private table through the getproc function you pass
      (glfwGetProcAddress, eglGetProcAddress, OSMesaGetProcAddress...), so it
      coexists with glad, GLEW or anything else.
@@ -39,6 +39,19 @@
      call skgl_set_model(gl, matrix) before an object whose model matrix is
      not the identity. info gives the pass's view-projection, its kind and
      index (cascade) and its frustum, so you can cull.
+     A pass of several layers, faces or pages binds its program and sets
+     the identity model once, before the first callback; after a callback
+     that called skgl_set_model it sets the identity again. So the callback
+     may change: the model (skgl_set_model), the vertex array, buffer and
+     texture bindings, the active texture unit and sampler bindings (the
+     depth program samples nothing), and the current program, if it binds
+     info->program again before it returns (a caster program of its own
+     for skinning or alpha-tested foliage: then it sets its own view-
+     projection from info->view_proj). Everything else (framebuffer,
+     viewport, scissor, depth, culling, polygon offset and mode) it must
+     leave as it found it. With desc.debug the program is checked after
+     each callback (SK_ERR_INVALID_ARG, and skgl_error_log says so). The
+     default mode puts the caller's vertex array back after the passes.
 
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
@@ -66,15 +79,22 @@
                     stats.maps = partitions), the partition picked per pixel.
      SKGL_FERKO     one map whose crop and size come from the camera's depth
                     buffer (Ferko, seed 000): call skgl_shadow_analyze()
-                    first; .resolution is the largest size it may take;
-                    .ferko_latency = 1 reads the estimate a frame late
-                    (no CPU-GPU stall).
+                    first; .resolution is the largest size it may take.
+                    By default (.ferko_latency 1) the estimate comes back
+                    through the read-back ring (READ-BACKS) and is used a
+                    frame later: no CPU-GPU stall, but fast motion can
+                    clip the crop; SKGL_LATENCY_SYNC uses this frame's.
      SKGL_RMSM      a virtual map (.resolution, 16384 by default) of pages
                     (.rmsm_page_size) rendered only where the view needs them,
                     at the level of detail it needs (seed 002): call
                     skgl_shadow_analyze() first; pages live in a pool of
                     .rmsm_pool_pages^2 slots, found through a page table
-                    (texture unit `unit` + 1 in skgl_shadow_bind).
+                    (texture unit `unit` + 1 in skgl_shadow_bind). The page
+                    requests come back through the read-back ring: the
+                    pages of the last frame's requests are rendered
+                    (.rmsm_latency 1, the default; SKGL_LATENCY_SYNC: this
+                    frame's); where a page is missing the lookup falls back
+                    to a coarser resident one.
      Focused crops end the shadow range where the scene ends and fit the view
      clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
      sphere that depends only on the camera's projection and the split
@@ -144,15 +164,78 @@
      Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques", GDC.
 
    GL STATE
-     Every call saves and restores the state it touches (framebuffer
-     bindings, viewport, scissor, program, VAO, active texture and the 2D,
-     2D-array, cube-map texture and sampler bindings of the units it uses,
-     GL_TEXTURE_CUBE_MAP_SEAMLESS, depth test
-     and function and mask, cull face, blend, polygon offset, colour mask,
-     clear depth), like Dear ImGui's OpenGL3 backend. With desc.debug set,
-     glGetError is checked after every pass and a GL error is reported as
-     SK_ERR_GL. skgl_gl_object_count() tells how many GL objects the context
-     holds (0 after every shadow and the context are destroyed).
+     Two modes, skgl_desc.caller_owns_state:
+     0 (the default): every call leaves the GL state as it found it. It
+       reads only what it touches, once, the first time (glGet*, glIsEnabled),
+       sets only what differs, and puts back only what it changed (a
+       standard map's render and mask: 73 GL calls a frame, 29 of them
+       reads; skgl_shadow_bind 10).
+     1: nothing is read and nothing put back: each call sets what it needs
+       (40 GL calls a frame for the same render and mask; skgl_shadow_bind
+       6) and leaves it, but for framebuffer 0 (draw and read) and no
+       pixel pack or unpack buffer, so that your next calls cannot land in
+       shadowkit's objects. Set the state your own passes need after
+       shadowkit's calls. What a call may leave:
+         render (directional, point): depth test on, GL_LESS, depth writes
+           on, culling off, polygon offset on with the light's bias (off
+           without), polygon mode GL_FILL, scissor test off (FERKO's
+           smaller maps, VSDCT: on, with its rectangle), its viewport,
+           shadowkit's depth program, the vertex array your callback left;
+         mask, analyze: blending and culling off, colour mask all on,
+           polygon mode GL_FILL, scissor off (a point light's .scissor: on,
+           with the light's rectangle), its viewport, its program, its
+           empty vertex array, GL_PROGRAM_POINT_SIZE on (RMSM's analyze),
+           GL_TEXTURE_CUBE_MAP_SEAMLESS on for a cube light's mask and off
+           for VSDCT's, the pixel pack skips 0 (analyze; RMSM's also the
+           pack alignment 1 and row length 0); textures on units 0-3: unit 0 the map (directional:
+           with shadowkit's comparison sampler; point: sampler 0, the map
+           compares by itself), 1 the depth texture, 2 the normals (both
+           with shadowkit's nearest-texel sampler), 3 RMSM's page table or
+           VSDCT's indirection (sampler 0); the analysis uses unit 1 only
+           (left active); unit 0 active after a mask;
+         create calls: texture unit 0 bindings, unpack alignment 1, row
+           length and skips 0, the last program linked (skgl_create);
+         skgl_*_bind: the map and its sampler on `unit`, RMSM's page table
+           or VSDCT's indirection on `unit` + 1, which stays active.
+       The one read this mode makes: a point light's resolution selection
+       without .screen_w/.screen_h reads the viewport. Program locations
+       are trusted from the cache (skgl_forget_program).
+     In both modes a pass sets glPolygonMode(GL_FILL) (a host drawing in
+     wireframe gets filled maps and masks) and puts the caller's program
+     back only if glIsProgram says it still exists (a program deleted while
+     current lives only as long as it stays current: Dear ImGui's issue
+     #6220). Framebuffers are checked complete when they are made (and a
+     cube light's again when its mip level changes); the mask texture is
+     attached to shadowkit's mask framebuffer at every mask call, checked
+     the first time its name comes by, and stays attached until the next
+     mask call (skgl_forget_texture lets go of it at once). Sizes of your
+     textures are asked once per name (skgl_forget_texture after giving one
+     new storage; desc.debug asks every time and refuses a size that
+     changed under the same name). Uniform locations are looked up at link time for
+     shadowkit's programs and on the first skgl_*_bind of yours (a cache of
+     16 programs); constants (sampler units, filter, bias) are sent when a
+     program holds another light's, the rest when it changes or, for the
+     matrices, split depths, light direction and position, every call.
+     Area lights (skgl_soft_*) save and restore the whole state in both
+     modes. With desc.debug set, glGetError is checked after every pass
+     and a GL error is reported as SK_ERR_GL. skgl_gl_object_count() tells
+     how many GL objects the context holds (0 after every shadow and the
+     context are destroyed).
+
+   READ-BACKS
+     What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
+     page requests, a byte per page of every level: 32 KB for 16384 /
+     128) is read into the next of three pixel pack buffers, followed by a
+     fence. Later calls poll the fences with a zero timeout (never waiting;
+     the poll flushes, or a fence might never reach the GPU) and use the
+     newest buffer that has landed: a frame late on a GPU that keeps up,
+     more on one that does not, and the last result stays in use until a
+     newer one lands. When all three are still in flight no new read-back
+     is issued. Read back in the same frame, with the stall that costs
+     (the CPU waits for the GPU to finish every command before it):
+     SKGL_LATENCY_SYNC, every frame; the first analysis of a light (no
+     earlier result exists), once. A FERKO light never analysed renders
+     the focused map at full resolution; an RMSM light, the coarsest page.
 
    LARGE WORLDS
      Directional lights work relative to an origin near the camera (its
@@ -166,10 +249,14 @@
      work in world space.
 
    TIMING
-     With desc.timing set, each pass is wrapped in a GL_TIME_ELAPSED query
-     and its result read back at once (a CPU-GPU sync: for measuring, not
-     shipping). skgl_shadow_stats() returns ms per pass, shadow texels
-     rendered and draw passes.
+     With desc.timing set, each timed pass (render, mask, analyze) of a
+     directional or point light takes the next of three GL_TIME_ELAPSED
+     queries. Before it, the query three passes old (about to be reused)
+     and the one two passes old are read if GL_QUERY_RESULT_AVAILABLE says
+     they are done; if the older is not, the pass goes untimed rather than
+     wait. skgl_shadow_stats() reports the latest result read (two frames
+     old; -1 before the first), shadow texels rendered and draw passes.
+     Area lights read their queries at once (a sync: for measuring).
 
    LICENSE: see the end of the file.
 */
@@ -220,13 +307,22 @@ typedef struct skgl_draw_info {
     sk_vec3 light_pos;
     float light_range;
     struct skgl_point *point;
+    /* shadowkit's depth program, current when the callback starts: a
+       callback that binds a program of its own binds this one again before
+       it returns (SCENE ACCESS) */
+    unsigned program;
 } skgl_draw_info;
 typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
 
 typedef struct skgl_desc {
     skgl_getproc_fn getproc;      /* required */
-    int debug;                    /* glGetError after each pass -> SK_ERR_GL */
-    int timing;                   /* GL timer queries into skgl_stats */
+    int debug;                    /* glGetError after each pass -> SK_ERR_GL; checks the draw
+                                     callback's program and the cached program locations */
+    int timing;                   /* GL timer queries into skgl_stats, read two or three frames late */
+    int caller_owns_state;        /* 0: every call leaves the GL state as it found it (reads
+                                     what it touches, puts back what it changed); 1: no
+                                     state is read or put back, each call sets what it
+                                     needs and leaves what GL STATE lists [0] */
 } skgl_desc;
 
 typedef enum skgl_technique {
@@ -270,10 +366,12 @@ typedef struct skgl_shadow_desc {
     sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
                                      the paper's zeta 0.25, sigma 0.5, h_max 4,
                                      nw_max 2 (h_max * nw_max <= SKGL_MAX_CASCADES) */
-    int ferko_latency;            /* FERKO: 0 the estimate of this frame, read back at
-                                     once (a CPU-GPU sync) [0]; 1 last frame's,
-                                     through a pixel buffer: no stall, one frame
-                                     late (fast motion can clip the crop) */
+    int ferko_latency;            /* FERKO: [1] the estimate of an earlier frame (the last one
+                                     whose read-back has landed: a frame late on a GPU that
+                                     keeps up), through a ring of fenced pixel buffers, no
+                                     stall; fast motion can clip the crop. SKGL_LATENCY_SYNC:
+                                     this frame's, read back at once (a CPU-GPU stall every
+                                     frame). The first analysis reads at once either way. */
     int rmsm_page_size;           /* RMSM: page side in texels, a power of two in [16, 1024] [128] */
     int rmsm_pool_pages;          /* RMSM: the physical pool holds this^2 pages, 2..64 [24];
                                      .resolution is the virtual map's side, a power
@@ -282,8 +380,13 @@ typedef struct skgl_shadow_desc {
                                      times sqrt(near*far) of the receivers, its
                                      near plane with it: more uniform texels
                                      [0.5]; < 0: none (the plain PSM) */
+    int rmsm_latency;             /* RMSM: [1] the pages of an earlier frame's requests (the
+                                     last read-back landed), through the ring, no stall;
+                                     SKGL_LATENCY_SYNC: this frame's (a stall every frame).
+                                     The first analysis reads at once either way. */
 } skgl_shadow_desc;
 #define SKGL_LAMBDA_UNIFORM (-1.0f)
+#define SKGL_LATENCY_SYNC (-1)        /* ferko_latency, rmsm_latency: no latency, a stall */
 
 typedef struct skgl_camera {
     sk_mat4 view, proj;           /* proj from sk_mat4_perspective (near/far are read back from it) */
@@ -296,8 +399,9 @@ typedef struct skgl_scene {
 } skgl_scene;
 
 typedef struct skgl_stats {
-    float shadow_ms;              /* GPU time of the depth passes; -1 without timing */
-    float mask_ms;                /* GPU time of the last skgl_shadow_mask; -1 without timing */
+    float shadow_ms;              /* GPU time of the depth passes (the latest measured: two frames
+                                     old, TIMING); -1 without timing or before the first */
+    float mask_ms;                /* GPU time of a skgl_shadow_mask, likewise */
     double texels;                /* shadow texels rendered (sum of viewport areas) */
     int passes;                   /* draw callbacks made */
     int maps;                     /* layers rendered */
@@ -308,7 +412,7 @@ typedef struct skgl_stats {
     int warped[SKGL_MAX_CASCADES];        /* 1: the layer's map is perspective-warped */
     int depth_reversed;                   /* PSM: light behind the viewer (depth order flipped back) */
     int lspsm_fallback;                   /* LSPSM: no trapezoid axis (view along the light): one focused map */
-    float analysis_ms;                    /* FERKO: GPU time of the last skgl_shadow_analyze; -1 without timing */
+    float analysis_ms;                    /* FERKO, RMSM: GPU time of a skgl_shadow_analyze, as shadow_ms */
     sk_res_estimate estimate;             /* FERKO: the estimate the last render used, in the clip
                                              space of estimate_light (see skgl_shadow_analyze) */
     sk_mat4 estimate_light;               /* FERKO: the uncropped light frustum of that estimate */
@@ -339,6 +443,18 @@ SKGLDEF void skgl_destroy(skgl_context *ctx);
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
 /* inside a draw callback: model matrix of the next objects (column-major) */
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16]);
+/* skgl_*_bind looks a program's uniform locations up once and remembers
+   them (and which light's constants it holds) by program name. The default
+   mode notices a program linked again or made anew under a freed name (two
+   reads a bind); with caller_owns_state it reads nothing: call this after
+   linking the program again, or when deleting it */
+SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program);
+/* the masks and the analysis remember a texture's size (when the camera
+   gives none) and that it is renderable, by name: call this after giving
+   the texture new storage, or before deleting it (a mask texture stays
+   attached to shadowkit's framebuffer until the next mask call; this lets
+   go of it at once) */
+SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture);
 
 SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out);
 SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s);
@@ -356,16 +472,22 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
 /* SKGL_RMSM: the same call finds the pages of the virtual map the view
    needs (per pixel level of detail from the screen derivatives of its
-   virtual-map texel coordinates, requests reduced on the GPU, read back);
-   the render draws them into the page pool. Without a call, only the
-   coarsest page (the whole map at pool-page resolution) is rendered.
-   SKGL_FERKO: estimates the crop and the resolution of the next
+   virtual-map texel coordinates, requests reduced on the GPU, read back:
+   by default through the ring, the render then draws the pages of the
+   latest requests landed, READ-BACKS); the render draws them into the page
+   pool. Without a call, only the coarsest page (the whole map at pool-page
+   resolution) is rendered.
+   SKGL_FERKO: estimates the crop and the resolution of a later
    skgl_shadow_render from the camera's depth texture (window depth, the
-   G-buffer of the frame; seed 000). The light frustum before the crop is an
-   orthographic map around scene->bounds; the estimate (stats.estimate) is
-   in its clip space. Call it before skgl_shadow_render with the same camera,
-   scene and light. Nothing visible in the light: a 1x1 map. Without a call,
-   the render falls back to the focused map at full resolution. */
+   G-buffer of the frame; seed 000): the next render's with
+   SKGL_LATENCY_SYNC and on the first call, else the render after it lands
+   (READ-BACKS). The light frustum before the crop is an orthographic map
+   around scene->bounds; the estimate (stats.estimate, set by the render
+   that uses it) is in its clip space. Call it before skgl_shadow_render
+   with the same camera, scene and light. Nothing visible in the light: a
+   1x1 map. Without a call, the render falls back to the focused map at
+   full resolution. The depth texture's size is asked of GL once per name
+   (skgl_forget_texture). */
 SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                       const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex);
 /* GLSL (330 core) declaring the uniforms and
@@ -936,8 +1058,7 @@ static const char skgl__src_shadow_mask_frag[] =
     "uniform sampler2D u_depth;\n"
     "uniform sampler2D u_normals;\n"
     "uniform int u_has_normals;\n"
-    "uniform mat4 u_inv_view_proj;\n"
-    "uniform mat4 u_view;\n"
+    "uniform mat4 u_camera[2];           /* [0]: inverse view-projection, [1]: view (one upload) */\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
@@ -948,13 +1069,13 @@ static const char skgl__src_shadow_mask_frag[] =
     "       branch keeps the control flow uniform) */\n"
     "    if (d >= 1.0 && sk_rmsm == 0 && u_has_normals != 0) { o_visibility = 1.0; return; }\n"
     "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
-    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w = u_camera[0] * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
     "    vec3 world = w.xyz / w.w;\n"
     "    /* the position four float ulps of depth away: the receiver's uncertainty */\n"
-    "    vec4 w2 = u_inv_view_proj * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w2 = u_camera[0] * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * 2.0 - 1.0, 1.0);\n"
     "    sk_receiver_slack = distance(w2.xyz / w2.w, world);\n"
     "    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);\n"
-    "    float view_depth = -(u_view * vec4(world, 1.0)).z;\n"
+    "    float view_depth = -(u_camera[1] * vec4(world, 1.0)).z;\n"
     "    float v = sk_shadow(world, n, view_depth);\n"
     "    o_visibility = d >= 1.0 ? 1.0 : v;\n"
     "}\n"
@@ -1060,28 +1181,46 @@ static const char skgl__src_ferko_analyze_frag[] =
     "}\n"
     ;
 static const char skgl__src_ferko_reduce_frag[] =
-    "/* Resolution estimation, reduction (seed 000, Sec. 3.3): the MIN of a 4x4\n"
-    "   neighbourhood of both analysis textures (the bounds are stored as\n"
-    "   (min x, min y, -max x, -max y), so one MIN serves both ends). Texels\n"
-    "   outside the source level's u_src_size are skipped. */\n"
-    "uniform sampler2D u_bounds;\n"
-    "uniform sampler2D u_patch;\n"
+    "/* Resolution estimation, reduction (Ferko 2013, seed 000, Sec. 3.3): the\n"
+    "   MIN of the analysis texels, layer 0 the bounds stored as (min x, min y,\n"
+    "   -max x, -max y), so one MIN serves both ends, layer 1 the patch. Texels\n"
+    "   outside the source level's u_src_size are skipped.\n"
+    "   SK_FERKO_FINAL 0: each output texel reduces a 16x16 block of the source\n"
+    "   into the two layers of the next level (attachments 0 and 1).\n"
+    "   SK_FERKO_FINAL 1: the last pass, over a source of at most 32x32 texels,\n"
+    "   into one 2x1 RGBA32F texture: texel 0 the bounds, texel 1 the patch, so\n"
+    "   that one glReadPixels of 2x1 texels reads the whole estimate. */\n"
+    "uniform sampler2DArray u_src;\n"
     "uniform ivec2 u_src_size;\n"
+    "#if SK_FERKO_FINAL\n"
+    "out vec4 o_result;\n"
+    "#else\n"
     "layout(location = 0) out vec4 o_bounds;\n"
     "layout(location = 1) out vec4 o_patch;\n"
+    "#endif\n"
     "void main()\n"
     "{\n"
-    "    ivec2 base = ivec2(gl_FragCoord.xy) * 4;\n"
+    "#if SK_FERKO_FINAL\n"
+    "    const int n = 32;\n"
+    "    ivec2 base = ivec2(0);\n"
+    "#else\n"
+    "    const int n = 16;\n"
+    "    ivec2 base = ivec2(gl_FragCoord.xy) * 16;\n"
+    "#endif\n"
     "    vec4 b = vec4(3.0e38), p = vec4(3.0e38, 3.0e38, 0.0, 0.0);\n"
-    "    for (int y = 0; y < 4; y++)\n"
-    "        for (int x = 0; x < 4; x++) {\n"
+    "    for (int y = 0; y < n; y++)\n"
+    "        for (int x = 0; x < n; x++) {\n"
     "            ivec2 q = base + ivec2(x, y);\n"
     "            if (q.x >= u_src_size.x || q.y >= u_src_size.y) continue;\n"
-    "            b = min(b, texelFetch(u_bounds, q, 0));\n"
-    "            p = min(p, texelFetch(u_patch, q, 0));\n"
+    "            b = min(b, texelFetch(u_src, ivec3(q, 0), 0));\n"
+    "            p = min(p, texelFetch(u_src, ivec3(q, 1), 0));\n"
     "        }\n"
+    "#if SK_FERKO_FINAL\n"
+    "    o_result = gl_FragCoord.x < 1.0 ? b : p;\n"
+    "#else\n"
     "    o_bounds = b;\n"
     "    o_patch = p;\n"
+    "#endif\n"
     "}\n"
     ;
 static const char skgl__src_rmsm_analyze_frag[] =
@@ -1117,21 +1256,22 @@ static const char skgl__src_rmsm_request_vert[] =
     "/* RMSM page requests, reduced on the GPU: one point per pixel of the\n"
     "   analysis texture, drawn onto the texel of the page it needs in the\n"
     "   request atlas, so every page asked for by any pixel ends up set. Level l\n"
-    "   needs clamp(floor(lod), u_min_level, u_levels - 1) (sk_rmsm_page_requests\n"
-    "   with a raised minimum when the page pool is short). Atlas layout: level\n"
+    "   needs clamp(floor(lod), 0, u_levels - 1), as sk_rmsm_page_requests\n"
+    "   takes it; when the page pool is short, the CPU folds the requests of\n"
+    "   the finest levels into their ancestors (the same pages a raised minimum\n"
+    "   level would request, from the one read-back). Atlas layout: level\n"
     "   l's n_l = u_pages0 >> l pages per side start at column 2 u_pages0 - 2 n_l;\n"
     "   the atlas is (2 u_pages0 - 1) x u_pages0 texels. */\n"
     "uniform sampler2D u_samples;\n"
     "uniform int u_pages0;\n"
     "uniform int u_levels;\n"
-    "uniform int u_min_level;\n"
     "void main()\n"
     "{\n"
     "    ivec2 size = textureSize(u_samples, 0);\n"
     "    vec4 s = texelFetch(u_samples, ivec2(gl_VertexID % size.x, gl_VertexID / size.x), 0);\n"
     "    gl_PointSize = 1.0;\n"
     "    if (s.w < 0.5) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }   /* outside: clipped */\n"
-    "    int level = clamp(int(floor(s.z)), u_min_level, u_levels - 1);\n"
+    "    int level = clamp(int(floor(s.z)), 0, u_levels - 1);\n"
     "    int n = u_pages0 >> level;\n"
     "    ivec2 page = min(ivec2(s.xy * float(n)), ivec2(n - 1));\n"
     "    vec2 texel = vec2(float(2 * u_pages0 - 2 * n + page.x), float(page.y)) + 0.5;\n"
@@ -2031,6 +2171,26 @@ typedef unsigned long long skgl__u64;
 #define SKGL__NEAREST_MIPMAP_NEAREST 0x2700
 #define SKGL__COLOR_ATTACHMENT2 0x8CE2
 #define SKGL__UNITS 4                      /* texture units the mask pass uses: 0 .. 3 */
+#define SKGL__POLYGON_MODE 0x0B40
+#define SKGL__FRONT_AND_BACK 0x0408
+#define SKGL__FILL 0x1B02
+#define SKGL__COLOR 0x1800                 /* glClearBufferfv's buffers */
+#define SKGL__DEPTH 0x1801
+#define SKGL__R8 0x8229
+#define SKGL__QUERY_RESULT_AVAILABLE 0x8867
+#define SKGL__ACTIVE_UNIFORMS 0x8B86
+#define SKGL__SYNC_GPU_COMMANDS_COMPLETE 0x9117
+#define SKGL__SYNC_FLUSH_COMMANDS_BIT 0x00000001
+#define SKGL__ALREADY_SIGNALED 0x911A
+#define SKGL__CONDITION_SATISFIED 0x911C
+#define SKGL__PACK_ALIGNMENT 0x0D05
+#define SKGL__PACK_ROW_LENGTH 0x0D02
+#define SKGL__PACK_SKIP_ROWS 0x0D03
+#define SKGL__PACK_SKIP_PIXELS 0x0D04
+#define SKGL__UNPACK_ALIGNMENT 0x0CF5
+#define SKGL__UNPACK_ROW_LENGTH 0x0CF2
+#define SKGL__UNPACK_SKIP_ROWS 0x0CF3
+#define SKGL__UNPACK_SKIP_PIXELS 0x0CF4
 
 #define SKGL__FUNCS(X) \
     X(skgl__enum, GetError, (void)) \
@@ -2111,7 +2271,17 @@ typedef unsigned long long skgl__u64;
     X(void, EndQuery, (skgl__enum target)) \
     X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v)) \
     X(void, BlendEquationSeparate, (skgl__enum rgb, skgl__enum alpha)) \
-    X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a))
+    X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a)) \
+    X(void, PolygonMode, (skgl__enum face, skgl__enum mode)) \
+    X(skgl__bool, IsProgram, (skgl__uint p)) \
+    X(void, ClearBufferfv, (skgl__enum buffer, skgl__int drawbuffer, const float *value)) \
+    X(void, TexSubImage2D, (skgl__enum target, skgl__int level, skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, const void *data)) \
+    X(void *, FenceSync, (skgl__enum condition, skgl__uint flags)) \
+    X(skgl__enum, ClientWaitSync, (void *sync, skgl__uint flags, skgl__u64 timeout)) \
+    X(void, DeleteSync, (void *sync)) \
+    X(void, GetQueryObjectuiv, (skgl__uint id, skgl__enum pname, skgl__uint *v)) \
+    X(void, GetUniformiv, (skgl__uint p, skgl__int loc, skgl__int *v)) \
+    X(void, GetUniformfv, (skgl__uint p, skgl__int loc, float *v))
 
 typedef struct skgl__api {
 #define SKGL__X(ret, name, args) ret (SKGL__APIENTRY *name) args;
@@ -2119,47 +2289,124 @@ typedef struct skgl__api {
 #undef SKGL__X
 } skgl__api;
 
+/* ---- what the context and the lights keep between calls ------------------ */
+#define SKGL__PROG_CACHE 16                /* user programs whose snippet locations are cached */
+#define SKGL__TEX_CACHE 8                  /* user textures whose size / framebuffer check is cached */
+#define SKGL__TIMER_RING 3                 /* timer queries per timed pass, read two or three frames late */
+#define SKGL__RING 3                       /* pixel pack buffers per late read-back */
+#define SKGL__FERKO_LEVELS 5               /* analysis + reductions, for G-buffers up to 65536 a side */
+#define SKGL__LOCS 19                      /* the most snippet uniforms (the directional one's) */
+enum { SKGL__PK_SHADOW = 0, SKGL__PK_POINT = 1 };
+
+/* a program holding a GLSL snippet (skgl__progent_lookup) */
+typedef struct skgl__progent {
+    skgl__uint program;                    /* 0: a free entry */
+    int kind;                              /* SKGL__PK_SHADOW, SKGL__PK_POINT */
+    unsigned tick;                         /* last use: the least recent goes first */
+    skgl__int loc[SKGL__LOCS];
+    skgl__int uniforms;                    /* GL_ACTIVE_UNIFORMS at look-up (the default mode's check) */
+    unsigned owner;                        /* the light whose constants the program holds (0: none) */
+    int unit;                              /* the texture unit those name */
+    skgl__int sentinel_i;                  /* sk_rmsm_page / sk_point_range as last set (the debug check) */
+    float sentinel_f;
+    /* uniforms that seldom change, as last sent (valid while owner is set) */
+    int layers, min_level, has_normals;
+    float extent[2], select, texel;
+    unsigned layout;
+} skgl__progent;
+
+typedef struct skgl__texent {
+    skgl__uint tex;                        /* 0: a free entry */
+    unsigned tick;
+    int w, h;                              /* level 0, as GL had it (0: not asked) */
+    int fb_ok;                             /* 1: checked complete as a mask target */
+} skgl__texent;
+
+typedef struct skgl__timer {
+    skgl__uint q[SKGL__TIMER_RING];        /* 0 without desc.timing */
+    unsigned char pending[SKGL__TIMER_RING];
+    unsigned frame;                        /* passes timed so far; slot frame % ring next */
+    int running;
+    float ms;                              /* the latest result read; -1 before any */
+} skgl__timer;
+
+typedef struct skgl__ring {
+    skgl__uint buf[SKGL__RING];            /* GL_PIXEL_PACK_BUFFERs of `bytes` each */
+    void *sync[SKGL__RING];                /* the fence after the read-back into buf[i]; NULL: free */
+    size_t bytes;
+    int next;                              /* the slot the next read-back takes */
+    /* what each read-back is of: the light frustum and origin of its analysis */
+    sk_mat4 lvp[SKGL__RING];
+    double origin[SKGL__RING][3];
+} skgl__ring;
+
 struct skgl_context {
     skgl__api gl;
     int debug, timing, objects;
+    int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
     skgl__uint depth_prog, mask_prog, empty_vao, fbo, query;
+    skgl__uint mask_fbo;                   /* the deferred masks' target: the mask texture attached per call */
+    skgl__uint mask_fbo_tex;               /* the texture attached to it now (0: none) */
     skgl__uint cmp_sampler, point_sampler;
-    skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 4x4 MIN reduction */
+    skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 16x16 MIN reduction */
+    skgl__uint final_prog;                 /* resolution estimation: the last reduction, into 2x1 texels */
     skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
     skgl__int depth_u_view_proj, depth_u_model;
     skgl__int model_loc;                   /* where skgl_set_model writes: the current pass's u_model */
+    int model_dirty;                       /* skgl_set_model was called since the pass set its model */
     double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
+    /* the locations of shadowkit's own programs, found at link time, and the
+       values of the uniforms that seldom change, as last sent */
+    skgl__progent mask_ent;                /* the directional mask's snippet uniforms */
+    skgl__int mask_u_has_normals, mask_u_camera;
+    skgl__int ferko_u_ndc_to_light, ferko_u_world_w, reduce_u_src_size, final_u_src_size;
+    skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
+    int reduce_src[2], final_src[2], request_pages0, request_levels;
+    float rmsm_vres;
+    skgl__progent progs[SKGL__PROG_CACHE]; /* the user's programs (skgl_*_bind) */
+    skgl__texent texs[SKGL__TEX_CACHE];    /* the user's mask and depth textures */
+    unsigned tick;                         /* cache use counter */
+    unsigned next_id;                      /* the id of the next light made (never 0) */
     char log[1024];
 };
 
 struct skgl_shadow {
     skgl_shadow_desc desc;
+    unsigned id;                   /* per context, never reused: whose constants a program holds */
     skgl__uint tex;                /* GL_TEXTURE_2D_ARRAY of depth, one layer per map */
+    skgl__uint fbo[SKGL_MAX_CASCADES];   /* one framebuffer per layer, checked when made */
     int layers;                    /* allocated */
     int maps;                      /* used by the last render (LSPSM: its partition count) */
     float select_extent;           /* LSPSM: |light NDC| <= this selects a partition (its rect) */
     sk_mat4 render_vp[SKGL_MAX_CASCADES];   /* the depth pass's matrix (vp: the lookup's) */
     int view_w, view_h;            /* viewport of every layer's depth pass */
-    /* FERKO: analysis targets (bounds, patch) at 1/4 and 1/16 of the G-buffer,
-       the size they were made for, the readback buffer, and the estimate */
-    skgl__uint ferko_tex[2][2], ferko_pbo;
-    int ferko_w, ferko_h;
-    int ferko_state;               /* 0 no estimate, 1 estimate ready, 2 a readback pending in the PBO */
-    sk_mat4 ferko_lvp, ferko_pending_lvp;   /* the uncropped light frustum of the estimate / of the pending one */
+    skgl__timer t_render, t_mask, t_analyze;
+    /* FERKO: the analysis at 1/4 of the G-buffer and its 16x16 reductions
+       (2-layer textures: bounds, patch; skgl__ferko_targets), the final
+       2x1 texel pair and its read-back ring; the G-buffer size they were
+       made for; the estimate in use */
+    skgl__uint ferko_tex[3], ferko_fbo[3], ferko_final, ferko_final_fbo;
+    int ferko_lw[SKGL__FERKO_LEVELS], ferko_lh[SKGL__FERKO_LEVELS];   /* [0] the analysis, then the reductions */
+    int ferko_w, ferko_h, ferko_levels;
+    skgl__ring ferko_ring;
+    int ferko_state;               /* 0 no estimate yet, 1 an estimate */
+    sk_mat4 ferko_lvp;             /* the uncropped light frustum of the estimate */
     sk_res_estimate ferko_est;
-    /* RMSM: the per-pixel samples (G-buffer size: ferko_w x ferko_h), the
-       request atlas and the page table (atlas_w x atlas_h), their CPU copies,
-       the pages resident this frame, the virtual map's light frustum */
-    skgl__uint rmsm_samples, rmsm_requests, rmsm_table;
+    /* RMSM: the per-pixel samples (G-buffer size) and their framebuffer,
+       the request atlas (R8) and the page table (RGBA8), atlas_w x atlas_h,
+       the requests read back, the table as uploaded and as built, the
+       pages resident, the virtual map's light frustum, the read-back ring */
+    skgl__uint rmsm_samples, rmsm_samples_fbo, rmsm_requests, rmsm_requests_fbo, rmsm_table;
     int atlas_w, atlas_h, pages0, levels, tex_size, rmsm_w, rmsm_h;
-    unsigned char *rmsm_req_cpu, *rmsm_table_cpu;
+    unsigned char *rmsm_req_cpu, *rmsm_table_cpu, *rmsm_table_new;
     sk_page *rmsm_pages;
     int rmsm_npages, rmsm_analyzed;
     sk_mat4 rmsm_lvp;
+    skgl__ring rmsm_ring;
     sk_mat4 vp[SKGL_MAX_CASCADES];
     /* the world point vp and render_vp are relative to (they take p - origin;
-       see skgl__origin), and those of the FERKO estimates and the RMSM frustum */
-    double origin[3], ferko_origin[3], ferko_pending_origin[3], rmsm_origin[3];
+       see skgl__origin), and those of the FERKO estimate and the RMSM frustum */
+    double origin[3], ferko_origin[3], rmsm_origin[3];
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl_stats stats;
 };
@@ -2371,28 +2618,766 @@ static skgl__uint skgl__sampler(skgl_context *ctx, int compare)
     return s;
 }
 
+/* ---- the state one call touches -----------------------------------------
+   Directional and point lights go through this tracker instead of a full
+   save and restore: each piece of state is set through skgl__st_set, which
+   (default mode) reads the caller's value the first time the call touches
+   it, and skips the set when the value is already there; skgl__st_end puts
+   back only what changed, in as few calls as it can (one glBindFramebuffer
+   for both targets when they were the same, the texture units ending on the
+   one the caller had active). With skgl_desc.caller_owns_state nothing is
+   read: the first set of each piece is unconditional, later ones within the
+   call are skipped when redundant, and skgl__st_end unbinds only what would
+   redirect the caller's own later calls into shadowkit's objects (the
+   framebuffers, the pixel pack and unpack buffers). Everything else stays
+   as the manual's GL STATE section lists. */
+enum {
+    SKGL__S_DRAW_FB, SKGL__S_READ_FB, SKGL__S_VIEWPORT, SKGL__S_SCISSOR_BOX,
+    SKGL__S_SCISSOR_TEST, SKGL__S_BLEND, SKGL__S_CULL_FACE, SKGL__S_DEPTH_TEST, SKGL__S_POLY_FILL,
+    SKGL__S_POINT_SIZE, SKGL__S_SEAMLESS,
+    SKGL__S_DEPTH_FUNC, SKGL__S_DEPTH_MASK, SKGL__S_COLOR_MASK, SKGL__S_POLY_OFFSET, SKGL__S_POLYGON_MODE,
+    SKGL__S_PROGRAM, SKGL__S_VAO, SKGL__S_PACK_BUFFER, SKGL__S_UNPACK_BUFFER,
+    SKGL__S_PACK_ALIGNMENT, SKGL__S_PACK_ROW_LENGTH, SKGL__S_PACK_SKIP_PIXELS, SKGL__S_PACK_SKIP_ROWS,
+    SKGL__S_UNPACK_ALIGNMENT, SKGL__S_UNPACK_ROW_LENGTH, SKGL__S_UNPACK_SKIP_PIXELS, SKGL__S_UNPACK_SKIP_ROWS,
+    SKGL__S_ACTIVE,
+    SKGL__S_UNIT0,                        /* unit u: + 4 u + (0 2D, 1 2D array, 2 cube map, 3 sampler) */
+    SKGL__S_COUNT = SKGL__S_UNIT0 + 4 * SKGL__UNITS
+};
+#define SKGL__S_TEX(u, k) (SKGL__S_UNIT0 + 4 * (u) + (k))
+#define SKGL__T_2D 0
+#define SKGL__T_2D_ARRAY 1
+#define SKGL__T_CUBE 2
+#define SKGL__T_SAMPLER 3
+
+#define SKGL__S_KNOWN 1u                  /* cur holds GL's value */
+#define SKGL__S_SAVED 2u                  /* orig holds the caller's value (default mode) */
+
+typedef struct skgl__st {
+    int restore;                          /* 1: default mode, read and put back */
+    unsigned char flags[SKGL__S_COUNT];
+    skgl__int cur[SKGL__S_COUNT][4], orig[SKGL__S_COUNT][4];
+} skgl__st;
+
+static int skgl__st_n(int item)
+{
+    return item == SKGL__S_VIEWPORT || item == SKGL__S_SCISSOR_BOX || item == SKGL__S_COLOR_MASK ? 4
+           : item == SKGL__S_POLY_OFFSET ? 2 : 1;
+}
+
+static skgl__enum skgl__st_cap(int item)
+{
+    switch (item) {
+    case SKGL__S_SCISSOR_TEST: return SKGL__SCISSOR_TEST;
+    case SKGL__S_BLEND: return SKGL__BLEND;
+    case SKGL__S_CULL_FACE: return SKGL__CULL_FACE;
+    case SKGL__S_DEPTH_TEST: return SKGL__DEPTH_TEST;
+    case SKGL__S_POLY_FILL: return SKGL__POLYGON_OFFSET_FILL;
+    case SKGL__S_POINT_SIZE: return SKGL__PROGRAM_POINT_SIZE;
+    case SKGL__S_SEAMLESS: return SKGL__TEXTURE_CUBE_MAP_SEAMLESS;
+    default: return 0;
+    }
+}
+
+static skgl__enum skgl__st_store_name(int item)
+{
+    static const skgl__enum names[8] = {SKGL__PACK_ALIGNMENT, SKGL__PACK_ROW_LENGTH, SKGL__PACK_SKIP_PIXELS,
+                                        SKGL__PACK_SKIP_ROWS, SKGL__UNPACK_ALIGNMENT, SKGL__UNPACK_ROW_LENGTH,
+                                        SKGL__UNPACK_SKIP_PIXELS, SKGL__UNPACK_SKIP_ROWS};
+    return names[item - SKGL__S_PACK_ALIGNMENT];
+}
+
+static const skgl__enum skgl__tex_targets[3] = {SKGL__TEXTURE_2D, SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_CUBE_MAP};
+static const skgl__enum skgl__tex_bindings[4] = {SKGL__TEXTURE_BINDING_2D, SKGL__TEXTURE_BINDING_2D_ARRAY,
+                                                 SKGL__TEXTURE_BINDING_CUBE_MAP, SKGL__SAMPLER_BINDING};
+
+/* GL's value of an item (a unit's item: with that unit active) */
+static void skgl__st_query(const skgl__api *gl, int item, skgl__int v[4])
+{
+    skgl__bool b[4] = {0, 0, 0, 0};
+    float f[2];
+    skgl__int mode[2] = {SKGL__FILL, SKGL__FILL};
+    if (skgl__st_cap(item)) { v[0] = gl->IsEnabled(skgl__st_cap(item)) != 0; return; }
+    if (item >= SKGL__S_PACK_ALIGNMENT && item <= SKGL__S_UNPACK_SKIP_ROWS) {
+        gl->GetIntegerv(skgl__st_store_name(item), v);
+        return;
+    }
+    if (item >= SKGL__S_UNIT0) { gl->GetIntegerv(skgl__tex_bindings[(item - SKGL__S_UNIT0) & 3], v); return; }
+    switch (item) {
+    case SKGL__S_DRAW_FB: gl->GetIntegerv(SKGL__DRAW_FRAMEBUFFER_BINDING, v); break;
+    case SKGL__S_READ_FB: gl->GetIntegerv(SKGL__READ_FRAMEBUFFER_BINDING, v); break;
+    case SKGL__S_VIEWPORT: gl->GetIntegerv(SKGL__VIEWPORT, v); break;
+    case SKGL__S_SCISSOR_BOX: gl->GetIntegerv(SKGL__SCISSOR_BOX, v); break;
+    case SKGL__S_DEPTH_FUNC: gl->GetIntegerv(SKGL__DEPTH_FUNC, v); break;
+    case SKGL__S_DEPTH_MASK: gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, b); v[0] = b[0] != 0; break;
+    case SKGL__S_COLOR_MASK:
+        gl->GetBooleanv(SKGL__COLOR_WRITEMASK, b);
+        v[0] = b[0] != 0; v[1] = b[1] != 0; v[2] = b[2] != 0; v[3] = b[3] != 0;
+        break;
+    case SKGL__S_POLY_OFFSET:
+        /* floats kept bit for bit in the int slots */
+        gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &f[0]);
+        gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &f[1]);
+        memcpy(v, f, sizeof f);
+        break;
+    case SKGL__S_POLYGON_MODE:
+        /* GL_POLYGON_MODE answers two values (front, back) in compatibility
+           contexts, and a core context's are equal (only GL_FRONT_AND_BACK
+           can be set): room for two, the first kept */
+        gl->GetIntegerv(SKGL__POLYGON_MODE, mode);
+        v[0] = mode[0];
+        break;
+    case SKGL__S_PROGRAM: gl->GetIntegerv(SKGL__CURRENT_PROGRAM, v); break;
+    case SKGL__S_VAO: gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, v); break;
+    case SKGL__S_PACK_BUFFER: gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, v); break;
+    case SKGL__S_UNPACK_BUFFER: gl->GetIntegerv(SKGL__PIXEL_UNPACK_BUFFER_BINDING, v); break;
+    case SKGL__S_ACTIVE: gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, v); break;
+    default: break;
+    }
+}
+
+/* sets an item in GL (a unit's texture binding: with that unit active) */
+static void skgl__st_apply(const skgl__api *gl, int item, const skgl__int v[4])
+{
+    float f[2];
+    if (skgl__st_cap(item)) { skgl__enable(gl, skgl__st_cap(item), v[0]); return; }
+    if (item >= SKGL__S_PACK_ALIGNMENT && item <= SKGL__S_UNPACK_SKIP_ROWS) {
+        gl->PixelStorei(skgl__st_store_name(item), v[0]);
+        return;
+    }
+    if (item >= SKGL__S_UNIT0) {
+        int k = (item - SKGL__S_UNIT0) & 3;
+        if (k == SKGL__T_SAMPLER) gl->BindSampler((skgl__uint)((item - SKGL__S_UNIT0) >> 2), (skgl__uint)v[0]);
+        else gl->BindTexture(skgl__tex_targets[k], (skgl__uint)v[0]);
+        return;
+    }
+    switch (item) {
+    case SKGL__S_DRAW_FB: gl->BindFramebuffer(SKGL__DRAW_FRAMEBUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_READ_FB: gl->BindFramebuffer(SKGL__READ_FRAMEBUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_VIEWPORT: gl->Viewport(v[0], v[1], v[2], v[3]); break;
+    case SKGL__S_SCISSOR_BOX: gl->Scissor(v[0], v[1], v[2], v[3]); break;
+    case SKGL__S_DEPTH_FUNC: gl->DepthFunc((skgl__enum)v[0]); break;
+    case SKGL__S_DEPTH_MASK: gl->DepthMask((skgl__bool)(v[0] != 0)); break;
+    case SKGL__S_COLOR_MASK:
+        gl->ColorMask((skgl__bool)(v[0] != 0), (skgl__bool)(v[1] != 0), (skgl__bool)(v[2] != 0),
+                      (skgl__bool)(v[3] != 0));
+        break;
+    case SKGL__S_POLY_OFFSET: memcpy(f, v, sizeof f); gl->PolygonOffset(f[0], f[1]); break;
+    case SKGL__S_POLYGON_MODE: gl->PolygonMode(SKGL__FRONT_AND_BACK, (skgl__enum)v[0]); break;
+    case SKGL__S_PROGRAM: gl->UseProgram((skgl__uint)v[0]); break;
+    case SKGL__S_VAO: gl->BindVertexArray((skgl__uint)v[0]); break;
+    case SKGL__S_PACK_BUFFER: gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_UNPACK_BUFFER: gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_ACTIVE: gl->ActiveTexture((skgl__enum)v[0]); break;
+    default: break;
+    }
+}
+
+static void skgl__st_begin(const skgl_context *ctx, skgl__st *st)
+{
+    st->restore = !ctx->caller_owns;
+    memset(st->flags, 0, sizeof st->flags);
+}
+
+static void skgl__st_set(skgl_context *ctx, skgl__st *st, int item, const skgl__int *v);
+
+/* the unit an item belongs to active (texture bindings are per active unit) */
+static void skgl__st_unit(skgl_context *ctx, skgl__st *st, int item)
+{
+    if (item >= SKGL__S_UNIT0) {
+        skgl__int a = SKGL__TEXTURE0 + ((item - SKGL__S_UNIT0) >> 2);
+        skgl__st_set(ctx, st, SKGL__S_ACTIVE, &a);
+    }
+}
+
+/* reads the caller's value the first time (default mode); afterwards the
+   tracked one. A sampler binding is read with its unit active, but set
+   without (glBindSampler names the unit). */
+static void skgl__st_save(skgl_context *ctx, skgl__st *st, int item)
+{
+    if (!st->restore || (st->flags[item] & SKGL__S_SAVED)) return;
+    skgl__st_unit(ctx, st, item);
+    skgl__st_query(&ctx->gl, item, st->orig[item]);
+    memcpy(st->cur[item], st->orig[item], sizeof st->cur[item]);
+    st->flags[item] |= SKGL__S_SAVED | SKGL__S_KNOWN;
+}
+
+static void skgl__st_set(skgl_context *ctx, skgl__st *st, int item, const skgl__int *v)
+{
+    int n = skgl__st_n(item);
+    skgl__st_save(ctx, st, item);
+    if ((st->flags[item] & SKGL__S_KNOWN) && memcmp(st->cur[item], v, sizeof(skgl__int) * (size_t)n) == 0) return;
+    if (item >= SKGL__S_UNIT0 && ((item - SKGL__S_UNIT0) & 3) != SKGL__T_SAMPLER) skgl__st_unit(ctx, st, item);
+    skgl__st_apply(&ctx->gl, item, v);
+    memcpy(st->cur[item], v, sizeof(skgl__int) * (size_t)n);
+    st->flags[item] |= SKGL__S_KNOWN;
+}
+
+static void skgl__st_set1(skgl_context *ctx, skgl__st *st, int item, skgl__int v)
+{
+    skgl__int a[4];
+    a[0] = v; a[1] = a[2] = a[3] = 0;
+    skgl__st_set(ctx, st, item, a);
+}
+static void skgl__st_set4(skgl_context *ctx, skgl__st *st, int item, skgl__int a, skgl__int b, skgl__int c,
+                          skgl__int d)
+{
+    skgl__int v[4];
+    v[0] = a; v[1] = b; v[2] = c; v[3] = d;
+    skgl__st_set(ctx, st, item, v);
+}
+static void skgl__st_offset(skgl_context *ctx, skgl__st *st, float factor, float units)
+{
+    skgl__int v[4] = {0, 0, 0, 0};
+    float f[2];
+    f[0] = factor; f[1] = units;
+    memcpy(v, f, sizeof f);
+    skgl__st_set(ctx, st, SKGL__S_POLY_OFFSET, v);
+}
+/* a texture on a unit, with the sampler object (0: the texture's own parameters) */
+static void skgl__st_texture(skgl_context *ctx, skgl__st *st, int unit, int target, skgl__uint tex,
+                             skgl__uint sampler)
+{
+    skgl__st_set1(ctx, st, SKGL__S_TEX(unit, target), (skgl__int)tex);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(unit, SKGL__T_SAMPLER), (skgl__int)sampler);
+}
+/* Textures on several units, in an order that saves unit switches: the
+   default mode starts on the unit the caller has active (read once, as
+   the restore needs it anyway), so that neither the binds nor the restore
+   switch to it; caller-owns mode binds unit 0 last and leaves it active. */
+typedef struct skgl__unitbind {
+    int unit, target;
+    skgl__uint tex, sampler;
+} skgl__unitbind;
+static void skgl__st_units(skgl_context *ctx, skgl__st *st, const skgl__unitbind *b, int n)
+{
+    int i, pass, first = -1;
+    if (st->restore) {
+        skgl__st_save(ctx, st, SKGL__S_ACTIVE);
+        first = st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0;
+    }
+    for (pass = 0; pass < 3; pass++)   /* the active unit, then the others but 0, then 0 */
+        for (i = 0; i < n; i++) {
+            int u = b[i].unit;
+            if (pass == 0 ? u == first : u != first && (pass == 1 ? u != 0 : u == 0))
+                skgl__st_texture(ctx, st, u, b[i].target, b[i].tex, b[i].sampler);
+        }
+}
+
+/* both framebuffer targets (a read-back reads GL_READ_FRAMEBUFFER):
+   glBindFramebuffer(GL_FRAMEBUFFER) sets both in one call when neither is
+   there yet */
+static void skgl__st_framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint fb)
+{
+    skgl__st_save(ctx, st, SKGL__S_DRAW_FB);
+    skgl__st_save(ctx, st, SKGL__S_READ_FB);
+    if ((st->flags[SKGL__S_DRAW_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_DRAW_FB][0] == (skgl__int)fb) {
+        skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)fb);
+        return;
+    }
+    if ((st->flags[SKGL__S_READ_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_READ_FB][0] == (skgl__int)fb) {
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+        return;
+    }
+    ctx->gl.BindFramebuffer(SKGL__FRAMEBUFFER, fb);
+    st->cur[SKGL__S_DRAW_FB][0] = st->cur[SKGL__S_READ_FB][0] = (skgl__int)fb;
+    st->flags[SKGL__S_DRAW_FB] |= SKGL__S_KNOWN;
+    st->flags[SKGL__S_READ_FB] |= SKGL__S_KNOWN;
+}
+/* what the caller's draw callback may have changed is no longer known
+   (it is still put back from the saved value) */
+static void skgl__st_forget(skgl__st *st, int item) { st->flags[item] &= (unsigned char)~SKGL__S_KNOWN; }
+
+/* 1: the item must be put back */
+static int skgl__st_dirty(const skgl__st *st, int item)
+{
+    if (!(st->flags[item] & SKGL__S_SAVED)) return 0;
+    if (!(st->flags[item] & SKGL__S_KNOWN)) return 1;
+    return memcmp(st->cur[item], st->orig[item], sizeof(skgl__int) * (size_t)skgl__st_n(item)) != 0;
+}
+
+static void skgl__st_end(skgl_context *ctx, skgl__st *st)
+{
+    const skgl__api *gl = &ctx->gl;
+    int i, k, u, first, last, order[SKGL__UNITS], n = 0;
+    if (!st->restore) {
+        /* caller-owns mode: framebuffer 0 (draw and read, where shadowkit
+           bound one) and no pixel buffer, so that nothing the caller does
+           next writes into shadowkit's objects; the rest stays as set */
+        int d = (st->flags[SKGL__S_DRAW_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_DRAW_FB][0] != 0;
+        int r = (st->flags[SKGL__S_READ_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_READ_FB][0] != 0;
+        if (d && r) skgl__st_framebuffer(ctx, st, 0);
+        else if (d) skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, 0);
+        else if (r) skgl__st_set1(ctx, st, SKGL__S_READ_FB, 0);
+        if ((st->flags[SKGL__S_PACK_BUFFER] & SKGL__S_KNOWN) && st->cur[SKGL__S_PACK_BUFFER][0] != 0)
+            skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, 0);
+        if ((st->flags[SKGL__S_UNPACK_BUFFER] & SKGL__S_KNOWN) && st->cur[SKGL__S_UNPACK_BUFFER][0] != 0)
+            skgl__st_set1(ctx, st, SKGL__S_UNPACK_BUFFER, 0);
+        return;
+    }
+    /* framebuffers: one call for both when the caller had one for both */
+    if (skgl__st_dirty(st, SKGL__S_DRAW_FB) && skgl__st_dirty(st, SKGL__S_READ_FB) &&
+        st->orig[SKGL__S_DRAW_FB][0] == st->orig[SKGL__S_READ_FB][0]) {
+        gl->BindFramebuffer(SKGL__FRAMEBUFFER, (skgl__uint)st->orig[SKGL__S_DRAW_FB][0]);
+    } else {
+        if (skgl__st_dirty(st, SKGL__S_DRAW_FB)) skgl__st_apply(gl, SKGL__S_DRAW_FB, st->orig[SKGL__S_DRAW_FB]);
+        if (skgl__st_dirty(st, SKGL__S_READ_FB)) skgl__st_apply(gl, SKGL__S_READ_FB, st->orig[SKGL__S_READ_FB]);
+    }
+    for (i = SKGL__S_VIEWPORT; i < SKGL__S_ACTIVE; i++) {
+        if (!skgl__st_dirty(st, i)) continue;
+        if (i == SKGL__S_PROGRAM) {
+            /* the caller's program may have been deleted while current: it
+               lived on only as long as it stayed current, and binding its
+               name now would be GL_INVALID_VALUE (Dear ImGui's issue #6220).
+               Program 0 then, as GL would have left it. */
+            skgl__uint p = (skgl__uint)st->orig[i][0];
+            gl->UseProgram(p == 0 || gl->IsProgram(p) ? p : 0);
+            continue;
+        }
+        skgl__st_apply(gl, i, st->orig[i]);
+    }
+    /* texture units: first the one active now, the caller's active one last */
+    first = (st->flags[SKGL__S_ACTIVE] & SKGL__S_KNOWN) ? st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0 : -1;
+    last = (st->flags[SKGL__S_ACTIVE] & SKGL__S_SAVED) ? st->orig[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0 : -1;
+    if (first >= 0 && first < SKGL__UNITS) order[n++] = first;
+    for (u = 0; u < SKGL__UNITS; u++)
+        if (u != first && u != last) order[n++] = u;
+    if (last >= 0 && last < SKGL__UNITS && last != first) order[n++] = last;
+    for (i = 0; i < n; i++) {
+        int any = 0;
+        u = order[i];
+        for (k = 0; k < 4; k++) any |= skgl__st_dirty(st, SKGL__S_TEX(u, k));
+        if (!any) continue;
+        for (k = 0; k < 4; k++) {
+            int item = SKGL__S_TEX(u, k);
+            if (!skgl__st_dirty(st, item)) continue;
+            if (k != SKGL__T_SAMPLER) skgl__st_unit(ctx, st, item);
+            skgl__st_apply(gl, item, st->orig[item]);
+        }
+    }
+    if (skgl__st_dirty(st, SKGL__S_ACTIVE)) skgl__st_apply(gl, SKGL__S_ACTIVE, st->orig[SKGL__S_ACTIVE]);
+}
+
+/* the state of every depth pass: both faces (open meshes cast from both
+   sides), LESS with writes, slope-scaled bias, filled polygons. Blending
+   and the colour mask do not matter: the framebuffer has no colour buffer.
+   The passes clear with glClearBufferfv(GL_DEPTH, 0, 1.0), which leaves
+   GL_DEPTH_CLEAR_VALUE alone (glClear would need it set and put back) but
+   still obeys the depth write mask and the scissor test, both set here. */
+static void skgl__st_depth_pass(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias)
+{
+    skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_TEST, 1);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_FUNC, SKGL__LESS);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_MASK, 1);
+    /* a host left in wireframe (glPolygonMode GL_LINE) must not get
+       wireframe shadow maps */
+    skgl__st_set1(ctx, st, SKGL__S_POLYGON_MODE, SKGL__FILL);
+    if (slope_bias > 0.0f || depth_bias > 0.0f) {
+        skgl__st_set1(ctx, st, SKGL__S_POLY_FILL, 1);
+        skgl__st_offset(ctx, st, slope_bias > 0.0f ? slope_bias : 0.0f, depth_bias > 0.0f ? depth_bias : 0.0f);
+    } else skgl__st_set1(ctx, st, SKGL__S_POLY_FILL, 0);
+}
+
+/* the state of a full-screen pass into colour targets (no depth buffer:
+   the depth test, its mask and polygon offset do not apply) */
+static void skgl__st_screen_pass(skgl_context *ctx, skgl__st *st)
+{
+    skgl__st_set1(ctx, st, SKGL__S_BLEND, 0);
+    skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
+    skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
+    skgl__st_set1(ctx, st, SKGL__S_POLYGON_MODE, SKGL__FILL);
+    skgl__st_set1(ctx, st, SKGL__S_VAO, (skgl__int)ctx->empty_vao);
+}
+
+/* pixel transfers between client memory and GL without padding or offsets
+   (pack: read-backs; unpack: uploads), no pixel buffer bound unless given */
+static void skgl__st_pack(skgl_context *ctx, skgl__st *st, skgl__uint buffer, int rows)
+{
+    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)buffer);
+    if (rows > 1) {
+        /* a read of one row has no row stride: alignment and row length do
+           not apply to it, only the skips */
+        skgl__st_set1(ctx, st, SKGL__S_PACK_ALIGNMENT, 1);
+        skgl__st_set1(ctx, st, SKGL__S_PACK_ROW_LENGTH, 0);
+    }
+    skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_PIXELS, 0);
+    skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_ROWS, 0);
+}
+static void skgl__st_unpack(skgl_context *ctx, skgl__st *st)
+{
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_BUFFER, 0);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_ALIGNMENT, 1);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_ROW_LENGTH, 0);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_SKIP_PIXELS, 0);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_SKIP_ROWS, 0);
+}
+
+/* ---- uniforms ---------------------------------------------------------- */
+/* a location of -1 (the name is not in the program, or the compiler
+   dropped it) takes no call */
+static void skgl__u1i(const skgl__api *gl, skgl__int loc, skgl__int v) { if (loc >= 0) gl->Uniform1i(loc, v); }
+static void skgl__u1f(const skgl__api *gl, skgl__int loc, float v) { if (loc >= 0) gl->Uniform1f(loc, v); }
+
+/* Locations of the GLSL snippets' uniforms (skgl_glsl_snippet,
+   skgl_point_glsl_snippet), per program: shadowkit's own mask programs
+   hold one each, and the context caches those of the user's programs
+   (SKGL__PROG_CACHE of them, the least recently bound replaced first) on
+   their first skgl_*_bind. A program's uniforms keep their values until it
+   is linked again, so each entry also remembers whose constants (sampler
+   units, filter, bias) the program holds and the values of the uniforms
+   that seldom change: neither is sent again while it is still there. */
+enum {
+    SKGL__L_MAP, SKGL__L_TABLE, SKGL__L_RMSM, SKGL__L_PAGES0, SKGL__L_LEVELS, SKGL__L_MIN_LEVEL, SKGL__L_PAGE,
+    SKGL__L_LIGHT_VP, SKGL__L_SPLITS, SKGL__L_LAYERS, SKGL__L_SELECT_BY_MAP, SKGL__L_MAP_EXTENT,
+    SKGL__L_SELECT_EXTENT, SKGL__L_BLEND_BAND, SKGL__L_NORMAL_BIAS, SKGL__L_BIAS_MODE, SKGL__L_PLANE_BIAS,
+    SKGL__L_PCF, SKGL__L_LIGHT_DIR, SKGL__L_SHADOW_N
+};
+static const char *const skgl__shadow_names[SKGL__L_SHADOW_N] = {
+    "sk_shadow_map", "sk_page_table", "sk_rmsm", "sk_rmsm_pages0", "sk_rmsm_levels", "sk_rmsm_min_level",
+    "sk_rmsm_page", "sk_light_vp", "sk_splits", "sk_layers", "sk_select_by_map", "sk_map_extent",
+    "sk_select_extent", "sk_blend_band", "sk_normal_bias", "sk_bias_mode", "sk_plane_bias", "sk_pcf_radius",
+    "sk_light_dir"};
+enum {
+    SKGL__P_CUBE, SKGL__P_ATLAS, SKGL__P_INDIRECTION, SKGL__P_POS, SKGL__P_RANGE, SKGL__P_DEPTH, SKGL__P_TEXEL,
+    SKGL__P_NORMAL_BIAS, SKGL__P_PCF, SKGL__P_BIAS_MODE, SKGL__P_PLANE_BIAS, SKGL__P_FACES, SKGL__L_POINT_N
+};
+static const char *const skgl__point_names[SKGL__L_POINT_N] = {
+    "sk_point_cube", "sk_point_atlas", "sk_point_indirection", "sk_point_pos", "sk_point_range", "sk_point_depth",
+    "sk_point_texel", "sk_point_normal_bias", "sk_point_pcf", "sk_point_bias_mode", "sk_point_plane_bias",
+    "sk_point_faces"};
+
+static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint program, int kind)
+{
+    int i, n = kind == SKGL__PK_SHADOW ? (int)SKGL__L_SHADOW_N : (int)SKGL__L_POINT_N;
+    const char *const *names = kind == SKGL__PK_SHADOW ? skgl__shadow_names : skgl__point_names;
+    memset(e, 0, sizeof *e);
+    e->program = program;
+    e->kind = kind;
+    for (i = 0; i < SKGL__LOCS; i++) e->loc[i] = -1;
+    for (i = 0; i < n; i++) e->loc[i] = ctx->gl.GetUniformLocation(program, names[i]);
+    ctx->gl.GetProgramiv(program, SKGL__ACTIVE_UNIFORMS, &e->uniforms);
+}
+
+/* Is the program under this name still the one whose locations were
+   cached? A program linked again, or deleted and made anew under the same
+   name (GL hands freed names out again), has its uniforms back at 0 and
+   maybe other locations. Default mode, one bind = two reads: the active
+   uniform count (a different program has, in practice, another one), then
+   the constant the last bind set that can never be 0 (sk_rmsm_page,
+   sk_point_range), read at its cached location (valid when the count
+   matched). desc.debug: every location looked up again, then that constant.
+   Caller-owns mode (no debug) reads nothing and trusts the cache: call
+   skgl_forget_program. */
+static int skgl__progent_changed(skgl_context *ctx, const skgl__progent *e)
+{
+    skgl__int n = -1;
+    int i;
+    if (ctx->debug) {
+        skgl__progent fresh;
+        skgl__progent_lookup(ctx, &fresh, e->program, e->kind);
+        for (i = 0; i < SKGL__LOCS; i++)
+            if (fresh.loc[i] != e->loc[i]) return 1;
+    } else if (ctx->caller_owns) {
+        return 0;
+    } else {
+        ctx->gl.GetProgramiv(e->program, SKGL__ACTIVE_UNIFORMS, &n);
+        if (n != e->uniforms) return 1;
+    }
+    if (e->owner != 0 && e->kind == SKGL__PK_SHADOW && e->loc[SKGL__L_PAGE] >= 0) {
+        skgl__int v = 0;
+        ctx->gl.GetUniformiv(e->program, e->loc[SKGL__L_PAGE], &v);
+        return v != e->sentinel_i;
+    }
+    if (e->owner != 0 && e->kind == SKGL__PK_POINT && e->loc[SKGL__P_RANGE] >= 0) {
+        float v = 0.0f;
+        ctx->gl.GetUniformfv(e->program, e->loc[SKGL__P_RANGE], &v);
+        return v != e->sentinel_f;
+    }
+    return 0;
+}
+
+/* the cache entry of a user program, looked up anew on a miss or when the
+   program changed under its name */
+static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, int kind)
+{
+    skgl__progent *e, *victim = &ctx->progs[0];
+    int i;
+    ctx->tick++;
+    for (i = 0; i < SKGL__PROG_CACHE; i++) {
+        e = &ctx->progs[i];
+        if (e->program == program && e->kind == kind) {
+            if (skgl__progent_changed(ctx, e)) skgl__progent_lookup(ctx, e, program, kind);
+            e->tick = ctx->tick;
+            return e;
+        }
+        if (e->tick < victim->tick) victim = e;
+    }
+    skgl__progent_lookup(ctx, victim, program, kind);
+    victim->tick = ctx->tick;
+    return victim;
+}
+
+SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program)
+{
+    int i;
+    if (!ctx || !program) return;
+    for (i = 0; i < SKGL__PROG_CACHE; i++)
+        if (ctx->progs[i].program == program) memset(&ctx->progs[i], 0, sizeof ctx->progs[i]);
+}
+
+/* ---- the user's textures: sizes and framebuffer checks, by name ---------- */
+/* The mask texture's size (the viewport of the mask pass) and the depth
+   texture's (the analysis' targets) are asked of GL once per texture name
+   (glGetTexLevelParameteriv) and remembered here; whether a mask texture is
+   colour-renderable is checked once per name too. A texture given storage
+   of another size or format under the same name needs skgl_forget_texture. */
+static skgl__texent *skgl__texture(skgl_context *ctx, skgl__uint tex)
+{
+    skgl__texent *e, *victim = &ctx->texs[0];
+    int i;
+    ctx->tick++;
+    for (i = 0; i < SKGL__TEX_CACHE; i++) {
+        e = &ctx->texs[i];
+        if (e->tex == tex) { e->tick = ctx->tick; return e; }
+        if (e->tick < victim->tick) victim = e;
+    }
+    memset(victim, 0, sizeof *victim);
+    victim->tex = tex;
+    victim->tick = ctx->tick;
+    return victim;
+}
+
+SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
+{
+    int i;
+    if (!ctx || !texture) return;
+    for (i = 0; i < SKGL__TEX_CACHE; i++)
+        if (ctx->texs[i].tex == texture) memset(&ctx->texs[i], 0, sizeof ctx->texs[i]);
+    if (ctx->mask_fbo_tex == texture) {
+        /* GL detaches a deleted texture only from the framebuffer bound at
+           the time: the masks' framebuffer would keep it alive */
+        skgl__st st;
+        skgl__st_begin(ctx, &st);
+        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)ctx->mask_fbo);
+        ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        ctx->mask_fbo_tex = 0;
+        skgl__st_end(ctx, &st);
+    }
+}
+
+/* The size of a texture the caller made: level 0's, as GL had it the
+   first time (bound on unit 1's GL_TEXTURE_2D to ask). NULL, or what is
+   wrong: no level 0; with desc.debug, which asks every time, a size that
+   changed under the same name. */
+static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, int *w, int *h)
+{
+    skgl__texent *e = skgl__texture(ctx, tex);
+    if (e->w <= 0 || e->h <= 0 || ctx->debug) {
+        skgl__int tw = 0, th = 0;
+        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D), (skgl__int)tex);
+        skgl__st_unit(ctx, st, SKGL__S_TEX(1, SKGL__T_2D));
+        ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &tw);
+        ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &th);
+        if (tw <= 0 || th <= 0 || tw > 65536 || th > 65536) return "the texture has no level 0";
+        if (e->w > 0 && (e->w != tw || e->h != th))
+            return "the texture's size changed since it was remembered: call skgl_forget_texture after giving "
+                   "a texture new storage";
+        e->w = tw;
+        e->h = th;
+    }
+    *w = e->w;
+    *h = e->h;
+    return NULL;
+}
+
+/* ---- GPU timers: a ring of queries read late ------------------------------
+   With desc.timing, each timed pass of a light takes the next of
+   SKGL__TIMER_RING GL_TIME_ELAPSED queries. Before it, the query about to
+   be reused (three passes ago) is read if GL_QUERY_RESULT_AVAILABLE says
+   it is done, and if it is not, this pass goes untimed rather than wait;
+   then the one of two passes ago, likewise. The stats report the latest
+   result read: two frames old (three when the GPU is behind), -1 before
+   the first. */
+static void skgl__timer_free(skgl_context *ctx, skgl__timer *t)
+{
+    int i;
+    for (i = 0; i < SKGL__TIMER_RING; i++)
+        if (t->q[i]) { ctx->gl.DeleteQueries(1, &t->q[i]); ctx->objects--; t->q[i] = 0; }
+}
+static void skgl__timer_init(skgl_context *ctx, skgl__timer *t)
+{
+    int i;
+    memset(t, 0, sizeof *t);
+    t->ms = -1.0f;
+    if (!ctx->timing) return;
+    for (i = 0; i < SKGL__TIMER_RING; i++) { ctx->gl.GenQueries(1, &t->q[i]); ctx->objects++; }
+}
+/* 1 when slot i's result was there and has been read */
+static int skgl__timer_read(skgl_context *ctx, skgl__timer *t, int i)
+{
+    skgl__uint avail = 0;
+    skgl__u64 ns = 0;
+    if (!t->pending[i]) return 1;
+    ctx->gl.GetQueryObjectuiv(t->q[i], SKGL__QUERY_RESULT_AVAILABLE, &avail);
+    if (!avail) return 0;
+    ctx->gl.GetQueryObjectui64v(t->q[i], SKGL__QUERY_RESULT, &ns);
+    t->pending[i] = 0;
+    t->ms = (float)((double)ns * 1e-6);
+    return 1;
+}
+static void skgl__timer_begin(skgl_context *ctx, skgl__timer *t)
+{
+    int slot;
+    t->running = 0;
+    if (!ctx->timing || !t->q[0]) return;
+    slot = (int)(t->frame % SKGL__TIMER_RING);
+    /* the slot to reuse (three passes ago; usually read already), then two
+       passes ago: the newer result read last, and queries end in order, so
+       a busy older one means the newer is busy too */
+    if (!skgl__timer_read(ctx, t, slot)) return;                                 /* still busy: untimed */
+    (void)skgl__timer_read(ctx, t, (int)((t->frame + 1) % SKGL__TIMER_RING));
+    ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, t->q[slot]);
+    t->running = 1;
+}
+static void skgl__timer_end(skgl_context *ctx, skgl__timer *t)
+{
+    if (!t->running) return;
+    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
+    t->pending[t->frame % SKGL__TIMER_RING] = 1;
+    t->frame++;
+    t->running = 0;
+}
+
+/* ---- read-backs a frame late: a ring of pixel buffers with fences ---------
+   A read-back that must not stall goes into the next free one of
+   SKGL__RING pixel pack buffers (glReadPixels into a buffer returns at
+   once), followed by a fence. Later calls poll the fences, oldest first,
+   with a zero timeout (glClientWaitSync never waits then) and read the
+   newest buffer whose fence has signalled; fences signal in order, so the
+   first unsignalled one ends the poll. When every buffer is still in
+   flight, the new read-back is skipped (the GPU is three frames behind;
+   nothing is waited for). The poll flushes (GL_SYNC_FLUSH_COMMANDS_BIT): a
+   fence never flushed to the GPU may never signal. */
+static void skgl__ring_free(skgl_context *ctx, skgl__ring *r)
+{
+    int i;
+    for (i = 0; i < SKGL__RING; i++) {
+        if (r->sync[i]) { ctx->gl.DeleteSync(r->sync[i]); ctx->objects--; r->sync[i] = NULL; }
+        if (r->buf[i]) { ctx->gl.DeleteBuffers(1, &r->buf[i]); ctx->objects--; r->buf[i] = 0; }
+    }
+}
+static void skgl__ring_create(skgl_context *ctx, skgl__st *st, skgl__ring *r, size_t bytes)
+{
+    int i;
+    r->bytes = bytes;
+    for (i = 0; i < SKGL__RING; i++) {
+        ctx->gl.GenBuffers(1, &r->buf[i]);
+        ctx->objects++;
+        skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[i]);
+        ctx->gl.BufferData(SKGL__PIXEL_PACK_BUFFER, (ptrdiff_t)bytes, NULL, SKGL__STREAM_READ);
+    }
+}
+/* the newest signalled read-back into out (r->bytes), its slot; -1: none
+   has landed since the last call */
+static int skgl__ring_poll(skgl_context *ctx, skgl__st *st, skgl__ring *r, void *out)
+{
+    int k, newest = -1;
+    for (k = 0; k < SKGL__RING; k++) {
+        int i = (r->next + k) % SKGL__RING;   /* oldest first */
+        skgl__enum w;
+        if (!r->sync[i]) continue;
+        w = ctx->gl.ClientWaitSync(r->sync[i], SKGL__SYNC_FLUSH_COMMANDS_BIT, 0);
+        if (w != SKGL__ALREADY_SIGNALED && w != SKGL__CONDITION_SATISFIED) break;
+        ctx->gl.DeleteSync(r->sync[i]);
+        ctx->objects--;
+        r->sync[i] = NULL;
+        newest = i;
+    }
+    if (newest < 0) return -1;
+    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[newest]);
+    ctx->gl.GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, (ptrdiff_t)r->bytes, out);
+    return newest;
+}
+/* the slot the next read-back goes to, bound as the pack buffer; -1 when
+   every buffer is in flight */
+static int skgl__ring_slot(skgl_context *ctx, skgl__st *st, skgl__ring *r)
+{
+    int i = r->next;
+    if (r->sync[i]) return -1;
+    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[i]);
+    return i;
+}
+/* after the read-back into slot i: its fence */
+static void skgl__ring_fence(skgl_context *ctx, skgl__ring *r, int i)
+{
+    r->sync[i] = ctx->gl.FenceSync(SKGL__SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (r->sync[i]) ctx->objects++;
+    r->next = (i + 1) % SKGL__RING;
+}
+
 static void skgl__release(skgl_context *ctx)
 {
     skgl__api *gl = &ctx->gl;
-    if (ctx->depth_prog) { gl->DeleteProgram(ctx->depth_prog); ctx->objects--; }
-    if (ctx->mask_prog) { gl->DeleteProgram(ctx->mask_prog); ctx->objects--; }
+    skgl__uint *progs[8];
+    int i;
+    progs[0] = &ctx->depth_prog; progs[1] = &ctx->mask_prog; progs[2] = &ctx->ferko_prog;
+    progs[3] = &ctx->reduce_prog; progs[4] = &ctx->final_prog; progs[5] = &ctx->rmsm_prog;
+    progs[6] = &ctx->request_prog; progs[7] = NULL;
+    for (i = 0; progs[i]; i++)
+        if (*progs[i]) { gl->DeleteProgram(*progs[i]); ctx->objects--; *progs[i] = 0; }
     if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
     if (ctx->fbo) { gl->DeleteFramebuffers(1, &ctx->fbo); ctx->objects--; }
+    if (ctx->mask_fbo) { gl->DeleteFramebuffers(1, &ctx->mask_fbo); ctx->objects--; }
     if (ctx->query) { gl->DeleteQueries(1, &ctx->query); ctx->objects--; }
     if (ctx->cmp_sampler) { gl->DeleteSamplers(1, &ctx->cmp_sampler); ctx->objects--; }
     if (ctx->point_sampler) { gl->DeleteSamplers(1, &ctx->point_sampler); ctx->objects--; }
-    if (ctx->ferko_prog) { gl->DeleteProgram(ctx->ferko_prog); ctx->objects--; }
-    if (ctx->reduce_prog) { gl->DeleteProgram(ctx->reduce_prog); ctx->objects--; }
-    if (ctx->rmsm_prog) { gl->DeleteProgram(ctx->rmsm_prog); ctx->objects--; }
-    if (ctx->request_prog) { gl->DeleteProgram(ctx->request_prog); ctx->objects--; }
-    ctx->ferko_prog = ctx->reduce_prog = ctx->rmsm_prog = ctx->request_prog = 0;
-    ctx->depth_prog = ctx->mask_prog = ctx->empty_vao = ctx->fbo = ctx->query = 0;
+    ctx->empty_vao = ctx->fbo = ctx->mask_fbo = ctx->query = 0;
     ctx->cmp_sampler = ctx->point_sampler = 0;
+}
+
+/* the constant uniforms of shadowkit's own programs (sampler units), set
+   once after they are linked, and their locations */
+static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
+{
+    skgl__api *gl = &ctx->gl;
+    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "u_view_proj");
+    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "u_model");
+    ctx->model_loc = ctx->depth_u_model;
+    skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW);
+    ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
+    ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_depth"), 1);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_normals"), 2);
+    ctx->mask_ent.has_normals = -1;
+    ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
+    ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
+    ctx->reduce_u_src_size = gl->GetUniformLocation(ctx->reduce_prog, "u_src_size");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->reduce_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->reduce_prog, "u_src"), 1);
+    ctx->final_u_src_size = gl->GetUniformLocation(ctx->final_prog, "u_src_size");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->final_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->final_prog, "u_src"), 1);
+    ctx->reduce_src[0] = ctx->final_src[0] = -1;
+    ctx->rmsm_u_inv_view_proj = gl->GetUniformLocation(ctx->rmsm_prog, "u_inv_view_proj");
+    ctx->rmsm_u_light = gl->GetUniformLocation(ctx->rmsm_prog, "u_light");
+    ctx->rmsm_u_virtual_res = gl->GetUniformLocation(ctx->rmsm_prog, "u_virtual_res");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->rmsm_prog, "u_depth"), 1);
+    ctx->rmsm_vres = -1.0f;
+    ctx->request_u_pages0 = gl->GetUniformLocation(ctx->request_prog, "u_pages0");
+    ctx->request_u_levels = gl->GetUniformLocation(ctx->request_prog, "u_levels");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->request_prog, "u_samples"), 1);
+    ctx->request_pages0 = ctx->request_levels = -1;
 }
 
 SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
 {
     skgl_context *ctx;
+    skgl__st st;
     skgl__int major = 0, minor = 0;
     int missing = 0;
     if (!desc || !desc->getproc || !out) return SK_ERR_INVALID_ARG;
@@ -2411,24 +3396,29 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     if (major < 3 || (major == 3 && minor < 3)) { SKGL_FREE(ctx); return SK_ERR_GL; }
     ctx->debug = desc->debug;
     ctx->timing = desc->timing;
+    ctx->caller_owns = desc->caller_owns_state != 0;
     ctx->depth_prog = skgl__program(ctx, skgl__src_depth_vert, skgl__src_depth_frag, NULL);
     ctx->mask_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_shadow_sample_glsl,
                                    skgl__src_shadow_mask_frag);
     ctx->ferko_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_ferko_analyze_frag, NULL);
-    ctx->reduce_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_ferko_reduce_frag, NULL);
+    ctx->reduce_prog = skgl__program(ctx, skgl__src_fullscreen_vert, "#define SK_FERKO_FINAL 0\n",
+                                     skgl__src_ferko_reduce_frag);
+    ctx->final_prog = skgl__program(ctx, skgl__src_fullscreen_vert, "#define SK_FERKO_FINAL 1\n",
+                                    skgl__src_ferko_reduce_frag);
     ctx->rmsm_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_rmsm_analyze_frag, NULL);
     ctx->request_prog = skgl__program(ctx, skgl__src_rmsm_request_vert, skgl__src_rmsm_request_frag, NULL);
-    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog || !ctx->rmsm_prog ||
-        !ctx->request_prog) {
+    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog || !ctx->final_prog ||
+        !ctx->rmsm_prog || !ctx->request_prog) {
         skgl__release(ctx);
         SKGL_FREE(ctx);
         return SK_ERR_GL;
     }
-    ctx->depth_u_view_proj = ctx->gl.GetUniformLocation(ctx->depth_prog, "u_view_proj");
-    ctx->depth_u_model = ctx->gl.GetUniformLocation(ctx->depth_prog, "u_model");
-    ctx->model_loc = ctx->depth_u_model;
+    skgl__st_begin(ctx, &st);
+    skgl__own_programs(ctx, &st);
+    skgl__st_end(ctx, &st);
     ctx->gl.GenVertexArrays(1, &ctx->empty_vao); ctx->objects++;
     ctx->gl.GenFramebuffers(1, &ctx->fbo); ctx->objects++;
+    ctx->gl.GenFramebuffers(1, &ctx->mask_fbo); ctx->objects++;
     ctx->gl.GenQueries(1, &ctx->query); ctx->objects++;
     ctx->cmp_sampler = skgl__sampler(ctx, 1);
     ctx->point_sampler = skgl__sampler(ctx, 0);
@@ -2533,28 +3523,90 @@ static void skgl__model(skgl_context *ctx, const float model[16])
 
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
 {
-    if (ctx && model) skgl__model(ctx, model);
+    if (!ctx || !model) return;
+    skgl__model(ctx, model);
+    ctx->model_dirty = 1;   /* the pass sets its identity again before the next callback */
 }
 
 SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__src_shadow_sample_glsl; }
 
-/* ---- RMSM: virtual shadow map pages (seed 002) -------------------------- */
-static skgl__uint skgl__rgba_texture(skgl_context *ctx, skgl__int ifmt, int w, int h, skgl__enum type)
+/* ---- objects of the lights (made inside a state-tracked call) ------------ */
+/* a 2D texture (target 2D) or 2-layer array (layers 2), nearest filtering,
+   made on unit 0; data: level 0's texels or NULL */
+static skgl__uint skgl__color_texture(skgl_context *ctx, skgl__st *st, skgl__int ifmt, int w, int h, int layers,
+                                      skgl__enum fmt, skgl__enum type, const void *data)
 {
     skgl__api *gl = &ctx->gl;
     skgl__uint t = 0;
+    int k = layers > 1 ? SKGL__T_2D_ARRAY : SKGL__T_2D;
+    skgl__enum target = skgl__tex_targets[k];
     gl->GenTextures(1, &t);
     ctx->objects++;
-    gl->BindTexture(SKGL__TEXTURE_2D, t);
-    gl->TexImage2D(SKGL__TEXTURE_2D, 0, ifmt, w, h, 0, SKGL__RGBA, type, NULL);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, k), (skgl__int)t);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, k));
+    if (layers > 1) gl->TexImage3D(target, 0, ifmt, w, h, layers, 0, fmt, type, data);
+    else gl->TexImage2D(target, 0, ifmt, w, h, 0, fmt, type, data);
+    /* no mipmaps: a mipmapped minification filter would leave it incomplete,
+       and texelFetch of an incomplete texture reads 0 */
+    gl->TexParameteri(target, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(target, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
     return t;
 }
 
-/* the request atlas and the page table: every level's page grid side by
-   side, level l (n_l = pages0 >> l pages a side) from column 2 pages0 - 2 n_l */
-static sk_result skgl__rmsm_create(skgl_context *ctx, skgl_shadow *s)
+/* A framebuffer with colour attachment 0 (and 1: the second layer of a
+   2-layer array texture), or with depth only (depth: a layer of a 2D array
+   texture, or a 2D texture when layer < 0), checked complete here, once:
+   the passes only bind it. glDrawBuffer(s) and glReadBuffer are state of
+   the framebuffer object, set here too. 0 when it is not complete. */
+static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint color, int color_layers,
+                                    skgl__uint depth, int depth_layer)
+{
+    static const skgl__enum bufs[2] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1};
+    skgl__api *gl = &ctx->gl;
+    skgl__uint fb = 0;
+    skgl__enum status;
+    gl->GenFramebuffers(1, &fb);
+    ctx->objects++;
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+    if (color && color_layers > 1) {
+        gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, color, 0, 0);
+        gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, color, 0, 1);
+        gl->DrawBuffers(2, bufs);
+    } else if (color) {
+        gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, color, 0);
+    } else {
+        if (depth_layer >= 0)
+            gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, depth, 0, depth_layer);
+        else gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
+        gl->DrawBuffer(SKGL__NONE);
+        gl->ReadBuffer(SKGL__NONE);
+    }
+    status = gl->CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER);
+    if (status != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->DeleteFramebuffers(1, &fb);
+        ctx->objects--;
+        /* the tracked binding named the framebuffer just deleted: GL fell back to 0 */
+        st->cur[SKGL__S_DRAW_FB][0] = 0;
+        return 0;
+    }
+    return fb;
+}
+
+static void skgl__delete_texture(skgl_context *ctx, skgl__uint *t)
+{
+    if (*t) { ctx->gl.DeleteTextures(1, t); ctx->objects--; *t = 0; }
+}
+static void skgl__delete_framebuffer(skgl_context *ctx, skgl__uint *f)
+{
+    if (*f) { ctx->gl.DeleteFramebuffers(1, f); ctx->objects--; *f = 0; }
+}
+
+/* ---- RMSM: virtual shadow map pages (seed 002) -------------------------- */
+/* the request atlas (R8) and the page table (RGBA8): every level's page grid
+   side by side, level l (n_l = pages0 >> l pages a side) from column
+   2 pages0 - 2 n_l; the table starts all 0 (nothing resident) */
+static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
     int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
     size_t bytes;
@@ -2562,24 +3614,34 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl_shadow *s)
     for (s->levels = 1; (1 << (s->levels - 1)) < s->pages0; s->levels++) {}
     s->atlas_w = 2 * s->pages0 - 1;
     s->atlas_h = s->pages0;
-    bytes = (size_t)4 * (size_t)s->atlas_w * (size_t)s->atlas_h;
+    bytes = (size_t)s->atlas_w * (size_t)s->atlas_h;
     s->rmsm_req_cpu = (unsigned char *)SKGL_MALLOC(bytes);
-    s->rmsm_table_cpu = (unsigned char *)SKGL_MALLOC(bytes);
+    s->rmsm_table_cpu = (unsigned char *)SKGL_MALLOC(4 * bytes);
+    s->rmsm_table_new = (unsigned char *)SKGL_MALLOC(4 * bytes);
     s->rmsm_pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
-    if (!s->rmsm_req_cpu || !s->rmsm_table_cpu || !s->rmsm_pages) return SK_ERR_CAPACITY;
-    memset(s->rmsm_table_cpu, 0, bytes);
-    s->rmsm_requests = skgl__rgba_texture(ctx, SKGL__RGBA8, s->atlas_w, s->atlas_h, SKGL__UNSIGNED_BYTE);
-    s->rmsm_table = skgl__rgba_texture(ctx, SKGL__RGBA8, s->atlas_w, s->atlas_h, SKGL__UNSIGNED_BYTE);
+    if (!s->rmsm_req_cpu || !s->rmsm_table_cpu || !s->rmsm_table_new || !s->rmsm_pages) return SK_ERR_CAPACITY;
+    memset(s->rmsm_table_cpu, 0, 4 * bytes);
+    s->rmsm_requests = skgl__color_texture(ctx, st, SKGL__R8, s->atlas_w, s->atlas_h, 1, SKGL__RED,
+                                           SKGL__UNSIGNED_BYTE, NULL);
+    s->rmsm_table = skgl__color_texture(ctx, st, SKGL__RGBA8, s->atlas_w, s->atlas_h, 1, SKGL__RGBA,
+                                        SKGL__UNSIGNED_BYTE, s->rmsm_table_cpu);
+    s->rmsm_requests_fbo = skgl__framebuffer(ctx, st, s->rmsm_requests, 1, 0, 0);
+    skgl__ring_create(ctx, st, &s->rmsm_ring, bytes);
+    if (!s->rmsm_requests_fbo) {
+        skgl__set_log(ctx, "skgl_shadow_create: the RMSM request atlas (R8) is not renderable", NULL);
+        return SK_ERR_GL;
+    }
     return SK_OK;
 }
 
 static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
 {
-    skgl__uint *t[3];
-    int i;
-    t[0] = &s->rmsm_samples; t[1] = &s->rmsm_requests; t[2] = &s->rmsm_table;
-    for (i = 0; i < 3; i++)
-        if (*t[i]) { ctx->gl.DeleteTextures(1, t[i]); ctx->objects--; *t[i] = 0; }
+    skgl__delete_texture(ctx, &s->rmsm_samples);
+    skgl__delete_texture(ctx, &s->rmsm_requests);
+    skgl__delete_texture(ctx, &s->rmsm_table);
+    skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
+    skgl__delete_framebuffer(ctx, &s->rmsm_requests_fbo);
+    skgl__ring_free(ctx, &s->rmsm_ring);
 }
 
 static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
@@ -2610,80 +3672,151 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     else if (r.psm_slide < 0.0f) r.psm_slide = 0.0f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
     else if (r.pcf_radius < 0) r.pcf_radius = 0;
+    /* latencies: 0 takes the default (a frame late), SKGL_LATENCY_SYNC this
+       frame's; any other negative value stays, and is refused */
+    if (r.ferko_latency == 0) r.ferko_latency = 1;
+    else if (r.ferko_latency == SKGL_LATENCY_SYNC) r.ferko_latency = 0;
+    if (r.rmsm_latency == 0) r.rmsm_latency = 1;
+    else if (r.rmsm_latency == SKGL_LATENCY_SYNC) r.rmsm_latency = 0;
     return r;
+}
+
+static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
+
+/* a bad field: its name in the log */
+static sk_result skgl__bad_field(skgl_context *ctx, const char *fn, const char *field)
+{
+    skgl__set_log(ctx, fn, field);
+    return SK_ERR_INVALID_ARG;
+}
+
+/* the first field of d (defaults filled) that is out of range, or NULL */
+static const char *skgl__shadow_bad_field(const skgl_shadow_desc *d)
+{
+    if ((int)d->technique < (int)SKGL_STANDARD || (int)d->technique > (int)SKGL_RMSM) return "technique";
+    if (d->technique != SKGL_RMSM && d->resolution > 16384) return "resolution";
+    if (d->cascades > SKGL_MAX_CASCADES) return "cascades";
+    if (!(d->lambda <= 1.0f)) return "lambda";
+    if (!(d->blend_band >= 0.0f && d->blend_band < 1.0f)) return "blend_band";
+    if (d->pcf_radius > 8) return "pcf_radius";
+    if (!(d->max_distance >= 0.0f)) return "max_distance";
+    if (!(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f)) return "psm_slide";
+    if ((int)d->bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d->bias > (int)SKGL_BIAS_NORMAL_OFFSET) return "bias";
+    if (!(d->plane_bias <= 64.0f)) return "plane_bias";
+    if (!(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f)) return "lspsm.zeta";
+    if (!(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f)) return "lspsm.sigma";
+    if (d->lspsm.h_max < 1 || (d->technique == SKGL_LSPSM && d->lspsm.h_max > SKGL_MAX_CASCADES)) return "lspsm.h_max";
+    if (d->lspsm.nw_max < 1 || (d->technique == SKGL_LSPSM && d->lspsm.nw_max > SKGL_MAX_CASCADES))
+        return "lspsm.nw_max";
+    if (d->technique == SKGL_LSPSM && d->lspsm.h_max * d->lspsm.nw_max > SKGL_MAX_CASCADES)
+        return "lspsm.h_max * lspsm.nw_max";
+    if (d->ferko_latency < 0 || d->ferko_latency > 1) return "ferko_latency";
+    if (d->rmsm_latency < 0 || d->rmsm_latency > 1) return "rmsm_latency";
+    if (d->technique != SKGL_RMSM) return NULL;
+    if (d->rmsm_page_size < 16 || d->rmsm_page_size > 1024 || (d->rmsm_page_size & (d->rmsm_page_size - 1)))
+        return "rmsm_page_size";
+    if (d->resolution < d->rmsm_page_size || (d->resolution & (d->resolution - 1)) ||
+        d->resolution / d->rmsm_page_size > 1024)
+        return "resolution";
+    if (d->rmsm_pool_pages < 2 || d->rmsm_pool_pages > 64 || d->rmsm_pool_pages * (d->rmsm_page_size + 2) > 16384)
+        return "rmsm_pool_pages";
+    return NULL;
 }
 
 SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out)
 {
     skgl_shadow *s;
-    skgl__state st;
+    skgl__st st;
     skgl__api *gl;
     skgl_shadow_desc d;
+    const char *bad;
+    sk_result r = SK_OK;
+    int i;
+    if (out) *out = NULL;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
     d = skgl__defaults(desc);
-    if ((int)d.technique < (int)SKGL_STANDARD || (int)d.technique > (int)SKGL_RMSM || (d.technique != SKGL_RMSM && d.resolution > 16384) ||
-        d.cascades > SKGL_MAX_CASCADES || !(d.lambda <= 1.0f) || !(d.blend_band >= 0.0f && d.blend_band < 1.0f) ||
-        d.pcf_radius > 8 || !(d.max_distance >= 0.0f) || !(d.psm_slide >= 0.0f && d.psm_slide <= 1e3f) ||
-        (int)d.bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d.bias > (int)SKGL_BIAS_NORMAL_OFFSET ||
-        !(d.plane_bias <= 64.0f) ||
-        !(d.lspsm.zeta > 0.0f && d.lspsm.zeta < 0.5f) || !(d.lspsm.sigma > 0.0f && d.lspsm.sigma <= 1e3f) ||
-        d.lspsm.h_max < 1 || d.lspsm.nw_max < 1 || d.ferko_latency < 0 || d.ferko_latency > 1 ||
-        (d.technique == SKGL_LSPSM && (d.lspsm.h_max > SKGL_MAX_CASCADES || d.lspsm.nw_max > SKGL_MAX_CASCADES ||
-                                       d.lspsm.h_max * d.lspsm.nw_max > SKGL_MAX_CASCADES)))
-        return SK_ERR_INVALID_ARG;
-    if (d.technique == SKGL_RMSM &&
-        (d.rmsm_page_size < 16 || d.rmsm_page_size > 1024 || (d.rmsm_page_size & (d.rmsm_page_size - 1)) ||
-         d.resolution < d.rmsm_page_size || (d.resolution & (d.resolution - 1)) ||
-         d.resolution / d.rmsm_page_size > 1024 || d.rmsm_pool_pages < 2 || d.rmsm_pool_pages > 64 ||
-         d.rmsm_pool_pages * (d.rmsm_page_size + 2) > 16384))
-        return SK_ERR_INVALID_ARG;
+    bad = skgl__shadow_bad_field(&d);
+    if (bad) return skgl__bad_field(ctx, "skgl_shadow_create: bad field", bad);
     s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
     memset(s, 0, sizeof *s);
     s->desc = d;
+    s->id = ++ctx->next_id;
+    if (!s->id) s->id = ++ctx->next_id;
     s->layers = d.cascades;
     s->maps = s->layers;
     s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
     s->select_extent = 1.0f;
     gl = &ctx->gl;
-    skgl__save(gl, &st);
+    skgl__st_begin(ctx, &st);
+    skgl__timer_init(ctx, &s->t_render);
+    skgl__timer_init(ctx, &s->t_mask);
+    skgl__timer_init(ctx, &s->t_analyze);
     gl->GenTextures(1, &s->tex);
     ctx->objects++;
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    skgl__pixel_store_plain(gl);
-    gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
+    skgl__st_unpack(ctx, &st);
+    skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->tex);
+    skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
     gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, s->layers, 0,
                    SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-    if (d.technique == SKGL_RMSM && skgl__rmsm_create(ctx, s) != SK_OK) {
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "out of memory for the RMSM page tables", NULL);
-        skgl_shadow_destroy(ctx, s);
-        return SK_ERR_CAPACITY;
+    /* one framebuffer per layer (RMSM: the pool, layer 0) */
+    for (i = 0; i < (d.technique == SKGL_RMSM ? 1 : s->layers) && r == SK_OK; i++) {
+        s->fbo[i] = skgl__framebuffer(ctx, &st, 0, 0, s->tex, i);
+        if (!s->fbo[i]) {
+            skgl__set_log(ctx, "skgl_shadow_create: shadow framebuffer incomplete", NULL);
+            r = SK_ERR_GL;
+        }
     }
-    skgl__restore(gl, &st);
-    if (gl->GetError() != 0) {
+    if (r == SK_OK && d.technique == SKGL_FERKO) {
+        /* the estimate's 2x1 texels and their read-back ring (the analysis
+           targets follow the G-buffer's size: skgl__ferko_targets) */
+        s->ferko_final = skgl__color_texture(ctx, &st, SKGL__RGBA32F, 2, 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+        s->ferko_final_fbo = skgl__framebuffer(ctx, &st, s->ferko_final, 1, 0, 0);
+        skgl__ring_create(ctx, &st, &s->ferko_ring, 8 * sizeof(float));
+        if (!s->ferko_final_fbo) {
+            skgl__set_log(ctx, "skgl_shadow_create: RGBA32F targets not renderable", NULL);
+            r = SK_ERR_GL;
+        }
+    }
+    if (r == SK_OK && d.technique == SKGL_RMSM) {
+        r = skgl__rmsm_create(ctx, &st, s);
+        if (r == SK_ERR_CAPACITY) skgl__set_log(ctx, "out of memory for the RMSM page tables", NULL);
+    }
+    skgl__st_end(ctx, &st);
+    if (r == SK_OK && gl->GetError() != 0) {
         skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
-        skgl_shadow_destroy(ctx, s);
-        return SK_ERR_GL;
+        r = SK_ERR_GL;
     }
-    s->stats.shadow_ms = s->stats.mask_ms = -1.0f;
+    if (r != SK_OK) {
+        skgl_shadow_destroy(ctx, s);
+        return r;
+    }
+    s->stats.shadow_ms = s->stats.mask_ms = s->stats.analysis_ms = -1.0f;
     *out = s;
     return SK_OK;
 }
 
-static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
-static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s);
-
 SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
 {
+    int i;
     if (!s) return;
-    if (ctx && s->tex) { ctx->gl.DeleteTextures(1, &s->tex); ctx->objects--; }
-    if (ctx) skgl__ferko_free(ctx, s);
-    if (ctx) skgl__rmsm_free(ctx, s);
+    if (ctx) {
+        skgl__delete_texture(ctx, &s->tex);
+        for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
+        skgl__ferko_free(ctx, s);
+        skgl__delete_texture(ctx, &s->ferko_final);
+        skgl__delete_framebuffer(ctx, &s->ferko_final_fbo);
+        skgl__ring_free(ctx, &s->ferko_ring);
+        skgl__rmsm_free(ctx, s);
+        skgl__timer_free(ctx, &s->t_render);
+        skgl__timer_free(ctx, &s->t_mask);
+        skgl__timer_free(ctx, &s->t_analyze);
+    }
     SKGL_FREE(s->rmsm_req_cpu);
     SKGL_FREE(s->rmsm_table_cpu);
+    SKGL_FREE(s->rmsm_table_new);
     SKGL_FREE(s->rmsm_pages);
     SKGL_FREE(s);
 }
@@ -2886,45 +4019,51 @@ static sk_result skgl__check(skgl_context *ctx, const char *what)
 /* ---- resolution estimation on the GPU (seed 000) ----------------------- */
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
 {
-    int i, k;
-    for (i = 0; i < 2; i++)
-        for (k = 0; k < 2; k++)
-            if (s->ferko_tex[i][k]) { ctx->gl.DeleteTextures(1, &s->ferko_tex[i][k]); ctx->objects--; s->ferko_tex[i][k] = 0; }
-    if (s->ferko_pbo) { ctx->gl.DeleteBuffers(1, &s->ferko_pbo); ctx->objects--; s->ferko_pbo = 0; }
-    s->ferko_w = s->ferko_h = 0;
+    int i;
+    for (i = 0; i < 3; i++) {
+        skgl__delete_texture(ctx, &s->ferko_tex[i]);
+        skgl__delete_framebuffer(ctx, &s->ferko_fbo[i]);
+    }
+    s->ferko_w = s->ferko_h = s->ferko_levels = 0;
 }
 
-/* the analysis targets for a w x h G-buffer: RGBA32F pairs at 1/4 and 1/16
-   (each later level of the 4x4 reduction fits in the one two levels up) */
-static void skgl__ferko_targets(skgl_context *ctx, skgl_shadow *s, int w, int h)
+/* The analysis targets for a w x h G-buffer: level 0, the analysis, at 1/4
+   (a texel per 4x4 pixels), each later level 1/16 of the one before (a
+   texel per 16x16), until one of at most 32 x 32 texels is left for the
+   final pass (1280 x 720: 320 x 180, 20 x 12, then the final). Each level
+   is a 2-layer RGBA32F texture (bounds, patch) with its framebuffer;
+   levels from 3 on (G-buffers past 16384 pixels a side) take turns in the
+   textures of levels 1 and 2, which are larger. 1 when every framebuffer
+   is complete. */
+static int skgl__ferko_targets(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int w, int h)
 {
-    skgl__api *gl = &ctx->gl;
-    int i, k;
-    if (s->ferko_w == w && s->ferko_h == h) return;
+    int k, lw = (w + 3) / 4, lh = (h + 3) / 4, ok = 1;
+    if (s->ferko_w == w && s->ferko_h == h) return 1;
     skgl__ferko_free(ctx, s);
-    for (i = 0; i < 2; i++) {
-        int div = i ? 16 : 4, tw = (w + div - 1) / div, th = (h + div - 1) / div;
-        for (k = 0; k < 2; k++) {
-            gl->GenTextures(1, &s->ferko_tex[i][k]);
-            ctx->objects++;
-            gl->BindTexture(SKGL__TEXTURE_2D, s->ferko_tex[i][k]);
-            gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__RGBA32F, tw, th, 0, SKGL__RGBA, SKGL__FLOAT, NULL);
-            gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
-            gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    for (k = 0; k < SKGL__FERKO_LEVELS; k++) {
+        s->ferko_lw[k] = lw;
+        s->ferko_lh[k] = lh;
+        if (k < 3) {
+            s->ferko_tex[k] = skgl__color_texture(ctx, st, SKGL__RGBA32F, lw, lh, 2, SKGL__RGBA, SKGL__FLOAT, NULL);
+            s->ferko_fbo[k] = skgl__framebuffer(ctx, st, s->ferko_tex[k], 2, 0, 0);
+            ok &= s->ferko_fbo[k] != 0;
         }
+        if (lw <= 32 && lh <= 32) break;
+        lw = (lw + 15) / 16;
+        lh = (lh + 15) / 16;
     }
-    gl->GenBuffers(1, &s->ferko_pbo);
-    ctx->objects++;
-    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, s->ferko_pbo);
-    gl->BufferData(SKGL__PIXEL_PACK_BUFFER, 8 * sizeof(float), NULL, SKGL__STREAM_READ);
+    s->ferko_levels = k < SKGL__FERKO_LEVELS ? k + 1 : SKGL__FERKO_LEVELS;
     s->ferko_w = w;
     s->ferko_h = h;
-    s->ferko_state = 0;
+    return ok;
 }
 
-/* The reduced texel, (min x, min y, -max x, -max y) and (min patch width,
-   min patch height, any sample, any patch), to the estimate, with the same
-   rules as sk_estimate_resolution (samples: 1 when any, the GPU counts none). */
+/* level k's texture and framebuffer */
+static int skgl__ferko_slot(int k) { return k < 3 ? k : 1 + (k - 1) % 2; }
+
+/* The reduced texel pair, (min x, min y, -max x, -max y) and (min patch
+   width, min patch height, any sample, any patch), to the estimate, with the
+   same rules as sk_estimate_resolution (samples: 1 when any, the GPU counts none). */
 static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate *e)
 {
     double bw, bh, rw, rh;
@@ -2946,7 +4085,6 @@ static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate 
     e->samples = 1;
     e->crop = sk_crop_matrix(e->bounds, -1.0f, 1.0f);
 }
-
 /* the map of the estimate: its crop widened by a margin of texels (the
    normal offset and the PCF footprint of a sample at the crop's edge stay in
    the rendered region), rendered into the texture's lower-left w x h texels;
@@ -2995,140 +4133,258 @@ static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, s
     return r;
 }
 
-/* page-table entry of page (level, px, py) in an atlas of 4-byte texels */
-static unsigned char *skgl__atlas_at(const skgl_shadow *s, unsigned char *atlas, int level, int px, int py)
+
+/* texel index of page (level, px, py) in the request atlas and the page
+   table (level l's n_l pages a side from column 2 pages0 - 2 n_l) */
+static size_t skgl__atlas_index(const skgl_shadow *s, int level, int px, int py)
 {
     int n = s->pages0 >> level;
-    return atlas + 4 * ((size_t)py * (size_t)s->atlas_w + (size_t)(2 * s->pages0 - 2 * n + px));
+    return (size_t)py * (size_t)s->atlas_w + (size_t)(2 * s->pages0 - 2 * n + px);
 }
 
-/* one request pass with finest level min_level over the npix samples bound
-   on unit 1; reads the atlas back; returns how many pages are set */
-static int skgl__rmsm_request_pass(skgl_context *ctx, skgl_shadow *s, int npix, int min_level)
+/* The pages to render from the requests read back (a nonzero texel per
+   page some pixel asks for, levels clamped to [0, levels - 1] as
+   sk_rmsm_page_requests clamps them). When they do not fit in the pool
+   (with the coarsest page, always resident), the finest level rises: its
+   requests fold into their parents one level up (page (px, py) of level l
+   is inside (px/2, py/2) of level l + 1, the page a sample clamped to
+   l + 1 would have asked for), until they fit. The list is sorted by
+   (level, py, px), as sk_rmsm_page_requests sorts. req is folded in place. */
+static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
 {
-    skgl__api *gl = &ctx->gl;
-    int l, px, py, count = 0;
-    skgl__uint p = ctx->request_prog;
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->rmsm_requests, 0);
-    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
-    gl->Viewport(0, 0, s->atlas_w, s->atlas_h);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    gl->UseProgram(p);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_samples"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_pages0"), s->pages0);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_levels"), s->levels);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_min_level"), min_level);
-    gl->Enable(SKGL__PROGRAM_POINT_SIZE);
-    gl->DrawArrays(SKGL__POINTS, 0, npix);
-    gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
-    gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RGBA, SKGL__UNSIGNED_BYTE, s->rmsm_req_cpu);
-    gl->ReadBuffer(SKGL__NONE);
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count = 0, l, px, py;
+    int top = s->levels - 1;
     for (l = 0; l < s->levels; l++)
         for (py = 0; py < (s->pages0 >> l); py++)
-            for (px = 0; px < (s->pages0 >> l); px++) count += skgl__atlas_at(s, s->rmsm_req_cpu, l, px, py)[0] != 0;
-    return count;
-}
-
-/* the pages resident this frame into the table (slot i at (i % pool, i / pool)), uploaded */
-static void skgl__rmsm_table(skgl_context *ctx, skgl_shadow *s)
-{
-    int i, pool = s->desc.rmsm_pool_pages;
-    memset(s->rmsm_table_cpu, 0, (size_t)4 * (size_t)s->atlas_w * (size_t)s->atlas_h);
-    for (i = 0; i < s->rmsm_npages; i++) {
-        unsigned char *e = skgl__atlas_at(s, s->rmsm_table_cpu, s->rmsm_pages[i].level, s->rmsm_pages[i].px,
-                                          s->rmsm_pages[i].py);
-        e[0] = (unsigned char)(i % pool);
-        e[1] = (unsigned char)(i / pool);
-        e[3] = 255;
-    }
-    ctx->gl.BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
-    ctx->gl.TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__RGBA8, s->atlas_w, s->atlas_h, 0, SKGL__RGBA, SKGL__UNSIGNED_BYTE,
-                       s->rmsm_table_cpu);
-}
-
-/* RMSM analysis (inside save/restore): per-pixel samples, page requests
-   reduced on the GPU, the finest level raised until the pool holds them
-   all (plus the coarsest page, always resident), the page table */
-static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl_shadow *s, const sk_mat4 *inv, const sk_mat4 *lvp,
-                                    int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl__uint p = ctx->rmsm_prog;
-    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count, l, px, py, top;
-    skgl__query_begin(ctx);
-    if (s->rmsm_w != w || s->rmsm_h != h) {
-        if (s->rmsm_samples) { gl->DeleteTextures(1, &s->rmsm_samples); ctx->objects--; }
-        s->rmsm_samples = skgl__rgba_texture(ctx, SKGL__RGBA32F, w, h, SKGL__FLOAT);
-        s->rmsm_w = w;
-        s->rmsm_h = h;
-    }
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->ColorMask(1, 1, 1, 1);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->rmsm_samples, 0);
-    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
-    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-        if (ctx->timing) gl->EndQuery(SKGL__TIME_ELAPSED);
-        skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F target not renderable", NULL);
-        return SK_ERR_GL;
-    }
-    gl->Viewport(0, 0, w, h);
-    gl->UseProgram(p);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);           /* the depth texture is bound there */
-    gl->BindSampler(1, ctx->point_sampler);
-    gl->Uniform1i(gl->GetUniformLocation(p, "u_depth"), 1);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_inv_view_proj"), 1, 0, inv->m);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_light"), 1, 0, lvp->m);
-    gl->Uniform1f(gl->GetUniformLocation(p, "u_virtual_res"), (float)s->desc.resolution);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_samples);
-    count = skgl__rmsm_request_pass(ctx, s, w * h, 0);
+            for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
     s->stats.pages_requested = count;
-    while (count + 1 > cap && min_level < s->levels - 1)
-        count = skgl__rmsm_request_pass(ctx, s, w * h, ++min_level);
-    /* the list, sorted by (level, py, px) as sk_rmsm_page_requests sorts */
+    while (count + 1 > cap && min_level < top) {
+        int n = s->pages0 >> min_level;
+        count = 0;
+        for (py = 0; py < n; py++)
+            for (px = 0; px < n; px++)
+                if (req[skgl__atlas_index(s, min_level, px, py)])
+                    req[skgl__atlas_index(s, min_level + 1, px / 2, py / 2)] = 1;
+        min_level++;
+        for (l = min_level; l < s->levels; l++)
+            for (py = 0; py < (s->pages0 >> l); py++)
+                for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
+    }
     s->rmsm_npages = 0;
-    top = s->levels - 1;
     for (l = min_level; l < s->levels; l++)
         for (py = 0; py < (s->pages0 >> l); py++)
             for (px = 0; px < (s->pages0 >> l); px++)
-                if ((skgl__atlas_at(s, s->rmsm_req_cpu, l, px, py)[0] != 0 || l == top) && s->rmsm_npages < cap) {
+                if ((req[skgl__atlas_index(s, l, px, py)] != 0 || l == top) && s->rmsm_npages < cap) {
                     s->rmsm_pages[s->rmsm_npages].level = l;
                     s->rmsm_pages[s->rmsm_npages].px = px;
                     s->rmsm_pages[s->rmsm_npages].py = py;
                     s->rmsm_npages++;
                 }
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-    gl->DrawBuffer(SKGL__NONE);
-    skgl__rmsm_table(ctx, s);
     s->stats.rmsm_min_level = min_level;
-    s->rmsm_lvp = *lvp;
+}
+
+/* The page table of the resident pages (slot i at (i % pool, i / pool)),
+   and only its rows that differ from the table GL has uploaded: one
+   glTexSubImage2D over the first to the last changed row, none when the
+   pages are those of the last frame. Bound on unit 0 to upload. */
+static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    size_t row = (size_t)4 * (size_t)s->atlas_w;
+    int i, pool = s->desc.rmsm_pool_pages, r0 = -1, r1 = -1, y;
+    memset(s->rmsm_table_new, 0, row * (size_t)s->atlas_h);
+    for (i = 0; i < s->rmsm_npages; i++) {
+        unsigned char *e = s->rmsm_table_new + 4 * skgl__atlas_index(s, s->rmsm_pages[i].level, s->rmsm_pages[i].px,
+                                                                    s->rmsm_pages[i].py);
+        e[0] = (unsigned char)(i % pool);
+        e[1] = (unsigned char)(i / pool);
+        e[3] = 255;
+    }
+    for (y = 0; y < s->atlas_h; y++)
+        if (memcmp(s->rmsm_table_new + row * (size_t)y, s->rmsm_table_cpu + row * (size_t)y, row) != 0) {
+            if (r0 < 0) r0 = y;
+            r1 = y;
+        }
+    if (r0 < 0) return;
+    memcpy(s->rmsm_table_cpu + row * (size_t)r0, s->rmsm_table_new + row * (size_t)r0, row * (size_t)(r1 - r0 + 1));
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->rmsm_table);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
+    ctx->gl.TexSubImage2D(SKGL__TEXTURE_2D, 0, 0, r0, s->atlas_w, r1 - r0 + 1, SKGL__RGBA, SKGL__UNSIGNED_BYTE,
+                          s->rmsm_table_cpu + row * (size_t)r0);
+}
+
+/* RMSM analysis: per-pixel samples, page requests scattered on the GPU into
+   the request atlas, read back; the pages and the page table from the
+   requests of the last frame (ring) or, with rmsm_latency 0 and on the
+   first analysis, of this one (a read-back that waits for the GPU) */
+static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
+                                    const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    int sync = s->desc.rmsm_latency == 0 || !s->rmsm_analyzed, slot;
+    if (s->rmsm_w != w || s->rmsm_h != h) {
+        skgl__delete_texture(ctx, &s->rmsm_samples);
+        skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
+        s->rmsm_samples = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+        s->rmsm_samples_fbo = skgl__framebuffer(ctx, st, s->rmsm_samples, 1, 0, 0);
+        s->rmsm_w = s->rmsm_samples_fbo ? w : 0;
+        s->rmsm_h = s->rmsm_samples_fbo ? h : 0;
+        if (!s->rmsm_samples_fbo) {
+            skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F target not renderable", NULL);
+            return SK_ERR_GL;
+        }
+    }
+    /* last frame's requests, if they have landed */
+    if (!sync && (slot = skgl__ring_poll(ctx, st, &s->rmsm_ring, s->rmsm_req_cpu)) >= 0) {
+        skgl__rmsm_pages(s, s->rmsm_req_cpu);
+        s->rmsm_lvp = s->rmsm_ring.lvp[slot];
+        memcpy(s->rmsm_origin, s->rmsm_ring.origin[slot], sizeof s->rmsm_origin);
+        skgl__rmsm_table(ctx, st, s);
+    }
+    skgl__timer_begin(ctx, &s->t_analyze);
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    /* the samples: one per pixel */
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm_samples_fbo);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
+    skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    gl->UniformMatrix4fv(ctx->rmsm_u_inv_view_proj, 1, 0, inv->m);
+    gl->UniformMatrix4fv(ctx->rmsm_u_light, 1, 0, lvp->m);
+    if (ctx->rmsm_vres != (float)s->desc.resolution) {
+        ctx->rmsm_vres = (float)s->desc.resolution;
+        skgl__u1f(gl, ctx->rmsm_u_virtual_res, ctx->rmsm_vres);
+    }
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    /* the requests: a point per sample onto its page's texel */
+    skgl__st_framebuffer(ctx, st, s->rmsm_requests_fbo);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->atlas_w, s->atlas_h);
+    gl->ClearBufferfv(SKGL__COLOR, 0, zero);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
+    if (ctx->request_pages0 != s->pages0 || ctx->request_levels != s->levels) {
+        ctx->request_pages0 = s->pages0;
+        ctx->request_levels = s->levels;
+        skgl__u1i(gl, ctx->request_u_pages0, s->pages0);
+        skgl__u1i(gl, ctx->request_u_levels, s->levels);
+    }
+    skgl__st_texture(ctx, st, 1, SKGL__T_2D, s->rmsm_samples, ctx->point_sampler);
+    /* the vertex shader's gl_PointSize, not the glPointSize the caller set */
+    skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
+    gl->DrawArrays(SKGL__POINTS, 0, w * h);
+    if (sync) {
+        /* this frame's requests: the read-back waits for the GPU. A byte
+           a texel (GL_RED of the R8 atlas): rows of atlas_w bytes, hence
+           the pack alignment of 1 (the default 4 would pad them) */
+        skgl__st_pack(ctx, st, 0, s->atlas_h);
+        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm_req_cpu);
+        skgl__rmsm_pages(s, s->rmsm_req_cpu);
+        s->rmsm_lvp = *lvp;
+        memcpy(s->rmsm_origin, o, sizeof s->rmsm_origin);
+        skgl__rmsm_table(ctx, st, s);
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm_ring)) >= 0) {
+        skgl__st_pack(ctx, st, s->rmsm_ring.buf[slot], s->atlas_h);
+        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
+        s->rmsm_ring.lvp[slot] = *lvp;
+        memcpy(s->rmsm_ring.origin[slot], o, sizeof s->rmsm_ring.origin[slot]);
+        skgl__ring_fence(ctx, &s->rmsm_ring, slot);
+    }
     s->rmsm_analyzed = 1;
-    s->stats.analysis_ms = skgl__query_end(ctx);
+    skgl__timer_end(ctx, &s->t_analyze);
+    s->stats.analysis_ms = s->t_analyze.ms;
+    return SK_OK;
+}
+
+/* FERKO analysis: the 4x4-block pass, the 16x16 reductions, the final 2x1
+   texels; read back at once (ferko_latency 0, and the first analysis) or
+   into the ring, the estimate of an earlier frame taken when it lands */
+static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
+                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    sk_mat4 ndc_to_light;
+    float world_w[4], v[8];
+    int k, sync = s->desc.ferko_latency == 0 || s->ferko_state == 0, slot;
+    if (!skgl__ferko_targets(ctx, st, s, w, h)) {
+        skgl__ferko_free(ctx, s);
+        skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
+        return SK_ERR_GL;
+    }
+    /* an earlier frame's estimate, if it has landed (the last one kept if not) */
+    if (s->desc.ferko_latency == 1 && (slot = skgl__ring_poll(ctx, st, &s->ferko_ring, v)) >= 0) {
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
+        s->ferko_lvp = s->ferko_ring.lvp[slot];
+        memcpy(s->ferko_origin, s->ferko_ring.origin[slot], sizeof s->ferko_origin);
+        s->ferko_state = 1;
+    }
+    skgl__timer_begin(ctx, &s->t_analyze);
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    /* level 0: 4x4 blocks of the G-buffer */
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[0]);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[0], s->ferko_lh[0]);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
+    skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    ndc_to_light = sk_mat4_mul(*lvp, *inv);
+    world_w[0] = inv->m[3]; world_w[1] = inv->m[7]; world_w[2] = inv->m[11]; world_w[3] = inv->m[15];
+    gl->UniformMatrix4fv(ctx->ferko_u_ndc_to_light, 1, 0, ndc_to_light.m);
+    gl->Uniform4fv(ctx->ferko_u_world_w, 1, world_w);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    /* 16x16 MIN reductions (the source level on unit 1's 2D-array target),
+       then the final pass over what is left into the 2x1 texels */
+    for (k = 1; k <= s->ferko_levels; k++) {
+        int fin = k == s->ferko_levels, src = k - 1;
+        int *cache = fin ? ctx->final_src : ctx->reduce_src;
+        skgl__int loc = fin ? ctx->final_u_src_size : ctx->reduce_u_src_size;
+        if (fin) {
+            skgl__st_framebuffer(ctx, st, s->ferko_final_fbo);   /* read back from it too */
+            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, 2, 1);
+        } else {
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[skgl__ferko_slot(k)]);
+            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[k], s->ferko_lh[k]);
+        }
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)(fin ? ctx->final_prog : ctx->reduce_prog));
+        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D_ARRAY), (skgl__int)s->ferko_tex[skgl__ferko_slot(src)]);
+        if (cache[0] != s->ferko_lw[src] || cache[1] != s->ferko_lh[src]) {
+            cache[0] = s->ferko_lw[src];
+            cache[1] = s->ferko_lh[src];
+            if (loc >= 0) gl->Uniform2i(loc, cache[0], cache[1]);
+        }
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    if (sync) {
+        /* this frame's estimate: the read-back waits for the GPU */
+        skgl__st_pack(ctx, st, 0, 1);
+        gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, v);
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
+        s->ferko_lvp = *lvp;
+        memcpy(s->ferko_origin, o, sizeof s->ferko_origin);
+        s->ferko_state = 1;
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko_ring)) >= 0) {
+        /* with a pixel pack buffer bound, glReadPixels' pointer is an
+           offset into it, and the call returns without waiting */
+        skgl__st_pack(ctx, st, s->ferko_ring.buf[slot], 1);
+        gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
+        s->ferko_ring.lvp[slot] = *lvp;
+        memcpy(s->ferko_ring.origin[slot], o, sizeof s->ferko_ring.origin[slot]);
+        skgl__ring_fence(ctx, &s->ferko_ring, slot);
+    }
+    skgl__timer_end(ctx, &s->t_analyze);
+    s->stats.analysis_ms = s->t_analyze.ms;
     return SK_OK;
 }
 
 SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                       const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex)
 {
-    static const skgl__enum bufs[2] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1};
-    skgl__api *gl;
-    skgl__state st;
-    sk_mat4 inv, lvp, ndc_to_light;
-    skgl__int w = 0, h = 0;
-    int cw, ch, src = 0, sync;
-    float world_w[4], v[8];
+    skgl__st st;
+    sk_mat4 inv, lvp;
+    int w = 0, h = 0;
     double o[3];
     skgl_camera rc;
     skgl_scene rs;
     sk_result r;
+    const char *why;
     if (!ctx || !s || !cam || !scene || !depth_tex ||
         (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM) ||
         !sk__v3_finite(light_dir) || sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) ||
@@ -3142,120 +4398,17 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
     r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
-    gl = &ctx->gl;
-    skgl__save(gl, &st);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
-    if (w <= 0 || h <= 0 || w > 65536 || h > 65536) {
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_shadow_analyze: depth texture has no level 0", NULL);
+    skgl__st_begin(ctx, &st);
+    why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
+    if (why) {
+        skgl__st_end(ctx, &st);
+        skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
         return SK_ERR_INVALID_ARG;
     }
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    skgl__pixel_store_plain(gl);
-    if (s->desc.technique == SKGL_RMSM) {
-        r = skgl__analyze_rmsm(ctx, s, &inv, &lvp, w, h);
-        if (r == SK_OK) memcpy(s->rmsm_origin, o, sizeof o);
-        skgl__restore(gl, &st);
-        return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
-    }
-    skgl__ferko_targets(ctx, s, w, h);
-    /* one frame late: the estimate of the last call, waiting in the PBO */
-    if (s->ferko_state == 2) {
-        gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, s->ferko_pbo);
-        gl->GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, 8 * sizeof(float), v);
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
-        s->ferko_lvp = s->ferko_pending_lvp;
-        memcpy(s->ferko_origin, s->ferko_pending_origin, sizeof o);
-        s->ferko_state = 1;
-    }
-    sync = !s->desc.ferko_latency || s->ferko_state == 0;
-    skgl__query_begin(ctx);
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->ColorMask(1, 1, 1, 1);
-    gl->BindVertexArray(ctx->empty_vao);
-    /* pass 1: 4x4 blocks of the G-buffer */
-    cw = (w + 3) / 4;
-    ch = (h + 3) / 4;
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->ferko_tex[0][0], 0);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, s->ferko_tex[0][1], 0);
-    gl->DrawBuffers(2, bufs);
-    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, 0, 0);
-        if (ctx->timing) gl->EndQuery(SKGL__TIME_ELAPSED);
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
-        return SK_ERR_GL;
-    }
-    gl->Viewport(0, 0, cw, ch);
-    gl->UseProgram(ctx->ferko_prog);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindSampler(1, ctx->point_sampler);
-    gl->Uniform1i(gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
-    ndc_to_light = sk_mat4_mul(lvp, inv);
-    world_w[0] = inv.m[3]; world_w[1] = inv.m[7]; world_w[2] = inv.m[11]; world_w[3] = inv.m[15];
-    gl->UniformMatrix4fv(gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light"), 1, 0, ndc_to_light.m);
-    gl->Uniform4fv(gl->GetUniformLocation(ctx->ferko_prog, "u_world_w"), 1, world_w);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    /* 4x4 MIN reductions, ping-pong between the two pairs, down to one texel */
-    gl->UseProgram(ctx->reduce_prog);
-    gl->Uniform1i(gl->GetUniformLocation(ctx->reduce_prog, "u_bounds"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(ctx->reduce_prog, "u_patch"), 2);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
-    gl->BindSampler(2, ctx->point_sampler);
-    while (cw > 1 || ch > 1) {
-        int dst = 1 - src, nw = (cw + 3) / 4, nh = (ch + 3) / 4;
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, s->ferko_tex[dst][0], 0);
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, s->ferko_tex[dst][1], 0);
-        gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-        gl->BindTexture(SKGL__TEXTURE_2D, s->ferko_tex[src][0]);
-        gl->ActiveTexture(SKGL__TEXTURE0 + 2);
-        gl->BindTexture(SKGL__TEXTURE_2D, s->ferko_tex[src][1]);
-        gl->Uniform2i(gl->GetUniformLocation(ctx->reduce_prog, "u_src_size"), cw, ch);
-        gl->Viewport(0, 0, nw, nh);
-        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-        src = dst;
-        cw = nw;
-        ch = nh;
-    }
-    /* the result: texel (0, 0) of the pair attached now */
-    if (sync) {
-        gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
-        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
-        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, v);
-        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT1);
-        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, v + 4);
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
-        s->ferko_lvp = lvp;
-        memcpy(s->ferko_origin, o, sizeof o);
-        s->ferko_state = 1;
-    }
-    if (s->desc.ferko_latency) {
-        /* start this frame's readback; the next call takes it */
-        gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, s->ferko_pbo);
-        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
-        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
-        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT1);
-        gl->ReadPixels(0, 0, 1, 1, SKGL__RGBA, SKGL__FLOAT, (void *)(4 * sizeof(float)));
-        s->ferko_pending_lvp = lvp;
-        memcpy(s->ferko_pending_origin, o, sizeof o);
-        s->ferko_state = 2;
-    }
-    gl->ReadBuffer(SKGL__NONE);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, 0, 0);
-    gl->DrawBuffer(SKGL__NONE);
-    s->stats.analysis_ms = skgl__query_end(ctx);
-    skgl__restore(gl, &st);
-    return skgl__check(ctx, "skgl_shadow_analyze");
+    if (s->desc.technique == SKGL_RMSM) r = skgl__analyze_rmsm(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    else r = skgl__analyze_ferko(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
 }
 
 /* Crops of every layer: the PSSM practical split scheme (seed 002) over
@@ -3350,100 +4503,135 @@ static void skgl__depth_pass_state(const skgl__api *gl, const skgl_shadow_desc *
     } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
 }
 
+
+/* ---- the draw callback ---------------------------------------------------
+   A caster pass binds the depth program and sets the model matrix once;
+   the callback may set models (skgl_set_model) and bind its own program if
+   it binds info->program again before it returns (the manual's SCENE
+   ACCESS). After each callback the identity model is set again only if
+   the callback set a model; with desc.debug, the program it left current
+   is checked. The vertex array it may have bound and the unit it may have
+   made active are no longer known (the default mode puts the caller's
+   vertex array back at the end). */
+static const float skgl__identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+static void skgl__model_begin(skgl_context *ctx, const double origin[3])
+{
+    memcpy(ctx->model_origin, origin, sizeof ctx->model_origin);
+    ctx->model_loc = ctx->depth_u_model;
+    skgl__model(ctx, skgl__identity);
+    ctx->model_dirty = 0;
+}
+
+static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
+{
+    sk_result r = SK_OK;
+    if (ctx->debug) {
+        skgl__int cur = 0;
+        ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
+        if (cur != (skgl__int)ctx->depth_prog) {
+            skgl__set_log(ctx, "the draw callback returned with another program current",
+                          "bind info->program again before returning");
+            ctx->gl.UseProgram(ctx->depth_prog);
+            r = SK_ERR_INVALID_ARG;
+        }
+    }
+    if (ctx->model_dirty) {
+        skgl__model(ctx, skgl__identity);
+        ctx->model_dirty = 0;
+    }
+    /* the callback may have bound a vertex array and switched the active
+       unit: neither is known any more (what shadowkit set on a unit before
+       is then put back on the right one) */
+    skgl__st_forget(st, SKGL__S_VAO);
+    skgl__st_forget(st, SKGL__S_ACTIVE);
+    return r;
+}
+
 /* RMSM: every resident page into its pool slot, with a border of one
    texel: level l's page (px, py) covers level texels [px P - 1, (px+1) P + 1)
    of the virtual map at V / 2^l, crop of the virtual map's light frustum */
-static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
-                                   const skgl_scene *scene, sk_vec3 light_dir)
+static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir)
 {
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    static const float one = 1.0f;
     skgl__api *gl = &ctx->gl;
-    skgl__state st;
+    skgl__st st;
     int i, P = s->desc.rmsm_page_size, slot = P + 2, pool = s->desc.rmsm_pool_pages;
-    sk_result r;
-    (void)cam;
-    skgl__save(gl, &st);
-    skgl__pixel_store_plain(gl);
-    gl->ActiveTexture(SKGL__TEXTURE0);           /* a unit save/restore covers */
+    sk_result r = SK_OK, rc;
+    skgl__st_begin(ctx, &st);
     if (!s->rmsm_analyzed) {
         /* no analysis: the coarsest page alone */
         r = skgl__ferko_light(scene, light_dir, &s->rmsm_lvp);
-        if (r != SK_OK) { skgl__restore(gl, &st); return r; }
+        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
         memcpy(s->rmsm_origin, s->origin, sizeof s->rmsm_origin);
         s->rmsm_pages[0].level = s->levels - 1;
         s->rmsm_pages[0].px = s->rmsm_pages[0].py = 0;
         s->rmsm_npages = 1;
         s->stats.pages_requested = 0;
         s->stats.rmsm_min_level = 0;
-        skgl__rmsm_table(ctx, s);
+        skgl__rmsm_table(ctx, &st, s);
     }
     s->light_dir = sk__normalize(light_dir);
     s->vp[0] = skgl__shift(&s->rmsm_lvp, s->rmsm_origin, s->origin);
     s->maps = 1;
-    skgl__query_begin(ctx);
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->DrawBuffer(SKGL__NONE);
-    gl->ReadBuffer(SKGL__NONE);
-    gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, s->tex, 0, 0);
-    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
-        if (ctx->timing) gl->EndQuery(SKGL__TIME_ELAPSED);
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "shadow framebuffer incomplete", NULL);
-        return SK_ERR_GL;
-    }
-    gl->Enable(SKGL__SCISSOR_TEST);
-    skgl__depth_pass_state(gl, &s->desc);
+    skgl__st_save(ctx, &st, SKGL__S_VAO);
+    skgl__timer_begin(ctx, &s->t_render);
+    skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[0]);
+    skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+    skgl__model_begin(ctx, s->origin);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
     for (i = 0; i < s->rmsm_npages; i++) {
         const sk_page *pg = &s->rmsm_pages[i];
         double lres = (double)(s->desc.resolution >> pg->level);
-        sk_rect rc;
+        sk_rect rc_;
         sk_mat4 vp;
         skgl_draw_info info;
         int x = (i % pool) * slot, y = (i / pool) * slot;
-        rc.x0 = (float)(2.0 * (pg->px * P - 1) / lres - 1.0);
-        rc.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
-        rc.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
-        rc.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
-        vp = sk_mat4_mul(sk_crop_matrix(rc, -1.0f, 1.0f), s->vp[0]);
-        gl->Viewport(x, y, slot, slot);
-        gl->Scissor(x, y, slot, slot);
-        gl->Clear(SKGL__DEPTH_BUFFER_BIT);
-        gl->UseProgram(ctx->depth_prog);
+        rc_.x0 = (float)(2.0 * (pg->px * P - 1) / lres - 1.0);
+        rc_.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
+        rc_.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
+        rc_.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
+        vp = sk_mat4_mul(sk_crop_matrix(rc_, -1.0f, 1.0f), s->vp[0]);
+        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, x, y, slot, slot);
+        skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, x, y, slot, slot);
+        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
         gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
-        memcpy(ctx->model_origin, s->origin, sizeof s->origin);
-        skgl__model(ctx, identity);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
         info.view_proj = skgl__shift(&vp, s->origin, skgl__zero3);   /* world space for the callback */
         info.frustum = sk_frustum_from_matrix(info.view_proj);
+        info.program = ctx->depth_prog;
         scene->draw(scene->user, &info);
+        rc = skgl__after_draw(ctx, &st);
+        if (rc != SK_OK) r = rc;
         s->stats.passes++;
         s->stats.texels += (double)slot * slot;
     }
     memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
-    gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
-    s->stats.shadow_ms = skgl__query_end(ctx);
+    skgl__timer_end(ctx, &s->t_render);
+    s->stats.shadow_ms = s->t_render.ms;
     s->stats.maps = 1;
     s->stats.resolution = s->desc.resolution;
     s->stats.map_width = s->stats.map_height = s->tex_size;
     s->stats.pages_rendered = s->rmsm_npages;
-    skgl__restore(gl, &st);
-    return skgl__check(ctx, "skgl_shadow_render");
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
 
 SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                      const skgl_scene *scene, sk_vec3 light_dir)
 {
+    static const float one = 1.0f;
     skgl__api *gl;
-    skgl__state st;
-    sk_result r;
+    skgl__st st;
+    sk_result r, rc;
     int i, res;
     double o[3], was[3];
-    skgl_camera rc;
+    skgl_camera rcam;
     skgl_scene rs;
     if (!ctx || !s || !cam || !scene || !scene->draw || !sk__v3_finite(light_dir) ||
         sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj) ||
@@ -3451,107 +4639,119 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
         return SK_ERR_INVALID_ARG;
     /* the maps are fitted and rendered relative to the camera's origin */
     skgl__origin(&cam->view, o);
-    rc = skgl__camera_rel(cam, o);
+    rcam = skgl__camera_rel(cam, o);
     rs = skgl__scene_rel(scene, o);
     memcpy(was, s->origin, sizeof was);
     memcpy(s->origin, o, sizeof o);
-    r = skgl__fit_layers(s, &rc, &rs, light_dir);
+    r = skgl__fit_layers(s, &rcam, &rs, light_dir);
     if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
-    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, &rc, &rs, light_dir);
+    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, &rs, light_dir);
     if (s->desc.technique != SKGL_FERKO || s->ferko_state == 0)
         for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
     s->light_dir = sk__normalize(light_dir);
     gl = &ctx->gl;
     res = s->desc.resolution;
-    skgl__save(gl, &st);
-    skgl__query_begin(ctx);
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->DrawBuffer(SKGL__NONE);
-    gl->ReadBuffer(SKGL__NONE);
-    gl->Viewport(0, 0, s->view_w, s->view_h);
+    skgl__st_begin(ctx, &st);
+    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
+    skgl__timer_begin(ctx, &s->t_render);
+    skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
     /* a map smaller than its texture (FERKO): clear and draw only its
        region, plus one texel for the filter's footprint at the edge */
     if (s->view_w < res || s->view_h < res) {
-        gl->Enable(SKGL__SCISSOR_TEST);
-        gl->Scissor(0, 0, s->view_w < res ? s->view_w + 1 : res, s->view_h < res ? s->view_h + 1 : res);
-    } else gl->Disable(SKGL__SCISSOR_TEST);
-    skgl__depth_pass_state(gl, &s->desc);
-    gl->UseProgram(ctx->depth_prog);
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+        skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, s->view_w < res ? s->view_w + 1 : res,
+                      s->view_h < res ? s->view_h + 1 : res);
+    } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+    skgl__model_begin(ctx, o);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
     for (i = 0; i < s->maps; i++) {
         skgl_draw_info info;
-        static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-        gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, s->tex, 0, i);
-        if (i == 0 && gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-            gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
-            skgl__query_end(ctx);
-            skgl__set_log(ctx, "shadow framebuffer incomplete", NULL);
-            skgl__restore(gl, &st);
-            return SK_ERR_GL;
-        }
-        gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
+        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
         gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->render_vp[i].m);
-        memcpy(ctx->model_origin, o, sizeof o);
-        skgl__model(ctx, identity);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
         info.view_proj = skgl__shift(&s->render_vp[i], o, skgl__zero3);   /* world space for the callback */
         info.frustum = sk_frustum_from_matrix(info.view_proj);
+        info.program = ctx->depth_prog;
         scene->draw(scene->user, &info);
+        rc = skgl__after_draw(ctx, &st);
+        if (rc != SK_OK) r = rc;
         s->stats.passes++;
         s->stats.texels += (double)s->view_w * s->view_h;
-        /* the callback may have bound its own program: ours again for the next layer */
-        gl->UseProgram(ctx->depth_prog);
     }
     memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
-    gl->FramebufferTextureLayer(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, 0, 0, 0);
-    s->stats.shadow_ms = skgl__query_end(ctx);
+    skgl__timer_end(ctx, &s->t_render);
+    s->stats.shadow_ms = s->t_render.ms;
     s->stats.maps = s->maps;
     s->stats.resolution = res;
     s->stats.map_width = s->view_w;
     s->stats.map_height = s->view_h;
-    skgl__restore(gl, &st);
-    return skgl__check(ctx, "skgl_shadow_render");
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
 
-/* origin: the world point the program's positions are relative to */
-static void skgl__uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__uint prog, int unit, int table_unit,
-                           const double origin[3])
+/* The directional snippet's uniforms on the current program (entry e):
+   the light's constants when the program holds another light's (or none),
+   the values that seldom change when they did, the per-frame ones always.
+   unit, table_unit: the units of the map and of the RMSM page table;
+   origin: the world point the program's positions are relative to. */
+static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__progent *e, int unit,
+                                  int table_unit, const double origin[3])
 {
-    skgl__api *gl = &ctx->gl;
+    const skgl__api *gl = &ctx->gl;
+    const skgl__int *L = e->loc;
     sk_mat4 vp[SKGL_MAX_CASCADES];
+    float ext[2];
     int i;
-    for (i = 0; i < s->maps && i < SKGL_MAX_CASCADES; i++) vp[i] = skgl__shift(&s->vp[i], s->origin, origin);
-    /* the page table's sampler is set whatever the technique: two samplers
-       of different types must never share a unit */
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_page_table"), table_unit);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm"), s->desc.technique == SKGL_RMSM);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_pages0"), s->pages0);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_levels"), s->levels);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_min_level"), s->stats.rmsm_min_level);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_rmsm_page"), s->desc.rmsm_page_size);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_shadow_map"), unit);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "sk_light_vp"), s->maps, 0, vp[0].m);
-    gl->Uniform1fv(gl->GetUniformLocation(prog, "sk_splits"), s->maps + 1, s->stats.splits);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_layers"), s->maps);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_select_by_map"), s->desc.technique == SKGL_LSPSM);
-    {
-        /* FERKO draws into the lower-left view_w x view_h texels: beyond them
-           lie older maps' texels, not this frame's */
-        float ext[2];
-        ext[0] = s->desc.technique == SKGL_FERKO ? (float)s->view_w / (float)s->desc.resolution : 1.0f;
-        ext[1] = s->desc.technique == SKGL_FERKO ? (float)s->view_h / (float)s->desc.resolution : 1.0f;
-        gl->Uniform2fv(gl->GetUniformLocation(prog, "sk_map_extent"), 1, ext);
+    if (e->owner != s->id || e->unit != unit) {
+        /* the page table's sampler is set whatever the technique: two
+           samplers of different types must never share a unit */
+        skgl__u1i(gl, L[SKGL__L_MAP], unit);
+        skgl__u1i(gl, L[SKGL__L_TABLE], table_unit);
+        skgl__u1i(gl, L[SKGL__L_RMSM], s->desc.technique == SKGL_RMSM);
+        skgl__u1i(gl, L[SKGL__L_PAGES0], s->pages0);
+        skgl__u1i(gl, L[SKGL__L_LEVELS], s->levels);
+        skgl__u1i(gl, L[SKGL__L_PAGE], s->desc.rmsm_page_size);
+        skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], s->desc.technique == SKGL_LSPSM);
+        skgl__u1f(gl, L[SKGL__L_BLEND_BAND], s->desc.blend_band);
+        skgl__u1f(gl, L[SKGL__L_NORMAL_BIAS], s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+        skgl__u1i(gl, L[SKGL__L_BIAS_MODE], (skgl__int)s->desc.bias);
+        skgl__u1f(gl, L[SKGL__L_PLANE_BIAS], s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
+        skgl__u1i(gl, L[SKGL__L_PCF], s->desc.pcf_radius);
+        e->owner = s->id;
+        e->unit = unit;
+        e->sentinel_i = s->desc.rmsm_page_size;
+        e->layers = e->min_level = -1;
+        e->extent[0] = e->extent[1] = e->select = -1.0f;
     }
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_select_extent"), s->select_extent);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_blend_band"), s->desc.blend_band);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_normal_bias"), s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_bias_mode"), (skgl__int)s->desc.bias);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_plane_bias"), s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_pcf_radius"), s->desc.pcf_radius);
-    gl->Uniform3fv(gl->GetUniformLocation(prog, "sk_light_dir"), 1, &s->light_dir.x);
+    if (e->layers != s->maps) { e->layers = s->maps; skgl__u1i(gl, L[SKGL__L_LAYERS], s->maps); }
+    if (e->min_level != s->stats.rmsm_min_level) {
+        e->min_level = s->stats.rmsm_min_level;
+        skgl__u1i(gl, L[SKGL__L_MIN_LEVEL], e->min_level);
+    }
+    /* FERKO draws into the lower-left view_w x view_h texels: beyond them
+       lie older maps' texels, not this frame's */
+    ext[0] = s->desc.technique == SKGL_FERKO ? (float)s->view_w / (float)s->desc.resolution : 1.0f;
+    ext[1] = s->desc.technique == SKGL_FERKO ? (float)s->view_h / (float)s->desc.resolution : 1.0f;
+    if (ext[0] != e->extent[0] || ext[1] != e->extent[1]) {
+        e->extent[0] = ext[0];
+        e->extent[1] = ext[1];
+        if (L[SKGL__L_MAP_EXTENT] >= 0) gl->Uniform2fv(L[SKGL__L_MAP_EXTENT], 1, ext);
+    }
+    if (e->select != s->select_extent) {
+        e->select = s->select_extent;
+        skgl__u1f(gl, L[SKGL__L_SELECT_EXTENT], s->select_extent);
+    }
+    /* per frame: the matrices, the split depths, the light's direction */
+    for (i = 0; i < s->maps && i < SKGL_MAX_CASCADES; i++) vp[i] = skgl__shift(&s->vp[i], s->origin, origin);
+    if (L[SKGL__L_LIGHT_VP] >= 0) gl->UniformMatrix4fv(L[SKGL__L_LIGHT_VP], s->maps, 0, vp[0].m);
+    if (L[SKGL__L_SPLITS] >= 0) gl->Uniform1fv(L[SKGL__L_SPLITS], s->maps + 1, s->stats.splits);
+    if (L[SKGL__L_LIGHT_DIR] >= 0) gl->Uniform3fv(L[SKGL__L_LIGHT_DIR], 1, &s->light_dir.x);
 }
 
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit)
@@ -3559,31 +4759,147 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
     return skgl_shadow_bind_origin(ctx, s, program, unit, NULL);
 }
 
+/* the active unit the caller had (default mode; -1 in caller-owns mode,
+   where the bind leaves the last unit it used active) */
+static skgl__int skgl__bind_active(skgl_context *ctx)
+{
+    skgl__int active = -1;
+    if (!ctx->caller_owns) ctx->gl.GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
+    return active;
+}
+
 SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
                                           const double origin[3])
 {
     skgl__api *gl;
-    skgl__int active = 0;
+    skgl__int active, last;
+    skgl__progent *e;
     if (!ctx || !s || !program || unit < 0 || unit > (s->desc.technique == SKGL_RMSM ? 30 : 31) ||
         (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30)))
         return SK_ERR_INVALID_ARG;
+    e = skgl__user_program(ctx, program, SKGL__PK_SHADOW);
     gl = &ctx->gl;
-    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
-    gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
+    active = skgl__bind_active(ctx);
+    last = SKGL__TEXTURE0 + unit;
+    if (active != last) gl->ActiveTexture((skgl__enum)last);
     gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
     gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-    gl->ActiveTexture((skgl__enum)active);
     if (s->desc.technique == SKGL_RMSM) {
-        gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit + 1);
+        last = SKGL__TEXTURE0 + unit + 1;
+        gl->ActiveTexture((skgl__enum)last);
         gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
         gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
-        gl->ActiveTexture((skgl__enum)active);
     }
-    skgl__uniforms(ctx, s, program, unit, unit + 1, origin ? origin : skgl__zero3);
+    if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
+    skgl__shadow_uniforms(ctx, s, e, unit, unit + 1, origin ? origin : skgl__zero3);
     return skgl__check(ctx, "skgl_shadow_bind");
 }
 
-/* ---- the deferred mask passes (inside save/restore) --------------------- */
+/* ---- the deferred mask passes ------------------------------------------- */
+/* The mask texture as the only colour target of the masks' framebuffer,
+   attached by name at every call (a texture deleted and made again under
+   the same name is a new object: an attachment kept from before would
+   still name the old one), checked complete the first time the name comes
+   by (skgl__texture); the full viewport and the state of a full-screen
+   pass. *w, *h: the mask's size. */
+static sk_result skgl__mask_begin(skgl_context *ctx, skgl__st *st, unsigned mask_tex, int *w, int *h,
+                                  const char *fn)
+{
+    skgl__texent *e;
+    const char *why = skgl__texture_size(ctx, st, mask_tex, w, h);
+    if (why) {
+        skgl__set_log(ctx, fn, why);
+        return SK_ERR_INVALID_ARG;
+    }
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)ctx->mask_fbo);
+    ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
+    ctx->mask_fbo_tex = mask_tex;
+    e = skgl__texture(ctx, mask_tex);
+    if (!e->fb_ok) {
+        if (ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+            ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+            ctx->mask_fbo_tex = 0;
+            skgl__set_log(ctx, fn, "the mask texture is not colour-renderable");
+            return SK_ERR_GL;
+        }
+        e->fb_ok = 1;
+    }
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, *w, *h);
+    skgl__st_screen_pass(ctx, st);
+    return SK_OK;
+}
+
+static void skgl__bind_unit(skgl__unitbind *b, int unit, int target, skgl__uint tex, skgl__uint sampler)
+{
+    b->unit = unit;
+    b->target = target;
+    b->tex = tex;
+    b->sampler = sampler;
+}
+
+/* the G-buffer on units 1 (depth) and 2 (normals, when there are) through
+   the point sampler: texelFetch reads them, and a sampler object of the
+   caller's (comparison on, or a mipmapped filter without mipmaps) would
+   make those reads undefined or 0; returns the binds written to b */
+static int skgl__mask_gbuffer(const skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, skgl__unitbind *b)
+{
+    skgl__bind_unit(&b[0], 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    if (!normal_tex) return 1;
+    skgl__bind_unit(&b[1], 2, SKGL__T_2D, normal_tex, ctx->point_sampler);
+    return 2;
+}
+
+/* the camera's matrices of a mask program: [0] inverse view-projection, [1] view */
+static void skgl__mask_camera(skgl_context *ctx, skgl__int loc, const sk_mat4 *inv, const sk_mat4 *view)
+{
+    float m[32];
+    memcpy(m, inv->m, sizeof inv->m);
+    memcpy(m + 16, view->m, sizeof view->m);
+    if (loc >= 0) ctx->gl.UniformMatrix4fv(loc, 2, 0, m);
+}
+
+SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    skgl__st st;
+    int w = 0, h = 0;
+    sk_mat4 inv;
+    double o[3];
+    skgl_camera rc;
+    sk_result r;
+    if (!ctx || !s || !cam || !depth_tex || !mask_tex || !sk__mat_finite(&cam->view) ||
+        !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
+        return SK_ERR_INVALID_ARG;
+    /* positions reconstructed relative to this camera's origin */
+    skgl__origin(&cam->view, o);
+    rc = skgl__camera_rel(cam, o);
+    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    skgl__st_begin(ctx, &st);
+    skgl__timer_begin(ctx, &s->t_mask);
+    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask: mask_tex");
+    if (r == SK_OK) {
+        skgl__unitbind b[4];
+        int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm_table, 0);
+        skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
+        skgl__st_units(ctx, &st, b, n);
+        skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
+        skgl__shadow_uniforms(ctx, s, &ctx->mask_ent, 0, 3, o);
+        if (ctx->mask_ent.has_normals != (normal_tex != 0)) {
+            ctx->mask_ent.has_normals = normal_tex != 0;
+            skgl__u1i(&ctx->gl, ctx->mask_u_has_normals, normal_tex != 0);
+        }
+        skgl__mask_camera(ctx, ctx->mask_u_camera, &inv, &rc.view);
+        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    skgl__timer_end(ctx, &s->t_mask);
+    s->stats.mask_ms = s->t_mask.ms;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_mask");
+}
+
+/* ---- for the area lights (skgl_soft_*, inside their full save and restore) ---- */
 /* the G-buffer on units 1 (depth) and 2 (normals, may be 0) with the point
    sampler; *w, *h: the mask texture's level 0 (0 when it has none) */
 static void skgl__mask_inputs(skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, unsigned mask_tex,
@@ -3623,79 +4939,23 @@ static int skgl__mask_target(skgl_context *ctx, unsigned mask_tex, int w, int h)
     return 1;
 }
 
-/* the G-buffer uniforms of a mask program (current), the full-screen
-   triangle, and the target detached */
-static void skgl__mask_draw(skgl_context *ctx, skgl__uint prog, const sk_mat4 *inv_view_proj, unsigned normal_tex)
-{
-    skgl__api *gl = &ctx->gl;
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv_view_proj->m);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-}
-
-SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
-                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
-{
-    skgl__api *gl;
-    skgl__state st;
-    skgl__int w = 0, h = 0;
-    sk_mat4 inv;
-    skgl__uint p;
-    double o[3];
-    skgl_camera rc;
-    if (!ctx || !s || !cam || !depth_tex || !mask_tex || !sk__mat_finite(&cam->view) ||
-        !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
-        return SK_ERR_INVALID_ARG;
-    /* positions reconstructed relative to this camera's origin */
-    skgl__origin(&cam->view, o);
-    rc = skgl__camera_rel(cam, o);
-    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
-    gl = &ctx->gl;
-    p = ctx->mask_prog;
-    skgl__save(gl, &st);
-    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 3);
-    gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
-    gl->BindSampler(3, ctx->point_sampler);
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
-    gl->BindSampler(0, ctx->cmp_sampler);
-    if (w <= 0 || h <= 0) {
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_shadow_mask: mask texture has no level 0", NULL);
-        return SK_ERR_INVALID_ARG;
-    }
-    skgl__query_begin(ctx);
-    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
-        skgl__query_end(ctx);
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_shadow_mask: mask texture is not colour-renderable", NULL);
-        return SK_ERR_GL;
-    }
-    gl->Disable(SKGL__SCISSOR_TEST);
-    gl->UseProgram(p);
-    skgl__uniforms(ctx, s, p, 0, 3, o);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(p, "u_view"), 1, 0, rc.view.m);
-    skgl__mask_draw(ctx, p, &inv, normal_tex);
-    s->stats.mask_ms = skgl__query_end(ctx);
-    skgl__restore(gl, &st);
-    return skgl__check(ctx, "skgl_shadow_mask");
-}
-
 /* ---- point lights: cube shadow maps and VSDCT (seed 004) ---------------- */
 #define SKGL__MAX_TEXTURE_SIZE 0x0D33
 #define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
 
 struct skgl_point {
     skgl_point_desc desc;
+    unsigned id;                   /* per context, never reused: whose constants a program holds */
     skgl__uint tex;                /* cube map of depth (mip chain with .select_resolution) or the 2D atlas */
     skgl__uint indirection;        /* VSDCT: RG16 indirection cube map */
     skgl__uint prog;               /* the mask program, compiled for this technique */
     skgl__uint lin_sampler;        /* VSDCT: bilinear, no comparison (the indirection) */
+    skgl__uint fbo[6];             /* cube: one framebuffer per face, at mip level fbo_level;
+                                      VSDCT: [0] the light's own atlas's (a shared atlas has its own) */
+    int fbo_level;
+    int tex_level;                 /* cube: the one mip level sampling reads (-1: not set yet) */
+    skgl__progent ent;             /* the mask program's snippet uniforms */
+    skgl__int u_has_normals, u_inv_view_proj;
     int levels;                    /* cube: mip levels allocated */
     int ni;                        /* VSDCT: indirection side, Eq. (5.4.7) */
     int filled_res;                /* VSDCT: face side the indirection holds (0: none yet) */
@@ -3705,12 +4965,15 @@ struct skgl_point {
     sk_frustum view;               /* camera frustum of the render under way (caster culling) */
     float cull_margin;             /* world distance casters are grown by when culled (the filter's reach) */
     sk_vsdct_layout layout;        /* VSDCT: faces at face_res inside the full-size atlas */
+    unsigned layout_serial;        /* changes with layout (its rectangles in the snippet) */
     int packed;                    /* shared atlas: 1 once skgl_point_atlas_pack placed the faces */
+    skgl__timer t_render, t_mask;
     skgl_stats stats;
 };
 
 struct skgl_point_atlas {
     skgl__uint tex;                /* GL_TEXTURE_2D, DEPTH_COMPONENT32F, comparison on */
+    skgl__uint fbo;                /* its framebuffer, checked when made */
     int w, h;
 };
 
@@ -3749,8 +5012,8 @@ static sk_vsdct_layout skgl__point_layout(const skgl_point *p, int m)
 }
 
 /* VSDCT: (re)fills the indirection cube map for the faces of layout l
-   (nothing to do when it already holds them) */
-static sk_result skgl__point_fill(skgl_context *ctx, skgl_point *p, const sk_vsdct_layout *l)
+   (nothing to do when it already holds them; bound on unit 0 to upload) */
+static sk_result skgl__point_fill(skgl_context *ctx, skgl__st *st, skgl_point *p, const sk_vsdct_layout *l)
 {
     skgl__api *gl = &ctx->gl;
     size_t face_n = (size_t)p->ni * (size_t)p->ni * 2;
@@ -3761,8 +5024,10 @@ static sk_result skgl__point_fill(skgl_context *ctx, skgl_point *p, const sk_vsd
     if (!buf) return SK_ERR_CAPACITY;
     if (sk_vsdct_indirection_fill(l, p->ni, buf) != SK_OK) { SKGL_FREE(buf); return SK_ERR_INVALID_ARG; }
     p->layout = *l;
-    skgl__pixel_store_plain(gl);
-    gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
+    p->layout_serial++;
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->indirection);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE));
     for (f = 0; f < 6; f++)
         gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, 0, SKGL__RG16, p->ni, p->ni, 0, SKGL__RG,
                        SKGL__UNSIGNED_SHORT, buf + face_n * (size_t)f);
@@ -3771,36 +5036,94 @@ static sk_result skgl__point_fill(skgl_context *ctx, skgl_point *p, const sk_vsd
     return SK_OK;
 }
 
-/* a VSDCT atlas: 2D depth, bilinear comparison (bound texture unit 0 current) */
-static void skgl__atlas_alloc(skgl__api *gl, skgl__uint tex, int w, int h)
+/* a VSDCT atlas: 2D depth, bilinear comparison on the texture itself (the
+   masks sample it through no sampler object), made on unit 0 */
+static void skgl__atlas_alloc(skgl_context *ctx, skgl__st *st, skgl__uint tex, int w, int h)
 {
-    gl->BindTexture(SKGL__TEXTURE_2D, tex);
+    skgl__api *gl = &ctx->gl;
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
     gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, w, h, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+    /* GL's default wrap is GL_REPEAT: a bilinear tap at the atlas's edge
+       would blend in the opposite edge's texels */
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
 }
 
 static void skgl__point_free(skgl_context *ctx, skgl_point *p)
 {
     skgl__api *gl = &ctx->gl;
-    if (p->tex) { gl->DeleteTextures(1, &p->tex); ctx->objects--; }
-    if (p->indirection) { gl->DeleteTextures(1, &p->indirection); ctx->objects--; }
+    int f;
+    skgl__delete_texture(ctx, &p->tex);
+    skgl__delete_texture(ctx, &p->indirection);
     if (p->prog) { gl->DeleteProgram(p->prog); ctx->objects--; }
     if (p->lin_sampler) { gl->DeleteSamplers(1, &p->lin_sampler); ctx->objects--; }
-    p->tex = p->indirection = p->prog = p->lin_sampler = 0;
+    for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->fbo[f]);
+    skgl__timer_free(ctx, &p->t_render);
+    skgl__timer_free(ctx, &p->t_mask);
+    p->prog = p->lin_sampler = 0;
+}
+
+/* cube: the six faces' framebuffers onto mip level `level` (made when
+   missing), each checked complete; 1 when all are */
+static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p, int level)
+{
+    int f, ok = 1;
+    for (f = 0; f < 6; f++) {
+        if (!p->fbo[f]) {
+            ctx->gl.GenFramebuffers(1, &p->fbo[f]);
+            ctx->objects++;
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
+            ctx->gl.DrawBuffer(SKGL__NONE);
+            ctx->gl.ReadBuffer(SKGL__NONE);
+        }
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
+        ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
+                                     SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, p->tex, level);
+        ok &= ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+    }
+    p->fbo_level = ok ? level : -1;
+    return ok;
 }
 
 static int skgl__is_pow2(int x) { return x > 0 && (x & (x - 1)) == 0; }
+
+/* the first field of d (defaults filled) that is out of range, or NULL */
+static const char *skgl__point_bad_field(const skgl_point_desc *d)
+{
+    if (d->technique != SKGL_POINT_CUBE && d->technique != SKGL_POINT_VSDCT) return "technique";
+    if (d->resolution < 1) return "resolution";
+    if (!sk__finite(d->near_plane) || !(d->near_plane > 0.0f)) return "near_plane";
+    if (!sk__finite(d->range) || !(d->range > d->near_plane)) return "range";
+    if (!sk__finite(d->slope_bias)) return "slope_bias";
+    if (!sk__finite(d->depth_bias)) return "depth_bias";
+    if (!sk__finite(d->normal_bias)) return "normal_bias";
+    if ((int)d->bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d->bias > (int)SKGL_BIAS_NORMAL_OFFSET) return "bias";
+    if (!(d->plane_bias <= 64.0f)) return "plane_bias";
+    if (d->pcf_radius < 0 || d->pcf_radius > 8) return "pcf_radius";
+    if (!sk__finite(d->resolution_c) || !(d->resolution_c > 0.0f)) return "resolution_c";
+    if (d->screen_w < 0) return "screen_w";
+    if (d->screen_h < 0) return "screen_h";
+    if (d->vsdct_grey_levels < 1) return "vsdct_grey_levels";
+    if (d->technique == SKGL_POINT_CUBE && d->select_resolution && !skgl__is_pow2(d->resolution))
+        return "resolution (a power of two with select_resolution)";
+    if (d->atlas && (d->technique != SKGL_POINT_VSDCT || !d->atlas->tex)) return "atlas";
+    return NULL;
+}
 
 SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out)
 {
     skgl__api *gl;
     skgl_point *p;
     skgl_point_desc d;
-    skgl__state st;
+    skgl__st st;
     skgl__int max_size = 0;
+    const char *bad;
     char *fs;
     size_t n;
     int f, lv;
@@ -3808,26 +5131,21 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     if (out) *out = NULL;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
     d = skgl__point_defaults(desc);
-    if ((d.technique != SKGL_POINT_CUBE && d.technique != SKGL_POINT_VSDCT) || d.resolution < 1 ||
-        !sk__finite(d.near_plane) || !sk__finite(d.range) || !(d.near_plane > 0.0f) || !(d.range > d.near_plane) ||
-        !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.normal_bias) ||
-        (int)d.bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d.bias > (int)SKGL_BIAS_NORMAL_OFFSET ||
-        !(d.plane_bias <= 64.0f) ||
-        d.pcf_radius < 0 || d.pcf_radius > 8 || !sk__finite(d.resolution_c) || !(d.resolution_c > 0.0f) ||
-        d.screen_w < 0 || d.screen_h < 0 || d.vsdct_grey_levels < 1 ||
-        (d.technique == SKGL_POINT_CUBE && d.select_resolution && !skgl__is_pow2(d.resolution)) ||
-        (d.atlas && (d.technique != SKGL_POINT_VSDCT || !d.atlas->tex)))
-        return SK_ERR_INVALID_ARG;
+    bad = skgl__point_bad_field(&d);
+    if (bad) return skgl__bad_field(ctx, "skgl_point_create: bad field", bad);
     gl = &ctx->gl;
     gl->GetIntegerv(d.technique == SKGL_POINT_CUBE ? SKGL__MAX_CUBE_MAP_TEXTURE_SIZE : SKGL__MAX_TEXTURE_SIZE,
                     &max_size);
     /* a shared atlas bounds the side by packing (skgl_point_atlas_pack halves it) */
     if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : !d.atlas && d.resolution > max_size / 3)
-        return SK_ERR_INVALID_ARG;
+        return skgl__bad_field(ctx, "skgl_point_create: bad field", "resolution (past the GL limit)");
     p = (skgl_point *)SKGL_MALLOC(sizeof *p);
     if (!p) return SK_ERR_CAPACITY;
     memset(p, 0, sizeof *p);
     p->desc = d;
+    p->id = ++ctx->next_id;
+    if (!p->id) p->id = ++ctx->next_id;
+    p->tex_level = p->fbo_level = -1;
     /* the mask program: the technique's define, the snippet, the pass */
     n = strlen(skgl__src_point_sample_glsl) + 64;
     fs = (char *)SKGL_MALLOC(n);
@@ -3837,14 +5155,26 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     p->prog = skgl__program(ctx, skgl__src_fullscreen_vert, fs, skgl__src_point_mask_frag);
     SKGL_FREE(fs);
     if (!p->prog) { SKGL_FREE(p); return SK_ERR_GL; }
-    skgl__save(gl, &st);
-    gl->ActiveTexture(SKGL__TEXTURE0);
+    skgl__st_begin(ctx, &st);
+    skgl__timer_init(ctx, &p->t_render);
+    skgl__timer_init(ctx, &p->t_mask);
+    /* the mask program's locations, its G-buffer units (the light's
+       constants follow at its first mask) */
+    skgl__progent_lookup(ctx, &p->ent, p->prog, SKGL__PK_POINT);
+    p->ent.has_normals = -1;
+    p->u_has_normals = gl->GetUniformLocation(p->prog, "u_has_normals");
+    p->u_inv_view_proj = gl->GetUniformLocation(p->prog, "u_inv_view_proj");
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
+    skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_depth"), 1);
+    skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_normals"), 2);
     if (!d.atlas) { gl->GenTextures(1, &p->tex); ctx->objects++; }
     if (d.technique == SKGL_POINT_CUBE) {
         /* the full mip chain only when a smaller level may be chosen */
         p->levels = 1;
         if (d.select_resolution) while ((d.resolution >> p->levels) >= 1) p->levels++;
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
+        skgl__st_unpack(ctx, &st);
+        skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
+        skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
         for (lv = 0; lv < p->levels; lv++) {
             int s = d.resolution >> lv;
             for (f = 0; f < 6; f++)
@@ -3857,21 +5187,43 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+        /* edges clamped, as the comparison sampler has them (the default
+           GL_REPEAT matters wherever seamless filtering is off) */
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
+        if (!skgl__point_cube_fbos(ctx, &st, p, 0)) {
+            skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
+            r = SK_ERR_GL;
+        }
     } else {
-        if (!d.atlas) skgl__atlas_alloc(gl, p->tex, 3 * d.resolution, 2 * d.resolution);
+        if (!d.atlas) {
+            skgl__atlas_alloc(ctx, &st, p->tex, 3 * d.resolution, 2 * d.resolution);
+            p->fbo[0] = skgl__framebuffer(ctx, &st, 0, 0, p->tex, -1);
+            if (!p->fbo[0]) {
+                skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
+                r = SK_ERR_GL;
+            }
+        }
         /* Eq. (5.4.7) with D = 8 bits of filter weight precision; never below
            the face side, so the linear ramp of the filtered coordinates is
            clamped for at most half a shadow texel at a face edge */
         p->ni = sk_vsdct_indirection_size(d.resolution, d.vsdct_grey_levels, 8);
-        if (p->ni < 1) r = SK_ERR_INVALID_ARG;
+        if (p->ni < 1 && r == SK_OK) r = skgl__bad_field(ctx, "skgl_point_create: bad field", "vsdct_grey_levels");
         gl->GenTextures(1, &p->indirection); ctx->objects++;
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
+        skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->indirection);
+        skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
+        /* the texture's own sampling (the masks bind no sampler object):
+           bilinear, edges clamped, one level */
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
         gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, 0);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
         if (r == SK_OK) {
             sk_vsdct_layout l = skgl__point_layout(p, d.resolution);
-            r = skgl__point_fill(ctx, p, &l);
+            r = skgl__point_fill(ctx, &st, p, &l);
         }
         gl->GenSamplers(1, &p->lin_sampler); ctx->objects++;
         gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
@@ -3883,7 +5235,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     }
     p->face_res = d.resolution;
     p->layout = skgl__point_layout(p, d.resolution);
-    skgl__restore(gl, &st);
+    skgl__st_end(ctx, &st);
     if (r == SK_OK && gl->GetError() != 0) {
         skgl__set_log(ctx, "skgl_point_create: GL error while allocating the maps", NULL);
         r = SK_ERR_GL;
@@ -3920,6 +5272,7 @@ SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p)
     memset(&l, 0, sizeof l);
     return l;
 }
+
 SKGLDEF const char *skgl_point_glsl_snippet(void) { return skgl__src_point_sample_glsl; }
 
 SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster)
@@ -4014,18 +5367,30 @@ static int skgl__point_select(const skgl_point *p, const sk_mat4 *vp, const skgl
     return m;
 }
 
+/* the caller's viewport (the resolution selection's screen when
+   screen_w/screen_h are 0): the saved value in the default mode; read from
+   GL in caller-owns mode, the one read that mode makes (set screen_w and
+   screen_h to avoid it) */
+static void skgl__caller_viewport(skgl_context *ctx, skgl__st *st, skgl__int v[4])
+{
+    if (st->restore) {
+        skgl__st_save(ctx, st, SKGL__S_VIEWPORT);
+        memcpy(v, st->orig[SKGL__S_VIEWPORT], sizeof(skgl__int) * 4);
+    } else ctx->gl.GetIntegerv(SKGL__VIEWPORT, v);
+}
+
 SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
                                     const skgl_scene *scene, sk_vec3 light_pos)
 {
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    static const float one = 1.0f;
     skgl__api *gl;
-    skgl__state st;
+    skgl__st st;
     sk_mat4 vp, proj;
     unsigned faces;
     int f, m, vsdct, shared;
     float zn, zf;
-    sk_result r;
-    skgl__uint tex;
+    sk_result r = SK_OK, rc;
+    skgl__int viewport[4] = {0, 0, 0, 0};
     if (!ctx || !p || !cam || !scene || !scene->draw || !sk__v3_finite(light_pos) ||
         !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj))
         return SK_ERR_INVALID_ARG;
@@ -4034,7 +5399,6 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
         skgl__set_log(ctx, "skgl_point_render: a shared-atlas light needs skgl_point_atlas_pack first", NULL);
         return SK_ERR_INVALID_ARG;
     }
-    tex = skgl__point_tex(p);
     gl = &ctx->gl;
     vsdct = p->desc.technique == SKGL_POINT_VSDCT;
     zn = p->desc.near_plane;
@@ -4042,83 +5406,76 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     vp = sk_mat4_mul(cam->proj, cam->view);
     p->light_pos = light_pos;
     p->view = sk_frustum_from_matrix(vp);
-    skgl__save(gl, &st);
+    skgl__st_begin(ctx, &st);
     if (shared) {
         /* the side skgl_point_atlas_pack placed; the faces for its reach
            (a halved side reaches further, so it may add a face) */
         m = p->layout.face_res;
         faces = p->desc.cull_faces ? skgl__point_faces(light_pos, zn, zf, &p->view, skgl__point_reach(p, m)) : 0x3fu;
-    } else m = skgl__point_select(p, &vp, st.viewport, &faces);
+    } else {
+        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1))
+            skgl__caller_viewport(ctx, &st, viewport);
+        m = skgl__point_select(p, &vp, viewport, &faces);
+    }
     p->cull_margin = (float)(skgl__point_reach(p, m) * zf);
     p->level = 0;
     if (!vsdct) while ((p->desc.resolution >> p->level) > m) p->level++;
     m = vsdct ? m : p->desc.resolution >> p->level;
-    gl->ActiveTexture(SKGL__TEXTURE0);
     if (vsdct && !shared) {
         sk_vsdct_layout l = skgl__point_layout(p, m);
-        r = skgl__point_fill(ctx, p, &l);
-        if (r != SK_OK) { skgl__restore(gl, &st); return r; }
+        r = skgl__point_fill(ctx, &st, p, &l);
+        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
     } else if (!vsdct) {
-        /* sampling reads the level rendered, and only that one */
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->level);
+        /* sampling reads the level rendered, and only that one: set when it changes */
+        if (p->tex_level != p->level) {
+            skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
+            skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
+            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
+            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->level);
+            p->tex_level = p->level;
+        }
+        /* the faces' framebuffers follow the level: attached and checked again when it changes */
+        if (p->fbo_level != p->level && !skgl__point_cube_fbos(ctx, &st, p, p->level)) {
+            skgl__st_end(ctx, &st);
+            skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
+            return SK_ERR_GL;
+        }
     }
     p->face_res = m;
     proj = sk_cube_face_proj(zn, zf);   /* 90 deg, w = eye depth: window depth is Eq. (5.4.6) */
-    skgl__query_begin(ctx);
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->DrawBuffer(SKGL__NONE);
-    gl->ReadBuffer(SKGL__NONE);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);          /* open meshes cast from both sides */
-    gl->Enable(SKGL__DEPTH_TEST);
-    gl->DepthFunc(SKGL__LESS);
-    gl->DepthMask(1);
-    gl->ClearDepth(1.0);
-    if (p->desc.slope_bias > 0.0f || p->desc.depth_bias > 0.0f) {
-        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
-        gl->PolygonOffset(p->desc.slope_bias > 0.0f ? p->desc.slope_bias : 0.0f,
-                          p->desc.depth_bias > 0.0f ? p->desc.depth_bias : 0.0f);
-    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
+    skgl__timer_begin(ctx, &p->t_render);
+    skgl__st_depth_pass(ctx, &st, p->desc.slope_bias, p->desc.depth_bias);
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+    skgl__model_begin(ctx, skgl__zero3);
     if (vsdct) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, tex, 0);
-        if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-            gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
-            skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
-            skgl__restore(gl, &st);
-            return SK_ERR_GL;
-        }
         /* the faces' region of an own atlas, one clear (culled faces read
            lit); in a shared atlas each face's rectangle, cleared in the loop
            (the other lights' faces stay) */
-        gl->Enable(SKGL__SCISSOR_TEST);
-        gl->Scissor(0, 0, 3 * m, 2 * m);
-        if (!shared) gl->Clear(SKGL__DEPTH_BUFFER_BIT);
-    } else gl->Disable(SKGL__SCISSOR_TEST);
-    gl->UseProgram(ctx->depth_prog);
+        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)(shared ? p->desc.atlas->fbo : p->fbo[0]));
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+        if (!shared) {
+            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, 3 * m, 2 * m);
+            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        }
+    } else {
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, m, m);
+    }
     p->stats.passes = p->stats.faces_rendered = p->stats.faces_culled = 0;
     p->stats.casters_drawn = p->stats.casters_culled = 0;
     p->stats.texels = 0.0;
     for (f = 0; f < 6; f++) {
         skgl_draw_info info;
         if (vsdct) {
-            gl->Viewport(p->layout.face_x[f], p->layout.face_y[f], m, m);
-            gl->Scissor(p->layout.face_x[f], p->layout.face_y[f], m, m);
-            if (shared) gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+            skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, p->layout.face_x[f], p->layout.face_y[f], m, m);
+            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, p->layout.face_x[f], p->layout.face_y[f], m, m);
+            if (shared) gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
         } else {
-            gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
-                                     SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, p->tex, p->level);
-            if (f == 0 && gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-                gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
-                skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
-                skgl__restore(gl, &st);
-                return SK_ERR_GL;
-            }
-            gl->Viewport(0, 0, m, m);
             /* a culled face is cleared too: a filter tap near a visible
                face's edge may step into it, and must read "lit" there */
-            gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+            skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
+            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
         }
         if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
         memset(&info, 0, sizeof info);
@@ -4129,44 +5486,54 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
         info.light_pos = light_pos;
         info.light_range = zf;
         info.point = p;
+        info.program = ctx->depth_prog;
         gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, info.view_proj.m);
-        gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
         scene->draw(scene->user, &info);
+        rc = skgl__after_draw(ctx, &st);
+        if (rc != SK_OK) r = rc;
         p->stats.passes++;
         p->stats.faces_rendered++;
         p->stats.texels += (double)m * m;
-        gl->UseProgram(ctx->depth_prog);   /* the callback may have bound its own */
     }
-    if (vsdct) gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
-    else gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_CUBE_MAP_POSITIVE_X, 0, 0);
-    p->stats.shadow_ms = skgl__query_end(ctx);
+    skgl__timer_end(ctx, &p->t_render);
+    p->stats.shadow_ms = p->t_render.ms;
     p->stats.maps = p->stats.faces_rendered;
     p->stats.resolution = p->stats.map_width = p->stats.map_height = m;
     p->rendered = 1;
-    skgl__restore(gl, &st);
-    return skgl__check(ctx, "skgl_point_render");
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_point_render");
 }
 
-static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__uint prog, int unit, int ind_unit)
+/* The point snippet's uniforms on the current program (entry e), as
+   skgl__shadow_uniforms: the light's constants when the program holds
+   another's, the face size and the atlas rectangles when they changed, the
+   light's position always. */
+static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__progent *e, int unit, int ind_unit)
 {
-    skgl__api *gl = &ctx->gl;
-    float scale, bias, depth[2];
-    sk_vsdct_depth_coeffs(p->desc.near_plane, p->desc.range, &scale, &bias);
-    depth[0] = scale; depth[1] = bias;
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_cube"), unit);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_atlas"), unit);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_indirection"), ind_unit);
-    gl->Uniform3fv(gl->GetUniformLocation(prog, "sk_point_pos"), 1, &p->light_pos.x);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_range"), p->desc.range);
-    gl->Uniform2fv(gl->GetUniformLocation(prog, "sk_point_depth"), 1, depth);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_texel"), 2.0f / (float)p->face_res);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_normal_bias"),
-                  p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_pcf"), p->desc.pcf_radius);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "sk_point_bias_mode"), (skgl__int)p->desc.bias);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "sk_point_plane_bias"),
-                  p->desc.plane_bias > 0.0f ? p->desc.plane_bias : 0.0f);
-    if (p->desc.technique == SKGL_POINT_VSDCT) {
+    const skgl__api *gl = &ctx->gl;
+    const skgl__int *L = e->loc;
+    float texel = 2.0f / (float)p->face_res;
+    if (e->owner != p->id || e->unit != unit) {
+        float scale, bias, depth[2];
+        sk_vsdct_depth_coeffs(p->desc.near_plane, p->desc.range, &scale, &bias);
+        depth[0] = scale; depth[1] = bias;
+        skgl__u1i(gl, L[SKGL__P_CUBE], unit);
+        skgl__u1i(gl, L[SKGL__P_ATLAS], unit);
+        skgl__u1i(gl, L[SKGL__P_INDIRECTION], ind_unit);
+        skgl__u1f(gl, L[SKGL__P_RANGE], p->desc.range);
+        if (L[SKGL__P_DEPTH] >= 0) gl->Uniform2fv(L[SKGL__P_DEPTH], 1, depth);
+        skgl__u1f(gl, L[SKGL__P_NORMAL_BIAS], p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f);
+        skgl__u1i(gl, L[SKGL__P_PCF], p->desc.pcf_radius);
+        skgl__u1i(gl, L[SKGL__P_BIAS_MODE], (skgl__int)p->desc.bias);
+        skgl__u1f(gl, L[SKGL__P_PLANE_BIAS], p->desc.plane_bias > 0.0f ? p->desc.plane_bias : 0.0f);
+        e->owner = p->id;
+        e->unit = unit;
+        e->sentinel_f = p->desc.range;
+        e->texel = -1.0f;
+        e->layout = 0;
+    }
+    if (e->texel != texel) { e->texel = texel; skgl__u1f(gl, L[SKGL__P_TEXEL], texel); }
+    if (p->desc.technique == SKGL_POINT_VSDCT && e->layout != p->layout_serial && L[SKGL__P_FACES] >= 0) {
         float rects[24];
         int f;
         for (f = 0; f < 6; f++) {
@@ -4176,61 +5543,60 @@ static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__u
             rects[4 * f + 2] = (float)((l->face_x[f] + l->face_res - 0.5) / l->atlas_w);
             rects[4 * f + 3] = (float)((l->face_y[f] + l->face_res - 0.5) / l->atlas_h);
         }
-        gl->Uniform4fv(gl->GetUniformLocation(prog, "sk_point_faces"), 6, rects);
+        gl->Uniform4fv(L[SKGL__P_FACES], 6, rects);
+        e->layout = p->layout_serial;
     }
-}
-
-/* binds the map at `unit` and, for VSDCT, the indirection at ind_unit */
-static void skgl__point_textures(skgl_context *ctx, const skgl_point *p, int unit, int ind_unit)
-{
-    skgl__api *gl = &ctx->gl;
-    gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
-    if (p->desc.technique == SKGL_POINT_VSDCT) {
-        gl->BindTexture(SKGL__TEXTURE_2D, skgl__point_tex(p));
-        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-        gl->ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)ind_unit);
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
-        gl->BindSampler((skgl__uint)ind_unit, p->lin_sampler);
-    } else {
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
-        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-    }
+    if (L[SKGL__P_POS] >= 0) gl->Uniform3fv(L[SKGL__P_POS], 1, &p->light_pos.x);
 }
 
 SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit)
 {
-    skgl__int active = 0;
+    skgl__api *gl;
+    skgl__int active, last;
+    skgl__progent *e;
     if (!ctx || !p || !program || unit < 0 || unit > 30 || !p->rendered) return SK_ERR_INVALID_ARG;
-    ctx->gl.GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
-    skgl__point_textures(ctx, p, unit, unit + 1);
-    ctx->gl.ActiveTexture((skgl__enum)active);
-    skgl__point_uniforms(ctx, p, program, unit, unit + 1);
+    e = skgl__user_program(ctx, program, SKGL__PK_POINT);
+    gl = &ctx->gl;
+    active = skgl__bind_active(ctx);
+    last = SKGL__TEXTURE0 + unit;
+    if (active != last) gl->ActiveTexture((skgl__enum)last);
+    if (p->desc.technique == SKGL_POINT_VSDCT) {
+        gl->BindTexture(SKGL__TEXTURE_2D, skgl__point_tex(p));
+        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+        last = SKGL__TEXTURE0 + unit + 1;
+        gl->ActiveTexture((skgl__enum)last);
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
+        gl->BindSampler((skgl__uint)unit + 1, p->lin_sampler);
+    } else {
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
+        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+    }
+    if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
+    skgl__point_uniforms(ctx, p, e, unit, unit + 1);
     return skgl__check(ctx, "skgl_point_bind");
 }
 
 SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
 {
-    skgl__api *gl;
-    skgl__state st;
-    skgl__int w = 0, h = 0;
+    skgl__st st;
+    skgl__unitbind b[4];
+    int w = 0, h = 0, vsdct, n;
     sk_mat4 vp, inv;
-    skgl__uint prog;
     int rect[4];
+    sk_result r;
+    const char *why;
     if (!ctx || !p || !cam || !depth_tex || !mask_tex || !p->rendered || !sk__mat_finite(&cam->view) ||
         !sk__mat_finite(&cam->proj))
         return SK_ERR_INVALID_ARG;
     vp = sk_mat4_mul(cam->proj, cam->view);
     if (!sk_mat4_inverse(vp, &inv)) return SK_ERR_INVALID_ARG;
-    gl = &ctx->gl;
-    prog = p->prog;
-    skgl__save(gl, &st);
-    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
-    skgl__point_textures(ctx, p, 0, 3);
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    if (w <= 0 || h <= 0) {
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_point_mask: mask texture has no level 0", NULL);
+    vsdct = p->desc.technique == SKGL_POINT_VSDCT;
+    skgl__st_begin(ctx, &st);
+    why = skgl__texture_size(ctx, &st, mask_tex, &w, &h);
+    if (why) {
+        skgl__st_end(ctx, &st);
+        skgl__set_log(ctx, "skgl_point_mask: mask_tex", why);
         return SK_ERR_INVALID_ARG;
     }
     /* the seed's scissor: the light's range box on the screen; the whole
@@ -4239,55 +5605,65 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     if (p->desc.scissor && !sk_light_scissor(p->light_pos, p->desc.range, vp, w, h, rect)) {
         memset(p->stats.scissor, 0, sizeof p->stats.scissor);
         p->stats.mask_ms = ctx->timing ? 0.0f : -1.0f;
-        skgl__restore(gl, &st);
+        skgl__st_end(ctx, &st);
         return skgl__check(ctx, "skgl_point_mask");
     }
     memcpy(p->stats.scissor, rect, sizeof rect);
-    skgl__query_begin(ctx);
-    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
-        skgl__query_end(ctx);
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_point_mask: mask texture is not colour-renderable", NULL);
-        return SK_ERR_GL;
+    skgl__timer_begin(ctx, &p->t_mask);
+    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_point_mask: mask_tex");
+    if (r == SK_OK) {
+        if (p->desc.scissor) {
+            skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
+        } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+        /* cube: 2x2 filtering walks across face edges; VSDCT: the indirection
+           must never blend two faces' coordinates */
+        skgl__st_set1(ctx, &st, SKGL__S_SEAMLESS, !vsdct);
+        /* the map and the indirection through their own texture parameters
+           (comparison, filtering), no sampler object */
+        n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
+        if (vsdct) skgl__bind_unit(&b[n++], 3, SKGL__T_CUBE, p->indirection, 0);
+        skgl__bind_unit(&b[n++], 0, vsdct ? SKGL__T_2D : SKGL__T_CUBE, vsdct ? skgl__point_tex(p) : p->tex, 0);
+        skgl__st_units(ctx, &st, b, n);
+        skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
+        skgl__point_uniforms(ctx, p, &p->ent, 0, 3);
+        if (p->ent.has_normals != (normal_tex != 0)) {
+            p->ent.has_normals = normal_tex != 0;
+            skgl__u1i(&ctx->gl, p->u_has_normals, normal_tex != 0);
+        }
+        if (p->u_inv_view_proj >= 0) ctx->gl.UniformMatrix4fv(p->u_inv_view_proj, 1, 0, inv.m);
+        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
     }
-    if (p->desc.scissor) {
-        gl->Enable(SKGL__SCISSOR_TEST);
-        gl->Scissor(rect[0], rect[1], rect[2], rect[3]);
-    } else gl->Disable(SKGL__SCISSOR_TEST);
-    /* cube: 2x2 filtering walks across face edges; VSDCT: the indirection
-       must never blend two faces' coordinates */
-    skgl__enable(gl, SKGL__TEXTURE_CUBE_MAP_SEAMLESS, p->desc.technique == SKGL_POINT_CUBE);
-    gl->UseProgram(prog);
-    skgl__point_uniforms(ctx, p, prog, 0, 3);
-    skgl__mask_draw(ctx, prog, &inv, normal_tex);
-    p->stats.mask_ms = skgl__query_end(ctx);
-    skgl__restore(gl, &st);
-    return skgl__check(ctx, "skgl_point_mask");
+    skgl__timer_end(ctx, &p->t_mask);
+    p->stats.mask_ms = p->t_mask.ms;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_point_mask");
 }
 
 /* ---- several point lights in one atlas --------------------------------- */
 SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int height, skgl_point_atlas **out)
 {
     skgl__api *gl;
-    skgl__state st;
+    skgl__st st;
     skgl__int max_size = 0;
     skgl_point_atlas *a;
     if (out) *out = NULL;
     if (!ctx || !out || width < 1 || height < 1) return SK_ERR_INVALID_ARG;
     gl = &ctx->gl;
     gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
-    if (width > max_size || height > max_size) return SK_ERR_INVALID_ARG;
+    if (width > max_size) return skgl__bad_field(ctx, "skgl_point_atlas_create: bad argument", "width");
+    if (height > max_size) return skgl__bad_field(ctx, "skgl_point_atlas_create: bad argument", "height");
     a = (skgl_point_atlas *)SKGL_MALLOC(sizeof *a);
     if (!a) return SK_ERR_CAPACITY;
     memset(a, 0, sizeof *a);
     a->w = width;
     a->h = height;
-    skgl__save(gl, &st);
-    gl->ActiveTexture(SKGL__TEXTURE0);
+    skgl__st_begin(ctx, &st);
     gl->GenTextures(1, &a->tex); ctx->objects++;
-    skgl__atlas_alloc(gl, a->tex, width, height);
-    skgl__restore(gl, &st);
-    if (gl->GetError() != 0) {
+    skgl__atlas_alloc(ctx, &st, a->tex, width, height);
+    a->fbo = skgl__framebuffer(ctx, &st, 0, 0, a->tex, -1);
+    skgl__st_end(ctx, &st);
+    if (!a->fbo || gl->GetError() != 0) {
         skgl__set_log(ctx, "skgl_point_atlas_create: GL error while allocating the atlas", NULL);
         skgl_point_atlas_destroy(ctx, a);
         return SK_ERR_GL;
@@ -4299,7 +5675,8 @@ SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int heig
 SKGLDEF void skgl_point_atlas_destroy(skgl_context *ctx, skgl_point_atlas *a)
 {
     if (!ctx || !a) return;
-    if (a->tex) { ctx->gl.DeleteTextures(1, &a->tex); ctx->objects--; }
+    skgl__delete_texture(ctx, &a->tex);
+    skgl__delete_framebuffer(ctx, &a->fbo);
     SKGL_FREE(a);
 }
 
@@ -4334,11 +5711,12 @@ static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *o
     return 1;
 }
 
+
 SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, skgl_point *const *lights, int n,
                                         const skgl_camera *cam, const sk_vec3 *light_pos)
 {
-    skgl__api *gl;
-    skgl__state st;
+    skgl__st st;
+    skgl__int viewport[4] = {0, 0, 0, 0};
     sk_mat4 vp;
     sk_frustum view;
     int *res, *order, *x, *y;
@@ -4354,8 +5732,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
     order = res + n;
     x = order + n;
     y = x + 6 * n;
-    gl = &ctx->gl;
-    skgl__save(gl, &st);
+    skgl__st_begin(ctx, &st);
     /* each light's side, selected as skgl_point_render selects it */
     vp = sk_mat4_mul(cam->proj, cam->view);
     view = sk_frustum_from_matrix(vp);
@@ -4364,7 +5741,9 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         unsigned faces;
         p->light_pos = light_pos[i];
         p->view = view;
-        res[i] = skgl__point_select(p, &vp, st.viewport, &faces);
+        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1) && !viewport[2])
+            skgl__caller_viewport(ctx, &st, viewport);
+        res[i] = skgl__point_select(p, &vp, viewport, &faces);
         if (res[i] < 1) res[i] = 1;
         lights[i]->stats.atlas_wanted = res[i];
     }
@@ -4389,15 +5768,15 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         l.atlas_w = a->w;
         l.atlas_h = a->h;
         for (f = 0; f < 6; f++) { l.face_x[f] = x[6 * i + f]; l.face_y[f] = y[6 * i + f]; }
-        gl->ActiveTexture(SKGL__TEXTURE0);
-        r = skgl__point_fill(ctx, lights[i], &l);
+        r = skgl__point_fill(ctx, &st, lights[i], &l);
         if (r == SK_OK) { lights[i]->packed = 1; lights[i]->face_res = res[i]; }
     }
-    skgl__restore(gl, &st);
+    skgl__st_end(ctx, &st);
     SKGL_FREE(res);
     if (r != SK_OK) return r;
     return skgl__check(ctx, "skgl_point_atlas_pack");
 }
+
 
 
 /* ---- area lights: PCSS and PVSM (seed 001) ------------------------------ */

@@ -8,8 +8,7 @@ out float o_visibility;
 uniform sampler2D u_depth;
 uniform sampler2D u_normals;
 uniform int u_has_normals;
-uniform mat4 u_inv_view_proj;
-uniform mat4 u_view;
+uniform mat4 u_camera[2];           /* [0]: inverse view-projection, [1]: view (one upload) */
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -20,13 +19,13 @@ void main()
        branch keeps the control flow uniform) */
     if (d >= 1.0 && sk_rmsm == 0 && u_has_normals != 0) { o_visibility = 1.0; return; }
     vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
-    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
+    vec4 w = u_camera[0] * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);
     vec3 world = w.xyz / w.w;
     /* the position four float ulps of depth away: the receiver's uncertainty */
-    vec4 w2 = u_inv_view_proj * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * 2.0 - 1.0, 1.0);
+    vec4 w2 = u_camera[0] * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * 2.0 - 1.0, 1.0);
     sk_receiver_slack = distance(w2.xyz / w2.w, world);
     vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);
-    float view_depth = -(u_view * vec4(world, 1.0)).z;
+    float view_depth = -(u_camera[1] * vec4(world, 1.0)).z;
     float v = sk_shadow(world, n, view_depth);
     o_visibility = d >= 1.0 ? 1.0 : v;
 }

@@ -33,20 +33,29 @@
    SKGL_MALLOC returns NULL, n = 1 .. until the case runs through): each
    failing call returns an error, nothing leaks, nothing crashes.
 
-   Measured (the table): every case 1 framebuffer, 2 samplers, 1 vertex
-   array, 1 query and 6 programs (12 shaders) of the context; +1 texture
-   per directional map; FERKO 13 textures and 3 pixel buffers (its map,
-   and two RGBA32F pairs and a pixel buffer each time the G-buffer size
-   changes: three times over the frames); RMSM 6 textures (map, request
-   atlas, page table, the samples made once per G-buffer size); +1 program
-   and +1 texture per cube light, +1 program, +2 textures, +1 sampler per
-   VSDCT light; the atlas case 4 textures, 3 programs, 3 samplers; PCSS +3
-   textures, +1 framebuffer, +1 query, +2 programs; PVSM +10 textures, +1
-   framebuffer, +1 query, +7 programs. Nothing is left: this version of
-   shadowkit_gl.h releases everything, on the failure paths too (19 of
-   skgl_create, 64 host allocation failures).
-   Can fail: in local copies of the header with skgl__ferko_free's pixel
-   buffer delete removed, ferko and ferko-late reported "3 buffer(s) live";
+   Measured (the table): every case 2 framebuffers (the masks' target and
+   the area lights'), 2 samplers, 1 vertex array, 1 query and 7 programs
+   (14 shaders) of the context; a directional light +1 texture and +1
+   framebuffer per layer, +9 timer queries (three per timed pass: render,
+   mask, analysis); FERKO 8 textures and 10 framebuffers (its map, the
+   final 2x1 pair, and the analysis and reduction levels each time the
+   G-buffer size changes: three times over the frames) and 3 pixel buffers
+   (the read-back ring), ferko-late 2 fences (the ring's); RMSM 6 textures
+   (map, request atlas, page table, the samples made once per G-buffer
+   size), 3 pixel buffers and 2 fences; a cube light +1 program, +1
+   texture, +6 framebuffers (its faces), +6 timer queries; a VSDCT light +1
+   program, +2 textures, +1 framebuffer, +1 sampler; the atlas case 4
+   textures, 3 programs, 3 samplers, 1 framebuffer; PCSS +3 textures, +1
+   framebuffer, +1 query, +2 programs; PVSM +10 textures, +1 framebuffer,
+   +1 query, +7 programs. Nothing is left: this version of shadowkit_gl.h
+   releases everything, on the failure paths too (22 of skgl_create, 65
+   host allocation failures).
+   Can fail: in local copies of the header with skgl__ring_free's fence
+   delete removed, ferko-late and rmsm reported "1 sync(s) live (2 created,
+   1 deleted)" (the fence still in flight at destroy), also on their
+   allocation-failure paths; in an earlier version, with skgl__ferko_free's
+   pixel buffer delete removed, ferko and ferko-late reported "3 buffer(s)
+   live";
    with skgl__release's query delete removed, every case reported "1
    query(s) live"; with skgl_point_create's SKGL_FREE(p) after a failed
    link removed, the link-failure cases of point-cube and point-vsdct
