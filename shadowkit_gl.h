@@ -256,6 +256,9 @@
      they are done; if the older is not, the pass goes untimed rather than
      wait. skgl_shadow_stats() reports the latest result read (two frames
      old; -1 before the first), shadow texels rendered and draw passes.
+     desc.timing = SKGL_TIMING_SYNC reads each pass's query right after it
+     (GL_QUERY_RESULT: the CPU waits for the GPU, once per timed pass), so
+     the stats hold this frame's times: for benchmarks, never for shipping.
      Area lights read their queries at once (a sync: for measuring).
 
    LICENSE: see the end of the file.
@@ -314,11 +317,15 @@ typedef struct skgl_draw_info {
 } skgl_draw_info;
 typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
 
+#define SKGL_TIMING_SYNC 2            /* skgl_desc.timing: every pass timed and read at once */
+
 typedef struct skgl_desc {
     skgl_getproc_fn getproc;      /* required */
     int debug;                    /* glGetError after each pass -> SK_ERR_GL; checks the draw
                                      callback's program and the cached program locations */
-    int timing;                   /* GL timer queries into skgl_stats, read two or three frames late */
+    int timing;                   /* GL timer queries into skgl_stats, read two or three frames
+                                     late; SKGL_TIMING_SYNC: each pass's own time, read at
+                                     once (a stall per timed pass: for benchmarks) */
     int caller_owns_state;        /* 0: every call leaves the GL state as it found it (reads
                                      what it touches, puts back what it changed); 1: no
                                      state is read or put back, each call sets what it
@@ -2194,6 +2201,7 @@ typedef unsigned long long skgl__u64;
 
 #define SKGL__FUNCS(X) \
     X(skgl__enum, GetError, (void)) \
+    X(void, Finish, (void)) \
     X(void, GetIntegerv, (skgl__enum pname, skgl__int *data)) \
     X(void, GetFloatv, (skgl__enum pname, float *data)) \
     X(void, GetDoublev, (skgl__enum pname, double *data)) \
@@ -3242,8 +3250,20 @@ static void skgl__timer_begin(skgl_context *ctx, skgl__timer *t)
 static void skgl__timer_end(skgl_context *ctx, skgl__timer *t)
 {
     if (!t->running) return;
+    /* measuring mode: a renderer that bins draws and rasterises them later
+       on its own threads (Mesa's llvmpipe) would otherwise end the query
+       before the work is done and time almost nothing; glFinish inside the
+       query holds it open until the pass has run */
+    if (ctx->timing == SKGL_TIMING_SYNC) ctx->gl.Finish();
     ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
     t->pending[t->frame % SKGL__TIMER_RING] = 1;
+    if (ctx->timing == SKGL_TIMING_SYNC) {
+        /* measuring mode: this pass's own time, waited for (a stall) */
+        skgl__u64 ns = 0;
+        ctx->gl.GetQueryObjectui64v(t->q[t->frame % SKGL__TIMER_RING], SKGL__QUERY_RESULT, &ns);
+        t->pending[t->frame % SKGL__TIMER_RING] = 0;
+        t->ms = (float)((double)ns * 1e-6);
+    }
     t->frame++;
     t->running = 0;
 }
@@ -3380,7 +3400,8 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     skgl__st st;
     skgl__int major = 0, minor = 0;
     int missing = 0;
-    if (!desc || !desc->getproc || !out) return SK_ERR_INVALID_ARG;
+    if (!desc || !desc->getproc || !out || desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC)
+        return SK_ERR_INVALID_ARG;
     *out = NULL;
     ctx = (skgl_context *)SKGL_MALLOC(sizeof *ctx);
     if (!ctx) return SK_ERR_CAPACITY;

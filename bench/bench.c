@@ -5,7 +5,7 @@
      For every scene, view and method configuration: render the camera
      G-buffer (window depth + world normals, 1280x720), then
      skgl_shadow_render + skgl_shadow_mask with GL timer queries
-     (skgl_desc.timing = 1), read the R16F mask back and compare it with the
+     (skgl_desc.timing = SKGL_TIMING_SYNC), read the R16F mask back and compare it with the
      exact Embree reference (tb_reference_trace_exact, traced ONCE per
      (scene, view): primary rays through the pixel centres, shadow rays from
      the exact hits with only a float-error offset; back-facing receivers and
@@ -1886,7 +1886,7 @@ int main(int argc, char **argv) {
         sk_result r;
         memset(&sd, 0, sizeof sd);
         sd.getproc = tb_gl_context_getproc(B.ctx);
-        sd.timing = 1;
+        sd.timing = SKGL_TIMING_SYNC;   /* each run's own times (a stall per pass: measuring) */
         r = skgl_create(&sd, &B.sk);
         if (r != SK_OK) {
             fprintf(stderr, "bench: skgl_create: %s %s\n", sk_result_string(r), B.sk ? skgl_error_log(B.sk) : "");
