@@ -193,6 +193,17 @@ static void tb_pcg_seed_(tb_pcg_ *g, uint64_t seed, uint64_t stream) {
 }
 static double tb_pcg_unit_(tb_pcg_ *g) { return tb_pcg_next_(g) * (1.0 / 4294967296.0); }
 
+/* the jittered sample of stratum `cell` (of s x s) on a rect light centred
+   at c: one uniform point inside the cell, two PCG draws */
+static void tb_rect_sample_(const tb_light *L, const double c[3], tb_pcg_ *rng, int cell, int s, double q[3]) {
+    int cx = cell % s, cy = cell / s;
+    double a = 2.0 * (cx + tb_pcg_unit_(rng)) / s - 1.0;
+    double b = 2.0 * (cy + tb_pcg_unit_(rng)) / s - 1.0;
+    q[0] = c[0] + a * L->half_u.x + b * L->half_v.x;
+    q[1] = c[1] + a * L->half_u.y + b * L->half_v.y;
+    q[2] = c[2] + a * L->half_u.z + b * L->half_v.z;
+}
+
 /* ---- shading one point ---- */
 
 typedef struct tb_job_ {
@@ -284,13 +295,9 @@ static float tb_shade_(const tb_job_ *j, const double p_in[3], const double *n_i
                 valid[i] = 0;
                 ray.tfar[i] = 0;
                 if (i < m) {
-                    int cell = k + i, cx = cell % s, cy = cell / s;
-                    double a = 2.0 * (cx + tb_pcg_unit_(&rng)) / s - 1.0;
-                    double b = 2.0 * (cy + tb_pcg_unit_(&rng)) / s - 1.0;
-                    double q[3], d[3], dist;
-                    q[0] = L->position.x + a * L->half_u.x + b * L->half_v.x;
-                    q[1] = L->position.y + a * L->half_u.y + b * L->half_v.y;
-                    q[2] = L->position.z + a * L->half_u.z + b * L->half_v.z;
+                    double q[3], d[3], dist, centre[3];
+                    centre[0] = L->position.x; centre[1] = L->position.y; centre[2] = L->position.z;
+                    tb_rect_sample_(L, centre, &rng, k + i, s, q);
                     d[0] = q[0] - p[0]; d[1] = q[1] - p[1]; d[2] = q[2] - p[2];
                     dist = sqrt(tb_dot_(d, d));
                     if (!tb_normalize_(d)) { unocc++; continue; }
@@ -520,13 +527,8 @@ static float tb_shade_exact_(const tb_job_ *j, const double p[3], const double n
                 valid[i] = 0;
                 ray.tfar[i] = 0;
                 if (i < m) {
-                    int cell = k + i, cx = cell % s, cy = cell / s;
-                    double a = 2.0 * (cx + tb_pcg_unit_(&rng)) / s - 1.0;
-                    double b = 2.0 * (cy + tb_pcg_unit_(&rng)) / s - 1.0;
                     double q[3], d[3], dist, c, cl, tnear, tfar;
-                    q[0] = c0[0] + a * L->half_u.x + b * L->half_v.x;
-                    q[1] = c0[1] + a * L->half_u.y + b * L->half_v.y;
-                    q[2] = c0[2] + a * L->half_u.z + b * L->half_v.z;
+                    tb_rect_sample_(L, c0, &rng, k + i, s, q);
                     d[0] = q[0] - p[0]; d[1] = q[1] - p[1]; d[2] = q[2] - p[2];
                     dist = sqrt(tb_dot_(d, d));
                     if (!tb_normalize_(d)) { unocc++; continue; }
