@@ -3589,7 +3589,9 @@ static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint 
     skgl__enum status;
     gl->GenFramebuffers(1, &fb);
     ctx->objects++;
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+    /* bound to both targets: glReadBuffer below sets the READ framebuffer's
+       state, which must be this one, not the caller's */
+    skgl__st_framebuffer(ctx, st, fb);
     if (color && color_layers > 1) {
         gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, color, 0, 0);
         gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, color, 0, 1);
@@ -3609,6 +3611,7 @@ static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint 
         ctx->objects--;
         /* the tracked binding named the framebuffer just deleted: GL fell back to 0 */
         st->cur[SKGL__S_DRAW_FB][0] = 0;
+        st->cur[SKGL__S_READ_FB][0] = 0;
         return 0;
     }
     return fb;
@@ -5099,7 +5102,7 @@ static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p,
         if (!p->fbo[f]) {
             ctx->gl.GenFramebuffers(1, &p->fbo[f]);
             ctx->objects++;
-            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
+            skgl__st_framebuffer(ctx, st, p->fbo[f]);   /* glReadBuffer: the read target's */
             ctx->gl.DrawBuffer(SKGL__NONE);
             ctx->gl.ReadBuffer(SKGL__NONE);
         }

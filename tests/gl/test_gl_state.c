@@ -234,6 +234,7 @@ static int live_objects(int with_shaders) {
 /* ---- the state ---- */
 typedef struct gl_state {
     int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active, array_buffer, pack_buffer;
+    int read_buffer, draw_buffer;   /* state of the caller's bound framebuffer objects themselves */
     int tex2d[UNITS], tex2da[UNITS], sampler[UNITS], texcube[UNITS];
     int depth_func, cull_mode;
     unsigned char seamless, depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
@@ -257,6 +258,8 @@ static void read_state(const tb_gl_funcs *gl, const ext_funcs *x, gl_state *s) {
     gl->GetIntegerv(E_VERTEX_ARRAY_BINDING, &s->vao);
     gl->GetIntegerv(E_ARRAY_BUFFER_BINDING, &s->array_buffer);
     gl->GetIntegerv(0x88ED, &s->pack_buffer);   /* GL_PIXEL_PACK_BUFFER_BINDING */
+    gl->GetIntegerv(0x0C02, &s->read_buffer);   /* GL_READ_BUFFER of the read framebuffer */
+    gl->GetIntegerv(0x8825, &s->draw_buffer);   /* GL_DRAW_BUFFER0 of the draw framebuffer */
     gl->GetIntegerv(E_ACTIVE_TEXTURE, &s->active);
     for (u = 0; u < UNITS; u++) {
         gl->ActiveTexture(E_TEXTURE0 + (unsigned)u);
@@ -324,7 +327,7 @@ static int compare_state(const gl_state *a, const gl_state *b, const char *what,
     printf("%s: %s changed: %g -> %g\n", what, #field, (double)a->field, (double)b->field); } } while (0)
 #define SAME_I(field, i) do { if (a->field[i] != b->field[i]) { bad++; \
     printf("%s: %s[%d] changed: %g -> %g\n", what, #field, i, (double)a->field[i], (double)b->field[i]); } } while (0)
-    SAME(draw_fb); SAME(read_fb); SAME(program); SAME(vao); SAME(active); SAME(array_buffer); SAME(pack_buffer);
+    SAME(draw_fb); SAME(read_fb); SAME(read_buffer); SAME(draw_buffer); SAME(program); SAME(vao); SAME(active); SAME(array_buffer); SAME(pack_buffer);
     for (k = 0; k < 4; k++) {
         SAME_I(viewport, k); SAME_I(scissor_box, k); SAME_I(color_mask, k); SAME_I(clear_color, k);
     }
