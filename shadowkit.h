@@ -49,21 +49,33 @@
 
    SECTIONS (in the order of the header)
      1. Core math                 matrices, frusta, convex clipping
-     2. Aliasing analysis         seed 002 (aliasing error d, RMSM LOD)
-     3. Crops and PSSM            seeds 000, 002 (crop matrix, practical
+     2. Aliasing analysis         (Romanick's VGP353 notes: aliasing error d, RMSM LOD)
+     3. Crops and PSSM            Ferko 2013; Zhang et al. 2006 (crop matrix, practical
                                   split scheme, focused and texel-snapped
                                   stable crops)
-     4. PSM and LiSPSM            seed 002 (Stamminger & Drettakis 2002;
+     4. PSM and LiSPSM            (Stamminger & Drettakis 2002;
                                   Wimmer, Scherzer & Purgathofer 2004)
-     5. LSPSM                     seed 003 (Tang et al. 2017, Eq. 1)
-     6. Omnidirectional lights    seed 004 (King & Newhall, Eqs. 5.4.6-5.4.7,
+     5. LSPSM                     (Tang et al. 2017, Eq. 1)
+     6. Omnidirectional lights    (King & Newhall 2004, Eqs. 5.4.6-5.4.7,
                                   HalfIntersection, caster culling, scissor,
                                   resolution, VSDCT)
-     7. Resolution estimation     seed 000 (Ferko 2013, Sec. 3.1-3.2)
-     8. PVSM                      seed 001 (Shen Li et al. 2011, Eqs. 4-5,
+     7. Resolution estimation     (Ferko 2013, Sec. 3.1-3.2)
+     8. PVSM                      (Shen et al. 2011, Eqs. 4-5,
                                   rho(n), appendix convolution, SMTG,
                                   kd-tree tiles, V*A/A merge)
-     9. RMSM pages                seed 002 (Lefohn et al. 2007 page requests)
+     9. RMSM pages                (Lefohn et al. 2007 page requests)
+
+   REFERENCES
+     Ferko 2013, "Resolution Estimation for Shadow Mapping".
+     Shen, Guennebaud, Yang and Feng 2011, "Predicted Virtual Soft Shadow
+       Maps with High Quality Filtering" (PVSM).
+     Romanick, VGP353 course notes (aliasing, PSM, PSSM, RMSM), after:
+       Stamminger and Drettakis 2002, "Perspective Shadow Maps"; Wimmer,
+       Scherzer and Purgathofer 2004, "Light Space Perspective Shadow Maps";
+       Zhang, Sun, Xu and Lun 2006, "Parallel-Split Shadow Maps"; Lefohn,
+       Sengupta and Owens 2007, "Resolution-Matched Shadow Maps".
+     Tang, Luo, Ni, Duan and Gao 2017, "Light Space Partitioned Shadow Maps".
+     King and Newhall 2004, "Efficient Omnidirectional Shadow Maps" (VSDCT).
 
    QUICK START (directional light, one focused map)
        sk_mat4 cam_vp = sk_mat4_mul(cam_proj, cam_view);
@@ -173,7 +185,7 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p);
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap);
 
 /* =========================================================================
-   2. Aliasing analysis (seed 002)
+   2. Aliasing analysis (Romanick's VGP353 notes)
    ========================================================================= */
 /* d = ds * (rs/ri) * (n_dot_v / n_dot_l); aliasing where d > di.
    +INFINITY if n_dot_l <= 0, ri <= 0 or an argument is NaN; n_dot_v < 0 is
@@ -185,7 +197,7 @@ SKDEF float sk_aliasing_error(float ds, float rs, float ri, float n_dot_v, float
 SKDEF float sk_rmsm_lod(sk_vec2 dx, sk_vec2 dy);
 
 /* =========================================================================
-   3. Crop matrices and parallel splits (seeds 000, 002)
+   3. Crop matrices and parallel splits (Ferko 2013; Zhang et al. 2006)
    ========================================================================= */
 /* maps [r.x0,r.x1] x [r.y0,r.y1] x [zmin,zmax] of light clip space onto
    [-1,1]^3 (zmin maps to -1, zmax to +1). An axis with an empty or
@@ -258,7 +270,7 @@ SKDEF sk_result sk_stable_crop_origin(sk_sphere s, sk_mat4 light_view, int res, 
                                       const double origin[3], sk_mat4 *out_proj);
 
 /* =========================================================================
-   4. PSM and LiSPSM warping (seed 002; Stamminger & Drettakis 2002,
+   4. PSM and LiSPSM warping (Stamminger & Drettakis 2002,
       Kozlov 2004, Wimmer et al. 2004)
    ========================================================================= */
 typedef enum sk_depth_compare { SK_DEPTH_LESS = 0, SK_DEPTH_GREATER = 1 } sk_depth_compare;
@@ -337,7 +349,7 @@ typedef struct sk_lispsm_result {
 SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *out);
 
 /* =========================================================================
-   5. Light Space Partitioned Shadow Maps (seed 003)
+   5. Light Space Partitioned Shadow Maps (Tang et al. 2017)
    ========================================================================= */
 typedef struct sk_lspsm_params { float zeta, sigma; int h_max, nw_max; } sk_lspsm_params;
 /* paper defaults: zeta 0.25, sigma 0.5, h_max 4, nw_max 2 */
@@ -372,7 +384,7 @@ typedef struct sk_lspsm_region {
                                      focused map over the bounding rectangle
                                      instead */
 } sk_lspsm_region;
-/* The projective region of seed 003 (Sec. 3.1): the view frustum clipped to
+/* The projective region of Tang et al. 2017 (Sec. 3.1): the view frustum clipped to
    the receivers' box, projected on the light plane; the smallest enclosing
    isosceles trapezoid (minimum area) whose axis is the projected view
    direction. Casters (may be NULL) extend the depth range only.
@@ -397,7 +409,7 @@ SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
                          sk_mat4 *out_view_proj, sk_rect *out_rects, int cap);
 
 /* =========================================================================
-   6. Omnidirectional lights (seed 004)
+   6. Omnidirectional lights (King & Newhall 2004)
    ========================================================================= */
 /* GL cube-map face order +X,-X,+Y,-Y,+Z,-Z and orientation (sampling a
    samplerCube with the light-to-point vector finds the texel rendered here).
@@ -478,7 +490,7 @@ SKDEF int sk_vsdct_lookup(const sk_vsdct_layout *l, sk_vec3 dir, float *u, float
 SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsigned short *out);
 
 /* =========================================================================
-   7. Resolution estimation (seed 000)
+   7. Resolution estimation (Ferko 2013)
    ========================================================================= */
 typedef struct sk_res_estimate {
     sk_rect bounds;          /* light-clip xy AABB of visible samples, within [-1,1]^2 */
@@ -503,7 +515,7 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h,
         sk_mat4 cam_inv_view_proj, sk_mat4 light_view_proj, int max_res, sk_res_estimate *out);
 
 /* =========================================================================
-   8. Predicted virtual soft shadow maps (seed 001)
+   8. Predicted virtual soft shadow maps (Shen et al. 2011)
    ========================================================================= */
 /* perceptual polynomials in log2(n); n clamped to [1, n_peak] so rho never
    decreases. NaN or n < 1 is taken as 1. */
@@ -560,7 +572,7 @@ SKDEF int sk_smtg_pyramid(const float *grid, int gw, int gh, float *out, int cap
 SKDEF int sk_fvsm_tiles(const float *grid, int gw, int gh, int max_res, sk_tile *out, int cap);
 
 /* =========================================================================
-   9. RMSM page requests (seed 002, after Lefohn et al. 2007)
+   9. RMSM page requests (after Lefohn, Sengupta and Owens 2007)
    ========================================================================= */
 typedef struct sk_page { int level, px, py; } sk_page;
 /* samples: (s, t, lod) with s,t in [0,1) shadow-map coordinates of level 0
@@ -1227,7 +1239,7 @@ SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, i
     return count;
 }
 
-/* ---- 2. Aliasing analysis (seed 002) ----------------------------------- */
+/* ---- 2. Aliasing analysis (Romanick's VGP353 notes) ------------------ */
 
 /* d = d_s (r_s / r_i) (N.V / N.L), the slides' aliasing error */
 SKDEF float sk_aliasing_error(float ds, float rs, float ri, float n_dot_v, float n_dot_l)
@@ -1250,7 +1262,7 @@ SKDEF float sk_rmsm_lod(sk_vec2 dx, sk_vec2 dy)
     return (float)(0.5 * SK_LOG2(a));
 }
 
-/* ---- 3. Crop matrices and parallel splits (seeds 000, 002) ------------- */
+/* ---- 3. Crop matrices and parallel splits (Ferko 2013; Zhang et al. 2006) --- */
 
 /* one axis of sk_crop_matrix: [lo, hi] onto [-1, 1], or left alone */
 static void sk__crop_axis(float lo, float hi, float *scale, float *offset)
@@ -1273,7 +1285,7 @@ SKDEF sk_mat4 sk_crop_matrix(sk_rect r, float zmin, float zmax)
     return m;
 }
 
-/* Practical split scheme (PSSM, Zhang et al.; seed 002):
+/* Practical split scheme (PSSM, Zhang, Sun, Xu and Lun 2006):
    C_i = lambda C_i^log + (1 - lambda) C_i^uni */
 SKDEF sk_result sk_pssm_splits(float zn, float zf, int m, float lambda, float *out)
 {
@@ -1507,7 +1519,7 @@ SKDEF sk_result sk_stable_crop_origin(sk_sphere s, sk_mat4 light_view, int res, 
     return SK_OK;
 }
 
-/* ---- 4. PSM and LiSPSM (seed 002) -------------------------------------- */
+/* ---- 4. PSM and LiSPSM (Romanick's VGP353 notes) --------------------- */
 
 /* Off-centre perspective from `eye` looking along `dir`, fitted around the
    points (all must lie in front); the casters' corners, taken to space `pp`
@@ -1826,7 +1838,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
     return sk__mat_finite(&out->light_view_proj) ? SK_OK : SK_ERR_DEGENERATE;
 }
 
-/* ---- 5. Light Space Partitioned Shadow Maps (seed 003) ----------------- */
+/* ---- 5. Light Space Partitioned Shadow Maps (Tang et al. 2017) ------- */
 
 SKDEF sk_lspsm_params sk_lspsm_default_params(void)
 {
@@ -2164,7 +2176,7 @@ SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
     return sk__lspsm_rows(r->n, r->L, r->theta, p, &sink, 1, cap);
 }
 
-/* ---- 6. Omnidirectional lights (seed 004) ------------------------------ */
+/* ---- 6. Omnidirectional lights (King & Newhall 2004) ----------------- */
 
 /* Per face: right, up, forward (GL cube-map face table: s runs along
    right, t along up, the major axis is forward). */
@@ -2399,7 +2411,7 @@ SKDEF int sk_light_scissor(sk_vec3 light_pos, float radius, sk_mat4 view_proj, i
     return 1;
 }
 
-/* N * M^2 >= c * S with c = 2 in the seed ("Optimizing Shadow Texture Resolution") */
+/* N * M^2 >= c * S with c = 2 in King & Newhall 2004 ("Optimizing Shadow Texture Resolution") */
 SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res)
 {
     int top = 1, m = 1;
@@ -2515,7 +2527,7 @@ SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsi
     return SK_OK;
 }
 
-/* ---- 7. Resolution estimation (seed 000) ------------------------------- */
+/* ---- 7. Resolution estimation (Ferko 2013) --------------------------- */
 
 /* Seed 000, Sec. 3: every pixel's corners are shared with its neighbours, so
    one row of corners is projected per pixel row, in strips of SK__RES_STRIP
@@ -2721,7 +2733,7 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
     return SK_OK;
 }
 
-/* ---- 8. Predicted virtual soft shadow maps (seed 001) ------------------ */
+/* ---- 8. Predicted virtual soft shadow maps (Shen et al. 2011) -------- */
 
 /* The cubics' maxima, where their derivatives vanish:
    dynamic 0.7794 + 0.7934x - 0.08148x^2 = 0, static 1.406 - 0.09374x - 0.011832x^2 = 0 */
@@ -2963,7 +2975,7 @@ SKDEF int sk_fvsm_tiles(const float *grid, int gw, int gh, int max_res, sk_tile 
     return count;
 }
 
-/* ---- 9. RMSM page requests (seed 002) ---------------------------------- */
+/* ---- 9. RMSM page requests (Romanick's VGP353 notes) ----------------- */
 
 static int sk__page_cmp(const sk_page *a, const sk_page *b)
 {

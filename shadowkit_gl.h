@@ -55,13 +55,13 @@
 
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
-                    bounds, fitted in light space (seed 000 crop, Brabec);
+                    bounds, fitted in light space (Ferko 2013's crop, Brabec);
                     .stable = 1 snaps it to whole texels (no shimmer).
      SKGL_PSSM      parallel-split cascades with the practical split scheme
-                    (seed 002), one layer of a depth texture array each,
+                    (Romanick's VGP353 notes), one layer of a depth texture array each,
                     per-cascade crop (or stable crop), cascade chosen per
                     pixel by view depth, optional blend band.
-     SKGL_PSM       perspective shadow map (Stamminger & Drettakis, seed 002):
+     SKGL_PSM       perspective shadow map (Stamminger & Drettakis 2002):
                     rendered in the camera's post-perspective space, fitted
                     to the receivers there; .psm_slide moves the virtual
                     camera back by that many sqrt(near*far) [0.5] for more
@@ -73,12 +73,12 @@
                     n_opt; fades into the focused map as the light turns
                     parallel to the view (stats.warped, stats.warp_n).
                     .cascades > 1: one LiSPSM per PSSM cascade.
-     SKGL_LSPSM     light space partitioned maps (Tang et al., seed 003): the
+     SKGL_LSPSM     light space partitioned maps (Tang et al. 2017): the
                     view's trapezoid on the light plane cut by Eq. (1), one
                     layer per partition (.lspsm: zeta, sigma, h_max, nw_max;
                     stats.maps = partitions), the partition picked per pixel.
      SKGL_FERKO     one map whose crop and size come from the camera's depth
-                    buffer (Ferko, seed 000): call skgl_shadow_analyze()
+                    buffer (Ferko 2013): call skgl_shadow_analyze()
                     first; .resolution is the largest size it may take.
                     By default (.ferko_latency 1) the estimate comes back
                     through the read-back ring (READ-BACKS) and is used a
@@ -86,7 +86,7 @@
                     clip the crop; SKGL_LATENCY_SYNC uses this frame's.
      SKGL_RMSM      a virtual map (.resolution, 16384 by default) of pages
                     (.rmsm_page_size) rendered only where the view needs them,
-                    at the level of detail it needs (seed 002): call
+                    at the level of detail it needs (Romanick's VGP353 notes): call
                     skgl_shadow_analyze() first; pages live in a pool of
                     .rmsm_pool_pages^2 slots, found through a page table
                     (texture unit `unit` + 1 in skgl_shadow_bind). The page
@@ -102,7 +102,7 @@
      never changes as the camera moves, at the price of covering more than
      the scene (set max_distance).
 
-   POINT LIGHTS (skgl_point_*, seed 004; the flow is in the declarations)
+   POINT LIGHTS (skgl_point_*, King & Newhall 2004; the flow is in the declarations)
      SKGL_POINT_CUBE   a GL depth cube map, samplerCubeShadow.
      SKGL_POINT_VSDCT  the six faces in one 2D depth atlas and an RG16
                        indirection cube map (Virtual Shadow Depth Cube Texture).
@@ -114,7 +114,7 @@
      desc.atlas): skgl_point_atlas_pack places every light's six faces at
      its selected side each frame, halving the largest side until they fit.
 
-   AREA LIGHTS (skgl_soft_*, seed 001; the flow is in the declarations)
+   AREA LIGHTS (skgl_soft_*, Shen et al. 2011; the flow is in the declarations)
      SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
      SKGL_SOFT_PVSM    predicted virtual soft shadow maps: a conservative
                        low-resolution map, a kernel per pixel, the predicted
@@ -337,9 +337,9 @@ typedef enum skgl_technique {
     SKGL_PSSM = 1,                /* parallel-split cascades */
     SKGL_PSM = 2,                 /* perspective shadow map (one map) */
     SKGL_LISPSM = 3,              /* light-space perspective map; cascades > 1: one per PSSM slice */
-    SKGL_LSPSM = 4,               /* light space partitioned maps (seed 003) */
-    SKGL_FERKO = 5,               /* crop and resolution estimated from the G-buffer (seed 000) */
-    SKGL_RMSM = 6                 /* virtual map rendered page by page at the requested levels (seed 002) */
+    SKGL_LSPSM = 4,               /* light space partitioned maps (Tang et al. 2017) */
+    SKGL_FERKO = 5,               /* crop and resolution estimated from the G-buffer (Ferko 2013) */
+    SKGL_RMSM = 6                 /* virtual map rendered page by page at the requested levels (Romanick's VGP353 notes) */
 } skgl_technique;
 
 /* How a receiver is kept out of its own shadow (BIAS AND FILTERING) */
@@ -486,7 +486,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
    resolution) is rendered.
    SKGL_FERKO: estimates the crop and the resolution of a later
    skgl_shadow_render from the camera's depth texture (window depth, the
-   G-buffer of the frame; seed 000): the next render's with
+   G-buffer of the frame; Ferko 2013): the next render's with
    SKGL_LATENCY_SYNC and on the first call, else the render after it lands
    (READ-BACKS). The light frustum before the crop is an orthographic map
    around scene->bounds; the estimate (stats.estimate, set by the render
@@ -526,7 +526,7 @@ SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s);
 /* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
 
-/* ---- point lights: cube shadow maps and VSDCT (seed 004) ----------------
+/* ---- point lights: cube shadow maps and VSDCT (King & Newhall 2004) -----
    skgl_point *lamp;   once: skgl_point_create(gl, &pdesc, &lamp)
    every frame:
      skgl_point_render(gl, lamp, &cam, &scene, light_pos);
@@ -541,7 +541,7 @@ SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
      or forward: "#define SK_POINT_VSDCT 1\n" (VSDCT only) before
        skgl_point_glsl_snippet() in a fragment shader, skgl_point_bind(), and
        float v = sk_point_shadow(world_pos, world_normal);
-   The seed's four optimizations are switches (all off: the naive cube, six
+   King & Newhall's four optimizations are switches (all off: the naive cube, six
    faces, every caster, full resolution, the whole screen), so each can be
    measured alone. */
 typedef enum skgl_point_technique {
@@ -572,7 +572,7 @@ typedef struct skgl_point_desc {
                                      frustum against the view and by the face frustum */
     int scissor;                  /* 1: the mask pass only inside sk_light_scissor's rectangle */
     int select_resolution;        /* 1: face side from sk_cube_resolution (N M^2 >= c S) */
-    float resolution_c;           /* c of the selection [2, the seed's] */
+    float resolution_c;           /* c of the selection [2, King & Newhall's] */
     int screen_w, screen_h;       /* S of the selection: pixels of the light's rectangle on a
                                      screen this size [0: the viewport bound at render time] */
     int vsdct_grey_levels;        /* G of Eq. (5.4.7) for the indirection size (D = 8) [256] */
@@ -617,7 +617,7 @@ SKGLDEF unsigned skgl_point_texture(const skgl_point *p);
    in a shared atlas, the rectangles of the last skgl_point_atlas_pack) */
 SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p);
 
-/* ---- several point lights in one atlas (seed 004's VSDCT, shared) -------
+/* ---- several point lights in one atlas (King & Newhall 2004's VSDCT, shared) ---
    skgl_point_atlas *atlas;  once: skgl_point_atlas_create(gl, 4096, 2048, &atlas)
    each light: desc.technique = SKGL_POINT_VSDCT, desc.atlas = atlas
    every frame:
@@ -645,7 +645,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
 SKGLDEF unsigned skgl_point_atlas_texture(const skgl_point_atlas *a);
 SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *height);
 
-/* ---- area lights: soft shadows (seed 001) --------------------------------
+/* ---- area lights: soft shadows (Shen et al. 2011) -----------------------
    A rectangular light at `position` facing `direction`; its maps are
    perspective projections from the rectangle's centre, aligned with the
    rectangle (skgl_area_light_axes gives the world half-axes, e.g. for a
@@ -777,7 +777,7 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 extern "C" {
 #endif
 
-/* ---- embedded GLSL: the files of shaders_embedded/, written here by `make shaders` ---- */
+/* ---- embedded GLSL: the files of shaders_embedded/, written here by `make shaders` --- */
 /* The literals may pass C99's minimum of 4095 characters per string
    (GCC, Clang and MSVC take 64K): -Woverlength-strings is a portability
    note, silenced for this block only. */
@@ -820,10 +820,10 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   Maps are layers of one depth texture array: one layer for a standard\n"
     "   focused map, one per cascade for PSSM. A world position picks its layer by\n"
     "   view depth against the split distances (PSSM practical split scheme,\n"
-    "   seed 002), optionally blending into the next cascade inside a band; or,\n"
-    "   for LSPSM's partitions (seed 003), which tile the light plane rather than\n"
+    "   Romanick's VGP353 notes), optionally blending into the next cascade inside a band; or,\n"
+    "   for LSPSM's partitions (Tang et al. 2017), which tile the light plane rather than\n"
     "   the view depth, the first layer whose partition rect holds it; or, for\n"
-    "   RMSM (seed 002), a virtual map: the page of the point's level of detail\n"
+    "   RMSM (Romanick's VGP353 notes), a virtual map: the page of the point's level of detail\n"
     "   through the page table into a pool of pages (layer 0), or the nearest\n"
     "   coarser page resident. sk_shadow() takes screen derivatives (RMSM's level\n"
     "   of detail; the receiver's plane when the normal is zero): call it in\n"
@@ -1088,7 +1088,7 @@ static const char skgl__src_shadow_mask_frag[] =
     "}\n"
     ;
 static const char skgl__src_ferko_analyze_frag[] =
-    "/* Resolution estimation, first pass (Ferko 2013, seed 000, Sec. 3): each\n"
+    "/* Resolution estimation, first pass (Ferko 2013, Sec. 3): each\n"
     "   output texel covers a 4x4 block of camera pixels. Per pixel: the world\n"
     "   point from its window depth, in the light's clip space; samples outside\n"
     "   the light frustum are discarded (Sec. 3.1). Per kept pixel: its light-clip\n"
@@ -1188,7 +1188,7 @@ static const char skgl__src_ferko_analyze_frag[] =
     "}\n"
     ;
 static const char skgl__src_ferko_reduce_frag[] =
-    "/* Resolution estimation, reduction (Ferko 2013, seed 000, Sec. 3.3): the\n"
+    "/* Resolution estimation, reduction (Ferko 2013, Sec. 3.3): the\n"
     "   MIN of the analysis texels, layer 0 the bounds stored as (min x, min y,\n"
     "   -max x, -max y), so one MIN serves both ends, layer 1 the patch. Texels\n"
     "   outside the source level's u_src_size are skipped.\n"
@@ -1231,7 +1231,7 @@ static const char skgl__src_ferko_reduce_frag[] =
     "}\n"
     ;
 static const char skgl__src_rmsm_analyze_frag[] =
-    "/* RMSM page analysis, per pixel (seed 002, after Lefohn et al. 2007): the\n"
+    "/* RMSM page analysis, per pixel (after Lefohn, Sengupta and Owens 2007): the\n"
     "   world point from window depth, its coordinates (s, t) in the virtual\n"
     "   shadow map of u_virtual_res^2 texels, and the level of detail\n"
     "   lod = log2(sqrt(|dX x dY|)) from the screen derivatives of the texel\n"
@@ -1296,7 +1296,7 @@ static const char skgl__src_rmsm_request_frag[] =
 static const char skgl__src_point_sample_glsl[] =
     "/* shadowkit: point-light (omnidirectional) shadow lookup, shared by the\n"
     "   deferred point mask pass and forward shaders (skgl_point_glsl_snippet()).\n"
-    "   King & Newhall, seed 004.\n"
+    "   King & Newhall 2004.\n"
     "\n"
     "   Two storages, chosen at compile time: define SK_POINT_VSDCT 1 before this\n"
     "   text for the Virtual Shadow Depth Cube Texture, leave it undefined (or 0)\n"
@@ -1307,8 +1307,8 @@ static const char skgl__src_point_sample_glsl[] =
     "   - VSDCT: the six faces as sub-rects of one 2D depth atlas; an RG16\n"
     "     indirection cube map, bilinearly filtered, turns the direction into the\n"
     "     atlas (u, v) (face selection, side divide, (s, t) remap, scale and face\n"
-    "     offset in one lookup, seed Fig. 5.4.7), kept half a texel inside the\n"
-    "     face so a 2x2 comparison never reads across a seam (seed: \"Sampling\n"
+    "     offset in one lookup, King & Newhall Fig. 5.4.7), kept half a texel inside the\n"
+    "     face so a 2x2 comparison never reads across a seam (King & Newhall: \"Sampling\n"
     "     across Cube Map Seams\"); then sampler2DShadow in the atlas.\n"
     "   Both store window depth per Eq. (5.4.6): z = scale / MA + bias, MA the\n"
     "   major-axis component of the light-to-point vector (the eye depth in the\n"
@@ -1470,7 +1470,7 @@ static const char skgl__src_point_mask_frag[] =
     "}\n"
     ;
 static const char skgl__src_soft_common_glsl[] =
-    "/* Area-light soft shadows (seed 001): what the kernel-shape pass and the\n"
+    "/* Area-light soft shadows (Shen et al. 2011): what the kernel-shape pass and the\n"
     "   PCSS mask share. The light is a rectangle at u_light_pos facing along\n"
     "   the -z axis of its view (sk_mat4_look_at); its shadow maps are\n"
     "   perspective projections from the rectangle's centre (u_light_vp, the\n"
@@ -1623,7 +1623,7 @@ static const char skgl__src_soft_kernel_frag[] =
     "\n"
     "float sk_rho(float n)\n"
     "{\n"
-    "    /* seed 001 Sec. 5.1, clamped at the cubic's peak as sk_rho_dynamic/static */\n"
+    "    /* Shen et al. 2011, Sec. 5.1, clamped at the cubic's peak as sk_rho_dynamic/static */\n"
     "    float x = log2(max(n, 1.0));\n"
     "    if (u_static_scene != 0) {\n"
     "        x = min(x, 10.6085);\n"
@@ -2006,7 +2006,7 @@ static const char skgl__src_soft_gbuffer_frag[] =
     "}\n"
     ;
 static const char skgl__src_pcss_mask_frag[] =
-    "/* Percentage-closer soft shadows (Fernando 2005, seed 001 Sec. 4) on one\n"
+    "/* Percentage-closer soft shadows (Fernando 2005, as in Shen et al. 2011, Sec. 4) on one\n"
     "   map: a blocker search of u_blocker_cells^2 point samples over the region\n"
     "   the light's pyramid cuts from the near plane, the filter s_alpha from\n"
     "   the average blocker depth (Eq. 1), and PCF over it with up to\n"
@@ -2068,7 +2068,7 @@ static const char skgl__src_pcss_mask_frag[] =
 #pragma GCC diagnostic pop
 #endif
 
-/* ---- the GL 3.3 core subset shadowkit uses ------------------------------ */
+/* ---- the GL 3.3 core subset shadowkit uses --------------------------- */
 typedef unsigned int skgl__enum;
 typedef unsigned int skgl__uint;
 typedef int skgl__int;
@@ -2297,7 +2297,7 @@ typedef struct skgl__api {
 #undef SKGL__X
 } skgl__api;
 
-/* ---- what the context and the lights keep between calls ------------------ */
+/* ---- what the context and the lights keep between calls -------------- */
 #define SKGL__PROG_CACHE 16                /* user programs whose snippet locations are cached */
 #define SKGL__TEX_CACHE 8                  /* user textures whose size / framebuffer check is cached */
 #define SKGL__TIMER_RING 3                 /* timer queries per timed pass, read two or three frames late */
@@ -2419,7 +2419,7 @@ struct skgl_shadow {
     skgl_stats stats;
 };
 
-/* ---- saved GL state ----------------------------------------------------- */
+/* ---- saved GL state -------------------------------------------------- */
 typedef struct skgl__state {
     skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
     skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
@@ -3133,7 +3133,7 @@ SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program)
         if (ctx->progs[i].program == program) memset(&ctx->progs[i], 0, sizeof ctx->progs[i]);
 }
 
-/* ---- the user's textures: sizes and framebuffer checks, by name ---------- */
+/* ---- the user's textures: sizes and framebuffer checks, by name ------ */
 /* The mask texture's size (the viewport of the mask pass) and the depth
    texture's (the analysis' targets) are asked of GL once per texture name
    (glGetTexLevelParameteriv) and remembered here; whether a mask texture is
@@ -3463,7 +3463,7 @@ SKGLDEF void skgl_destroy(skgl_context *ctx)
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx) { return ctx ? ctx->objects : 0; }
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx) { return ctx ? ctx->log : ""; }
 
-/* ---- large worlds: directional passes relative to an origin near the camera ----
+/* ---- large worlds: directional passes relative to an origin near the camera ---
    A float holds 24 bits: at 1e5 from the world origin a position is good
    to 8 mm, and a matrix that takes such positions to light clip space
    subtracts nearly equal large numbers. The directional passes therefore
@@ -3551,7 +3551,7 @@ SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
 
 SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__src_shadow_sample_glsl; }
 
-/* ---- objects of the lights (made inside a state-tracked call) ------------ */
+/* ---- objects of the lights (made inside a state-tracked call) -------- */
 /* a 2D texture (target 2D) or 2-layer array (layers 2), nearest filtering,
    made on unit 0; data: level 0's texels or NULL */
 static skgl__uint skgl__color_texture(skgl_context *ctx, skgl__st *st, skgl__int ifmt, int w, int h, int layers,
@@ -3626,7 +3626,7 @@ static void skgl__delete_framebuffer(skgl_context *ctx, skgl__uint *f)
     if (*f) { ctx->gl.DeleteFramebuffers(1, f); ctx->objects--; *f = 0; }
 }
 
-/* ---- RMSM: virtual shadow map pages (seed 002) -------------------------- */
+/* ---- RMSM: virtual shadow map pages (Romanick's VGP353 notes) -------- */
 /* the request atlas (R8) and the page table (RGBA8): every level's page grid
    side by side, level l (n_l = pages0 >> l pages a side) from column
    2 pages0 - 2 n_l; the table starts all 0 (nothing resident) */
@@ -3914,7 +3914,7 @@ static int skgl__receiver_body(const sk_frustum *slice, const skgl_scene *scene,
 }
 
 /* Light-space perspective shadow map of one slice (Wimmer et al. 2004, the
-   LiSPSM of seed 002): the slice's receiver body, n_opt from the nearest
+   LiSPSM): the slice's receiver body, n_opt from the nearest
    receiver depth of the slice. */
 static sk_result skgl__fit_lispsm(skgl_shadow *s, int layer, const skgl_camera *cam, const skgl_scene *scene,
                                   sk_vec3 light_dir, const sk_frustum *slice, float z0)
@@ -3942,7 +3942,7 @@ static sk_result skgl__fit_lispsm(skgl_shadow *s, int layer, const skgl_camera *
     return SK_OK;
 }
 
-/* Perspective shadow map (Stamminger & Drettakis 2002, seed 002) over the
+/* Perspective shadow map (Stamminger & Drettakis 2002) over the
    view range that holds receivers: the camera's near plane moved up to the
    nearest receiver (PSM's resolution depends on the near/far ratio). A light
    behind the viewer reverses the depth order (sk_psm_result.compare): the
@@ -3985,7 +3985,7 @@ static sk_result skgl__fit_psm(skgl_shadow *s, const skgl_camera *cam, const skg
     return SK_OK;
 }
 
-/* Light Space Partitioned Shadow Maps (seed 003): the trapezoid around the
+/* Light Space Partitioned Shadow Maps (Tang et al. 2017): the trapezoid around the
    refined view frustum on the light plane, its partitions (Eq. 1), one
    orthographic crop each, every crop widened by a margin of texels so the
    PCF kernel and the normal offset of a point near a partition's edge stay
@@ -4040,7 +4040,7 @@ static sk_result skgl__check(skgl_context *ctx, const char *what)
     return SK_OK;
 }
 
-/* ---- resolution estimation on the GPU (seed 000) ----------------------- */
+/* ---- resolution estimation on the GPU (Ferko 2013) ------------------- */
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
 {
     int i;
@@ -4435,7 +4435,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
 }
 
-/* Crops of every layer: the PSSM practical split scheme (seed 002) over
+/* Crops of every layer: the PSSM practical split scheme (Romanick's VGP353 notes) over
    the part of the view that can hold receivers; per layer a focused crop of
    the slice clipped to the scene, or a texel-snapped stable crop. */
 static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene, sk_vec3 light_dir)
@@ -4819,7 +4819,7 @@ SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *
     return skgl__check(ctx, "skgl_shadow_bind");
 }
 
-/* ---- the deferred mask passes ------------------------------------------- */
+/* ---- the deferred mask passes ---------------------------------------- */
 /* The mask texture as the only colour target of the masks' framebuffer,
    attached by name at every call (a texture deleted and made again under
    the same name is a new object: an attachment kept from before would
@@ -4923,7 +4923,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_mask");
 }
 
-/* ---- for the area lights (skgl_soft_*, inside their full save and restore) ---- */
+/* ---- for the area lights (skgl_soft_*, inside their full save and restore) --- */
 /* the G-buffer on units 1 (depth) and 2 (normals, may be 0) with the point
    sampler; *w, *h: the mask texture's level 0 (0 when it has none) */
 static void skgl__mask_inputs(skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, unsigned mask_tex,
@@ -4963,7 +4963,7 @@ static int skgl__mask_target(skgl_context *ctx, unsigned mask_tex, int w, int h)
     return 1;
 }
 
-/* ---- point lights: cube shadow maps and VSDCT (seed 004) ---------------- */
+/* ---- point lights: cube shadow maps and VSDCT (King & Newhall 2004) --- */
 #define SKGL__MAX_TEXTURE_SIZE 0x0D33
 #define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
 
@@ -5306,7 +5306,7 @@ SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster
     if (!info || info->kind != SKGL_PASS_CUBE_FACE || !info->point) return 1;
     p = info->point;
     if (!p->desc.cull_casters) return 1;
-    /* the seed's caster culling: the light-to-box cone frustum (or the
+    /* King & Newhall's caster culling: the light-to-box cone frustum (or the
        light's range box when the light is inside the box) against the view
        frustum; then the box against this face's frustum */
     if (sk__aabb_valid(&caster)) {   /* grown by the filter's reach at the light's range */
@@ -5368,7 +5368,7 @@ static float skgl__point_pixels(const skgl_point *p, const sk_mat4 *vp, const sk
 }
 
 /* face culling: a face whose frustum misses the view frustum casts
-   nothing visible (seed Fig. 5.4.2, frustum-frustum intersection), widened
+   nothing visible (King & Newhall Fig. 5.4.2, frustum-frustum intersection), widened
    by the filter's reach at the face side m. Resolution selection: the
    smallest power of two M with N M^2 >= c S, N the faces rendered. A
    smaller M widens the reach, which may add faces, which may lower M:
@@ -5623,7 +5623,7 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
         skgl__set_log(ctx, "skgl_point_mask: mask_tex", why);
         return SK_ERR_INVALID_ARG;
     }
-    /* the seed's scissor: the light's range box on the screen; the whole
+    /* King & Newhall's scissor: the light's range box on the screen; the whole
        viewport when the eye is inside it (sk_light_scissor) */
     rect[0] = rect[1] = 0; rect[2] = w; rect[3] = h;
     if (p->desc.scissor && !sk_light_scissor(p->light_pos, p->desc.range, vp, w, h, rect)) {
@@ -5803,7 +5803,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
 
 
 
-/* ---- area lights: PCSS and PVSM (seed 001) ------------------------------ */
+/* ---- area lights: PCSS and PVSM (Shen et al. 2011) ------------------- */
 struct skgl_soft {
     skgl_soft_desc desc;
     skgl__uint prog_mask;          /* PCSS: the mask; PVSM: the kernel-shape pass */

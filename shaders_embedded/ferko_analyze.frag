@@ -1,4 +1,4 @@
-/* Resolution estimation, first pass (Ferko 2013, seed 000, Sec. 3): each
+/* Resolution estimation, first pass (Ferko 2013, Sec. 3): each
    output texel covers a 4x4 block of camera pixels. Per pixel: the world
    point from its window depth, in the light's clip space; samples outside
    the light frustum are discarded (Sec. 3.1). Per kept pixel: its light-clip

@@ -1,4 +1,4 @@
-/* Resolution estimation, reduction (Ferko 2013, seed 000, Sec. 3.3): the
+/* Resolution estimation, reduction (Ferko 2013, Sec. 3.3): the
    MIN of the analysis texels, layer 0 the bounds stored as (min x, min y,
    -max x, -max y), so one MIN serves both ends, layer 1 the patch. Texels
    outside the source level's u_src_size are skipped.

@@ -1,4 +1,4 @@
-/* Percentage-closer soft shadows (Fernando 2005, seed 001 Sec. 4) on one
+/* Percentage-closer soft shadows (Fernando 2005, as in Shen et al. 2011, Sec. 4) on one
    map: a blocker search of u_blocker_cells^2 point samples over the region
    the light's pyramid cuts from the near plane, the filter s_alpha from
    the average blocker depth (Eq. 1), and PCF over it with up to

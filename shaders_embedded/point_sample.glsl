@@ -1,6 +1,6 @@
 /* shadowkit: point-light (omnidirectional) shadow lookup, shared by the
    deferred point mask pass and forward shaders (skgl_point_glsl_snippet()).
-   King & Newhall, seed 004.
+   King & Newhall 2004.
 
    Two storages, chosen at compile time: define SK_POINT_VSDCT 1 before this
    text for the Virtual Shadow Depth Cube Texture, leave it undefined (or 0)
@@ -11,8 +11,8 @@
    - VSDCT: the six faces as sub-rects of one 2D depth atlas; an RG16
      indirection cube map, bilinearly filtered, turns the direction into the
      atlas (u, v) (face selection, side divide, (s, t) remap, scale and face
-     offset in one lookup, seed Fig. 5.4.7), kept half a texel inside the
-     face so a 2x2 comparison never reads across a seam (seed: "Sampling
+     offset in one lookup, King & Newhall Fig. 5.4.7), kept half a texel inside the
+     face so a 2x2 comparison never reads across a seam (King & Newhall: "Sampling
      across Cube Map Seams"); then sampler2DShadow in the atlas.
    Both store window depth per Eq. (5.4.6): z = scale / MA + bias, MA the
    major-axis component of the light-to-point vector (the eye depth in the

@@ -1,4 +1,4 @@
-/* RMSM page analysis, per pixel (seed 002, after Lefohn et al. 2007): the
+/* RMSM page analysis, per pixel (after Lefohn, Sengupta and Owens 2007): the
    world point from window depth, its coordinates (s, t) in the virtual
    shadow map of u_virtual_res^2 texels, and the level of detail
    lod = log2(sqrt(|dX x dY|)) from the screen derivatives of the texel

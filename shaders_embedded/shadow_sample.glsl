@@ -4,10 +4,10 @@
    Maps are layers of one depth texture array: one layer for a standard
    focused map, one per cascade for PSSM. A world position picks its layer by
    view depth against the split distances (PSSM practical split scheme,
-   seed 002), optionally blending into the next cascade inside a band; or,
-   for LSPSM's partitions (seed 003), which tile the light plane rather than
+   Romanick's VGP353 notes), optionally blending into the next cascade inside a band; or,
+   for LSPSM's partitions (Tang et al. 2017), which tile the light plane rather than
    the view depth, the first layer whose partition rect holds it; or, for
-   RMSM (seed 002), a virtual map: the page of the point's level of detail
+   RMSM (Romanick's VGP353 notes), a virtual map: the page of the point's level of detail
    through the page table into a pool of pages (layer 0), or the nearest
    coarser page resident. sk_shadow() takes screen derivatives (RMSM's level
    of detail; the receiver's plane when the normal is zero): call it in

@@ -1,4 +1,4 @@
-/* Area-light soft shadows (seed 001): what the kernel-shape pass and the
+/* Area-light soft shadows (Shen et al. 2011): what the kernel-shape pass and the
    PCSS mask share. The light is a rectangle at u_light_pos facing along
    the -z axis of its view (sk_mat4_look_at); its shadow maps are
    perspective projections from the rectangle's centre (u_light_vp, the

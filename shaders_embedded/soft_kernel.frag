@@ -25,7 +25,7 @@ uniform float u_antialias;        /* 1: the filter is h, the pixel footprint inc
 
 float sk_rho(float n)
 {
-    /* seed 001 Sec. 5.1, clamped at the cubic's peak as sk_rho_dynamic/static */
+    /* Shen et al. 2011, Sec. 5.1, clamped at the cubic's peak as sk_rho_dynamic/static */
     float x = log2(max(n, 1.0));
     if (u_static_scene != 0) {
         x = min(x, 10.6085);
