@@ -333,6 +333,9 @@ static void add_ferko(int res) {
     snprintf(c->params, sizeof c->params, "max_resolution=%d;pcf=1", res);
     c->desc.technique = SKGL_FERKO;
     c->desc.resolution = res;
+    /* this frame's estimate: the sweep renders the views of a configuration
+       in turn, so a frame-late one would be another view's */
+    c->desc.ferko_latency = SKGL_LATENCY_SYNC;
 }
 
 /* RMSM: a virtual map of vres^2 texels in pages of 128^2, a pool of 24^2 pages */
@@ -343,6 +346,7 @@ static void add_rmsm(int vres) {
     snprintf(c->params, sizeof c->params, "virtual_resolution=%d;page=128;pool=24;pcf=0", vres);
     c->desc.technique = SKGL_RMSM;
     c->desc.resolution = vres;
+    c->desc.rmsm_latency = SKGL_LATENCY_SYNC;   /* this view's pages (see add_ferko) */
 }
 
 static void build_sweep(int quick) {
