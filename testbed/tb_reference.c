@@ -204,6 +204,19 @@ static void tb_rect_sample_(const tb_light *L, const double c[3], tb_pcg_ *rng, 
     q[2] = c[2] + a * L->half_u.z + b * L->half_v.z;
 }
 
+/* lane i of a 16-ray packet: origin p, unit direction d, [tnear, tfar] */
+static void tb_ray16_lane_(struct RTCRay16 *ray, int i, const double p[3], const double d[3], double tnear,
+                           double tfar) {
+    ray->org_x[i] = (float)p[0]; ray->org_y[i] = (float)p[1]; ray->org_z[i] = (float)p[2];
+    ray->dir_x[i] = (float)d[0]; ray->dir_y[i] = (float)d[1]; ray->dir_z[i] = (float)d[2];
+    ray->tnear[i] = (float)tnear;
+    ray->tfar[i] = (float)tfar;
+    ray->time[i] = 0;
+    ray->mask[i] = 0xFFFFFFFFu;
+    ray->id[i] = (unsigned)i;
+    ray->flags[i] = 0;
+}
+
 /* ---- shading one point ---- */
 
 typedef struct tb_job_ {
@@ -303,14 +316,7 @@ static float tb_shade_(const tb_job_ *j, const double p_in[3], const double *n_i
                     if (!tb_normalize_(d)) { unocc++; continue; }
                     if (has_n && j->facing && tb_dot_(n, d) <= 0) continue;   /* occluded */
                     if (dist <= 2 * eps) { unocc++; continue; }
-                    ray.org_x[i] = (float)p[0]; ray.org_y[i] = (float)p[1]; ray.org_z[i] = (float)p[2];
-                    ray.dir_x[i] = (float)d[0]; ray.dir_y[i] = (float)d[1]; ray.dir_z[i] = (float)d[2];
-                    ray.tnear[i] = (float)eps;
-                    ray.tfar[i] = (float)(dist - eps);
-                    ray.time[i] = 0;
-                    ray.mask[i] = 0xFFFFFFFFu;
-                    ray.id[i] = (unsigned)i;
-                    ray.flags[i] = 0;
+                    tb_ray16_lane_(&ray, i, p, d, eps, dist - eps);
                     valid[i] = -1;
                     any = 1;
                 }
@@ -538,14 +544,7 @@ static float tb_shade_exact_(const tb_job_ *j, const double p[3], const double n
                     tnear = e / c;
                     tfar = dist - tb_ulp_bound_(q) / (cl > 0 ? cl : 1.0);
                     if (tfar <= tnear) { unocc++; continue; }
-                    ray.org_x[i] = (float)p[0]; ray.org_y[i] = (float)p[1]; ray.org_z[i] = (float)p[2];
-                    ray.dir_x[i] = (float)d[0]; ray.dir_y[i] = (float)d[1]; ray.dir_z[i] = (float)d[2];
-                    ray.tnear[i] = (float)tnear;
-                    ray.tfar[i] = (float)tfar;
-                    ray.time[i] = 0;
-                    ray.mask[i] = 0xFFFFFFFFu;
-                    ray.id[i] = (unsigned)i;
-                    ray.flags[i] = 0;
+                    tb_ray16_lane_(&ray, i, p, d, tnear, tfar);
                     valid[i] = -1;
                     any = 1;
                 }
