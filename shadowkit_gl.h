@@ -758,7 +758,9 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 #error "SHADOWKIT_GL_IMPLEMENTATION needs SHADOWKIT_IMPLEMENTATION defined in the same file (before the #include)"
 #endif
 
+#include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -2539,6 +2541,36 @@ static void skgl__restore(const skgl__api *gl, const skgl__state *st)
 }
 
 /* ---- objects ---------------------------------------------------------- */
+/* >>log  The error log (skgl_error_log) holds the last failure of the
+   current call: every public call that takes the context clears it first,
+   so an old message never stands for a new error. A broken rule is one
+   message naming the argument or field, its value and the rule:
+   "skgl_shadow_create: desc.lambda = 1.5: in (0, 1]". */
+static void skgl__log_clear(skgl_context *ctx)
+{
+    if (ctx) ctx->log[0] = 0;
+}
+
+/* formats the message into the log; returns r */
+static sk_result skgl__fail(skgl_context *ctx, sk_result r, const char *fmt, ...)
+{
+    va_list ap;
+    if (!ctx) return r;
+    va_start(ap, fmt);
+    vsnprintf(ctx->log, sizeof ctx->log, fmt, ap);
+    va_end(ap);
+    return r;
+}
+
+/* one rule of a desc: when cond fails, the message names the field and its
+   value, and the caller returns SK_ERR_INVALID_ARG (needs ctx in scope) */
+#define SKGL__RULE(cond, fn, field, value, rule)                                                   \
+    do {                                                                                           \
+        if (!(cond))                                                                               \
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.%s = %g: %s", fn, field,          \
+                              (double)(value), rule);                                              \
+    } while (0)
+
 static void skgl__set_log(skgl_context *ctx, const char *what, const char *detail)
 {
     size_t n = strlen(what);
@@ -3714,37 +3746,44 @@ static sk_result skgl__bad_field(skgl_context *ctx, const char *fn, const char *
     return SK_ERR_INVALID_ARG;
 }
 
-/* the first field of d (defaults filled) that is out of range, or NULL */
-static const char *skgl__shadow_bad_field(const skgl_shadow_desc *d)
+/* every rule of a skgl_shadow_desc (defaults filled), in field order */
+static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc *d)
 {
-    if ((int)d->technique < (int)SKGL_STANDARD || (int)d->technique > (int)SKGL_RMSM) return "technique";
-    if (d->technique != SKGL_RMSM && d->resolution > 16384) return "resolution";
-    if (d->cascades > SKGL_MAX_CASCADES) return "cascades";
-    if (!(d->lambda <= 1.0f)) return "lambda";
-    if (!(d->blend_band >= 0.0f && d->blend_band < 1.0f)) return "blend_band";
-    if (d->pcf_radius > 8) return "pcf_radius";
-    if (!(d->max_distance >= 0.0f)) return "max_distance";
-    if (!(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f)) return "psm_slide";
-    if ((int)d->bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d->bias > (int)SKGL_BIAS_NORMAL_OFFSET) return "bias";
-    if (!(d->plane_bias <= 64.0f)) return "plane_bias";
-    if (!(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f)) return "lspsm.zeta";
-    if (!(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f)) return "lspsm.sigma";
-    if (d->lspsm.h_max < 1 || (d->technique == SKGL_LSPSM && d->lspsm.h_max > SKGL_MAX_CASCADES)) return "lspsm.h_max";
-    if (d->lspsm.nw_max < 1 || (d->technique == SKGL_LSPSM && d->lspsm.nw_max > SKGL_MAX_CASCADES))
-        return "lspsm.nw_max";
-    if (d->technique == SKGL_LSPSM && d->lspsm.h_max * d->lspsm.nw_max > SKGL_MAX_CASCADES)
-        return "lspsm.h_max * lspsm.nw_max";
-    if (d->ferko_latency < 0 || d->ferko_latency > 1) return "ferko_latency";
-    if (d->rmsm_latency < 0 || d->rmsm_latency > 1) return "rmsm_latency";
-    if (d->technique != SKGL_RMSM) return NULL;
-    if (d->rmsm_page_size < 16 || d->rmsm_page_size > 1024 || (d->rmsm_page_size & (d->rmsm_page_size - 1)))
-        return "rmsm_page_size";
-    if (d->resolution < d->rmsm_page_size || (d->resolution & (d->resolution - 1)) ||
-        d->resolution / d->rmsm_page_size > 1024)
-        return "resolution";
-    if (d->rmsm_pool_pages < 2 || d->rmsm_pool_pages > 64 || d->rmsm_pool_pages * (d->rmsm_page_size + 2) > 16384)
-        return "rmsm_pool_pages";
-    return NULL;
+    const char *fn = "skgl_shadow_create";
+    int lspsm = d->technique == SKGL_LSPSM, rmsm = d->technique == SKGL_RMSM;
+    SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_RMSM, fn, "technique",
+               d->technique, "one of skgl_technique");
+    SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
+    SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
+    SKGL__RULE(d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
+    SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
+    SKGL__RULE(d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius, "at most 8");
+    SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
+    SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide, "in [0, 1000]");
+    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NORMAL_OFFSET, fn,
+               "bias", d->bias, "one of skgl_bias");
+    SKGL__RULE(d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias, "at most 64 texels");
+    SKGL__RULE(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f, fn, "lspsm.zeta", d->lspsm.zeta, "in (0, 0.5)");
+    SKGL__RULE(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f, fn, "lspsm.sigma", d->lspsm.sigma, "in (0, 1000]");
+    SKGL__RULE(d->lspsm.h_max >= 1 && (!lspsm || d->lspsm.h_max <= SKGL_MAX_CASCADES), fn, "lspsm.h_max",
+               d->lspsm.h_max, "in 1..SKGL_MAX_CASCADES");
+    SKGL__RULE(d->lspsm.nw_max >= 1 && (!lspsm || d->lspsm.nw_max <= SKGL_MAX_CASCADES), fn, "lspsm.nw_max",
+               d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
+    SKGL__RULE(!lspsm || d->lspsm.h_max * d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn, "lspsm.h_max * lspsm.nw_max",
+               d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
+    SKGL__RULE(d->ferko_latency >= 0 && d->ferko_latency <= 1, fn, "ferko_latency", d->ferko_latency,
+               "0 (the default), 1 or SKGL_LATENCY_SYNC");
+    SKGL__RULE(d->rmsm_latency >= 0 && d->rmsm_latency <= 1, fn, "rmsm_latency", d->rmsm_latency,
+               "0 (the default), 1 or SKGL_LATENCY_SYNC");
+    if (!rmsm) return SK_OK;
+    SKGL__RULE(d->rmsm_page_size >= 16 && d->rmsm_page_size <= 1024 && !(d->rmsm_page_size & (d->rmsm_page_size - 1)),
+               fn, "rmsm_page_size", d->rmsm_page_size, "a power of two in 16..1024");
+    SKGL__RULE(d->resolution >= d->rmsm_page_size && !(d->resolution & (d->resolution - 1)) &&
+                   d->resolution / d->rmsm_page_size <= 1024,
+               fn, "resolution", d->resolution, "RMSM: a power of two, rmsm_page_size to 1024 pages");
+    SKGL__RULE(d->rmsm_pool_pages >= 2 && d->rmsm_pool_pages <= 64 && d->rmsm_pool_pages * (d->rmsm_page_size + 2) <= 16384,
+               fn, "rmsm_pool_pages", d->rmsm_pool_pages, "in 2..64, rmsm_pool_pages * (rmsm_page_size + 2) <= 16384");
+    return SK_OK;
 }
 
 SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out)
@@ -3753,14 +3792,14 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     skgl__st st;
     skgl__api *gl;
     skgl_shadow_desc d;
-    const char *bad;
-    sk_result r = SK_OK;
+    sk_result r;
     int i;
     if (out) *out = NULL;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
     d = skgl__defaults(desc);
-    bad = skgl__shadow_bad_field(&d);
-    if (bad) return skgl__bad_field(ctx, "skgl_shadow_create: bad field", bad);
+    r = skgl__shadow_validate(ctx, &d);
+    if (r != SK_OK) return r;
     s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
     memset(s, 0, sizeof *s);
