@@ -80,10 +80,10 @@
      SKGL_FERKO     one map whose crop and size come from the camera's depth
                     buffer (Ferko 2013): call skgl_shadow_analyze()
                     first; .resolution is the largest size it may take.
-                    By default (.ferko_latency 1) the estimate comes back
-                    through the read-back ring (READ-BACKS) and is used a
-                    frame later: no CPU-GPU stall, but fast motion can
-                    clip the crop; SKGL_LATENCY_SYNC uses this frame's.
+                    By default the estimate comes back through the
+                    read-back ring (READ-BACKS) and is used a frame
+                    later: no CPU-GPU stall, but fast motion can clip
+                    the crop; .sync_readback = 1 uses this frame's.
      SKGL_RMSM      a virtual map (.resolution, 16384 by default) of pages
                     (.rmsm_page_size) rendered only where the view needs them,
                     at the level of detail it needs (Romanick's VGP353 notes): call
@@ -91,9 +91,9 @@
                     .rmsm_pool_pages^2 slots, found through a page table
                     (texture unit `unit` + 1 in skgl_shadow_bind). The page
                     requests come back through the read-back ring: the
-                    pages of the last frame's requests are rendered
-                    (.rmsm_latency 1, the default; SKGL_LATENCY_SYNC: this
-                    frame's); where a page is missing the lookup falls back
+                    pages of the last frame's requests are rendered (by
+                    default; .sync_readback = 1: this frame's); where a
+                    page is missing the lookup falls back
                     to a coarser resident one.
      Focused crops end the shadow range where the scene ends and fit the view
      clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
@@ -233,7 +233,7 @@
      newer one lands. When all three are still in flight no new read-back
      is issued. Read back in the same frame, with the stall that costs
      (the CPU waits for the GPU to finish every command before it):
-     SKGL_LATENCY_SYNC, every frame; the first analysis of a light (no
+     .sync_readback = 1, every frame; the first analysis of a light (no
      earlier result exists), once. A FERKO light never analysed renders
      the focused map at full resolution; an RMSM light, the coarsest page.
 
@@ -347,8 +347,10 @@ typedef enum skgl_bias {
     SKGL_BIAS_RECEIVER_PLANE = 0, /* each filtered texel compared with the receiver's tangent
                                      plane at the texel's centre: no acne on flat receivers,
                                      no shadow moved (the default) */
-    SKGL_BIAS_NORMAL_OFFSET = 1   /* the receiver pushed along its normal by .normal_bias
+    SKGL_BIAS_NORMAL_OFFSET = 1,  /* the receiver pushed along its normal by .normal_bias
                                      texels: moves every shadow edge toward the light */
+    SKGL_BIAS_NONE = 2            /* the plain comparison, only the polygon offset: to
+                                     see acne and measure the other two */
 } skgl_bias;
 
 /* Zero-initialised fields take the default in brackets. */
@@ -356,44 +358,43 @@ typedef struct skgl_shadow_desc {
     skgl_technique technique;     /* [SKGL_STANDARD] */
     int resolution;               /* texels per side of each map [2048] */
     int cascades;                 /* PSSM, 1..SKGL_MAX_CASCADES [4] */
-    float lambda;                 /* PSSM split scheme weight [0.75];
-                                     SKGL_LAMBDA_UNIFORM (-1) for exactly 0 */
+    float lambda;                 /* PSSM split scheme weight in (0, 1] [0.75] */
+    int uniform_splits;           /* 1: lambda 0, the uniform split scheme [0] */
     float blend_band;             /* PSSM: fraction of a cascade blended into the next [0: off] */
     int stable;                   /* 1: texel-snapped crops (sphere fit) [0] */
-    float slope_bias;             /* polygon offset factor [2.0]; < 0: none */
-    float depth_bias;             /* polygon offset units [1.0]; < 0: none */
-    float normal_bias;            /* receiver normal offset in texels [1.5 with
-                                     SKGL_BIAS_NORMAL_OFFSET, none with the receiver
-                                     plane]; < 0: none */
+    float slope_bias;             /* polygon offset factor, 0 or more [2.0] */
+    float depth_bias;             /* polygon offset units, 0 or more [1.0] */
+    int disable_polygon_offset;   /* 1: no polygon offset in the depth passes [0] */
+    float normal_bias;            /* receiver normal offset in texels, 0 or more [1.5 with
+                                     SKGL_BIAS_NORMAL_OFFSET, none with the receiver plane] */
     skgl_bias bias;               /* [SKGL_BIAS_RECEIVER_PLANE] */
     float plane_bias;             /* receiver plane: comparison tolerance in texels of the
-                                     plane's own depth slope [0.5]; < 0: none */
-    int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
+                                     plane's own depth slope, 0..64 [0.5] */
+    int disable_plane_bias;       /* 1: no tolerance beyond the plane itself [0] */
+    int pcf_radius;               /* (2r)^2 hardware 2x2 compares, 1..8 [1] */
+    int disable_pcf_kernel;       /* 1: one hardware 2x2 compare, no kernel [0] */
     float max_distance;           /* shadows end at this view depth [camera far] */
     sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
                                      the paper's zeta 0.25, sigma 0.5, h_max 4,
                                      nw_max 2 (h_max * nw_max <= SKGL_MAX_CASCADES) */
-    int ferko_latency;            /* FERKO: [1] the estimate of an earlier frame (the last one
-                                     whose read-back has landed: a frame late on a GPU that
-                                     keeps up), through a ring of fenced pixel buffers, no
-                                     stall; fast motion can clip the crop. SKGL_LATENCY_SYNC:
-                                     this frame's, read back at once (a CPU-GPU stall every
-                                     frame). The first analysis reads at once either way. */
+    int sync_readback;            /* FERKO, RMSM: 0 (the default) the estimate or the page
+                                     requests of an earlier frame (the last whose read-back
+                                     has landed: a frame late on a GPU that keeps up),
+                                     through a ring of fenced pixel buffers, no stall; fast
+                                     motion can clip FERKO's crop or leave RMSM a frame on
+                                     coarser pages. 1: this frame's, read back at once (a
+                                     CPU-GPU stall every frame). The first analysis reads
+                                     at once either way. */
     int rmsm_page_size;           /* RMSM: page side in texels, a power of two in [16, 1024] [128] */
     int rmsm_pool_pages;          /* RMSM: the physical pool holds this^2 pages, 2..64 [24];
                                      .resolution is the virtual map's side, a power
                                      of two [16384 for RMSM], at most 1024 pages */
     float psm_slide;              /* PSM: the virtual camera slides back by this
                                      times sqrt(near*far) of the receivers, its
-                                     near plane with it: more uniform texels
-                                     [0.5]; < 0: none (the plain PSM) */
-    int rmsm_latency;             /* RMSM: [1] the pages of an earlier frame's requests (the
-                                     last read-back landed), through the ring, no stall;
-                                     SKGL_LATENCY_SYNC: this frame's (a stall every frame).
-                                     The first analysis reads at once either way. */
+                                     near plane with it: more uniform texels,
+                                     0..1000 [0.5] */
+    int disable_psm_slide;        /* 1: no slide (the plain PSM) [0] */
 } skgl_shadow_desc;
-#define SKGL_LAMBDA_UNIFORM (-1.0f)
-#define SKGL_LATENCY_SYNC (-1)        /* ferko_latency, rmsm_latency: no latency, a stall */
 
 typedef struct skgl_camera {
     sk_mat4 view, proj;           /* proj from sk_mat4_perspective (near/far are read back from it) */
@@ -487,7 +488,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
    SKGL_FERKO: estimates the crop and the resolution of a later
    skgl_shadow_render from the camera's depth texture (window depth, the
    G-buffer of the frame; Ferko 2013): the next render's with
-   SKGL_LATENCY_SYNC and on the first call, else the render after it lands
+   .sync_readback and on the first call, else the render after it lands
    (READ-BACKS). The light frustum before the crop is an orthographic map
    around scene->bounds; the estimate (stats.estimate, set by the render
    that uses it) is in its clip space. Call it before skgl_shadow_render
@@ -557,16 +558,18 @@ typedef struct skgl_point_desc {
                                      of two for SKGL_POINT_CUBE with .select_resolution */
     float near_plane;             /* of every face [0.05] */
     float range;                  /* far plane = light range [10] */
-    float slope_bias;             /* polygon offset factor [2.0]; < 0: none */
-    float depth_bias;             /* polygon offset units [1.0]; < 0: none */
-    float normal_bias;            /* receiver normal offset in face texels [1.5 with
-                                     SKGL_BIAS_NORMAL_OFFSET, none with the receiver
-                                     plane]; < 0: none */
+    float slope_bias;             /* polygon offset factor, 0 or more [2.0] */
+    float depth_bias;             /* polygon offset units, 0 or more [1.0] */
+    int disable_polygon_offset;   /* 1: no polygon offset in the face passes [0] */
+    float normal_bias;            /* receiver normal offset in face texels, 0 or more [1.5
+                                     with SKGL_BIAS_NORMAL_OFFSET, none with the receiver plane] */
     skgl_bias bias;               /* [SKGL_BIAS_RECEIVER_PLANE] */
     float plane_bias;             /* receiver plane: extra tolerance in texels of the plane's
                                      depth slope, beyond the one texel a 2x2 comparison
-                                     reaches [0.5]; < 0: none */
-    int pcf_radius;               /* 0: one hardware 2x2 compare; r: (2r)^2 of them [1] */
+                                     reaches, 0..64 [0.5] */
+    int disable_plane_bias;       /* 1: no extra tolerance [0] */
+    int pcf_radius;               /* (2r)^2 hardware 2x2 compares, 1..8 [1] */
+    int disable_pcf_kernel;       /* 1: one hardware 2x2 compare, no kernel [0] */
     int cull_faces;               /* 1: skip faces whose frustum misses the view (sk_cube_visible_faces) */
     int cull_casters;             /* 1: skgl_point_caster_visible culls by the caster's shadow
                                      frustum against the view and by the face frustum */
@@ -2571,6 +2574,67 @@ static sk_result skgl__fail(skgl_context *ctx, sk_result r, const char *fmt, ...
                               (double)(value), rule);                                              \
     } while (0)
 
+/* >>args  a call's arguments: each check names the argument and its value */
+#define SKGL__TRY(call)                                                                            \
+    do {                                                                                           \
+        sk_result skgl__r_ = (call);                                                               \
+        if (skgl__r_ != SK_OK) return skgl__r_;                                                    \
+    } while (0)
+
+static sk_result skgl__arg_ptr(skgl_context *ctx, const char *fn, const void *p, const char *name)
+{
+    return p ? SK_OK : skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s is NULL", fn, name);
+}
+
+static sk_result skgl__arg_name(skgl_context *ctx, const char *fn, unsigned name, const char *what)
+{
+    return name ? SK_OK : skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = 0: a GL name is required", fn, what);
+}
+
+/* a camera with finite matrices whose view-projection inverts (into *inv) */
+static sk_result skgl__arg_camera(skgl_context *ctx, const char *fn, const skgl_camera *cam, sk_mat4 *inv)
+{
+    sk_mat4 unused;
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, cam, "cam"));
+    if (!sk__mat_finite(&cam->view))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->view has a NaN or an infinity", fn);
+    if (!sk__mat_finite(&cam->proj))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj has a NaN or an infinity", fn);
+    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), inv ? inv : &unused))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular", fn);
+    return SK_OK;
+}
+
+/* a scene with a draw callback (when one is needed) and valid bounds */
+static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_scene *scene, int needs_draw)
+{
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
+    if (needs_draw && !scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
+    if (!sk__aabb_valid(&scene->bounds))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "%s: scene->bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
+                          (double)scene->bounds.min.x, (double)scene->bounds.min.y, (double)scene->bounds.min.z,
+                          (double)scene->bounds.max.x, (double)scene->bounds.max.y, (double)scene->bounds.max.z);
+    return SK_OK;
+}
+
+/* a finite vector; nonzero = 1: of some length (a direction) */
+static sk_result skgl__arg_vec(skgl_context *ctx, const char *fn, sk_vec3 v, const char *name, int nonzero)
+{
+    if (!sk__v3_finite(v) || (nonzero && sk__len(v) == 0.0f))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = (%g %g %g): %s", fn, name, (double)v.x, (double)v.y,
+                          (double)v.z, nonzero ? "finite and nonzero" : "finite");
+    return SK_OK;
+}
+
+/* a texture unit the call may use: 0..last */
+static sk_result skgl__arg_unit(skgl_context *ctx, const char *fn, int unit, int last)
+{
+    if (unit < 0 || unit > last)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: in 0..%d", fn, unit, last);
+    return SK_OK;
+}
+
 static void skgl__set_log(skgl_context *ctx, const char *what, const char *detail)
 {
     size_t n = strlen(what);
@@ -3700,6 +3764,15 @@ static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
     skgl__ring_free(ctx, &s->rmsm_ring);
 }
 
+/* the disable_ switches shared by directional and point lights */
+static void skgl__apply_switches(float *slope_bias, float *depth_bias, int no_offset, float *plane_bias, int no_plane,
+                                 int *pcf_radius, int no_kernel)
+{
+    if (no_offset) *slope_bias = *depth_bias = 0.0f;
+    if (no_plane) *plane_bias = 0.0f;
+    if (no_kernel) *pcf_radius = 0;
+}
+
 static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
 {
     skgl_shadow_desc r = *d;
@@ -3718,33 +3791,24 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM || r.technique == SKGL_FERKO ||
         r.technique == SKGL_RMSM)
         r.cascades = 1;
-    if (r.lambda == 0.0f) r.lambda = 0.75f;
-    else if (r.lambda < 0.0f) r.lambda = 0.0f;
+    /* a disable_ switch wins over its value, which then reads 0 (none): the
+       filled desc given back to skgl_shadow_create makes the same light */
+    if (r.uniform_splits) r.lambda = 0.0f;
+    else if (r.lambda == 0.0f) r.lambda = 0.75f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
-    if (r.normal_bias == 0.0f) r.normal_bias = r.bias == SKGL_BIAS_NORMAL_OFFSET ? 1.5f : -1.0f;
+    if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
     if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
     if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
-    else if (r.psm_slide < 0.0f) r.psm_slide = 0.0f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
-    else if (r.pcf_radius < 0) r.pcf_radius = 0;
-    /* latencies: 0 takes the default (a frame late), SKGL_LATENCY_SYNC this
-       frame's; any other negative value stays, and is refused */
-    if (r.ferko_latency == 0) r.ferko_latency = 1;
-    else if (r.ferko_latency == SKGL_LATENCY_SYNC) r.ferko_latency = 0;
-    if (r.rmsm_latency == 0) r.rmsm_latency = 1;
-    else if (r.rmsm_latency == SKGL_LATENCY_SYNC) r.rmsm_latency = 0;
+    if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
+    skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias,
+                         r.disable_plane_bias, &r.pcf_radius, r.disable_pcf_kernel);
+    if (r.disable_psm_slide) r.psm_slide = 0.0f;
     return r;
 }
 
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
-
-/* a bad field: its name in the log */
-static sk_result skgl__bad_field(skgl_context *ctx, const char *fn, const char *field)
-{
-    skgl__set_log(ctx, fn, field);
-    return SK_ERR_INVALID_ARG;
-}
 
 /* every rule of a skgl_shadow_desc (defaults filled), in field order */
 static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc *d)
@@ -3755,14 +3819,23 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                d->technique, "one of skgl_technique");
     SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
     SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
-    SKGL__RULE(d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
+    SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
     SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
-    SKGL__RULE(d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius, "at most 8");
-    SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
-    SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide, "in [0, 1000]");
-    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NORMAL_OFFSET, fn,
+    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
+               "in [0, 10000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
+               "in [0, 1000000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
+               "in [0, 64] texels");
+    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
                "bias", d->bias, "one of skgl_bias");
-    SKGL__RULE(d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias, "at most 64 texels");
+    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
+               "in [0, 64] texels (disable_plane_bias for none)");
+    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
+               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
+    SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
+    SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
+               "in [0, 1000] (disable_psm_slide for none)");
     SKGL__RULE(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f, fn, "lspsm.zeta", d->lspsm.zeta, "in (0, 0.5)");
     SKGL__RULE(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f, fn, "lspsm.sigma", d->lspsm.sigma, "in (0, 1000]");
     SKGL__RULE(d->lspsm.h_max >= 1 && (!lspsm || d->lspsm.h_max <= SKGL_MAX_CASCADES), fn, "lspsm.h_max",
@@ -3771,10 +3844,7 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
     SKGL__RULE(!lspsm || d->lspsm.h_max * d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn, "lspsm.h_max * lspsm.nw_max",
                d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
-    SKGL__RULE(d->ferko_latency >= 0 && d->ferko_latency <= 1, fn, "ferko_latency", d->ferko_latency,
-               "0 (the default), 1 or SKGL_LATENCY_SYNC");
-    SKGL__RULE(d->rmsm_latency >= 0 && d->rmsm_latency <= 1, fn, "rmsm_latency", d->rmsm_latency,
-               "0 (the default), 1 or SKGL_LATENCY_SYNC");
+    SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
     if (!rmsm) return SK_OK;
     SKGL__RULE(d->rmsm_page_size >= 16 && d->rmsm_page_size <= 1024 && !(d->rmsm_page_size & (d->rmsm_page_size - 1)),
                fn, "rmsm_page_size", d->rmsm_page_size, "a power of two in 16..1024");
@@ -4278,14 +4348,14 @@ static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 
 /* RMSM analysis: per-pixel samples, page requests scattered on the GPU into
    the request atlas, read back; the pages and the page table from the
-   requests of the last frame (ring) or, with rmsm_latency 0 and on the
+   requests of the last frame (ring) or, with sync_readback and on the
    first analysis, of this one (a read-back that waits for the GPU) */
 static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
 {
     skgl__api *gl = &ctx->gl;
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    int sync = s->desc.rmsm_latency == 0 || !s->rmsm_analyzed, slot;
+    int sync = s->desc.sync_readback || !s->rmsm_analyzed, slot;
     if (s->rmsm_w != w || s->rmsm_h != h) {
         skgl__delete_texture(ctx, &s->rmsm_samples);
         skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
@@ -4359,7 +4429,7 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
 }
 
 /* FERKO analysis: the 4x4-block pass, the 16x16 reductions, the final 2x1
-   texels; read back at once (ferko_latency 0, and the first analysis) or
+   texels; read back at once (sync_readback, and the first analysis) or
    into the ring, the estimate of an earlier frame taken when it lands */
 static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
                                      const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
@@ -4367,14 +4437,14 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     skgl__api *gl = &ctx->gl;
     sk_mat4 ndc_to_light;
     float world_w[4], v[8];
-    int k, sync = s->desc.ferko_latency == 0 || s->ferko_state == 0, slot;
+    int k, sync = s->desc.sync_readback || s->ferko_state == 0, slot;
     if (!skgl__ferko_targets(ctx, st, s, w, h)) {
         skgl__ferko_free(ctx, s);
         skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
         return SK_ERR_GL;
     }
     /* an earlier frame's estimate, if it has landed (the last one kept if not) */
-    if (s->desc.ferko_latency == 1 && (slot = skgl__ring_poll(ctx, st, &s->ferko_ring, v)) >= 0) {
+    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko_ring, v)) >= 0) {
         skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
         s->ferko_lvp = s->ferko_ring.lvp[slot];
         memcpy(s->ferko_origin, s->ferko_ring.origin[slot], sizeof s->ferko_origin);
@@ -4448,12 +4518,17 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     skgl_scene rs;
     sk_result r;
     const char *why;
-    if (!ctx || !s || !cam || !scene || !depth_tex ||
-        (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM) ||
-        !sk__v3_finite(light_dir) || sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) ||
-        !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) ||
-        !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
-        return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_shadow_analyze";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    if (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
+                          fn, (int)s->desc.technique);
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 0));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
+    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
     /* positions and the light frustum relative to the camera's origin */
     skgl__origin(&cam->view, o);
     rc = skgl__camera_rel(cam, o);
@@ -4696,10 +4771,13 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     double o[3], was[3];
     skgl_camera rcam;
     skgl_scene rs;
-    if (!ctx || !s || !cam || !scene || !scene->draw || !sk__v3_finite(light_dir) ||
-        sk__len(light_dir) == 0.0f || !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj) ||
-        !sk__aabb_valid(&scene->bounds))
-        return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_shadow_render";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
     /* the maps are fitted and rendered relative to the camera's origin */
     skgl__origin(&cam->view, o);
     rcam = skgl__camera_rel(cam, o);
@@ -4783,7 +4861,7 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
         skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], s->desc.technique == SKGL_LSPSM);
         skgl__u1f(gl, L[SKGL__L_BLEND_BAND], s->desc.blend_band);
         skgl__u1f(gl, L[SKGL__L_NORMAL_BIAS], s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
-        skgl__u1i(gl, L[SKGL__L_BIAS_MODE], (skgl__int)s->desc.bias);
+        skgl__u1i(gl, L[SKGL__L_BIAS_MODE], s->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
         skgl__u1f(gl, L[SKGL__L_PLANE_BIAS], s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
         skgl__u1i(gl, L[SKGL__L_PCF], s->desc.pcf_radius);
         e->owner = s->id;
@@ -4837,9 +4915,15 @@ SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *
     skgl__api *gl;
     skgl__int active, last;
     skgl__progent *e;
-    if (!ctx || !s || !program || unit < 0 || unit > (s->desc.technique == SKGL_RMSM ? 30 : 31) ||
-        (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30)))
-        return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_shadow_bind";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
+    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, s->desc.technique == SKGL_RMSM ? 30 : 31));
+    if (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: origin = (%g %g %g): finite, under 1e30", fn, origin[0],
+                          origin[1], origin[2]);
     e = skgl__user_program(ctx, program, SKGL__PK_SHADOW);
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
@@ -4930,9 +5014,13 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     double o[3];
     skgl_camera rc;
     sk_result r;
-    if (!ctx || !s || !cam || !depth_tex || !mask_tex || !sk__mat_finite(&cam->view) ||
-        !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
-        return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_shadow_mask";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
     /* positions reconstructed relative to this camera's origin */
     skgl__origin(&cam->view, o);
     rc = skgl__camera_rel(cam, o);
@@ -5054,9 +5142,12 @@ static skgl_point_desc skgl__point_defaults(const skgl_point_desc *d)
     if (r.range == 0.0f) r.range = 10.0f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
-    if (r.normal_bias == 0.0f) r.normal_bias = r.bias == SKGL_BIAS_NORMAL_OFFSET ? 1.5f : -1.0f;
+    if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
     if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
+    if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
+    skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias, r.disable_plane_bias,
+                         &r.pcf_radius, r.disable_pcf_kernel);
     if (r.resolution_c == 0.0f) r.resolution_c = 2.0f;
     if (r.vsdct_grey_levels == 0) r.vsdct_grey_levels = 256;
     return r;
@@ -5156,27 +5247,39 @@ static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p,
 
 static int skgl__is_pow2(int x) { return x > 0 && (x & (x - 1)) == 0; }
 
-/* the first field of d (defaults filled) that is out of range, or NULL */
-static const char *skgl__point_bad_field(const skgl_point_desc *d)
+/* every rule of a skgl_point_desc (defaults filled), in field order */
+static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *d)
 {
-    if (d->technique != SKGL_POINT_CUBE && d->technique != SKGL_POINT_VSDCT) return "technique";
-    if (d->resolution < 1) return "resolution";
-    if (!sk__finite(d->near_plane) || !(d->near_plane > 0.0f)) return "near_plane";
-    if (!sk__finite(d->range) || !(d->range > d->near_plane)) return "range";
-    if (!sk__finite(d->slope_bias)) return "slope_bias";
-    if (!sk__finite(d->depth_bias)) return "depth_bias";
-    if (!sk__finite(d->normal_bias)) return "normal_bias";
-    if ((int)d->bias < (int)SKGL_BIAS_RECEIVER_PLANE || (int)d->bias > (int)SKGL_BIAS_NORMAL_OFFSET) return "bias";
-    if (!(d->plane_bias <= 64.0f)) return "plane_bias";
-    if (d->pcf_radius < 0 || d->pcf_radius > 8) return "pcf_radius";
-    if (!sk__finite(d->resolution_c) || !(d->resolution_c > 0.0f)) return "resolution_c";
-    if (d->screen_w < 0) return "screen_w";
-    if (d->screen_h < 0) return "screen_h";
-    if (d->vsdct_grey_levels < 1) return "vsdct_grey_levels";
-    if (d->technique == SKGL_POINT_CUBE && d->select_resolution && !skgl__is_pow2(d->resolution))
-        return "resolution (a power of two with select_resolution)";
-    if (d->atlas && (d->technique != SKGL_POINT_VSDCT || !d->atlas->tex)) return "atlas";
-    return NULL;
+    const char *fn = "skgl_point_create";
+    SKGL__RULE(d->technique == SKGL_POINT_CUBE || d->technique == SKGL_POINT_VSDCT, fn, "technique", d->technique,
+               "one of skgl_point_technique");
+    SKGL__RULE(d->resolution >= 1, fn, "resolution", d->resolution, "1 or more");
+    SKGL__RULE(d->technique != SKGL_POINT_CUBE || !d->select_resolution || skgl__is_pow2(d->resolution), fn,
+               "resolution", d->resolution, "a power of two with select_resolution and SKGL_POINT_CUBE");
+    SKGL__RULE(sk__finite(d->near_plane) && d->near_plane > 0.0f, fn, "near_plane", d->near_plane, "more than 0");
+    SKGL__RULE(sk__finite(d->range) && d->range > d->near_plane, fn, "range", d->range, "more than near_plane");
+    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
+               "in [0, 10000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
+               "in [0, 1000000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
+               "in [0, 64] texels");
+    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
+               "bias", d->bias, "one of skgl_bias");
+    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
+               "in [0, 64] texels (disable_plane_bias for none)");
+    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
+               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
+    SKGL__RULE(sk__finite(d->resolution_c) && d->resolution_c > 0.0f, fn, "resolution_c", d->resolution_c,
+               "more than 0");
+    SKGL__RULE(d->screen_w >= 0, fn, "screen_w", d->screen_w, "0 or more");
+    SKGL__RULE(d->screen_h >= 0, fn, "screen_h", d->screen_h, "0 or more");
+    SKGL__RULE(d->vsdct_grey_levels >= 1, fn, "vsdct_grey_levels", d->vsdct_grey_levels, "1 or more");
+    if (d->atlas && d->technique != SKGL_POINT_VSDCT)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
+    if (d->atlas && !d->atlas->tex)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas has no texture (destroyed?)", fn);
+    return SK_OK;
 }
 
 SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out)
@@ -5186,22 +5289,25 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     skgl_point_desc d;
     skgl__st st;
     skgl__int max_size = 0;
-    const char *bad;
     char *fs;
     size_t n;
     int f, lv;
     sk_result r = SK_OK;
     if (out) *out = NULL;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
     d = skgl__point_defaults(desc);
-    bad = skgl__point_bad_field(&d);
-    if (bad) return skgl__bad_field(ctx, "skgl_point_create: bad field", bad);
+    r = skgl__point_validate(ctx, &d);
+    if (r != SK_OK) return r;
     gl = &ctx->gl;
     gl->GetIntegerv(d.technique == SKGL_POINT_CUBE ? SKGL__MAX_CUBE_MAP_TEXTURE_SIZE : SKGL__MAX_TEXTURE_SIZE,
                     &max_size);
     /* a shared atlas bounds the side by packing (skgl_point_atlas_pack halves it) */
     if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : !d.atlas && d.resolution > max_size / 3)
-        return skgl__bad_field(ctx, "skgl_point_create: bad field", "resolution (past the GL limit)");
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_create: desc.resolution = %d: at most %d here (%s)",
+                          d.resolution, d.technique == SKGL_POINT_CUBE ? max_size : max_size / 3,
+                          d.technique == SKGL_POINT_CUBE ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
+                                                         : "a third of GL_MAX_TEXTURE_SIZE, the 3 x 2 atlas");
     p = (skgl_point *)SKGL_MALLOC(sizeof *p);
     if (!p) return SK_ERR_CAPACITY;
     memset(p, 0, sizeof *p);
@@ -5272,7 +5378,10 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
            the face side, so the linear ramp of the filtered coordinates is
            clamped for at most half a shadow texel at a face edge */
         p->ni = sk_vsdct_indirection_size(d.resolution, d.vsdct_grey_levels, 8);
-        if (p->ni < 1 && r == SK_OK) r = skgl__bad_field(ctx, "skgl_point_create: bad field", "vsdct_grey_levels");
+        if (p->ni < 1 && r == SK_OK) r = skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                                                 "skgl_point_create: desc.vsdct_grey_levels = %d: too few for "
+                                                 "desc.resolution %d (Eq. 5.4.7 gives no indirection side)",
+                                                 d.vsdct_grey_levels, d.resolution);
         gl->GenTextures(1, &p->indirection); ctx->objects++;
         skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->indirection);
         skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
@@ -5454,9 +5563,14 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     float zn, zf;
     sk_result r = SK_OK, rc;
     skgl__int viewport[4] = {0, 0, 0, 0};
-    if (!ctx || !p || !cam || !scene || !scene->draw || !sk__v3_finite(light_pos) ||
-        !sk__mat_finite(&cam->view) || !sk__mat_finite(&cam->proj))
-        return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_point_render";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
+    if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
     shared = p->desc.atlas != NULL;
     if (shared && !p->packed) {
         skgl__set_log(ctx, "skgl_point_render: a shared-atlas light needs skgl_point_atlas_pack first", NULL);
@@ -5587,7 +5701,7 @@ static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__p
         if (L[SKGL__P_DEPTH] >= 0) gl->Uniform2fv(L[SKGL__P_DEPTH], 1, depth);
         skgl__u1f(gl, L[SKGL__P_NORMAL_BIAS], p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f);
         skgl__u1i(gl, L[SKGL__P_PCF], p->desc.pcf_radius);
-        skgl__u1i(gl, L[SKGL__P_BIAS_MODE], (skgl__int)p->desc.bias);
+        skgl__u1i(gl, L[SKGL__P_BIAS_MODE], p->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
         skgl__u1f(gl, L[SKGL__P_PLANE_BIAS], p->desc.plane_bias > 0.0f ? p->desc.plane_bias : 0.0f);
         e->owner = p->id;
         e->unit = unit;
@@ -5617,7 +5731,13 @@ SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsign
     skgl__api *gl;
     skgl__int active, last;
     skgl__progent *e;
-    if (!ctx || !p || !program || unit < 0 || unit > 30 || !p->rendered) return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_point_bind";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
+    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, 30));
+    if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
     e = skgl__user_program(ctx, program, SKGL__PK_POINT);
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
@@ -5649,9 +5769,14 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     int rect[4];
     sk_result r;
     const char *why;
-    if (!ctx || !p || !cam || !depth_tex || !mask_tex || !p->rendered || !sk__mat_finite(&cam->view) ||
-        !sk__mat_finite(&cam->proj))
-        return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_point_mask";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
+    if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
     vp = sk_mat4_mul(cam->proj, cam->view);
     if (!sk_mat4_inverse(vp, &inv)) return SK_ERR_INVALID_ARG;
     vsdct = p->desc.technique == SKGL_POINT_VSDCT;
@@ -5711,11 +5836,19 @@ SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int heig
     skgl__int max_size = 0;
     skgl_point_atlas *a;
     if (out) *out = NULL;
-    if (!ctx || !out || width < 1 || height < 1) return SK_ERR_INVALID_ARG;
+    if (!ctx || !out) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    if (width < 1 || height < 1)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width x height = %d x %d: 1 or more each",
+                          width, height);
     gl = &ctx->gl;
     gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
-    if (width > max_size) return skgl__bad_field(ctx, "skgl_point_atlas_create: bad argument", "width");
-    if (height > max_size) return skgl__bad_field(ctx, "skgl_point_atlas_create: bad argument", "height");
+    if (width > max_size)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width = %d: at most GL_MAX_TEXTURE_SIZE %d",
+                          width, max_size);
+    if (height > max_size)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "skgl_point_atlas_create: height = %d: at most GL_MAX_TEXTURE_SIZE %d", height, max_size);
     a = (skgl_point_atlas *)SKGL_MALLOC(sizeof *a);
     if (!a) return SK_ERR_CAPACITY;
     memset(a, 0, sizeof *a);
@@ -5785,11 +5918,18 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
     int *res, *order, *x, *y;
     int i, k, f, fits;
     sk_result r = SK_OK;
-    if (!ctx || !a || !lights || n < 1 || !cam || !light_pos || !sk__mat_finite(&cam->view) ||
-        !sk__mat_finite(&cam->proj))
-        return SK_ERR_INVALID_ARG;
+    const char *fn = "skgl_point_atlas_pack";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, a, "a"));
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, lights, "lights"));
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, light_pos, "light_pos"));
+    if (n < 1) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: n = %d: 1 or more", fn, n);
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
     for (i = 0; i < n; i++)
-        if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i])) return SK_ERR_INVALID_ARG;
+        if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i]))
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: lights[%d] is NULL, not in this atlas, or its light_pos "
+                              "is not finite", fn, i);
     res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 14);
     if (!res) return SK_ERR_CAPACITY;
     order = res + n;

@@ -134,7 +134,8 @@
    reported on stderr and skipped (no CSV row); the exit status is then 1.
 
    Note on skgl_shadow_desc.pcf_radius: zero means "default" (1), so the
-   sweep asks for radius 0 (one hardware 2x2 comparison) with -1. */
+   sweep asks for radius 0 (one hardware 2x2 comparison) with
+   disable_pcf_kernel. */
 #define _POSIX_C_SOURCE 200809L
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
@@ -276,7 +277,8 @@ static void add_standard(int stable, int res, int pcf) {
     c->desc.technique = SKGL_STANDARD;
     c->desc.resolution = res;
     c->desc.stable = stable;
-    c->desc.pcf_radius = pcf > 0 ? pcf : -1;
+    c->desc.pcf_radius = pcf;
+    c->desc.disable_pcf_kernel = !(pcf > 0);
 }
 
 static void add_pssm(int cascades, float lambda, int res, float blend, int pcf) {
@@ -287,10 +289,12 @@ static void add_pssm(int cascades, float lambda, int res, float blend, int pcf) 
              (double)lambda, res, (double)blend, pcf);
     c->desc.technique = SKGL_PSSM;
     c->desc.cascades = cascades;
-    c->desc.lambda = lambda > 0.0f ? lambda : SKGL_LAMBDA_UNIFORM;
+    c->desc.lambda = lambda;
+    c->desc.uniform_splits = !(lambda > 0.0f);
     c->desc.resolution = res;
     c->desc.blend_band = blend;
-    c->desc.pcf_radius = pcf > 0 ? pcf : -1;
+    c->desc.pcf_radius = pcf;
+    c->desc.disable_pcf_kernel = !(pcf > 0);
 }
 
 /* PSM: slide = the virtual-camera slide in sqrt(near*far) units (< 0: plain PSM) */
@@ -302,6 +306,8 @@ static void add_psm(int res, float slide) {
     c->desc.technique = SKGL_PSM;
     c->desc.resolution = res;
     c->desc.psm_slide = slide;
+    c->desc.disable_psm_slide = slide < 0.0f;
+    if (slide < 0.0f) c->desc.psm_slide = 0.0f;
 }
 
 /* LiSPSM, alone (cascades = 1) or one warp per PSSM cascade */
@@ -335,7 +341,7 @@ static void add_ferko(int res) {
     c->desc.resolution = res;
     /* this frame's estimate: the sweep renders the views of a configuration
        in turn, so a frame-late one would be another view's */
-    c->desc.ferko_latency = SKGL_LATENCY_SYNC;
+    c->desc.sync_readback = 1;
 }
 
 /* RMSM: a virtual map of vres^2 texels in pages of 128^2, a pool of 24^2 pages */
@@ -346,7 +352,7 @@ static void add_rmsm(int vres) {
     snprintf(c->params, sizeof c->params, "virtual_resolution=%d;page=128;pool=24;pcf=0", vres);
     c->desc.technique = SKGL_RMSM;
     c->desc.resolution = vres;
-    c->desc.rmsm_latency = SKGL_LATENCY_SYNC;   /* this view's pages (see add_ferko) */
+    c->desc.sync_readback = 1;   /* this view's pages (see add_ferko) */
 }
 
 static void build_sweep(int quick) {

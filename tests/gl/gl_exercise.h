@@ -30,7 +30,7 @@ typedef struct gx_case {
     const char *name;
     gx_kind kind;
     skgl_technique technique;     /* GX_DIRECTIONAL */
-    int resolution, cascades, stable, ferko_latency;
+    int resolution, cascades, stable, sync_readback;
     float blend_band;
     skgl_point_technique point;   /* GX_POINT */
     int optimized;                /* GX_POINT: face and caster culling, scissor, resolution selection */
@@ -47,7 +47,7 @@ static const gx_case gx_cases[] = {
     {"lispsm", GX_DIRECTIONAL, SKGL_LISPSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
     {"lispsm-pssm", GX_DIRECTIONAL, SKGL_LISPSM, 512, 3, 0, 0, 0.1f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
     {"lspsm", GX_DIRECTIONAL, SKGL_LSPSM, 512, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
-    {"ferko", GX_DIRECTIONAL, SKGL_FERKO, 1024, 0, 0, SKGL_LATENCY_SYNC, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
+    {"ferko", GX_DIRECTIONAL, SKGL_FERKO, 1024, 0, 0, 1, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
     {"ferko-late", GX_DIRECTIONAL, SKGL_FERKO, 1024, 0, 0, 1, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
     {"rmsm", GX_DIRECTIONAL, SKGL_RMSM, 4096, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
     {"point-cube", GX_POINT, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
@@ -172,7 +172,7 @@ static inline int gx_run(gx_env *x, skgl_context *sk, const gx_case *c) {
         d.resolution = c->resolution;
         d.cascades = c->cascades;
         d.stable = c->stable;
-        d.ferko_latency = c->ferko_latency;
+        d.sync_readback = c->sync_readback;
         d.blend_band = c->blend_band;
         if (c->stable) d.max_distance = 45.0f;
         GX_OK("skgl_shadow_create", skgl_shadow_create(sk, &d, &s));

@@ -244,8 +244,8 @@ static inline void gt_point_bias(skgl_point_desc *d) {
     int k = gt_bias_knob();
     if (k == 1) d->bias = SKGL_BIAS_NORMAL_OFFSET;
     if (k == 2) {
-        d->bias = SKGL_BIAS_NORMAL_OFFSET;
-        d->normal_bias = d->slope_bias = d->depth_bias = -1.0f;
+        d->bias = SKGL_BIAS_NONE;
+        d->disable_polygon_offset = 1;
     }
 }
 
@@ -257,8 +257,8 @@ static inline skgl_shadow *gt_shadow(gt_env *e, const skgl_shadow_desc *desc) {
     int k = gt_bias_knob();
     if (k == 1) dd.bias = SKGL_BIAS_NORMAL_OFFSET;
     if (k == 2) {
-        dd.bias = SKGL_BIAS_NORMAL_OFFSET;
-        dd.normal_bias = dd.slope_bias = dd.depth_bias = -1.0f;
+        dd.bias = SKGL_BIAS_NONE;
+        dd.disable_polygon_offset = 1;
     }
     r = skgl_shadow_create(e->sk, d, &s);
     if (r != SK_OK) {

@@ -65,7 +65,7 @@
    skgl_shadow_render and skgl_shadow_mask (directional, scene
    "ground-boxes", G-buffer of the camera), FERKO and RMSM both with their
    default latency (1: read-backs through the ring) and with
-   SKGL_LATENCY_SYNC; skgl_point_render and skgl_point_mask (scene "room",
+   sync_readback; skgl_point_render and skgl_point_mask (scene "room",
    every option off: six faces); skgl_soft_render over the G-buffer (area
    light, "ground-boxes", every option default). The forward binds are
    counted per call, the program current (a shader with skgl_glsl_snippet()
@@ -93,7 +93,7 @@
    tile; skgl_shadow_bind, skgl_point_bind 12 per call: x1 in caller-owns
    mode, x2 with the state restored, and in a steady frame no
    glGetUniformLocation, glCheckFramebufferStatus or
-   glGetTexLevelParameteriv, no stall but the mode's own (SKGL_LATENCY_SYNC:
+   glGetTexLevelParameteriv, no stall but the mode's own (sync_readback:
    its glReadPixels into client memory), in caller-owns mode no state query.
    Asserted for every directional, point and bind row but FERKO's; FERKO
    and the area lights (PCSS, PVSM: their code is not part of this work)
@@ -579,7 +579,7 @@ typedef struct cg_row {
     const char *name;
     cg_kind kind;
     int technique;             /* skgl_technique, skgl_point_technique or skgl_soft_technique */
-    int cascades, ferko_latency, rmsm_latency;   /* the desc's fields (0: the default) */
+    int cascades, sync_readback;   /* the desc's fields (0: the default) */
     int bind_row;              /* K_DIR, K_POINT: the row whose bind is counted on this light (-1: none) */
     /* the budget: base + per_unit per unit past the free ones */
     int budget_base, budget_per_unit;
@@ -594,44 +594,44 @@ enum { R_STANDARD, R_PSM, R_LISPSM, R_PSSM, R_LSPSM, R_FERKO_SYNC, R_FERKO, R_RM
        R_PCSS, R_PVSM, R_BIND_STANDARD, R_BIND_PSSM, R_BIND_RMSM, R_BIND_CUBE, R_BIND_VSDCT, R_N };
 
 static const cg_row cg_rows[R_N] = {
-    /* name, kind, technique, cascades, FERKO and RMSM latency, bind row, budget base, per unit, unit, free
+    /* name, kind, technique, cascades, sync_readback, bind row, budget base, per unit, unit, free
        units, budget on, stall ok, measured {calls, queries, locations, fb checks, tex levels, uploads,
        bytes, stalls}: restored, timing on, caller owns */
-    {"STANDARD", K_DIR, SKGL_STANDARD, 0, 0, 0, R_BIND_STANDARD, 40, 0, U_NONE, 0, 1, 0,
+    {"STANDARD", K_DIR, SKGL_STANDARD, 0, 0, R_BIND_STANDARD, 40, 0, U_NONE, 0, 1, 0,
      {{73, 29, 0, 0, 0, 0, 0, 0}, {81, 29, 0, 0, 0, 0, 0, 0}, {40, 0, 0, 0, 0, 0, 0, 0}}},
-    {"PSM", K_DIR, SKGL_PSM, 0, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0,
+    {"PSM", K_DIR, SKGL_PSM, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0,
      {{73, 29, 0, 0, 0, 0, 0, 0}, {81, 29, 0, 0, 0, 0, 0, 0}, {40, 0, 0, 0, 0, 0, 0, 0}}},
-    {"LiSPSM", K_DIR, SKGL_LISPSM, 0, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0,
+    {"LiSPSM", K_DIR, SKGL_LISPSM, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0,
      {{73, 29, 0, 0, 0, 0, 0, 0}, {81, 29, 0, 0, 0, 0, 0, 0}, {40, 0, 0, 0, 0, 0, 0, 0}}},
-    {"PSSM, 4 cascades", K_DIR, SKGL_PSSM, 4, 0, 0, R_BIND_PSSM, 40, 8, U_LAYERS, 1, 1, 0,
+    {"PSSM, 4 cascades", K_DIR, SKGL_PSSM, 4, 0, R_BIND_PSSM, 40, 8, U_LAYERS, 1, 1, 0,
      {{82, 29, 0, 0, 0, 0, 0, 0}, {90, 29, 0, 0, 0, 0, 0, 0}, {49, 0, 0, 0, 0, 0, 0, 0}}},
-    {"LSPSM", K_DIR, SKGL_LSPSM, 0, 0, 0, -1, 40, 8, U_LAYERS, 1, 1, 0,
+    {"LSPSM", K_DIR, SKGL_LSPSM, 0, 0, -1, 40, 8, U_LAYERS, 1, 1, 0,
      {{82, 29, 0, 0, 0, 0, 0, 0}, {90, 29, 0, 0, 0, 0, 0, 0}, {49, 0, 0, 0, 0, 0, 0, 0}}},
-    {"FERKO, SKGL_LATENCY_SYNC", K_DIR, SKGL_FERKO, 0, SKGL_LATENCY_SYNC, 0, -1, 60, 0, U_NONE, 0, 0,
+    {"FERKO, sync_readback", K_DIR, SKGL_FERKO, 0, 1, -1, 60, 0, U_NONE, 0, 0,
      1 << ST_READPIXELS, {{119, 46, 0, 0, 0, 0, 0, 1}, {131, 46, 0, 0, 0, 0, 0, 1}, {70, 0, 0, 0, 0, 0, 0, 1}}},
-    {"FERKO (latency 1)", K_DIR, SKGL_FERKO, 0, 0, 0, -1, 60, 0, U_NONE, 0, 0, 0,
+    {"FERKO (latency 1)", K_DIR, SKGL_FERKO, 0, 0, -1, 60, 0, U_NONE, 0, 0, 0,
      {{126, 46, 0, 0, 0, 0, 0, 0}, {138, 46, 0, 0, 0, 0, 0, 0}, {76, 0, 0, 0, 0, 0, 0, 0}}},
-    {"RMSM, SKGL_LATENCY_SYNC", K_DIR, SKGL_RMSM, 0, 0, SKGL_LATENCY_SYNC, -1, 60, 6, U_PAGES, 0, 1,
+    {"RMSM, sync_readback", K_DIR, SKGL_RMSM, 0, 1, -1, 60, 6, U_PAGES, 0, 1,
      1 << ST_READPIXELS, {{1194, 51, 0, 0, 0, 0, 0, 1}, {1206, 51, 0, 0, 0, 0, 0, 1}, {1137, 0, 0, 0, 0, 0, 0, 1}}},
-    {"RMSM (latency 1)", K_DIR, SKGL_RMSM, 0, 0, 0, R_BIND_RMSM, 60, 6, U_PAGES, 0, 1, 0,
+    {"RMSM (latency 1)", K_DIR, SKGL_RMSM, 0, 0, R_BIND_RMSM, 60, 6, U_PAGES, 0, 1, 0,
      {{1201, 51, 0, 0, 0, 0, 0, 0}, {1213, 51, 0, 0, 0, 0, 0, 0}, {1143, 0, 0, 0, 0, 0, 0, 0}}},
-    {"POINT_CUBE", K_POINT, SKGL_POINT_CUBE, 0, 0, 0, R_BIND_CUBE, 40, 6, U_FACES, 0, 1, 0,
+    {"POINT_CUBE", K_POINT, SKGL_POINT_CUBE, 0, 0, R_BIND_CUBE, 40, 6, U_FACES, 0, 1, 0,
      {{89, 30, 0, 0, 0, 0, 0, 0}, {97, 30, 0, 0, 0, 0, 0, 0}, {54, 0, 0, 0, 0, 0, 0, 0}}},
-    {"POINT_VSDCT", K_POINT, SKGL_POINT_VSDCT, 0, 0, 0, R_BIND_VSDCT, 40, 6, U_FACES, 0, 1, 0,
+    {"POINT_VSDCT", K_POINT, SKGL_POINT_VSDCT, 0, 0, R_BIND_VSDCT, 40, 6, U_FACES, 0, 1, 0,
      {{99, 33, 0, 0, 0, 0, 0, 0}, {107, 33, 0, 0, 0, 0, 0, 0}, {59, 0, 0, 0, 0, 0, 0, 0}}},
-    {"SOFT_PCSS", K_SOFT, SKGL_SOFT_PCSS, 0, 0, 0, -1, 40, 0, U_NONE, 0, 0, 0,
+    {"SOFT_PCSS", K_SOFT, SKGL_SOFT_PCSS, 0, 0, -1, 40, 0, U_NONE, 0, 0, 0,
      {{212, 55, 13, 2, 4, 0, 0, 0}, {218, 55, 13, 2, 4, 0, 0, 2}, {212, 55, 13, 2, 4, 0, 0, 0}}},
-    {"SOFT_PVSM", K_SOFT, SKGL_SOFT_PVSM, 0, 0, 0, -1, 100, 25, U_TILES, 0, 0, 0,
+    {"SOFT_PVSM", K_SOFT, SKGL_SOFT_PVSM, 0, 0, -1, 100, 25, U_TILES, 0, 0, 0,
      {{732, 55, 51, 30, 4, 0, 0, 9}, {753, 55, 51, 30, 4, 0, 0, 16}, {732, 55, 51, 30, 4, 0, 0, 9}}},
-    {"skgl_shadow_bind (STANDARD)", K_BIND_SHADOW, SKGL_STANDARD, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
+    {"skgl_shadow_bind (STANDARD)", K_BIND_SHADOW, SKGL_STANDARD, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
      {{10, 3, 0, 0, 0, 0, 0, 0}, {10, 3, 0, 0, 0, 0, 0, 0}, {6, 0, 0, 0, 0, 0, 0, 0}}},
-    {"skgl_shadow_bind (PSSM, 4)", K_BIND_SHADOW, SKGL_PSSM, 4, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
+    {"skgl_shadow_bind (PSSM, 4)", K_BIND_SHADOW, SKGL_PSSM, 4, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
      {{10, 3, 0, 0, 0, 0, 0, 0}, {10, 3, 0, 0, 0, 0, 0, 0}, {6, 0, 0, 0, 0, 0, 0, 0}}},
-    {"skgl_shadow_bind (RMSM)", K_BIND_SHADOW, SKGL_RMSM, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
+    {"skgl_shadow_bind (RMSM)", K_BIND_SHADOW, SKGL_RMSM, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
      {{13, 3, 0, 0, 0, 0, 0, 0}, {13, 3, 0, 0, 0, 0, 0, 0}, {9, 0, 0, 0, 0, 0, 0, 0}}},
-    {"skgl_point_bind (CUBE)", K_BIND_POINT, SKGL_POINT_CUBE, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
+    {"skgl_point_bind (CUBE)", K_BIND_POINT, SKGL_POINT_CUBE, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
      {{8, 3, 0, 0, 0, 0, 0, 0}, {8, 3, 0, 0, 0, 0, 0, 0}, {4, 0, 0, 0, 0, 0, 0, 0}}},
-    {"skgl_point_bind (VSDCT)", K_BIND_POINT, SKGL_POINT_VSDCT, 0, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
+    {"skgl_point_bind (VSDCT)", K_BIND_POINT, SKGL_POINT_VSDCT, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
      {{11, 3, 0, 0, 0, 0, 0, 0}, {11, 3, 0, 0, 0, 0, 0, 0}, {7, 0, 0, 0, 0, 0, 0, 0}}},
 };
 
@@ -820,8 +820,7 @@ static void cg_run_row(cg_env *x, skgl_context *sk, int mode, int ri) {
         memset(&d, 0, sizeof d);
         d.technique = (skgl_technique)row->technique;
         d.cascades = row->cascades;
-        d.ferko_latency = row->ferko_latency;
-        d.rmsm_latency = row->rmsm_latency;
+        d.sync_readback = row->sync_readback;
         CG_OK(skgl_shadow_create(sk, &d, &s));
         if (!s) return;
         for (f = 0; f < WARMUP + FRAMES; f++) {

@@ -116,7 +116,7 @@ static void test_matches_cpu(void) {
             memset(&d, 0, sizeof d);
             d.technique = SKGL_FERKO;
             d.resolution = 8192;
-            d.ferko_latency = lat ? 1 : SKGL_LATENCY_SYNC;   /* both modes: this frame's estimate, and one frame late */
+            d.sync_readback = !lat;   /* both modes: this frame's estimate, and one frame late */
             s = gt_shadow(&e, &d);
             if (!s) continue;
             SK_CHECK(ferko_frame(&e, s, &cam, &sc, l, NULL) == 0);
@@ -238,7 +238,7 @@ static void test_failure_cases(void) {
             memset(&d, 0, sizeof d);
             d.technique = SKGL_FERKO;
             d.resolution = c == 3 ? 1 : 2048;
-            d.ferko_latency = lat ? 1 : SKGL_LATENCY_SYNC;   /* both modes: this frame's estimate, and one frame late */
+            d.sync_readback = !lat;   /* both modes: this frame's estimate, and one frame late */
             if (c == 0) cam = gt_camera(gt_v3(0, 5, 10), gt_v3(0, 30, 0), 1.0f, 0.1f, 100, W, H);     /* sky */
             else if (c == 2) cam = gt_camera(gt_v3(60.025f, 30.025f, -150), gt_v3(60.025f, 30.025f, -200), 0.2f, 1, 100, W, H);
             else cam = gt_camera(gt_v3(-9, 7, 12), gt_v3(0, 1, 0), 1.0f, 0.1f, 100, W, H);

@@ -11,7 +11,7 @@
    GL_QUERY_RESULT_AVAILABLE while `not_available` is set. 320 x 180,
    scene "ground-boxes", light (-0.5, -1, -0.35).
 
-   test_ferko_ring: a reference shadow with ferko_latency SKGL_LATENCY_SYNC
+   test_ferko_ring: a reference shadow with sync_readback
    gives the estimates of views A (-9, 7, 12) and B (-3, 2.5, 4), which
    differ (measured 1907x1745 and 2048x2048, the latter clamped to the
    maximum). A default shadow (latency 1): frame 1 (view A) reads at once,
@@ -23,8 +23,7 @@
    6 reads one buffer, the newest (frame 4's: view B), and has B's
    estimate. A shadow never analysed renders the focused map at full
    resolution, with no estimate.
-   test_rmsm_ring: the same with RMSM page lists (the reference: rmsm_latency
-   SKGL_LATENCY_SYNC; view A 45 pages, B 59): A's pages kept while the
+   test_rmsm_ring: the same with RMSM page lists (the reference: sync_readback; view A 45 pages, B 59): A's pages kept while the
    fences are not ready, no page-table upload in those frames (the table
    did not change), B's pages and one upload of the changed rows once they
    land, none in the next frame of the same view.
@@ -45,7 +44,7 @@
    skgl_forget_program; 17 programs in a 16-entry cache: the least recently
    bound is looked up again, the most recent is not.
    test_state_modes: for STANDARD, PSSM (3), FERKO and RMSM (each
-   SKGL_LATENCY_SYNC), POINT_CUBE and POINT_VSDCT, the mask from a host left
+   sync_readback), POINT_CUBE and POINT_VSDCT, the mask from a host left
    in wireframe (glPolygonMode GL_LINE) equals the one from a filled host,
    value for value, in both modes; the default mode gives GL_LINE back, the
    caller-owns mode leaves GL_FILL, framebuffer 0 (draw and read) and no
@@ -278,12 +277,12 @@ static void test_ferko_ring(void) {
     memset(&d, 0, sizeof d);
     d.technique = SKGL_FERKO;
     d.resolution = 2048;
-    d.ferko_latency = SKGL_LATENCY_SYNC;
+    d.sync_readback = 1;
     ref = gt_shadow(&e, &d);
-    d.ferko_latency = 0;   /* the default: a frame late */
+    d.sync_readback = 0;   /* the default: a frame late */
     s = NULL;
     SK_CHECK(sk && skgl_shadow_create(sk, &d, &s) == SK_OK);
-    SK_CHECK(skgl_shadow_get_desc(s).ferko_latency == 1 && skgl_shadow_get_desc(ref).ferko_latency == 0);
+    SK_CHECK(skgl_shadow_get_desc(s).sync_readback == 0 && skgl_shadow_get_desc(ref).sync_readback == 1);
     if (!sk || !ref || !s) { skgl_shadow_destroy(e.sk, ref); skgl_destroy(sk); gt_env_free(&e); return; }
     /* the reference's estimates of both views (the stats have the
        estimate a render used) */
@@ -375,9 +374,9 @@ static void test_rmsm_ring(void) {
     d.technique = SKGL_RMSM;
     d.resolution = 16384;
     d.rmsm_pool_pages = 32;
-    d.rmsm_latency = SKGL_LATENCY_SYNC;
+    d.sync_readback = 1;
     ref = gt_shadow(&e, &d);
-    d.rmsm_latency = 0;
+    d.sync_readback = 0;
     SK_CHECK(sk && skgl_shadow_create(sk, &d, &s) == SK_OK);
     if (!sk || !ref || !s) { skgl_shadow_destroy(e.sk, ref); skgl_destroy(sk); gt_env_free(&e); return; }
     SK_CHECK(gt_gbuffer(&e, &cb) == 0);
@@ -639,7 +638,7 @@ static int mode_frame(gt_env *e, skgl_context *sk, int t, const skgl_camera *cam
         d.technique = t == T_STANDARD ? SKGL_STANDARD : t == T_PSSM ? SKGL_PSSM : t == T_FERKO ? SKGL_FERKO : SKGL_RMSM;
         d.resolution = t == T_RMSM ? 8192 : 1024;
         d.cascades = 3;
-        d.ferko_latency = d.rmsm_latency = SKGL_LATENCY_SYNC;
+        d.sync_readback = 1;
         r = skgl_shadow_create(sk, &d, &s);
         if (r == SK_OK && (t == T_FERKO || t == T_RMSM))
             r = skgl_shadow_analyze(sk, s, cam, &sc, light_dir(), e->gbuf.depth_tex);

@@ -21,7 +21,7 @@
    2 framebuffers, 1 vertex array, 1 query, 2 samplers; +1 texture and +1
    framebuffer per layer and +9 timer queries per shadow; after
    skgl_destroy every one of them, and the shaders, deleted). "ferko" runs
-   with SKGL_LATENCY_SYNC, "ferko-late" with the ring.
+   with sync_readback, "ferko-late" with the ring.
    Can fail: in local copies of the header with one restore line removed
    (scissor enable, polygon offset, sampler bindings, active texture in
    skgl_shadow_bind) or the query not deleted, this test failed each time
@@ -437,7 +437,7 @@ static void test_state_and_objects(void) {
         d.technique = techs[t];
         d.resolution = techs[t] == SKGL_RMSM ? 4096 : 512;
         d.cascades = t == 4 ? 3 : 0;
-        d.ferko_latency = t == 7 ? 1 : SKGL_LATENCY_SYNC;   /* "ferko": this frame's estimate, read at once */
+        d.sync_readback = t != 7;   /* "ferko": this frame's estimate, read at once */
         d.blend_band = t == 1 || t == 4 ? 0.1f : 0.0f;
         for (v = 0; v < 2; v++) {
             gl_state before, after;
