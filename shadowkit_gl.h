@@ -782,7 +782,4912 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 extern "C" {
 #endif
 
-/* ---- embedded GLSL: the files of shaders_embedded/, written here by `make shaders` --- */
+/* THE MAP of this implementation; each section opens with a // >>anchor
+     1. The GL loader and enums ............... >>loader
+     2. What the context keeps ................ >>context_data
+     3. Saved state: the per-call tracker ..... >>state
+     4. The context: log and arguments, programs, the uniform and texture
+        caches, GPU timers, read-back rings, skgl_create ......... >>context
+     5. Shared pass helpers: the lights' objects, large worlds, the draw
+        callback and the one caster pass, the masks' inputs ...... >>passes
+     6. Directional lights ...................... >>shadow
+        6.1 the light: desc, create, destroy ... >>shadow_life
+        6.2 fits: PSSM, PSM, LiSPSM, LSPSM ...... >>fits
+        6.3 FERKO's resolution estimation ....... >>ferko
+        6.4 RMSM's pages ........................ >>rmsm
+        6.5 analyze and render .................. >>render
+        6.6 bind (forward shaders) .............. >>bind
+        6.7 the deferred mask ................... >>mask
+     7. Point lights: cube maps and VSDCT ...... >>point
+     8. Several point lights in one atlas ...... >>atlas
+     9. Area lights: PCSS and PVSM ............. >>soft
+    10. Embedded GLSL, behind skgl__glsl() ..... >>glsl
+*/
+
+/* ---- 1. The GL loader and enums ----------------------------------------- */
+// >>loader
+/* the GL 3.3 core subset shadowkit uses, loaded through the getproc */
+typedef unsigned int skgl__enum;
+typedef unsigned int skgl__uint;
+typedef int skgl__int;
+typedef int skgl__sizei;
+typedef unsigned char skgl__bool;
+typedef unsigned long long skgl__u64;
+
+#define SKGL__DEPTH_BUFFER_BIT 0x0100
+#define SKGL__TRIANGLES 0x0004
+#define SKGL__LESS 0x0201
+#define SKGL__LEQUAL 0x0203
+#define SKGL__CULL_FACE 0x0B44
+#define SKGL__CULL_FACE_MODE 0x0B45
+#define SKGL__DEPTH_TEST 0x0B71
+#define SKGL__DEPTH_WRITEMASK 0x0B72
+#define SKGL__DEPTH_CLEAR_VALUE 0x0B73
+#define SKGL__DEPTH_FUNC 0x0B74
+#define SKGL__VIEWPORT 0x0BA2
+#define SKGL__BLEND 0x0BE2
+#define SKGL__SCISSOR_BOX 0x0C10
+#define SKGL__SCISSOR_TEST 0x0C11
+#define SKGL__COLOR_WRITEMASK 0x0C23
+#define SKGL__TEXTURE_2D 0x0DE1
+#define SKGL__TEXTURE_WIDTH 0x1000
+#define SKGL__TEXTURE_HEIGHT 0x1001
+#define SKGL__FLOAT 0x1406
+#define SKGL__DEPTH_COMPONENT 0x1902
+#define SKGL__NEAREST 0x2600
+#define SKGL__LINEAR 0x2601
+#define SKGL__TEXTURE_MAG_FILTER 0x2800
+#define SKGL__TEXTURE_MIN_FILTER 0x2801
+#define SKGL__TEXTURE_WRAP_S 0x2802
+#define SKGL__TEXTURE_WRAP_T 0x2803
+#define SKGL__POLYGON_OFFSET_UNITS 0x2A00
+#define SKGL__POLYGON_OFFSET_FILL 0x8037
+#define SKGL__POLYGON_OFFSET_FACTOR 0x8038
+#define SKGL__TEXTURE_BINDING_2D 0x8069
+#define SKGL__CLAMP_TO_EDGE 0x812F
+#define SKGL__TEXTURE0 0x84C0
+#define SKGL__ACTIVE_TEXTURE 0x84E0
+#define SKGL__VERTEX_ARRAY_BINDING 0x85B5
+#define SKGL__QUERY_RESULT 0x8866
+#define SKGL__TEXTURE_COMPARE_MODE 0x884C
+#define SKGL__TEXTURE_COMPARE_FUNC 0x884D
+#define SKGL__COMPARE_REF_TO_TEXTURE 0x884E
+#define SKGL__TIME_ELAPSED 0x88BF
+#define SKGL__SAMPLER_BINDING 0x8919
+#define SKGL__FRAGMENT_SHADER 0x8B30
+#define SKGL__VERTEX_SHADER 0x8B31
+#define SKGL__COMPILE_STATUS 0x8B81
+#define SKGL__LINK_STATUS 0x8B82
+#define SKGL__CURRENT_PROGRAM 0x8B8D
+#define SKGL__TEXTURE_2D_ARRAY 0x8C1A
+#define SKGL__TEXTURE_BINDING_2D_ARRAY 0x8C1D
+#define SKGL__DEPTH_COMPONENT32F 0x8CAC
+#define SKGL__DRAW_FRAMEBUFFER_BINDING 0x8CA6
+#define SKGL__READ_FRAMEBUFFER 0x8CA8
+#define SKGL__DRAW_FRAMEBUFFER 0x8CA9
+#define SKGL__READ_FRAMEBUFFER_BINDING 0x8CAA
+#define SKGL__FRAMEBUFFER_COMPLETE 0x8CD5
+#define SKGL__COLOR_ATTACHMENT0 0x8CE0
+#define SKGL__DEPTH_ATTACHMENT 0x8D00
+#define SKGL__FRAMEBUFFER 0x8D40
+#define SKGL__MAJOR_VERSION 0x821B
+#define SKGL__MINOR_VERSION 0x821C
+#define SKGL__NONE 0
+#define SKGL__RGBA 0x1908
+#define SKGL__RGBA32F 0x8814
+#define SKGL__PIXEL_PACK_BUFFER 0x88EB
+#define SKGL__PIXEL_PACK_BUFFER_BINDING 0x88ED
+#define SKGL__STREAM_READ 0x88E1
+#define SKGL__COLOR_ATTACHMENT1 0x8CE1
+#define SKGL__RGBA8 0x8058
+#define SKGL__UNSIGNED_BYTE 0x1401
+#define SKGL__POINTS 0x0000
+#define SKGL__PROGRAM_POINT_SIZE 0x8642
+#define SKGL__COLOR_BUFFER_BIT 0x4000
+#define SKGL__COLOR_CLEAR_VALUE 0x0C22
+#define SKGL__PIXEL_UNPACK_BUFFER 0x88EC
+#define SKGL__PIXEL_UNPACK_BUFFER_BINDING 0x88EF
+#define SKGL__TEXTURE_CUBE_MAP 0x8513
+#define SKGL__TEXTURE_BINDING_CUBE_MAP 0x8514
+#define SKGL__TEXTURE_CUBE_MAP_POSITIVE_X 0x8515
+#define SKGL__TEXTURE_CUBE_MAP_SEAMLESS 0x884F
+#define SKGL__TEXTURE_BASE_LEVEL 0x813C
+#define SKGL__TEXTURE_MAX_LEVEL 0x813D
+#define SKGL__TEXTURE_WRAP_R 0x8072
+#define SKGL__RG 0x8227
+#define SKGL__RG16 0x822C
+#define SKGL__UNSIGNED_SHORT 0x1403
+#define SKGL__GEOMETRY_SHADER 0x8DD9
+#define SKGL__BLEND_EQUATION_RGB 0x8009
+#define SKGL__BLEND_EQUATION_ALPHA 0x883D
+#define SKGL__BLEND_DST_RGB 0x80C8
+#define SKGL__BLEND_SRC_RGB 0x80C9
+#define SKGL__BLEND_DST_ALPHA 0x80CA
+#define SKGL__BLEND_SRC_ALPHA 0x80CB
+#define SKGL__FUNC_ADD 0x8006
+#define SKGL__MIN 0x8007
+#define SKGL__ONE 1
+#define SKGL__DEPTH_CLAMP 0x864F
+#define SKGL__SAMPLES_PASSED 0x8914
+#define SKGL__R32F 0x822E
+#define SKGL__RG32F 0x8230
+#define SKGL__RED 0x1903
+#define SKGL__RGBA16F 0x881A
+#define SKGL__NEAREST_MIPMAP_NEAREST 0x2700
+#define SKGL__COLOR_ATTACHMENT2 0x8CE2
+#define SKGL__UNITS 4                      /* texture units the mask pass uses: 0 .. 3 */
+#define SKGL__POLYGON_MODE 0x0B40
+#define SKGL__FRONT_AND_BACK 0x0408
+#define SKGL__FILL 0x1B02
+#define SKGL__COLOR 0x1800                 /* glClearBufferfv's buffers */
+#define SKGL__DEPTH 0x1801
+#define SKGL__R8 0x8229
+#define SKGL__QUERY_RESULT_AVAILABLE 0x8867
+#define SKGL__ACTIVE_UNIFORMS 0x8B86
+#define SKGL__SYNC_GPU_COMMANDS_COMPLETE 0x9117
+#define SKGL__SYNC_FLUSH_COMMANDS_BIT 0x00000001
+#define SKGL__ALREADY_SIGNALED 0x911A
+#define SKGL__CONDITION_SATISFIED 0x911C
+#define SKGL__PACK_ALIGNMENT 0x0D05
+#define SKGL__PACK_ROW_LENGTH 0x0D02
+#define SKGL__PACK_SKIP_ROWS 0x0D03
+#define SKGL__PACK_SKIP_PIXELS 0x0D04
+#define SKGL__UNPACK_ALIGNMENT 0x0CF5
+#define SKGL__UNPACK_ROW_LENGTH 0x0CF2
+#define SKGL__UNPACK_SKIP_ROWS 0x0CF3
+#define SKGL__UNPACK_SKIP_PIXELS 0x0CF4
+
+#define SKGL__FUNCS(X) \
+    X(skgl__enum, GetError, (void)) \
+    X(void, Finish, (void)) \
+    X(void, GetIntegerv, (skgl__enum pname, skgl__int *data)) \
+    X(void, GetFloatv, (skgl__enum pname, float *data)) \
+    X(void, GetDoublev, (skgl__enum pname, double *data)) \
+    X(void, GetBooleanv, (skgl__enum pname, skgl__bool *data)) \
+    X(skgl__bool, IsEnabled, (skgl__enum cap)) \
+    X(void, Enable, (skgl__enum cap)) \
+    X(void, Disable, (skgl__enum cap)) \
+    X(void, Viewport, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h)) \
+    X(void, Scissor, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h)) \
+    X(void, ColorMask, (skgl__bool r, skgl__bool g, skgl__bool b, skgl__bool a)) \
+    X(void, DepthMask, (skgl__bool flag)) \
+    X(void, DepthFunc, (skgl__enum func)) \
+    X(void, ClearDepth, (double d)) \
+    X(void, Clear, (skgl__uint mask)) \
+    X(void, CullFace, (skgl__enum mode)) \
+    X(void, PolygonOffset, (float factor, float units)) \
+    X(void, GenFramebuffers, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteFramebuffers, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindFramebuffer, (skgl__enum target, skgl__uint fb)) \
+    X(void, FramebufferTextureLayer, (skgl__enum target, skgl__enum att, skgl__uint tex, skgl__int level, skgl__int layer)) \
+    X(void, FramebufferTexture2D, (skgl__enum target, skgl__enum att, skgl__enum textarget, skgl__uint tex, skgl__int level)) \
+    X(skgl__enum, CheckFramebufferStatus, (skgl__enum target)) \
+    X(void, DrawBuffer, (skgl__enum buf)) \
+    X(void, ReadBuffer, (skgl__enum buf)) \
+    X(void, GenTextures, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteTextures, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindTexture, (skgl__enum target, skgl__uint tex)) \
+    X(void, ActiveTexture, (skgl__enum unit)) \
+    X(void, TexImage2D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
+    X(void, ReadPixels, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, void *data)) \
+    X(void, DrawBuffers, (skgl__sizei n, const skgl__enum *bufs)) \
+    X(void, GenBuffers, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteBuffers, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindBuffer, (skgl__enum target, skgl__uint buf)) \
+    X(void, BufferData, (skgl__enum target, ptrdiff_t size, const void *data, skgl__enum usage)) \
+    X(void, GetBufferSubData, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, void *data)) \
+    X(void, Uniform2i, (skgl__int loc, skgl__int a, skgl__int b)) \
+    X(void, Uniform4fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, Uniform2fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, ClearColor, (float r, float g, float b, float a)) \
+    X(void, PixelStorei, (skgl__enum pname, skgl__int v)) \
+    X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
+    X(void, TexParameteri, (skgl__enum target, skgl__enum pname, skgl__int v)) \
+    X(void, GetTexLevelParameteriv, (skgl__enum target, skgl__int level, skgl__enum pname, skgl__int *v)) \
+    X(void, GenSamplers, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteSamplers, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindSampler, (skgl__uint unit, skgl__uint sampler)) \
+    X(void, SamplerParameteri, (skgl__uint sampler, skgl__enum pname, skgl__int v)) \
+    X(skgl__uint, CreateShader, (skgl__enum type)) \
+    X(void, ShaderSource, (skgl__uint sh, skgl__sizei n, const char *const *src, const skgl__int *len)) \
+    X(void, CompileShader, (skgl__uint sh)) \
+    X(void, GetShaderiv, (skgl__uint sh, skgl__enum pname, skgl__int *v)) \
+    X(void, GetShaderInfoLog, (skgl__uint sh, skgl__sizei max, skgl__sizei *len, char *log)) \
+    X(void, DeleteShader, (skgl__uint sh)) \
+    X(skgl__uint, CreateProgram, (void)) \
+    X(void, AttachShader, (skgl__uint p, skgl__uint sh)) \
+    X(void, LinkProgram, (skgl__uint p)) \
+    X(void, GetProgramiv, (skgl__uint p, skgl__enum pname, skgl__int *v)) \
+    X(void, GetProgramInfoLog, (skgl__uint p, skgl__sizei max, skgl__sizei *len, char *log)) \
+    X(void, DeleteProgram, (skgl__uint p)) \
+    X(void, UseProgram, (skgl__uint p)) \
+    X(skgl__int, GetUniformLocation, (skgl__uint p, const char *name)) \
+    X(void, Uniform1i, (skgl__int loc, skgl__int v)) \
+    X(void, Uniform1f, (skgl__int loc, float v)) \
+    X(void, Uniform1fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, Uniform3fv, (skgl__int loc, skgl__sizei n, const float *v)) \
+    X(void, UniformMatrix4fv, (skgl__int loc, skgl__sizei n, skgl__bool transpose, const float *v)) \
+    X(void, GenVertexArrays, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteVertexArrays, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BindVertexArray, (skgl__uint vao)) \
+    X(void, DrawArrays, (skgl__enum mode, skgl__int first, skgl__sizei count)) \
+    X(void, GenQueries, (skgl__sizei n, skgl__uint *ids)) \
+    X(void, DeleteQueries, (skgl__sizei n, const skgl__uint *ids)) \
+    X(void, BeginQuery, (skgl__enum target, skgl__uint id)) \
+    X(void, EndQuery, (skgl__enum target)) \
+    X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v)) \
+    X(void, BlendEquationSeparate, (skgl__enum rgb, skgl__enum alpha)) \
+    X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a)) \
+    X(void, PolygonMode, (skgl__enum face, skgl__enum mode)) \
+    X(skgl__bool, IsProgram, (skgl__uint p)) \
+    X(void, ClearBufferfv, (skgl__enum buffer, skgl__int drawbuffer, const float *value)) \
+    X(void, TexSubImage2D, (skgl__enum target, skgl__int level, skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, const void *data)) \
+    X(void *, FenceSync, (skgl__enum condition, skgl__uint flags)) \
+    X(skgl__enum, ClientWaitSync, (void *sync, skgl__uint flags, skgl__u64 timeout)) \
+    X(void, DeleteSync, (void *sync)) \
+    X(void, GetQueryObjectuiv, (skgl__uint id, skgl__enum pname, skgl__uint *v)) \
+    X(void, GetUniformiv, (skgl__uint p, skgl__int loc, skgl__int *v)) \
+    X(void, GetUniformfv, (skgl__uint p, skgl__int loc, float *v))
+
+typedef struct skgl__api {
+#define SKGL__X(ret, name, args) ret (SKGL__APIENTRY *name) args;
+    SKGL__FUNCS(SKGL__X)
+#undef SKGL__X
+} skgl__api;
+
+/* the embedded sources (section 9), by name: skgl__glsl(SKGL__GLSL_DEPTH_VERT) */
+typedef enum skgl__glsl_id {
+    SKGL__GLSL_DEPTH_VERT,
+    SKGL__GLSL_DEPTH_FRAG,
+    SKGL__GLSL_FULLSCREEN_VERT,
+    SKGL__GLSL_SHADOW_SAMPLE_GLSL,
+    SKGL__GLSL_SHADOW_MASK_FRAG,
+    SKGL__GLSL_FERKO_ANALYZE_FRAG,
+    SKGL__GLSL_FERKO_REDUCE_FRAG,
+    SKGL__GLSL_RMSM_ANALYZE_FRAG,
+    SKGL__GLSL_RMSM_REQUEST_VERT,
+    SKGL__GLSL_RMSM_REQUEST_FRAG,
+    SKGL__GLSL_POINT_SAMPLE_GLSL,
+    SKGL__GLSL_POINT_MASK_FRAG,
+    SKGL__GLSL_SOFT_COMMON_GLSL,
+    SKGL__GLSL_SOFT_KERNEL_FRAG,
+    SKGL__GLSL_SOFT_SMTG_VERT,
+    SKGL__GLSL_SOFT_SMTG_FRAG,
+    SKGL__GLSL_SOFT_REDUCE_FRAG,
+    SKGL__GLSL_SOFT_FILTER_FRAG,
+    SKGL__GLSL_SOFT_RESOLVE_FRAG,
+    SKGL__GLSL_SOFT_CONS_GEOM,
+    SKGL__GLSL_SOFT_CONS_FRAG,
+    SKGL__GLSL_SOFT_GBUFFER_VERT,
+    SKGL__GLSL_SOFT_GBUFFER_FRAG,
+    SKGL__GLSL_PCSS_MASK_FRAG,
+    SKGL__GLSL_N
+} skgl__glsl_id;
+static const char *skgl__glsl(skgl__glsl_id id);
+
+/* ---- 2. What the context keeps between calls ---------------------------- */
+// >>context_data
+/* the caches, the timers and rings, the context */
+#define SKGL__PROG_CACHE 16                /* user programs whose snippet locations are cached */
+#define SKGL__TEX_CACHE 8                  /* user textures whose size / framebuffer check is cached */
+#define SKGL__TIMER_RING 3                 /* timer queries per timed pass, read two or three frames late */
+#define SKGL__RING 3                       /* pixel pack buffers per late read-back */
+#define SKGL__FERKO_LEVELS 5               /* analysis + reductions, for G-buffers up to 65536 a side */
+#define SKGL__LOCS 19                      /* the most snippet uniforms (the directional one's) */
+enum { SKGL__PK_SHADOW = 0, SKGL__PK_POINT = 1 };
+
+/* a program holding a GLSL snippet (skgl__progent_lookup) */
+typedef struct skgl__progent {
+    skgl__uint program;                    /* 0: a free entry */
+    int kind;                              /* SKGL__PK_SHADOW, SKGL__PK_POINT */
+    unsigned tick;                         /* last use: the least recent goes first */
+    skgl__int loc[SKGL__LOCS];
+    skgl__int uniforms;                    /* GL_ACTIVE_UNIFORMS at look-up (the default mode's check) */
+    unsigned owner;                        /* the light whose constants the program holds (0: none) */
+    int unit;                              /* the texture unit those name */
+    skgl__int sentinel_i;                  /* sk_rmsm_page / sk_point_range as last set (the debug check) */
+    float sentinel_f;
+    /* uniforms that seldom change, as last sent (valid while owner is set) */
+    int layers, min_level, has_normals;
+    float extent[2], select, texel;
+    unsigned layout;
+} skgl__progent;
+
+typedef struct skgl__texent {
+    skgl__uint tex;                        /* 0: a free entry */
+    unsigned tick;
+    int w, h;                              /* level 0, as GL had it (0: not asked) */
+    int fb_ok;                             /* 1: checked complete as a mask target */
+} skgl__texent;
+
+typedef struct skgl__timer {
+    skgl__uint q[SKGL__TIMER_RING];        /* 0 without desc.timing */
+    unsigned char pending[SKGL__TIMER_RING];
+    unsigned frame;                        /* passes timed so far; slot frame % ring next */
+    int running;
+    float ms;                              /* the latest result read; -1 before any */
+} skgl__timer;
+
+typedef struct skgl__ring {
+    skgl__uint buf[SKGL__RING];            /* GL_PIXEL_PACK_BUFFERs of `bytes` each */
+    void *sync[SKGL__RING];                /* the fence after the read-back into buf[i]; NULL: free */
+    size_t bytes;
+    int next;                              /* the slot the next read-back takes */
+    /* what each read-back is of: the light frustum and origin of its analysis */
+    sk_mat4 lvp[SKGL__RING];
+    double origin[SKGL__RING][3];
+} skgl__ring;
+
+struct skgl_context {
+    skgl__api gl;
+    int debug, timing, objects;
+    int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
+    skgl__uint depth_prog, mask_prog, empty_vao, fbo, query;
+    skgl__uint mask_fbo;                   /* the deferred masks' target: the mask texture attached per call */
+    skgl__uint mask_fbo_tex;               /* the texture attached to it now (0: none) */
+    skgl__uint cmp_sampler, point_sampler;
+    skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 16x16 MIN reduction */
+    skgl__uint final_prog;                 /* resolution estimation: the last reduction, into 2x1 texels */
+    skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
+    skgl__int depth_u_view_proj, depth_u_model;
+    skgl__int model_loc;                   /* where skgl_set_model writes: the current pass's u_model */
+    int model_dirty;                       /* skgl_set_model was called since the pass set its model */
+    double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
+    /* the locations of shadowkit's own programs, found at link time, and the
+       values of the uniforms that seldom change, as last sent */
+    skgl__progent mask_ent;                /* the directional mask's snippet uniforms */
+    skgl__int mask_u_has_normals, mask_u_camera;
+    skgl__int ferko_u_ndc_to_light, ferko_u_world_w, reduce_u_src_size, final_u_src_size;
+    skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
+    int reduce_src[2], final_src[2], request_pages0, request_levels;
+    float rmsm_vres;
+    skgl__progent progs[SKGL__PROG_CACHE]; /* the user's programs (skgl_*_bind) */
+    skgl__texent texs[SKGL__TEX_CACHE];    /* the user's mask and depth textures */
+    unsigned tick;                         /* cache use counter */
+    unsigned next_id;                      /* the id of the next light made (never 0) */
+    char log[1024];
+};
+
+
+/* ---- 3. Saved state ----------------------------------------------------- */
+// >>state
+/* 3.1 the full save and restore (the area lights) */
+typedef struct skgl__state {
+    skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
+    skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
+    skgl__int texcube[SKGL__UNITS];            /* point lights' cube maps */
+    skgl__bool cube_seamless;
+    skgl__int depth_func, cull_mode, pack_buffer;
+    skgl__bool point_size;
+    float clear_color[4];
+    skgl__int unpack_buffer, pixel_store[8];   /* (UN)PACK_ROW_LENGTH, SKIP_ROWS, SKIP_PIXELS, ALIGNMENT */
+    skgl__bool depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
+    skgl__bool depth_clamp;
+    skgl__int blend_eq[2], blend_func[4];      /* RGB, alpha; src RGB, dst RGB, src alpha, dst alpha */
+    float poly_factor, poly_units;
+    double clear_depth;
+} skgl__state;
+
+static void skgl__enable(const skgl__api *gl, skgl__enum cap, int on)
+{
+    if (on) gl->Enable(cap); else gl->Disable(cap);
+}
+
+/* GL_UNPACK_ROW_LENGTH, _SKIP_ROWS, _SKIP_PIXELS, _ALIGNMENT, then the PACK ones */
+static const skgl__enum skgl__pixel_store_names[8] = {0x0CF2, 0x0CF3, 0x0CF4, 0x0CF5, 0x0D02, 0x0D03, 0x0D04, 0x0D05};
+
+/* tightly packed client memory for pixel transfers, no pixel buffers (inside save/restore) */
+static void skgl__pixel_store_plain(const skgl__api *gl)
+{
+    int i;
+    for (i = 0; i < 8; i++) gl->PixelStorei(skgl__pixel_store_names[i], (i & 3) == 3 ? 1 : 0);
+    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, 0);
+    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
+}
+
+static void skgl__save(const skgl__api *gl, skgl__state *st)
+{
+    int u;
+    gl->GetIntegerv(SKGL__DRAW_FRAMEBUFFER_BINDING, &st->draw_fb);
+    gl->GetIntegerv(SKGL__READ_FRAMEBUFFER_BINDING, &st->read_fb);
+    gl->GetIntegerv(SKGL__VIEWPORT, st->viewport);
+    gl->GetIntegerv(SKGL__SCISSOR_BOX, st->scissor_box);
+    gl->GetIntegerv(SKGL__CURRENT_PROGRAM, &st->program);
+    gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, &st->vao);
+    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &st->active_tex);
+    for (u = 0; u < SKGL__UNITS; u++) {
+        gl->ActiveTexture(SKGL__TEXTURE0 + u);
+        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D, &st->tex2d[u]);
+        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D_ARRAY, &st->tex2da[u]);
+        gl->GetIntegerv(SKGL__TEXTURE_BINDING_CUBE_MAP, &st->texcube[u]);
+        gl->GetIntegerv(SKGL__SAMPLER_BINDING, &st->sampler[u]);
+    }
+    gl->ActiveTexture((skgl__enum)st->active_tex);
+    st->cube_seamless = gl->IsEnabled(SKGL__TEXTURE_CUBE_MAP_SEAMLESS);
+    gl->GetIntegerv(SKGL__DEPTH_FUNC, &st->depth_func);
+    gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, &st->pack_buffer);
+    st->point_size = gl->IsEnabled(SKGL__PROGRAM_POINT_SIZE);
+    gl->GetIntegerv(SKGL__PIXEL_UNPACK_BUFFER_BINDING, &st->unpack_buffer);
+    for (u = 0; u < 8; u++) gl->GetIntegerv(skgl__pixel_store_names[u], &st->pixel_store[u]);
+    gl->GetFloatv(SKGL__COLOR_CLEAR_VALUE, st->clear_color);
+    gl->GetIntegerv(SKGL__CULL_FACE_MODE, &st->cull_mode);
+    st->depth_test = gl->IsEnabled(SKGL__DEPTH_TEST);
+    gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, &st->depth_mask);
+    st->cull = gl->IsEnabled(SKGL__CULL_FACE);
+    st->blend = gl->IsEnabled(SKGL__BLEND);
+    st->scissor = gl->IsEnabled(SKGL__SCISSOR_TEST);
+    st->poly_fill = gl->IsEnabled(SKGL__POLYGON_OFFSET_FILL);
+    st->depth_clamp = gl->IsEnabled(SKGL__DEPTH_CLAMP);
+    gl->GetIntegerv(SKGL__BLEND_EQUATION_RGB, &st->blend_eq[0]);
+    gl->GetIntegerv(SKGL__BLEND_EQUATION_ALPHA, &st->blend_eq[1]);
+    gl->GetIntegerv(SKGL__BLEND_SRC_RGB, &st->blend_func[0]);
+    gl->GetIntegerv(SKGL__BLEND_DST_RGB, &st->blend_func[1]);
+    gl->GetIntegerv(SKGL__BLEND_SRC_ALPHA, &st->blend_func[2]);
+    gl->GetIntegerv(SKGL__BLEND_DST_ALPHA, &st->blend_func[3]);
+    gl->GetBooleanv(SKGL__COLOR_WRITEMASK, st->color_mask);
+    gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &st->poly_factor);
+    gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &st->poly_units);
+    gl->GetDoublev(SKGL__DEPTH_CLEAR_VALUE, &st->clear_depth);
+}
+
+static void skgl__restore(const skgl__api *gl, const skgl__state *st)
+{
+    int u;
+    gl->BindFramebuffer(SKGL__DRAW_FRAMEBUFFER, (skgl__uint)st->draw_fb);
+    gl->BindFramebuffer(SKGL__READ_FRAMEBUFFER, (skgl__uint)st->read_fb);
+    gl->Viewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
+    gl->Scissor(st->scissor_box[0], st->scissor_box[1], st->scissor_box[2], st->scissor_box[3]);
+    gl->UseProgram((skgl__uint)st->program);
+    gl->BindVertexArray((skgl__uint)st->vao);
+    for (u = 0; u < SKGL__UNITS; u++) {
+        gl->ActiveTexture(SKGL__TEXTURE0 + u);
+        gl->BindTexture(SKGL__TEXTURE_2D, (skgl__uint)st->tex2d[u]);
+        gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, (skgl__uint)st->tex2da[u]);
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, (skgl__uint)st->texcube[u]);
+        gl->BindSampler((skgl__uint)u, (skgl__uint)st->sampler[u]);
+    }
+    gl->ActiveTexture((skgl__enum)st->active_tex);
+    skgl__enable(gl, SKGL__TEXTURE_CUBE_MAP_SEAMLESS, st->cube_seamless);
+    gl->DepthFunc((skgl__enum)st->depth_func);
+    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)st->pack_buffer);
+    skgl__enable(gl, SKGL__PROGRAM_POINT_SIZE, st->point_size);
+    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, (skgl__uint)st->unpack_buffer);
+    for (u = 0; u < 8; u++) gl->PixelStorei(skgl__pixel_store_names[u], st->pixel_store[u]);
+    gl->ClearColor(st->clear_color[0], st->clear_color[1], st->clear_color[2], st->clear_color[3]);
+    gl->CullFace((skgl__enum)st->cull_mode);
+    skgl__enable(gl, SKGL__DEPTH_TEST, st->depth_test);
+    gl->DepthMask(st->depth_mask);
+    skgl__enable(gl, SKGL__CULL_FACE, st->cull);
+    skgl__enable(gl, SKGL__BLEND, st->blend);
+    skgl__enable(gl, SKGL__SCISSOR_TEST, st->scissor);
+    skgl__enable(gl, SKGL__POLYGON_OFFSET_FILL, st->poly_fill);
+    skgl__enable(gl, SKGL__DEPTH_CLAMP, st->depth_clamp);
+    gl->BlendEquationSeparate((skgl__enum)st->blend_eq[0], (skgl__enum)st->blend_eq[1]);
+    gl->BlendFuncSeparate((skgl__enum)st->blend_func[0], (skgl__enum)st->blend_func[1],
+                          (skgl__enum)st->blend_func[2], (skgl__enum)st->blend_func[3]);
+    gl->ColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
+    gl->PolygonOffset(st->poly_factor, st->poly_units);
+    gl->ClearDepth(st->clear_depth);
+}
+
+/* 3.2 the state one call touches --------------------------------------
+   Directional and point lights go through this tracker instead of a full
+   save and restore: each piece of state is set through skgl__st_set, which
+   (default mode) reads the caller's value the first time the call touches
+   it, and skips the set when the value is already there; skgl__st_end puts
+   back only what changed, in as few calls as it can (one glBindFramebuffer
+   for both targets when they were the same, the texture units ending on the
+   one the caller had active). With skgl_desc.caller_owns_state nothing is
+   read: the first set of each piece is unconditional, later ones within the
+   call are skipped when redundant, and skgl__st_end unbinds only what would
+   redirect the caller's own later calls into shadowkit's objects (the
+   framebuffers, the pixel pack and unpack buffers). Everything else stays
+   as the manual's GL STATE section lists. */
+enum {
+    SKGL__S_DRAW_FB, SKGL__S_READ_FB, SKGL__S_VIEWPORT, SKGL__S_SCISSOR_BOX,
+    SKGL__S_SCISSOR_TEST, SKGL__S_BLEND, SKGL__S_CULL_FACE, SKGL__S_DEPTH_TEST, SKGL__S_POLY_FILL,
+    SKGL__S_POINT_SIZE, SKGL__S_SEAMLESS,
+    SKGL__S_DEPTH_FUNC, SKGL__S_DEPTH_MASK, SKGL__S_COLOR_MASK, SKGL__S_POLY_OFFSET, SKGL__S_POLYGON_MODE,
+    SKGL__S_PROGRAM, SKGL__S_VAO, SKGL__S_PACK_BUFFER, SKGL__S_UNPACK_BUFFER,
+    SKGL__S_PACK_ALIGNMENT, SKGL__S_PACK_ROW_LENGTH, SKGL__S_PACK_SKIP_PIXELS, SKGL__S_PACK_SKIP_ROWS,
+    SKGL__S_UNPACK_ALIGNMENT, SKGL__S_UNPACK_ROW_LENGTH, SKGL__S_UNPACK_SKIP_PIXELS, SKGL__S_UNPACK_SKIP_ROWS,
+    SKGL__S_ACTIVE,
+    SKGL__S_UNIT0,                        /* unit u: + 4 u + (0 2D, 1 2D array, 2 cube map, 3 sampler) */
+    SKGL__S_COUNT = SKGL__S_UNIT0 + 4 * SKGL__UNITS
+};
+#define SKGL__S_TEX(u, k) (SKGL__S_UNIT0 + 4 * (u) + (k))
+#define SKGL__T_2D 0
+#define SKGL__T_2D_ARRAY 1
+#define SKGL__T_CUBE 2
+#define SKGL__T_SAMPLER 3
+
+#define SKGL__S_KNOWN 1u                  /* cur holds GL's value */
+#define SKGL__S_SAVED 2u                  /* orig holds the caller's value (default mode) */
+
+typedef struct skgl__st {
+    int restore;                          /* 1: default mode, read and put back */
+    unsigned char flags[SKGL__S_COUNT];
+    skgl__int cur[SKGL__S_COUNT][4], orig[SKGL__S_COUNT][4];
+} skgl__st;
+
+static int skgl__st_n(int item)
+{
+    return item == SKGL__S_VIEWPORT || item == SKGL__S_SCISSOR_BOX || item == SKGL__S_COLOR_MASK ? 4
+           : item == SKGL__S_POLY_OFFSET ? 2 : 1;
+}
+
+static skgl__enum skgl__st_cap(int item)
+{
+    switch (item) {
+    case SKGL__S_SCISSOR_TEST: return SKGL__SCISSOR_TEST;
+    case SKGL__S_BLEND: return SKGL__BLEND;
+    case SKGL__S_CULL_FACE: return SKGL__CULL_FACE;
+    case SKGL__S_DEPTH_TEST: return SKGL__DEPTH_TEST;
+    case SKGL__S_POLY_FILL: return SKGL__POLYGON_OFFSET_FILL;
+    case SKGL__S_POINT_SIZE: return SKGL__PROGRAM_POINT_SIZE;
+    case SKGL__S_SEAMLESS: return SKGL__TEXTURE_CUBE_MAP_SEAMLESS;
+    default: return 0;
+    }
+}
+
+static skgl__enum skgl__st_store_name(int item)
+{
+    static const skgl__enum names[8] = {SKGL__PACK_ALIGNMENT, SKGL__PACK_ROW_LENGTH, SKGL__PACK_SKIP_PIXELS,
+                                        SKGL__PACK_SKIP_ROWS, SKGL__UNPACK_ALIGNMENT, SKGL__UNPACK_ROW_LENGTH,
+                                        SKGL__UNPACK_SKIP_PIXELS, SKGL__UNPACK_SKIP_ROWS};
+    return names[item - SKGL__S_PACK_ALIGNMENT];
+}
+
+static const skgl__enum skgl__tex_targets[3] = {SKGL__TEXTURE_2D, SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_CUBE_MAP};
+static const skgl__enum skgl__tex_bindings[4] = {SKGL__TEXTURE_BINDING_2D, SKGL__TEXTURE_BINDING_2D_ARRAY,
+                                                 SKGL__TEXTURE_BINDING_CUBE_MAP, SKGL__SAMPLER_BINDING};
+
+/* GL's value of an item (a unit's item: with that unit active) */
+static void skgl__st_query(const skgl__api *gl, int item, skgl__int v[4])
+{
+    skgl__bool b[4] = {0, 0, 0, 0};
+    float f[2];
+    skgl__int mode[2] = {SKGL__FILL, SKGL__FILL};
+    if (skgl__st_cap(item)) { v[0] = gl->IsEnabled(skgl__st_cap(item)) != 0; return; }
+    if (item >= SKGL__S_PACK_ALIGNMENT && item <= SKGL__S_UNPACK_SKIP_ROWS) {
+        gl->GetIntegerv(skgl__st_store_name(item), v);
+        return;
+    }
+    if (item >= SKGL__S_UNIT0) { gl->GetIntegerv(skgl__tex_bindings[(item - SKGL__S_UNIT0) & 3], v); return; }
+    switch (item) {
+    case SKGL__S_DRAW_FB: gl->GetIntegerv(SKGL__DRAW_FRAMEBUFFER_BINDING, v); break;
+    case SKGL__S_READ_FB: gl->GetIntegerv(SKGL__READ_FRAMEBUFFER_BINDING, v); break;
+    case SKGL__S_VIEWPORT: gl->GetIntegerv(SKGL__VIEWPORT, v); break;
+    case SKGL__S_SCISSOR_BOX: gl->GetIntegerv(SKGL__SCISSOR_BOX, v); break;
+    case SKGL__S_DEPTH_FUNC: gl->GetIntegerv(SKGL__DEPTH_FUNC, v); break;
+    case SKGL__S_DEPTH_MASK: gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, b); v[0] = b[0] != 0; break;
+    case SKGL__S_COLOR_MASK:
+        gl->GetBooleanv(SKGL__COLOR_WRITEMASK, b);
+        v[0] = b[0] != 0; v[1] = b[1] != 0; v[2] = b[2] != 0; v[3] = b[3] != 0;
+        break;
+    case SKGL__S_POLY_OFFSET:
+        /* floats kept bit for bit in the int slots */
+        gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &f[0]);
+        gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &f[1]);
+        memcpy(v, f, sizeof f);
+        break;
+    case SKGL__S_POLYGON_MODE:
+        /* GL_POLYGON_MODE answers two values (front, back) in compatibility
+           contexts, and a core context's are equal (only GL_FRONT_AND_BACK
+           can be set): room for two, the first kept */
+        gl->GetIntegerv(SKGL__POLYGON_MODE, mode);
+        v[0] = mode[0];
+        break;
+    case SKGL__S_PROGRAM: gl->GetIntegerv(SKGL__CURRENT_PROGRAM, v); break;
+    case SKGL__S_VAO: gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, v); break;
+    case SKGL__S_PACK_BUFFER: gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, v); break;
+    case SKGL__S_UNPACK_BUFFER: gl->GetIntegerv(SKGL__PIXEL_UNPACK_BUFFER_BINDING, v); break;
+    case SKGL__S_ACTIVE: gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, v); break;
+    default: break;
+    }
+}
+
+/* sets an item in GL (a unit's texture binding: with that unit active) */
+static void skgl__st_apply(const skgl__api *gl, int item, const skgl__int v[4])
+{
+    float f[2];
+    if (skgl__st_cap(item)) { skgl__enable(gl, skgl__st_cap(item), v[0]); return; }
+    if (item >= SKGL__S_PACK_ALIGNMENT && item <= SKGL__S_UNPACK_SKIP_ROWS) {
+        gl->PixelStorei(skgl__st_store_name(item), v[0]);
+        return;
+    }
+    if (item >= SKGL__S_UNIT0) {
+        int k = (item - SKGL__S_UNIT0) & 3;
+        if (k == SKGL__T_SAMPLER) gl->BindSampler((skgl__uint)((item - SKGL__S_UNIT0) >> 2), (skgl__uint)v[0]);
+        else gl->BindTexture(skgl__tex_targets[k], (skgl__uint)v[0]);
+        return;
+    }
+    switch (item) {
+    case SKGL__S_DRAW_FB: gl->BindFramebuffer(SKGL__DRAW_FRAMEBUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_READ_FB: gl->BindFramebuffer(SKGL__READ_FRAMEBUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_VIEWPORT: gl->Viewport(v[0], v[1], v[2], v[3]); break;
+    case SKGL__S_SCISSOR_BOX: gl->Scissor(v[0], v[1], v[2], v[3]); break;
+    case SKGL__S_DEPTH_FUNC: gl->DepthFunc((skgl__enum)v[0]); break;
+    case SKGL__S_DEPTH_MASK: gl->DepthMask((skgl__bool)(v[0] != 0)); break;
+    case SKGL__S_COLOR_MASK:
+        gl->ColorMask((skgl__bool)(v[0] != 0), (skgl__bool)(v[1] != 0), (skgl__bool)(v[2] != 0),
+                      (skgl__bool)(v[3] != 0));
+        break;
+    case SKGL__S_POLY_OFFSET: memcpy(f, v, sizeof f); gl->PolygonOffset(f[0], f[1]); break;
+    case SKGL__S_POLYGON_MODE: gl->PolygonMode(SKGL__FRONT_AND_BACK, (skgl__enum)v[0]); break;
+    case SKGL__S_PROGRAM: gl->UseProgram((skgl__uint)v[0]); break;
+    case SKGL__S_VAO: gl->BindVertexArray((skgl__uint)v[0]); break;
+    case SKGL__S_PACK_BUFFER: gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_UNPACK_BUFFER: gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, (skgl__uint)v[0]); break;
+    case SKGL__S_ACTIVE: gl->ActiveTexture((skgl__enum)v[0]); break;
+    default: break;
+    }
+}
+
+static void skgl__st_begin(const skgl_context *ctx, skgl__st *st)
+{
+    st->restore = !ctx->caller_owns;
+    memset(st->flags, 0, sizeof st->flags);
+}
+
+static void skgl__st_set(skgl_context *ctx, skgl__st *st, int item, const skgl__int *v);
+
+/* the unit an item belongs to active (texture bindings are per active unit) */
+static void skgl__st_unit(skgl_context *ctx, skgl__st *st, int item)
+{
+    if (item >= SKGL__S_UNIT0) {
+        skgl__int a = SKGL__TEXTURE0 + ((item - SKGL__S_UNIT0) >> 2);
+        skgl__st_set(ctx, st, SKGL__S_ACTIVE, &a);
+    }
+}
+
+/* reads the caller's value the first time (default mode); afterwards the
+   tracked one. A sampler binding is read with its unit active, but set
+   without (glBindSampler names the unit). */
+static void skgl__st_save(skgl_context *ctx, skgl__st *st, int item)
+{
+    if (!st->restore || (st->flags[item] & SKGL__S_SAVED)) return;
+    skgl__st_unit(ctx, st, item);
+    skgl__st_query(&ctx->gl, item, st->orig[item]);
+    memcpy(st->cur[item], st->orig[item], sizeof st->cur[item]);
+    st->flags[item] |= SKGL__S_SAVED | SKGL__S_KNOWN;
+}
+
+static void skgl__st_set(skgl_context *ctx, skgl__st *st, int item, const skgl__int *v)
+{
+    int n = skgl__st_n(item);
+    skgl__st_save(ctx, st, item);
+    if ((st->flags[item] & SKGL__S_KNOWN) && memcmp(st->cur[item], v, sizeof(skgl__int) * (size_t)n) == 0) return;
+    if (item >= SKGL__S_UNIT0 && ((item - SKGL__S_UNIT0) & 3) != SKGL__T_SAMPLER) skgl__st_unit(ctx, st, item);
+    skgl__st_apply(&ctx->gl, item, v);
+    memcpy(st->cur[item], v, sizeof(skgl__int) * (size_t)n);
+    st->flags[item] |= SKGL__S_KNOWN;
+}
+
+static void skgl__st_set1(skgl_context *ctx, skgl__st *st, int item, skgl__int v)
+{
+    skgl__int a[4];
+    a[0] = v; a[1] = a[2] = a[3] = 0;
+    skgl__st_set(ctx, st, item, a);
+}
+static void skgl__st_set4(skgl_context *ctx, skgl__st *st, int item, skgl__int a, skgl__int b, skgl__int c,
+                          skgl__int d)
+{
+    skgl__int v[4];
+    v[0] = a; v[1] = b; v[2] = c; v[3] = d;
+    skgl__st_set(ctx, st, item, v);
+}
+static void skgl__st_offset(skgl_context *ctx, skgl__st *st, float factor, float units)
+{
+    skgl__int v[4] = {0, 0, 0, 0};
+    float f[2];
+    f[0] = factor; f[1] = units;
+    memcpy(v, f, sizeof f);
+    skgl__st_set(ctx, st, SKGL__S_POLY_OFFSET, v);
+}
+/* a texture on a unit, with the sampler object (0: the texture's own parameters) */
+static void skgl__st_texture(skgl_context *ctx, skgl__st *st, int unit, int target, skgl__uint tex,
+                             skgl__uint sampler)
+{
+    skgl__st_set1(ctx, st, SKGL__S_TEX(unit, target), (skgl__int)tex);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(unit, SKGL__T_SAMPLER), (skgl__int)sampler);
+}
+/* Textures on several units, in an order that saves unit switches: the
+   default mode starts on the unit the caller has active (read once, as
+   the restore needs it anyway), so that neither the binds nor the restore
+   switch to it; caller-owns mode binds unit 0 last and leaves it active. */
+typedef struct skgl__unitbind {
+    int unit, target;
+    skgl__uint tex, sampler;
+} skgl__unitbind;
+static void skgl__st_units(skgl_context *ctx, skgl__st *st, const skgl__unitbind *b, int n)
+{
+    int i, pass, first = -1;
+    if (st->restore) {
+        skgl__st_save(ctx, st, SKGL__S_ACTIVE);
+        first = st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0;
+    }
+    for (pass = 0; pass < 3; pass++)   /* the active unit, then the others but 0, then 0 */
+        for (i = 0; i < n; i++) {
+            int u = b[i].unit;
+            if (pass == 0 ? u == first : u != first && (pass == 1 ? u != 0 : u == 0))
+                skgl__st_texture(ctx, st, u, b[i].target, b[i].tex, b[i].sampler);
+        }
+}
+
+/* both framebuffer targets (a read-back reads GL_READ_FRAMEBUFFER):
+   glBindFramebuffer(GL_FRAMEBUFFER) sets both in one call when neither is
+   there yet */
+static void skgl__st_framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint fb)
+{
+    skgl__st_save(ctx, st, SKGL__S_DRAW_FB);
+    skgl__st_save(ctx, st, SKGL__S_READ_FB);
+    if ((st->flags[SKGL__S_DRAW_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_DRAW_FB][0] == (skgl__int)fb) {
+        skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)fb);
+        return;
+    }
+    if ((st->flags[SKGL__S_READ_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_READ_FB][0] == (skgl__int)fb) {
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+        return;
+    }
+    ctx->gl.BindFramebuffer(SKGL__FRAMEBUFFER, fb);
+    st->cur[SKGL__S_DRAW_FB][0] = st->cur[SKGL__S_READ_FB][0] = (skgl__int)fb;
+    st->flags[SKGL__S_DRAW_FB] |= SKGL__S_KNOWN;
+    st->flags[SKGL__S_READ_FB] |= SKGL__S_KNOWN;
+}
+/* what the caller's draw callback may have changed is no longer known
+   (it is still put back from the saved value) */
+static void skgl__st_forget(skgl__st *st, int item) { st->flags[item] &= (unsigned char)~SKGL__S_KNOWN; }
+
+/* 1: the item must be put back */
+static int skgl__st_dirty(const skgl__st *st, int item)
+{
+    if (!(st->flags[item] & SKGL__S_SAVED)) return 0;
+    if (!(st->flags[item] & SKGL__S_KNOWN)) return 1;
+    return memcmp(st->cur[item], st->orig[item], sizeof(skgl__int) * (size_t)skgl__st_n(item)) != 0;
+}
+
+static void skgl__st_end(skgl_context *ctx, skgl__st *st)
+{
+    const skgl__api *gl = &ctx->gl;
+    int i, k, u, first, last, order[SKGL__UNITS], n = 0;
+    if (!st->restore) {
+        /* caller-owns mode: framebuffer 0 (draw and read, where shadowkit
+           bound one) and no pixel buffer, so that nothing the caller does
+           next writes into shadowkit's objects; the rest stays as set */
+        int d = (st->flags[SKGL__S_DRAW_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_DRAW_FB][0] != 0;
+        int r = (st->flags[SKGL__S_READ_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_READ_FB][0] != 0;
+        if (d && r) skgl__st_framebuffer(ctx, st, 0);
+        else if (d) skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, 0);
+        else if (r) skgl__st_set1(ctx, st, SKGL__S_READ_FB, 0);
+        if ((st->flags[SKGL__S_PACK_BUFFER] & SKGL__S_KNOWN) && st->cur[SKGL__S_PACK_BUFFER][0] != 0)
+            skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, 0);
+        if ((st->flags[SKGL__S_UNPACK_BUFFER] & SKGL__S_KNOWN) && st->cur[SKGL__S_UNPACK_BUFFER][0] != 0)
+            skgl__st_set1(ctx, st, SKGL__S_UNPACK_BUFFER, 0);
+        return;
+    }
+    /* framebuffers: one call for both when the caller had one for both */
+    if (skgl__st_dirty(st, SKGL__S_DRAW_FB) && skgl__st_dirty(st, SKGL__S_READ_FB) &&
+        st->orig[SKGL__S_DRAW_FB][0] == st->orig[SKGL__S_READ_FB][0]) {
+        gl->BindFramebuffer(SKGL__FRAMEBUFFER, (skgl__uint)st->orig[SKGL__S_DRAW_FB][0]);
+    } else {
+        if (skgl__st_dirty(st, SKGL__S_DRAW_FB)) skgl__st_apply(gl, SKGL__S_DRAW_FB, st->orig[SKGL__S_DRAW_FB]);
+        if (skgl__st_dirty(st, SKGL__S_READ_FB)) skgl__st_apply(gl, SKGL__S_READ_FB, st->orig[SKGL__S_READ_FB]);
+    }
+    for (i = SKGL__S_VIEWPORT; i < SKGL__S_ACTIVE; i++) {
+        if (!skgl__st_dirty(st, i)) continue;
+        if (i == SKGL__S_PROGRAM) {
+            /* the caller's program may have been deleted while current: it
+               lived on only as long as it stayed current, and binding its
+               name now would be GL_INVALID_VALUE (Dear ImGui's issue #6220).
+               Program 0 then, as GL would have left it. */
+            skgl__uint p = (skgl__uint)st->orig[i][0];
+            gl->UseProgram(p == 0 || gl->IsProgram(p) ? p : 0);
+            continue;
+        }
+        skgl__st_apply(gl, i, st->orig[i]);
+    }
+    /* texture units: first the one active now, the caller's active one last */
+    first = (st->flags[SKGL__S_ACTIVE] & SKGL__S_KNOWN) ? st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0 : -1;
+    last = (st->flags[SKGL__S_ACTIVE] & SKGL__S_SAVED) ? st->orig[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0 : -1;
+    if (first >= 0 && first < SKGL__UNITS) order[n++] = first;
+    for (u = 0; u < SKGL__UNITS; u++)
+        if (u != first && u != last) order[n++] = u;
+    if (last >= 0 && last < SKGL__UNITS && last != first) order[n++] = last;
+    for (i = 0; i < n; i++) {
+        int any = 0;
+        u = order[i];
+        for (k = 0; k < 4; k++) any |= skgl__st_dirty(st, SKGL__S_TEX(u, k));
+        if (!any) continue;
+        for (k = 0; k < 4; k++) {
+            int item = SKGL__S_TEX(u, k);
+            if (!skgl__st_dirty(st, item)) continue;
+            if (k != SKGL__T_SAMPLER) skgl__st_unit(ctx, st, item);
+            skgl__st_apply(gl, item, st->orig[item]);
+        }
+    }
+    if (skgl__st_dirty(st, SKGL__S_ACTIVE)) skgl__st_apply(gl, SKGL__S_ACTIVE, st->orig[SKGL__S_ACTIVE]);
+}
+
+/* the state of every depth pass: both faces (open meshes cast from both
+   sides), LESS with writes, slope-scaled bias, filled polygons. Blending
+   and the colour mask do not matter: the framebuffer has no colour buffer.
+   The passes clear with glClearBufferfv(GL_DEPTH, 0, 1.0), which leaves
+   GL_DEPTH_CLEAR_VALUE alone (glClear would need it set and put back) but
+   still obeys the depth write mask and the scissor test, both set here. */
+static void skgl__st_depth_pass(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias)
+{
+    skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_TEST, 1);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_FUNC, SKGL__LESS);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_MASK, 1);
+    /* a host left in wireframe (glPolygonMode GL_LINE) must not get
+       wireframe shadow maps */
+    skgl__st_set1(ctx, st, SKGL__S_POLYGON_MODE, SKGL__FILL);
+    if (slope_bias > 0.0f || depth_bias > 0.0f) {
+        skgl__st_set1(ctx, st, SKGL__S_POLY_FILL, 1);
+        skgl__st_offset(ctx, st, slope_bias > 0.0f ? slope_bias : 0.0f, depth_bias > 0.0f ? depth_bias : 0.0f);
+    } else skgl__st_set1(ctx, st, SKGL__S_POLY_FILL, 0);
+}
+
+/* the state of a full-screen pass into colour targets (no depth buffer:
+   the depth test, its mask and polygon offset do not apply) */
+static void skgl__st_screen_pass(skgl_context *ctx, skgl__st *st)
+{
+    skgl__st_set1(ctx, st, SKGL__S_BLEND, 0);
+    skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
+    skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
+    skgl__st_set1(ctx, st, SKGL__S_POLYGON_MODE, SKGL__FILL);
+    skgl__st_set1(ctx, st, SKGL__S_VAO, (skgl__int)ctx->empty_vao);
+}
+
+/* pixel transfers between client memory and GL without padding or offsets
+   (pack: read-backs; unpack: uploads), no pixel buffer bound unless given */
+static void skgl__st_pack(skgl_context *ctx, skgl__st *st, skgl__uint buffer, int rows)
+{
+    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)buffer);
+    if (rows > 1) {
+        /* a read of one row has no row stride: alignment and row length do
+           not apply to it, only the skips */
+        skgl__st_set1(ctx, st, SKGL__S_PACK_ALIGNMENT, 1);
+        skgl__st_set1(ctx, st, SKGL__S_PACK_ROW_LENGTH, 0);
+    }
+    skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_PIXELS, 0);
+    skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_ROWS, 0);
+}
+static void skgl__st_unpack(skgl_context *ctx, skgl__st *st)
+{
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_BUFFER, 0);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_ALIGNMENT, 1);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_ROW_LENGTH, 0);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_SKIP_PIXELS, 0);
+    skgl__st_set1(ctx, st, SKGL__S_UNPACK_SKIP_ROWS, 0);
+}
+
+
+/* ---- 4. The context ----------------------------------------------------- */
+// >>context
+/* 4.1 the log, the arguments, programs and samplers */
+/* >>log  The error log (skgl_error_log) holds the last failure of the
+   current call: every public call that takes the context clears it first,
+   so an old message never stands for a new error. A broken rule is one
+   message naming the argument or field, its value and the rule:
+   "skgl_shadow_create: desc.lambda = 1.5: in (0, 1]". */
+static void skgl__log_clear(skgl_context *ctx)
+{
+    if (ctx) ctx->log[0] = 0;
+}
+
+/* formats the message into the log; returns r */
+static sk_result skgl__fail(skgl_context *ctx, sk_result r, const char *fmt, ...)
+{
+    va_list ap;
+    if (!ctx) return r;
+    va_start(ap, fmt);
+    vsnprintf(ctx->log, sizeof ctx->log, fmt, ap);
+    va_end(ap);
+    return r;
+}
+
+/* one rule of a desc: when cond fails, the message names the field and its
+   value, and the caller returns SK_ERR_INVALID_ARG (needs ctx in scope) */
+#define SKGL__RULE(cond, fn, field, value, rule)                                                   \
+    do {                                                                                           \
+        if (!(cond))                                                                               \
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.%s = %g: %s", fn, field,          \
+                              (double)(value), rule);                                              \
+    } while (0)
+
+/* >>args  a call's arguments: each check names the argument and its value */
+#define SKGL__TRY(call)                                                                            \
+    do {                                                                                           \
+        sk_result skgl__r_ = (call);                                                               \
+        if (skgl__r_ != SK_OK) return skgl__r_;                                                    \
+    } while (0)
+
+static sk_result skgl__arg_ptr(skgl_context *ctx, const char *fn, const void *p, const char *name)
+{
+    return p ? SK_OK : skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s is NULL", fn, name);
+}
+
+static sk_result skgl__arg_name(skgl_context *ctx, const char *fn, unsigned name, const char *what)
+{
+    return name ? SK_OK : skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = 0: a GL name is required", fn, what);
+}
+
+/* a camera with finite matrices whose view-projection inverts (into *inv) */
+static sk_result skgl__arg_camera(skgl_context *ctx, const char *fn, const skgl_camera *cam, sk_mat4 *inv)
+{
+    sk_mat4 unused;
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, cam, "cam"));
+    if (!sk__mat_finite(&cam->view))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->view has a NaN or an infinity", fn);
+    if (!sk__mat_finite(&cam->proj))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj has a NaN or an infinity", fn);
+    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), inv ? inv : &unused))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular", fn);
+    return SK_OK;
+}
+
+/* a scene with a draw callback (when one is needed) and valid bounds */
+static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_scene *scene, int needs_draw)
+{
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
+    if (needs_draw && !scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
+    if (!sk__aabb_valid(&scene->bounds))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "%s: scene->bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
+                          (double)scene->bounds.min.x, (double)scene->bounds.min.y, (double)scene->bounds.min.z,
+                          (double)scene->bounds.max.x, (double)scene->bounds.max.y, (double)scene->bounds.max.z);
+    return SK_OK;
+}
+
+/* a finite vector; nonzero = 1: of some length (a direction) */
+static sk_result skgl__arg_vec(skgl_context *ctx, const char *fn, sk_vec3 v, const char *name, int nonzero)
+{
+    if (!sk__v3_finite(v) || (nonzero && sk__len(v) == 0.0f))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = (%g %g %g): %s", fn, name, (double)v.x, (double)v.y,
+                          (double)v.z, nonzero ? "finite and nonzero" : "finite");
+    return SK_OK;
+}
+
+/* a texture unit the call may use: 0..last */
+static sk_result skgl__arg_unit(skgl_context *ctx, const char *fn, int unit, int last)
+{
+    if (unit < 0 || unit > last)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: in 0..%d", fn, unit, last);
+    return SK_OK;
+}
+
+static void skgl__set_log(skgl_context *ctx, const char *what, const char *detail)
+{
+    size_t n = strlen(what);
+    if (n >= sizeof ctx->log) n = sizeof ctx->log - 1;
+    memcpy(ctx->log, what, n);
+    ctx->log[n] = 0;
+    if (detail && n + 2 < sizeof ctx->log) {
+        size_t m = strlen(detail);
+        ctx->log[n] = ':'; ctx->log[n + 1] = ' ';
+        if (m > sizeof ctx->log - n - 3) m = sizeof ctx->log - n - 3;
+        memcpy(ctx->log + n + 2, detail, m);
+        ctx->log[n + 2 + m] = 0;
+    }
+}
+
+static skgl__uint skgl__shader(skgl_context *ctx, skgl__enum type, const char *a, const char *b)
+{
+    const char *src[3];
+    skgl__uint sh = ctx->gl.CreateShader(type);
+    skgl__int ok = 0;
+    src[0] = "#version 330 core\n"; src[1] = a; src[2] = b ? b : "";
+    ctx->gl.ShaderSource(sh, 3, src, NULL);
+    ctx->gl.CompileShader(sh);
+    ctx->gl.GetShaderiv(sh, SKGL__COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[900];
+        log[0] = 0;
+        ctx->gl.GetShaderInfoLog(sh, (skgl__sizei)sizeof log, NULL, log);
+        skgl__set_log(ctx, "shader compile failed", log);
+        ctx->gl.DeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+/* Links n compiled shaders into a program and deletes the shaders. A 0
+   among them (its compile failed) deletes the others and returns 0. */
+static skgl__uint skgl__link(skgl_context *ctx, const skgl__uint *sh, int n)
+{
+    skgl__uint p = 0;
+    skgl__int ok = 0;
+    int i, complete = 1;
+    for (i = 0; i < n; i++) complete &= sh[i] != 0;
+    if (complete) {
+        p = ctx->gl.CreateProgram();
+        for (i = 0; i < n; i++) ctx->gl.AttachShader(p, sh[i]);
+        ctx->gl.LinkProgram(p);
+    }
+    for (i = 0; i < n; i++)
+        if (sh[i]) ctx->gl.DeleteShader(sh[i]);
+    if (!complete) return 0;
+    ctx->gl.GetProgramiv(p, SKGL__LINK_STATUS, &ok);
+    if (!ok) {
+        char log[900];
+        log[0] = 0;
+        ctx->gl.GetProgramInfoLog(p, (skgl__sizei)sizeof log, NULL, log);
+        skgl__set_log(ctx, "program link failed", log);
+        ctx->gl.DeleteProgram(p);
+        return 0;
+    }
+    ctx->objects++;
+    return p;
+}
+
+/* vertex + fragment (fs_a then fs_b); compiling stops at the first failure */
+static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *fs_a, const char *fs_b)
+{
+    skgl__uint sh[2];
+    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL);
+    sh[1] = sh[0] ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs_a, fs_b) : 0;
+    return skgl__link(ctx, sh, 2);
+}
+
+static skgl__uint skgl__sampler(skgl_context *ctx, int compare)
+{
+    skgl__uint s = 0;
+    ctx->gl.GenSamplers(1, &s);
+    ctx->objects++;
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_MIN_FILTER, compare ? SKGL__LINEAR : SKGL__NEAREST);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_MAG_FILTER, compare ? SKGL__LINEAR : SKGL__NEAREST);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_COMPARE_MODE, compare ? SKGL__COMPARE_REF_TO_TEXTURE : SKGL__NONE);
+    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+    return s;
+}
+
+/* 4.2 uniforms */
+/* a location of -1 (the name is not in the program, or the compiler
+   dropped it) takes no call */
+static void skgl__u1i(const skgl__api *gl, skgl__int loc, skgl__int v) { if (loc >= 0) gl->Uniform1i(loc, v); }
+static void skgl__u1f(const skgl__api *gl, skgl__int loc, float v) { if (loc >= 0) gl->Uniform1f(loc, v); }
+
+/* Locations of the GLSL snippets' uniforms (skgl_glsl_snippet,
+   skgl_point_glsl_snippet), per program: shadowkit's own mask programs
+   hold one each, and the context caches those of the user's programs
+   (SKGL__PROG_CACHE of them, the least recently bound replaced first) on
+   their first skgl_*_bind. A program's uniforms keep their values until it
+   is linked again, so each entry also remembers whose constants (sampler
+   units, filter, bias) the program holds and the values of the uniforms
+   that seldom change: neither is sent again while it is still there. */
+enum {
+    SKGL__L_MAP, SKGL__L_TABLE, SKGL__L_RMSM, SKGL__L_PAGES0, SKGL__L_LEVELS, SKGL__L_MIN_LEVEL, SKGL__L_PAGE,
+    SKGL__L_LIGHT_VP, SKGL__L_SPLITS, SKGL__L_LAYERS, SKGL__L_SELECT_BY_MAP, SKGL__L_MAP_EXTENT,
+    SKGL__L_SELECT_EXTENT, SKGL__L_BLEND_BAND, SKGL__L_NORMAL_BIAS, SKGL__L_BIAS_MODE, SKGL__L_PLANE_BIAS,
+    SKGL__L_PCF, SKGL__L_LIGHT_DIR, SKGL__L_SHADOW_N
+};
+static const char *const skgl__shadow_names[SKGL__L_SHADOW_N] = {
+    "sk_shadow_map", "sk_page_table", "sk_rmsm", "sk_rmsm_pages0", "sk_rmsm_levels", "sk_rmsm_min_level",
+    "sk_rmsm_page", "sk_light_vp", "sk_splits", "sk_layers", "sk_select_by_map", "sk_map_extent",
+    "sk_select_extent", "sk_blend_band", "sk_normal_bias", "sk_bias_mode", "sk_plane_bias", "sk_pcf_radius",
+    "sk_light_dir"};
+enum {
+    SKGL__P_CUBE, SKGL__P_ATLAS, SKGL__P_INDIRECTION, SKGL__P_POS, SKGL__P_RANGE, SKGL__P_DEPTH, SKGL__P_TEXEL,
+    SKGL__P_NORMAL_BIAS, SKGL__P_PCF, SKGL__P_BIAS_MODE, SKGL__P_PLANE_BIAS, SKGL__P_FACES, SKGL__L_POINT_N
+};
+static const char *const skgl__point_names[SKGL__L_POINT_N] = {
+    "sk_point_cube", "sk_point_atlas", "sk_point_indirection", "sk_point_pos", "sk_point_range", "sk_point_depth",
+    "sk_point_texel", "sk_point_normal_bias", "sk_point_pcf", "sk_point_bias_mode", "sk_point_plane_bias",
+    "sk_point_faces"};
+
+static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint program, int kind)
+{
+    int i, n = kind == SKGL__PK_SHADOW ? (int)SKGL__L_SHADOW_N : (int)SKGL__L_POINT_N;
+    const char *const *names = kind == SKGL__PK_SHADOW ? skgl__shadow_names : skgl__point_names;
+    memset(e, 0, sizeof *e);
+    e->program = program;
+    e->kind = kind;
+    for (i = 0; i < SKGL__LOCS; i++) e->loc[i] = -1;
+    for (i = 0; i < n; i++) e->loc[i] = ctx->gl.GetUniformLocation(program, names[i]);
+    ctx->gl.GetProgramiv(program, SKGL__ACTIVE_UNIFORMS, &e->uniforms);
+}
+
+/* Is the program under this name still the one whose locations were
+   cached? A program linked again, or deleted and made anew under the same
+   name (GL hands freed names out again), has its uniforms back at 0 and
+   maybe other locations. Default mode, one bind = two reads: the active
+   uniform count (a different program has, in practice, another one), then
+   the constant the last bind set that can never be 0 (sk_rmsm_page,
+   sk_point_range), read at its cached location (valid when the count
+   matched). desc.debug: every location looked up again, then that constant.
+   Caller-owns mode (no debug) reads nothing and trusts the cache: call
+   skgl_forget_program. */
+static int skgl__progent_changed(skgl_context *ctx, const skgl__progent *e)
+{
+    skgl__int n = -1;
+    int i;
+    if (ctx->debug) {
+        skgl__progent fresh;
+        skgl__progent_lookup(ctx, &fresh, e->program, e->kind);
+        for (i = 0; i < SKGL__LOCS; i++)
+            if (fresh.loc[i] != e->loc[i]) return 1;
+    } else if (ctx->caller_owns) {
+        return 0;
+    } else {
+        ctx->gl.GetProgramiv(e->program, SKGL__ACTIVE_UNIFORMS, &n);
+        if (n != e->uniforms) return 1;
+    }
+    if (e->owner != 0 && e->kind == SKGL__PK_SHADOW && e->loc[SKGL__L_PAGE] >= 0) {
+        skgl__int v = 0;
+        ctx->gl.GetUniformiv(e->program, e->loc[SKGL__L_PAGE], &v);
+        return v != e->sentinel_i;
+    }
+    if (e->owner != 0 && e->kind == SKGL__PK_POINT && e->loc[SKGL__P_RANGE] >= 0) {
+        float v = 0.0f;
+        ctx->gl.GetUniformfv(e->program, e->loc[SKGL__P_RANGE], &v);
+        return v != e->sentinel_f;
+    }
+    return 0;
+}
+
+/* the cache entry of a user program, looked up anew on a miss or when the
+   program changed under its name */
+static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, int kind)
+{
+    skgl__progent *e, *victim = &ctx->progs[0];
+    int i;
+    ctx->tick++;
+    for (i = 0; i < SKGL__PROG_CACHE; i++) {
+        e = &ctx->progs[i];
+        if (e->program == program && e->kind == kind) {
+            if (skgl__progent_changed(ctx, e)) skgl__progent_lookup(ctx, e, program, kind);
+            e->tick = ctx->tick;
+            return e;
+        }
+        if (e->tick < victim->tick) victim = e;
+    }
+    skgl__progent_lookup(ctx, victim, program, kind);
+    victim->tick = ctx->tick;
+    return victim;
+}
+
+SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program)
+{
+    int i;
+    if (!ctx || !program) return;
+    for (i = 0; i < SKGL__PROG_CACHE; i++)
+        if (ctx->progs[i].program == program) memset(&ctx->progs[i], 0, sizeof ctx->progs[i]);
+}
+
+/* 4.3 the user's textures: sizes and framebuffer checks, by name */
+/* The mask texture's size (the viewport of the mask pass) and the depth
+   texture's (the analysis' targets) are asked of GL once per texture name
+   (glGetTexLevelParameteriv) and remembered here; whether a mask texture is
+   colour-renderable is checked once per name too. A texture given storage
+   of another size or format under the same name needs skgl_forget_texture. */
+static skgl__texent *skgl__texture(skgl_context *ctx, skgl__uint tex)
+{
+    skgl__texent *e, *victim = &ctx->texs[0];
+    int i;
+    ctx->tick++;
+    for (i = 0; i < SKGL__TEX_CACHE; i++) {
+        e = &ctx->texs[i];
+        if (e->tex == tex) { e->tick = ctx->tick; return e; }
+        if (e->tick < victim->tick) victim = e;
+    }
+    memset(victim, 0, sizeof *victim);
+    victim->tex = tex;
+    victim->tick = ctx->tick;
+    return victim;
+}
+
+SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
+{
+    int i;
+    if (!ctx || !texture) return;
+    for (i = 0; i < SKGL__TEX_CACHE; i++)
+        if (ctx->texs[i].tex == texture) memset(&ctx->texs[i], 0, sizeof ctx->texs[i]);
+    if (ctx->mask_fbo_tex == texture) {
+        /* GL detaches a deleted texture only from the framebuffer bound at
+           the time: the masks' framebuffer would keep it alive */
+        skgl__st st;
+        skgl__st_begin(ctx, &st);
+        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)ctx->mask_fbo);
+        ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        ctx->mask_fbo_tex = 0;
+        skgl__st_end(ctx, &st);
+    }
+}
+
+/* The size of a texture the caller made: level 0's, as GL had it the
+   first time (bound on unit 1's GL_TEXTURE_2D to ask). NULL, or what is
+   wrong: no level 0; with desc.debug, which asks every time, a size that
+   changed under the same name. */
+static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, int *w, int *h)
+{
+    skgl__texent *e = skgl__texture(ctx, tex);
+    if (e->w <= 0 || e->h <= 0 || ctx->debug) {
+        skgl__int tw = 0, th = 0;
+        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D), (skgl__int)tex);
+        skgl__st_unit(ctx, st, SKGL__S_TEX(1, SKGL__T_2D));
+        ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &tw);
+        ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &th);
+        if (tw <= 0 || th <= 0 || tw > 65536 || th > 65536) return "the texture has no level 0";
+        if (e->w > 0 && (e->w != tw || e->h != th))
+            return "the texture's size changed since it was remembered: call skgl_forget_texture after giving "
+                   "a texture new storage";
+        e->w = tw;
+        e->h = th;
+    }
+    *w = e->w;
+    *h = e->h;
+    return NULL;
+}
+
+/* 4.4 GPU timers: a ring of queries read late -------------------------
+   With desc.timing, each timed pass of a light takes the next of
+   SKGL__TIMER_RING GL_TIME_ELAPSED queries. Before it, the query about to
+   be reused (three passes ago) is read if GL_QUERY_RESULT_AVAILABLE says
+   it is done, and if it is not, this pass goes untimed rather than wait;
+   then the one of two passes ago, likewise. The stats report the latest
+   result read: two frames old (three when the GPU is behind), -1 before
+   the first. */
+static void skgl__timer_free(skgl_context *ctx, skgl__timer *t)
+{
+    int i;
+    for (i = 0; i < SKGL__TIMER_RING; i++)
+        if (t->q[i]) { ctx->gl.DeleteQueries(1, &t->q[i]); ctx->objects--; t->q[i] = 0; }
+}
+static void skgl__timer_init(skgl_context *ctx, skgl__timer *t)
+{
+    int i;
+    memset(t, 0, sizeof *t);
+    t->ms = -1.0f;
+    if (!ctx->timing) return;
+    for (i = 0; i < SKGL__TIMER_RING; i++) { ctx->gl.GenQueries(1, &t->q[i]); ctx->objects++; }
+}
+/* 1 when slot i's result was there and has been read */
+static int skgl__timer_read(skgl_context *ctx, skgl__timer *t, int i)
+{
+    skgl__uint avail = 0;
+    skgl__u64 ns = 0;
+    if (!t->pending[i]) return 1;
+    ctx->gl.GetQueryObjectuiv(t->q[i], SKGL__QUERY_RESULT_AVAILABLE, &avail);
+    if (!avail) return 0;
+    ctx->gl.GetQueryObjectui64v(t->q[i], SKGL__QUERY_RESULT, &ns);
+    t->pending[i] = 0;
+    t->ms = (float)((double)ns * 1e-6);
+    return 1;
+}
+static void skgl__timer_begin(skgl_context *ctx, skgl__timer *t)
+{
+    int slot;
+    t->running = 0;
+    if (!ctx->timing || !t->q[0]) return;
+    slot = (int)(t->frame % SKGL__TIMER_RING);
+    /* the slot to reuse (three passes ago; usually read already), then two
+       passes ago: the newer result read last, and queries end in order, so
+       a busy older one means the newer is busy too */
+    if (!skgl__timer_read(ctx, t, slot)) return;                                 /* still busy: untimed */
+    (void)skgl__timer_read(ctx, t, (int)((t->frame + 1) % SKGL__TIMER_RING));
+    ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, t->q[slot]);
+    t->running = 1;
+}
+static void skgl__timer_end(skgl_context *ctx, skgl__timer *t)
+{
+    if (!t->running) return;
+    /* measuring mode: a renderer that bins draws and rasterises them later
+       on its own threads (Mesa's llvmpipe) would otherwise end the query
+       before the work is done and time almost nothing; glFinish inside the
+       query holds it open until the pass has run */
+    if (ctx->timing == SKGL_TIMING_SYNC) ctx->gl.Finish();
+    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
+    t->pending[t->frame % SKGL__TIMER_RING] = 1;
+    if (ctx->timing == SKGL_TIMING_SYNC) {
+        /* measuring mode: this pass's own time, waited for (a stall) */
+        skgl__u64 ns = 0;
+        ctx->gl.GetQueryObjectui64v(t->q[t->frame % SKGL__TIMER_RING], SKGL__QUERY_RESULT, &ns);
+        t->pending[t->frame % SKGL__TIMER_RING] = 0;
+        t->ms = (float)((double)ns * 1e-6);
+    }
+    t->frame++;
+    t->running = 0;
+}
+
+/* 4.5 read-backs a frame late: a ring of pixel buffers with fences ------
+   A read-back that must not stall goes into the next free one of
+   SKGL__RING pixel pack buffers (glReadPixels into a buffer returns at
+   once), followed by a fence. Later calls poll the fences, oldest first,
+   with a zero timeout (glClientWaitSync never waits then) and read the
+   newest buffer whose fence has signalled; fences signal in order, so the
+   first unsignalled one ends the poll. When every buffer is still in
+   flight, the new read-back is skipped (the GPU is three frames behind;
+   nothing is waited for). The poll flushes (GL_SYNC_FLUSH_COMMANDS_BIT): a
+   fence never flushed to the GPU may never signal. */
+static void skgl__ring_free(skgl_context *ctx, skgl__ring *r)
+{
+    int i;
+    for (i = 0; i < SKGL__RING; i++) {
+        if (r->sync[i]) { ctx->gl.DeleteSync(r->sync[i]); ctx->objects--; r->sync[i] = NULL; }
+        if (r->buf[i]) { ctx->gl.DeleteBuffers(1, &r->buf[i]); ctx->objects--; r->buf[i] = 0; }
+    }
+}
+static void skgl__ring_create(skgl_context *ctx, skgl__st *st, skgl__ring *r, size_t bytes)
+{
+    int i;
+    r->bytes = bytes;
+    for (i = 0; i < SKGL__RING; i++) {
+        ctx->gl.GenBuffers(1, &r->buf[i]);
+        ctx->objects++;
+        skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[i]);
+        ctx->gl.BufferData(SKGL__PIXEL_PACK_BUFFER, (ptrdiff_t)bytes, NULL, SKGL__STREAM_READ);
+    }
+}
+/* the newest signalled read-back into out (r->bytes), its slot; -1: none
+   has landed since the last call */
+static int skgl__ring_poll(skgl_context *ctx, skgl__st *st, skgl__ring *r, void *out)
+{
+    int k, newest = -1;
+    for (k = 0; k < SKGL__RING; k++) {
+        int i = (r->next + k) % SKGL__RING;   /* oldest first */
+        skgl__enum w;
+        if (!r->sync[i]) continue;
+        w = ctx->gl.ClientWaitSync(r->sync[i], SKGL__SYNC_FLUSH_COMMANDS_BIT, 0);
+        if (w != SKGL__ALREADY_SIGNALED && w != SKGL__CONDITION_SATISFIED) break;
+        ctx->gl.DeleteSync(r->sync[i]);
+        ctx->objects--;
+        r->sync[i] = NULL;
+        newest = i;
+    }
+    if (newest < 0) return -1;
+    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[newest]);
+    ctx->gl.GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, (ptrdiff_t)r->bytes, out);
+    return newest;
+}
+/* the slot the next read-back goes to, bound as the pack buffer; -1 when
+   every buffer is in flight */
+static int skgl__ring_slot(skgl_context *ctx, skgl__st *st, skgl__ring *r)
+{
+    int i = r->next;
+    if (r->sync[i]) return -1;
+    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[i]);
+    return i;
+}
+/* after the read-back into slot i: its fence */
+static void skgl__ring_fence(skgl_context *ctx, skgl__ring *r, int i)
+{
+    r->sync[i] = ctx->gl.FenceSync(SKGL__SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (r->sync[i]) ctx->objects++;
+    r->next = (i + 1) % SKGL__RING;
+}
+
+
+/* 4.6 the context's lifetime */
+static void skgl__release(skgl_context *ctx)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__uint *progs[8];
+    int i;
+    progs[0] = &ctx->depth_prog; progs[1] = &ctx->mask_prog; progs[2] = &ctx->ferko_prog;
+    progs[3] = &ctx->reduce_prog; progs[4] = &ctx->final_prog; progs[5] = &ctx->rmsm_prog;
+    progs[6] = &ctx->request_prog; progs[7] = NULL;
+    for (i = 0; progs[i]; i++)
+        if (*progs[i]) { gl->DeleteProgram(*progs[i]); ctx->objects--; *progs[i] = 0; }
+    if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
+    if (ctx->fbo) { gl->DeleteFramebuffers(1, &ctx->fbo); ctx->objects--; }
+    if (ctx->mask_fbo) { gl->DeleteFramebuffers(1, &ctx->mask_fbo); ctx->objects--; }
+    if (ctx->query) { gl->DeleteQueries(1, &ctx->query); ctx->objects--; }
+    if (ctx->cmp_sampler) { gl->DeleteSamplers(1, &ctx->cmp_sampler); ctx->objects--; }
+    if (ctx->point_sampler) { gl->DeleteSamplers(1, &ctx->point_sampler); ctx->objects--; }
+    ctx->empty_vao = ctx->fbo = ctx->mask_fbo = ctx->query = 0;
+    ctx->cmp_sampler = ctx->point_sampler = 0;
+}
+
+/* the constant uniforms of shadowkit's own programs (sampler units), set
+   once after they are linked, and their locations */
+static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
+{
+    skgl__api *gl = &ctx->gl;
+    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "u_view_proj");
+    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "u_model");
+    ctx->model_loc = ctx->depth_u_model;
+    skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW);
+    ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
+    ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_depth"), 1);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_normals"), 2);
+    ctx->mask_ent.has_normals = -1;
+    ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
+    ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
+    ctx->reduce_u_src_size = gl->GetUniformLocation(ctx->reduce_prog, "u_src_size");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->reduce_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->reduce_prog, "u_src"), 1);
+    ctx->final_u_src_size = gl->GetUniformLocation(ctx->final_prog, "u_src_size");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->final_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->final_prog, "u_src"), 1);
+    ctx->reduce_src[0] = ctx->final_src[0] = -1;
+    ctx->rmsm_u_inv_view_proj = gl->GetUniformLocation(ctx->rmsm_prog, "u_inv_view_proj");
+    ctx->rmsm_u_light = gl->GetUniformLocation(ctx->rmsm_prog, "u_light");
+    ctx->rmsm_u_virtual_res = gl->GetUniformLocation(ctx->rmsm_prog, "u_virtual_res");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->rmsm_prog, "u_depth"), 1);
+    ctx->rmsm_vres = -1.0f;
+    ctx->request_u_pages0 = gl->GetUniformLocation(ctx->request_prog, "u_pages0");
+    ctx->request_u_levels = gl->GetUniformLocation(ctx->request_prog, "u_levels");
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
+    skgl__u1i(gl, gl->GetUniformLocation(ctx->request_prog, "u_samples"), 1);
+    ctx->request_pages0 = ctx->request_levels = -1;
+}
+
+SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
+{
+    skgl_context *ctx;
+    skgl__st st;
+    skgl__int major = 0, minor = 0;
+    int missing = 0;
+    if (!desc || !desc->getproc || !out || desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC)
+        return SK_ERR_INVALID_ARG;
+    *out = NULL;
+    ctx = (skgl_context *)SKGL_MALLOC(sizeof *ctx);
+    if (!ctx) return SK_ERR_CAPACITY;
+    memset(ctx, 0, sizeof *ctx);
+    /* void* -> function pointer through memcpy: ISO C has no direct cast */
+#define SKGL__X(ret, name, args) { void *p_ = desc->getproc("gl" #name); \
+        memcpy(&ctx->gl.name, &p_, sizeof p_); if (!p_) missing = 1; }
+    SKGL__FUNCS(SKGL__X)
+#undef SKGL__X
+    if (missing) { SKGL_FREE(ctx); return SK_ERR_GL; }
+    ctx->gl.GetIntegerv(SKGL__MAJOR_VERSION, &major);
+    ctx->gl.GetIntegerv(SKGL__MINOR_VERSION, &minor);
+    if (major < 3 || (major == 3 && minor < 3)) { SKGL_FREE(ctx); return SK_ERR_GL; }
+    ctx->debug = desc->debug;
+    ctx->timing = desc->timing;
+    ctx->caller_owns = desc->caller_owns_state != 0;
+    ctx->depth_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL);
+    ctx->mask_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL),
+                                   skgl__glsl(SKGL__GLSL_SHADOW_MASK_FRAG));
+    ctx->ferko_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_FERKO_ANALYZE_FRAG), NULL);
+    ctx->reduce_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 0\n",
+                                     skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
+    ctx->final_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 1\n",
+                                    skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
+    ctx->rmsm_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_RMSM_ANALYZE_FRAG), NULL);
+    ctx->request_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_RMSM_REQUEST_VERT), skgl__glsl(SKGL__GLSL_RMSM_REQUEST_FRAG), NULL);
+    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog || !ctx->final_prog ||
+        !ctx->rmsm_prog || !ctx->request_prog) {
+        skgl__release(ctx);
+        SKGL_FREE(ctx);
+        return SK_ERR_GL;
+    }
+    skgl__st_begin(ctx, &st);
+    skgl__own_programs(ctx, &st);
+    skgl__st_end(ctx, &st);
+    ctx->gl.GenVertexArrays(1, &ctx->empty_vao); ctx->objects++;
+    ctx->gl.GenFramebuffers(1, &ctx->fbo); ctx->objects++;
+    ctx->gl.GenFramebuffers(1, &ctx->mask_fbo); ctx->objects++;
+    ctx->gl.GenQueries(1, &ctx->query); ctx->objects++;
+    ctx->cmp_sampler = skgl__sampler(ctx, 1);
+    ctx->point_sampler = skgl__sampler(ctx, 0);
+    if (ctx->gl.GetError() != 0) {
+        skgl__set_log(ctx, "GL error while creating the context objects", NULL);
+        skgl__release(ctx);
+        SKGL_FREE(ctx);
+        return SK_ERR_GL;
+    }
+    *out = ctx;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_destroy(skgl_context *ctx)
+{
+    if (!ctx) return;
+    skgl__release(ctx);
+    SKGL_FREE(ctx);
+}
+
+SKGLDEF int skgl_gl_object_count(const skgl_context *ctx) { return ctx ? ctx->objects : 0; }
+SKGLDEF const char *skgl_error_log(const skgl_context *ctx) { return ctx ? ctx->log : ""; }
+
+static sk_result skgl__check(skgl_context *ctx, const char *what)
+{
+    if (ctx->debug && ctx->gl.GetError() != 0) {
+        skgl__set_log(ctx, what, "glGetError reported an error");
+        return SK_ERR_GL;
+    }
+    return SK_OK;
+}
+
+
+/* ---- 5. Shared pass helpers --------------------------------------------- */
+// >>passes
+/* 5.1 the lights' objects (made inside a state-tracked call) */
+/* a 2D texture (target 2D) or 2-layer array (layers 2), nearest filtering,
+   made on unit 0; data: level 0's texels or NULL */
+static skgl__uint skgl__color_texture(skgl_context *ctx, skgl__st *st, skgl__int ifmt, int w, int h, int layers,
+                                      skgl__enum fmt, skgl__enum type, const void *data)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__uint t = 0;
+    int k = layers > 1 ? SKGL__T_2D_ARRAY : SKGL__T_2D;
+    skgl__enum target = skgl__tex_targets[k];
+    gl->GenTextures(1, &t);
+    ctx->objects++;
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, k), (skgl__int)t);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, k));
+    if (layers > 1) gl->TexImage3D(target, 0, ifmt, w, h, layers, 0, fmt, type, data);
+    else gl->TexImage2D(target, 0, ifmt, w, h, 0, fmt, type, data);
+    /* no mipmaps: a mipmapped minification filter would leave it incomplete,
+       and texelFetch of an incomplete texture reads 0 */
+    gl->TexParameteri(target, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(target, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    return t;
+}
+
+/* A framebuffer with colour attachment 0 (and 1: the second layer of a
+   2-layer array texture), or with depth only (depth: a layer of a 2D array
+   texture, or a 2D texture when layer < 0), checked complete here, once:
+   the passes only bind it. glDrawBuffer(s) and glReadBuffer are state of
+   the framebuffer object, set here too. 0 when it is not complete. */
+static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint color, int color_layers,
+                                    skgl__uint depth, int depth_layer)
+{
+    static const skgl__enum bufs[2] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1};
+    skgl__api *gl = &ctx->gl;
+    skgl__uint fb = 0;
+    skgl__enum status;
+    gl->GenFramebuffers(1, &fb);
+    ctx->objects++;
+    /* bound to both targets: glReadBuffer below sets the READ framebuffer's
+       state, which must be this one, not the caller's */
+    skgl__st_framebuffer(ctx, st, fb);
+    if (color && color_layers > 1) {
+        gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, color, 0, 0);
+        gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, color, 0, 1);
+        gl->DrawBuffers(2, bufs);
+    } else if (color) {
+        gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, color, 0);
+    } else {
+        if (depth_layer >= 0)
+            gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, depth, 0, depth_layer);
+        else gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
+        gl->DrawBuffer(SKGL__NONE);
+        gl->ReadBuffer(SKGL__NONE);
+    }
+    status = gl->CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER);
+    if (status != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->DeleteFramebuffers(1, &fb);
+        ctx->objects--;
+        /* the tracked binding named the framebuffer just deleted: GL fell back to 0 */
+        st->cur[SKGL__S_DRAW_FB][0] = 0;
+        st->cur[SKGL__S_READ_FB][0] = 0;
+        return 0;
+    }
+    return fb;
+}
+
+static void skgl__delete_texture(skgl_context *ctx, skgl__uint *t)
+{
+    if (*t) { ctx->gl.DeleteTextures(1, t); ctx->objects--; *t = 0; }
+}
+static void skgl__delete_framebuffer(skgl_context *ctx, skgl__uint *f)
+{
+    if (*f) { ctx->gl.DeleteFramebuffers(1, f); ctx->objects--; *f = 0; }
+}
+
+/* 5.2 large worlds: directional passes relative to an origin near the camera ---
+   A float holds 24 bits: at 1e5 from the world origin a position is good
+   to 8 mm, and a matrix that takes such positions to light clip space
+   subtracts nearly equal large numbers. The directional passes therefore
+   work relative to an origin: the camera's position rounded to a multiple
+   of SKGL_ORIGIN_CELL on each axis (exact in float, so a float world
+   position minus it is exact; zero within half a cell of the world origin,
+   where everything is as without it). Crops are fitted to the camera and
+   the scene bounds taken relative to it, the depth pass moves the models
+   there (T(-origin) * model, in double), the mask reconstructs positions
+   relative to its camera's origin, and matrices cross between origins in
+   double (skgl__shift). Stable crops snap in world light space
+   (sk_stable_crop_origin), so the texel grid does not move with the
+   origin. What the API returns and takes is world space, as before. */
+#ifndef SKGL_ORIGIN_CELL
+#define SKGL_ORIGIN_CELL 256.0        /* <= 0: always the world origin */
+#endif
+static const double skgl__zero3[3] = {0.0, 0.0, 0.0};
+
+static void skgl__origin(const sk_mat4 *view, double o[3])
+{
+    const double cell = SKGL_ORIGIN_CELL;
+    int k;
+    for (k = 0; k < 3; k++) {
+        /* eye = -R^T t of the rigid view matrix */
+        double eye = -((double)view->m[k * 4] * view->m[12] + (double)view->m[k * 4 + 1] * view->m[13] +
+                       (double)view->m[k * 4 + 2] * view->m[14]);
+        o[k] = cell > 0.0 ? SK_FLOOR(eye / cell + 0.5) * cell : 0.0;
+        if (!(SK_FABS(o[k]) < 1e30)) o[k] = 0.0;
+    }
+}
+
+/* m * T(to - from), in double: takes p - to where m took p - from (m itself when from == to) */
+static sk_mat4 skgl__shift(const sk_mat4 *m, const double from[3], const double to[3])
+{
+    sk_mat4 r = *m;
+    double d0 = to[0] - from[0], d1 = to[1] - from[1], d2 = to[2] - from[2];
+    int k;
+    if (d0 == 0.0 && d1 == 0.0 && d2 == 0.0) return r;
+    for (k = 0; k < 4; k++)
+        r.m[12 + k] = (float)((double)m->m[12 + k] + (double)m->m[k] * d0 + (double)m->m[4 + k] * d1 +
+                              (double)m->m[8 + k] * d2);
+    return r;
+}
+
+static skgl_camera skgl__camera_rel(const skgl_camera *cam, const double o[3])
+{
+    skgl_camera c = *cam;
+    c.view = skgl__shift(&cam->view, skgl__zero3, o);
+    return c;
+}
+
+static skgl_scene skgl__scene_rel(const skgl_scene *scene, const double o[3])
+{
+    skgl_scene r = *scene;
+    r.bounds.min = sk__v3((float)(scene->bounds.min.x - o[0]), (float)(scene->bounds.min.y - o[1]),
+                          (float)(scene->bounds.min.z - o[2]));
+    r.bounds.max = sk__v3((float)(scene->bounds.max.x - o[0]), (float)(scene->bounds.max.y - o[1]),
+                          (float)(scene->bounds.max.z - o[2]));
+    return r;
+}
+
+/* the current pass's model matrix (model_loc): T(-model_origin) * model, in double */
+static void skgl__model(skgl_context *ctx, const float model[16])
+{
+    const double *o = ctx->model_origin;
+    float r[16];
+    int c, k;
+    if (o[0] == 0.0 && o[1] == 0.0 && o[2] == 0.0) {
+        ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, model);
+        return;
+    }
+    for (c = 0; c < 4; c++) {
+        for (k = 0; k < 3; k++) r[c * 4 + k] = (float)((double)model[c * 4 + k] - o[k] * model[c * 4 + 3]);
+        r[c * 4 + 3] = model[c * 4 + 3];
+    }
+    ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, r);
+}
+
+SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
+{
+    if (!ctx || !model) return;
+    skgl__model(ctx, model);
+    ctx->model_dirty = 1;   /* the pass sets its identity again before the next callback */
+}
+
+SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL); }
+
+/* 5.3 the draw callback ---------------------------------------------------
+   A caster pass binds the depth program and sets the model matrix once;
+   the callback may set models (skgl_set_model) and bind its own program if
+   it binds info->program again before it returns (the manual's SCENE
+   ACCESS). After each callback the identity model is set again only if
+   the callback set a model; with desc.debug, the program it left current
+   is checked. The vertex array it may have bound and the unit it may have
+   made active are no longer known (the default mode puts the caller's
+   vertex array back at the end). */
+static const float skgl__identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+static void skgl__model_begin(skgl_context *ctx, const double origin[3])
+{
+    memcpy(ctx->model_origin, origin, sizeof ctx->model_origin);
+    ctx->model_loc = ctx->depth_u_model;
+    skgl__model(ctx, skgl__identity);
+    ctx->model_dirty = 0;
+}
+
+static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
+{
+    sk_result r = SK_OK;
+    if (ctx->debug) {
+        skgl__int cur = 0;
+        ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
+        if (cur != (skgl__int)ctx->depth_prog) {
+            skgl__set_log(ctx, "the draw callback returned with another program current",
+                          "bind info->program again before returning");
+            ctx->gl.UseProgram(ctx->depth_prog);
+            r = SK_ERR_INVALID_ARG;
+        }
+    }
+    if (ctx->model_dirty) {
+        skgl__model(ctx, skgl__identity);
+        ctx->model_dirty = 0;
+    }
+    /* the callback may have bound a vertex array and switched the active
+       unit: neither is known any more (what shadowkit set on a unit before
+       is then put back on the right one) */
+    skgl__st_forget(st, SKGL__S_VAO);
+    skgl__st_forget(st, SKGL__S_ACTIVE);
+    return r;
+}
+
+/* 5.4 the masks' inputs ------------------------------------------------- */
+/* The mask texture as the only colour target of the masks' framebuffer,
+   attached by name at every call (a texture deleted and made again under
+   the same name is a new object: an attachment kept from before would
+   still name the old one), checked complete the first time the name comes
+   by (skgl__texture); the full viewport and the state of a full-screen
+   pass. *w, *h: the mask's size. */
+static sk_result skgl__mask_begin(skgl_context *ctx, skgl__st *st, unsigned mask_tex, int *w, int *h,
+                                  const char *fn)
+{
+    skgl__texent *e;
+    const char *why = skgl__texture_size(ctx, st, mask_tex, w, h);
+    if (why) {
+        skgl__set_log(ctx, fn, why);
+        return SK_ERR_INVALID_ARG;
+    }
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)ctx->mask_fbo);
+    ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
+    ctx->mask_fbo_tex = mask_tex;
+    e = skgl__texture(ctx, mask_tex);
+    if (!e->fb_ok) {
+        if (ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+            ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+            ctx->mask_fbo_tex = 0;
+            skgl__set_log(ctx, fn, "the mask texture is not colour-renderable");
+            return SK_ERR_GL;
+        }
+        e->fb_ok = 1;
+    }
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, *w, *h);
+    skgl__st_screen_pass(ctx, st);
+    return SK_OK;
+}
+
+static void skgl__bind_unit(skgl__unitbind *b, int unit, int target, skgl__uint tex, skgl__uint sampler)
+{
+    b->unit = unit;
+    b->target = target;
+    b->tex = tex;
+    b->sampler = sampler;
+}
+
+/* the G-buffer on units 1 (depth) and 2 (normals, when there are) through
+   the point sampler: texelFetch reads them, and a sampler object of the
+   caller's (comparison on, or a mipmapped filter without mipmaps) would
+   make those reads undefined or 0; returns the binds written to b */
+static int skgl__mask_gbuffer(const skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, skgl__unitbind *b)
+{
+    skgl__bind_unit(&b[0], 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    if (!normal_tex) return 1;
+    skgl__bind_unit(&b[1], 2, SKGL__T_2D, normal_tex, ctx->point_sampler);
+    return 2;
+}
+
+/* the camera's matrices of a mask program: [0] inverse view-projection, [1] view */
+static void skgl__mask_camera(skgl_context *ctx, skgl__int loc, const sk_mat4 *inv, const sk_mat4 *view)
+{
+    float m[32];
+    memcpy(m, inv->m, sizeof inv->m);
+    memcpy(m + 16, view->m, sizeof view->m);
+    if (loc >= 0) ctx->gl.UniformMatrix4fv(loc, 2, 0, m);
+}
+
+
+/* ---- 6. Directional lights ---------------------------------------------- */
+// >>shadow
+/* a directional light; each technique's own state in its own part */
+struct skgl_shadow {
+    skgl_shadow_desc desc;
+    unsigned id;                   /* per context, never reused: whose constants a program holds */
+    skgl__uint tex;                /* GL_TEXTURE_2D_ARRAY of depth, one layer per map */
+    skgl__uint fbo[SKGL_MAX_CASCADES];   /* one framebuffer per layer, checked when made */
+    int layers;                    /* allocated */
+    int maps;                      /* used by the last render (LSPSM: its partition count) */
+    float select_extent;           /* LSPSM: |light NDC| <= this selects a partition (its rect) */
+    sk_mat4 render_vp[SKGL_MAX_CASCADES];   /* the depth pass's matrix (vp: the lookup's) */
+    int view_w, view_h;            /* viewport of every layer's depth pass */
+    skgl__timer t_render, t_mask, t_analyze;
+    /* FERKO: the analysis at 1/4 of the G-buffer and its 16x16 reductions
+       (2-layer textures: bounds, patch; skgl__ferko_targets), the final
+       2x1 texel pair and its read-back ring; the G-buffer size they were
+       made for; the estimate in use */
+    skgl__uint ferko_tex[3], ferko_fbo[3], ferko_final, ferko_final_fbo;
+    int ferko_lw[SKGL__FERKO_LEVELS], ferko_lh[SKGL__FERKO_LEVELS];   /* [0] the analysis, then the reductions */
+    int ferko_w, ferko_h, ferko_levels;
+    skgl__ring ferko_ring;
+    int ferko_state;               /* 0 no estimate yet, 1 an estimate */
+    sk_mat4 ferko_lvp;             /* the uncropped light frustum of the estimate */
+    sk_res_estimate ferko_est;
+    /* RMSM: the per-pixel samples (G-buffer size) and their framebuffer,
+       the request atlas (R8) and the page table (RGBA8), atlas_w x atlas_h,
+       the requests read back, the table as uploaded and as built, the
+       pages resident, the virtual map's light frustum, the read-back ring */
+    skgl__uint rmsm_samples, rmsm_samples_fbo, rmsm_requests, rmsm_requests_fbo, rmsm_table;
+    int atlas_w, atlas_h, pages0, levels, tex_size, rmsm_w, rmsm_h;
+    unsigned char *rmsm_req_cpu, *rmsm_table_cpu, *rmsm_table_new;
+    sk_page *rmsm_pages;
+    int rmsm_npages, rmsm_analyzed;
+    sk_mat4 rmsm_lvp;
+    skgl__ring rmsm_ring;
+    sk_mat4 vp[SKGL_MAX_CASCADES];
+    /* the world point vp and render_vp are relative to (they take p - origin;
+       see skgl__origin), and those of the FERKO estimate and the RMSM frustum */
+    double origin[3], ferko_origin[3], rmsm_origin[3];
+    sk_vec3 light_dir;             /* unit travel direction of the last render */
+    skgl_stats stats;
+};
+
+/* defined in 6.3 and 6.4, used by the light's lifecycle and its fits */
+static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
+static void skgl__fit_ferko(skgl_shadow *s, float zf);
+static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
+static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s);
+
+/* ---- 6.1 the light: its desc, create and destroy ---------------------- */
+// >>shadow_life
+/* the disable_ switches shared by directional and point lights */
+static void skgl__apply_switches(float *slope_bias, float *depth_bias, int no_offset, float *plane_bias, int no_plane,
+                                 int *pcf_radius, int no_kernel)
+{
+    if (no_offset) *slope_bias = *depth_bias = 0.0f;
+    if (no_plane) *plane_bias = 0.0f;
+    if (no_kernel) *pcf_radius = 0;
+}
+
+static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
+{
+    skgl_shadow_desc r = *d;
+    if (r.resolution <= 0) r.resolution = r.technique == SKGL_RMSM ? 16384 : 2048;
+    if (r.rmsm_page_size == 0) r.rmsm_page_size = 128;
+    if (r.rmsm_pool_pages == 0) r.rmsm_pool_pages = 24;
+    if (r.lspsm.zeta == 0.0f) r.lspsm.zeta = 0.25f;
+    if (r.lspsm.sigma == 0.0f) r.lspsm.sigma = 0.5f;
+    if (r.lspsm.h_max == 0) r.lspsm.h_max = 4;
+    if (r.lspsm.nw_max == 0) r.lspsm.nw_max = 2;
+    if (r.cascades <= 0) r.cascades = r.technique == SKGL_LISPSM ? 1 : 4;
+    /* LSPSM: one layer per possible partition; how many are used is per frame */
+    if (r.technique == SKGL_LSPSM && r.lspsm.h_max > 0 && r.lspsm.nw_max > 0 &&
+        r.lspsm.h_max <= SKGL_MAX_CASCADES && r.lspsm.nw_max <= SKGL_MAX_CASCADES)
+        r.cascades = r.lspsm.h_max * r.lspsm.nw_max;
+    if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM || r.technique == SKGL_FERKO ||
+        r.technique == SKGL_RMSM)
+        r.cascades = 1;
+    /* a disable_ switch wins over its value, which then reads 0 (none): the
+       filled desc given back to skgl_shadow_create makes the same light */
+    if (r.uniform_splits) r.lambda = 0.0f;
+    else if (r.lambda == 0.0f) r.lambda = 0.75f;
+    if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
+    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
+    if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
+    if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
+    if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
+    if (r.pcf_radius == 0) r.pcf_radius = 1;
+    if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
+    skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias,
+                         r.disable_plane_bias, &r.pcf_radius, r.disable_pcf_kernel);
+    if (r.disable_psm_slide) r.psm_slide = 0.0f;
+    return r;
+}
+
+/* every rule of a skgl_shadow_desc (defaults filled), in field order */
+static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc *d)
+{
+    const char *fn = "skgl_shadow_create";
+    int lspsm = d->technique == SKGL_LSPSM, rmsm = d->technique == SKGL_RMSM;
+    SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_RMSM, fn, "technique",
+               d->technique, "one of skgl_technique");
+    SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
+    SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
+    SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
+    SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
+    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
+               "in [0, 10000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
+               "in [0, 1000000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
+               "in [0, 64] texels");
+    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
+               "bias", d->bias, "one of skgl_bias");
+    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
+               "in [0, 64] texels (disable_plane_bias for none)");
+    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
+               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
+    SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
+    SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
+               "in [0, 1000] (disable_psm_slide for none)");
+    SKGL__RULE(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f, fn, "lspsm.zeta", d->lspsm.zeta, "in (0, 0.5)");
+    SKGL__RULE(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f, fn, "lspsm.sigma", d->lspsm.sigma, "in (0, 1000]");
+    SKGL__RULE(d->lspsm.h_max >= 1 && (!lspsm || d->lspsm.h_max <= SKGL_MAX_CASCADES), fn, "lspsm.h_max",
+               d->lspsm.h_max, "in 1..SKGL_MAX_CASCADES");
+    SKGL__RULE(d->lspsm.nw_max >= 1 && (!lspsm || d->lspsm.nw_max <= SKGL_MAX_CASCADES), fn, "lspsm.nw_max",
+               d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
+    SKGL__RULE(!lspsm || d->lspsm.h_max * d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn, "lspsm.h_max * lspsm.nw_max",
+               d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
+    SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
+    if (!rmsm) return SK_OK;
+    SKGL__RULE(d->rmsm_page_size >= 16 && d->rmsm_page_size <= 1024 && !(d->rmsm_page_size & (d->rmsm_page_size - 1)),
+               fn, "rmsm_page_size", d->rmsm_page_size, "a power of two in 16..1024");
+    SKGL__RULE(d->resolution >= d->rmsm_page_size && !(d->resolution & (d->resolution - 1)) &&
+                   d->resolution / d->rmsm_page_size <= 1024,
+               fn, "resolution", d->resolution, "RMSM: a power of two, rmsm_page_size to 1024 pages");
+    SKGL__RULE(d->rmsm_pool_pages >= 2 && d->rmsm_pool_pages <= 64 && d->rmsm_pool_pages * (d->rmsm_page_size + 2) <= 16384,
+               fn, "rmsm_pool_pages", d->rmsm_pool_pages, "in 2..64, rmsm_pool_pages * (rmsm_page_size + 2) <= 16384");
+    return SK_OK;
+}
+
+SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out)
+{
+    skgl_shadow *s;
+    skgl__st st;
+    skgl__api *gl;
+    skgl_shadow_desc d;
+    sk_result r;
+    int i;
+    if (out) *out = NULL;
+    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    d = skgl__defaults(desc);
+    r = skgl__shadow_validate(ctx, &d);
+    if (r != SK_OK) return r;
+    s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
+    if (!s) return SK_ERR_CAPACITY;
+    memset(s, 0, sizeof *s);
+    s->desc = d;
+    s->id = ++ctx->next_id;
+    if (!s->id) s->id = ++ctx->next_id;
+    s->layers = d.cascades;
+    s->maps = s->layers;
+    s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
+    s->select_extent = 1.0f;
+    gl = &ctx->gl;
+    skgl__st_begin(ctx, &st);
+    skgl__timer_init(ctx, &s->t_render);
+    skgl__timer_init(ctx, &s->t_mask);
+    skgl__timer_init(ctx, &s->t_analyze);
+    gl->GenTextures(1, &s->tex);
+    ctx->objects++;
+    skgl__st_unpack(ctx, &st);
+    skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->tex);
+    skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, s->layers, 0,
+                   SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+    /* one framebuffer per layer (RMSM: the pool, layer 0) */
+    for (i = 0; i < (d.technique == SKGL_RMSM ? 1 : s->layers) && r == SK_OK; i++) {
+        s->fbo[i] = skgl__framebuffer(ctx, &st, 0, 0, s->tex, i);
+        if (!s->fbo[i]) {
+            skgl__set_log(ctx, "skgl_shadow_create: shadow framebuffer incomplete", NULL);
+            r = SK_ERR_GL;
+        }
+    }
+    if (r == SK_OK && d.technique == SKGL_FERKO) {
+        /* the estimate's 2x1 texels and their read-back ring (the analysis
+           targets follow the G-buffer's size: skgl__ferko_targets) */
+        s->ferko_final = skgl__color_texture(ctx, &st, SKGL__RGBA32F, 2, 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+        s->ferko_final_fbo = skgl__framebuffer(ctx, &st, s->ferko_final, 1, 0, 0);
+        skgl__ring_create(ctx, &st, &s->ferko_ring, 8 * sizeof(float));
+        if (!s->ferko_final_fbo) {
+            skgl__set_log(ctx, "skgl_shadow_create: RGBA32F targets not renderable", NULL);
+            r = SK_ERR_GL;
+        }
+    }
+    if (r == SK_OK && d.technique == SKGL_RMSM) {
+        r = skgl__rmsm_create(ctx, &st, s);
+        if (r == SK_ERR_CAPACITY) skgl__set_log(ctx, "out of memory for the RMSM page tables", NULL);
+    }
+    skgl__st_end(ctx, &st);
+    if (r == SK_OK && gl->GetError() != 0) {
+        skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
+        r = SK_ERR_GL;
+    }
+    if (r != SK_OK) {
+        skgl_shadow_destroy(ctx, s);
+        return r;
+    }
+    s->stats.shadow_ms = s->stats.mask_ms = s->stats.analysis_ms = -1.0f;
+    *out = s;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
+{
+    int i;
+    if (!s) return;
+    if (ctx) {
+        skgl__delete_texture(ctx, &s->tex);
+        for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
+        skgl__ferko_free(ctx, s);
+        skgl__delete_texture(ctx, &s->ferko_final);
+        skgl__delete_framebuffer(ctx, &s->ferko_final_fbo);
+        skgl__ring_free(ctx, &s->ferko_ring);
+        skgl__rmsm_free(ctx, s);
+        skgl__timer_free(ctx, &s->t_render);
+        skgl__timer_free(ctx, &s->t_mask);
+        skgl__timer_free(ctx, &s->t_analyze);
+    }
+    SKGL_FREE(s->rmsm_req_cpu);
+    SKGL_FREE(s->rmsm_table_cpu);
+    SKGL_FREE(s->rmsm_table_new);
+    SKGL_FREE(s->rmsm_pages);
+    SKGL_FREE(s);
+}
+
+SKGLDEF skgl_shadow_desc skgl_shadow_get_desc(const skgl_shadow *s)
+{
+    skgl_shadow_desc d;
+    if (s) return s->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
+{
+    if (!s || layer < 0 || layer >= s->layers) return sk_mat4_identity();
+    return skgl__shift(&s->vp[layer], s->origin, skgl__zero3);
+}
+SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
+SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
+SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm_samples : 0; }
+SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap)
+{
+    int i;
+    if (!s) return 0;
+    for (i = 0; out && i < s->rmsm_npages && i < cap; i++) out[i] = s->rmsm_pages[i];
+    return s->rmsm_npages;
+}
+
+/* ---- 6.2 fits: the layers' crops and warps ---------------------------- */
+// >>fits
+/* near and far of a perspective (or orthographic) GL projection */
+static int skgl__near_far(const sk_mat4 *p, float *zn, float *zf)
+{
+    double a = p->m[10], b = p->m[14], n, f;
+    if (p->m[11] == -1.0f && p->m[15] == 0.0f) { n = b / (a - 1.0); f = b / (a + 1.0); }
+    else if (p->m[11] == 0.0f && p->m[15] == 1.0f && a != 0.0) { n = (b + 1.0) / a; f = (b - 1.0) / a; }
+    else return 0;
+    *zn = (float)n; *zf = (float)f;
+    return sk__finite(*zn) && sk__finite(*zf) && *zf > *zn && (p->m[11] == 0.0f || *zn > 0.0f);
+}
+
+/* The part of a view slice that can hold receivers: the slice clipped to
+   the scene bounds (its corners when the clip is empty), and its range of
+   eye depths. Returns the point count. */
+static int skgl__receiver_body(const sk_frustum *slice, const skgl_scene *scene, const sk_mat4 *cam_view,
+                               sk_vec3 *pts, float *dmin, float *dmax)
+{
+    int i, n = sk_clip_frustum_aabb(slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+    if (n <= 0) {
+        for (i = 0; i < 8; i++) pts[i] = slice->corners[i];
+        n = 8;
+    }
+    *dmin = SK__INF;
+    *dmax = -SK__INF;
+    for (i = 0; i < n; i++) {
+        float z = -sk__xform_affine(cam_view, pts[i]).z;
+        if (z < *dmin) *dmin = z;
+        if (z > *dmax) *dmax = z;
+    }
+    return n;
+}
+
+/* Light-space perspective shadow map of one slice (Wimmer et al. 2004, the
+   LiSPSM): the slice's receiver body, n_opt from the nearest
+   receiver depth of the slice. */
+static sk_result skgl__fit_lispsm(skgl_shadow *s, int layer, const skgl_camera *cam, const skgl_scene *scene,
+                                  sk_vec3 light_dir, const sk_frustum *slice, float z0)
+{
+    sk_vec3 body[SK_CLIP_MAX_POINTS];
+    sk_mat4 inv;
+    sk_lispsm_desc ld;
+    sk_lispsm_result lr;
+    float dmin, dmax;
+    sk_result r;
+    memset(&ld, 0, sizeof ld);
+    ld.body_count = skgl__receiver_body(slice, scene, &cam->view, body, &dmin, &dmax);
+    if (!sk_mat4_inverse(cam->view, &inv)) return SK_ERR_INVALID_ARG;
+    ld.eye = sk__v3(inv.m[12], inv.m[13], inv.m[14]);
+    ld.view_dir = sk__v3(-cam->view.m[2], -cam->view.m[6], -cam->view.m[10]);
+    ld.zn = dmin > z0 ? dmin : z0;
+    ld.light_dir = light_dir;
+    ld.body = body;
+    ld.casters = &scene->bounds;
+    r = sk_lispsm_matrices(&ld, &lr);
+    if (r != SK_OK) return r;
+    s->vp[layer] = lr.light_view_proj;
+    s->stats.warp_n[layer] = lr.n;
+    s->stats.warped[layer] = lr.warped;
+    return SK_OK;
+}
+
+/* Perspective shadow map (Stamminger & Drettakis 2002) over the
+   view range that holds receivers: the camera's near plane moved up to the
+   nearest receiver (PSM's resolution depends on the near/far ratio). A light
+   behind the viewer reverses the depth order (sk_psm_result.compare): the
+   map's z is negated so the depth test and comparison stay LESS/LEQUAL. */
+static sk_result skgl__fit_psm(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene,
+                               sk_vec3 light_dir, const sk_frustum *view, float zn, float cam_zf, float zf)
+{
+    sk_vec3 body[SK_CLIP_MAX_POINTS];
+    sk_frustum slice;
+    sk_psm_desc pd;
+    sk_psm_result pr;
+    float dmin, dmax;
+    sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
+    if (r != SK_OK) return r;
+    memset(&pd, 0, sizeof pd);
+    pd.body_count = skgl__receiver_body(&slice, scene, &cam->view, body, &dmin, &dmax);
+    pd.body = body;
+    pd.cam_view = cam->view;
+    pd.fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5]));
+    pd.aspect = cam->proj.m[5] / cam->proj.m[0];
+    pd.zn = dmin > zn ? dmin * 0.999f : zn;
+    pd.zf = dmax < zf ? dmax * 1.001f : zf;
+    if (!(pd.zf > pd.zn)) pd.zf = pd.zn * 1.001f;
+    pd.light_dir = light_dir;
+    pd.casters = &scene->bounds;
+    pd.caster_count = 1;
+    if (s->desc.psm_slide > 0.0f) pd.extra_slide = s->desc.psm_slide * (float)SK_SQRT((double)pd.zn * pd.zf);
+    r = sk_psm_matrices(&pd, &pr);
+    if (r != SK_OK) return r;
+    if (pr.compare == SK_DEPTH_GREATER) {
+        int c;
+        for (c = 0; c < 4; c++) pr.light_view_proj.m[c * 4 + 2] = -pr.light_view_proj.m[c * 4 + 2];
+    }
+    s->vp[0] = pr.light_view_proj;
+    s->stats.splits[0] = pd.zn;
+    s->stats.splits[1] = pd.zf;
+    s->stats.warped[0] = !pr.orthographic;
+    s->stats.depth_reversed = pr.compare == SK_DEPTH_GREATER;
+    s->stats.psm_slide = pr.slide;
+    return SK_OK;
+}
+
+/* Light Space Partitioned Shadow Maps (Tang et al. 2017): the trapezoid around the
+   refined view frustum on the light plane, its partitions (Eq. 1), one
+   orthographic crop each, every crop widened by a margin of texels so the
+   PCF kernel and the normal offset of a point near a partition's edge stay
+   inside that partition's map. The shader picks the partition whose rect
+   holds the point (|NDC| <= select_extent). View direction along the light
+   (no trapezoid axis): the region's documented fallback, one focused map. */
+static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene,
+                                 sk_vec3 light_dir, const sk_frustum *view, float zn, float cam_zf, float zf)
+{
+    sk_frustum slice;
+    sk_lspsm_region reg;
+    sk_vec3 view_dir = sk__v3(-cam->view.m[2], -cam->view.m[6], -cam->view.m[10]);
+    float margin = (float)(s->desc.pcf_radius + 3) + (s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    float k = 1.0f - 2.0f * margin / (float)s->desc.resolution;
+    int i, n;
+    sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
+    if (r != SK_OK) return r;
+    s->stats.splits[0] = zn;
+    s->stats.splits[1] = zf;
+    if (!(k > 0.5f)) k = 0.5f;
+    r = sk_lspsm_region_extract(&slice, view_dir, scene->bounds, &scene->bounds, light_dir, &reg);
+    if (r == SK_ERR_DEGENERATE) {
+        /* the view holds no receiver: one map over the slice, nothing to see */
+        sk_mat4 lview = sk_light_view_directional(light_dir), proj;
+        r = sk_fit_ortho(slice.corners, 8, lview, &scene->bounds, &proj);
+        if (r != SK_OK) return r;
+        s->vp[0] = sk_mat4_mul(proj, lview);
+        s->maps = 1;
+        s->stats.lspsm_fallback = 1;
+        s->select_extent = 1.0f;
+        return SK_OK;
+    }
+    if (r != SK_OK) return r;
+    n = sk_lspsm_crops(&reg, &s->desc.lspsm, s->vp, NULL, s->layers);
+    if (n <= 0) return n < 0 ? (sk_result)-n : SK_ERR_DEGENERATE;
+    for (i = 0; i < n; i++) {
+        int c;
+        for (c = 0; c < 4; c++) { s->vp[i].m[c * 4] *= k; s->vp[i].m[c * 4 + 1] *= k; }
+    }
+    s->maps = n;
+    s->stats.lspsm_fallback = reg.fallback;
+    s->select_extent = k;
+    return SK_OK;
+}
+
+/* Crops of every layer: the PSSM practical split scheme (Romanick's VGP353 notes) over
+   the part of the view that can hold receivers; per layer a focused crop of
+   the slice clipped to the scene, or a texel-snapped stable crop. */
+static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene, sk_vec3 light_dir)
+{
+    const skgl_shadow_desc *d = &s->desc;
+    sk_mat4 cam_vp = sk_mat4_mul(cam->proj, cam->view), lview = sk_light_view_directional(light_dir);
+    sk_frustum view = sk_frustum_from_matrix(cam_vp);
+    float zn, cam_zf, zf, far_scene = 0.0f;
+    int i;
+    if (!skgl__near_far(&cam->proj, &zn, &cam_zf) || sk__frustum_invalid(&view)) return SK_ERR_INVALID_ARG;
+    /* shadows end at max_distance, and (focused mode only) where the scene
+       ends: stable mode needs a range that does not depend on where the
+       camera is, or the cascade spheres and their texels would change size */
+    zf = cam_zf;
+    if (!d->stable) {
+        for (i = 0; i < 8; i++) {
+            float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
+            if (depth > far_scene) far_scene = depth;
+        }
+        if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
+    }
+    if (d->max_distance > zn && d->max_distance < zf) zf = d->max_distance;
+    if (s->layers == 1) { s->stats.splits[0] = zn; s->stats.splits[1] = zf; }
+    else if (sk_pssm_splits(zn, zf, s->layers, d->lambda, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
+    s->stats.depth_reversed = 0;
+    s->stats.psm_slide = 0.0f;
+    s->maps = s->layers;
+    s->stats.lspsm_fallback = 0;
+    for (i = 0; i < s->layers; i++) { s->stats.warp_n[i] = SK__INF; s->stats.warped[i] = 0; }
+    s->view_w = s->view_h = d->resolution;
+    if (d->technique == SKGL_RMSM) { s->maps = 1; return SK_OK; }   /* pages: skgl__render_rmsm */
+    if (d->technique == SKGL_PSM) return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
+    if (d->technique == SKGL_LSPSM) return skgl__fit_lspsm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
+    if (d->technique == SKGL_FERKO && s->ferko_state != 0) {
+        skgl__fit_ferko(s, cam_zf > zf ? cam_zf : zf);
+        return SK_OK;
+    }
+    for (i = 0; i < s->layers; i++) {
+        sk_frustum slice;
+        sk_mat4 proj;
+        /* layer i is also sampled in the blend region at the end of layer
+           i-1, [s_i - band, s_i): its crop covers that region too, or the
+           blend would fade toward "outside the map" (lit) */
+        float z0 = i > 0 ? s->stats.splits[i] - d->blend_band * (s->stats.splits[i] - s->stats.splits[i - 1])
+                         : s->stats.splits[0];
+        sk_result r = sk_frustum_slice(&view, zn, cam_zf, z0, s->stats.splits[i + 1], &slice);
+        if (r != SK_OK) return r;
+        if (d->technique == SKGL_LISPSM) {
+            r = skgl__fit_lispsm(s, i, cam, scene, light_dir, &slice, z0);
+            if (r != SK_OK) return r;
+            continue;
+        }
+        if (d->stable) {
+            /* radius from the camera's parameters only: bitwise the same
+               wherever the camera goes (fovy and aspect of a GL perspective) */
+            float fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5])), aspect = cam->proj.m[5] / cam->proj.m[0];
+            sk_sphere sph = sk_cascade_sphere(cam->view, fovy, aspect, z0, s->stats.splits[i + 1]);
+            if (!(sph.r > 0.0f)) sph = sk_frustum_bounding_sphere(&slice);
+            /* the texel grid fixed in world light space, not at the origin */
+            r = sk_stable_crop_origin(sph, lview, d->resolution, &scene->bounds,
+                                      s->origin[0] == 0.0 && s->origin[1] == 0.0 && s->origin[2] == 0.0 ? NULL
+                                                                                                          : s->origin,
+                                      &proj);
+        } else {
+            sk_vec3 pts[SK_CLIP_MAX_POINTS];
+            int n = sk_clip_frustum_aabb(&slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+            r = n > 0 ? sk_fit_ortho(pts, n, lview, &scene->bounds, &proj)
+                      : sk_fit_ortho(slice.corners, 8, lview, &scene->bounds, &proj);
+        }
+        if (r != SK_OK) return r;
+        s->vp[i] = sk_mat4_mul(proj, lview);
+    }
+    return SK_OK;
+}
+
+/* ---- 6.3 FERKO: resolution estimation on the GPU (Ferko 2013) --------- */
+// >>ferko
+static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
+{
+    int i;
+    for (i = 0; i < 3; i++) {
+        skgl__delete_texture(ctx, &s->ferko_tex[i]);
+        skgl__delete_framebuffer(ctx, &s->ferko_fbo[i]);
+    }
+    s->ferko_w = s->ferko_h = s->ferko_levels = 0;
+}
+
+/* The analysis targets for a w x h G-buffer: level 0, the analysis, at 1/4
+   (a texel per 4x4 pixels), each later level 1/16 of the one before (a
+   texel per 16x16), until one of at most 32 x 32 texels is left for the
+   final pass (1280 x 720: 320 x 180, 20 x 12, then the final). Each level
+   is a 2-layer RGBA32F texture (bounds, patch) with its framebuffer;
+   levels from 3 on (G-buffers past 16384 pixels a side) take turns in the
+   textures of levels 1 and 2, which are larger. 1 when every framebuffer
+   is complete. */
+static int skgl__ferko_targets(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int w, int h)
+{
+    int k, lw = (w + 3) / 4, lh = (h + 3) / 4, ok = 1;
+    if (s->ferko_w == w && s->ferko_h == h) return 1;
+    skgl__ferko_free(ctx, s);
+    for (k = 0; k < SKGL__FERKO_LEVELS; k++) {
+        s->ferko_lw[k] = lw;
+        s->ferko_lh[k] = lh;
+        if (k < 3) {
+            s->ferko_tex[k] = skgl__color_texture(ctx, st, SKGL__RGBA32F, lw, lh, 2, SKGL__RGBA, SKGL__FLOAT, NULL);
+            s->ferko_fbo[k] = skgl__framebuffer(ctx, st, s->ferko_tex[k], 2, 0, 0);
+            ok &= s->ferko_fbo[k] != 0;
+        }
+        if (lw <= 32 && lh <= 32) break;
+        lw = (lw + 15) / 16;
+        lh = (lh + 15) / 16;
+    }
+    s->ferko_levels = k < SKGL__FERKO_LEVELS ? k + 1 : SKGL__FERKO_LEVELS;
+    s->ferko_w = w;
+    s->ferko_h = h;
+    return ok;
+}
+
+/* level k's texture and framebuffer */
+static int skgl__ferko_slot(int k) { return k < 3 ? k : 1 + (k - 1) % 2; }
+
+/* The reduced texel pair, (min x, min y, -max x, -max y) and (min patch
+   width, min patch height, any sample, any patch), to the estimate, with the
+   same rules as sk_estimate_resolution (samples: 1 when any, the GPU counts none). */
+static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate *e)
+{
+    double bw, bh, rw, rh;
+    float tw = v[4], th = v[5];
+    memset(e, 0, sizeof *e);
+    e->bounds.x0 = -1.0f; e->bounds.y0 = -1.0f; e->bounds.x1 = 1.0f; e->bounds.y1 = 1.0f;
+    e->crop = sk_mat4_identity();
+    if (!(v[6] < 0.0f) || !sk__finite(v[0]) || !sk__finite(v[1]) || !sk__finite(v[2]) || !sk__finite(v[3])) return;
+    e->bounds.x0 = v[0]; e->bounds.y0 = v[1]; e->bounds.x1 = -v[2]; e->bounds.y1 = -v[3];
+    bw = (double)e->bounds.x1 - e->bounds.x0;
+    bh = (double)e->bounds.y1 - e->bounds.y0;
+    if (!(v[7] < 0.0f)) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
+    rw = tw > 0.0f ? bw / tw : (double)max_res;
+    rh = th > 0.0f ? bh / th : (double)max_res;
+    e->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
+    e->height = !(rh < max_res) ? max_res : rh < 1.0 ? 1 : (int)SK_CEIL(rh);
+    e->texel_w = tw;
+    e->texel_h = th;
+    e->samples = 1;
+    e->crop = sk_crop_matrix(e->bounds, -1.0f, 1.0f);
+}
+/* the map of the estimate: its crop widened by a margin of texels (the
+   normal offset and the PCF footprint of a sample at the crop's edge stay in
+   the rendered region), rendered into the texture's lower-left w x h texels;
+   the lookup matrix maps the crop onto that region */
+static void skgl__fit_ferko(skgl_shadow *s, float zf)
+{
+    const sk_res_estimate *e = &s->ferko_est;
+    int res = s->desc.resolution, w = e->width, h = e->height;
+    int margin = s->desc.pcf_radius + 2 + (int)SK_CEIL(s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    sk_mat4 m, t = sk_mat4_identity(), lvp = skgl__shift(&s->ferko_lvp, s->ferko_origin, s->origin);
+    sk_rect b = e->bounds;
+    if (e->samples > 0 && w > 0 && h > 0) {
+        float mx = margin * (b.x1 - b.x0) / (float)w, my = margin * (b.y1 - b.y0) / (float)h;
+        b.x0 -= mx; b.x1 += mx; b.y0 -= my; b.y1 += my;
+        w += 2 * margin;
+        h += 2 * margin;
+        m = sk_mat4_mul(sk_crop_matrix(b, -1.0f, 1.0f), lvp);
+    } else {
+        w = h = 1;                               /* nothing visible in the light */
+        m = lvp;
+    }
+    if (w > res) w = res;
+    if (h > res) h = res;
+    t.m[0] = (float)w / (float)res; t.m[12] = (float)w / (float)res - 1.0f;
+    t.m[5] = (float)h / (float)res; t.m[13] = (float)h / (float)res - 1.0f;
+    s->render_vp[0] = m;
+    s->vp[0] = sk_mat4_mul(t, m);
+    s->view_w = w;
+    s->view_h = h;
+    s->maps = 1;
+    s->stats.splits[1] = zf;
+    s->stats.estimate = *e;
+    s->stats.estimate_light = skgl__shift(&s->ferko_lvp, s->ferko_origin, skgl__zero3);
+}
+
+/* the uncropped light frustum: an orthographic map around the scene */
+static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, sk_mat4 *out)
+{
+    sk_vec3 c[8];
+    sk_mat4 lview = sk_light_view_directional(light_dir), proj;
+    int i;
+    sk_result r;
+    for (i = 0; i < 8; i++) c[i] = sk__aabb_corner(&scene->bounds, i);
+    r = sk_fit_ortho(c, 8, lview, &scene->bounds, &proj);
+    if (r == SK_OK) *out = sk_mat4_mul(proj, lview);
+    return r;
+}
+
+
+/* FERKO analysis: the 4x4-block pass, the 16x16 reductions, the final 2x1
+   texels; read back at once (sync_readback, and the first analysis) or
+   into the ring, the estimate of an earlier frame taken when it lands */
+static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
+                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    sk_mat4 ndc_to_light;
+    float world_w[4], v[8];
+    int k, sync = s->desc.sync_readback || s->ferko_state == 0, slot;
+    if (!skgl__ferko_targets(ctx, st, s, w, h)) {
+        skgl__ferko_free(ctx, s);
+        skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
+        return SK_ERR_GL;
+    }
+    /* an earlier frame's estimate, if it has landed (the last one kept if not) */
+    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko_ring, v)) >= 0) {
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
+        s->ferko_lvp = s->ferko_ring.lvp[slot];
+        memcpy(s->ferko_origin, s->ferko_ring.origin[slot], sizeof s->ferko_origin);
+        s->ferko_state = 1;
+    }
+    skgl__timer_begin(ctx, &s->t_analyze);
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    /* level 0: 4x4 blocks of the G-buffer */
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[0]);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[0], s->ferko_lh[0]);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
+    skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    ndc_to_light = sk_mat4_mul(*lvp, *inv);
+    world_w[0] = inv->m[3]; world_w[1] = inv->m[7]; world_w[2] = inv->m[11]; world_w[3] = inv->m[15];
+    gl->UniformMatrix4fv(ctx->ferko_u_ndc_to_light, 1, 0, ndc_to_light.m);
+    gl->Uniform4fv(ctx->ferko_u_world_w, 1, world_w);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    /* 16x16 MIN reductions (the source level on unit 1's 2D-array target),
+       then the final pass over what is left into the 2x1 texels */
+    for (k = 1; k <= s->ferko_levels; k++) {
+        int fin = k == s->ferko_levels, src = k - 1;
+        int *cache = fin ? ctx->final_src : ctx->reduce_src;
+        skgl__int loc = fin ? ctx->final_u_src_size : ctx->reduce_u_src_size;
+        if (fin) {
+            skgl__st_framebuffer(ctx, st, s->ferko_final_fbo);   /* read back from it too */
+            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, 2, 1);
+        } else {
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[skgl__ferko_slot(k)]);
+            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[k], s->ferko_lh[k]);
+        }
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)(fin ? ctx->final_prog : ctx->reduce_prog));
+        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D_ARRAY), (skgl__int)s->ferko_tex[skgl__ferko_slot(src)]);
+        if (cache[0] != s->ferko_lw[src] || cache[1] != s->ferko_lh[src]) {
+            cache[0] = s->ferko_lw[src];
+            cache[1] = s->ferko_lh[src];
+            if (loc >= 0) gl->Uniform2i(loc, cache[0], cache[1]);
+        }
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    if (sync) {
+        /* this frame's estimate: the read-back waits for the GPU */
+        skgl__st_pack(ctx, st, 0, 1);
+        gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, v);
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
+        s->ferko_lvp = *lvp;
+        memcpy(s->ferko_origin, o, sizeof s->ferko_origin);
+        s->ferko_state = 1;
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko_ring)) >= 0) {
+        /* with a pixel pack buffer bound, glReadPixels' pointer is an
+           offset into it, and the call returns without waiting */
+        skgl__st_pack(ctx, st, s->ferko_ring.buf[slot], 1);
+        gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
+        s->ferko_ring.lvp[slot] = *lvp;
+        memcpy(s->ferko_ring.origin[slot], o, sizeof s->ferko_ring.origin[slot]);
+        skgl__ring_fence(ctx, &s->ferko_ring, slot);
+    }
+    skgl__timer_end(ctx, &s->t_analyze);
+    s->stats.analysis_ms = s->t_analyze.ms;
+    return SK_OK;
+}
+
+/* ---- 6.4 RMSM: virtual shadow map pages (Romanick's VGP353 notes) ---- */
+// >>rmsm
+/* the request atlas (R8) and the page table (RGBA8): every level's page grid
+   side by side, level l (n_l = pages0 >> l pages a side) from column
+   2 pages0 - 2 n_l; the table starts all 0 (nothing resident) */
+static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
+    size_t bytes;
+    s->pages0 = s->desc.resolution / s->desc.rmsm_page_size;
+    for (s->levels = 1; (1 << (s->levels - 1)) < s->pages0; s->levels++) {}
+    s->atlas_w = 2 * s->pages0 - 1;
+    s->atlas_h = s->pages0;
+    bytes = (size_t)s->atlas_w * (size_t)s->atlas_h;
+    s->rmsm_req_cpu = (unsigned char *)SKGL_MALLOC(bytes);
+    s->rmsm_table_cpu = (unsigned char *)SKGL_MALLOC(4 * bytes);
+    s->rmsm_table_new = (unsigned char *)SKGL_MALLOC(4 * bytes);
+    s->rmsm_pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
+    if (!s->rmsm_req_cpu || !s->rmsm_table_cpu || !s->rmsm_table_new || !s->rmsm_pages) return SK_ERR_CAPACITY;
+    memset(s->rmsm_table_cpu, 0, 4 * bytes);
+    s->rmsm_requests = skgl__color_texture(ctx, st, SKGL__R8, s->atlas_w, s->atlas_h, 1, SKGL__RED,
+                                           SKGL__UNSIGNED_BYTE, NULL);
+    s->rmsm_table = skgl__color_texture(ctx, st, SKGL__RGBA8, s->atlas_w, s->atlas_h, 1, SKGL__RGBA,
+                                        SKGL__UNSIGNED_BYTE, s->rmsm_table_cpu);
+    s->rmsm_requests_fbo = skgl__framebuffer(ctx, st, s->rmsm_requests, 1, 0, 0);
+    skgl__ring_create(ctx, st, &s->rmsm_ring, bytes);
+    if (!s->rmsm_requests_fbo) {
+        skgl__set_log(ctx, "skgl_shadow_create: the RMSM request atlas (R8) is not renderable", NULL);
+        return SK_ERR_GL;
+    }
+    return SK_OK;
+}
+
+static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
+{
+    skgl__delete_texture(ctx, &s->rmsm_samples);
+    skgl__delete_texture(ctx, &s->rmsm_requests);
+    skgl__delete_texture(ctx, &s->rmsm_table);
+    skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
+    skgl__delete_framebuffer(ctx, &s->rmsm_requests_fbo);
+    skgl__ring_free(ctx, &s->rmsm_ring);
+}
+
+/* texel index of page (level, px, py) in the request atlas and the page
+   table (level l's n_l pages a side from column 2 pages0 - 2 n_l) */
+static size_t skgl__atlas_index(const skgl_shadow *s, int level, int px, int py)
+{
+    int n = s->pages0 >> level;
+    return (size_t)py * (size_t)s->atlas_w + (size_t)(2 * s->pages0 - 2 * n + px);
+}
+
+/* The pages to render from the requests read back (a nonzero texel per
+   page some pixel asks for, levels clamped to [0, levels - 1] as
+   sk_rmsm_page_requests clamps them). When they do not fit in the pool
+   (with the coarsest page, always resident), the finest level rises: its
+   requests fold into their parents one level up (page (px, py) of level l
+   is inside (px/2, py/2) of level l + 1, the page a sample clamped to
+   l + 1 would have asked for), until they fit. The list is sorted by
+   (level, py, px), as sk_rmsm_page_requests sorts. req is folded in place. */
+static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
+{
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count = 0, l, px, py;
+    int top = s->levels - 1;
+    for (l = 0; l < s->levels; l++)
+        for (py = 0; py < (s->pages0 >> l); py++)
+            for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
+    s->stats.pages_requested = count;
+    while (count + 1 > cap && min_level < top) {
+        int n = s->pages0 >> min_level;
+        count = 0;
+        for (py = 0; py < n; py++)
+            for (px = 0; px < n; px++)
+                if (req[skgl__atlas_index(s, min_level, px, py)])
+                    req[skgl__atlas_index(s, min_level + 1, px / 2, py / 2)] = 1;
+        min_level++;
+        for (l = min_level; l < s->levels; l++)
+            for (py = 0; py < (s->pages0 >> l); py++)
+                for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
+    }
+    s->rmsm_npages = 0;
+    for (l = min_level; l < s->levels; l++)
+        for (py = 0; py < (s->pages0 >> l); py++)
+            for (px = 0; px < (s->pages0 >> l); px++)
+                if ((req[skgl__atlas_index(s, l, px, py)] != 0 || l == top) && s->rmsm_npages < cap) {
+                    s->rmsm_pages[s->rmsm_npages].level = l;
+                    s->rmsm_pages[s->rmsm_npages].px = px;
+                    s->rmsm_pages[s->rmsm_npages].py = py;
+                    s->rmsm_npages++;
+                }
+    s->stats.rmsm_min_level = min_level;
+}
+
+/* The page table of the resident pages (slot i at (i % pool, i / pool)),
+   and only its rows that differ from the table GL has uploaded: one
+   glTexSubImage2D over the first to the last changed row, none when the
+   pages are those of the last frame. Bound on unit 0 to upload. */
+static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    size_t row = (size_t)4 * (size_t)s->atlas_w;
+    int i, pool = s->desc.rmsm_pool_pages, r0 = -1, r1 = -1, y;
+    memset(s->rmsm_table_new, 0, row * (size_t)s->atlas_h);
+    for (i = 0; i < s->rmsm_npages; i++) {
+        unsigned char *e = s->rmsm_table_new + 4 * skgl__atlas_index(s, s->rmsm_pages[i].level, s->rmsm_pages[i].px,
+                                                                    s->rmsm_pages[i].py);
+        e[0] = (unsigned char)(i % pool);
+        e[1] = (unsigned char)(i / pool);
+        e[3] = 255;
+    }
+    for (y = 0; y < s->atlas_h; y++)
+        if (memcmp(s->rmsm_table_new + row * (size_t)y, s->rmsm_table_cpu + row * (size_t)y, row) != 0) {
+            if (r0 < 0) r0 = y;
+            r1 = y;
+        }
+    if (r0 < 0) return;
+    memcpy(s->rmsm_table_cpu + row * (size_t)r0, s->rmsm_table_new + row * (size_t)r0, row * (size_t)(r1 - r0 + 1));
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->rmsm_table);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
+    ctx->gl.TexSubImage2D(SKGL__TEXTURE_2D, 0, 0, r0, s->atlas_w, r1 - r0 + 1, SKGL__RGBA, SKGL__UNSIGNED_BYTE,
+                          s->rmsm_table_cpu + row * (size_t)r0);
+}
+
+/* RMSM analysis: per-pixel samples, page requests scattered on the GPU into
+   the request atlas, read back; the pages and the page table from the
+   requests of the last frame (ring) or, with sync_readback and on the
+   first analysis, of this one (a read-back that waits for the GPU) */
+static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
+                                    const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    int sync = s->desc.sync_readback || !s->rmsm_analyzed, slot;
+    if (s->rmsm_w != w || s->rmsm_h != h) {
+        skgl__delete_texture(ctx, &s->rmsm_samples);
+        skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
+        s->rmsm_samples = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+        s->rmsm_samples_fbo = skgl__framebuffer(ctx, st, s->rmsm_samples, 1, 0, 0);
+        s->rmsm_w = s->rmsm_samples_fbo ? w : 0;
+        s->rmsm_h = s->rmsm_samples_fbo ? h : 0;
+        if (!s->rmsm_samples_fbo) {
+            skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F target not renderable", NULL);
+            return SK_ERR_GL;
+        }
+    }
+    /* last frame's requests, if they have landed */
+    if (!sync && (slot = skgl__ring_poll(ctx, st, &s->rmsm_ring, s->rmsm_req_cpu)) >= 0) {
+        skgl__rmsm_pages(s, s->rmsm_req_cpu);
+        s->rmsm_lvp = s->rmsm_ring.lvp[slot];
+        memcpy(s->rmsm_origin, s->rmsm_ring.origin[slot], sizeof s->rmsm_origin);
+        skgl__rmsm_table(ctx, st, s);
+    }
+    skgl__timer_begin(ctx, &s->t_analyze);
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    /* the samples: one per pixel */
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm_samples_fbo);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
+    skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    gl->UniformMatrix4fv(ctx->rmsm_u_inv_view_proj, 1, 0, inv->m);
+    gl->UniformMatrix4fv(ctx->rmsm_u_light, 1, 0, lvp->m);
+    if (ctx->rmsm_vres != (float)s->desc.resolution) {
+        ctx->rmsm_vres = (float)s->desc.resolution;
+        skgl__u1f(gl, ctx->rmsm_u_virtual_res, ctx->rmsm_vres);
+    }
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    /* the requests: a point per sample onto its page's texel */
+    skgl__st_framebuffer(ctx, st, s->rmsm_requests_fbo);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->atlas_w, s->atlas_h);
+    gl->ClearBufferfv(SKGL__COLOR, 0, zero);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
+    if (ctx->request_pages0 != s->pages0 || ctx->request_levels != s->levels) {
+        ctx->request_pages0 = s->pages0;
+        ctx->request_levels = s->levels;
+        skgl__u1i(gl, ctx->request_u_pages0, s->pages0);
+        skgl__u1i(gl, ctx->request_u_levels, s->levels);
+    }
+    skgl__st_texture(ctx, st, 1, SKGL__T_2D, s->rmsm_samples, ctx->point_sampler);
+    /* the vertex shader's gl_PointSize, not the glPointSize the caller set */
+    skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
+    gl->DrawArrays(SKGL__POINTS, 0, w * h);
+    if (sync) {
+        /* this frame's requests: the read-back waits for the GPU. A byte
+           a texel (GL_RED of the R8 atlas): rows of atlas_w bytes, hence
+           the pack alignment of 1 (the default 4 would pad them) */
+        skgl__st_pack(ctx, st, 0, s->atlas_h);
+        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm_req_cpu);
+        skgl__rmsm_pages(s, s->rmsm_req_cpu);
+        s->rmsm_lvp = *lvp;
+        memcpy(s->rmsm_origin, o, sizeof s->rmsm_origin);
+        skgl__rmsm_table(ctx, st, s);
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm_ring)) >= 0) {
+        skgl__st_pack(ctx, st, s->rmsm_ring.buf[slot], s->atlas_h);
+        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
+        s->rmsm_ring.lvp[slot] = *lvp;
+        memcpy(s->rmsm_ring.origin[slot], o, sizeof s->rmsm_ring.origin[slot]);
+        skgl__ring_fence(ctx, &s->rmsm_ring, slot);
+    }
+    s->rmsm_analyzed = 1;
+    skgl__timer_end(ctx, &s->t_analyze);
+    s->stats.analysis_ms = s->t_analyze.ms;
+    return SK_OK;
+}
+
+/* RMSM: every resident page into its pool slot, with a border of one
+   texel: level l's page (px, py) covers level texels [px P - 1, (px+1) P + 1)
+   of the virtual map at V / 2^l, crop of the virtual map's light frustum */
+static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir)
+{
+    static const float one = 1.0f;
+    skgl__api *gl = &ctx->gl;
+    skgl__st st;
+    int i, P = s->desc.rmsm_page_size, slot = P + 2, pool = s->desc.rmsm_pool_pages;
+    sk_result r = SK_OK, rc;
+    skgl__st_begin(ctx, &st);
+    if (!s->rmsm_analyzed) {
+        /* no analysis: the coarsest page alone */
+        r = skgl__ferko_light(scene, light_dir, &s->rmsm_lvp);
+        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
+        memcpy(s->rmsm_origin, s->origin, sizeof s->rmsm_origin);
+        s->rmsm_pages[0].level = s->levels - 1;
+        s->rmsm_pages[0].px = s->rmsm_pages[0].py = 0;
+        s->rmsm_npages = 1;
+        s->stats.pages_requested = 0;
+        s->stats.rmsm_min_level = 0;
+        skgl__rmsm_table(ctx, &st, s);
+    }
+    s->light_dir = sk__normalize(light_dir);
+    s->vp[0] = skgl__shift(&s->rmsm_lvp, s->rmsm_origin, s->origin);
+    s->maps = 1;
+    skgl__st_save(ctx, &st, SKGL__S_VAO);
+    skgl__timer_begin(ctx, &s->t_render);
+    skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[0]);
+    skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+    skgl__model_begin(ctx, s->origin);
+    s->stats.passes = 0;
+    s->stats.texels = 0.0;
+    for (i = 0; i < s->rmsm_npages; i++) {
+        const sk_page *pg = &s->rmsm_pages[i];
+        double lres = (double)(s->desc.resolution >> pg->level);
+        sk_rect rc_;
+        sk_mat4 vp;
+        skgl_draw_info info;
+        int x = (i % pool) * slot, y = (i / pool) * slot;
+        rc_.x0 = (float)(2.0 * (pg->px * P - 1) / lres - 1.0);
+        rc_.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
+        rc_.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
+        rc_.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
+        vp = sk_mat4_mul(sk_crop_matrix(rc_, -1.0f, 1.0f), s->vp[0]);
+        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, x, y, slot, slot);
+        skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, x, y, slot, slot);
+        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_DIRECTIONAL;
+        info.index = i;
+        info.view_proj = skgl__shift(&vp, s->origin, skgl__zero3);   /* world space for the callback */
+        info.frustum = sk_frustum_from_matrix(info.view_proj);
+        info.program = ctx->depth_prog;
+        scene->draw(scene->user, &info);
+        rc = skgl__after_draw(ctx, &st);
+        if (rc != SK_OK) r = rc;
+        s->stats.passes++;
+        s->stats.texels += (double)slot * slot;
+    }
+    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
+    skgl__timer_end(ctx, &s->t_render);
+    s->stats.shadow_ms = s->t_render.ms;
+    s->stats.maps = 1;
+    s->stats.resolution = s->desc.resolution;
+    s->stats.map_width = s->stats.map_height = s->tex_size;
+    s->stats.pages_rendered = s->rmsm_npages;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
+}
+
+/* ---- 6.5 analyze and render ------------------------------------------- */
+// >>render
+SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                      const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex)
+{
+    skgl__st st;
+    sk_mat4 inv, lvp;
+    int w = 0, h = 0;
+    double o[3];
+    skgl_camera rc;
+    skgl_scene rs;
+    sk_result r;
+    const char *why;
+    const char *fn = "skgl_shadow_analyze";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    if (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
+                          fn, (int)s->desc.technique);
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 0));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
+    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
+    /* positions and the light frustum relative to the camera's origin */
+    skgl__origin(&cam->view, o);
+    rc = skgl__camera_rel(cam, o);
+    rs = skgl__scene_rel(scene, o);
+    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    r = skgl__ferko_light(&rs, light_dir, &lvp);
+    if (r != SK_OK) return r;
+    skgl__st_begin(ctx, &st);
+    why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
+    if (why) {
+        skgl__st_end(ctx, &st);
+        skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
+        return SK_ERR_INVALID_ARG;
+    }
+    if (s->desc.technique == SKGL_RMSM) r = skgl__analyze_rmsm(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    else r = skgl__analyze_ferko(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
+}
+
+SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                     const skgl_scene *scene, sk_vec3 light_dir)
+{
+    static const float one = 1.0f;
+    skgl__api *gl;
+    skgl__st st;
+    sk_result r, rc;
+    int i, res;
+    double o[3], was[3];
+    skgl_camera rcam;
+    skgl_scene rs;
+    const char *fn = "skgl_shadow_render";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
+    /* the maps are fitted and rendered relative to the camera's origin */
+    skgl__origin(&cam->view, o);
+    rcam = skgl__camera_rel(cam, o);
+    rs = skgl__scene_rel(scene, o);
+    memcpy(was, s->origin, sizeof was);
+    memcpy(s->origin, o, sizeof o);
+    r = skgl__fit_layers(s, &rcam, &rs, light_dir);
+    if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
+    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, &rs, light_dir);
+    if (s->desc.technique != SKGL_FERKO || s->ferko_state == 0)
+        for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
+    s->light_dir = sk__normalize(light_dir);
+    gl = &ctx->gl;
+    res = s->desc.resolution;
+    skgl__st_begin(ctx, &st);
+    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
+    skgl__timer_begin(ctx, &s->t_render);
+    skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
+    /* a map smaller than its texture (FERKO): clear and draw only its
+       region, plus one texel for the filter's footprint at the edge */
+    if (s->view_w < res || s->view_h < res) {
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+        skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, s->view_w < res ? s->view_w + 1 : res,
+                      s->view_h < res ? s->view_h + 1 : res);
+    } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+    skgl__model_begin(ctx, o);
+    s->stats.passes = 0;
+    s->stats.texels = 0.0;
+    for (i = 0; i < s->maps; i++) {
+        skgl_draw_info info;
+        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
+        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->render_vp[i].m);
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_DIRECTIONAL;
+        info.index = i;
+        info.view_proj = skgl__shift(&s->render_vp[i], o, skgl__zero3);   /* world space for the callback */
+        info.frustum = sk_frustum_from_matrix(info.view_proj);
+        info.program = ctx->depth_prog;
+        scene->draw(scene->user, &info);
+        rc = skgl__after_draw(ctx, &st);
+        if (rc != SK_OK) r = rc;
+        s->stats.passes++;
+        s->stats.texels += (double)s->view_w * s->view_h;
+    }
+    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
+    skgl__timer_end(ctx, &s->t_render);
+    s->stats.shadow_ms = s->t_render.ms;
+    s->stats.maps = s->maps;
+    s->stats.resolution = res;
+    s->stats.map_width = s->view_w;
+    s->stats.map_height = s->view_h;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
+}
+
+/* The directional snippet's uniforms on the current program (entry e):
+   the light's constants when the program holds another light's (or none),
+   the values that seldom change when they did, the per-frame ones always.
+   unit, table_unit: the units of the map and of the RMSM page table;
+   origin: the world point the program's positions are relative to. */
+/* ---- 6.6 bind: the snippet's uniforms in a forward shader ------------- */
+// >>bind
+static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__progent *e, int unit,
+                                  int table_unit, const double origin[3])
+{
+    const skgl__api *gl = &ctx->gl;
+    const skgl__int *L = e->loc;
+    sk_mat4 vp[SKGL_MAX_CASCADES];
+    float ext[2];
+    int i;
+    if (e->owner != s->id || e->unit != unit) {
+        /* the page table's sampler is set whatever the technique: two
+           samplers of different types must never share a unit */
+        skgl__u1i(gl, L[SKGL__L_MAP], unit);
+        skgl__u1i(gl, L[SKGL__L_TABLE], table_unit);
+        skgl__u1i(gl, L[SKGL__L_RMSM], s->desc.technique == SKGL_RMSM);
+        skgl__u1i(gl, L[SKGL__L_PAGES0], s->pages0);
+        skgl__u1i(gl, L[SKGL__L_LEVELS], s->levels);
+        skgl__u1i(gl, L[SKGL__L_PAGE], s->desc.rmsm_page_size);
+        skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], s->desc.technique == SKGL_LSPSM);
+        skgl__u1f(gl, L[SKGL__L_BLEND_BAND], s->desc.blend_band);
+        skgl__u1f(gl, L[SKGL__L_NORMAL_BIAS], s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+        skgl__u1i(gl, L[SKGL__L_BIAS_MODE], s->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
+        skgl__u1f(gl, L[SKGL__L_PLANE_BIAS], s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
+        skgl__u1i(gl, L[SKGL__L_PCF], s->desc.pcf_radius);
+        e->owner = s->id;
+        e->unit = unit;
+        e->sentinel_i = s->desc.rmsm_page_size;
+        e->layers = e->min_level = -1;
+        e->extent[0] = e->extent[1] = e->select = -1.0f;
+    }
+    if (e->layers != s->maps) { e->layers = s->maps; skgl__u1i(gl, L[SKGL__L_LAYERS], s->maps); }
+    if (e->min_level != s->stats.rmsm_min_level) {
+        e->min_level = s->stats.rmsm_min_level;
+        skgl__u1i(gl, L[SKGL__L_MIN_LEVEL], e->min_level);
+    }
+    /* FERKO draws into the lower-left view_w x view_h texels: beyond them
+       lie older maps' texels, not this frame's */
+    ext[0] = s->desc.technique == SKGL_FERKO ? (float)s->view_w / (float)s->desc.resolution : 1.0f;
+    ext[1] = s->desc.technique == SKGL_FERKO ? (float)s->view_h / (float)s->desc.resolution : 1.0f;
+    if (ext[0] != e->extent[0] || ext[1] != e->extent[1]) {
+        e->extent[0] = ext[0];
+        e->extent[1] = ext[1];
+        if (L[SKGL__L_MAP_EXTENT] >= 0) gl->Uniform2fv(L[SKGL__L_MAP_EXTENT], 1, ext);
+    }
+    if (e->select != s->select_extent) {
+        e->select = s->select_extent;
+        skgl__u1f(gl, L[SKGL__L_SELECT_EXTENT], s->select_extent);
+    }
+    /* per frame: the matrices, the split depths, the light's direction */
+    for (i = 0; i < s->maps && i < SKGL_MAX_CASCADES; i++) vp[i] = skgl__shift(&s->vp[i], s->origin, origin);
+    if (L[SKGL__L_LIGHT_VP] >= 0) gl->UniformMatrix4fv(L[SKGL__L_LIGHT_VP], s->maps, 0, vp[0].m);
+    if (L[SKGL__L_SPLITS] >= 0) gl->Uniform1fv(L[SKGL__L_SPLITS], s->maps + 1, s->stats.splits);
+    if (L[SKGL__L_LIGHT_DIR] >= 0) gl->Uniform3fv(L[SKGL__L_LIGHT_DIR], 1, &s->light_dir.x);
+}
+
+SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit)
+{
+    return skgl_shadow_bind_origin(ctx, s, program, unit, NULL);
+}
+
+/* the active unit the caller had (default mode; -1 in caller-owns mode,
+   where the bind leaves the last unit it used active) */
+static skgl__int skgl__bind_active(skgl_context *ctx)
+{
+    skgl__int active = -1;
+    if (!ctx->caller_owns) ctx->gl.GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
+    return active;
+}
+
+SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
+                                          const double origin[3])
+{
+    skgl__api *gl;
+    skgl__int active, last;
+    skgl__progent *e;
+    const char *fn = "skgl_shadow_bind";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
+    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, s->desc.technique == SKGL_RMSM ? 30 : 31));
+    if (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: origin = (%g %g %g): finite, under 1e30", fn, origin[0],
+                          origin[1], origin[2]);
+    e = skgl__user_program(ctx, program, SKGL__PK_SHADOW);
+    gl = &ctx->gl;
+    active = skgl__bind_active(ctx);
+    last = SKGL__TEXTURE0 + unit;
+    if (active != last) gl->ActiveTexture((skgl__enum)last);
+    gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
+    gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+    if (s->desc.technique == SKGL_RMSM) {
+        last = SKGL__TEXTURE0 + unit + 1;
+        gl->ActiveTexture((skgl__enum)last);
+        gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
+        gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
+    }
+    if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
+    skgl__shadow_uniforms(ctx, s, e, unit, unit + 1, origin ? origin : skgl__zero3);
+    return skgl__check(ctx, "skgl_shadow_bind");
+}
+
+/* ---- 6.7 the deferred mask ------------------------------------------- */
+// >>mask
+SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    skgl__st st;
+    int w = 0, h = 0;
+    sk_mat4 inv;
+    double o[3];
+    skgl_camera rc;
+    sk_result r;
+    const char *fn = "skgl_shadow_mask";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
+    /* positions reconstructed relative to this camera's origin */
+    skgl__origin(&cam->view, o);
+    rc = skgl__camera_rel(cam, o);
+    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    skgl__st_begin(ctx, &st);
+    skgl__timer_begin(ctx, &s->t_mask);
+    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask: mask_tex");
+    if (r == SK_OK) {
+        skgl__unitbind b[4];
+        int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm_table, 0);
+        skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
+        skgl__st_units(ctx, &st, b, n);
+        skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
+        skgl__shadow_uniforms(ctx, s, &ctx->mask_ent, 0, 3, o);
+        if (ctx->mask_ent.has_normals != (normal_tex != 0)) {
+            ctx->mask_ent.has_normals = normal_tex != 0;
+            skgl__u1i(&ctx->gl, ctx->mask_u_has_normals, normal_tex != 0);
+        }
+        skgl__mask_camera(ctx, ctx->mask_u_camera, &inv, &rc.view);
+        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    skgl__timer_end(ctx, &s->t_mask);
+    s->stats.mask_ms = s->t_mask.ms;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_mask");
+}
+
+
+/* ---- 7. Point lights: cube shadow maps and VSDCT (King & Newhall 2004) --- */
+// >>point
+#define SKGL__MAX_TEXTURE_SIZE 0x0D33
+#define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
+
+struct skgl_point {
+    skgl_point_desc desc;
+    unsigned id;                   /* per context, never reused: whose constants a program holds */
+    skgl__uint tex;                /* cube map of depth (mip chain with .select_resolution) or the 2D atlas */
+    skgl__uint indirection;        /* VSDCT: RG16 indirection cube map */
+    skgl__uint prog;               /* the mask program, compiled for this technique */
+    skgl__uint lin_sampler;        /* VSDCT: bilinear, no comparison (the indirection) */
+    skgl__uint fbo[6];             /* cube: one framebuffer per face, at mip level fbo_level;
+                                      VSDCT: [0] the light's own atlas's (a shared atlas has its own) */
+    int fbo_level;
+    int tex_level;                 /* cube: the one mip level sampling reads (-1: not set yet) */
+    skgl__progent ent;             /* the mask program's snippet uniforms */
+    skgl__int u_has_normals, u_inv_view_proj;
+    int levels;                    /* cube: mip levels allocated */
+    int ni;                        /* VSDCT: indirection side, Eq. (5.4.7) */
+    int filled_res;                /* VSDCT: face side the indirection holds (0: none yet) */
+    int face_res, level;           /* side rendered by the last render; cube: its mip level */
+    int rendered;                  /* 1 once a render succeeded */
+    sk_vec3 light_pos;
+    sk_frustum view;               /* camera frustum of the render under way (caster culling) */
+    float cull_margin;             /* world distance casters are grown by when culled (the filter's reach) */
+    sk_vsdct_layout layout;        /* VSDCT: faces at face_res inside the full-size atlas */
+    unsigned layout_serial;        /* changes with layout (its rectangles in the snippet) */
+    int packed;                    /* shared atlas: 1 once skgl_point_atlas_pack placed the faces */
+    skgl__timer t_render, t_mask;
+    skgl_stats stats;
+};
+
+struct skgl_point_atlas {
+    skgl__uint tex;                /* GL_TEXTURE_2D, DEPTH_COMPONENT32F, comparison on */
+    skgl__uint fbo;                /* its framebuffer, checked when made */
+    int w, h;
+};
+
+/* the 2D depth texture the light renders into and samples: shared or its own */
+static skgl__uint skgl__point_tex(const skgl_point *p)
+{
+    return p->desc.atlas ? p->desc.atlas->tex : p->tex;
+}
+
+static skgl_point_desc skgl__point_defaults(const skgl_point_desc *d)
+{
+    skgl_point_desc r = *d;
+    if (r.resolution == 0) r.resolution = 512;
+    if (r.near_plane == 0.0f) r.near_plane = 0.05f;
+    if (r.range == 0.0f) r.range = 10.0f;
+    if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
+    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
+    if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
+    if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
+    if (r.pcf_radius == 0) r.pcf_radius = 1;
+    if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
+    skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias, r.disable_plane_bias,
+                         &r.pcf_radius, r.disable_pcf_kernel);
+    if (r.resolution_c == 0.0f) r.resolution_c = 2.0f;
+    if (r.vsdct_grey_levels == 0) r.vsdct_grey_levels = 256;
+    return r;
+}
+
+/* the faces at side m inside the atlas allocated for desc.resolution: the
+   3 x 2 arrangement of sk_vsdct_layout_make, shrunk into the corner */
+static sk_vsdct_layout skgl__point_layout(const skgl_point *p, int m)
+{
+    sk_vsdct_layout l;
+    int f;
+    sk_vsdct_layout_make(p->desc.resolution, &l);
+    l.face_res = m;
+    for (f = 0; f < 6; f++) { l.face_x[f] = (f % 3) * m; l.face_y[f] = (f / 3) * m; }
+    return l;
+}
+
+/* VSDCT: (re)fills the indirection cube map for the faces of layout l
+   (nothing to do when it already holds them; bound on unit 0 to upload) */
+static sk_result skgl__point_fill(skgl_context *ctx, skgl__st *st, skgl_point *p, const sk_vsdct_layout *l)
+{
+    skgl__api *gl = &ctx->gl;
+    size_t face_n = (size_t)p->ni * (size_t)p->ni * 2;
+    unsigned short *buf;
+    int f;
+    if (p->filled_res != 0 && memcmp(&p->layout, l, sizeof *l) == 0) return SK_OK;
+    buf = (unsigned short *)SKGL_MALLOC(sizeof(unsigned short) * face_n * 6);
+    if (!buf) return SK_ERR_CAPACITY;
+    if (sk_vsdct_indirection_fill(l, p->ni, buf) != SK_OK) { SKGL_FREE(buf); return SK_ERR_INVALID_ARG; }
+    p->layout = *l;
+    p->layout_serial++;
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->indirection);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE));
+    for (f = 0; f < 6; f++)
+        gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, 0, SKGL__RG16, p->ni, p->ni, 0, SKGL__RG,
+                       SKGL__UNSIGNED_SHORT, buf + face_n * (size_t)f);
+    SKGL_FREE(buf);
+    p->filled_res = l->face_res;
+    return SK_OK;
+}
+
+/* a VSDCT atlas: 2D depth, bilinear comparison on the texture itself (the
+   masks sample it through no sampler object), made on unit 0 */
+static void skgl__atlas_alloc(skgl_context *ctx, skgl__st *st, skgl__uint tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
+    gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, w, h, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+    /* GL's default wrap is GL_REPEAT: a bilinear tap at the atlas's edge
+       would blend in the opposite edge's texels */
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+}
+
+static void skgl__point_free(skgl_context *ctx, skgl_point *p)
+{
+    skgl__api *gl = &ctx->gl;
+    int f;
+    skgl__delete_texture(ctx, &p->tex);
+    skgl__delete_texture(ctx, &p->indirection);
+    if (p->prog) { gl->DeleteProgram(p->prog); ctx->objects--; }
+    if (p->lin_sampler) { gl->DeleteSamplers(1, &p->lin_sampler); ctx->objects--; }
+    for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->fbo[f]);
+    skgl__timer_free(ctx, &p->t_render);
+    skgl__timer_free(ctx, &p->t_mask);
+    p->prog = p->lin_sampler = 0;
+}
+
+/* cube: the six faces' framebuffers onto mip level `level` (made when
+   missing), each checked complete; 1 when all are */
+static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p, int level)
+{
+    int f, ok = 1;
+    for (f = 0; f < 6; f++) {
+        if (!p->fbo[f]) {
+            ctx->gl.GenFramebuffers(1, &p->fbo[f]);
+            ctx->objects++;
+            skgl__st_framebuffer(ctx, st, p->fbo[f]);   /* glReadBuffer: the read target's */
+            ctx->gl.DrawBuffer(SKGL__NONE);
+            ctx->gl.ReadBuffer(SKGL__NONE);
+        }
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
+        ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
+                                     SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, p->tex, level);
+        ok &= ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+    }
+    p->fbo_level = ok ? level : -1;
+    return ok;
+}
+
+static int skgl__is_pow2(int x) { return x > 0 && (x & (x - 1)) == 0; }
+
+/* every rule of a skgl_point_desc (defaults filled), in field order */
+static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *d)
+{
+    const char *fn = "skgl_point_create";
+    SKGL__RULE(d->technique == SKGL_POINT_CUBE || d->technique == SKGL_POINT_VSDCT, fn, "technique", d->technique,
+               "one of skgl_point_technique");
+    SKGL__RULE(d->resolution >= 1, fn, "resolution", d->resolution, "1 or more");
+    SKGL__RULE(d->technique != SKGL_POINT_CUBE || !d->select_resolution || skgl__is_pow2(d->resolution), fn,
+               "resolution", d->resolution, "a power of two with select_resolution and SKGL_POINT_CUBE");
+    SKGL__RULE(sk__finite(d->near_plane) && d->near_plane > 0.0f, fn, "near_plane", d->near_plane, "more than 0");
+    SKGL__RULE(sk__finite(d->range) && d->range > d->near_plane, fn, "range", d->range, "more than near_plane");
+    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
+               "in [0, 10000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
+               "in [0, 1000000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
+               "in [0, 64] texels");
+    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
+               "bias", d->bias, "one of skgl_bias");
+    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
+               "in [0, 64] texels (disable_plane_bias for none)");
+    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
+               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
+    SKGL__RULE(sk__finite(d->resolution_c) && d->resolution_c > 0.0f, fn, "resolution_c", d->resolution_c,
+               "more than 0");
+    SKGL__RULE(d->screen_w >= 0, fn, "screen_w", d->screen_w, "0 or more");
+    SKGL__RULE(d->screen_h >= 0, fn, "screen_h", d->screen_h, "0 or more");
+    SKGL__RULE(d->vsdct_grey_levels >= 1, fn, "vsdct_grey_levels", d->vsdct_grey_levels, "1 or more");
+    if (d->atlas && d->technique != SKGL_POINT_VSDCT)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
+    if (d->atlas && !d->atlas->tex)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas has no texture (destroyed?)", fn);
+    return SK_OK;
+}
+
+SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out)
+{
+    skgl__api *gl;
+    skgl_point *p;
+    skgl_point_desc d;
+    skgl__st st;
+    skgl__int max_size = 0;
+    char *fs;
+    size_t n;
+    int f, lv;
+    sk_result r = SK_OK;
+    if (out) *out = NULL;
+    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    d = skgl__point_defaults(desc);
+    r = skgl__point_validate(ctx, &d);
+    if (r != SK_OK) return r;
+    gl = &ctx->gl;
+    gl->GetIntegerv(d.technique == SKGL_POINT_CUBE ? SKGL__MAX_CUBE_MAP_TEXTURE_SIZE : SKGL__MAX_TEXTURE_SIZE,
+                    &max_size);
+    /* a shared atlas bounds the side by packing (skgl_point_atlas_pack halves it) */
+    if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : !d.atlas && d.resolution > max_size / 3)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_create: desc.resolution = %d: at most %d here (%s)",
+                          d.resolution, d.technique == SKGL_POINT_CUBE ? max_size : max_size / 3,
+                          d.technique == SKGL_POINT_CUBE ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
+                                                         : "a third of GL_MAX_TEXTURE_SIZE, the 3 x 2 atlas");
+    p = (skgl_point *)SKGL_MALLOC(sizeof *p);
+    if (!p) return SK_ERR_CAPACITY;
+    memset(p, 0, sizeof *p);
+    p->desc = d;
+    p->id = ++ctx->next_id;
+    if (!p->id) p->id = ++ctx->next_id;
+    p->tex_level = p->fbo_level = -1;
+    /* the mask program: the technique's define, the snippet, the pass */
+    n = strlen(skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL)) + 64;
+    fs = (char *)SKGL_MALLOC(n);
+    if (!fs) { SKGL_FREE(p); return SK_ERR_CAPACITY; }
+    strcpy(fs, d.technique == SKGL_POINT_VSDCT ? "#define SK_POINT_VSDCT 1\n" : "#define SK_POINT_VSDCT 0\n");
+    strcat(fs, skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL));
+    p->prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), fs, skgl__glsl(SKGL__GLSL_POINT_MASK_FRAG));
+    SKGL_FREE(fs);
+    if (!p->prog) { SKGL_FREE(p); return SK_ERR_GL; }
+    skgl__st_begin(ctx, &st);
+    skgl__timer_init(ctx, &p->t_render);
+    skgl__timer_init(ctx, &p->t_mask);
+    /* the mask program's locations, its G-buffer units (the light's
+       constants follow at its first mask) */
+    skgl__progent_lookup(ctx, &p->ent, p->prog, SKGL__PK_POINT);
+    p->ent.has_normals = -1;
+    p->u_has_normals = gl->GetUniformLocation(p->prog, "u_has_normals");
+    p->u_inv_view_proj = gl->GetUniformLocation(p->prog, "u_inv_view_proj");
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
+    skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_depth"), 1);
+    skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_normals"), 2);
+    if (!d.atlas) { gl->GenTextures(1, &p->tex); ctx->objects++; }
+    if (d.technique == SKGL_POINT_CUBE) {
+        /* the full mip chain only when a smaller level may be chosen */
+        p->levels = 1;
+        if (d.select_resolution) while ((d.resolution >> p->levels) >= 1) p->levels++;
+        skgl__st_unpack(ctx, &st);
+        skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
+        skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
+        for (lv = 0; lv < p->levels; lv++) {
+            int s = d.resolution >> lv;
+            for (f = 0; f < 6; f++)
+                gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, lv, SKGL__DEPTH_COMPONENT32F, s, s,
+                               0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+        }
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, 0);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->levels - 1);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
+        /* edges clamped, as the comparison sampler has them (the default
+           GL_REPEAT matters wherever seamless filtering is off) */
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
+        if (!skgl__point_cube_fbos(ctx, &st, p, 0)) {
+            skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
+            r = SK_ERR_GL;
+        }
+    } else {
+        if (!d.atlas) {
+            skgl__atlas_alloc(ctx, &st, p->tex, 3 * d.resolution, 2 * d.resolution);
+            p->fbo[0] = skgl__framebuffer(ctx, &st, 0, 0, p->tex, -1);
+            if (!p->fbo[0]) {
+                skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
+                r = SK_ERR_GL;
+            }
+        }
+        /* Eq. (5.4.7) with D = 8 bits of filter weight precision; never below
+           the face side, so the linear ramp of the filtered coordinates is
+           clamped for at most half a shadow texel at a face edge */
+        p->ni = sk_vsdct_indirection_size(d.resolution, d.vsdct_grey_levels, 8);
+        if (p->ni < 1 && r == SK_OK) r = skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                                                 "skgl_point_create: desc.vsdct_grey_levels = %d: too few for "
+                                                 "desc.resolution %d (Eq. 5.4.7 gives no indirection side)",
+                                                 d.vsdct_grey_levels, d.resolution);
+        gl->GenTextures(1, &p->indirection); ctx->objects++;
+        skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->indirection);
+        skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
+        /* the texture's own sampling (the masks bind no sampler object):
+           bilinear, edges clamped, one level */
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, 0);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
+        if (r == SK_OK) {
+            sk_vsdct_layout l = skgl__point_layout(p, d.resolution);
+            r = skgl__point_fill(ctx, &st, p, &l);
+        }
+        gl->GenSamplers(1, &p->lin_sampler); ctx->objects++;
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
+        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_COMPARE_MODE, SKGL__NONE);
+    }
+    p->face_res = d.resolution;
+    p->layout = skgl__point_layout(p, d.resolution);
+    skgl__st_end(ctx, &st);
+    if (r == SK_OK && gl->GetError() != 0) {
+        skgl__set_log(ctx, "skgl_point_create: GL error while allocating the maps", NULL);
+        r = SK_ERR_GL;
+    }
+    if (r != SK_OK) { skgl__point_free(ctx, p); SKGL_FREE(p); return r; }
+    p->stats.shadow_ms = p->stats.mask_ms = p->stats.analysis_ms = -1.0f;
+    *out = p;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_point_destroy(skgl_context *ctx, skgl_point *p)
+{
+    if (!ctx || !p) return;
+    skgl__point_free(ctx, p);
+    SKGL_FREE(p);
+}
+
+SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p)
+{
+    skgl_point_desc d;
+    if (p) return p->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
+SKGLDEF unsigned skgl_point_texture(const skgl_point *p)
+{
+    return p ? skgl__point_tex(p) : 0;
+}
+SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p)
+{
+    sk_vsdct_layout l;
+    if (p) return p->layout;
+    memset(&l, 0, sizeof l);
+    return l;
+}
+
+SKGLDEF const char *skgl_point_glsl_snippet(void) { return skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL); }
+
+SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster)
+{
+    skgl_point *p;
+    int vis;
+    if (!info || info->kind != SKGL_PASS_CUBE_FACE || !info->point) return 1;
+    p = info->point;
+    if (!p->desc.cull_casters) return 1;
+    /* King & Newhall's caster culling: the light-to-box cone frustum (or the
+       light's range box when the light is inside the box) against the view
+       frustum; then the box against this face's frustum */
+    if (sk__aabb_valid(&caster)) {   /* grown by the filter's reach at the light's range */
+        caster.min = sk__sub(caster.min, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
+        caster.max = sk__add(caster.max, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
+    }
+    vis = sk_caster_visible(info->light_pos, info->light_range, caster, &p->view);
+    if (vis) {
+        sk_frustum bf;
+        if (sk_frustum_from_aabb(caster, &bf) == SK_OK) vis = sk_frustum_intersects(&bf, &info->frustum);
+    }
+    if (vis) p->stats.casters_drawn++; else p->stats.casters_culled++;
+    return vis;
+}
+
+/* The filter's reach in face-plane units (tangent of the angle off a
+   receiver's light vector): the (2r)x(2r) taps, the hardware 2x2 under
+   each, and the normal offset, at face side m. A face or caster that only
+   such a tap can read is still needed for a visible pixel. */
+static double skgl__point_reach(const skgl_point *p, int m)
+{
+    double nb = p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0;
+    return (p->desc.pcf_radius + 1.0 + nb) * 2.0 / m;
+}
+
+/* sk_cube_visible_faces with each face frustum widened by `reach` (its
+   half-width tangent 1 + reach instead of 1), so that the filter taps of a
+   visible receiver near a face edge find the neighbouring face rendered */
+static unsigned skgl__point_faces(sk_vec3 lp, float zn, float zf, const sk_frustum *view, double reach)
+{
+    unsigned bits = 0;
+    int f;
+    if (sk_frustum_contains_point(view, lp)) return 0x3fu;
+    for (f = 0; f < 6; f++) {
+        sk_mat4 proj = sk_cube_face_proj(zn, zf);
+        sk_frustum ff;
+        proj.m[0] = proj.m[5] = (float)(1.0 / (1.0 + reach));
+        ff = sk_frustum_from_matrix(sk_mat4_mul(proj, sk_cube_face_view(f, lp)));
+        if (sk_frustum_intersects(&ff, view)) bits |= 1u << f;
+    }
+    return bits;
+}
+
+static int skgl__popcount6(unsigned b)
+{
+    int f, n = 0;
+    for (f = 0; f < 6; f++) n += (b >> f) & 1u;
+    return n;
+}
+
+/* the pixel count S of the light (its scissor rectangle on the screen) */
+static float skgl__point_pixels(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4])
+{
+    int rect[4], w = p->desc.screen_w, h = p->desc.screen_h;
+    if (w < 1 || h < 1) { w = viewport[2]; h = viewport[3]; }
+    if (w < 1 || h < 1) return 0.0f;
+    if (!sk_light_scissor(p->light_pos, p->desc.range, *vp, w, h, rect)) return 0.0f;
+    return (float)rect[2] * (float)rect[3];
+}
+
+/* face culling: a face whose frustum misses the view frustum casts
+   nothing visible (King & Newhall Fig. 5.4.2, frustum-frustum intersection), widened
+   by the filter's reach at the face side m. Resolution selection: the
+   smallest power of two M with N M^2 >= c S, N the faces rendered. A
+   smaller M widens the reach, which may add faces, which may lower M:
+   repeated until both hold (M only decreases). p->light_pos and p->view
+   hold this frame's light and view. Returns M; *faces the faces' bits. */
+static int skgl__point_select(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4], unsigned *faces)
+{
+    int f, nf, m = p->desc.resolution;
+    for (f = 0; f < 8; f++) {
+        int sel;
+        *faces = p->desc.cull_faces ? skgl__point_faces(p->light_pos, p->desc.near_plane, p->desc.range, &p->view,
+                                                        skgl__point_reach(p, m))
+                                    : 0x3fu;
+        nf = skgl__popcount6(*faces);
+        if (!p->desc.select_resolution || nf == 0) break;
+        sel = sk_cube_resolution(nf, skgl__point_pixels(p, vp, viewport), p->desc.resolution_c, p->desc.resolution);
+        if (sel <= 0 || sel >= m) break;
+        m = sel;
+    }
+    return m;
+}
+
+/* the caller's viewport (the resolution selection's screen when
+   screen_w/screen_h are 0): the saved value in the default mode; read from
+   GL in caller-owns mode, the one read that mode makes (set screen_w and
+   screen_h to avoid it) */
+static void skgl__caller_viewport(skgl_context *ctx, skgl__st *st, skgl__int v[4])
+{
+    if (st->restore) {
+        skgl__st_save(ctx, st, SKGL__S_VIEWPORT);
+        memcpy(v, st->orig[SKGL__S_VIEWPORT], sizeof(skgl__int) * 4);
+    } else ctx->gl.GetIntegerv(SKGL__VIEWPORT, v);
+}
+
+SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                    const skgl_scene *scene, sk_vec3 light_pos)
+{
+    static const float one = 1.0f;
+    skgl__api *gl;
+    skgl__st st;
+    sk_mat4 vp, proj;
+    unsigned faces;
+    int f, m, vsdct, shared;
+    float zn, zf;
+    sk_result r = SK_OK, rc;
+    skgl__int viewport[4] = {0, 0, 0, 0};
+    const char *fn = "skgl_point_render";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
+    if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
+    shared = p->desc.atlas != NULL;
+    if (shared && !p->packed) {
+        skgl__set_log(ctx, "skgl_point_render: a shared-atlas light needs skgl_point_atlas_pack first", NULL);
+        return SK_ERR_INVALID_ARG;
+    }
+    gl = &ctx->gl;
+    vsdct = p->desc.technique == SKGL_POINT_VSDCT;
+    zn = p->desc.near_plane;
+    zf = p->desc.range;
+    vp = sk_mat4_mul(cam->proj, cam->view);
+    p->light_pos = light_pos;
+    p->view = sk_frustum_from_matrix(vp);
+    skgl__st_begin(ctx, &st);
+    if (shared) {
+        /* the side skgl_point_atlas_pack placed; the faces for its reach
+           (a halved side reaches further, so it may add a face) */
+        m = p->layout.face_res;
+        faces = p->desc.cull_faces ? skgl__point_faces(light_pos, zn, zf, &p->view, skgl__point_reach(p, m)) : 0x3fu;
+    } else {
+        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1))
+            skgl__caller_viewport(ctx, &st, viewport);
+        m = skgl__point_select(p, &vp, viewport, &faces);
+    }
+    p->cull_margin = (float)(skgl__point_reach(p, m) * zf);
+    p->level = 0;
+    if (!vsdct) while ((p->desc.resolution >> p->level) > m) p->level++;
+    m = vsdct ? m : p->desc.resolution >> p->level;
+    if (vsdct && !shared) {
+        sk_vsdct_layout l = skgl__point_layout(p, m);
+        r = skgl__point_fill(ctx, &st, p, &l);
+        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
+    } else if (!vsdct) {
+        /* sampling reads the level rendered, and only that one: set when it changes */
+        if (p->tex_level != p->level) {
+            skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
+            skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
+            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
+            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->level);
+            p->tex_level = p->level;
+        }
+        /* the faces' framebuffers follow the level: attached and checked again when it changes */
+        if (p->fbo_level != p->level && !skgl__point_cube_fbos(ctx, &st, p, p->level)) {
+            skgl__st_end(ctx, &st);
+            skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
+            return SK_ERR_GL;
+        }
+    }
+    p->face_res = m;
+    proj = sk_cube_face_proj(zn, zf);   /* 90 deg, w = eye depth: window depth is Eq. (5.4.6) */
+    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
+    skgl__timer_begin(ctx, &p->t_render);
+    skgl__st_depth_pass(ctx, &st, p->desc.slope_bias, p->desc.depth_bias);
+    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+    skgl__model_begin(ctx, skgl__zero3);
+    if (vsdct) {
+        /* the faces' region of an own atlas, one clear (culled faces read
+           lit); in a shared atlas each face's rectangle, cleared in the loop
+           (the other lights' faces stay) */
+        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)(shared ? p->desc.atlas->fbo : p->fbo[0]));
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+        if (!shared) {
+            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, 3 * m, 2 * m);
+            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        }
+    } else {
+        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, m, m);
+    }
+    p->stats.passes = p->stats.faces_rendered = p->stats.faces_culled = 0;
+    p->stats.casters_drawn = p->stats.casters_culled = 0;
+    p->stats.texels = 0.0;
+    for (f = 0; f < 6; f++) {
+        skgl_draw_info info;
+        if (vsdct) {
+            skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, p->layout.face_x[f], p->layout.face_y[f], m, m);
+            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, p->layout.face_x[f], p->layout.face_y[f], m, m);
+            if (shared) gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        } else {
+            /* a culled face is cleared too: a filter tap near a visible
+               face's edge may step into it, and must read "lit" there */
+            skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
+            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        }
+        if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_CUBE_FACE;
+        info.index = f;
+        info.view_proj = sk_mat4_mul(proj, sk_cube_face_view(f, light_pos));
+        info.frustum = sk_frustum_from_matrix(info.view_proj);
+        info.light_pos = light_pos;
+        info.light_range = zf;
+        info.point = p;
+        info.program = ctx->depth_prog;
+        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, info.view_proj.m);
+        scene->draw(scene->user, &info);
+        rc = skgl__after_draw(ctx, &st);
+        if (rc != SK_OK) r = rc;
+        p->stats.passes++;
+        p->stats.faces_rendered++;
+        p->stats.texels += (double)m * m;
+    }
+    skgl__timer_end(ctx, &p->t_render);
+    p->stats.shadow_ms = p->t_render.ms;
+    p->stats.maps = p->stats.faces_rendered;
+    p->stats.resolution = p->stats.map_width = p->stats.map_height = m;
+    p->rendered = 1;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_point_render");
+}
+
+/* The point snippet's uniforms on the current program (entry e), as
+   skgl__shadow_uniforms: the light's constants when the program holds
+   another's, the face size and the atlas rectangles when they changed, the
+   light's position always. */
+static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__progent *e, int unit, int ind_unit)
+{
+    const skgl__api *gl = &ctx->gl;
+    const skgl__int *L = e->loc;
+    float texel = 2.0f / (float)p->face_res;
+    if (e->owner != p->id || e->unit != unit) {
+        float scale, bias, depth[2];
+        sk_vsdct_depth_coeffs(p->desc.near_plane, p->desc.range, &scale, &bias);
+        depth[0] = scale; depth[1] = bias;
+        skgl__u1i(gl, L[SKGL__P_CUBE], unit);
+        skgl__u1i(gl, L[SKGL__P_ATLAS], unit);
+        skgl__u1i(gl, L[SKGL__P_INDIRECTION], ind_unit);
+        skgl__u1f(gl, L[SKGL__P_RANGE], p->desc.range);
+        if (L[SKGL__P_DEPTH] >= 0) gl->Uniform2fv(L[SKGL__P_DEPTH], 1, depth);
+        skgl__u1f(gl, L[SKGL__P_NORMAL_BIAS], p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f);
+        skgl__u1i(gl, L[SKGL__P_PCF], p->desc.pcf_radius);
+        skgl__u1i(gl, L[SKGL__P_BIAS_MODE], p->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
+        skgl__u1f(gl, L[SKGL__P_PLANE_BIAS], p->desc.plane_bias > 0.0f ? p->desc.plane_bias : 0.0f);
+        e->owner = p->id;
+        e->unit = unit;
+        e->sentinel_f = p->desc.range;
+        e->texel = -1.0f;
+        e->layout = 0;
+    }
+    if (e->texel != texel) { e->texel = texel; skgl__u1f(gl, L[SKGL__P_TEXEL], texel); }
+    if (p->desc.technique == SKGL_POINT_VSDCT && e->layout != p->layout_serial && L[SKGL__P_FACES] >= 0) {
+        float rects[24];
+        int f;
+        for (f = 0; f < 6; f++) {
+            const sk_vsdct_layout *l = &p->layout;
+            rects[4 * f + 0] = (float)((l->face_x[f] + 0.5) / l->atlas_w);
+            rects[4 * f + 1] = (float)((l->face_y[f] + 0.5) / l->atlas_h);
+            rects[4 * f + 2] = (float)((l->face_x[f] + l->face_res - 0.5) / l->atlas_w);
+            rects[4 * f + 3] = (float)((l->face_y[f] + l->face_res - 0.5) / l->atlas_h);
+        }
+        gl->Uniform4fv(L[SKGL__P_FACES], 6, rects);
+        e->layout = p->layout_serial;
+    }
+    if (L[SKGL__P_POS] >= 0) gl->Uniform3fv(L[SKGL__P_POS], 1, &p->light_pos.x);
+}
+
+SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit)
+{
+    skgl__api *gl;
+    skgl__int active, last;
+    skgl__progent *e;
+    const char *fn = "skgl_point_bind";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
+    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, 30));
+    if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
+    e = skgl__user_program(ctx, program, SKGL__PK_POINT);
+    gl = &ctx->gl;
+    active = skgl__bind_active(ctx);
+    last = SKGL__TEXTURE0 + unit;
+    if (active != last) gl->ActiveTexture((skgl__enum)last);
+    if (p->desc.technique == SKGL_POINT_VSDCT) {
+        gl->BindTexture(SKGL__TEXTURE_2D, skgl__point_tex(p));
+        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+        last = SKGL__TEXTURE0 + unit + 1;
+        gl->ActiveTexture((skgl__enum)last);
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
+        gl->BindSampler((skgl__uint)unit + 1, p->lin_sampler);
+    } else {
+        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
+        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
+    }
+    if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
+    skgl__point_uniforms(ctx, p, e, unit, unit + 1);
+    return skgl__check(ctx, "skgl_point_bind");
+}
+
+SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                  unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    skgl__st st;
+    skgl__unitbind b[4];
+    int w = 0, h = 0, vsdct, n;
+    sk_mat4 vp, inv;
+    int rect[4];
+    sk_result r;
+    const char *why;
+    const char *fn = "skgl_point_mask";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
+    SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
+    if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
+    vp = sk_mat4_mul(cam->proj, cam->view);
+    if (!sk_mat4_inverse(vp, &inv)) return SK_ERR_INVALID_ARG;
+    vsdct = p->desc.technique == SKGL_POINT_VSDCT;
+    skgl__st_begin(ctx, &st);
+    why = skgl__texture_size(ctx, &st, mask_tex, &w, &h);
+    if (why) {
+        skgl__st_end(ctx, &st);
+        skgl__set_log(ctx, "skgl_point_mask: mask_tex", why);
+        return SK_ERR_INVALID_ARG;
+    }
+    /* King & Newhall's scissor: the light's range box on the screen; the whole
+       viewport when the eye is inside it (sk_light_scissor) */
+    rect[0] = rect[1] = 0; rect[2] = w; rect[3] = h;
+    if (p->desc.scissor && !sk_light_scissor(p->light_pos, p->desc.range, vp, w, h, rect)) {
+        memset(p->stats.scissor, 0, sizeof p->stats.scissor);
+        p->stats.mask_ms = ctx->timing ? 0.0f : -1.0f;
+        skgl__st_end(ctx, &st);
+        return skgl__check(ctx, "skgl_point_mask");
+    }
+    memcpy(p->stats.scissor, rect, sizeof rect);
+    skgl__timer_begin(ctx, &p->t_mask);
+    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_point_mask: mask_tex");
+    if (r == SK_OK) {
+        if (p->desc.scissor) {
+            skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
+            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
+        } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
+        /* cube: 2x2 filtering walks across face edges; VSDCT: the indirection
+           must never blend two faces' coordinates */
+        skgl__st_set1(ctx, &st, SKGL__S_SEAMLESS, !vsdct);
+        /* the map and the indirection through their own texture parameters
+           (comparison, filtering), no sampler object */
+        n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
+        if (vsdct) skgl__bind_unit(&b[n++], 3, SKGL__T_CUBE, p->indirection, 0);
+        skgl__bind_unit(&b[n++], 0, vsdct ? SKGL__T_2D : SKGL__T_CUBE, vsdct ? skgl__point_tex(p) : p->tex, 0);
+        skgl__st_units(ctx, &st, b, n);
+        skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
+        skgl__point_uniforms(ctx, p, &p->ent, 0, 3);
+        if (p->ent.has_normals != (normal_tex != 0)) {
+            p->ent.has_normals = normal_tex != 0;
+            skgl__u1i(&ctx->gl, p->u_has_normals, normal_tex != 0);
+        }
+        if (p->u_inv_view_proj >= 0) ctx->gl.UniformMatrix4fv(p->u_inv_view_proj, 1, 0, inv.m);
+        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    skgl__timer_end(ctx, &p->t_mask);
+    p->stats.mask_ms = p->t_mask.ms;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_point_mask");
+}
+
+
+/* ---- 8. Several point lights in one atlas ------------------------------- */
+// >>atlas
+SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int height, skgl_point_atlas **out)
+{
+    skgl__api *gl;
+    skgl__st st;
+    skgl__int max_size = 0;
+    skgl_point_atlas *a;
+    if (out) *out = NULL;
+    if (!ctx || !out) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    if (width < 1 || height < 1)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width x height = %d x %d: 1 or more each",
+                          width, height);
+    gl = &ctx->gl;
+    gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
+    if (width > max_size)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width = %d: at most GL_MAX_TEXTURE_SIZE %d",
+                          width, max_size);
+    if (height > max_size)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "skgl_point_atlas_create: height = %d: at most GL_MAX_TEXTURE_SIZE %d", height, max_size);
+    a = (skgl_point_atlas *)SKGL_MALLOC(sizeof *a);
+    if (!a) return SK_ERR_CAPACITY;
+    memset(a, 0, sizeof *a);
+    a->w = width;
+    a->h = height;
+    skgl__st_begin(ctx, &st);
+    gl->GenTextures(1, &a->tex); ctx->objects++;
+    skgl__atlas_alloc(ctx, &st, a->tex, width, height);
+    a->fbo = skgl__framebuffer(ctx, &st, 0, 0, a->tex, -1);
+    skgl__st_end(ctx, &st);
+    if (!a->fbo || gl->GetError() != 0) {
+        skgl__set_log(ctx, "skgl_point_atlas_create: GL error while allocating the atlas", NULL);
+        skgl_point_atlas_destroy(ctx, a);
+        return SK_ERR_GL;
+    }
+    *out = a;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_point_atlas_destroy(skgl_context *ctx, skgl_point_atlas *a)
+{
+    if (!ctx || !a) return;
+    skgl__delete_texture(ctx, &a->tex);
+    skgl__delete_framebuffer(ctx, &a->fbo);
+    SKGL_FREE(a);
+}
+
+SKGLDEF unsigned skgl_point_atlas_texture(const skgl_point_atlas *a) { return a ? a->tex : 0; }
+SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *height)
+{
+    if (width) *width = a ? a->w : 0;
+    if (height) *height = a ? a->h : 0;
+}
+
+/* Shelf packing of the lights' faces, all six of a light of side res[i]:
+   lights taken by side, largest first (order[] sorted so), squares placed
+   left to right; a square that would pass the right edge starts a new
+   shelf on top of the last one, as high as its first square, which is the
+   tallest on it since sides only decrease. 1 and the corners in x, y
+   (light i's face f at [6 i + f]) when everything fits in w x h, else 0. */
+static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *order, int *x, int *y)
+{
+    int k, f, cx = 0, sy = 0, shelf = 0;
+    for (k = 0; k < n; k++) {
+        int i = order[k], m = res[i];
+        if (m > w) return 0;
+        for (f = 0; f < 6; f++) {
+            if (cx + m > w) { sy += shelf; cx = 0; shelf = 0; }
+            if (shelf == 0) shelf = m;
+            if (sy + m > h) return 0;
+            x[6 * i + f] = cx;
+            y[6 * i + f] = sy;
+            cx += m;
+        }
+    }
+    return 1;
+}
+
+
+SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, skgl_point *const *lights, int n,
+                                        const skgl_camera *cam, const sk_vec3 *light_pos)
+{
+    skgl__st st;
+    skgl__int viewport[4] = {0, 0, 0, 0};
+    sk_mat4 vp;
+    sk_frustum view;
+    int *res, *order, *x, *y;
+    int i, k, f, fits;
+    sk_result r = SK_OK;
+    const char *fn = "skgl_point_atlas_pack";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, a, "a"));
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, lights, "lights"));
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, light_pos, "light_pos"));
+    if (n < 1) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: n = %d: 1 or more", fn, n);
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    for (i = 0; i < n; i++)
+        if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i]))
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: lights[%d] is NULL, not in this atlas, or its light_pos "
+                              "is not finite", fn, i);
+    res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 14);
+    if (!res) return SK_ERR_CAPACITY;
+    order = res + n;
+    x = order + n;
+    y = x + 6 * n;
+    skgl__st_begin(ctx, &st);
+    /* each light's side, selected as skgl_point_render selects it */
+    vp = sk_mat4_mul(cam->proj, cam->view);
+    view = sk_frustum_from_matrix(vp);
+    for (i = 0; i < n; i++) {
+        skgl_point *p = lights[i];
+        unsigned faces;
+        p->light_pos = light_pos[i];
+        p->view = view;
+        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1) && !viewport[2])
+            skgl__caller_viewport(ctx, &st, viewport);
+        res[i] = skgl__point_select(p, &vp, viewport, &faces);
+        if (res[i] < 1) res[i] = 1;
+        lights[i]->stats.atlas_wanted = res[i];
+    }
+    /* pack; while it does not fit, halve the largest side */
+    for (;;) {
+        for (i = 0; i < n; i++) order[i] = i;
+        for (i = 1; i < n; i++)   /* insertion sort by side, descending; stable */
+            for (k = i; k > 0 && res[order[k - 1]] < res[order[k]]; k--) {
+                int t = order[k]; order[k] = order[k - 1]; order[k - 1] = t;
+            }
+        fits = skgl__atlas_shelves(a->w, a->h, n, res, order, x, y);
+        if (fits || res[order[0]] <= 1) break;
+        res[order[0]] /= 2;
+    }
+    if (!fits) {
+        skgl__set_log(ctx, "skgl_point_atlas_pack: the faces do not fit even at one texel", NULL);
+        r = SK_ERR_CAPACITY;
+    }
+    for (i = 0; i < n && r == SK_OK; i++) {
+        sk_vsdct_layout l;
+        l.face_res = res[i];
+        l.atlas_w = a->w;
+        l.atlas_h = a->h;
+        for (f = 0; f < 6; f++) { l.face_x[f] = x[6 * i + f]; l.face_y[f] = y[6 * i + f]; }
+        r = skgl__point_fill(ctx, &st, lights[i], &l);
+        if (r == SK_OK) { lights[i]->packed = 1; lights[i]->face_res = res[i]; }
+    }
+    skgl__st_end(ctx, &st);
+    SKGL_FREE(res);
+    if (r != SK_OK) return r;
+    return skgl__check(ctx, "skgl_point_atlas_pack");
+}
+
+
+
+
+/* ---- 9. Area lights: PCSS and PVSM (Shen et al. 2011) ------------------- */
+// >>soft
+static void skgl__query_begin(skgl_context *ctx)
+{
+    if (ctx->timing) ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, ctx->query);
+}
+static float skgl__query_end(skgl_context *ctx)
+{
+    skgl__u64 ns = 0;
+    if (!ctx->timing) return -1.0f;
+    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
+    ctx->gl.GetQueryObjectui64v(ctx->query, SKGL__QUERY_RESULT, &ns);
+    return (float)((double)ns * 1e-6);
+}
+
+/* the state of every depth pass (inside save/restore): no blending, both
+   faces (open meshes cast from both sides), LESS, slope-scaled bias */
+static void skgl__depth_pass_state(const skgl__api *gl, const skgl_shadow_desc *d)
+{
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Enable(SKGL__DEPTH_TEST);
+    gl->DepthFunc(SKGL__LESS);
+    gl->DepthMask(1);
+    gl->ClearDepth(1.0);
+    if (d->slope_bias > 0.0f || d->depth_bias > 0.0f) {
+        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
+        gl->PolygonOffset(d->slope_bias > 0.0f ? d->slope_bias : 0.0f, d->depth_bias > 0.0f ? d->depth_bias : 0.0f);
+    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+}
+
+
+/* 9.1 the masks' inputs, inside the full save and restore */
+/* the G-buffer on units 1 (depth) and 2 (normals, may be 0) with the point
+   sampler; *w, *h: the mask texture's level 0 (0 when it has none) */
+static void skgl__mask_inputs(skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, unsigned mask_tex,
+                              skgl__int *w, skgl__int *h)
+{
+    skgl__api *gl = &ctx->gl;
+    *w = *h = 0;
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, w);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, h);
+    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
+    gl->BindSampler(1, ctx->point_sampler);
+    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
+    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
+    gl->BindSampler(2, ctx->point_sampler);
+}
+
+/* the mask texture as the only colour target, full viewport, no blending,
+   culling, depth or polygon offset; 0 when it is not renderable (detached) */
+static int skgl__mask_target(skgl_context *ctx, unsigned mask_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
+    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
+    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+        return 0;
+    }
+    gl->Viewport(0, 0, w, h);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->ColorMask(1, 1, 1, 1);
+    return 1;
+}
+
+/* 9.2 the soft light */
+struct skgl_soft {
+    skgl_soft_desc desc;
+    skgl__uint prog_mask;          /* PCSS: the mask; PVSM: the kernel-shape pass */
+    skgl__uint prog_cons, prog_smtg, prog_reduce, prog_filter, prog_resolve, prog_gbuf;
+    skgl__int cons_u_model, gbuf_u_model;
+    skgl__uint fbo, query_samples;
+    skgl__uint map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
+    int map_res;
+    skgl__uint low_color, low_true;    /* PVSM: R32F MIN pyramid of the conservative low-res map; the plain map */
+    int low_levels;
+    skgl__uint smtg;               /* PVSM: RG32F SMTG with its pyramid as mip levels */
+    int smtg_levels;
+    skgl__uint screen[4];          /* PVSM: kernel, prediction, plane, accumulation (RGBA32F) */
+    int sw, sh;
+    skgl__uint gb_depth, gb_normal;    /* the G-buffer rendered here (depth_tex = 0) */
+    int gw, gh;
+    float *pyramid;                /* the SMTG pyramid read back */
+    int pyramid_floats;
+    float *grid;                   /* level 0 as given to sk_fvsm_tiles (after any halving) */
+    sk_tile *tiles;
+    int ntiles, tiles_cap;
+    sk_mat4 light_view, light_proj, light_vp;
+    float p00, p11, zn, zf;
+    skgl_stats stats;
+};
+
+static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
+{
+    skgl_soft_desc r = *d;
+    if (r.resolution == 0) r.resolution = r.technique == SKGL_SOFT_PVSM ? 4096 : 2048;
+    if (r.lowres == 0) r.lowres = 1024;
+    if (r.grid == 0) r.grid = 64;
+    if (r.max_tiles == 0) r.max_tiles = 64;
+    if (r.conservative == 0) r.conservative = 1;
+    if (r.blocker_cells == 0) r.blocker_cells = 8;
+    if (r.pcf_taps == 0) r.pcf_taps = 12;
+    if (r.slope_bias == 0.0f) r.slope_bias = 1.5f;
+    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
+    if (r.rel_bias == 0.0f) r.rel_bias = 0.002f;
+    if (r.antialias == 0) r.antialias = 1;
+    if (r.resolution_scale == 0.0f) r.resolution_scale = 1.0f;
+    return r;
+}
+
+/* vertex + geometry + fragment */
+static skgl__uint skgl__program_gs(skgl_context *ctx, const char *vs, const char *gs, const char *fs)
+{
+    skgl__uint sh[3];
+    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL);
+    sh[1] = sh[0] ? skgl__shader(ctx, SKGL__GEOMETRY_SHADER, gs, NULL) : 0;
+    sh[2] = sh[1] ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs, NULL) : 0;
+    return skgl__link(ctx, sh, 3);
+}
+
+/* a 2D texture with `levels` levels, nearest filtering, clamped */
+static skgl__uint skgl__soft_texture(skgl_context *ctx, skgl__int ifmt, int w, int h, int levels,
+                                     skgl__enum fmt, skgl__enum type)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__uint t = 0;
+    int l;
+    gl->GenTextures(1, &t);
+    ctx->objects++;
+    gl->BindTexture(SKGL__TEXTURE_2D, t);
+    for (l = 0; l < levels; l++) {
+        gl->TexImage2D(SKGL__TEXTURE_2D, l, ifmt, w, h, 0, fmt, type, NULL);
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+    }
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER,
+                      levels > 1 ? SKGL__NEAREST_MIPMAP_NEAREST : SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
+    return t;
+}
+
+static void skgl__soft_delete_tex(skgl_context *ctx, skgl__uint *t)
+{
+    if (*t) { ctx->gl.DeleteTextures(1, t); ctx->objects--; *t = 0; }
+}
+static void skgl__soft_delete_prog(skgl_context *ctx, skgl__uint *p)
+{
+    if (*p) { ctx->gl.DeleteProgram(*p); ctx->objects--; *p = 0; }
+}
+
+static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
+{
+    int i;
+    skgl__soft_delete_prog(ctx, &s->prog_mask);
+    skgl__soft_delete_prog(ctx, &s->prog_cons);
+    skgl__soft_delete_prog(ctx, &s->prog_smtg);
+    skgl__soft_delete_prog(ctx, &s->prog_reduce);
+    skgl__soft_delete_prog(ctx, &s->prog_filter);
+    skgl__soft_delete_prog(ctx, &s->prog_resolve);
+    skgl__soft_delete_prog(ctx, &s->prog_gbuf);
+    skgl__soft_delete_tex(ctx, &s->map);
+    skgl__soft_delete_tex(ctx, &s->low_color);
+    skgl__soft_delete_tex(ctx, &s->low_true);
+    skgl__soft_delete_tex(ctx, &s->smtg);
+    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
+    skgl__soft_delete_tex(ctx, &s->gb_depth);
+    skgl__soft_delete_tex(ctx, &s->gb_normal);
+    if (s->fbo) { ctx->gl.DeleteFramebuffers(1, &s->fbo); ctx->objects--; s->fbo = 0; }
+    if (s->query_samples) { ctx->gl.DeleteQueries(1, &s->query_samples); ctx->objects--; s->query_samples = 0; }
+    SKGL_FREE(s->pyramid);
+    SKGL_FREE(s->grid);
+    SKGL_FREE(s->tiles);
+    s->pyramid = s->grid = NULL;
+    s->tiles = NULL;
+}
+
+SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out)
+{
+    skgl_soft *s;
+    skgl_soft_desc d;
+    skgl__api *gl;
+    skgl__int max_size = 0, unit;
+    skgl__state st;
+    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
+    *out = NULL;
+    d = skgl__soft_defaults(desc);
+    gl = &ctx->gl;
+    gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
+    if ((d.technique != SKGL_SOFT_PCSS && d.technique != SKGL_SOFT_PVSM) || d.resolution < 16 ||
+        d.resolution > max_size || d.lowres < 16 || d.lowres > 8192 || (d.lowres & (d.lowres - 1)) != 0 ||
+        d.lowres > max_size || d.grid < 4 || d.grid > 256 || (d.grid & (d.grid - 1)) != 0 || d.max_tiles < 1 || d.max_tiles > 4096 ||
+        (d.conservative != 1 && d.conservative != -1) || d.static_scene < 0 || d.static_scene > 1 ||
+        d.blocker_cells < 2 || d.blocker_cells > 16 || d.pcf_taps < 1 || d.pcf_taps > 16 ||
+        !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.rel_bias) ||
+        d.rel_bias < 0.0f || d.rel_bias > 0.5f || (d.antialias != 1 && d.antialias != -1) ||
+        !(d.resolution_scale >= 0.125f && d.resolution_scale <= 8.0f))
+        return SK_ERR_INVALID_ARG;
+    s = (skgl_soft *)SKGL_MALLOC(sizeof *s);
+    if (!s) return SK_ERR_CAPACITY;
+    memset(s, 0, sizeof *s);
+    s->desc = d;
+    skgl__save(gl, &st);
+    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &unit);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->GenFramebuffers(1, &s->fbo); ctx->objects++;
+    gl->GenQueries(1, &s->query_samples); ctx->objects++;
+    s->map_res = d.resolution;
+    s->map = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, d.resolution, d.resolution, 1,
+                                SKGL__DEPTH_COMPONENT, SKGL__FLOAT);
+    if (d.technique == SKGL_SOFT_PCSS) {
+        s->prog_mask = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_COMMON_GLSL),
+                                     skgl__glsl(SKGL__GLSL_PCSS_MASK_FRAG));
+    } else {
+        int l = 1, n = d.lowres, g = d.grid;
+        while (n > 1) { n /= 2; l++; }
+        s->low_levels = l;
+        s->low_color = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, l, SKGL__RED, SKGL__FLOAT);
+        s->low_true = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, 1, SKGL__RED, SKGL__FLOAT);
+        l = 1;
+        while (g > 1) { g = (g + 1) / 2; l++; }
+        s->smtg_levels = l;
+        s->smtg = skgl__soft_texture(ctx, (skgl__int)SKGL__RG32F, d.grid, d.grid, l, SKGL__RG, SKGL__FLOAT);
+        s->pyramid_floats = sk_smtg_pyramid_size(d.grid, d.grid);
+        s->pyramid = (float *)SKGL_MALLOC(sizeof(float) * (size_t)s->pyramid_floats);
+        s->grid = (float *)SKGL_MALLOC(sizeof(float) * 2u * (size_t)d.grid * (size_t)d.grid);
+        s->tiles_cap = d.grid * d.grid;
+        s->tiles = (sk_tile *)SKGL_MALLOC(sizeof(sk_tile) * (size_t)s->tiles_cap);
+        s->prog_mask = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_COMMON_GLSL),
+                                     skgl__glsl(SKGL__GLSL_SOFT_KERNEL_FRAG));
+        s->prog_cons = skgl__program_gs(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM),
+                                        skgl__glsl(SKGL__GLSL_SOFT_CONS_FRAG));
+        s->prog_smtg = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_SMTG_VERT), skgl__glsl(SKGL__GLSL_SOFT_SMTG_FRAG), NULL);
+        s->prog_reduce = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_REDUCE_FRAG), NULL);
+        s->prog_filter = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_FILTER_FRAG), NULL);
+        s->prog_resolve = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_RESOLVE_FRAG), NULL);
+        if (s->prog_cons) s->cons_u_model = gl->GetUniformLocation(s->prog_cons, "u_model");
+    }
+    s->prog_gbuf = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_VERT), skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_FRAG), NULL);
+    if (s->prog_gbuf) s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "u_model");
+    gl->ActiveTexture((skgl__enum)unit);
+    skgl__restore(gl, &st);
+    if (!s->prog_mask || !s->prog_gbuf ||
+        (d.technique == SKGL_SOFT_PVSM && (!s->prog_cons || !s->prog_smtg || !s->prog_reduce || !s->prog_filter ||
+                                           !s->prog_resolve || !s->pyramid || !s->grid || !s->tiles)) ||
+        gl->GetError() != 0) {
+        sk_result r = d.technique == SKGL_SOFT_PVSM && (!s->pyramid || !s->grid || !s->tiles) ? SK_ERR_CAPACITY
+                                                                                               : SK_ERR_GL;
+        if (!skgl_error_log(ctx)[0]) skgl__set_log(ctx, "skgl_soft_create: GL error while creating its objects", NULL);
+        skgl__soft_free(ctx, s);
+        SKGL_FREE(s);
+        return r;
+    }
+    s->stats.shadow_ms = s->stats.mask_ms = -1.0f;
+    *out = s;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_soft_destroy(skgl_context *ctx, skgl_soft *s)
+{
+    if (!ctx || !s) return;
+    skgl__soft_free(ctx, s);
+    SKGL_FREE(s);
+}
+
+SKGLDEF skgl_soft_desc skgl_soft_get_desc(const skgl_soft *s)
+{
+    skgl_soft_desc d;
+    if (s) return s->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF const skgl_stats *skgl_soft_stats(const skgl_soft *s) { return s ? &s->stats : NULL; }
+SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s) { return s ? s->light_vp : sk_mat4_identity(); }
+SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap)
+{
+    int i;
+    if (!s) return 0;
+    for (i = 0; out && i < cap && i < s->ntiles; i++) out[i] = s->tiles[i];
+    return s->ntiles;
+}
+SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap)
+{
+    int i;
+    if (!s || !s->pyramid || !s->stats.passes) return 0;
+    for (i = 0; out && i < cap && i < s->pyramid_floats; i++) out[i] = s->pyramid[i];
+    return s->pyramid_floats;
+}
+
+/* the light's frame as sk_mat4_look_at builds it: x = direction x up, y, -z = direction */
+static int skgl__area_frame(const skgl_area_light *l, sk_vec3 *x, sk_vec3 *y, sk_vec3 *f)
+{
+    sk_vec3 s;
+    if (!sk__v3_finite(l->direction) || !sk__v3_finite(l->up) || !(sk__len(l->direction) > 0.0f)) return 0;
+    *f = sk__normalize(l->direction);
+    s = sk__cross(*f, l->up);
+    if (!(sk__len(s) > 1e-6f * (sk__len(l->up) > 0.0f ? sk__len(l->up) : 1.0f)))
+        s = sk__cross(*f, sk__least_aligned_axis(*f));
+    *x = sk__normalize(s);
+    *y = sk__cross(*x, *f);
+    return 1;
+}
+
+SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u, sk_vec3 *half_v)
+{
+    sk_vec3 x, y, f;
+    if (!half_u || !half_v) return;
+    if (!light || !skgl__area_frame(light, &x, &y, &f)) {
+        *half_u = *half_v = sk__v3(0.0f, 0.0f, 0.0f);
+        return;
+    }
+    *half_u = sk__scale(x, light->half_width);
+    *half_v = sk__scale(y, light->half_height);
+}
+
+/* glFrustum from tangents of the light's view: x/z in [x0, x1], y/z in [y0, y1] */
+static sk_mat4 skgl__tan_frustum(double x0, double x1, double y0, double y1, double zn, double zf)
+{
+    sk_mat4 p;
+    memset(&p, 0, sizeof p);
+    p.m[0] = (float)(2.0 / (x1 - x0));
+    p.m[5] = (float)(2.0 / (y1 - y0));
+    p.m[8] = (float)((x1 + x0) / (x1 - x0));
+    p.m[9] = (float)((y1 + y0) / (y1 - y0));
+    p.m[10] = (float)(-(zf + zn) / (zf - zn));
+    p.m[11] = -1.0f;
+    p.m[14] = (float)(-2.0 * zf * zn / (zf - zn));
+    return p;
+}
+
+/* nearest distance along the light's axis of the scene bounds inside the
+   frustum of those tangents (zf when none is) */
+static double skgl__soft_near(const skgl_soft *s, const skgl_scene *scene, double x0, double x1, double y0,
+                              double y1, double zf)
+{
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    sk_frustum f = sk_frustum_from_matrix(sk_mat4_mul(skgl__tan_frustum(x0, x1, y0, y1, zf * 1e-5, zf),
+                                                      s->light_view));
+    double zn = zf;
+    int i, n = sk_clip_frustum_aabb(&f, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+    for (i = 0; i < n; i++) {
+        double z = -(double)sk_mat4_transform_point(s->light_view, pts[i]).z;
+        if (z < zn) zn = z;
+    }
+    return zn;
+}
+
+/* The base frustum: from the light's centre, around the receivers the
+   camera sees (the view clipped to the bounds) grown by the widest blocker
+   search and kept within the bounds; its near plane at the nearest point
+   of the bounds inside it, its far plane at the farthest corner. */
+static sk_result skgl__soft_fit(skgl_soft *s, const skgl_camera *cam, const skgl_scene *scene,
+                                const skgl_area_light *l)
+{
+    sk_vec3 pts[SK_CLIP_MAX_POINTS], corners[8], x, y, f;
+    sk_frustum view;
+    double zmax = -1e300, zn, zf, rx0 = 1e300, rx1 = -1e300, ry0 = 1e300, ry1 = -1e300;
+    double bx0 = 1e300, bx1 = -1e300, by0 = 1e300, by1 = -1e300, mx, my, lim = 5.67;   /* tan 80 degrees */
+    double x0, x1, y0, y1;
+    int i, n;
+    if (!skgl__area_frame(l, &x, &y, &f)) return SK_ERR_INVALID_ARG;
+    s->light_view = sk_mat4_look_at(l->position, sk__add(l->position, f), l->up);
+    for (i = 0; i < 8; i++) {
+        sk_vec3 c = sk__v3(i & 1 ? scene->bounds.max.x : scene->bounds.min.x,
+                           i & 2 ? scene->bounds.max.y : scene->bounds.min.y,
+                           i & 4 ? scene->bounds.max.z : scene->bounds.min.z);
+        corners[i] = sk_mat4_transform_point(s->light_view, c);
+        if (-corners[i].z > zmax) zmax = -corners[i].z;
+    }
+    if (!(zmax > 0.0)) return SK_ERR_DEGENERATE;
+    zf = zmax * 1.01;
+    zn = zf * 1e-3;
+    for (i = 0; i < 8; i++) {
+        double z = -corners[i].z > zn ? -corners[i].z : zn;
+        double tx = corners[i].x / z, ty = corners[i].y / z;
+        if (tx < bx0) bx0 = tx;
+        if (tx > bx1) bx1 = tx;
+        if (ty < by0) by0 = ty;
+        if (ty > by1) by1 = ty;
+    }
+    view = sk_frustum_from_matrix(sk_mat4_mul(cam->proj, cam->view));
+    n = sk_clip_frustum_aabb(&view, scene->bounds, pts, SK_CLIP_MAX_POINTS);
+    for (i = 0; i < n; i++) {
+        sk_vec3 q = sk_mat4_transform_point(s->light_view, pts[i]);
+        double tx, ty;
+        if (!(-q.z > zn)) continue;               /* behind the light's plane: never lit by it */
+        tx = q.x / -q.z; ty = q.y / -q.z;
+        if (tx < rx0) rx0 = tx;
+        if (tx > rx1) rx1 = tx;
+        if (ty < ry0) ry0 = ty;
+        if (ty > ry1) ry1 = ty;
+    }
+    if (!(rx1 >= rx0)) { rx0 = bx0; rx1 = bx1; ry0 = by0; ry1 = by1; }
+    if (rx0 < -lim) rx0 = -lim;
+    if (rx1 > lim) rx1 = lim;
+    if (ry0 < -lim) ry0 = -lim;
+    if (ry1 > lim) ry1 = lim;
+    /* blockers of a receiver lie within half-size / distance of its ray:
+       grow by that at the nearest bounds in front of the receivers, twice
+       (the growth can only bring the near plane closer) */
+    x0 = rx0; x1 = rx1; y0 = ry0; y1 = ry1;
+    for (i = 0; i < 2; i++) {
+        double z = skgl__soft_near(s, scene, x0, x1 > x0 ? x1 : x0 + 1e-6, y0, y1 > y0 ? y1 : y0 + 1e-6, zf);
+        zn = z * 0.99 > zf * 1e-3 ? z * 0.99 : zf * 1e-3;
+        mx = l->half_width / zn;
+        my = l->half_height / zn;
+        x0 = rx0 - mx > bx0 ? rx0 - mx : bx0;
+        x1 = rx1 + mx < bx1 ? rx1 + mx : bx1;
+        y0 = ry0 - my > by0 ? ry0 - my : by0;
+        y1 = ry1 + my < by1 ? ry1 + my : by1;
+        if (x0 < -lim) x0 = -lim;
+        if (x1 > lim) x1 = lim;
+        if (y0 < -lim) y0 = -lim;
+        if (y1 > lim) y1 = lim;
+    }
+    if (!(x1 > x0) || !(y1 > y0)) { x0 = y0 = -1.0; x1 = y1 = 1.0; }
+    /* steady under camera motion: the sides snapped outwards to multiples of
+       a power of two near 1/16 of the width, the near plane down to a step
+       of 2^(1/8), so the texel grid only moves when a side crosses a step */
+    {
+        double sx = SK_POW(2.0, SK_FLOOR(SK_LOG2((x1 - x0) / 16.0)));
+        double sy = SK_POW(2.0, SK_FLOOR(SK_LOG2((y1 - y0) / 16.0)));
+        x0 = SK_FLOOR(x0 / sx) * sx; x1 = SK_CEIL(x1 / sx) * sx;
+        y0 = SK_FLOOR(y0 / sy) * sy; y1 = SK_CEIL(y1 / sy) * sy;
+        zn = SK_POW(2.0, SK_FLOOR(SK_LOG2(zn) * 8.0) / 8.0);
+    }
+    s->light_proj = skgl__tan_frustum(x0, x1, y0, y1, zn, zf);
+    s->light_vp = sk_mat4_mul(s->light_proj, s->light_view);
+    s->p00 = s->light_proj.m[0];
+    s->p11 = s->light_proj.m[5];
+    s->zn = (float)zn;
+    s->zf = (float)zf;
+    return sk__mat_finite(&s->light_vp) ? SK_OK : SK_ERR_DEGENERATE;
+}
+
+static void skgl__soft_begin(skgl_context *ctx) { skgl__query_begin(ctx); }
+static float skgl__soft_end(skgl_context *ctx) { return skgl__query_end(ctx); }
+
+/* colour targets of the soft object's framebuffer (0 ends the list) */
+static void skgl__soft_attach(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
+                              skgl__uint depth)
+{
+    static const skgl__enum bufs[4] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1,
+                                        SKGL__COLOR_ATTACHMENT2, SKGL__COLOR_ATTACHMENT0 + 3};
+    skgl__api *gl = &ctx->gl;
+    int i;
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
+    for (i = 0; i < 4; i++)
+        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, bufs[i], SKGL__TEXTURE_2D, i < n ? tex[i] : 0, i < n ? level : 0);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
+    gl->DrawBuffers(n, bufs);
+}
+static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
+                              skgl__uint depth)
+{
+    skgl__soft_attach(ctx, s, tex, n, level, depth);
+    return ctx->gl.CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+}
+/* everything detached, no status check: the check of a framebuffer with no
+   attachments is a GL_KHR_debug message on Mesa (MEDIUM, "FBO incomplete") */
+static void skgl__soft_detach(skgl_context *ctx, skgl_soft *s)
+{
+    skgl__soft_attach(ctx, s, NULL, 0, 0, 0);
+    ctx->gl.DrawBuffer(SKGL__NONE);
+}
+
+/* the depth pass of one map (PCSS's, or a PVSM tile) into s->map */
+static void skgl__soft_depth(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene, sk_mat4 vp,
+                             int w, int h, int index)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl_draw_info info;
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    skgl_shadow_desc bias;
+    memset(&bias, 0, sizeof bias);
+    bias.slope_bias = s->desc.slope_bias;
+    bias.depth_bias = s->desc.depth_bias;
+    skgl__soft_targets(ctx, s, NULL, 0, 0, s->map);
+    gl->DrawBuffer(SKGL__NONE);
+    gl->ReadBuffer(SKGL__NONE);
+    gl->Viewport(0, 0, w, h);
+    gl->Enable(SKGL__SCISSOR_TEST);
+    /* one texel more than the tile: the filter's last panel may sample it */
+    gl->Scissor(0, 0, w < s->map_res ? w + 1 : w, h < s->map_res ? h + 1 : h);
+    skgl__depth_pass_state(gl, &bias);
+    gl->ColorMask(0, 0, 0, 0);
+    gl->Clear(SKGL__DEPTH_BUFFER_BIT);
+    gl->UseProgram(ctx->depth_prog);
+    gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
+    gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_AREA;
+    info.index = index;
+    info.view_proj = vp;
+    info.frustum = sk_frustum_from_matrix(vp);
+    scene->draw(scene->user, &info);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->ColorMask(1, 1, 1, 1);
+    s->stats.passes++;
+    s->stats.texels += (double)w * h;
+}
+
+/* the camera's depth and normals through the draw callback (depth_tex = 0) */
+static int skgl__soft_gbuffer(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam, const skgl_scene *scene,
+                              int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view), inv_view;
+    skgl_draw_info info;
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    float eye[3];
+    if (s->gw != w || s->gh != h) {
+        skgl__soft_delete_tex(ctx, &s->gb_depth);
+        skgl__soft_delete_tex(ctx, &s->gb_normal);
+        gl->ActiveTexture(SKGL__TEXTURE0);
+        s->gb_depth = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, w, h, 1, SKGL__DEPTH_COMPONENT,
+                                         SKGL__FLOAT);
+        s->gb_normal = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA16F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
+        s->gw = w; s->gh = h;
+    }
+    if (!skgl__soft_targets(ctx, s, &s->gb_normal, 1, 0, s->gb_depth)) return 0;
+    gl->Viewport(0, 0, w, h);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__CULL_FACE);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->Enable(SKGL__DEPTH_TEST);
+    gl->DepthFunc(SKGL__LESS);
+    gl->DepthMask(1);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->ClearDepth(1.0);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->Clear(SKGL__DEPTH_BUFFER_BIT | SKGL__COLOR_BUFFER_BIT);
+    gl->UseProgram(s->prog_gbuf);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_gbuf, "u_view_proj"), 1, 0, vp.m);
+    gl->UniformMatrix4fv(s->gbuf_u_model, 1, 0, identity);
+    if (!sk_mat4_inverse(cam->view, &inv_view)) inv_view = sk_mat4_identity();
+    eye[0] = inv_view.m[12]; eye[1] = inv_view.m[13]; eye[2] = inv_view.m[14];
+    gl->Uniform3fv(gl->GetUniformLocation(s->prog_gbuf, "u_eye"), 1, eye);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_CAMERA;
+    info.view_proj = vp;
+    info.frustum = sk_frustum_from_matrix(vp);
+    ctx->model_loc = s->gbuf_u_model;
+    scene->draw(scene->user, &info);
+    ctx->model_loc = ctx->depth_u_model;
+    s->stats.passes++;
+    skgl__soft_detach(ctx, s);
+    return 1;
+}
+
+/* uniforms of soft_common.glsl */
+static void skgl__soft_common(skgl_context *ctx, const skgl_soft *s, skgl__uint prog, const sk_mat4 *inv,
+                              const skgl_area_light *l, unsigned normal_tex)
+{
+    skgl__api *gl = &ctx->gl;
+    float pos[3], half[2], proj[4];
+    pos[0] = l->position.x; pos[1] = l->position.y; pos[2] = l->position.z;
+    half[0] = l->half_width; half[1] = l->half_height;
+    proj[0] = s->p00; proj[1] = s->p11; proj[2] = s->zn; proj[3] = s->zf;
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv->m);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_light_vp"), 1, 0, s->light_vp.m);
+    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_light_pos"), 1, pos);
+    gl->Uniform2fv(gl->GetUniformLocation(prog, "u_light_half"), 1, half);
+    gl->Uniform4fv(gl->GetUniformLocation(prog, "u_light_proj"), 1, proj);
+    gl->Uniform1f(gl->GetUniformLocation(prog, "u_rel_bias"), s->desc.rel_bias);
+    gl->Uniform1i(gl->GetUniformLocation(prog, "u_blocker_cells"), s->desc.blocker_cells);
+}
+
+/* levels 1.. of a MIN pyramid stored as the mip chain of tex (level 0 drawn) */
+static void skgl__soft_reduce(skgl_context *ctx, skgl_soft *s, skgl__uint tex, int w, int h, int levels)
+{
+    skgl__api *gl = &ctx->gl;
+    int l;
+    gl->UseProgram(s->prog_reduce);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_reduce, "u_src"), 0);
+    gl->ActiveTexture(SKGL__TEXTURE0);
+    gl->BindSampler(0, 0);
+    gl->BindTexture(SKGL__TEXTURE_2D, tex);
+    for (l = 1; l < levels; l++) {
+        skgl__int size[2];
+        size[0] = w; size[1] = h;
+        w = w > 1 ? (w + 1) / 2 : 1;
+        h = h > 1 ? (h + 1) / 2 : 1;
+        /* sample only level l-1 while level l is drawn */
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, l - 1);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, l - 1);
+        skgl__soft_targets(ctx, s, &tex, 1, l, 0);
+        gl->Viewport(0, 0, w, h);
+        gl->Uniform2i(gl->GetUniformLocation(s->prog_reduce, "u_src_size"), size[0], size[1]);
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
+    skgl__soft_detach(ctx, s);
+}
+
+/* PVSM step 2: the low-resolution map, conservative, into the MIN pyramid
+   (and plain into low_true); MIN blending takes the place of the depth test */
+static void skgl__soft_lowres(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl_draw_info info;
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    skgl__uint targets[2];
+    skgl_shadow_desc bias;
+    float texel[2];
+    int r = s->desc.lowres;
+    targets[0] = s->low_color;
+    targets[1] = s->low_true;
+    skgl__soft_targets(ctx, s, targets, 2, 0, 0);
+    gl->Viewport(0, 0, r, r);
+    gl->Disable(SKGL__SCISSOR_TEST);
+    /* the slope-scaled offset (it moves gl_FragCoord.z), without the depth test */
+    memset(&bias, 0, sizeof bias);
+    bias.slope_bias = s->desc.slope_bias;
+    bias.depth_bias = s->desc.depth_bias;
+    skgl__depth_pass_state(gl, &bias);
+    gl->Disable(SKGL__DEPTH_TEST);
+    gl->ColorMask(1, 1, 1, 1);
+    gl->ClearColor(1.0f, 1.0f, 1.0f, 1.0f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->Enable(SKGL__BLEND);
+    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
+    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+    gl->Enable(SKGL__DEPTH_CLAMP);
+    gl->UseProgram(s->prog_cons);
+    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_cons, "u_view_proj"), 1, 0, s->light_vp.m);
+    gl->UniformMatrix4fv(s->cons_u_model, 1, 0, identity);
+    texel[0] = texel[1] = 2.0f / (float)r;
+    gl->Uniform2fv(gl->GetUniformLocation(s->prog_cons, "u_texel"), 1, texel);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_cons, "u_conservative"), s->desc.conservative == 1);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_AREA;
+    info.index = 0;
+    info.view_proj = s->light_vp;
+    info.frustum = sk_frustum_from_matrix(s->light_vp);
+    ctx->model_loc = s->cons_u_model;
+    scene->draw(scene->user, &info);
+    ctx->model_loc = ctx->depth_u_model;
+    gl->Disable(SKGL__DEPTH_CLAMP);
+    gl->Disable(SKGL__BLEND);
+    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
+    s->stats.passes++;
+    s->stats.texels += (double)r * r;
+    gl->BindVertexArray(ctx->empty_vao);
+    skgl__soft_reduce(ctx, s, s->low_color, r, r, s->low_levels);
+}
+
+/* PVSM steps 4 and 5: the SMTG's pyramid read back, "no sample" as +INF */
+static int skgl__soft_read_pyramid(skgl_context *ctx, skgl_soft *s)
+{
+    skgl__api *gl = &ctx->gl;
+    int l, w = s->desc.grid, h = s->desc.grid, off = 0, i;
+    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
+    skgl__pixel_store_plain(gl);
+    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
+    for (l = 0; l < s->smtg_levels; l++) {
+        skgl__soft_targets(ctx, s, &s->smtg, 1, l, 0);
+        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
+        gl->ReadPixels(0, 0, w, h, SKGL__RG, SKGL__FLOAT, s->pyramid + off);
+        off += w * h * 2;
+        w = w > 1 ? (w + 1) / 2 : 1;
+        h = h > 1 ? (h + 1) / 2 : 1;
+    }
+    gl->ReadBuffer(SKGL__NONE);
+    skgl__soft_detach(ctx, s);
+    for (i = 0; i < off; i++)
+        if (!(s->pyramid[i] < 1e29f)) s->pyramid[i] = SK__INF;
+    return off;
+}
+
+/* a tile side rounded up to a step of 2^(1/4): under slow motion the
+   predicted sizes drift, the rounded ones (and the texel grid) seldom move */
+static int skgl__soft_round_res(int r, int max_res)
+{
+    double q = SK_POW(2.0, SK_CEIL(SK_LOG2((double)r) * 4.0 - 1e-9) / 4.0);
+    int v = (int)SK_CEIL(q - 1e-9);
+    return v > max_res ? max_res : v < r ? r : v;
+}
+
+/* PVSM step 6: the kd-tree's tiles; more than max_tiles: every required
+   texel twice as large (half the resolution) until they fit */
+static int skgl__soft_tiles(skgl_soft *s)
+{
+    int g = s->desc.grid, n = g * g * 2, i, k, count = 0;
+    const float *top = s->pyramid + s->pyramid_floats - 2;
+    if (!(top[0] < SK__INF) && !(top[1] < SK__INF)) return 0;      /* the SMTG is empty */
+    memcpy(s->grid, s->pyramid, sizeof(float) * (size_t)n);
+    for (k = 0; k < 24; k++) {
+        count = sk_fvsm_tiles(s->grid, g, g, s->desc.resolution, s->tiles, s->tiles_cap);
+        if (count >= 0 && count <= s->desc.max_tiles) break;
+        for (i = 0; i < n; i++) s->grid[i] *= 2.0f;
+    }
+    if (count < 0) return 0;
+    if (count > s->desc.max_tiles) count = s->desc.max_tiles;
+    for (i = 0; i < count; i++) {
+        s->tiles[i].res_x = skgl__soft_round_res(s->tiles[i].res_x, s->desc.resolution);
+        s->tiles[i].res_y = skgl__soft_round_res(s->tiles[i].res_y, s->desc.resolution);
+    }
+    return count;
+}
+
+static sk_result skgl__soft_screen(skgl_context *ctx, skgl_soft *s, int w, int h)
+{
+    int i;
+    if (s->sw == w && s->sh == h) return SK_OK;
+    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
+    ctx->gl.ActiveTexture(SKGL__TEXTURE0);
+    for (i = 0; i < 4; i++)
+        s->screen[i] = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
+    s->sw = w; s->sh = h;
+    return SK_OK;
+}
+
+static void skgl__soft_bind(skgl_context *ctx, int unit, skgl__uint tex, skgl__uint sampler)
+{
+    ctx->gl.ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
+    ctx->gl.BindTexture(SKGL__TEXTURE_2D, tex);
+    ctx->gl.BindSampler((skgl__uint)unit, sampler);
+}
+
+static float skgl__soft_ms(float a, float b) { return a < 0.0f || b < 0.0f ? -1.0f : a + b; }
+
+static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
+                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
+                                 unsigned mask_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__u64 covered = 0, penumbra = 0;
+    float *ms = s->stats.step_ms;
+    int i, hard = !(l->half_width > 0.0f) && !(l->half_height > 0.0f);
+    skgl__soft_screen(ctx, s, w, h);
+
+    /* 2: the conservative low-resolution map and its MIN pyramid */
+    skgl__soft_begin(ctx);
+    skgl__soft_lowres(ctx, s, scene);
+    ms[1] = skgl__soft_end(ctx);
+
+    /* 3: the kernel-shape buffer (inputs: depth 1, normals 2, pyramid 0) */
+    skgl__soft_begin(ctx);
+    skgl__soft_targets(ctx, s, s->screen, 3, 0, 0);
+    gl->Viewport(0, 0, w, h);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->UseProgram(s->prog_mask);
+    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_true"), 3);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_size"), s->desc.lowres);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_levels"), s->low_levels);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_static_scene"), s->desc.static_scene);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_hard"), hard);
+    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_antialias"), s->desc.antialias == 1 ? 1.0f : 0.0f);
+    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_res_scale"), s->desc.resolution_scale);
+    skgl__soft_bind(ctx, 0, s->low_color, 0);
+    skgl__soft_bind(ctx, 3, s->low_true, 0);
+    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->EndQuery(SKGL__SAMPLES_PASSED);
+    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &covered);
+    ms[2] = skgl__soft_end(ctx);
+
+    /* 4: prediction into the SMTG, one point per pixel, MIN blending */
+    skgl__soft_begin(ctx);
+    skgl__soft_targets(ctx, s, &s->smtg, 1, 0, 0);
+    gl->Viewport(0, 0, s->desc.grid, s->desc.grid);
+    gl->ClearColor(1e30f, 1e30f, 1e30f, 1e30f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    gl->Enable(SKGL__BLEND);
+    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
+    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+    gl->UseProgram(s->prog_smtg);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_kernel"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_pred"), 1);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_width"), w);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_grid"), s->desc.grid);
+    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
+    skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
+    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
+    gl->DrawArrays(SKGL__POINTS, 0, w * h);
+    gl->EndQuery(SKGL__SAMPLES_PASSED);
+    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &penumbra);
+    gl->Disable(SKGL__BLEND);
+    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
+    ms[3] = skgl__soft_end(ctx);
+
+    /* 5, 6: the SMTG pyramid on the GPU, read back; the kd-tree */
+    skgl__soft_begin(ctx);
+    skgl__soft_reduce(ctx, s, s->smtg, s->desc.grid, s->desc.grid, s->smtg_levels);
+    ms[4] = skgl__soft_end(ctx);
+    skgl__soft_read_pyramid(ctx, s);
+    s->ntiles = skgl__soft_tiles(s);
+
+    /* 7, 8: per tile, its map, then the filtering of the pixels it serves */
+    ms[5] = ms[6] = ctx->timing ? 0.0f : -1.0f;
+    skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->Clear(SKGL__COLOR_BUFFER_BIT);
+    s->stats.resolution = 0;
+    for (i = 0; i < s->ntiles; i++) {
+        const sk_tile *t = &s->tiles[i];
+        float g = (float)s->desc.grid, rect[4], res[2];
+        sk_rect r;
+        sk_mat4 vp;
+        r.x0 = -1.0f + 2.0f * (float)t->x0 / g; r.x1 = -1.0f + 2.0f * (float)t->x1 / g;
+        r.y0 = -1.0f + 2.0f * (float)t->y0 / g; r.y1 = -1.0f + 2.0f * (float)t->y1 / g;
+        vp = sk_mat4_mul(sk_crop_matrix(r, -1.0f, 1.0f), s->light_vp);
+        skgl__soft_begin(ctx);
+        skgl__soft_depth(ctx, s, scene, vp, t->res_x, t->res_y, 1 + i);
+        ms[5] = skgl__soft_ms(ms[5], skgl__soft_end(ctx));
+        if (t->res_x > s->stats.resolution) s->stats.resolution = t->res_x;
+        if (t->res_y > s->stats.resolution) s->stats.resolution = t->res_y;
+
+        skgl__soft_begin(ctx);
+        skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
+        gl->Viewport(0, 0, w, h);
+        gl->Disable(SKGL__DEPTH_TEST);
+        gl->Disable(SKGL__POLYGON_OFFSET_FILL);
+        gl->Enable(SKGL__BLEND);
+        gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
+        gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+        gl->UseProgram(s->prog_filter);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_kernel"), 0);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_pred"), 1);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_plane"), 2);
+        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_tile"), 3);
+        rect[0] = r.x0; rect[1] = r.y0; rect[2] = r.x1; rect[3] = r.y1;
+        res[0] = (float)t->res_x; res[1] = (float)t->res_y;
+        gl->Uniform4fv(gl->GetUniformLocation(s->prog_filter, "u_tile_rect"), 1, rect);
+        gl->Uniform2fv(gl->GetUniformLocation(s->prog_filter, "u_tile_res"), 1, res);
+        skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
+        skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
+        skgl__soft_bind(ctx, 2, s->screen[2], ctx->point_sampler);
+        skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
+        gl->BindVertexArray(ctx->empty_vao);
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+        gl->Disable(SKGL__BLEND);
+        skgl__soft_bind(ctx, 3, 0, 0);
+        ms[6] = skgl__soft_ms(ms[6], skgl__soft_end(ctx));
+    }
+    skgl__soft_detach(ctx, s);
+
+    /* resolve into the mask */
+    skgl__soft_begin(ctx);
+    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
+        skgl__soft_end(ctx);
+        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->UseProgram(s->prog_resolve);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_kernel"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_acc"), 1);
+    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
+    skgl__soft_bind(ctx, 1, s->screen[3], ctx->point_sampler);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    ms[7] = skgl__soft_end(ctx);
+
+    s->stats.tiles = s->ntiles;
+    s->stats.maps = s->ntiles;
+    s->stats.lit_fraction = covered > 0 ? 1.0f - (float)((double)penumbra / (double)covered) : 1.0f;
+    s->stats.shadow_ms = skgl__soft_ms(ms[1], ms[5]);
+    s->stats.mask_ms = skgl__soft_ms(skgl__soft_ms(skgl__soft_ms(ms[2], ms[3]), skgl__soft_ms(ms[4], ms[6])), ms[7]);
+    return SK_OK;
+}
+
+static sk_result skgl__soft_pcss(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
+                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
+                                 unsigned mask_tex, int w, int h)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__soft_begin(ctx);
+    skgl__soft_depth(ctx, s, scene, s->light_vp, s->map_res, s->map_res, 0);
+    s->stats.shadow_ms = skgl__soft_end(ctx);
+    skgl__soft_begin(ctx);
+    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
+        skgl__soft_end(ctx);
+        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
+        return SK_ERR_GL;
+    }
+    gl->UseProgram(s->prog_mask);
+    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map"), 0);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map_cmp"), 3);
+    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_pcf_taps"), s->desc.pcf_taps);
+    skgl__soft_bind(ctx, 0, s->map, ctx->point_sampler);
+    skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
+    gl->BindVertexArray(ctx->empty_vao);
+    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
+    s->stats.mask_ms = skgl__soft_end(ctx);
+    s->stats.maps = 1;
+    s->stats.resolution = s->map_res;
+    s->stats.tiles = 0;
+    s->stats.lit_fraction = -1.0f;
+    return SK_OK;
+}
+
+SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
+                                   const skgl_scene *scene, const skgl_area_light *light,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    skgl__api *gl;
+    skgl__state st;
+    skgl__int w = 0, h = 0;
+    sk_mat4 inv;
+    sk_result r;
+    int i;
+    if (!ctx || !s || !cam || !scene || !scene->draw || !light || !mask_tex || !sk__mat_finite(&cam->view) ||
+        !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) || !sk__v3_finite(light->position) ||
+        !sk__finite(light->half_width) || !sk__finite(light->half_height) || light->half_width < 0.0f ||
+        light->half_height < 0.0f || !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
+        return SK_ERR_INVALID_ARG;
+    r = skgl__soft_fit(s, cam, scene, light);
+    if (r != SK_OK) return r;
+    gl = &ctx->gl;
+    skgl__save(gl, &st);
+    s->stats.passes = 0;
+    s->stats.texels = 0.0;
+    for (i = 0; i < SKGL_SOFT_STEPS; i++) s->stats.step_ms[i] = ctx->timing ? 0.0f : -1.0f;
+    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
+    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
+    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
+    if (w <= 0 || h <= 0) {
+        skgl__restore(gl, &st);
+        skgl__set_log(ctx, "skgl_soft_render: mask texture has no level 0", NULL);
+        return SK_ERR_INVALID_ARG;
+    }
+    gl->BindVertexArray(ctx->empty_vao);
+    if (!depth_tex) {
+        skgl__soft_begin(ctx);
+        if (!skgl__soft_gbuffer(ctx, s, cam, scene, w, h)) {
+            skgl__soft_end(ctx);
+            skgl__soft_detach(ctx, s);
+            skgl__restore(gl, &st);
+            skgl__set_log(ctx, "skgl_soft_render: G-buffer framebuffer incomplete", NULL);
+            return SK_ERR_GL;
+        }
+        s->stats.step_ms[0] = skgl__soft_end(ctx);
+        depth_tex = s->gb_depth;
+        normal_tex = s->gb_normal;
+    }
+    gl->BindVertexArray(ctx->empty_vao);
+    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
+    if (s->desc.technique == SKGL_SOFT_PVSM)
+        r = skgl__soft_pvsm(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
+    else
+        r = skgl__soft_pcss(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
+    skgl__soft_detach(ctx, s);
+    skgl__restore(gl, &st);
+    if (r != SK_OK) return r;
+    return skgl__check(ctx, "skgl_soft_render");
+}
+
+
+/* ---- 10. Embedded GLSL: the files of shaders_embedded/, by `make shaders` --- */
+// >>glsl
 /* The literals may pass C99's minimum of 4095 characters per string
    (GCC, Clang and MSVC take 64K): -Woverlength-strings is a portability
    note, silenced for this block only. */
@@ -2073,4813 +6978,36 @@ static const char skgl__src_pcss_mask_frag[] =
 #pragma GCC diagnostic pop
 #endif
 
-/* ---- the GL 3.3 core subset shadowkit uses --------------------------- */
-typedef unsigned int skgl__enum;
-typedef unsigned int skgl__uint;
-typedef int skgl__int;
-typedef int skgl__sizei;
-typedef unsigned char skgl__bool;
-typedef unsigned long long skgl__u64;
-
-#define SKGL__DEPTH_BUFFER_BIT 0x0100
-#define SKGL__TRIANGLES 0x0004
-#define SKGL__LESS 0x0201
-#define SKGL__LEQUAL 0x0203
-#define SKGL__CULL_FACE 0x0B44
-#define SKGL__CULL_FACE_MODE 0x0B45
-#define SKGL__DEPTH_TEST 0x0B71
-#define SKGL__DEPTH_WRITEMASK 0x0B72
-#define SKGL__DEPTH_CLEAR_VALUE 0x0B73
-#define SKGL__DEPTH_FUNC 0x0B74
-#define SKGL__VIEWPORT 0x0BA2
-#define SKGL__BLEND 0x0BE2
-#define SKGL__SCISSOR_BOX 0x0C10
-#define SKGL__SCISSOR_TEST 0x0C11
-#define SKGL__COLOR_WRITEMASK 0x0C23
-#define SKGL__TEXTURE_2D 0x0DE1
-#define SKGL__TEXTURE_WIDTH 0x1000
-#define SKGL__TEXTURE_HEIGHT 0x1001
-#define SKGL__FLOAT 0x1406
-#define SKGL__DEPTH_COMPONENT 0x1902
-#define SKGL__NEAREST 0x2600
-#define SKGL__LINEAR 0x2601
-#define SKGL__TEXTURE_MAG_FILTER 0x2800
-#define SKGL__TEXTURE_MIN_FILTER 0x2801
-#define SKGL__TEXTURE_WRAP_S 0x2802
-#define SKGL__TEXTURE_WRAP_T 0x2803
-#define SKGL__POLYGON_OFFSET_UNITS 0x2A00
-#define SKGL__POLYGON_OFFSET_FILL 0x8037
-#define SKGL__POLYGON_OFFSET_FACTOR 0x8038
-#define SKGL__TEXTURE_BINDING_2D 0x8069
-#define SKGL__CLAMP_TO_EDGE 0x812F
-#define SKGL__TEXTURE0 0x84C0
-#define SKGL__ACTIVE_TEXTURE 0x84E0
-#define SKGL__VERTEX_ARRAY_BINDING 0x85B5
-#define SKGL__QUERY_RESULT 0x8866
-#define SKGL__TEXTURE_COMPARE_MODE 0x884C
-#define SKGL__TEXTURE_COMPARE_FUNC 0x884D
-#define SKGL__COMPARE_REF_TO_TEXTURE 0x884E
-#define SKGL__TIME_ELAPSED 0x88BF
-#define SKGL__SAMPLER_BINDING 0x8919
-#define SKGL__FRAGMENT_SHADER 0x8B30
-#define SKGL__VERTEX_SHADER 0x8B31
-#define SKGL__COMPILE_STATUS 0x8B81
-#define SKGL__LINK_STATUS 0x8B82
-#define SKGL__CURRENT_PROGRAM 0x8B8D
-#define SKGL__TEXTURE_2D_ARRAY 0x8C1A
-#define SKGL__TEXTURE_BINDING_2D_ARRAY 0x8C1D
-#define SKGL__DEPTH_COMPONENT32F 0x8CAC
-#define SKGL__DRAW_FRAMEBUFFER_BINDING 0x8CA6
-#define SKGL__READ_FRAMEBUFFER 0x8CA8
-#define SKGL__DRAW_FRAMEBUFFER 0x8CA9
-#define SKGL__READ_FRAMEBUFFER_BINDING 0x8CAA
-#define SKGL__FRAMEBUFFER_COMPLETE 0x8CD5
-#define SKGL__COLOR_ATTACHMENT0 0x8CE0
-#define SKGL__DEPTH_ATTACHMENT 0x8D00
-#define SKGL__FRAMEBUFFER 0x8D40
-#define SKGL__MAJOR_VERSION 0x821B
-#define SKGL__MINOR_VERSION 0x821C
-#define SKGL__NONE 0
-#define SKGL__RGBA 0x1908
-#define SKGL__RGBA32F 0x8814
-#define SKGL__PIXEL_PACK_BUFFER 0x88EB
-#define SKGL__PIXEL_PACK_BUFFER_BINDING 0x88ED
-#define SKGL__STREAM_READ 0x88E1
-#define SKGL__COLOR_ATTACHMENT1 0x8CE1
-#define SKGL__RGBA8 0x8058
-#define SKGL__UNSIGNED_BYTE 0x1401
-#define SKGL__POINTS 0x0000
-#define SKGL__PROGRAM_POINT_SIZE 0x8642
-#define SKGL__COLOR_BUFFER_BIT 0x4000
-#define SKGL__COLOR_CLEAR_VALUE 0x0C22
-#define SKGL__PIXEL_UNPACK_BUFFER 0x88EC
-#define SKGL__PIXEL_UNPACK_BUFFER_BINDING 0x88EF
-#define SKGL__TEXTURE_CUBE_MAP 0x8513
-#define SKGL__TEXTURE_BINDING_CUBE_MAP 0x8514
-#define SKGL__TEXTURE_CUBE_MAP_POSITIVE_X 0x8515
-#define SKGL__TEXTURE_CUBE_MAP_SEAMLESS 0x884F
-#define SKGL__TEXTURE_BASE_LEVEL 0x813C
-#define SKGL__TEXTURE_MAX_LEVEL 0x813D
-#define SKGL__TEXTURE_WRAP_R 0x8072
-#define SKGL__RG 0x8227
-#define SKGL__RG16 0x822C
-#define SKGL__UNSIGNED_SHORT 0x1403
-#define SKGL__GEOMETRY_SHADER 0x8DD9
-#define SKGL__BLEND_EQUATION_RGB 0x8009
-#define SKGL__BLEND_EQUATION_ALPHA 0x883D
-#define SKGL__BLEND_DST_RGB 0x80C8
-#define SKGL__BLEND_SRC_RGB 0x80C9
-#define SKGL__BLEND_DST_ALPHA 0x80CA
-#define SKGL__BLEND_SRC_ALPHA 0x80CB
-#define SKGL__FUNC_ADD 0x8006
-#define SKGL__MIN 0x8007
-#define SKGL__ONE 1
-#define SKGL__DEPTH_CLAMP 0x864F
-#define SKGL__SAMPLES_PASSED 0x8914
-#define SKGL__R32F 0x822E
-#define SKGL__RG32F 0x8230
-#define SKGL__RED 0x1903
-#define SKGL__RGBA16F 0x881A
-#define SKGL__NEAREST_MIPMAP_NEAREST 0x2700
-#define SKGL__COLOR_ATTACHMENT2 0x8CE2
-#define SKGL__UNITS 4                      /* texture units the mask pass uses: 0 .. 3 */
-#define SKGL__POLYGON_MODE 0x0B40
-#define SKGL__FRONT_AND_BACK 0x0408
-#define SKGL__FILL 0x1B02
-#define SKGL__COLOR 0x1800                 /* glClearBufferfv's buffers */
-#define SKGL__DEPTH 0x1801
-#define SKGL__R8 0x8229
-#define SKGL__QUERY_RESULT_AVAILABLE 0x8867
-#define SKGL__ACTIVE_UNIFORMS 0x8B86
-#define SKGL__SYNC_GPU_COMMANDS_COMPLETE 0x9117
-#define SKGL__SYNC_FLUSH_COMMANDS_BIT 0x00000001
-#define SKGL__ALREADY_SIGNALED 0x911A
-#define SKGL__CONDITION_SATISFIED 0x911C
-#define SKGL__PACK_ALIGNMENT 0x0D05
-#define SKGL__PACK_ROW_LENGTH 0x0D02
-#define SKGL__PACK_SKIP_ROWS 0x0D03
-#define SKGL__PACK_SKIP_PIXELS 0x0D04
-#define SKGL__UNPACK_ALIGNMENT 0x0CF5
-#define SKGL__UNPACK_ROW_LENGTH 0x0CF2
-#define SKGL__UNPACK_SKIP_ROWS 0x0CF3
-#define SKGL__UNPACK_SKIP_PIXELS 0x0CF4
-
-#define SKGL__FUNCS(X) \
-    X(skgl__enum, GetError, (void)) \
-    X(void, Finish, (void)) \
-    X(void, GetIntegerv, (skgl__enum pname, skgl__int *data)) \
-    X(void, GetFloatv, (skgl__enum pname, float *data)) \
-    X(void, GetDoublev, (skgl__enum pname, double *data)) \
-    X(void, GetBooleanv, (skgl__enum pname, skgl__bool *data)) \
-    X(skgl__bool, IsEnabled, (skgl__enum cap)) \
-    X(void, Enable, (skgl__enum cap)) \
-    X(void, Disable, (skgl__enum cap)) \
-    X(void, Viewport, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h)) \
-    X(void, Scissor, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h)) \
-    X(void, ColorMask, (skgl__bool r, skgl__bool g, skgl__bool b, skgl__bool a)) \
-    X(void, DepthMask, (skgl__bool flag)) \
-    X(void, DepthFunc, (skgl__enum func)) \
-    X(void, ClearDepth, (double d)) \
-    X(void, Clear, (skgl__uint mask)) \
-    X(void, CullFace, (skgl__enum mode)) \
-    X(void, PolygonOffset, (float factor, float units)) \
-    X(void, GenFramebuffers, (skgl__sizei n, skgl__uint *ids)) \
-    X(void, DeleteFramebuffers, (skgl__sizei n, const skgl__uint *ids)) \
-    X(void, BindFramebuffer, (skgl__enum target, skgl__uint fb)) \
-    X(void, FramebufferTextureLayer, (skgl__enum target, skgl__enum att, skgl__uint tex, skgl__int level, skgl__int layer)) \
-    X(void, FramebufferTexture2D, (skgl__enum target, skgl__enum att, skgl__enum textarget, skgl__uint tex, skgl__int level)) \
-    X(skgl__enum, CheckFramebufferStatus, (skgl__enum target)) \
-    X(void, DrawBuffer, (skgl__enum buf)) \
-    X(void, ReadBuffer, (skgl__enum buf)) \
-    X(void, GenTextures, (skgl__sizei n, skgl__uint *ids)) \
-    X(void, DeleteTextures, (skgl__sizei n, const skgl__uint *ids)) \
-    X(void, BindTexture, (skgl__enum target, skgl__uint tex)) \
-    X(void, ActiveTexture, (skgl__enum unit)) \
-    X(void, TexImage2D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
-    X(void, ReadPixels, (skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, void *data)) \
-    X(void, DrawBuffers, (skgl__sizei n, const skgl__enum *bufs)) \
-    X(void, GenBuffers, (skgl__sizei n, skgl__uint *ids)) \
-    X(void, DeleteBuffers, (skgl__sizei n, const skgl__uint *ids)) \
-    X(void, BindBuffer, (skgl__enum target, skgl__uint buf)) \
-    X(void, BufferData, (skgl__enum target, ptrdiff_t size, const void *data, skgl__enum usage)) \
-    X(void, GetBufferSubData, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, void *data)) \
-    X(void, Uniform2i, (skgl__int loc, skgl__int a, skgl__int b)) \
-    X(void, Uniform4fv, (skgl__int loc, skgl__sizei n, const float *v)) \
-    X(void, Uniform2fv, (skgl__int loc, skgl__sizei n, const float *v)) \
-    X(void, ClearColor, (float r, float g, float b, float a)) \
-    X(void, PixelStorei, (skgl__enum pname, skgl__int v)) \
-    X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
-    X(void, TexParameteri, (skgl__enum target, skgl__enum pname, skgl__int v)) \
-    X(void, GetTexLevelParameteriv, (skgl__enum target, skgl__int level, skgl__enum pname, skgl__int *v)) \
-    X(void, GenSamplers, (skgl__sizei n, skgl__uint *ids)) \
-    X(void, DeleteSamplers, (skgl__sizei n, const skgl__uint *ids)) \
-    X(void, BindSampler, (skgl__uint unit, skgl__uint sampler)) \
-    X(void, SamplerParameteri, (skgl__uint sampler, skgl__enum pname, skgl__int v)) \
-    X(skgl__uint, CreateShader, (skgl__enum type)) \
-    X(void, ShaderSource, (skgl__uint sh, skgl__sizei n, const char *const *src, const skgl__int *len)) \
-    X(void, CompileShader, (skgl__uint sh)) \
-    X(void, GetShaderiv, (skgl__uint sh, skgl__enum pname, skgl__int *v)) \
-    X(void, GetShaderInfoLog, (skgl__uint sh, skgl__sizei max, skgl__sizei *len, char *log)) \
-    X(void, DeleteShader, (skgl__uint sh)) \
-    X(skgl__uint, CreateProgram, (void)) \
-    X(void, AttachShader, (skgl__uint p, skgl__uint sh)) \
-    X(void, LinkProgram, (skgl__uint p)) \
-    X(void, GetProgramiv, (skgl__uint p, skgl__enum pname, skgl__int *v)) \
-    X(void, GetProgramInfoLog, (skgl__uint p, skgl__sizei max, skgl__sizei *len, char *log)) \
-    X(void, DeleteProgram, (skgl__uint p)) \
-    X(void, UseProgram, (skgl__uint p)) \
-    X(skgl__int, GetUniformLocation, (skgl__uint p, const char *name)) \
-    X(void, Uniform1i, (skgl__int loc, skgl__int v)) \
-    X(void, Uniform1f, (skgl__int loc, float v)) \
-    X(void, Uniform1fv, (skgl__int loc, skgl__sizei n, const float *v)) \
-    X(void, Uniform3fv, (skgl__int loc, skgl__sizei n, const float *v)) \
-    X(void, UniformMatrix4fv, (skgl__int loc, skgl__sizei n, skgl__bool transpose, const float *v)) \
-    X(void, GenVertexArrays, (skgl__sizei n, skgl__uint *ids)) \
-    X(void, DeleteVertexArrays, (skgl__sizei n, const skgl__uint *ids)) \
-    X(void, BindVertexArray, (skgl__uint vao)) \
-    X(void, DrawArrays, (skgl__enum mode, skgl__int first, skgl__sizei count)) \
-    X(void, GenQueries, (skgl__sizei n, skgl__uint *ids)) \
-    X(void, DeleteQueries, (skgl__sizei n, const skgl__uint *ids)) \
-    X(void, BeginQuery, (skgl__enum target, skgl__uint id)) \
-    X(void, EndQuery, (skgl__enum target)) \
-    X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v)) \
-    X(void, BlendEquationSeparate, (skgl__enum rgb, skgl__enum alpha)) \
-    X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a)) \
-    X(void, PolygonMode, (skgl__enum face, skgl__enum mode)) \
-    X(skgl__bool, IsProgram, (skgl__uint p)) \
-    X(void, ClearBufferfv, (skgl__enum buffer, skgl__int drawbuffer, const float *value)) \
-    X(void, TexSubImage2D, (skgl__enum target, skgl__int level, skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, const void *data)) \
-    X(void *, FenceSync, (skgl__enum condition, skgl__uint flags)) \
-    X(skgl__enum, ClientWaitSync, (void *sync, skgl__uint flags, skgl__u64 timeout)) \
-    X(void, DeleteSync, (void *sync)) \
-    X(void, GetQueryObjectuiv, (skgl__uint id, skgl__enum pname, skgl__uint *v)) \
-    X(void, GetUniformiv, (skgl__uint p, skgl__int loc, skgl__int *v)) \
-    X(void, GetUniformfv, (skgl__uint p, skgl__int loc, float *v))
-
-typedef struct skgl__api {
-#define SKGL__X(ret, name, args) ret (SKGL__APIENTRY *name) args;
-    SKGL__FUNCS(SKGL__X)
-#undef SKGL__X
-} skgl__api;
-
-/* ---- what the context and the lights keep between calls -------------- */
-#define SKGL__PROG_CACHE 16                /* user programs whose snippet locations are cached */
-#define SKGL__TEX_CACHE 8                  /* user textures whose size / framebuffer check is cached */
-#define SKGL__TIMER_RING 3                 /* timer queries per timed pass, read two or three frames late */
-#define SKGL__RING 3                       /* pixel pack buffers per late read-back */
-#define SKGL__FERKO_LEVELS 5               /* analysis + reductions, for G-buffers up to 65536 a side */
-#define SKGL__LOCS 19                      /* the most snippet uniforms (the directional one's) */
-enum { SKGL__PK_SHADOW = 0, SKGL__PK_POINT = 1 };
-
-/* a program holding a GLSL snippet (skgl__progent_lookup) */
-typedef struct skgl__progent {
-    skgl__uint program;                    /* 0: a free entry */
-    int kind;                              /* SKGL__PK_SHADOW, SKGL__PK_POINT */
-    unsigned tick;                         /* last use: the least recent goes first */
-    skgl__int loc[SKGL__LOCS];
-    skgl__int uniforms;                    /* GL_ACTIVE_UNIFORMS at look-up (the default mode's check) */
-    unsigned owner;                        /* the light whose constants the program holds (0: none) */
-    int unit;                              /* the texture unit those name */
-    skgl__int sentinel_i;                  /* sk_rmsm_page / sk_point_range as last set (the debug check) */
-    float sentinel_f;
-    /* uniforms that seldom change, as last sent (valid while owner is set) */
-    int layers, min_level, has_normals;
-    float extent[2], select, texel;
-    unsigned layout;
-} skgl__progent;
-
-typedef struct skgl__texent {
-    skgl__uint tex;                        /* 0: a free entry */
-    unsigned tick;
-    int w, h;                              /* level 0, as GL had it (0: not asked) */
-    int fb_ok;                             /* 1: checked complete as a mask target */
-} skgl__texent;
-
-typedef struct skgl__timer {
-    skgl__uint q[SKGL__TIMER_RING];        /* 0 without desc.timing */
-    unsigned char pending[SKGL__TIMER_RING];
-    unsigned frame;                        /* passes timed so far; slot frame % ring next */
-    int running;
-    float ms;                              /* the latest result read; -1 before any */
-} skgl__timer;
-
-typedef struct skgl__ring {
-    skgl__uint buf[SKGL__RING];            /* GL_PIXEL_PACK_BUFFERs of `bytes` each */
-    void *sync[SKGL__RING];                /* the fence after the read-back into buf[i]; NULL: free */
-    size_t bytes;
-    int next;                              /* the slot the next read-back takes */
-    /* what each read-back is of: the light frustum and origin of its analysis */
-    sk_mat4 lvp[SKGL__RING];
-    double origin[SKGL__RING][3];
-} skgl__ring;
-
-struct skgl_context {
-    skgl__api gl;
-    int debug, timing, objects;
-    int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
-    skgl__uint depth_prog, mask_prog, empty_vao, fbo, query;
-    skgl__uint mask_fbo;                   /* the deferred masks' target: the mask texture attached per call */
-    skgl__uint mask_fbo_tex;               /* the texture attached to it now (0: none) */
-    skgl__uint cmp_sampler, point_sampler;
-    skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 16x16 MIN reduction */
-    skgl__uint final_prog;                 /* resolution estimation: the last reduction, into 2x1 texels */
-    skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
-    skgl__int depth_u_view_proj, depth_u_model;
-    skgl__int model_loc;                   /* where skgl_set_model writes: the current pass's u_model */
-    int model_dirty;                       /* skgl_set_model was called since the pass set its model */
-    double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
-    /* the locations of shadowkit's own programs, found at link time, and the
-       values of the uniforms that seldom change, as last sent */
-    skgl__progent mask_ent;                /* the directional mask's snippet uniforms */
-    skgl__int mask_u_has_normals, mask_u_camera;
-    skgl__int ferko_u_ndc_to_light, ferko_u_world_w, reduce_u_src_size, final_u_src_size;
-    skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
-    int reduce_src[2], final_src[2], request_pages0, request_levels;
-    float rmsm_vres;
-    skgl__progent progs[SKGL__PROG_CACHE]; /* the user's programs (skgl_*_bind) */
-    skgl__texent texs[SKGL__TEX_CACHE];    /* the user's mask and depth textures */
-    unsigned tick;                         /* cache use counter */
-    unsigned next_id;                      /* the id of the next light made (never 0) */
-    char log[1024];
-};
-
-struct skgl_shadow {
-    skgl_shadow_desc desc;
-    unsigned id;                   /* per context, never reused: whose constants a program holds */
-    skgl__uint tex;                /* GL_TEXTURE_2D_ARRAY of depth, one layer per map */
-    skgl__uint fbo[SKGL_MAX_CASCADES];   /* one framebuffer per layer, checked when made */
-    int layers;                    /* allocated */
-    int maps;                      /* used by the last render (LSPSM: its partition count) */
-    float select_extent;           /* LSPSM: |light NDC| <= this selects a partition (its rect) */
-    sk_mat4 render_vp[SKGL_MAX_CASCADES];   /* the depth pass's matrix (vp: the lookup's) */
-    int view_w, view_h;            /* viewport of every layer's depth pass */
-    skgl__timer t_render, t_mask, t_analyze;
-    /* FERKO: the analysis at 1/4 of the G-buffer and its 16x16 reductions
-       (2-layer textures: bounds, patch; skgl__ferko_targets), the final
-       2x1 texel pair and its read-back ring; the G-buffer size they were
-       made for; the estimate in use */
-    skgl__uint ferko_tex[3], ferko_fbo[3], ferko_final, ferko_final_fbo;
-    int ferko_lw[SKGL__FERKO_LEVELS], ferko_lh[SKGL__FERKO_LEVELS];   /* [0] the analysis, then the reductions */
-    int ferko_w, ferko_h, ferko_levels;
-    skgl__ring ferko_ring;
-    int ferko_state;               /* 0 no estimate yet, 1 an estimate */
-    sk_mat4 ferko_lvp;             /* the uncropped light frustum of the estimate */
-    sk_res_estimate ferko_est;
-    /* RMSM: the per-pixel samples (G-buffer size) and their framebuffer,
-       the request atlas (R8) and the page table (RGBA8), atlas_w x atlas_h,
-       the requests read back, the table as uploaded and as built, the
-       pages resident, the virtual map's light frustum, the read-back ring */
-    skgl__uint rmsm_samples, rmsm_samples_fbo, rmsm_requests, rmsm_requests_fbo, rmsm_table;
-    int atlas_w, atlas_h, pages0, levels, tex_size, rmsm_w, rmsm_h;
-    unsigned char *rmsm_req_cpu, *rmsm_table_cpu, *rmsm_table_new;
-    sk_page *rmsm_pages;
-    int rmsm_npages, rmsm_analyzed;
-    sk_mat4 rmsm_lvp;
-    skgl__ring rmsm_ring;
-    sk_mat4 vp[SKGL_MAX_CASCADES];
-    /* the world point vp and render_vp are relative to (they take p - origin;
-       see skgl__origin), and those of the FERKO estimate and the RMSM frustum */
-    double origin[3], ferko_origin[3], rmsm_origin[3];
-    sk_vec3 light_dir;             /* unit travel direction of the last render */
-    skgl_stats stats;
-};
-
-/* ---- saved GL state -------------------------------------------------- */
-typedef struct skgl__state {
-    skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
-    skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
-    skgl__int texcube[SKGL__UNITS];            /* point lights' cube maps */
-    skgl__bool cube_seamless;
-    skgl__int depth_func, cull_mode, pack_buffer;
-    skgl__bool point_size;
-    float clear_color[4];
-    skgl__int unpack_buffer, pixel_store[8];   /* (UN)PACK_ROW_LENGTH, SKIP_ROWS, SKIP_PIXELS, ALIGNMENT */
-    skgl__bool depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
-    skgl__bool depth_clamp;
-    skgl__int blend_eq[2], blend_func[4];      /* RGB, alpha; src RGB, dst RGB, src alpha, dst alpha */
-    float poly_factor, poly_units;
-    double clear_depth;
-} skgl__state;
-
-static void skgl__enable(const skgl__api *gl, skgl__enum cap, int on)
-{
-    if (on) gl->Enable(cap); else gl->Disable(cap);
-}
-
-/* GL_UNPACK_ROW_LENGTH, _SKIP_ROWS, _SKIP_PIXELS, _ALIGNMENT, then the PACK ones */
-static const skgl__enum skgl__pixel_store_names[8] = {0x0CF2, 0x0CF3, 0x0CF4, 0x0CF5, 0x0D02, 0x0D03, 0x0D04, 0x0D05};
-
-/* tightly packed client memory for pixel transfers, no pixel buffers (inside save/restore) */
-static void skgl__pixel_store_plain(const skgl__api *gl)
-{
-    int i;
-    for (i = 0; i < 8; i++) gl->PixelStorei(skgl__pixel_store_names[i], (i & 3) == 3 ? 1 : 0);
-    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, 0);
-    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
-}
-
-static void skgl__save(const skgl__api *gl, skgl__state *st)
-{
-    int u;
-    gl->GetIntegerv(SKGL__DRAW_FRAMEBUFFER_BINDING, &st->draw_fb);
-    gl->GetIntegerv(SKGL__READ_FRAMEBUFFER_BINDING, &st->read_fb);
-    gl->GetIntegerv(SKGL__VIEWPORT, st->viewport);
-    gl->GetIntegerv(SKGL__SCISSOR_BOX, st->scissor_box);
-    gl->GetIntegerv(SKGL__CURRENT_PROGRAM, &st->program);
-    gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, &st->vao);
-    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &st->active_tex);
-    for (u = 0; u < SKGL__UNITS; u++) {
-        gl->ActiveTexture(SKGL__TEXTURE0 + u);
-        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D, &st->tex2d[u]);
-        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D_ARRAY, &st->tex2da[u]);
-        gl->GetIntegerv(SKGL__TEXTURE_BINDING_CUBE_MAP, &st->texcube[u]);
-        gl->GetIntegerv(SKGL__SAMPLER_BINDING, &st->sampler[u]);
-    }
-    gl->ActiveTexture((skgl__enum)st->active_tex);
-    st->cube_seamless = gl->IsEnabled(SKGL__TEXTURE_CUBE_MAP_SEAMLESS);
-    gl->GetIntegerv(SKGL__DEPTH_FUNC, &st->depth_func);
-    gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, &st->pack_buffer);
-    st->point_size = gl->IsEnabled(SKGL__PROGRAM_POINT_SIZE);
-    gl->GetIntegerv(SKGL__PIXEL_UNPACK_BUFFER_BINDING, &st->unpack_buffer);
-    for (u = 0; u < 8; u++) gl->GetIntegerv(skgl__pixel_store_names[u], &st->pixel_store[u]);
-    gl->GetFloatv(SKGL__COLOR_CLEAR_VALUE, st->clear_color);
-    gl->GetIntegerv(SKGL__CULL_FACE_MODE, &st->cull_mode);
-    st->depth_test = gl->IsEnabled(SKGL__DEPTH_TEST);
-    gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, &st->depth_mask);
-    st->cull = gl->IsEnabled(SKGL__CULL_FACE);
-    st->blend = gl->IsEnabled(SKGL__BLEND);
-    st->scissor = gl->IsEnabled(SKGL__SCISSOR_TEST);
-    st->poly_fill = gl->IsEnabled(SKGL__POLYGON_OFFSET_FILL);
-    st->depth_clamp = gl->IsEnabled(SKGL__DEPTH_CLAMP);
-    gl->GetIntegerv(SKGL__BLEND_EQUATION_RGB, &st->blend_eq[0]);
-    gl->GetIntegerv(SKGL__BLEND_EQUATION_ALPHA, &st->blend_eq[1]);
-    gl->GetIntegerv(SKGL__BLEND_SRC_RGB, &st->blend_func[0]);
-    gl->GetIntegerv(SKGL__BLEND_DST_RGB, &st->blend_func[1]);
-    gl->GetIntegerv(SKGL__BLEND_SRC_ALPHA, &st->blend_func[2]);
-    gl->GetIntegerv(SKGL__BLEND_DST_ALPHA, &st->blend_func[3]);
-    gl->GetBooleanv(SKGL__COLOR_WRITEMASK, st->color_mask);
-    gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &st->poly_factor);
-    gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &st->poly_units);
-    gl->GetDoublev(SKGL__DEPTH_CLEAR_VALUE, &st->clear_depth);
-}
-
-static void skgl__restore(const skgl__api *gl, const skgl__state *st)
-{
-    int u;
-    gl->BindFramebuffer(SKGL__DRAW_FRAMEBUFFER, (skgl__uint)st->draw_fb);
-    gl->BindFramebuffer(SKGL__READ_FRAMEBUFFER, (skgl__uint)st->read_fb);
-    gl->Viewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
-    gl->Scissor(st->scissor_box[0], st->scissor_box[1], st->scissor_box[2], st->scissor_box[3]);
-    gl->UseProgram((skgl__uint)st->program);
-    gl->BindVertexArray((skgl__uint)st->vao);
-    for (u = 0; u < SKGL__UNITS; u++) {
-        gl->ActiveTexture(SKGL__TEXTURE0 + u);
-        gl->BindTexture(SKGL__TEXTURE_2D, (skgl__uint)st->tex2d[u]);
-        gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, (skgl__uint)st->tex2da[u]);
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, (skgl__uint)st->texcube[u]);
-        gl->BindSampler((skgl__uint)u, (skgl__uint)st->sampler[u]);
-    }
-    gl->ActiveTexture((skgl__enum)st->active_tex);
-    skgl__enable(gl, SKGL__TEXTURE_CUBE_MAP_SEAMLESS, st->cube_seamless);
-    gl->DepthFunc((skgl__enum)st->depth_func);
-    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)st->pack_buffer);
-    skgl__enable(gl, SKGL__PROGRAM_POINT_SIZE, st->point_size);
-    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, (skgl__uint)st->unpack_buffer);
-    for (u = 0; u < 8; u++) gl->PixelStorei(skgl__pixel_store_names[u], st->pixel_store[u]);
-    gl->ClearColor(st->clear_color[0], st->clear_color[1], st->clear_color[2], st->clear_color[3]);
-    gl->CullFace((skgl__enum)st->cull_mode);
-    skgl__enable(gl, SKGL__DEPTH_TEST, st->depth_test);
-    gl->DepthMask(st->depth_mask);
-    skgl__enable(gl, SKGL__CULL_FACE, st->cull);
-    skgl__enable(gl, SKGL__BLEND, st->blend);
-    skgl__enable(gl, SKGL__SCISSOR_TEST, st->scissor);
-    skgl__enable(gl, SKGL__POLYGON_OFFSET_FILL, st->poly_fill);
-    skgl__enable(gl, SKGL__DEPTH_CLAMP, st->depth_clamp);
-    gl->BlendEquationSeparate((skgl__enum)st->blend_eq[0], (skgl__enum)st->blend_eq[1]);
-    gl->BlendFuncSeparate((skgl__enum)st->blend_func[0], (skgl__enum)st->blend_func[1],
-                          (skgl__enum)st->blend_func[2], (skgl__enum)st->blend_func[3]);
-    gl->ColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
-    gl->PolygonOffset(st->poly_factor, st->poly_units);
-    gl->ClearDepth(st->clear_depth);
-}
-
-/* ---- objects ---------------------------------------------------------- */
-/* >>log  The error log (skgl_error_log) holds the last failure of the
-   current call: every public call that takes the context clears it first,
-   so an old message never stands for a new error. A broken rule is one
-   message naming the argument or field, its value and the rule:
-   "skgl_shadow_create: desc.lambda = 1.5: in (0, 1]". */
-static void skgl__log_clear(skgl_context *ctx)
-{
-    if (ctx) ctx->log[0] = 0;
-}
-
-/* formats the message into the log; returns r */
-static sk_result skgl__fail(skgl_context *ctx, sk_result r, const char *fmt, ...)
-{
-    va_list ap;
-    if (!ctx) return r;
-    va_start(ap, fmt);
-    vsnprintf(ctx->log, sizeof ctx->log, fmt, ap);
-    va_end(ap);
-    return r;
-}
-
-/* one rule of a desc: when cond fails, the message names the field and its
-   value, and the caller returns SK_ERR_INVALID_ARG (needs ctx in scope) */
-#define SKGL__RULE(cond, fn, field, value, rule)                                                   \
-    do {                                                                                           \
-        if (!(cond))                                                                               \
-            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.%s = %g: %s", fn, field,          \
-                              (double)(value), rule);                                              \
-    } while (0)
-
-/* >>args  a call's arguments: each check names the argument and its value */
-#define SKGL__TRY(call)                                                                            \
-    do {                                                                                           \
-        sk_result skgl__r_ = (call);                                                               \
-        if (skgl__r_ != SK_OK) return skgl__r_;                                                    \
-    } while (0)
-
-static sk_result skgl__arg_ptr(skgl_context *ctx, const char *fn, const void *p, const char *name)
-{
-    return p ? SK_OK : skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s is NULL", fn, name);
-}
-
-static sk_result skgl__arg_name(skgl_context *ctx, const char *fn, unsigned name, const char *what)
-{
-    return name ? SK_OK : skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = 0: a GL name is required", fn, what);
-}
-
-/* a camera with finite matrices whose view-projection inverts (into *inv) */
-static sk_result skgl__arg_camera(skgl_context *ctx, const char *fn, const skgl_camera *cam, sk_mat4 *inv)
-{
-    sk_mat4 unused;
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, cam, "cam"));
-    if (!sk__mat_finite(&cam->view))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->view has a NaN or an infinity", fn);
-    if (!sk__mat_finite(&cam->proj))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj has a NaN or an infinity", fn);
-    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), inv ? inv : &unused))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular", fn);
-    return SK_OK;
-}
-
-/* a scene with a draw callback (when one is needed) and valid bounds */
-static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_scene *scene, int needs_draw)
-{
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
-    if (needs_draw && !scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
-    if (!sk__aabb_valid(&scene->bounds))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
-                          "%s: scene->bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
-                          (double)scene->bounds.min.x, (double)scene->bounds.min.y, (double)scene->bounds.min.z,
-                          (double)scene->bounds.max.x, (double)scene->bounds.max.y, (double)scene->bounds.max.z);
-    return SK_OK;
-}
-
-/* a finite vector; nonzero = 1: of some length (a direction) */
-static sk_result skgl__arg_vec(skgl_context *ctx, const char *fn, sk_vec3 v, const char *name, int nonzero)
-{
-    if (!sk__v3_finite(v) || (nonzero && sk__len(v) == 0.0f))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = (%g %g %g): %s", fn, name, (double)v.x, (double)v.y,
-                          (double)v.z, nonzero ? "finite and nonzero" : "finite");
-    return SK_OK;
-}
-
-/* a texture unit the call may use: 0..last */
-static sk_result skgl__arg_unit(skgl_context *ctx, const char *fn, int unit, int last)
-{
-    if (unit < 0 || unit > last)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: in 0..%d", fn, unit, last);
-    return SK_OK;
-}
-
-static void skgl__set_log(skgl_context *ctx, const char *what, const char *detail)
-{
-    size_t n = strlen(what);
-    if (n >= sizeof ctx->log) n = sizeof ctx->log - 1;
-    memcpy(ctx->log, what, n);
-    ctx->log[n] = 0;
-    if (detail && n + 2 < sizeof ctx->log) {
-        size_t m = strlen(detail);
-        ctx->log[n] = ':'; ctx->log[n + 1] = ' ';
-        if (m > sizeof ctx->log - n - 3) m = sizeof ctx->log - n - 3;
-        memcpy(ctx->log + n + 2, detail, m);
-        ctx->log[n + 2 + m] = 0;
-    }
-}
-
-static skgl__uint skgl__shader(skgl_context *ctx, skgl__enum type, const char *a, const char *b)
-{
-    const char *src[3];
-    skgl__uint sh = ctx->gl.CreateShader(type);
-    skgl__int ok = 0;
-    src[0] = "#version 330 core\n"; src[1] = a; src[2] = b ? b : "";
-    ctx->gl.ShaderSource(sh, 3, src, NULL);
-    ctx->gl.CompileShader(sh);
-    ctx->gl.GetShaderiv(sh, SKGL__COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[900];
-        log[0] = 0;
-        ctx->gl.GetShaderInfoLog(sh, (skgl__sizei)sizeof log, NULL, log);
-        skgl__set_log(ctx, "shader compile failed", log);
-        ctx->gl.DeleteShader(sh);
-        return 0;
-    }
-    return sh;
-}
-
-/* Links n compiled shaders into a program and deletes the shaders. A 0
-   among them (its compile failed) deletes the others and returns 0. */
-static skgl__uint skgl__link(skgl_context *ctx, const skgl__uint *sh, int n)
-{
-    skgl__uint p = 0;
-    skgl__int ok = 0;
-    int i, complete = 1;
-    for (i = 0; i < n; i++) complete &= sh[i] != 0;
-    if (complete) {
-        p = ctx->gl.CreateProgram();
-        for (i = 0; i < n; i++) ctx->gl.AttachShader(p, sh[i]);
-        ctx->gl.LinkProgram(p);
-    }
-    for (i = 0; i < n; i++)
-        if (sh[i]) ctx->gl.DeleteShader(sh[i]);
-    if (!complete) return 0;
-    ctx->gl.GetProgramiv(p, SKGL__LINK_STATUS, &ok);
-    if (!ok) {
-        char log[900];
-        log[0] = 0;
-        ctx->gl.GetProgramInfoLog(p, (skgl__sizei)sizeof log, NULL, log);
-        skgl__set_log(ctx, "program link failed", log);
-        ctx->gl.DeleteProgram(p);
-        return 0;
-    }
-    ctx->objects++;
-    return p;
-}
-
-/* vertex + fragment (fs_a then fs_b); compiling stops at the first failure */
-static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *fs_a, const char *fs_b)
-{
-    skgl__uint sh[2];
-    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL);
-    sh[1] = sh[0] ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs_a, fs_b) : 0;
-    return skgl__link(ctx, sh, 2);
-}
-
-static skgl__uint skgl__sampler(skgl_context *ctx, int compare)
-{
-    skgl__uint s = 0;
-    ctx->gl.GenSamplers(1, &s);
-    ctx->objects++;
-    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_MIN_FILTER, compare ? SKGL__LINEAR : SKGL__NEAREST);
-    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_MAG_FILTER, compare ? SKGL__LINEAR : SKGL__NEAREST);
-    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
-    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
-    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_COMPARE_MODE, compare ? SKGL__COMPARE_REF_TO_TEXTURE : SKGL__NONE);
-    ctx->gl.SamplerParameteri(s, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
-    return s;
-}
-
-/* ---- the state one call touches -----------------------------------------
-   Directional and point lights go through this tracker instead of a full
-   save and restore: each piece of state is set through skgl__st_set, which
-   (default mode) reads the caller's value the first time the call touches
-   it, and skips the set when the value is already there; skgl__st_end puts
-   back only what changed, in as few calls as it can (one glBindFramebuffer
-   for both targets when they were the same, the texture units ending on the
-   one the caller had active). With skgl_desc.caller_owns_state nothing is
-   read: the first set of each piece is unconditional, later ones within the
-   call are skipped when redundant, and skgl__st_end unbinds only what would
-   redirect the caller's own later calls into shadowkit's objects (the
-   framebuffers, the pixel pack and unpack buffers). Everything else stays
-   as the manual's GL STATE section lists. */
-enum {
-    SKGL__S_DRAW_FB, SKGL__S_READ_FB, SKGL__S_VIEWPORT, SKGL__S_SCISSOR_BOX,
-    SKGL__S_SCISSOR_TEST, SKGL__S_BLEND, SKGL__S_CULL_FACE, SKGL__S_DEPTH_TEST, SKGL__S_POLY_FILL,
-    SKGL__S_POINT_SIZE, SKGL__S_SEAMLESS,
-    SKGL__S_DEPTH_FUNC, SKGL__S_DEPTH_MASK, SKGL__S_COLOR_MASK, SKGL__S_POLY_OFFSET, SKGL__S_POLYGON_MODE,
-    SKGL__S_PROGRAM, SKGL__S_VAO, SKGL__S_PACK_BUFFER, SKGL__S_UNPACK_BUFFER,
-    SKGL__S_PACK_ALIGNMENT, SKGL__S_PACK_ROW_LENGTH, SKGL__S_PACK_SKIP_PIXELS, SKGL__S_PACK_SKIP_ROWS,
-    SKGL__S_UNPACK_ALIGNMENT, SKGL__S_UNPACK_ROW_LENGTH, SKGL__S_UNPACK_SKIP_PIXELS, SKGL__S_UNPACK_SKIP_ROWS,
-    SKGL__S_ACTIVE,
-    SKGL__S_UNIT0,                        /* unit u: + 4 u + (0 2D, 1 2D array, 2 cube map, 3 sampler) */
-    SKGL__S_COUNT = SKGL__S_UNIT0 + 4 * SKGL__UNITS
-};
-#define SKGL__S_TEX(u, k) (SKGL__S_UNIT0 + 4 * (u) + (k))
-#define SKGL__T_2D 0
-#define SKGL__T_2D_ARRAY 1
-#define SKGL__T_CUBE 2
-#define SKGL__T_SAMPLER 3
-
-#define SKGL__S_KNOWN 1u                  /* cur holds GL's value */
-#define SKGL__S_SAVED 2u                  /* orig holds the caller's value (default mode) */
-
-typedef struct skgl__st {
-    int restore;                          /* 1: default mode, read and put back */
-    unsigned char flags[SKGL__S_COUNT];
-    skgl__int cur[SKGL__S_COUNT][4], orig[SKGL__S_COUNT][4];
-} skgl__st;
-
-static int skgl__st_n(int item)
-{
-    return item == SKGL__S_VIEWPORT || item == SKGL__S_SCISSOR_BOX || item == SKGL__S_COLOR_MASK ? 4
-           : item == SKGL__S_POLY_OFFSET ? 2 : 1;
-}
-
-static skgl__enum skgl__st_cap(int item)
-{
-    switch (item) {
-    case SKGL__S_SCISSOR_TEST: return SKGL__SCISSOR_TEST;
-    case SKGL__S_BLEND: return SKGL__BLEND;
-    case SKGL__S_CULL_FACE: return SKGL__CULL_FACE;
-    case SKGL__S_DEPTH_TEST: return SKGL__DEPTH_TEST;
-    case SKGL__S_POLY_FILL: return SKGL__POLYGON_OFFSET_FILL;
-    case SKGL__S_POINT_SIZE: return SKGL__PROGRAM_POINT_SIZE;
-    case SKGL__S_SEAMLESS: return SKGL__TEXTURE_CUBE_MAP_SEAMLESS;
-    default: return 0;
-    }
-}
-
-static skgl__enum skgl__st_store_name(int item)
-{
-    static const skgl__enum names[8] = {SKGL__PACK_ALIGNMENT, SKGL__PACK_ROW_LENGTH, SKGL__PACK_SKIP_PIXELS,
-                                        SKGL__PACK_SKIP_ROWS, SKGL__UNPACK_ALIGNMENT, SKGL__UNPACK_ROW_LENGTH,
-                                        SKGL__UNPACK_SKIP_PIXELS, SKGL__UNPACK_SKIP_ROWS};
-    return names[item - SKGL__S_PACK_ALIGNMENT];
-}
-
-static const skgl__enum skgl__tex_targets[3] = {SKGL__TEXTURE_2D, SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_CUBE_MAP};
-static const skgl__enum skgl__tex_bindings[4] = {SKGL__TEXTURE_BINDING_2D, SKGL__TEXTURE_BINDING_2D_ARRAY,
-                                                 SKGL__TEXTURE_BINDING_CUBE_MAP, SKGL__SAMPLER_BINDING};
-
-/* GL's value of an item (a unit's item: with that unit active) */
-static void skgl__st_query(const skgl__api *gl, int item, skgl__int v[4])
-{
-    skgl__bool b[4] = {0, 0, 0, 0};
-    float f[2];
-    skgl__int mode[2] = {SKGL__FILL, SKGL__FILL};
-    if (skgl__st_cap(item)) { v[0] = gl->IsEnabled(skgl__st_cap(item)) != 0; return; }
-    if (item >= SKGL__S_PACK_ALIGNMENT && item <= SKGL__S_UNPACK_SKIP_ROWS) {
-        gl->GetIntegerv(skgl__st_store_name(item), v);
-        return;
-    }
-    if (item >= SKGL__S_UNIT0) { gl->GetIntegerv(skgl__tex_bindings[(item - SKGL__S_UNIT0) & 3], v); return; }
-    switch (item) {
-    case SKGL__S_DRAW_FB: gl->GetIntegerv(SKGL__DRAW_FRAMEBUFFER_BINDING, v); break;
-    case SKGL__S_READ_FB: gl->GetIntegerv(SKGL__READ_FRAMEBUFFER_BINDING, v); break;
-    case SKGL__S_VIEWPORT: gl->GetIntegerv(SKGL__VIEWPORT, v); break;
-    case SKGL__S_SCISSOR_BOX: gl->GetIntegerv(SKGL__SCISSOR_BOX, v); break;
-    case SKGL__S_DEPTH_FUNC: gl->GetIntegerv(SKGL__DEPTH_FUNC, v); break;
-    case SKGL__S_DEPTH_MASK: gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, b); v[0] = b[0] != 0; break;
-    case SKGL__S_COLOR_MASK:
-        gl->GetBooleanv(SKGL__COLOR_WRITEMASK, b);
-        v[0] = b[0] != 0; v[1] = b[1] != 0; v[2] = b[2] != 0; v[3] = b[3] != 0;
-        break;
-    case SKGL__S_POLY_OFFSET:
-        /* floats kept bit for bit in the int slots */
-        gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &f[0]);
-        gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &f[1]);
-        memcpy(v, f, sizeof f);
-        break;
-    case SKGL__S_POLYGON_MODE:
-        /* GL_POLYGON_MODE answers two values (front, back) in compatibility
-           contexts, and a core context's are equal (only GL_FRONT_AND_BACK
-           can be set): room for two, the first kept */
-        gl->GetIntegerv(SKGL__POLYGON_MODE, mode);
-        v[0] = mode[0];
-        break;
-    case SKGL__S_PROGRAM: gl->GetIntegerv(SKGL__CURRENT_PROGRAM, v); break;
-    case SKGL__S_VAO: gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, v); break;
-    case SKGL__S_PACK_BUFFER: gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, v); break;
-    case SKGL__S_UNPACK_BUFFER: gl->GetIntegerv(SKGL__PIXEL_UNPACK_BUFFER_BINDING, v); break;
-    case SKGL__S_ACTIVE: gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, v); break;
-    default: break;
-    }
-}
-
-/* sets an item in GL (a unit's texture binding: with that unit active) */
-static void skgl__st_apply(const skgl__api *gl, int item, const skgl__int v[4])
-{
-    float f[2];
-    if (skgl__st_cap(item)) { skgl__enable(gl, skgl__st_cap(item), v[0]); return; }
-    if (item >= SKGL__S_PACK_ALIGNMENT && item <= SKGL__S_UNPACK_SKIP_ROWS) {
-        gl->PixelStorei(skgl__st_store_name(item), v[0]);
-        return;
-    }
-    if (item >= SKGL__S_UNIT0) {
-        int k = (item - SKGL__S_UNIT0) & 3;
-        if (k == SKGL__T_SAMPLER) gl->BindSampler((skgl__uint)((item - SKGL__S_UNIT0) >> 2), (skgl__uint)v[0]);
-        else gl->BindTexture(skgl__tex_targets[k], (skgl__uint)v[0]);
-        return;
-    }
-    switch (item) {
-    case SKGL__S_DRAW_FB: gl->BindFramebuffer(SKGL__DRAW_FRAMEBUFFER, (skgl__uint)v[0]); break;
-    case SKGL__S_READ_FB: gl->BindFramebuffer(SKGL__READ_FRAMEBUFFER, (skgl__uint)v[0]); break;
-    case SKGL__S_VIEWPORT: gl->Viewport(v[0], v[1], v[2], v[3]); break;
-    case SKGL__S_SCISSOR_BOX: gl->Scissor(v[0], v[1], v[2], v[3]); break;
-    case SKGL__S_DEPTH_FUNC: gl->DepthFunc((skgl__enum)v[0]); break;
-    case SKGL__S_DEPTH_MASK: gl->DepthMask((skgl__bool)(v[0] != 0)); break;
-    case SKGL__S_COLOR_MASK:
-        gl->ColorMask((skgl__bool)(v[0] != 0), (skgl__bool)(v[1] != 0), (skgl__bool)(v[2] != 0),
-                      (skgl__bool)(v[3] != 0));
-        break;
-    case SKGL__S_POLY_OFFSET: memcpy(f, v, sizeof f); gl->PolygonOffset(f[0], f[1]); break;
-    case SKGL__S_POLYGON_MODE: gl->PolygonMode(SKGL__FRONT_AND_BACK, (skgl__enum)v[0]); break;
-    case SKGL__S_PROGRAM: gl->UseProgram((skgl__uint)v[0]); break;
-    case SKGL__S_VAO: gl->BindVertexArray((skgl__uint)v[0]); break;
-    case SKGL__S_PACK_BUFFER: gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)v[0]); break;
-    case SKGL__S_UNPACK_BUFFER: gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, (skgl__uint)v[0]); break;
-    case SKGL__S_ACTIVE: gl->ActiveTexture((skgl__enum)v[0]); break;
-    default: break;
-    }
-}
-
-static void skgl__st_begin(const skgl_context *ctx, skgl__st *st)
-{
-    st->restore = !ctx->caller_owns;
-    memset(st->flags, 0, sizeof st->flags);
-}
-
-static void skgl__st_set(skgl_context *ctx, skgl__st *st, int item, const skgl__int *v);
-
-/* the unit an item belongs to active (texture bindings are per active unit) */
-static void skgl__st_unit(skgl_context *ctx, skgl__st *st, int item)
-{
-    if (item >= SKGL__S_UNIT0) {
-        skgl__int a = SKGL__TEXTURE0 + ((item - SKGL__S_UNIT0) >> 2);
-        skgl__st_set(ctx, st, SKGL__S_ACTIVE, &a);
-    }
-}
-
-/* reads the caller's value the first time (default mode); afterwards the
-   tracked one. A sampler binding is read with its unit active, but set
-   without (glBindSampler names the unit). */
-static void skgl__st_save(skgl_context *ctx, skgl__st *st, int item)
-{
-    if (!st->restore || (st->flags[item] & SKGL__S_SAVED)) return;
-    skgl__st_unit(ctx, st, item);
-    skgl__st_query(&ctx->gl, item, st->orig[item]);
-    memcpy(st->cur[item], st->orig[item], sizeof st->cur[item]);
-    st->flags[item] |= SKGL__S_SAVED | SKGL__S_KNOWN;
-}
-
-static void skgl__st_set(skgl_context *ctx, skgl__st *st, int item, const skgl__int *v)
-{
-    int n = skgl__st_n(item);
-    skgl__st_save(ctx, st, item);
-    if ((st->flags[item] & SKGL__S_KNOWN) && memcmp(st->cur[item], v, sizeof(skgl__int) * (size_t)n) == 0) return;
-    if (item >= SKGL__S_UNIT0 && ((item - SKGL__S_UNIT0) & 3) != SKGL__T_SAMPLER) skgl__st_unit(ctx, st, item);
-    skgl__st_apply(&ctx->gl, item, v);
-    memcpy(st->cur[item], v, sizeof(skgl__int) * (size_t)n);
-    st->flags[item] |= SKGL__S_KNOWN;
-}
-
-static void skgl__st_set1(skgl_context *ctx, skgl__st *st, int item, skgl__int v)
-{
-    skgl__int a[4];
-    a[0] = v; a[1] = a[2] = a[3] = 0;
-    skgl__st_set(ctx, st, item, a);
-}
-static void skgl__st_set4(skgl_context *ctx, skgl__st *st, int item, skgl__int a, skgl__int b, skgl__int c,
-                          skgl__int d)
-{
-    skgl__int v[4];
-    v[0] = a; v[1] = b; v[2] = c; v[3] = d;
-    skgl__st_set(ctx, st, item, v);
-}
-static void skgl__st_offset(skgl_context *ctx, skgl__st *st, float factor, float units)
-{
-    skgl__int v[4] = {0, 0, 0, 0};
-    float f[2];
-    f[0] = factor; f[1] = units;
-    memcpy(v, f, sizeof f);
-    skgl__st_set(ctx, st, SKGL__S_POLY_OFFSET, v);
-}
-/* a texture on a unit, with the sampler object (0: the texture's own parameters) */
-static void skgl__st_texture(skgl_context *ctx, skgl__st *st, int unit, int target, skgl__uint tex,
-                             skgl__uint sampler)
-{
-    skgl__st_set1(ctx, st, SKGL__S_TEX(unit, target), (skgl__int)tex);
-    skgl__st_set1(ctx, st, SKGL__S_TEX(unit, SKGL__T_SAMPLER), (skgl__int)sampler);
-}
-/* Textures on several units, in an order that saves unit switches: the
-   default mode starts on the unit the caller has active (read once, as
-   the restore needs it anyway), so that neither the binds nor the restore
-   switch to it; caller-owns mode binds unit 0 last and leaves it active. */
-typedef struct skgl__unitbind {
-    int unit, target;
-    skgl__uint tex, sampler;
-} skgl__unitbind;
-static void skgl__st_units(skgl_context *ctx, skgl__st *st, const skgl__unitbind *b, int n)
-{
-    int i, pass, first = -1;
-    if (st->restore) {
-        skgl__st_save(ctx, st, SKGL__S_ACTIVE);
-        first = st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0;
-    }
-    for (pass = 0; pass < 3; pass++)   /* the active unit, then the others but 0, then 0 */
-        for (i = 0; i < n; i++) {
-            int u = b[i].unit;
-            if (pass == 0 ? u == first : u != first && (pass == 1 ? u != 0 : u == 0))
-                skgl__st_texture(ctx, st, u, b[i].target, b[i].tex, b[i].sampler);
-        }
-}
-
-/* both framebuffer targets (a read-back reads GL_READ_FRAMEBUFFER):
-   glBindFramebuffer(GL_FRAMEBUFFER) sets both in one call when neither is
-   there yet */
-static void skgl__st_framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint fb)
-{
-    skgl__st_save(ctx, st, SKGL__S_DRAW_FB);
-    skgl__st_save(ctx, st, SKGL__S_READ_FB);
-    if ((st->flags[SKGL__S_DRAW_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_DRAW_FB][0] == (skgl__int)fb) {
-        skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)fb);
-        return;
-    }
-    if ((st->flags[SKGL__S_READ_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_READ_FB][0] == (skgl__int)fb) {
-        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
-        return;
-    }
-    ctx->gl.BindFramebuffer(SKGL__FRAMEBUFFER, fb);
-    st->cur[SKGL__S_DRAW_FB][0] = st->cur[SKGL__S_READ_FB][0] = (skgl__int)fb;
-    st->flags[SKGL__S_DRAW_FB] |= SKGL__S_KNOWN;
-    st->flags[SKGL__S_READ_FB] |= SKGL__S_KNOWN;
-}
-/* what the caller's draw callback may have changed is no longer known
-   (it is still put back from the saved value) */
-static void skgl__st_forget(skgl__st *st, int item) { st->flags[item] &= (unsigned char)~SKGL__S_KNOWN; }
-
-/* 1: the item must be put back */
-static int skgl__st_dirty(const skgl__st *st, int item)
-{
-    if (!(st->flags[item] & SKGL__S_SAVED)) return 0;
-    if (!(st->flags[item] & SKGL__S_KNOWN)) return 1;
-    return memcmp(st->cur[item], st->orig[item], sizeof(skgl__int) * (size_t)skgl__st_n(item)) != 0;
-}
-
-static void skgl__st_end(skgl_context *ctx, skgl__st *st)
-{
-    const skgl__api *gl = &ctx->gl;
-    int i, k, u, first, last, order[SKGL__UNITS], n = 0;
-    if (!st->restore) {
-        /* caller-owns mode: framebuffer 0 (draw and read, where shadowkit
-           bound one) and no pixel buffer, so that nothing the caller does
-           next writes into shadowkit's objects; the rest stays as set */
-        int d = (st->flags[SKGL__S_DRAW_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_DRAW_FB][0] != 0;
-        int r = (st->flags[SKGL__S_READ_FB] & SKGL__S_KNOWN) && st->cur[SKGL__S_READ_FB][0] != 0;
-        if (d && r) skgl__st_framebuffer(ctx, st, 0);
-        else if (d) skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, 0);
-        else if (r) skgl__st_set1(ctx, st, SKGL__S_READ_FB, 0);
-        if ((st->flags[SKGL__S_PACK_BUFFER] & SKGL__S_KNOWN) && st->cur[SKGL__S_PACK_BUFFER][0] != 0)
-            skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, 0);
-        if ((st->flags[SKGL__S_UNPACK_BUFFER] & SKGL__S_KNOWN) && st->cur[SKGL__S_UNPACK_BUFFER][0] != 0)
-            skgl__st_set1(ctx, st, SKGL__S_UNPACK_BUFFER, 0);
-        return;
-    }
-    /* framebuffers: one call for both when the caller had one for both */
-    if (skgl__st_dirty(st, SKGL__S_DRAW_FB) && skgl__st_dirty(st, SKGL__S_READ_FB) &&
-        st->orig[SKGL__S_DRAW_FB][0] == st->orig[SKGL__S_READ_FB][0]) {
-        gl->BindFramebuffer(SKGL__FRAMEBUFFER, (skgl__uint)st->orig[SKGL__S_DRAW_FB][0]);
-    } else {
-        if (skgl__st_dirty(st, SKGL__S_DRAW_FB)) skgl__st_apply(gl, SKGL__S_DRAW_FB, st->orig[SKGL__S_DRAW_FB]);
-        if (skgl__st_dirty(st, SKGL__S_READ_FB)) skgl__st_apply(gl, SKGL__S_READ_FB, st->orig[SKGL__S_READ_FB]);
-    }
-    for (i = SKGL__S_VIEWPORT; i < SKGL__S_ACTIVE; i++) {
-        if (!skgl__st_dirty(st, i)) continue;
-        if (i == SKGL__S_PROGRAM) {
-            /* the caller's program may have been deleted while current: it
-               lived on only as long as it stayed current, and binding its
-               name now would be GL_INVALID_VALUE (Dear ImGui's issue #6220).
-               Program 0 then, as GL would have left it. */
-            skgl__uint p = (skgl__uint)st->orig[i][0];
-            gl->UseProgram(p == 0 || gl->IsProgram(p) ? p : 0);
-            continue;
-        }
-        skgl__st_apply(gl, i, st->orig[i]);
-    }
-    /* texture units: first the one active now, the caller's active one last */
-    first = (st->flags[SKGL__S_ACTIVE] & SKGL__S_KNOWN) ? st->cur[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0 : -1;
-    last = (st->flags[SKGL__S_ACTIVE] & SKGL__S_SAVED) ? st->orig[SKGL__S_ACTIVE][0] - SKGL__TEXTURE0 : -1;
-    if (first >= 0 && first < SKGL__UNITS) order[n++] = first;
-    for (u = 0; u < SKGL__UNITS; u++)
-        if (u != first && u != last) order[n++] = u;
-    if (last >= 0 && last < SKGL__UNITS && last != first) order[n++] = last;
-    for (i = 0; i < n; i++) {
-        int any = 0;
-        u = order[i];
-        for (k = 0; k < 4; k++) any |= skgl__st_dirty(st, SKGL__S_TEX(u, k));
-        if (!any) continue;
-        for (k = 0; k < 4; k++) {
-            int item = SKGL__S_TEX(u, k);
-            if (!skgl__st_dirty(st, item)) continue;
-            if (k != SKGL__T_SAMPLER) skgl__st_unit(ctx, st, item);
-            skgl__st_apply(gl, item, st->orig[item]);
-        }
-    }
-    if (skgl__st_dirty(st, SKGL__S_ACTIVE)) skgl__st_apply(gl, SKGL__S_ACTIVE, st->orig[SKGL__S_ACTIVE]);
-}
-
-/* the state of every depth pass: both faces (open meshes cast from both
-   sides), LESS with writes, slope-scaled bias, filled polygons. Blending
-   and the colour mask do not matter: the framebuffer has no colour buffer.
-   The passes clear with glClearBufferfv(GL_DEPTH, 0, 1.0), which leaves
-   GL_DEPTH_CLEAR_VALUE alone (glClear would need it set and put back) but
-   still obeys the depth write mask and the scissor test, both set here. */
-static void skgl__st_depth_pass(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias)
-{
-    skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
-    skgl__st_set1(ctx, st, SKGL__S_DEPTH_TEST, 1);
-    skgl__st_set1(ctx, st, SKGL__S_DEPTH_FUNC, SKGL__LESS);
-    skgl__st_set1(ctx, st, SKGL__S_DEPTH_MASK, 1);
-    /* a host left in wireframe (glPolygonMode GL_LINE) must not get
-       wireframe shadow maps */
-    skgl__st_set1(ctx, st, SKGL__S_POLYGON_MODE, SKGL__FILL);
-    if (slope_bias > 0.0f || depth_bias > 0.0f) {
-        skgl__st_set1(ctx, st, SKGL__S_POLY_FILL, 1);
-        skgl__st_offset(ctx, st, slope_bias > 0.0f ? slope_bias : 0.0f, depth_bias > 0.0f ? depth_bias : 0.0f);
-    } else skgl__st_set1(ctx, st, SKGL__S_POLY_FILL, 0);
-}
-
-/* the state of a full-screen pass into colour targets (no depth buffer:
-   the depth test, its mask and polygon offset do not apply) */
-static void skgl__st_screen_pass(skgl_context *ctx, skgl__st *st)
-{
-    skgl__st_set1(ctx, st, SKGL__S_BLEND, 0);
-    skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
-    skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
-    skgl__st_set1(ctx, st, SKGL__S_POLYGON_MODE, SKGL__FILL);
-    skgl__st_set1(ctx, st, SKGL__S_VAO, (skgl__int)ctx->empty_vao);
-}
-
-/* pixel transfers between client memory and GL without padding or offsets
-   (pack: read-backs; unpack: uploads), no pixel buffer bound unless given */
-static void skgl__st_pack(skgl_context *ctx, skgl__st *st, skgl__uint buffer, int rows)
-{
-    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)buffer);
-    if (rows > 1) {
-        /* a read of one row has no row stride: alignment and row length do
-           not apply to it, only the skips */
-        skgl__st_set1(ctx, st, SKGL__S_PACK_ALIGNMENT, 1);
-        skgl__st_set1(ctx, st, SKGL__S_PACK_ROW_LENGTH, 0);
-    }
-    skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_PIXELS, 0);
-    skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_ROWS, 0);
-}
-static void skgl__st_unpack(skgl_context *ctx, skgl__st *st)
-{
-    skgl__st_set1(ctx, st, SKGL__S_UNPACK_BUFFER, 0);
-    skgl__st_set1(ctx, st, SKGL__S_UNPACK_ALIGNMENT, 1);
-    skgl__st_set1(ctx, st, SKGL__S_UNPACK_ROW_LENGTH, 0);
-    skgl__st_set1(ctx, st, SKGL__S_UNPACK_SKIP_PIXELS, 0);
-    skgl__st_set1(ctx, st, SKGL__S_UNPACK_SKIP_ROWS, 0);
-}
-
-/* ---- uniforms ---------------------------------------------------------- */
-/* a location of -1 (the name is not in the program, or the compiler
-   dropped it) takes no call */
-static void skgl__u1i(const skgl__api *gl, skgl__int loc, skgl__int v) { if (loc >= 0) gl->Uniform1i(loc, v); }
-static void skgl__u1f(const skgl__api *gl, skgl__int loc, float v) { if (loc >= 0) gl->Uniform1f(loc, v); }
-
-/* Locations of the GLSL snippets' uniforms (skgl_glsl_snippet,
-   skgl_point_glsl_snippet), per program: shadowkit's own mask programs
-   hold one each, and the context caches those of the user's programs
-   (SKGL__PROG_CACHE of them, the least recently bound replaced first) on
-   their first skgl_*_bind. A program's uniforms keep their values until it
-   is linked again, so each entry also remembers whose constants (sampler
-   units, filter, bias) the program holds and the values of the uniforms
-   that seldom change: neither is sent again while it is still there. */
-enum {
-    SKGL__L_MAP, SKGL__L_TABLE, SKGL__L_RMSM, SKGL__L_PAGES0, SKGL__L_LEVELS, SKGL__L_MIN_LEVEL, SKGL__L_PAGE,
-    SKGL__L_LIGHT_VP, SKGL__L_SPLITS, SKGL__L_LAYERS, SKGL__L_SELECT_BY_MAP, SKGL__L_MAP_EXTENT,
-    SKGL__L_SELECT_EXTENT, SKGL__L_BLEND_BAND, SKGL__L_NORMAL_BIAS, SKGL__L_BIAS_MODE, SKGL__L_PLANE_BIAS,
-    SKGL__L_PCF, SKGL__L_LIGHT_DIR, SKGL__L_SHADOW_N
-};
-static const char *const skgl__shadow_names[SKGL__L_SHADOW_N] = {
-    "sk_shadow_map", "sk_page_table", "sk_rmsm", "sk_rmsm_pages0", "sk_rmsm_levels", "sk_rmsm_min_level",
-    "sk_rmsm_page", "sk_light_vp", "sk_splits", "sk_layers", "sk_select_by_map", "sk_map_extent",
-    "sk_select_extent", "sk_blend_band", "sk_normal_bias", "sk_bias_mode", "sk_plane_bias", "sk_pcf_radius",
-    "sk_light_dir"};
-enum {
-    SKGL__P_CUBE, SKGL__P_ATLAS, SKGL__P_INDIRECTION, SKGL__P_POS, SKGL__P_RANGE, SKGL__P_DEPTH, SKGL__P_TEXEL,
-    SKGL__P_NORMAL_BIAS, SKGL__P_PCF, SKGL__P_BIAS_MODE, SKGL__P_PLANE_BIAS, SKGL__P_FACES, SKGL__L_POINT_N
-};
-static const char *const skgl__point_names[SKGL__L_POINT_N] = {
-    "sk_point_cube", "sk_point_atlas", "sk_point_indirection", "sk_point_pos", "sk_point_range", "sk_point_depth",
-    "sk_point_texel", "sk_point_normal_bias", "sk_point_pcf", "sk_point_bias_mode", "sk_point_plane_bias",
-    "sk_point_faces"};
-
-static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint program, int kind)
-{
-    int i, n = kind == SKGL__PK_SHADOW ? (int)SKGL__L_SHADOW_N : (int)SKGL__L_POINT_N;
-    const char *const *names = kind == SKGL__PK_SHADOW ? skgl__shadow_names : skgl__point_names;
-    memset(e, 0, sizeof *e);
-    e->program = program;
-    e->kind = kind;
-    for (i = 0; i < SKGL__LOCS; i++) e->loc[i] = -1;
-    for (i = 0; i < n; i++) e->loc[i] = ctx->gl.GetUniformLocation(program, names[i]);
-    ctx->gl.GetProgramiv(program, SKGL__ACTIVE_UNIFORMS, &e->uniforms);
-}
-
-/* Is the program under this name still the one whose locations were
-   cached? A program linked again, or deleted and made anew under the same
-   name (GL hands freed names out again), has its uniforms back at 0 and
-   maybe other locations. Default mode, one bind = two reads: the active
-   uniform count (a different program has, in practice, another one), then
-   the constant the last bind set that can never be 0 (sk_rmsm_page,
-   sk_point_range), read at its cached location (valid when the count
-   matched). desc.debug: every location looked up again, then that constant.
-   Caller-owns mode (no debug) reads nothing and trusts the cache: call
-   skgl_forget_program. */
-static int skgl__progent_changed(skgl_context *ctx, const skgl__progent *e)
-{
-    skgl__int n = -1;
-    int i;
-    if (ctx->debug) {
-        skgl__progent fresh;
-        skgl__progent_lookup(ctx, &fresh, e->program, e->kind);
-        for (i = 0; i < SKGL__LOCS; i++)
-            if (fresh.loc[i] != e->loc[i]) return 1;
-    } else if (ctx->caller_owns) {
-        return 0;
-    } else {
-        ctx->gl.GetProgramiv(e->program, SKGL__ACTIVE_UNIFORMS, &n);
-        if (n != e->uniforms) return 1;
-    }
-    if (e->owner != 0 && e->kind == SKGL__PK_SHADOW && e->loc[SKGL__L_PAGE] >= 0) {
-        skgl__int v = 0;
-        ctx->gl.GetUniformiv(e->program, e->loc[SKGL__L_PAGE], &v);
-        return v != e->sentinel_i;
-    }
-    if (e->owner != 0 && e->kind == SKGL__PK_POINT && e->loc[SKGL__P_RANGE] >= 0) {
-        float v = 0.0f;
-        ctx->gl.GetUniformfv(e->program, e->loc[SKGL__P_RANGE], &v);
-        return v != e->sentinel_f;
-    }
-    return 0;
-}
-
-/* the cache entry of a user program, looked up anew on a miss or when the
-   program changed under its name */
-static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, int kind)
-{
-    skgl__progent *e, *victim = &ctx->progs[0];
-    int i;
-    ctx->tick++;
-    for (i = 0; i < SKGL__PROG_CACHE; i++) {
-        e = &ctx->progs[i];
-        if (e->program == program && e->kind == kind) {
-            if (skgl__progent_changed(ctx, e)) skgl__progent_lookup(ctx, e, program, kind);
-            e->tick = ctx->tick;
-            return e;
-        }
-        if (e->tick < victim->tick) victim = e;
-    }
-    skgl__progent_lookup(ctx, victim, program, kind);
-    victim->tick = ctx->tick;
-    return victim;
-}
-
-SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program)
-{
-    int i;
-    if (!ctx || !program) return;
-    for (i = 0; i < SKGL__PROG_CACHE; i++)
-        if (ctx->progs[i].program == program) memset(&ctx->progs[i], 0, sizeof ctx->progs[i]);
-}
-
-/* ---- the user's textures: sizes and framebuffer checks, by name ------ */
-/* The mask texture's size (the viewport of the mask pass) and the depth
-   texture's (the analysis' targets) are asked of GL once per texture name
-   (glGetTexLevelParameteriv) and remembered here; whether a mask texture is
-   colour-renderable is checked once per name too. A texture given storage
-   of another size or format under the same name needs skgl_forget_texture. */
-static skgl__texent *skgl__texture(skgl_context *ctx, skgl__uint tex)
-{
-    skgl__texent *e, *victim = &ctx->texs[0];
-    int i;
-    ctx->tick++;
-    for (i = 0; i < SKGL__TEX_CACHE; i++) {
-        e = &ctx->texs[i];
-        if (e->tex == tex) { e->tick = ctx->tick; return e; }
-        if (e->tick < victim->tick) victim = e;
-    }
-    memset(victim, 0, sizeof *victim);
-    victim->tex = tex;
-    victim->tick = ctx->tick;
-    return victim;
-}
-
-SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
-{
-    int i;
-    if (!ctx || !texture) return;
-    for (i = 0; i < SKGL__TEX_CACHE; i++)
-        if (ctx->texs[i].tex == texture) memset(&ctx->texs[i], 0, sizeof ctx->texs[i]);
-    if (ctx->mask_fbo_tex == texture) {
-        /* GL detaches a deleted texture only from the framebuffer bound at
-           the time: the masks' framebuffer would keep it alive */
-        skgl__st st;
-        skgl__st_begin(ctx, &st);
-        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)ctx->mask_fbo);
-        ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-        ctx->mask_fbo_tex = 0;
-        skgl__st_end(ctx, &st);
-    }
-}
-
-/* The size of a texture the caller made: level 0's, as GL had it the
-   first time (bound on unit 1's GL_TEXTURE_2D to ask). NULL, or what is
-   wrong: no level 0; with desc.debug, which asks every time, a size that
-   changed under the same name. */
-static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, int *w, int *h)
-{
-    skgl__texent *e = skgl__texture(ctx, tex);
-    if (e->w <= 0 || e->h <= 0 || ctx->debug) {
-        skgl__int tw = 0, th = 0;
-        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D), (skgl__int)tex);
-        skgl__st_unit(ctx, st, SKGL__S_TEX(1, SKGL__T_2D));
-        ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &tw);
-        ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &th);
-        if (tw <= 0 || th <= 0 || tw > 65536 || th > 65536) return "the texture has no level 0";
-        if (e->w > 0 && (e->w != tw || e->h != th))
-            return "the texture's size changed since it was remembered: call skgl_forget_texture after giving "
-                   "a texture new storage";
-        e->w = tw;
-        e->h = th;
-    }
-    *w = e->w;
-    *h = e->h;
-    return NULL;
-}
-
-/* ---- GPU timers: a ring of queries read late ------------------------------
-   With desc.timing, each timed pass of a light takes the next of
-   SKGL__TIMER_RING GL_TIME_ELAPSED queries. Before it, the query about to
-   be reused (three passes ago) is read if GL_QUERY_RESULT_AVAILABLE says
-   it is done, and if it is not, this pass goes untimed rather than wait;
-   then the one of two passes ago, likewise. The stats report the latest
-   result read: two frames old (three when the GPU is behind), -1 before
-   the first. */
-static void skgl__timer_free(skgl_context *ctx, skgl__timer *t)
-{
-    int i;
-    for (i = 0; i < SKGL__TIMER_RING; i++)
-        if (t->q[i]) { ctx->gl.DeleteQueries(1, &t->q[i]); ctx->objects--; t->q[i] = 0; }
-}
-static void skgl__timer_init(skgl_context *ctx, skgl__timer *t)
-{
-    int i;
-    memset(t, 0, sizeof *t);
-    t->ms = -1.0f;
-    if (!ctx->timing) return;
-    for (i = 0; i < SKGL__TIMER_RING; i++) { ctx->gl.GenQueries(1, &t->q[i]); ctx->objects++; }
-}
-/* 1 when slot i's result was there and has been read */
-static int skgl__timer_read(skgl_context *ctx, skgl__timer *t, int i)
-{
-    skgl__uint avail = 0;
-    skgl__u64 ns = 0;
-    if (!t->pending[i]) return 1;
-    ctx->gl.GetQueryObjectuiv(t->q[i], SKGL__QUERY_RESULT_AVAILABLE, &avail);
-    if (!avail) return 0;
-    ctx->gl.GetQueryObjectui64v(t->q[i], SKGL__QUERY_RESULT, &ns);
-    t->pending[i] = 0;
-    t->ms = (float)((double)ns * 1e-6);
-    return 1;
-}
-static void skgl__timer_begin(skgl_context *ctx, skgl__timer *t)
-{
-    int slot;
-    t->running = 0;
-    if (!ctx->timing || !t->q[0]) return;
-    slot = (int)(t->frame % SKGL__TIMER_RING);
-    /* the slot to reuse (three passes ago; usually read already), then two
-       passes ago: the newer result read last, and queries end in order, so
-       a busy older one means the newer is busy too */
-    if (!skgl__timer_read(ctx, t, slot)) return;                                 /* still busy: untimed */
-    (void)skgl__timer_read(ctx, t, (int)((t->frame + 1) % SKGL__TIMER_RING));
-    ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, t->q[slot]);
-    t->running = 1;
-}
-static void skgl__timer_end(skgl_context *ctx, skgl__timer *t)
-{
-    if (!t->running) return;
-    /* measuring mode: a renderer that bins draws and rasterises them later
-       on its own threads (Mesa's llvmpipe) would otherwise end the query
-       before the work is done and time almost nothing; glFinish inside the
-       query holds it open until the pass has run */
-    if (ctx->timing == SKGL_TIMING_SYNC) ctx->gl.Finish();
-    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
-    t->pending[t->frame % SKGL__TIMER_RING] = 1;
-    if (ctx->timing == SKGL_TIMING_SYNC) {
-        /* measuring mode: this pass's own time, waited for (a stall) */
-        skgl__u64 ns = 0;
-        ctx->gl.GetQueryObjectui64v(t->q[t->frame % SKGL__TIMER_RING], SKGL__QUERY_RESULT, &ns);
-        t->pending[t->frame % SKGL__TIMER_RING] = 0;
-        t->ms = (float)((double)ns * 1e-6);
-    }
-    t->frame++;
-    t->running = 0;
-}
-
-/* ---- read-backs a frame late: a ring of pixel buffers with fences ---------
-   A read-back that must not stall goes into the next free one of
-   SKGL__RING pixel pack buffers (glReadPixels into a buffer returns at
-   once), followed by a fence. Later calls poll the fences, oldest first,
-   with a zero timeout (glClientWaitSync never waits then) and read the
-   newest buffer whose fence has signalled; fences signal in order, so the
-   first unsignalled one ends the poll. When every buffer is still in
-   flight, the new read-back is skipped (the GPU is three frames behind;
-   nothing is waited for). The poll flushes (GL_SYNC_FLUSH_COMMANDS_BIT): a
-   fence never flushed to the GPU may never signal. */
-static void skgl__ring_free(skgl_context *ctx, skgl__ring *r)
-{
-    int i;
-    for (i = 0; i < SKGL__RING; i++) {
-        if (r->sync[i]) { ctx->gl.DeleteSync(r->sync[i]); ctx->objects--; r->sync[i] = NULL; }
-        if (r->buf[i]) { ctx->gl.DeleteBuffers(1, &r->buf[i]); ctx->objects--; r->buf[i] = 0; }
-    }
-}
-static void skgl__ring_create(skgl_context *ctx, skgl__st *st, skgl__ring *r, size_t bytes)
-{
-    int i;
-    r->bytes = bytes;
-    for (i = 0; i < SKGL__RING; i++) {
-        ctx->gl.GenBuffers(1, &r->buf[i]);
-        ctx->objects++;
-        skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[i]);
-        ctx->gl.BufferData(SKGL__PIXEL_PACK_BUFFER, (ptrdiff_t)bytes, NULL, SKGL__STREAM_READ);
-    }
-}
-/* the newest signalled read-back into out (r->bytes), its slot; -1: none
-   has landed since the last call */
-static int skgl__ring_poll(skgl_context *ctx, skgl__st *st, skgl__ring *r, void *out)
-{
-    int k, newest = -1;
-    for (k = 0; k < SKGL__RING; k++) {
-        int i = (r->next + k) % SKGL__RING;   /* oldest first */
-        skgl__enum w;
-        if (!r->sync[i]) continue;
-        w = ctx->gl.ClientWaitSync(r->sync[i], SKGL__SYNC_FLUSH_COMMANDS_BIT, 0);
-        if (w != SKGL__ALREADY_SIGNALED && w != SKGL__CONDITION_SATISFIED) break;
-        ctx->gl.DeleteSync(r->sync[i]);
-        ctx->objects--;
-        r->sync[i] = NULL;
-        newest = i;
-    }
-    if (newest < 0) return -1;
-    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[newest]);
-    ctx->gl.GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, (ptrdiff_t)r->bytes, out);
-    return newest;
-}
-/* the slot the next read-back goes to, bound as the pack buffer; -1 when
-   every buffer is in flight */
-static int skgl__ring_slot(skgl_context *ctx, skgl__st *st, skgl__ring *r)
-{
-    int i = r->next;
-    if (r->sync[i]) return -1;
-    skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[i]);
-    return i;
-}
-/* after the read-back into slot i: its fence */
-static void skgl__ring_fence(skgl_context *ctx, skgl__ring *r, int i)
-{
-    r->sync[i] = ctx->gl.FenceSync(SKGL__SYNC_GPU_COMMANDS_COMPLETE, 0);
-    if (r->sync[i]) ctx->objects++;
-    r->next = (i + 1) % SKGL__RING;
-}
-
-static void skgl__release(skgl_context *ctx)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl__uint *progs[8];
-    int i;
-    progs[0] = &ctx->depth_prog; progs[1] = &ctx->mask_prog; progs[2] = &ctx->ferko_prog;
-    progs[3] = &ctx->reduce_prog; progs[4] = &ctx->final_prog; progs[5] = &ctx->rmsm_prog;
-    progs[6] = &ctx->request_prog; progs[7] = NULL;
-    for (i = 0; progs[i]; i++)
-        if (*progs[i]) { gl->DeleteProgram(*progs[i]); ctx->objects--; *progs[i] = 0; }
-    if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
-    if (ctx->fbo) { gl->DeleteFramebuffers(1, &ctx->fbo); ctx->objects--; }
-    if (ctx->mask_fbo) { gl->DeleteFramebuffers(1, &ctx->mask_fbo); ctx->objects--; }
-    if (ctx->query) { gl->DeleteQueries(1, &ctx->query); ctx->objects--; }
-    if (ctx->cmp_sampler) { gl->DeleteSamplers(1, &ctx->cmp_sampler); ctx->objects--; }
-    if (ctx->point_sampler) { gl->DeleteSamplers(1, &ctx->point_sampler); ctx->objects--; }
-    ctx->empty_vao = ctx->fbo = ctx->mask_fbo = ctx->query = 0;
-    ctx->cmp_sampler = ctx->point_sampler = 0;
-}
-
-/* the constant uniforms of shadowkit's own programs (sampler units), set
-   once after they are linked, and their locations */
-static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
-{
-    skgl__api *gl = &ctx->gl;
-    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "u_view_proj");
-    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "u_model");
-    ctx->model_loc = ctx->depth_u_model;
-    skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW);
-    ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
-    ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
-    skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_depth"), 1);
-    skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_normals"), 2);
-    ctx->mask_ent.has_normals = -1;
-    ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
-    ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
-    skgl__u1i(gl, gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
-    ctx->reduce_u_src_size = gl->GetUniformLocation(ctx->reduce_prog, "u_src_size");
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->reduce_prog);
-    skgl__u1i(gl, gl->GetUniformLocation(ctx->reduce_prog, "u_src"), 1);
-    ctx->final_u_src_size = gl->GetUniformLocation(ctx->final_prog, "u_src_size");
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->final_prog);
-    skgl__u1i(gl, gl->GetUniformLocation(ctx->final_prog, "u_src"), 1);
-    ctx->reduce_src[0] = ctx->final_src[0] = -1;
-    ctx->rmsm_u_inv_view_proj = gl->GetUniformLocation(ctx->rmsm_prog, "u_inv_view_proj");
-    ctx->rmsm_u_light = gl->GetUniformLocation(ctx->rmsm_prog, "u_light");
-    ctx->rmsm_u_virtual_res = gl->GetUniformLocation(ctx->rmsm_prog, "u_virtual_res");
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
-    skgl__u1i(gl, gl->GetUniformLocation(ctx->rmsm_prog, "u_depth"), 1);
-    ctx->rmsm_vres = -1.0f;
-    ctx->request_u_pages0 = gl->GetUniformLocation(ctx->request_prog, "u_pages0");
-    ctx->request_u_levels = gl->GetUniformLocation(ctx->request_prog, "u_levels");
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
-    skgl__u1i(gl, gl->GetUniformLocation(ctx->request_prog, "u_samples"), 1);
-    ctx->request_pages0 = ctx->request_levels = -1;
-}
-
-SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
-{
-    skgl_context *ctx;
-    skgl__st st;
-    skgl__int major = 0, minor = 0;
-    int missing = 0;
-    if (!desc || !desc->getproc || !out || desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC)
-        return SK_ERR_INVALID_ARG;
-    *out = NULL;
-    ctx = (skgl_context *)SKGL_MALLOC(sizeof *ctx);
-    if (!ctx) return SK_ERR_CAPACITY;
-    memset(ctx, 0, sizeof *ctx);
-    /* void* -> function pointer through memcpy: ISO C has no direct cast */
-#define SKGL__X(ret, name, args) { void *p_ = desc->getproc("gl" #name); \
-        memcpy(&ctx->gl.name, &p_, sizeof p_); if (!p_) missing = 1; }
-    SKGL__FUNCS(SKGL__X)
-#undef SKGL__X
-    if (missing) { SKGL_FREE(ctx); return SK_ERR_GL; }
-    ctx->gl.GetIntegerv(SKGL__MAJOR_VERSION, &major);
-    ctx->gl.GetIntegerv(SKGL__MINOR_VERSION, &minor);
-    if (major < 3 || (major == 3 && minor < 3)) { SKGL_FREE(ctx); return SK_ERR_GL; }
-    ctx->debug = desc->debug;
-    ctx->timing = desc->timing;
-    ctx->caller_owns = desc->caller_owns_state != 0;
-    ctx->depth_prog = skgl__program(ctx, skgl__src_depth_vert, skgl__src_depth_frag, NULL);
-    ctx->mask_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_shadow_sample_glsl,
-                                   skgl__src_shadow_mask_frag);
-    ctx->ferko_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_ferko_analyze_frag, NULL);
-    ctx->reduce_prog = skgl__program(ctx, skgl__src_fullscreen_vert, "#define SK_FERKO_FINAL 0\n",
-                                     skgl__src_ferko_reduce_frag);
-    ctx->final_prog = skgl__program(ctx, skgl__src_fullscreen_vert, "#define SK_FERKO_FINAL 1\n",
-                                    skgl__src_ferko_reduce_frag);
-    ctx->rmsm_prog = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_rmsm_analyze_frag, NULL);
-    ctx->request_prog = skgl__program(ctx, skgl__src_rmsm_request_vert, skgl__src_rmsm_request_frag, NULL);
-    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog || !ctx->final_prog ||
-        !ctx->rmsm_prog || !ctx->request_prog) {
-        skgl__release(ctx);
-        SKGL_FREE(ctx);
-        return SK_ERR_GL;
-    }
-    skgl__st_begin(ctx, &st);
-    skgl__own_programs(ctx, &st);
-    skgl__st_end(ctx, &st);
-    ctx->gl.GenVertexArrays(1, &ctx->empty_vao); ctx->objects++;
-    ctx->gl.GenFramebuffers(1, &ctx->fbo); ctx->objects++;
-    ctx->gl.GenFramebuffers(1, &ctx->mask_fbo); ctx->objects++;
-    ctx->gl.GenQueries(1, &ctx->query); ctx->objects++;
-    ctx->cmp_sampler = skgl__sampler(ctx, 1);
-    ctx->point_sampler = skgl__sampler(ctx, 0);
-    if (ctx->gl.GetError() != 0) {
-        skgl__set_log(ctx, "GL error while creating the context objects", NULL);
-        skgl__release(ctx);
-        SKGL_FREE(ctx);
-        return SK_ERR_GL;
-    }
-    *out = ctx;
-    return SK_OK;
-}
-
-SKGLDEF void skgl_destroy(skgl_context *ctx)
-{
-    if (!ctx) return;
-    skgl__release(ctx);
-    SKGL_FREE(ctx);
-}
-
-SKGLDEF int skgl_gl_object_count(const skgl_context *ctx) { return ctx ? ctx->objects : 0; }
-SKGLDEF const char *skgl_error_log(const skgl_context *ctx) { return ctx ? ctx->log : ""; }
-
-/* ---- large worlds: directional passes relative to an origin near the camera ---
-   A float holds 24 bits: at 1e5 from the world origin a position is good
-   to 8 mm, and a matrix that takes such positions to light clip space
-   subtracts nearly equal large numbers. The directional passes therefore
-   work relative to an origin: the camera's position rounded to a multiple
-   of SKGL_ORIGIN_CELL on each axis (exact in float, so a float world
-   position minus it is exact; zero within half a cell of the world origin,
-   where everything is as without it). Crops are fitted to the camera and
-   the scene bounds taken relative to it, the depth pass moves the models
-   there (T(-origin) * model, in double), the mask reconstructs positions
-   relative to its camera's origin, and matrices cross between origins in
-   double (skgl__shift). Stable crops snap in world light space
-   (sk_stable_crop_origin), so the texel grid does not move with the
-   origin. What the API returns and takes is world space, as before. */
-#ifndef SKGL_ORIGIN_CELL
-#define SKGL_ORIGIN_CELL 256.0        /* <= 0: always the world origin */
-#endif
-static const double skgl__zero3[3] = {0.0, 0.0, 0.0};
-
-static void skgl__origin(const sk_mat4 *view, double o[3])
-{
-    const double cell = SKGL_ORIGIN_CELL;
-    int k;
-    for (k = 0; k < 3; k++) {
-        /* eye = -R^T t of the rigid view matrix */
-        double eye = -((double)view->m[k * 4] * view->m[12] + (double)view->m[k * 4 + 1] * view->m[13] +
-                       (double)view->m[k * 4 + 2] * view->m[14]);
-        o[k] = cell > 0.0 ? SK_FLOOR(eye / cell + 0.5) * cell : 0.0;
-        if (!(SK_FABS(o[k]) < 1e30)) o[k] = 0.0;
-    }
-}
-
-/* m * T(to - from), in double: takes p - to where m took p - from (m itself when from == to) */
-static sk_mat4 skgl__shift(const sk_mat4 *m, const double from[3], const double to[3])
-{
-    sk_mat4 r = *m;
-    double d0 = to[0] - from[0], d1 = to[1] - from[1], d2 = to[2] - from[2];
-    int k;
-    if (d0 == 0.0 && d1 == 0.0 && d2 == 0.0) return r;
-    for (k = 0; k < 4; k++)
-        r.m[12 + k] = (float)((double)m->m[12 + k] + (double)m->m[k] * d0 + (double)m->m[4 + k] * d1 +
-                              (double)m->m[8 + k] * d2);
-    return r;
-}
-
-static skgl_camera skgl__camera_rel(const skgl_camera *cam, const double o[3])
-{
-    skgl_camera c = *cam;
-    c.view = skgl__shift(&cam->view, skgl__zero3, o);
-    return c;
-}
-
-static skgl_scene skgl__scene_rel(const skgl_scene *scene, const double o[3])
-{
-    skgl_scene r = *scene;
-    r.bounds.min = sk__v3((float)(scene->bounds.min.x - o[0]), (float)(scene->bounds.min.y - o[1]),
-                          (float)(scene->bounds.min.z - o[2]));
-    r.bounds.max = sk__v3((float)(scene->bounds.max.x - o[0]), (float)(scene->bounds.max.y - o[1]),
-                          (float)(scene->bounds.max.z - o[2]));
-    return r;
-}
-
-/* the current pass's model matrix (model_loc): T(-model_origin) * model, in double */
-static void skgl__model(skgl_context *ctx, const float model[16])
-{
-    const double *o = ctx->model_origin;
-    float r[16];
-    int c, k;
-    if (o[0] == 0.0 && o[1] == 0.0 && o[2] == 0.0) {
-        ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, model);
-        return;
-    }
-    for (c = 0; c < 4; c++) {
-        for (k = 0; k < 3; k++) r[c * 4 + k] = (float)((double)model[c * 4 + k] - o[k] * model[c * 4 + 3]);
-        r[c * 4 + 3] = model[c * 4 + 3];
-    }
-    ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, r);
-}
-
-SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
-{
-    if (!ctx || !model) return;
-    skgl__model(ctx, model);
-    ctx->model_dirty = 1;   /* the pass sets its identity again before the next callback */
-}
-
-SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__src_shadow_sample_glsl; }
-
-/* ---- objects of the lights (made inside a state-tracked call) -------- */
-/* a 2D texture (target 2D) or 2-layer array (layers 2), nearest filtering,
-   made on unit 0; data: level 0's texels or NULL */
-static skgl__uint skgl__color_texture(skgl_context *ctx, skgl__st *st, skgl__int ifmt, int w, int h, int layers,
-                                      skgl__enum fmt, skgl__enum type, const void *data)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl__uint t = 0;
-    int k = layers > 1 ? SKGL__T_2D_ARRAY : SKGL__T_2D;
-    skgl__enum target = skgl__tex_targets[k];
-    gl->GenTextures(1, &t);
-    ctx->objects++;
-    skgl__st_unpack(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_TEX(0, k), (skgl__int)t);
-    skgl__st_unit(ctx, st, SKGL__S_TEX(0, k));
-    if (layers > 1) gl->TexImage3D(target, 0, ifmt, w, h, layers, 0, fmt, type, data);
-    else gl->TexImage2D(target, 0, ifmt, w, h, 0, fmt, type, data);
-    /* no mipmaps: a mipmapped minification filter would leave it incomplete,
-       and texelFetch of an incomplete texture reads 0 */
-    gl->TexParameteri(target, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
-    gl->TexParameteri(target, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
-    return t;
-}
-
-/* A framebuffer with colour attachment 0 (and 1: the second layer of a
-   2-layer array texture), or with depth only (depth: a layer of a 2D array
-   texture, or a 2D texture when layer < 0), checked complete here, once:
-   the passes only bind it. glDrawBuffer(s) and glReadBuffer are state of
-   the framebuffer object, set here too. 0 when it is not complete. */
-static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint color, int color_layers,
-                                    skgl__uint depth, int depth_layer)
-{
-    static const skgl__enum bufs[2] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1};
-    skgl__api *gl = &ctx->gl;
-    skgl__uint fb = 0;
-    skgl__enum status;
-    gl->GenFramebuffers(1, &fb);
-    ctx->objects++;
-    /* bound to both targets: glReadBuffer below sets the READ framebuffer's
-       state, which must be this one, not the caller's */
-    skgl__st_framebuffer(ctx, st, fb);
-    if (color && color_layers > 1) {
-        gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, color, 0, 0);
-        gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, color, 0, 1);
-        gl->DrawBuffers(2, bufs);
-    } else if (color) {
-        gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, color, 0);
-    } else {
-        if (depth_layer >= 0)
-            gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, depth, 0, depth_layer);
-        else gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
-        gl->DrawBuffer(SKGL__NONE);
-        gl->ReadBuffer(SKGL__NONE);
-    }
-    status = gl->CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER);
-    if (status != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->DeleteFramebuffers(1, &fb);
-        ctx->objects--;
-        /* the tracked binding named the framebuffer just deleted: GL fell back to 0 */
-        st->cur[SKGL__S_DRAW_FB][0] = 0;
-        st->cur[SKGL__S_READ_FB][0] = 0;
-        return 0;
-    }
-    return fb;
-}
-
-static void skgl__delete_texture(skgl_context *ctx, skgl__uint *t)
-{
-    if (*t) { ctx->gl.DeleteTextures(1, t); ctx->objects--; *t = 0; }
-}
-static void skgl__delete_framebuffer(skgl_context *ctx, skgl__uint *f)
-{
-    if (*f) { ctx->gl.DeleteFramebuffers(1, f); ctx->objects--; *f = 0; }
-}
-
-/* ---- RMSM: virtual shadow map pages (Romanick's VGP353 notes) -------- */
-/* the request atlas (R8) and the page table (RGBA8): every level's page grid
-   side by side, level l (n_l = pages0 >> l pages a side) from column
-   2 pages0 - 2 n_l; the table starts all 0 (nothing resident) */
-static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
-{
-    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
-    size_t bytes;
-    s->pages0 = s->desc.resolution / s->desc.rmsm_page_size;
-    for (s->levels = 1; (1 << (s->levels - 1)) < s->pages0; s->levels++) {}
-    s->atlas_w = 2 * s->pages0 - 1;
-    s->atlas_h = s->pages0;
-    bytes = (size_t)s->atlas_w * (size_t)s->atlas_h;
-    s->rmsm_req_cpu = (unsigned char *)SKGL_MALLOC(bytes);
-    s->rmsm_table_cpu = (unsigned char *)SKGL_MALLOC(4 * bytes);
-    s->rmsm_table_new = (unsigned char *)SKGL_MALLOC(4 * bytes);
-    s->rmsm_pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
-    if (!s->rmsm_req_cpu || !s->rmsm_table_cpu || !s->rmsm_table_new || !s->rmsm_pages) return SK_ERR_CAPACITY;
-    memset(s->rmsm_table_cpu, 0, 4 * bytes);
-    s->rmsm_requests = skgl__color_texture(ctx, st, SKGL__R8, s->atlas_w, s->atlas_h, 1, SKGL__RED,
-                                           SKGL__UNSIGNED_BYTE, NULL);
-    s->rmsm_table = skgl__color_texture(ctx, st, SKGL__RGBA8, s->atlas_w, s->atlas_h, 1, SKGL__RGBA,
-                                        SKGL__UNSIGNED_BYTE, s->rmsm_table_cpu);
-    s->rmsm_requests_fbo = skgl__framebuffer(ctx, st, s->rmsm_requests, 1, 0, 0);
-    skgl__ring_create(ctx, st, &s->rmsm_ring, bytes);
-    if (!s->rmsm_requests_fbo) {
-        skgl__set_log(ctx, "skgl_shadow_create: the RMSM request atlas (R8) is not renderable", NULL);
-        return SK_ERR_GL;
-    }
-    return SK_OK;
-}
-
-static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
-{
-    skgl__delete_texture(ctx, &s->rmsm_samples);
-    skgl__delete_texture(ctx, &s->rmsm_requests);
-    skgl__delete_texture(ctx, &s->rmsm_table);
-    skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
-    skgl__delete_framebuffer(ctx, &s->rmsm_requests_fbo);
-    skgl__ring_free(ctx, &s->rmsm_ring);
-}
-
-/* the disable_ switches shared by directional and point lights */
-static void skgl__apply_switches(float *slope_bias, float *depth_bias, int no_offset, float *plane_bias, int no_plane,
-                                 int *pcf_radius, int no_kernel)
-{
-    if (no_offset) *slope_bias = *depth_bias = 0.0f;
-    if (no_plane) *plane_bias = 0.0f;
-    if (no_kernel) *pcf_radius = 0;
-}
-
-static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
-{
-    skgl_shadow_desc r = *d;
-    if (r.resolution <= 0) r.resolution = r.technique == SKGL_RMSM ? 16384 : 2048;
-    if (r.rmsm_page_size == 0) r.rmsm_page_size = 128;
-    if (r.rmsm_pool_pages == 0) r.rmsm_pool_pages = 24;
-    if (r.lspsm.zeta == 0.0f) r.lspsm.zeta = 0.25f;
-    if (r.lspsm.sigma == 0.0f) r.lspsm.sigma = 0.5f;
-    if (r.lspsm.h_max == 0) r.lspsm.h_max = 4;
-    if (r.lspsm.nw_max == 0) r.lspsm.nw_max = 2;
-    if (r.cascades <= 0) r.cascades = r.technique == SKGL_LISPSM ? 1 : 4;
-    /* LSPSM: one layer per possible partition; how many are used is per frame */
-    if (r.technique == SKGL_LSPSM && r.lspsm.h_max > 0 && r.lspsm.nw_max > 0 &&
-        r.lspsm.h_max <= SKGL_MAX_CASCADES && r.lspsm.nw_max <= SKGL_MAX_CASCADES)
-        r.cascades = r.lspsm.h_max * r.lspsm.nw_max;
-    if (r.technique == SKGL_STANDARD || r.technique == SKGL_PSM || r.technique == SKGL_FERKO ||
-        r.technique == SKGL_RMSM)
-        r.cascades = 1;
-    /* a disable_ switch wins over its value, which then reads 0 (none): the
-       filled desc given back to skgl_shadow_create makes the same light */
-    if (r.uniform_splits) r.lambda = 0.0f;
-    else if (r.lambda == 0.0f) r.lambda = 0.75f;
-    if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
-    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
-    if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
-    if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
-    if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
-    if (r.pcf_radius == 0) r.pcf_radius = 1;
-    if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
-    skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias,
-                         r.disable_plane_bias, &r.pcf_radius, r.disable_pcf_kernel);
-    if (r.disable_psm_slide) r.psm_slide = 0.0f;
-    return r;
-}
-
-static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
-
-/* every rule of a skgl_shadow_desc (defaults filled), in field order */
-static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc *d)
-{
-    const char *fn = "skgl_shadow_create";
-    int lspsm = d->technique == SKGL_LSPSM, rmsm = d->technique == SKGL_RMSM;
-    SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_RMSM, fn, "technique",
-               d->technique, "one of skgl_technique");
-    SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
-    SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
-    SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
-    SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
-    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
-               "in [0, 10000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
-               "in [0, 1000000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
-               "in [0, 64] texels");
-    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
-               "bias", d->bias, "one of skgl_bias");
-    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
-               "in [0, 64] texels (disable_plane_bias for none)");
-    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
-               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
-    SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
-    SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
-               "in [0, 1000] (disable_psm_slide for none)");
-    SKGL__RULE(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f, fn, "lspsm.zeta", d->lspsm.zeta, "in (0, 0.5)");
-    SKGL__RULE(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f, fn, "lspsm.sigma", d->lspsm.sigma, "in (0, 1000]");
-    SKGL__RULE(d->lspsm.h_max >= 1 && (!lspsm || d->lspsm.h_max <= SKGL_MAX_CASCADES), fn, "lspsm.h_max",
-               d->lspsm.h_max, "in 1..SKGL_MAX_CASCADES");
-    SKGL__RULE(d->lspsm.nw_max >= 1 && (!lspsm || d->lspsm.nw_max <= SKGL_MAX_CASCADES), fn, "lspsm.nw_max",
-               d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
-    SKGL__RULE(!lspsm || d->lspsm.h_max * d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn, "lspsm.h_max * lspsm.nw_max",
-               d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
-    SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
-    if (!rmsm) return SK_OK;
-    SKGL__RULE(d->rmsm_page_size >= 16 && d->rmsm_page_size <= 1024 && !(d->rmsm_page_size & (d->rmsm_page_size - 1)),
-               fn, "rmsm_page_size", d->rmsm_page_size, "a power of two in 16..1024");
-    SKGL__RULE(d->resolution >= d->rmsm_page_size && !(d->resolution & (d->resolution - 1)) &&
-                   d->resolution / d->rmsm_page_size <= 1024,
-               fn, "resolution", d->resolution, "RMSM: a power of two, rmsm_page_size to 1024 pages");
-    SKGL__RULE(d->rmsm_pool_pages >= 2 && d->rmsm_pool_pages <= 64 && d->rmsm_pool_pages * (d->rmsm_page_size + 2) <= 16384,
-               fn, "rmsm_pool_pages", d->rmsm_pool_pages, "in 2..64, rmsm_pool_pages * (rmsm_page_size + 2) <= 16384");
-    return SK_OK;
-}
-
-SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out)
-{
-    skgl_shadow *s;
-    skgl__st st;
-    skgl__api *gl;
-    skgl_shadow_desc d;
-    sk_result r;
-    int i;
-    if (out) *out = NULL;
-    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    d = skgl__defaults(desc);
-    r = skgl__shadow_validate(ctx, &d);
-    if (r != SK_OK) return r;
-    s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
-    if (!s) return SK_ERR_CAPACITY;
-    memset(s, 0, sizeof *s);
-    s->desc = d;
-    s->id = ++ctx->next_id;
-    if (!s->id) s->id = ++ctx->next_id;
-    s->layers = d.cascades;
-    s->maps = s->layers;
-    s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
-    s->select_extent = 1.0f;
-    gl = &ctx->gl;
-    skgl__st_begin(ctx, &st);
-    skgl__timer_init(ctx, &s->t_render);
-    skgl__timer_init(ctx, &s->t_mask);
-    skgl__timer_init(ctx, &s->t_analyze);
-    gl->GenTextures(1, &s->tex);
-    ctx->objects++;
-    skgl__st_unpack(ctx, &st);
-    skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->tex);
-    skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
-    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, s->layers, 0,
-                   SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
-    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
-    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-    /* one framebuffer per layer (RMSM: the pool, layer 0) */
-    for (i = 0; i < (d.technique == SKGL_RMSM ? 1 : s->layers) && r == SK_OK; i++) {
-        s->fbo[i] = skgl__framebuffer(ctx, &st, 0, 0, s->tex, i);
-        if (!s->fbo[i]) {
-            skgl__set_log(ctx, "skgl_shadow_create: shadow framebuffer incomplete", NULL);
-            r = SK_ERR_GL;
-        }
-    }
-    if (r == SK_OK && d.technique == SKGL_FERKO) {
-        /* the estimate's 2x1 texels and their read-back ring (the analysis
-           targets follow the G-buffer's size: skgl__ferko_targets) */
-        s->ferko_final = skgl__color_texture(ctx, &st, SKGL__RGBA32F, 2, 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
-        s->ferko_final_fbo = skgl__framebuffer(ctx, &st, s->ferko_final, 1, 0, 0);
-        skgl__ring_create(ctx, &st, &s->ferko_ring, 8 * sizeof(float));
-        if (!s->ferko_final_fbo) {
-            skgl__set_log(ctx, "skgl_shadow_create: RGBA32F targets not renderable", NULL);
-            r = SK_ERR_GL;
-        }
-    }
-    if (r == SK_OK && d.technique == SKGL_RMSM) {
-        r = skgl__rmsm_create(ctx, &st, s);
-        if (r == SK_ERR_CAPACITY) skgl__set_log(ctx, "out of memory for the RMSM page tables", NULL);
-    }
-    skgl__st_end(ctx, &st);
-    if (r == SK_OK && gl->GetError() != 0) {
-        skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
-        r = SK_ERR_GL;
-    }
-    if (r != SK_OK) {
-        skgl_shadow_destroy(ctx, s);
-        return r;
-    }
-    s->stats.shadow_ms = s->stats.mask_ms = s->stats.analysis_ms = -1.0f;
-    *out = s;
-    return SK_OK;
-}
-
-SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
-{
-    int i;
-    if (!s) return;
-    if (ctx) {
-        skgl__delete_texture(ctx, &s->tex);
-        for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
-        skgl__ferko_free(ctx, s);
-        skgl__delete_texture(ctx, &s->ferko_final);
-        skgl__delete_framebuffer(ctx, &s->ferko_final_fbo);
-        skgl__ring_free(ctx, &s->ferko_ring);
-        skgl__rmsm_free(ctx, s);
-        skgl__timer_free(ctx, &s->t_render);
-        skgl__timer_free(ctx, &s->t_mask);
-        skgl__timer_free(ctx, &s->t_analyze);
-    }
-    SKGL_FREE(s->rmsm_req_cpu);
-    SKGL_FREE(s->rmsm_table_cpu);
-    SKGL_FREE(s->rmsm_table_new);
-    SKGL_FREE(s->rmsm_pages);
-    SKGL_FREE(s);
-}
-
-SKGLDEF skgl_shadow_desc skgl_shadow_get_desc(const skgl_shadow *s)
-{
-    skgl_shadow_desc d;
-    if (s) return s->desc;
-    memset(&d, 0, sizeof d);
-    return d;
-}
-SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
-{
-    if (!s || layer < 0 || layer >= s->layers) return sk_mat4_identity();
-    return skgl__shift(&s->vp[layer], s->origin, skgl__zero3);
-}
-SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
-SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
-SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm_samples : 0; }
-SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap)
-{
-    int i;
-    if (!s) return 0;
-    for (i = 0; out && i < s->rmsm_npages && i < cap; i++) out[i] = s->rmsm_pages[i];
-    return s->rmsm_npages;
-}
-
-static void skgl__query_begin(skgl_context *ctx)
-{
-    if (ctx->timing) ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, ctx->query);
-}
-static float skgl__query_end(skgl_context *ctx)
-{
-    skgl__u64 ns = 0;
-    if (!ctx->timing) return -1.0f;
-    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
-    ctx->gl.GetQueryObjectui64v(ctx->query, SKGL__QUERY_RESULT, &ns);
-    return (float)((double)ns * 1e-6);
-}
-
-/* near and far of a perspective (or orthographic) GL projection */
-static int skgl__near_far(const sk_mat4 *p, float *zn, float *zf)
-{
-    double a = p->m[10], b = p->m[14], n, f;
-    if (p->m[11] == -1.0f && p->m[15] == 0.0f) { n = b / (a - 1.0); f = b / (a + 1.0); }
-    else if (p->m[11] == 0.0f && p->m[15] == 1.0f && a != 0.0) { n = (b + 1.0) / a; f = (b - 1.0) / a; }
-    else return 0;
-    *zn = (float)n; *zf = (float)f;
-    return sk__finite(*zn) && sk__finite(*zf) && *zf > *zn && (p->m[11] == 0.0f || *zn > 0.0f);
-}
-
-/* The part of a view slice that can hold receivers: the slice clipped to
-   the scene bounds (its corners when the clip is empty), and its range of
-   eye depths. Returns the point count. */
-static int skgl__receiver_body(const sk_frustum *slice, const skgl_scene *scene, const sk_mat4 *cam_view,
-                               sk_vec3 *pts, float *dmin, float *dmax)
-{
-    int i, n = sk_clip_frustum_aabb(slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
-    if (n <= 0) {
-        for (i = 0; i < 8; i++) pts[i] = slice->corners[i];
-        n = 8;
-    }
-    *dmin = SK__INF;
-    *dmax = -SK__INF;
-    for (i = 0; i < n; i++) {
-        float z = -sk__xform_affine(cam_view, pts[i]).z;
-        if (z < *dmin) *dmin = z;
-        if (z > *dmax) *dmax = z;
-    }
-    return n;
-}
-
-/* Light-space perspective shadow map of one slice (Wimmer et al. 2004, the
-   LiSPSM): the slice's receiver body, n_opt from the nearest
-   receiver depth of the slice. */
-static sk_result skgl__fit_lispsm(skgl_shadow *s, int layer, const skgl_camera *cam, const skgl_scene *scene,
-                                  sk_vec3 light_dir, const sk_frustum *slice, float z0)
-{
-    sk_vec3 body[SK_CLIP_MAX_POINTS];
-    sk_mat4 inv;
-    sk_lispsm_desc ld;
-    sk_lispsm_result lr;
-    float dmin, dmax;
-    sk_result r;
-    memset(&ld, 0, sizeof ld);
-    ld.body_count = skgl__receiver_body(slice, scene, &cam->view, body, &dmin, &dmax);
-    if (!sk_mat4_inverse(cam->view, &inv)) return SK_ERR_INVALID_ARG;
-    ld.eye = sk__v3(inv.m[12], inv.m[13], inv.m[14]);
-    ld.view_dir = sk__v3(-cam->view.m[2], -cam->view.m[6], -cam->view.m[10]);
-    ld.zn = dmin > z0 ? dmin : z0;
-    ld.light_dir = light_dir;
-    ld.body = body;
-    ld.casters = &scene->bounds;
-    r = sk_lispsm_matrices(&ld, &lr);
-    if (r != SK_OK) return r;
-    s->vp[layer] = lr.light_view_proj;
-    s->stats.warp_n[layer] = lr.n;
-    s->stats.warped[layer] = lr.warped;
-    return SK_OK;
-}
-
-/* Perspective shadow map (Stamminger & Drettakis 2002) over the
-   view range that holds receivers: the camera's near plane moved up to the
-   nearest receiver (PSM's resolution depends on the near/far ratio). A light
-   behind the viewer reverses the depth order (sk_psm_result.compare): the
-   map's z is negated so the depth test and comparison stay LESS/LEQUAL. */
-static sk_result skgl__fit_psm(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene,
-                               sk_vec3 light_dir, const sk_frustum *view, float zn, float cam_zf, float zf)
-{
-    sk_vec3 body[SK_CLIP_MAX_POINTS];
-    sk_frustum slice;
-    sk_psm_desc pd;
-    sk_psm_result pr;
-    float dmin, dmax;
-    sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
-    if (r != SK_OK) return r;
-    memset(&pd, 0, sizeof pd);
-    pd.body_count = skgl__receiver_body(&slice, scene, &cam->view, body, &dmin, &dmax);
-    pd.body = body;
-    pd.cam_view = cam->view;
-    pd.fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5]));
-    pd.aspect = cam->proj.m[5] / cam->proj.m[0];
-    pd.zn = dmin > zn ? dmin * 0.999f : zn;
-    pd.zf = dmax < zf ? dmax * 1.001f : zf;
-    if (!(pd.zf > pd.zn)) pd.zf = pd.zn * 1.001f;
-    pd.light_dir = light_dir;
-    pd.casters = &scene->bounds;
-    pd.caster_count = 1;
-    if (s->desc.psm_slide > 0.0f) pd.extra_slide = s->desc.psm_slide * (float)SK_SQRT((double)pd.zn * pd.zf);
-    r = sk_psm_matrices(&pd, &pr);
-    if (r != SK_OK) return r;
-    if (pr.compare == SK_DEPTH_GREATER) {
-        int c;
-        for (c = 0; c < 4; c++) pr.light_view_proj.m[c * 4 + 2] = -pr.light_view_proj.m[c * 4 + 2];
-    }
-    s->vp[0] = pr.light_view_proj;
-    s->stats.splits[0] = pd.zn;
-    s->stats.splits[1] = pd.zf;
-    s->stats.warped[0] = !pr.orthographic;
-    s->stats.depth_reversed = pr.compare == SK_DEPTH_GREATER;
-    s->stats.psm_slide = pr.slide;
-    return SK_OK;
-}
-
-/* Light Space Partitioned Shadow Maps (Tang et al. 2017): the trapezoid around the
-   refined view frustum on the light plane, its partitions (Eq. 1), one
-   orthographic crop each, every crop widened by a margin of texels so the
-   PCF kernel and the normal offset of a point near a partition's edge stay
-   inside that partition's map. The shader picks the partition whose rect
-   holds the point (|NDC| <= select_extent). View direction along the light
-   (no trapezoid axis): the region's documented fallback, one focused map. */
-static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene,
-                                 sk_vec3 light_dir, const sk_frustum *view, float zn, float cam_zf, float zf)
-{
-    sk_frustum slice;
-    sk_lspsm_region reg;
-    sk_vec3 view_dir = sk__v3(-cam->view.m[2], -cam->view.m[6], -cam->view.m[10]);
-    float margin = (float)(s->desc.pcf_radius + 3) + (s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
-    float k = 1.0f - 2.0f * margin / (float)s->desc.resolution;
-    int i, n;
-    sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
-    if (r != SK_OK) return r;
-    s->stats.splits[0] = zn;
-    s->stats.splits[1] = zf;
-    if (!(k > 0.5f)) k = 0.5f;
-    r = sk_lspsm_region_extract(&slice, view_dir, scene->bounds, &scene->bounds, light_dir, &reg);
-    if (r == SK_ERR_DEGENERATE) {
-        /* the view holds no receiver: one map over the slice, nothing to see */
-        sk_mat4 lview = sk_light_view_directional(light_dir), proj;
-        r = sk_fit_ortho(slice.corners, 8, lview, &scene->bounds, &proj);
-        if (r != SK_OK) return r;
-        s->vp[0] = sk_mat4_mul(proj, lview);
-        s->maps = 1;
-        s->stats.lspsm_fallback = 1;
-        s->select_extent = 1.0f;
-        return SK_OK;
-    }
-    if (r != SK_OK) return r;
-    n = sk_lspsm_crops(&reg, &s->desc.lspsm, s->vp, NULL, s->layers);
-    if (n <= 0) return n < 0 ? (sk_result)-n : SK_ERR_DEGENERATE;
-    for (i = 0; i < n; i++) {
-        int c;
-        for (c = 0; c < 4; c++) { s->vp[i].m[c * 4] *= k; s->vp[i].m[c * 4 + 1] *= k; }
-    }
-    s->maps = n;
-    s->stats.lspsm_fallback = reg.fallback;
-    s->select_extent = k;
-    return SK_OK;
-}
-
-static sk_result skgl__check(skgl_context *ctx, const char *what)
-{
-    if (ctx->debug && ctx->gl.GetError() != 0) {
-        skgl__set_log(ctx, what, "glGetError reported an error");
-        return SK_ERR_GL;
-    }
-    return SK_OK;
-}
-
-/* ---- resolution estimation on the GPU (Ferko 2013) ------------------- */
-static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
-{
-    int i;
-    for (i = 0; i < 3; i++) {
-        skgl__delete_texture(ctx, &s->ferko_tex[i]);
-        skgl__delete_framebuffer(ctx, &s->ferko_fbo[i]);
-    }
-    s->ferko_w = s->ferko_h = s->ferko_levels = 0;
-}
-
-/* The analysis targets for a w x h G-buffer: level 0, the analysis, at 1/4
-   (a texel per 4x4 pixels), each later level 1/16 of the one before (a
-   texel per 16x16), until one of at most 32 x 32 texels is left for the
-   final pass (1280 x 720: 320 x 180, 20 x 12, then the final). Each level
-   is a 2-layer RGBA32F texture (bounds, patch) with its framebuffer;
-   levels from 3 on (G-buffers past 16384 pixels a side) take turns in the
-   textures of levels 1 and 2, which are larger. 1 when every framebuffer
-   is complete. */
-static int skgl__ferko_targets(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int w, int h)
-{
-    int k, lw = (w + 3) / 4, lh = (h + 3) / 4, ok = 1;
-    if (s->ferko_w == w && s->ferko_h == h) return 1;
-    skgl__ferko_free(ctx, s);
-    for (k = 0; k < SKGL__FERKO_LEVELS; k++) {
-        s->ferko_lw[k] = lw;
-        s->ferko_lh[k] = lh;
-        if (k < 3) {
-            s->ferko_tex[k] = skgl__color_texture(ctx, st, SKGL__RGBA32F, lw, lh, 2, SKGL__RGBA, SKGL__FLOAT, NULL);
-            s->ferko_fbo[k] = skgl__framebuffer(ctx, st, s->ferko_tex[k], 2, 0, 0);
-            ok &= s->ferko_fbo[k] != 0;
-        }
-        if (lw <= 32 && lh <= 32) break;
-        lw = (lw + 15) / 16;
-        lh = (lh + 15) / 16;
-    }
-    s->ferko_levels = k < SKGL__FERKO_LEVELS ? k + 1 : SKGL__FERKO_LEVELS;
-    s->ferko_w = w;
-    s->ferko_h = h;
-    return ok;
-}
-
-/* level k's texture and framebuffer */
-static int skgl__ferko_slot(int k) { return k < 3 ? k : 1 + (k - 1) % 2; }
-
-/* The reduced texel pair, (min x, min y, -max x, -max y) and (min patch
-   width, min patch height, any sample, any patch), to the estimate, with the
-   same rules as sk_estimate_resolution (samples: 1 when any, the GPU counts none). */
-static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate *e)
-{
-    double bw, bh, rw, rh;
-    float tw = v[4], th = v[5];
-    memset(e, 0, sizeof *e);
-    e->bounds.x0 = -1.0f; e->bounds.y0 = -1.0f; e->bounds.x1 = 1.0f; e->bounds.y1 = 1.0f;
-    e->crop = sk_mat4_identity();
-    if (!(v[6] < 0.0f) || !sk__finite(v[0]) || !sk__finite(v[1]) || !sk__finite(v[2]) || !sk__finite(v[3])) return;
-    e->bounds.x0 = v[0]; e->bounds.y0 = v[1]; e->bounds.x1 = -v[2]; e->bounds.y1 = -v[3];
-    bw = (double)e->bounds.x1 - e->bounds.x0;
-    bh = (double)e->bounds.y1 - e->bounds.y0;
-    if (!(v[7] < 0.0f)) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
-    rw = tw > 0.0f ? bw / tw : (double)max_res;
-    rh = th > 0.0f ? bh / th : (double)max_res;
-    e->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
-    e->height = !(rh < max_res) ? max_res : rh < 1.0 ? 1 : (int)SK_CEIL(rh);
-    e->texel_w = tw;
-    e->texel_h = th;
-    e->samples = 1;
-    e->crop = sk_crop_matrix(e->bounds, -1.0f, 1.0f);
-}
-/* the map of the estimate: its crop widened by a margin of texels (the
-   normal offset and the PCF footprint of a sample at the crop's edge stay in
-   the rendered region), rendered into the texture's lower-left w x h texels;
-   the lookup matrix maps the crop onto that region */
-static void skgl__fit_ferko(skgl_shadow *s, float zf)
-{
-    const sk_res_estimate *e = &s->ferko_est;
-    int res = s->desc.resolution, w = e->width, h = e->height;
-    int margin = s->desc.pcf_radius + 2 + (int)SK_CEIL(s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
-    sk_mat4 m, t = sk_mat4_identity(), lvp = skgl__shift(&s->ferko_lvp, s->ferko_origin, s->origin);
-    sk_rect b = e->bounds;
-    if (e->samples > 0 && w > 0 && h > 0) {
-        float mx = margin * (b.x1 - b.x0) / (float)w, my = margin * (b.y1 - b.y0) / (float)h;
-        b.x0 -= mx; b.x1 += mx; b.y0 -= my; b.y1 += my;
-        w += 2 * margin;
-        h += 2 * margin;
-        m = sk_mat4_mul(sk_crop_matrix(b, -1.0f, 1.0f), lvp);
-    } else {
-        w = h = 1;                               /* nothing visible in the light */
-        m = lvp;
-    }
-    if (w > res) w = res;
-    if (h > res) h = res;
-    t.m[0] = (float)w / (float)res; t.m[12] = (float)w / (float)res - 1.0f;
-    t.m[5] = (float)h / (float)res; t.m[13] = (float)h / (float)res - 1.0f;
-    s->render_vp[0] = m;
-    s->vp[0] = sk_mat4_mul(t, m);
-    s->view_w = w;
-    s->view_h = h;
-    s->maps = 1;
-    s->stats.splits[1] = zf;
-    s->stats.estimate = *e;
-    s->stats.estimate_light = skgl__shift(&s->ferko_lvp, s->ferko_origin, skgl__zero3);
-}
-
-/* the uncropped light frustum: an orthographic map around the scene */
-static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, sk_mat4 *out)
-{
-    sk_vec3 c[8];
-    sk_mat4 lview = sk_light_view_directional(light_dir), proj;
-    int i;
-    sk_result r;
-    for (i = 0; i < 8; i++) c[i] = sk__aabb_corner(&scene->bounds, i);
-    r = sk_fit_ortho(c, 8, lview, &scene->bounds, &proj);
-    if (r == SK_OK) *out = sk_mat4_mul(proj, lview);
-    return r;
-}
-
-
-/* texel index of page (level, px, py) in the request atlas and the page
-   table (level l's n_l pages a side from column 2 pages0 - 2 n_l) */
-static size_t skgl__atlas_index(const skgl_shadow *s, int level, int px, int py)
-{
-    int n = s->pages0 >> level;
-    return (size_t)py * (size_t)s->atlas_w + (size_t)(2 * s->pages0 - 2 * n + px);
-}
-
-/* The pages to render from the requests read back (a nonzero texel per
-   page some pixel asks for, levels clamped to [0, levels - 1] as
-   sk_rmsm_page_requests clamps them). When they do not fit in the pool
-   (with the coarsest page, always resident), the finest level rises: its
-   requests fold into their parents one level up (page (px, py) of level l
-   is inside (px/2, py/2) of level l + 1, the page a sample clamped to
-   l + 1 would have asked for), until they fit. The list is sorted by
-   (level, py, px), as sk_rmsm_page_requests sorts. req is folded in place. */
-static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
-{
-    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count = 0, l, px, py;
-    int top = s->levels - 1;
-    for (l = 0; l < s->levels; l++)
-        for (py = 0; py < (s->pages0 >> l); py++)
-            for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
-    s->stats.pages_requested = count;
-    while (count + 1 > cap && min_level < top) {
-        int n = s->pages0 >> min_level;
-        count = 0;
-        for (py = 0; py < n; py++)
-            for (px = 0; px < n; px++)
-                if (req[skgl__atlas_index(s, min_level, px, py)])
-                    req[skgl__atlas_index(s, min_level + 1, px / 2, py / 2)] = 1;
-        min_level++;
-        for (l = min_level; l < s->levels; l++)
-            for (py = 0; py < (s->pages0 >> l); py++)
-                for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
-    }
-    s->rmsm_npages = 0;
-    for (l = min_level; l < s->levels; l++)
-        for (py = 0; py < (s->pages0 >> l); py++)
-            for (px = 0; px < (s->pages0 >> l); px++)
-                if ((req[skgl__atlas_index(s, l, px, py)] != 0 || l == top) && s->rmsm_npages < cap) {
-                    s->rmsm_pages[s->rmsm_npages].level = l;
-                    s->rmsm_pages[s->rmsm_npages].px = px;
-                    s->rmsm_pages[s->rmsm_npages].py = py;
-                    s->rmsm_npages++;
-                }
-    s->stats.rmsm_min_level = min_level;
-}
-
-/* The page table of the resident pages (slot i at (i % pool, i / pool)),
-   and only its rows that differ from the table GL has uploaded: one
-   glTexSubImage2D over the first to the last changed row, none when the
-   pages are those of the last frame. Bound on unit 0 to upload. */
-static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
-{
-    size_t row = (size_t)4 * (size_t)s->atlas_w;
-    int i, pool = s->desc.rmsm_pool_pages, r0 = -1, r1 = -1, y;
-    memset(s->rmsm_table_new, 0, row * (size_t)s->atlas_h);
-    for (i = 0; i < s->rmsm_npages; i++) {
-        unsigned char *e = s->rmsm_table_new + 4 * skgl__atlas_index(s, s->rmsm_pages[i].level, s->rmsm_pages[i].px,
-                                                                    s->rmsm_pages[i].py);
-        e[0] = (unsigned char)(i % pool);
-        e[1] = (unsigned char)(i / pool);
-        e[3] = 255;
-    }
-    for (y = 0; y < s->atlas_h; y++)
-        if (memcmp(s->rmsm_table_new + row * (size_t)y, s->rmsm_table_cpu + row * (size_t)y, row) != 0) {
-            if (r0 < 0) r0 = y;
-            r1 = y;
-        }
-    if (r0 < 0) return;
-    memcpy(s->rmsm_table_cpu + row * (size_t)r0, s->rmsm_table_new + row * (size_t)r0, row * (size_t)(r1 - r0 + 1));
-    skgl__st_unpack(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->rmsm_table);
-    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
-    ctx->gl.TexSubImage2D(SKGL__TEXTURE_2D, 0, 0, r0, s->atlas_w, r1 - r0 + 1, SKGL__RGBA, SKGL__UNSIGNED_BYTE,
-                          s->rmsm_table_cpu + row * (size_t)r0);
-}
-
-/* RMSM analysis: per-pixel samples, page requests scattered on the GPU into
-   the request atlas, read back; the pages and the page table from the
-   requests of the last frame (ring) or, with sync_readback and on the
-   first analysis, of this one (a read-back that waits for the GPU) */
-static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
-                                    const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    int sync = s->desc.sync_readback || !s->rmsm_analyzed, slot;
-    if (s->rmsm_w != w || s->rmsm_h != h) {
-        skgl__delete_texture(ctx, &s->rmsm_samples);
-        skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
-        s->rmsm_samples = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
-        s->rmsm_samples_fbo = skgl__framebuffer(ctx, st, s->rmsm_samples, 1, 0, 0);
-        s->rmsm_w = s->rmsm_samples_fbo ? w : 0;
-        s->rmsm_h = s->rmsm_samples_fbo ? h : 0;
-        if (!s->rmsm_samples_fbo) {
-            skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F target not renderable", NULL);
-            return SK_ERR_GL;
-        }
-    }
-    /* last frame's requests, if they have landed */
-    if (!sync && (slot = skgl__ring_poll(ctx, st, &s->rmsm_ring, s->rmsm_req_cpu)) >= 0) {
-        skgl__rmsm_pages(s, s->rmsm_req_cpu);
-        s->rmsm_lvp = s->rmsm_ring.lvp[slot];
-        memcpy(s->rmsm_origin, s->rmsm_ring.origin[slot], sizeof s->rmsm_origin);
-        skgl__rmsm_table(ctx, st, s);
-    }
-    skgl__timer_begin(ctx, &s->t_analyze);
-    skgl__st_screen_pass(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
-    /* the samples: one per pixel */
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm_samples_fbo);
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
-    skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
-    gl->UniformMatrix4fv(ctx->rmsm_u_inv_view_proj, 1, 0, inv->m);
-    gl->UniformMatrix4fv(ctx->rmsm_u_light, 1, 0, lvp->m);
-    if (ctx->rmsm_vres != (float)s->desc.resolution) {
-        ctx->rmsm_vres = (float)s->desc.resolution;
-        skgl__u1f(gl, ctx->rmsm_u_virtual_res, ctx->rmsm_vres);
-    }
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    /* the requests: a point per sample onto its page's texel */
-    skgl__st_framebuffer(ctx, st, s->rmsm_requests_fbo);
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->atlas_w, s->atlas_h);
-    gl->ClearBufferfv(SKGL__COLOR, 0, zero);
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
-    if (ctx->request_pages0 != s->pages0 || ctx->request_levels != s->levels) {
-        ctx->request_pages0 = s->pages0;
-        ctx->request_levels = s->levels;
-        skgl__u1i(gl, ctx->request_u_pages0, s->pages0);
-        skgl__u1i(gl, ctx->request_u_levels, s->levels);
-    }
-    skgl__st_texture(ctx, st, 1, SKGL__T_2D, s->rmsm_samples, ctx->point_sampler);
-    /* the vertex shader's gl_PointSize, not the glPointSize the caller set */
-    skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
-    gl->DrawArrays(SKGL__POINTS, 0, w * h);
-    if (sync) {
-        /* this frame's requests: the read-back waits for the GPU. A byte
-           a texel (GL_RED of the R8 atlas): rows of atlas_w bytes, hence
-           the pack alignment of 1 (the default 4 would pad them) */
-        skgl__st_pack(ctx, st, 0, s->atlas_h);
-        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm_req_cpu);
-        skgl__rmsm_pages(s, s->rmsm_req_cpu);
-        s->rmsm_lvp = *lvp;
-        memcpy(s->rmsm_origin, o, sizeof s->rmsm_origin);
-        skgl__rmsm_table(ctx, st, s);
-    } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm_ring)) >= 0) {
-        skgl__st_pack(ctx, st, s->rmsm_ring.buf[slot], s->atlas_h);
-        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
-        s->rmsm_ring.lvp[slot] = *lvp;
-        memcpy(s->rmsm_ring.origin[slot], o, sizeof s->rmsm_ring.origin[slot]);
-        skgl__ring_fence(ctx, &s->rmsm_ring, slot);
-    }
-    s->rmsm_analyzed = 1;
-    skgl__timer_end(ctx, &s->t_analyze);
-    s->stats.analysis_ms = s->t_analyze.ms;
-    return SK_OK;
-}
-
-/* FERKO analysis: the 4x4-block pass, the 16x16 reductions, the final 2x1
-   texels; read back at once (sync_readback, and the first analysis) or
-   into the ring, the estimate of an earlier frame taken when it lands */
-static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
-                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    sk_mat4 ndc_to_light;
-    float world_w[4], v[8];
-    int k, sync = s->desc.sync_readback || s->ferko_state == 0, slot;
-    if (!skgl__ferko_targets(ctx, st, s, w, h)) {
-        skgl__ferko_free(ctx, s);
-        skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
-        return SK_ERR_GL;
-    }
-    /* an earlier frame's estimate, if it has landed (the last one kept if not) */
-    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko_ring, v)) >= 0) {
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
-        s->ferko_lvp = s->ferko_ring.lvp[slot];
-        memcpy(s->ferko_origin, s->ferko_ring.origin[slot], sizeof s->ferko_origin);
-        s->ferko_state = 1;
-    }
-    skgl__timer_begin(ctx, &s->t_analyze);
-    skgl__st_screen_pass(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
-    /* level 0: 4x4 blocks of the G-buffer */
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[0]);
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[0], s->ferko_lh[0]);
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
-    skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
-    ndc_to_light = sk_mat4_mul(*lvp, *inv);
-    world_w[0] = inv->m[3]; world_w[1] = inv->m[7]; world_w[2] = inv->m[11]; world_w[3] = inv->m[15];
-    gl->UniformMatrix4fv(ctx->ferko_u_ndc_to_light, 1, 0, ndc_to_light.m);
-    gl->Uniform4fv(ctx->ferko_u_world_w, 1, world_w);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    /* 16x16 MIN reductions (the source level on unit 1's 2D-array target),
-       then the final pass over what is left into the 2x1 texels */
-    for (k = 1; k <= s->ferko_levels; k++) {
-        int fin = k == s->ferko_levels, src = k - 1;
-        int *cache = fin ? ctx->final_src : ctx->reduce_src;
-        skgl__int loc = fin ? ctx->final_u_src_size : ctx->reduce_u_src_size;
-        if (fin) {
-            skgl__st_framebuffer(ctx, st, s->ferko_final_fbo);   /* read back from it too */
-            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, 2, 1);
-        } else {
-            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[skgl__ferko_slot(k)]);
-            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[k], s->ferko_lh[k]);
-        }
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)(fin ? ctx->final_prog : ctx->reduce_prog));
-        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D_ARRAY), (skgl__int)s->ferko_tex[skgl__ferko_slot(src)]);
-        if (cache[0] != s->ferko_lw[src] || cache[1] != s->ferko_lh[src]) {
-            cache[0] = s->ferko_lw[src];
-            cache[1] = s->ferko_lh[src];
-            if (loc >= 0) gl->Uniform2i(loc, cache[0], cache[1]);
-        }
-        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    }
-    if (sync) {
-        /* this frame's estimate: the read-back waits for the GPU */
-        skgl__st_pack(ctx, st, 0, 1);
-        gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, v);
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
-        s->ferko_lvp = *lvp;
-        memcpy(s->ferko_origin, o, sizeof s->ferko_origin);
-        s->ferko_state = 1;
-    } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko_ring)) >= 0) {
-        /* with a pixel pack buffer bound, glReadPixels' pointer is an
-           offset into it, and the call returns without waiting */
-        skgl__st_pack(ctx, st, s->ferko_ring.buf[slot], 1);
-        gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
-        s->ferko_ring.lvp[slot] = *lvp;
-        memcpy(s->ferko_ring.origin[slot], o, sizeof s->ferko_ring.origin[slot]);
-        skgl__ring_fence(ctx, &s->ferko_ring, slot);
-    }
-    skgl__timer_end(ctx, &s->t_analyze);
-    s->stats.analysis_ms = s->t_analyze.ms;
-    return SK_OK;
-}
-
-SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
-                                      const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex)
-{
-    skgl__st st;
-    sk_mat4 inv, lvp;
-    int w = 0, h = 0;
-    double o[3];
-    skgl_camera rc;
-    skgl_scene rs;
-    sk_result r;
-    const char *why;
-    const char *fn = "skgl_shadow_analyze";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    if (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
-                          fn, (int)s->desc.technique);
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
-    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 0));
-    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
-    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
-    /* positions and the light frustum relative to the camera's origin */
-    skgl__origin(&cam->view, o);
-    rc = skgl__camera_rel(cam, o);
-    rs = skgl__scene_rel(scene, o);
-    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
-    r = skgl__ferko_light(&rs, light_dir, &lvp);
-    if (r != SK_OK) return r;
-    skgl__st_begin(ctx, &st);
-    why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
-    if (why) {
-        skgl__st_end(ctx, &st);
-        skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
-        return SK_ERR_INVALID_ARG;
-    }
-    if (s->desc.technique == SKGL_RMSM) r = skgl__analyze_rmsm(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
-    else r = skgl__analyze_ferko(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
-}
-
-/* Crops of every layer: the PSSM practical split scheme (Romanick's VGP353 notes) over
-   the part of the view that can hold receivers; per layer a focused crop of
-   the slice clipped to the scene, or a texel-snapped stable crop. */
-static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene, sk_vec3 light_dir)
-{
-    const skgl_shadow_desc *d = &s->desc;
-    sk_mat4 cam_vp = sk_mat4_mul(cam->proj, cam->view), lview = sk_light_view_directional(light_dir);
-    sk_frustum view = sk_frustum_from_matrix(cam_vp);
-    float zn, cam_zf, zf, far_scene = 0.0f;
-    int i;
-    if (!skgl__near_far(&cam->proj, &zn, &cam_zf) || sk__frustum_invalid(&view)) return SK_ERR_INVALID_ARG;
-    /* shadows end at max_distance, and (focused mode only) where the scene
-       ends: stable mode needs a range that does not depend on where the
-       camera is, or the cascade spheres and their texels would change size */
-    zf = cam_zf;
-    if (!d->stable) {
-        for (i = 0; i < 8; i++) {
-            float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
-            if (depth > far_scene) far_scene = depth;
-        }
-        if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
-    }
-    if (d->max_distance > zn && d->max_distance < zf) zf = d->max_distance;
-    if (s->layers == 1) { s->stats.splits[0] = zn; s->stats.splits[1] = zf; }
-    else if (sk_pssm_splits(zn, zf, s->layers, d->lambda, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
-    s->stats.depth_reversed = 0;
-    s->stats.psm_slide = 0.0f;
-    s->maps = s->layers;
-    s->stats.lspsm_fallback = 0;
-    for (i = 0; i < s->layers; i++) { s->stats.warp_n[i] = SK__INF; s->stats.warped[i] = 0; }
-    s->view_w = s->view_h = d->resolution;
-    if (d->technique == SKGL_RMSM) { s->maps = 1; return SK_OK; }   /* pages: skgl__render_rmsm */
-    if (d->technique == SKGL_PSM) return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
-    if (d->technique == SKGL_LSPSM) return skgl__fit_lspsm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
-    if (d->technique == SKGL_FERKO && s->ferko_state != 0) {
-        skgl__fit_ferko(s, cam_zf > zf ? cam_zf : zf);
-        return SK_OK;
-    }
-    for (i = 0; i < s->layers; i++) {
-        sk_frustum slice;
-        sk_mat4 proj;
-        /* layer i is also sampled in the blend region at the end of layer
-           i-1, [s_i - band, s_i): its crop covers that region too, or the
-           blend would fade toward "outside the map" (lit) */
-        float z0 = i > 0 ? s->stats.splits[i] - d->blend_band * (s->stats.splits[i] - s->stats.splits[i - 1])
-                         : s->stats.splits[0];
-        sk_result r = sk_frustum_slice(&view, zn, cam_zf, z0, s->stats.splits[i + 1], &slice);
-        if (r != SK_OK) return r;
-        if (d->technique == SKGL_LISPSM) {
-            r = skgl__fit_lispsm(s, i, cam, scene, light_dir, &slice, z0);
-            if (r != SK_OK) return r;
-            continue;
-        }
-        if (d->stable) {
-            /* radius from the camera's parameters only: bitwise the same
-               wherever the camera goes (fovy and aspect of a GL perspective) */
-            float fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5])), aspect = cam->proj.m[5] / cam->proj.m[0];
-            sk_sphere sph = sk_cascade_sphere(cam->view, fovy, aspect, z0, s->stats.splits[i + 1]);
-            if (!(sph.r > 0.0f)) sph = sk_frustum_bounding_sphere(&slice);
-            /* the texel grid fixed in world light space, not at the origin */
-            r = sk_stable_crop_origin(sph, lview, d->resolution, &scene->bounds,
-                                      s->origin[0] == 0.0 && s->origin[1] == 0.0 && s->origin[2] == 0.0 ? NULL
-                                                                                                          : s->origin,
-                                      &proj);
-        } else {
-            sk_vec3 pts[SK_CLIP_MAX_POINTS];
-            int n = sk_clip_frustum_aabb(&slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
-            r = n > 0 ? sk_fit_ortho(pts, n, lview, &scene->bounds, &proj)
-                      : sk_fit_ortho(slice.corners, 8, lview, &scene->bounds, &proj);
-        }
-        if (r != SK_OK) return r;
-        s->vp[i] = sk_mat4_mul(proj, lview);
-    }
-    return SK_OK;
-}
-
-/* the state of every depth pass (inside save/restore): no blending, both
-   faces (open meshes cast from both sides), LESS, slope-scaled bias */
-static void skgl__depth_pass_state(const skgl__api *gl, const skgl_shadow_desc *d)
-{
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Enable(SKGL__DEPTH_TEST);
-    gl->DepthFunc(SKGL__LESS);
-    gl->DepthMask(1);
-    gl->ClearDepth(1.0);
-    if (d->slope_bias > 0.0f || d->depth_bias > 0.0f) {
-        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
-        gl->PolygonOffset(d->slope_bias > 0.0f ? d->slope_bias : 0.0f, d->depth_bias > 0.0f ? d->depth_bias : 0.0f);
-    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-}
-
-
-/* ---- the draw callback ---------------------------------------------------
-   A caster pass binds the depth program and sets the model matrix once;
-   the callback may set models (skgl_set_model) and bind its own program if
-   it binds info->program again before it returns (the manual's SCENE
-   ACCESS). After each callback the identity model is set again only if
-   the callback set a model; with desc.debug, the program it left current
-   is checked. The vertex array it may have bound and the unit it may have
-   made active are no longer known (the default mode puts the caller's
-   vertex array back at the end). */
-static const float skgl__identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-
-static void skgl__model_begin(skgl_context *ctx, const double origin[3])
-{
-    memcpy(ctx->model_origin, origin, sizeof ctx->model_origin);
-    ctx->model_loc = ctx->depth_u_model;
-    skgl__model(ctx, skgl__identity);
-    ctx->model_dirty = 0;
-}
-
-static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
-{
-    sk_result r = SK_OK;
-    if (ctx->debug) {
-        skgl__int cur = 0;
-        ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
-        if (cur != (skgl__int)ctx->depth_prog) {
-            skgl__set_log(ctx, "the draw callback returned with another program current",
-                          "bind info->program again before returning");
-            ctx->gl.UseProgram(ctx->depth_prog);
-            r = SK_ERR_INVALID_ARG;
-        }
-    }
-    if (ctx->model_dirty) {
-        skgl__model(ctx, skgl__identity);
-        ctx->model_dirty = 0;
-    }
-    /* the callback may have bound a vertex array and switched the active
-       unit: neither is known any more (what shadowkit set on a unit before
-       is then put back on the right one) */
-    skgl__st_forget(st, SKGL__S_VAO);
-    skgl__st_forget(st, SKGL__S_ACTIVE);
-    return r;
-}
-
-/* RMSM: every resident page into its pool slot, with a border of one
-   texel: level l's page (px, py) covers level texels [px P - 1, (px+1) P + 1)
-   of the virtual map at V / 2^l, crop of the virtual map's light frustum */
-static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir)
-{
-    static const float one = 1.0f;
-    skgl__api *gl = &ctx->gl;
-    skgl__st st;
-    int i, P = s->desc.rmsm_page_size, slot = P + 2, pool = s->desc.rmsm_pool_pages;
-    sk_result r = SK_OK, rc;
-    skgl__st_begin(ctx, &st);
-    if (!s->rmsm_analyzed) {
-        /* no analysis: the coarsest page alone */
-        r = skgl__ferko_light(scene, light_dir, &s->rmsm_lvp);
-        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
-        memcpy(s->rmsm_origin, s->origin, sizeof s->rmsm_origin);
-        s->rmsm_pages[0].level = s->levels - 1;
-        s->rmsm_pages[0].px = s->rmsm_pages[0].py = 0;
-        s->rmsm_npages = 1;
-        s->stats.pages_requested = 0;
-        s->stats.rmsm_min_level = 0;
-        skgl__rmsm_table(ctx, &st, s);
-    }
-    s->light_dir = sk__normalize(light_dir);
-    s->vp[0] = skgl__shift(&s->rmsm_lvp, s->rmsm_origin, s->origin);
-    s->maps = 1;
-    skgl__st_save(ctx, &st, SKGL__S_VAO);
-    skgl__timer_begin(ctx, &s->t_render);
-    skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[0]);
-    skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
-    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
-    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-    skgl__model_begin(ctx, s->origin);
-    s->stats.passes = 0;
-    s->stats.texels = 0.0;
-    for (i = 0; i < s->rmsm_npages; i++) {
-        const sk_page *pg = &s->rmsm_pages[i];
-        double lres = (double)(s->desc.resolution >> pg->level);
-        sk_rect rc_;
-        sk_mat4 vp;
-        skgl_draw_info info;
-        int x = (i % pool) * slot, y = (i / pool) * slot;
-        rc_.x0 = (float)(2.0 * (pg->px * P - 1) / lres - 1.0);
-        rc_.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
-        rc_.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
-        rc_.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
-        vp = sk_mat4_mul(sk_crop_matrix(rc_, -1.0f, 1.0f), s->vp[0]);
-        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, x, y, slot, slot);
-        skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, x, y, slot, slot);
-        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
-        memset(&info, 0, sizeof info);
-        info.kind = SKGL_PASS_DIRECTIONAL;
-        info.index = i;
-        info.view_proj = skgl__shift(&vp, s->origin, skgl__zero3);   /* world space for the callback */
-        info.frustum = sk_frustum_from_matrix(info.view_proj);
-        info.program = ctx->depth_prog;
-        scene->draw(scene->user, &info);
-        rc = skgl__after_draw(ctx, &st);
-        if (rc != SK_OK) r = rc;
-        s->stats.passes++;
-        s->stats.texels += (double)slot * slot;
-    }
-    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
-    skgl__timer_end(ctx, &s->t_render);
-    s->stats.shadow_ms = s->t_render.ms;
-    s->stats.maps = 1;
-    s->stats.resolution = s->desc.resolution;
-    s->stats.map_width = s->stats.map_height = s->tex_size;
-    s->stats.pages_rendered = s->rmsm_npages;
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
-}
-
-SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
-                                     const skgl_scene *scene, sk_vec3 light_dir)
-{
-    static const float one = 1.0f;
-    skgl__api *gl;
-    skgl__st st;
-    sk_result r, rc;
-    int i, res;
-    double o[3], was[3];
-    skgl_camera rcam;
-    skgl_scene rs;
-    const char *fn = "skgl_shadow_render";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
-    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
-    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
-    /* the maps are fitted and rendered relative to the camera's origin */
-    skgl__origin(&cam->view, o);
-    rcam = skgl__camera_rel(cam, o);
-    rs = skgl__scene_rel(scene, o);
-    memcpy(was, s->origin, sizeof was);
-    memcpy(s->origin, o, sizeof o);
-    r = skgl__fit_layers(s, &rcam, &rs, light_dir);
-    if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
-    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, &rs, light_dir);
-    if (s->desc.technique != SKGL_FERKO || s->ferko_state == 0)
-        for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
-    s->light_dir = sk__normalize(light_dir);
-    gl = &ctx->gl;
-    res = s->desc.resolution;
-    skgl__st_begin(ctx, &st);
-    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
-    skgl__timer_begin(ctx, &s->t_render);
-    skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
-    /* a map smaller than its texture (FERKO): clear and draw only its
-       region, plus one texel for the filter's footprint at the edge */
-    if (s->view_w < res || s->view_h < res) {
-        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
-        skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, s->view_w < res ? s->view_w + 1 : res,
-                      s->view_h < res ? s->view_h + 1 : res);
-    } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
-    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-    skgl__model_begin(ctx, o);
-    s->stats.passes = 0;
-    s->stats.texels = 0.0;
-    for (i = 0; i < s->maps; i++) {
-        skgl_draw_info info;
-        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
-        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->render_vp[i].m);
-        memset(&info, 0, sizeof info);
-        info.kind = SKGL_PASS_DIRECTIONAL;
-        info.index = i;
-        info.view_proj = skgl__shift(&s->render_vp[i], o, skgl__zero3);   /* world space for the callback */
-        info.frustum = sk_frustum_from_matrix(info.view_proj);
-        info.program = ctx->depth_prog;
-        scene->draw(scene->user, &info);
-        rc = skgl__after_draw(ctx, &st);
-        if (rc != SK_OK) r = rc;
-        s->stats.passes++;
-        s->stats.texels += (double)s->view_w * s->view_h;
-    }
-    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
-    skgl__timer_end(ctx, &s->t_render);
-    s->stats.shadow_ms = s->t_render.ms;
-    s->stats.maps = s->maps;
-    s->stats.resolution = res;
-    s->stats.map_width = s->view_w;
-    s->stats.map_height = s->view_h;
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
-}
-
-/* The directional snippet's uniforms on the current program (entry e):
-   the light's constants when the program holds another light's (or none),
-   the values that seldom change when they did, the per-frame ones always.
-   unit, table_unit: the units of the map and of the RMSM page table;
-   origin: the world point the program's positions are relative to. */
-static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__progent *e, int unit,
-                                  int table_unit, const double origin[3])
-{
-    const skgl__api *gl = &ctx->gl;
-    const skgl__int *L = e->loc;
-    sk_mat4 vp[SKGL_MAX_CASCADES];
-    float ext[2];
-    int i;
-    if (e->owner != s->id || e->unit != unit) {
-        /* the page table's sampler is set whatever the technique: two
-           samplers of different types must never share a unit */
-        skgl__u1i(gl, L[SKGL__L_MAP], unit);
-        skgl__u1i(gl, L[SKGL__L_TABLE], table_unit);
-        skgl__u1i(gl, L[SKGL__L_RMSM], s->desc.technique == SKGL_RMSM);
-        skgl__u1i(gl, L[SKGL__L_PAGES0], s->pages0);
-        skgl__u1i(gl, L[SKGL__L_LEVELS], s->levels);
-        skgl__u1i(gl, L[SKGL__L_PAGE], s->desc.rmsm_page_size);
-        skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], s->desc.technique == SKGL_LSPSM);
-        skgl__u1f(gl, L[SKGL__L_BLEND_BAND], s->desc.blend_band);
-        skgl__u1f(gl, L[SKGL__L_NORMAL_BIAS], s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
-        skgl__u1i(gl, L[SKGL__L_BIAS_MODE], s->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
-        skgl__u1f(gl, L[SKGL__L_PLANE_BIAS], s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
-        skgl__u1i(gl, L[SKGL__L_PCF], s->desc.pcf_radius);
-        e->owner = s->id;
-        e->unit = unit;
-        e->sentinel_i = s->desc.rmsm_page_size;
-        e->layers = e->min_level = -1;
-        e->extent[0] = e->extent[1] = e->select = -1.0f;
-    }
-    if (e->layers != s->maps) { e->layers = s->maps; skgl__u1i(gl, L[SKGL__L_LAYERS], s->maps); }
-    if (e->min_level != s->stats.rmsm_min_level) {
-        e->min_level = s->stats.rmsm_min_level;
-        skgl__u1i(gl, L[SKGL__L_MIN_LEVEL], e->min_level);
-    }
-    /* FERKO draws into the lower-left view_w x view_h texels: beyond them
-       lie older maps' texels, not this frame's */
-    ext[0] = s->desc.technique == SKGL_FERKO ? (float)s->view_w / (float)s->desc.resolution : 1.0f;
-    ext[1] = s->desc.technique == SKGL_FERKO ? (float)s->view_h / (float)s->desc.resolution : 1.0f;
-    if (ext[0] != e->extent[0] || ext[1] != e->extent[1]) {
-        e->extent[0] = ext[0];
-        e->extent[1] = ext[1];
-        if (L[SKGL__L_MAP_EXTENT] >= 0) gl->Uniform2fv(L[SKGL__L_MAP_EXTENT], 1, ext);
-    }
-    if (e->select != s->select_extent) {
-        e->select = s->select_extent;
-        skgl__u1f(gl, L[SKGL__L_SELECT_EXTENT], s->select_extent);
-    }
-    /* per frame: the matrices, the split depths, the light's direction */
-    for (i = 0; i < s->maps && i < SKGL_MAX_CASCADES; i++) vp[i] = skgl__shift(&s->vp[i], s->origin, origin);
-    if (L[SKGL__L_LIGHT_VP] >= 0) gl->UniformMatrix4fv(L[SKGL__L_LIGHT_VP], s->maps, 0, vp[0].m);
-    if (L[SKGL__L_SPLITS] >= 0) gl->Uniform1fv(L[SKGL__L_SPLITS], s->maps + 1, s->stats.splits);
-    if (L[SKGL__L_LIGHT_DIR] >= 0) gl->Uniform3fv(L[SKGL__L_LIGHT_DIR], 1, &s->light_dir.x);
-}
-
-SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit)
-{
-    return skgl_shadow_bind_origin(ctx, s, program, unit, NULL);
-}
-
-/* the active unit the caller had (default mode; -1 in caller-owns mode,
-   where the bind leaves the last unit it used active) */
-static skgl__int skgl__bind_active(skgl_context *ctx)
-{
-    skgl__int active = -1;
-    if (!ctx->caller_owns) ctx->gl.GetIntegerv(SKGL__ACTIVE_TEXTURE, &active);
-    return active;
-}
-
-SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
-                                          const double origin[3])
-{
-    skgl__api *gl;
-    skgl__int active, last;
-    skgl__progent *e;
-    const char *fn = "skgl_shadow_bind";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
-    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, s->desc.technique == SKGL_RMSM ? 30 : 31));
-    if (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: origin = (%g %g %g): finite, under 1e30", fn, origin[0],
-                          origin[1], origin[2]);
-    e = skgl__user_program(ctx, program, SKGL__PK_SHADOW);
-    gl = &ctx->gl;
-    active = skgl__bind_active(ctx);
-    last = SKGL__TEXTURE0 + unit;
-    if (active != last) gl->ActiveTexture((skgl__enum)last);
-    gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
-    gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-    if (s->desc.technique == SKGL_RMSM) {
-        last = SKGL__TEXTURE0 + unit + 1;
-        gl->ActiveTexture((skgl__enum)last);
-        gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
-        gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
-    }
-    if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
-    skgl__shadow_uniforms(ctx, s, e, unit, unit + 1, origin ? origin : skgl__zero3);
-    return skgl__check(ctx, "skgl_shadow_bind");
-}
-
-/* ---- the deferred mask passes ---------------------------------------- */
-/* The mask texture as the only colour target of the masks' framebuffer,
-   attached by name at every call (a texture deleted and made again under
-   the same name is a new object: an attachment kept from before would
-   still name the old one), checked complete the first time the name comes
-   by (skgl__texture); the full viewport and the state of a full-screen
-   pass. *w, *h: the mask's size. */
-static sk_result skgl__mask_begin(skgl_context *ctx, skgl__st *st, unsigned mask_tex, int *w, int *h,
-                                  const char *fn)
-{
-    skgl__texent *e;
-    const char *why = skgl__texture_size(ctx, st, mask_tex, w, h);
-    if (why) {
-        skgl__set_log(ctx, fn, why);
-        return SK_ERR_INVALID_ARG;
-    }
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)ctx->mask_fbo);
-    ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
-    ctx->mask_fbo_tex = mask_tex;
-    e = skgl__texture(ctx, mask_tex);
-    if (!e->fb_ok) {
-        if (ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-            ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-            ctx->mask_fbo_tex = 0;
-            skgl__set_log(ctx, fn, "the mask texture is not colour-renderable");
-            return SK_ERR_GL;
-        }
-        e->fb_ok = 1;
-    }
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, *w, *h);
-    skgl__st_screen_pass(ctx, st);
-    return SK_OK;
-}
-
-static void skgl__bind_unit(skgl__unitbind *b, int unit, int target, skgl__uint tex, skgl__uint sampler)
-{
-    b->unit = unit;
-    b->target = target;
-    b->tex = tex;
-    b->sampler = sampler;
-}
-
-/* the G-buffer on units 1 (depth) and 2 (normals, when there are) through
-   the point sampler: texelFetch reads them, and a sampler object of the
-   caller's (comparison on, or a mipmapped filter without mipmaps) would
-   make those reads undefined or 0; returns the binds written to b */
-static int skgl__mask_gbuffer(const skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, skgl__unitbind *b)
-{
-    skgl__bind_unit(&b[0], 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
-    if (!normal_tex) return 1;
-    skgl__bind_unit(&b[1], 2, SKGL__T_2D, normal_tex, ctx->point_sampler);
-    return 2;
-}
-
-/* the camera's matrices of a mask program: [0] inverse view-projection, [1] view */
-static void skgl__mask_camera(skgl_context *ctx, skgl__int loc, const sk_mat4 *inv, const sk_mat4 *view)
-{
-    float m[32];
-    memcpy(m, inv->m, sizeof inv->m);
-    memcpy(m + 16, view->m, sizeof view->m);
-    if (loc >= 0) ctx->gl.UniformMatrix4fv(loc, 2, 0, m);
-}
-
-SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
-                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
-{
-    skgl__st st;
-    int w = 0, h = 0;
-    sk_mat4 inv;
-    double o[3];
-    skgl_camera rc;
-    sk_result r;
-    const char *fn = "skgl_shadow_mask";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
-    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
-    SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
-    /* positions reconstructed relative to this camera's origin */
-    skgl__origin(&cam->view, o);
-    rc = skgl__camera_rel(cam, o);
-    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
-    skgl__st_begin(ctx, &st);
-    skgl__timer_begin(ctx, &s->t_mask);
-    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask: mask_tex");
-    if (r == SK_OK) {
-        skgl__unitbind b[4];
-        int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
-        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm_table, 0);
-        skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
-        skgl__st_units(ctx, &st, b, n);
-        skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
-        skgl__shadow_uniforms(ctx, s, &ctx->mask_ent, 0, 3, o);
-        if (ctx->mask_ent.has_normals != (normal_tex != 0)) {
-            ctx->mask_ent.has_normals = normal_tex != 0;
-            skgl__u1i(&ctx->gl, ctx->mask_u_has_normals, normal_tex != 0);
-        }
-        skgl__mask_camera(ctx, ctx->mask_u_camera, &inv, &rc.view);
-        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
-    }
-    skgl__timer_end(ctx, &s->t_mask);
-    s->stats.mask_ms = s->t_mask.ms;
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_mask");
-}
-
-/* ---- for the area lights (skgl_soft_*, inside their full save and restore) --- */
-/* the G-buffer on units 1 (depth) and 2 (normals, may be 0) with the point
-   sampler; *w, *h: the mask texture's level 0 (0 when it has none) */
-static void skgl__mask_inputs(skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, unsigned mask_tex,
-                              skgl__int *w, skgl__int *h)
-{
-    skgl__api *gl = &ctx->gl;
-    *w = *h = 0;
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, w);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, h);
-    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
-    gl->BindSampler(1, ctx->point_sampler);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
-    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
-    gl->BindSampler(2, ctx->point_sampler);
-}
-
-/* the mask texture as the only colour target, full viewport, no blending,
-   culling, depth or polygon offset; 0 when it is not renderable (detached) */
-static int skgl__mask_target(skgl_context *ctx, unsigned mask_tex, int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
-    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
-    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-        return 0;
-    }
-    gl->Viewport(0, 0, w, h);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->ColorMask(1, 1, 1, 1);
-    return 1;
-}
-
-/* ---- point lights: cube shadow maps and VSDCT (King & Newhall 2004) --- */
-#define SKGL__MAX_TEXTURE_SIZE 0x0D33
-#define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
-
-struct skgl_point {
-    skgl_point_desc desc;
-    unsigned id;                   /* per context, never reused: whose constants a program holds */
-    skgl__uint tex;                /* cube map of depth (mip chain with .select_resolution) or the 2D atlas */
-    skgl__uint indirection;        /* VSDCT: RG16 indirection cube map */
-    skgl__uint prog;               /* the mask program, compiled for this technique */
-    skgl__uint lin_sampler;        /* VSDCT: bilinear, no comparison (the indirection) */
-    skgl__uint fbo[6];             /* cube: one framebuffer per face, at mip level fbo_level;
-                                      VSDCT: [0] the light's own atlas's (a shared atlas has its own) */
-    int fbo_level;
-    int tex_level;                 /* cube: the one mip level sampling reads (-1: not set yet) */
-    skgl__progent ent;             /* the mask program's snippet uniforms */
-    skgl__int u_has_normals, u_inv_view_proj;
-    int levels;                    /* cube: mip levels allocated */
-    int ni;                        /* VSDCT: indirection side, Eq. (5.4.7) */
-    int filled_res;                /* VSDCT: face side the indirection holds (0: none yet) */
-    int face_res, level;           /* side rendered by the last render; cube: its mip level */
-    int rendered;                  /* 1 once a render succeeded */
-    sk_vec3 light_pos;
-    sk_frustum view;               /* camera frustum of the render under way (caster culling) */
-    float cull_margin;             /* world distance casters are grown by when culled (the filter's reach) */
-    sk_vsdct_layout layout;        /* VSDCT: faces at face_res inside the full-size atlas */
-    unsigned layout_serial;        /* changes with layout (its rectangles in the snippet) */
-    int packed;                    /* shared atlas: 1 once skgl_point_atlas_pack placed the faces */
-    skgl__timer t_render, t_mask;
-    skgl_stats stats;
-};
-
-struct skgl_point_atlas {
-    skgl__uint tex;                /* GL_TEXTURE_2D, DEPTH_COMPONENT32F, comparison on */
-    skgl__uint fbo;                /* its framebuffer, checked when made */
-    int w, h;
-};
-
-/* the 2D depth texture the light renders into and samples: shared or its own */
-static skgl__uint skgl__point_tex(const skgl_point *p)
-{
-    return p->desc.atlas ? p->desc.atlas->tex : p->tex;
-}
-
-static skgl_point_desc skgl__point_defaults(const skgl_point_desc *d)
-{
-    skgl_point_desc r = *d;
-    if (r.resolution == 0) r.resolution = 512;
-    if (r.near_plane == 0.0f) r.near_plane = 0.05f;
-    if (r.range == 0.0f) r.range = 10.0f;
-    if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
-    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
-    if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
-    if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
-    if (r.pcf_radius == 0) r.pcf_radius = 1;
-    if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
-    skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias, r.disable_plane_bias,
-                         &r.pcf_radius, r.disable_pcf_kernel);
-    if (r.resolution_c == 0.0f) r.resolution_c = 2.0f;
-    if (r.vsdct_grey_levels == 0) r.vsdct_grey_levels = 256;
-    return r;
-}
-
-/* the faces at side m inside the atlas allocated for desc.resolution: the
-   3 x 2 arrangement of sk_vsdct_layout_make, shrunk into the corner */
-static sk_vsdct_layout skgl__point_layout(const skgl_point *p, int m)
-{
-    sk_vsdct_layout l;
-    int f;
-    sk_vsdct_layout_make(p->desc.resolution, &l);
-    l.face_res = m;
-    for (f = 0; f < 6; f++) { l.face_x[f] = (f % 3) * m; l.face_y[f] = (f / 3) * m; }
-    return l;
-}
-
-/* VSDCT: (re)fills the indirection cube map for the faces of layout l
-   (nothing to do when it already holds them; bound on unit 0 to upload) */
-static sk_result skgl__point_fill(skgl_context *ctx, skgl__st *st, skgl_point *p, const sk_vsdct_layout *l)
-{
-    skgl__api *gl = &ctx->gl;
-    size_t face_n = (size_t)p->ni * (size_t)p->ni * 2;
-    unsigned short *buf;
-    int f;
-    if (p->filled_res != 0 && memcmp(&p->layout, l, sizeof *l) == 0) return SK_OK;
-    buf = (unsigned short *)SKGL_MALLOC(sizeof(unsigned short) * face_n * 6);
-    if (!buf) return SK_ERR_CAPACITY;
-    if (sk_vsdct_indirection_fill(l, p->ni, buf) != SK_OK) { SKGL_FREE(buf); return SK_ERR_INVALID_ARG; }
-    p->layout = *l;
-    p->layout_serial++;
-    skgl__st_unpack(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->indirection);
-    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE));
-    for (f = 0; f < 6; f++)
-        gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, 0, SKGL__RG16, p->ni, p->ni, 0, SKGL__RG,
-                       SKGL__UNSIGNED_SHORT, buf + face_n * (size_t)f);
-    SKGL_FREE(buf);
-    p->filled_res = l->face_res;
-    return SK_OK;
-}
-
-/* a VSDCT atlas: 2D depth, bilinear comparison on the texture itself (the
-   masks sample it through no sampler object), made on unit 0 */
-static void skgl__atlas_alloc(skgl_context *ctx, skgl__st *st, skgl__uint tex, int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl__st_unpack(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)tex);
-    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
-    gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, w, h, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
-    /* GL's default wrap is GL_REPEAT: a bilinear tap at the atlas's edge
-       would blend in the opposite edge's texels */
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
-}
-
-static void skgl__point_free(skgl_context *ctx, skgl_point *p)
-{
-    skgl__api *gl = &ctx->gl;
-    int f;
-    skgl__delete_texture(ctx, &p->tex);
-    skgl__delete_texture(ctx, &p->indirection);
-    if (p->prog) { gl->DeleteProgram(p->prog); ctx->objects--; }
-    if (p->lin_sampler) { gl->DeleteSamplers(1, &p->lin_sampler); ctx->objects--; }
-    for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->fbo[f]);
-    skgl__timer_free(ctx, &p->t_render);
-    skgl__timer_free(ctx, &p->t_mask);
-    p->prog = p->lin_sampler = 0;
-}
-
-/* cube: the six faces' framebuffers onto mip level `level` (made when
-   missing), each checked complete; 1 when all are */
-static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p, int level)
-{
-    int f, ok = 1;
-    for (f = 0; f < 6; f++) {
-        if (!p->fbo[f]) {
-            ctx->gl.GenFramebuffers(1, &p->fbo[f]);
-            ctx->objects++;
-            skgl__st_framebuffer(ctx, st, p->fbo[f]);   /* glReadBuffer: the read target's */
-            ctx->gl.DrawBuffer(SKGL__NONE);
-            ctx->gl.ReadBuffer(SKGL__NONE);
-        }
-        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
-        ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
-                                     SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, p->tex, level);
-        ok &= ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
-    }
-    p->fbo_level = ok ? level : -1;
-    return ok;
-}
-
-static int skgl__is_pow2(int x) { return x > 0 && (x & (x - 1)) == 0; }
-
-/* every rule of a skgl_point_desc (defaults filled), in field order */
-static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *d)
-{
-    const char *fn = "skgl_point_create";
-    SKGL__RULE(d->technique == SKGL_POINT_CUBE || d->technique == SKGL_POINT_VSDCT, fn, "technique", d->technique,
-               "one of skgl_point_technique");
-    SKGL__RULE(d->resolution >= 1, fn, "resolution", d->resolution, "1 or more");
-    SKGL__RULE(d->technique != SKGL_POINT_CUBE || !d->select_resolution || skgl__is_pow2(d->resolution), fn,
-               "resolution", d->resolution, "a power of two with select_resolution and SKGL_POINT_CUBE");
-    SKGL__RULE(sk__finite(d->near_plane) && d->near_plane > 0.0f, fn, "near_plane", d->near_plane, "more than 0");
-    SKGL__RULE(sk__finite(d->range) && d->range > d->near_plane, fn, "range", d->range, "more than near_plane");
-    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
-               "in [0, 10000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
-               "in [0, 1000000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
-               "in [0, 64] texels");
-    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
-               "bias", d->bias, "one of skgl_bias");
-    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
-               "in [0, 64] texels (disable_plane_bias for none)");
-    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
-               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
-    SKGL__RULE(sk__finite(d->resolution_c) && d->resolution_c > 0.0f, fn, "resolution_c", d->resolution_c,
-               "more than 0");
-    SKGL__RULE(d->screen_w >= 0, fn, "screen_w", d->screen_w, "0 or more");
-    SKGL__RULE(d->screen_h >= 0, fn, "screen_h", d->screen_h, "0 or more");
-    SKGL__RULE(d->vsdct_grey_levels >= 1, fn, "vsdct_grey_levels", d->vsdct_grey_levels, "1 or more");
-    if (d->atlas && d->technique != SKGL_POINT_VSDCT)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
-    if (d->atlas && !d->atlas->tex)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas has no texture (destroyed?)", fn);
-    return SK_OK;
-}
-
-SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out)
-{
-    skgl__api *gl;
-    skgl_point *p;
-    skgl_point_desc d;
-    skgl__st st;
-    skgl__int max_size = 0;
-    char *fs;
-    size_t n;
-    int f, lv;
-    sk_result r = SK_OK;
-    if (out) *out = NULL;
-    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    d = skgl__point_defaults(desc);
-    r = skgl__point_validate(ctx, &d);
-    if (r != SK_OK) return r;
-    gl = &ctx->gl;
-    gl->GetIntegerv(d.technique == SKGL_POINT_CUBE ? SKGL__MAX_CUBE_MAP_TEXTURE_SIZE : SKGL__MAX_TEXTURE_SIZE,
-                    &max_size);
-    /* a shared atlas bounds the side by packing (skgl_point_atlas_pack halves it) */
-    if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : !d.atlas && d.resolution > max_size / 3)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_create: desc.resolution = %d: at most %d here (%s)",
-                          d.resolution, d.technique == SKGL_POINT_CUBE ? max_size : max_size / 3,
-                          d.technique == SKGL_POINT_CUBE ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
-                                                         : "a third of GL_MAX_TEXTURE_SIZE, the 3 x 2 atlas");
-    p = (skgl_point *)SKGL_MALLOC(sizeof *p);
-    if (!p) return SK_ERR_CAPACITY;
-    memset(p, 0, sizeof *p);
-    p->desc = d;
-    p->id = ++ctx->next_id;
-    if (!p->id) p->id = ++ctx->next_id;
-    p->tex_level = p->fbo_level = -1;
-    /* the mask program: the technique's define, the snippet, the pass */
-    n = strlen(skgl__src_point_sample_glsl) + 64;
-    fs = (char *)SKGL_MALLOC(n);
-    if (!fs) { SKGL_FREE(p); return SK_ERR_CAPACITY; }
-    strcpy(fs, d.technique == SKGL_POINT_VSDCT ? "#define SK_POINT_VSDCT 1\n" : "#define SK_POINT_VSDCT 0\n");
-    strcat(fs, skgl__src_point_sample_glsl);
-    p->prog = skgl__program(ctx, skgl__src_fullscreen_vert, fs, skgl__src_point_mask_frag);
-    SKGL_FREE(fs);
-    if (!p->prog) { SKGL_FREE(p); return SK_ERR_GL; }
-    skgl__st_begin(ctx, &st);
-    skgl__timer_init(ctx, &p->t_render);
-    skgl__timer_init(ctx, &p->t_mask);
-    /* the mask program's locations, its G-buffer units (the light's
-       constants follow at its first mask) */
-    skgl__progent_lookup(ctx, &p->ent, p->prog, SKGL__PK_POINT);
-    p->ent.has_normals = -1;
-    p->u_has_normals = gl->GetUniformLocation(p->prog, "u_has_normals");
-    p->u_inv_view_proj = gl->GetUniformLocation(p->prog, "u_inv_view_proj");
-    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
-    skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_depth"), 1);
-    skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_normals"), 2);
-    if (!d.atlas) { gl->GenTextures(1, &p->tex); ctx->objects++; }
-    if (d.technique == SKGL_POINT_CUBE) {
-        /* the full mip chain only when a smaller level may be chosen */
-        p->levels = 1;
-        if (d.select_resolution) while ((d.resolution >> p->levels) >= 1) p->levels++;
-        skgl__st_unpack(ctx, &st);
-        skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
-        skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
-        for (lv = 0; lv < p->levels; lv++) {
-            int s = d.resolution >> lv;
-            for (f = 0; f < 6; f++)
-                gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, lv, SKGL__DEPTH_COMPONENT32F, s, s,
-                               0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
-        }
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, 0);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->levels - 1);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_MODE, SKGL__COMPARE_REF_TO_TEXTURE);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_COMPARE_FUNC, SKGL__LEQUAL);
-        /* edges clamped, as the comparison sampler has them (the default
-           GL_REPEAT matters wherever seamless filtering is off) */
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
-        if (!skgl__point_cube_fbos(ctx, &st, p, 0)) {
-            skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
-            r = SK_ERR_GL;
-        }
-    } else {
-        if (!d.atlas) {
-            skgl__atlas_alloc(ctx, &st, p->tex, 3 * d.resolution, 2 * d.resolution);
-            p->fbo[0] = skgl__framebuffer(ctx, &st, 0, 0, p->tex, -1);
-            if (!p->fbo[0]) {
-                skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
-                r = SK_ERR_GL;
-            }
-        }
-        /* Eq. (5.4.7) with D = 8 bits of filter weight precision; never below
-           the face side, so the linear ramp of the filtered coordinates is
-           clamped for at most half a shadow texel at a face edge */
-        p->ni = sk_vsdct_indirection_size(d.resolution, d.vsdct_grey_levels, 8);
-        if (p->ni < 1 && r == SK_OK) r = skgl__fail(ctx, SK_ERR_INVALID_ARG,
-                                                 "skgl_point_create: desc.vsdct_grey_levels = %d: too few for "
-                                                 "desc.resolution %d (Eq. 5.4.7 gives no indirection side)",
-                                                 d.vsdct_grey_levels, d.resolution);
-        gl->GenTextures(1, &p->indirection); ctx->objects++;
-        skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->indirection);
-        skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
-        /* the texture's own sampling (the masks bind no sampler object):
-           bilinear, edges clamped, one level */
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, 0);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
-        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
-        if (r == SK_OK) {
-            sk_vsdct_layout l = skgl__point_layout(p, d.resolution);
-            r = skgl__point_fill(ctx, &st, p, &l);
-        }
-        gl->GenSamplers(1, &p->lin_sampler); ctx->objects++;
-        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
-        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
-        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
-        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_WRAP_R, SKGL__CLAMP_TO_EDGE);
-        gl->SamplerParameteri(p->lin_sampler, SKGL__TEXTURE_COMPARE_MODE, SKGL__NONE);
-    }
-    p->face_res = d.resolution;
-    p->layout = skgl__point_layout(p, d.resolution);
-    skgl__st_end(ctx, &st);
-    if (r == SK_OK && gl->GetError() != 0) {
-        skgl__set_log(ctx, "skgl_point_create: GL error while allocating the maps", NULL);
-        r = SK_ERR_GL;
-    }
-    if (r != SK_OK) { skgl__point_free(ctx, p); SKGL_FREE(p); return r; }
-    p->stats.shadow_ms = p->stats.mask_ms = p->stats.analysis_ms = -1.0f;
-    *out = p;
-    return SK_OK;
-}
-
-SKGLDEF void skgl_point_destroy(skgl_context *ctx, skgl_point *p)
-{
-    if (!ctx || !p) return;
-    skgl__point_free(ctx, p);
-    SKGL_FREE(p);
-}
-
-SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p)
-{
-    skgl_point_desc d;
-    if (p) return p->desc;
-    memset(&d, 0, sizeof d);
-    return d;
-}
-SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
-SKGLDEF unsigned skgl_point_texture(const skgl_point *p)
-{
-    return p ? skgl__point_tex(p) : 0;
-}
-SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p)
-{
-    sk_vsdct_layout l;
-    if (p) return p->layout;
-    memset(&l, 0, sizeof l);
-    return l;
-}
-
-SKGLDEF const char *skgl_point_glsl_snippet(void) { return skgl__src_point_sample_glsl; }
-
-SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster)
-{
-    skgl_point *p;
-    int vis;
-    if (!info || info->kind != SKGL_PASS_CUBE_FACE || !info->point) return 1;
-    p = info->point;
-    if (!p->desc.cull_casters) return 1;
-    /* King & Newhall's caster culling: the light-to-box cone frustum (or the
-       light's range box when the light is inside the box) against the view
-       frustum; then the box against this face's frustum */
-    if (sk__aabb_valid(&caster)) {   /* grown by the filter's reach at the light's range */
-        caster.min = sk__sub(caster.min, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
-        caster.max = sk__add(caster.max, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
-    }
-    vis = sk_caster_visible(info->light_pos, info->light_range, caster, &p->view);
-    if (vis) {
-        sk_frustum bf;
-        if (sk_frustum_from_aabb(caster, &bf) == SK_OK) vis = sk_frustum_intersects(&bf, &info->frustum);
-    }
-    if (vis) p->stats.casters_drawn++; else p->stats.casters_culled++;
-    return vis;
-}
-
-/* The filter's reach in face-plane units (tangent of the angle off a
-   receiver's light vector): the (2r)x(2r) taps, the hardware 2x2 under
-   each, and the normal offset, at face side m. A face or caster that only
-   such a tap can read is still needed for a visible pixel. */
-static double skgl__point_reach(const skgl_point *p, int m)
-{
-    double nb = p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0;
-    return (p->desc.pcf_radius + 1.0 + nb) * 2.0 / m;
-}
-
-/* sk_cube_visible_faces with each face frustum widened by `reach` (its
-   half-width tangent 1 + reach instead of 1), so that the filter taps of a
-   visible receiver near a face edge find the neighbouring face rendered */
-static unsigned skgl__point_faces(sk_vec3 lp, float zn, float zf, const sk_frustum *view, double reach)
-{
-    unsigned bits = 0;
-    int f;
-    if (sk_frustum_contains_point(view, lp)) return 0x3fu;
-    for (f = 0; f < 6; f++) {
-        sk_mat4 proj = sk_cube_face_proj(zn, zf);
-        sk_frustum ff;
-        proj.m[0] = proj.m[5] = (float)(1.0 / (1.0 + reach));
-        ff = sk_frustum_from_matrix(sk_mat4_mul(proj, sk_cube_face_view(f, lp)));
-        if (sk_frustum_intersects(&ff, view)) bits |= 1u << f;
-    }
-    return bits;
-}
-
-static int skgl__popcount6(unsigned b)
-{
-    int f, n = 0;
-    for (f = 0; f < 6; f++) n += (b >> f) & 1u;
-    return n;
-}
-
-/* the pixel count S of the light (its scissor rectangle on the screen) */
-static float skgl__point_pixels(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4])
-{
-    int rect[4], w = p->desc.screen_w, h = p->desc.screen_h;
-    if (w < 1 || h < 1) { w = viewport[2]; h = viewport[3]; }
-    if (w < 1 || h < 1) return 0.0f;
-    if (!sk_light_scissor(p->light_pos, p->desc.range, *vp, w, h, rect)) return 0.0f;
-    return (float)rect[2] * (float)rect[3];
-}
-
-/* face culling: a face whose frustum misses the view frustum casts
-   nothing visible (King & Newhall Fig. 5.4.2, frustum-frustum intersection), widened
-   by the filter's reach at the face side m. Resolution selection: the
-   smallest power of two M with N M^2 >= c S, N the faces rendered. A
-   smaller M widens the reach, which may add faces, which may lower M:
-   repeated until both hold (M only decreases). p->light_pos and p->view
-   hold this frame's light and view. Returns M; *faces the faces' bits. */
-static int skgl__point_select(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4], unsigned *faces)
-{
-    int f, nf, m = p->desc.resolution;
-    for (f = 0; f < 8; f++) {
-        int sel;
-        *faces = p->desc.cull_faces ? skgl__point_faces(p->light_pos, p->desc.near_plane, p->desc.range, &p->view,
-                                                        skgl__point_reach(p, m))
-                                    : 0x3fu;
-        nf = skgl__popcount6(*faces);
-        if (!p->desc.select_resolution || nf == 0) break;
-        sel = sk_cube_resolution(nf, skgl__point_pixels(p, vp, viewport), p->desc.resolution_c, p->desc.resolution);
-        if (sel <= 0 || sel >= m) break;
-        m = sel;
-    }
-    return m;
-}
-
-/* the caller's viewport (the resolution selection's screen when
-   screen_w/screen_h are 0): the saved value in the default mode; read from
-   GL in caller-owns mode, the one read that mode makes (set screen_w and
-   screen_h to avoid it) */
-static void skgl__caller_viewport(skgl_context *ctx, skgl__st *st, skgl__int v[4])
-{
-    if (st->restore) {
-        skgl__st_save(ctx, st, SKGL__S_VIEWPORT);
-        memcpy(v, st->orig[SKGL__S_VIEWPORT], sizeof(skgl__int) * 4);
-    } else ctx->gl.GetIntegerv(SKGL__VIEWPORT, v);
-}
-
-SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
-                                    const skgl_scene *scene, sk_vec3 light_pos)
-{
-    static const float one = 1.0f;
-    skgl__api *gl;
-    skgl__st st;
-    sk_mat4 vp, proj;
-    unsigned faces;
-    int f, m, vsdct, shared;
-    float zn, zf;
-    sk_result r = SK_OK, rc;
-    skgl__int viewport[4] = {0, 0, 0, 0};
-    const char *fn = "skgl_point_render";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
-    if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
-    SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
-    shared = p->desc.atlas != NULL;
-    if (shared && !p->packed) {
-        skgl__set_log(ctx, "skgl_point_render: a shared-atlas light needs skgl_point_atlas_pack first", NULL);
-        return SK_ERR_INVALID_ARG;
-    }
-    gl = &ctx->gl;
-    vsdct = p->desc.technique == SKGL_POINT_VSDCT;
-    zn = p->desc.near_plane;
-    zf = p->desc.range;
-    vp = sk_mat4_mul(cam->proj, cam->view);
-    p->light_pos = light_pos;
-    p->view = sk_frustum_from_matrix(vp);
-    skgl__st_begin(ctx, &st);
-    if (shared) {
-        /* the side skgl_point_atlas_pack placed; the faces for its reach
-           (a halved side reaches further, so it may add a face) */
-        m = p->layout.face_res;
-        faces = p->desc.cull_faces ? skgl__point_faces(light_pos, zn, zf, &p->view, skgl__point_reach(p, m)) : 0x3fu;
-    } else {
-        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1))
-            skgl__caller_viewport(ctx, &st, viewport);
-        m = skgl__point_select(p, &vp, viewport, &faces);
-    }
-    p->cull_margin = (float)(skgl__point_reach(p, m) * zf);
-    p->level = 0;
-    if (!vsdct) while ((p->desc.resolution >> p->level) > m) p->level++;
-    m = vsdct ? m : p->desc.resolution >> p->level;
-    if (vsdct && !shared) {
-        sk_vsdct_layout l = skgl__point_layout(p, m);
-        r = skgl__point_fill(ctx, &st, p, &l);
-        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
-    } else if (!vsdct) {
-        /* sampling reads the level rendered, and only that one: set when it changes */
-        if (p->tex_level != p->level) {
-            skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
-            skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
-            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
-            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->level);
-            p->tex_level = p->level;
-        }
-        /* the faces' framebuffers follow the level: attached and checked again when it changes */
-        if (p->fbo_level != p->level && !skgl__point_cube_fbos(ctx, &st, p, p->level)) {
-            skgl__st_end(ctx, &st);
-            skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
-            return SK_ERR_GL;
-        }
-    }
-    p->face_res = m;
-    proj = sk_cube_face_proj(zn, zf);   /* 90 deg, w = eye depth: window depth is Eq. (5.4.6) */
-    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
-    skgl__timer_begin(ctx, &p->t_render);
-    skgl__st_depth_pass(ctx, &st, p->desc.slope_bias, p->desc.depth_bias);
-    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-    skgl__model_begin(ctx, skgl__zero3);
-    if (vsdct) {
-        /* the faces' region of an own atlas, one clear (culled faces read
-           lit); in a shared atlas each face's rectangle, cleared in the loop
-           (the other lights' faces stay) */
-        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)(shared ? p->desc.atlas->fbo : p->fbo[0]));
-        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
-        if (!shared) {
-            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, 3 * m, 2 * m);
-            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        }
-    } else {
-        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, m, m);
-    }
-    p->stats.passes = p->stats.faces_rendered = p->stats.faces_culled = 0;
-    p->stats.casters_drawn = p->stats.casters_culled = 0;
-    p->stats.texels = 0.0;
-    for (f = 0; f < 6; f++) {
-        skgl_draw_info info;
-        if (vsdct) {
-            skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, p->layout.face_x[f], p->layout.face_y[f], m, m);
-            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, p->layout.face_x[f], p->layout.face_y[f], m, m);
-            if (shared) gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        } else {
-            /* a culled face is cleared too: a filter tap near a visible
-               face's edge may step into it, and must read "lit" there */
-            skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
-            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        }
-        if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
-        memset(&info, 0, sizeof info);
-        info.kind = SKGL_PASS_CUBE_FACE;
-        info.index = f;
-        info.view_proj = sk_mat4_mul(proj, sk_cube_face_view(f, light_pos));
-        info.frustum = sk_frustum_from_matrix(info.view_proj);
-        info.light_pos = light_pos;
-        info.light_range = zf;
-        info.point = p;
-        info.program = ctx->depth_prog;
-        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, info.view_proj.m);
-        scene->draw(scene->user, &info);
-        rc = skgl__after_draw(ctx, &st);
-        if (rc != SK_OK) r = rc;
-        p->stats.passes++;
-        p->stats.faces_rendered++;
-        p->stats.texels += (double)m * m;
-    }
-    skgl__timer_end(ctx, &p->t_render);
-    p->stats.shadow_ms = p->t_render.ms;
-    p->stats.maps = p->stats.faces_rendered;
-    p->stats.resolution = p->stats.map_width = p->stats.map_height = m;
-    p->rendered = 1;
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_point_render");
-}
-
-/* The point snippet's uniforms on the current program (entry e), as
-   skgl__shadow_uniforms: the light's constants when the program holds
-   another's, the face size and the atlas rectangles when they changed, the
-   light's position always. */
-static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__progent *e, int unit, int ind_unit)
-{
-    const skgl__api *gl = &ctx->gl;
-    const skgl__int *L = e->loc;
-    float texel = 2.0f / (float)p->face_res;
-    if (e->owner != p->id || e->unit != unit) {
-        float scale, bias, depth[2];
-        sk_vsdct_depth_coeffs(p->desc.near_plane, p->desc.range, &scale, &bias);
-        depth[0] = scale; depth[1] = bias;
-        skgl__u1i(gl, L[SKGL__P_CUBE], unit);
-        skgl__u1i(gl, L[SKGL__P_ATLAS], unit);
-        skgl__u1i(gl, L[SKGL__P_INDIRECTION], ind_unit);
-        skgl__u1f(gl, L[SKGL__P_RANGE], p->desc.range);
-        if (L[SKGL__P_DEPTH] >= 0) gl->Uniform2fv(L[SKGL__P_DEPTH], 1, depth);
-        skgl__u1f(gl, L[SKGL__P_NORMAL_BIAS], p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f);
-        skgl__u1i(gl, L[SKGL__P_PCF], p->desc.pcf_radius);
-        skgl__u1i(gl, L[SKGL__P_BIAS_MODE], p->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
-        skgl__u1f(gl, L[SKGL__P_PLANE_BIAS], p->desc.plane_bias > 0.0f ? p->desc.plane_bias : 0.0f);
-        e->owner = p->id;
-        e->unit = unit;
-        e->sentinel_f = p->desc.range;
-        e->texel = -1.0f;
-        e->layout = 0;
-    }
-    if (e->texel != texel) { e->texel = texel; skgl__u1f(gl, L[SKGL__P_TEXEL], texel); }
-    if (p->desc.technique == SKGL_POINT_VSDCT && e->layout != p->layout_serial && L[SKGL__P_FACES] >= 0) {
-        float rects[24];
-        int f;
-        for (f = 0; f < 6; f++) {
-            const sk_vsdct_layout *l = &p->layout;
-            rects[4 * f + 0] = (float)((l->face_x[f] + 0.5) / l->atlas_w);
-            rects[4 * f + 1] = (float)((l->face_y[f] + 0.5) / l->atlas_h);
-            rects[4 * f + 2] = (float)((l->face_x[f] + l->face_res - 0.5) / l->atlas_w);
-            rects[4 * f + 3] = (float)((l->face_y[f] + l->face_res - 0.5) / l->atlas_h);
-        }
-        gl->Uniform4fv(L[SKGL__P_FACES], 6, rects);
-        e->layout = p->layout_serial;
-    }
-    if (L[SKGL__P_POS] >= 0) gl->Uniform3fv(L[SKGL__P_POS], 1, &p->light_pos.x);
-}
-
-SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit)
-{
-    skgl__api *gl;
-    skgl__int active, last;
-    skgl__progent *e;
-    const char *fn = "skgl_point_bind";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
-    SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
-    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, 30));
-    if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
-    e = skgl__user_program(ctx, program, SKGL__PK_POINT);
-    gl = &ctx->gl;
-    active = skgl__bind_active(ctx);
-    last = SKGL__TEXTURE0 + unit;
-    if (active != last) gl->ActiveTexture((skgl__enum)last);
-    if (p->desc.technique == SKGL_POINT_VSDCT) {
-        gl->BindTexture(SKGL__TEXTURE_2D, skgl__point_tex(p));
-        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-        last = SKGL__TEXTURE0 + unit + 1;
-        gl->ActiveTexture((skgl__enum)last);
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->indirection);
-        gl->BindSampler((skgl__uint)unit + 1, p->lin_sampler);
-    } else {
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, p->tex);
-        gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-    }
-    if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
-    skgl__point_uniforms(ctx, p, e, unit, unit + 1);
-    return skgl__check(ctx, "skgl_point_bind");
-}
-
-SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
-                                  unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
-{
-    skgl__st st;
-    skgl__unitbind b[4];
-    int w = 0, h = 0, vsdct, n;
-    sk_mat4 vp, inv;
-    int rect[4];
-    sk_result r;
-    const char *why;
-    const char *fn = "skgl_point_mask";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
-    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
-    SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
-    if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
-    vp = sk_mat4_mul(cam->proj, cam->view);
-    if (!sk_mat4_inverse(vp, &inv)) return SK_ERR_INVALID_ARG;
-    vsdct = p->desc.technique == SKGL_POINT_VSDCT;
-    skgl__st_begin(ctx, &st);
-    why = skgl__texture_size(ctx, &st, mask_tex, &w, &h);
-    if (why) {
-        skgl__st_end(ctx, &st);
-        skgl__set_log(ctx, "skgl_point_mask: mask_tex", why);
-        return SK_ERR_INVALID_ARG;
-    }
-    /* King & Newhall's scissor: the light's range box on the screen; the whole
-       viewport when the eye is inside it (sk_light_scissor) */
-    rect[0] = rect[1] = 0; rect[2] = w; rect[3] = h;
-    if (p->desc.scissor && !sk_light_scissor(p->light_pos, p->desc.range, vp, w, h, rect)) {
-        memset(p->stats.scissor, 0, sizeof p->stats.scissor);
-        p->stats.mask_ms = ctx->timing ? 0.0f : -1.0f;
-        skgl__st_end(ctx, &st);
-        return skgl__check(ctx, "skgl_point_mask");
-    }
-    memcpy(p->stats.scissor, rect, sizeof rect);
-    skgl__timer_begin(ctx, &p->t_mask);
-    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_point_mask: mask_tex");
-    if (r == SK_OK) {
-        if (p->desc.scissor) {
-            skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
-            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
-        } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        /* cube: 2x2 filtering walks across face edges; VSDCT: the indirection
-           must never blend two faces' coordinates */
-        skgl__st_set1(ctx, &st, SKGL__S_SEAMLESS, !vsdct);
-        /* the map and the indirection through their own texture parameters
-           (comparison, filtering), no sampler object */
-        n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
-        if (vsdct) skgl__bind_unit(&b[n++], 3, SKGL__T_CUBE, p->indirection, 0);
-        skgl__bind_unit(&b[n++], 0, vsdct ? SKGL__T_2D : SKGL__T_CUBE, vsdct ? skgl__point_tex(p) : p->tex, 0);
-        skgl__st_units(ctx, &st, b, n);
-        skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
-        skgl__point_uniforms(ctx, p, &p->ent, 0, 3);
-        if (p->ent.has_normals != (normal_tex != 0)) {
-            p->ent.has_normals = normal_tex != 0;
-            skgl__u1i(&ctx->gl, p->u_has_normals, normal_tex != 0);
-        }
-        if (p->u_inv_view_proj >= 0) ctx->gl.UniformMatrix4fv(p->u_inv_view_proj, 1, 0, inv.m);
-        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
-    }
-    skgl__timer_end(ctx, &p->t_mask);
-    p->stats.mask_ms = p->t_mask.ms;
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_point_mask");
-}
-
-/* ---- several point lights in one atlas --------------------------------- */
-SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int height, skgl_point_atlas **out)
-{
-    skgl__api *gl;
-    skgl__st st;
-    skgl__int max_size = 0;
-    skgl_point_atlas *a;
-    if (out) *out = NULL;
-    if (!ctx || !out) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    if (width < 1 || height < 1)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width x height = %d x %d: 1 or more each",
-                          width, height);
-    gl = &ctx->gl;
-    gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
-    if (width > max_size)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width = %d: at most GL_MAX_TEXTURE_SIZE %d",
-                          width, max_size);
-    if (height > max_size)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
-                          "skgl_point_atlas_create: height = %d: at most GL_MAX_TEXTURE_SIZE %d", height, max_size);
-    a = (skgl_point_atlas *)SKGL_MALLOC(sizeof *a);
-    if (!a) return SK_ERR_CAPACITY;
-    memset(a, 0, sizeof *a);
-    a->w = width;
-    a->h = height;
-    skgl__st_begin(ctx, &st);
-    gl->GenTextures(1, &a->tex); ctx->objects++;
-    skgl__atlas_alloc(ctx, &st, a->tex, width, height);
-    a->fbo = skgl__framebuffer(ctx, &st, 0, 0, a->tex, -1);
-    skgl__st_end(ctx, &st);
-    if (!a->fbo || gl->GetError() != 0) {
-        skgl__set_log(ctx, "skgl_point_atlas_create: GL error while allocating the atlas", NULL);
-        skgl_point_atlas_destroy(ctx, a);
-        return SK_ERR_GL;
-    }
-    *out = a;
-    return SK_OK;
-}
-
-SKGLDEF void skgl_point_atlas_destroy(skgl_context *ctx, skgl_point_atlas *a)
-{
-    if (!ctx || !a) return;
-    skgl__delete_texture(ctx, &a->tex);
-    skgl__delete_framebuffer(ctx, &a->fbo);
-    SKGL_FREE(a);
-}
-
-SKGLDEF unsigned skgl_point_atlas_texture(const skgl_point_atlas *a) { return a ? a->tex : 0; }
-SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *height)
-{
-    if (width) *width = a ? a->w : 0;
-    if (height) *height = a ? a->h : 0;
-}
-
-/* Shelf packing of the lights' faces, all six of a light of side res[i]:
-   lights taken by side, largest first (order[] sorted so), squares placed
-   left to right; a square that would pass the right edge starts a new
-   shelf on top of the last one, as high as its first square, which is the
-   tallest on it since sides only decrease. 1 and the corners in x, y
-   (light i's face f at [6 i + f]) when everything fits in w x h, else 0. */
-static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *order, int *x, int *y)
-{
-    int k, f, cx = 0, sy = 0, shelf = 0;
-    for (k = 0; k < n; k++) {
-        int i = order[k], m = res[i];
-        if (m > w) return 0;
-        for (f = 0; f < 6; f++) {
-            if (cx + m > w) { sy += shelf; cx = 0; shelf = 0; }
-            if (shelf == 0) shelf = m;
-            if (sy + m > h) return 0;
-            x[6 * i + f] = cx;
-            y[6 * i + f] = sy;
-            cx += m;
-        }
-    }
-    return 1;
-}
-
-
-SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, skgl_point *const *lights, int n,
-                                        const skgl_camera *cam, const sk_vec3 *light_pos)
-{
-    skgl__st st;
-    skgl__int viewport[4] = {0, 0, 0, 0};
-    sk_mat4 vp;
-    sk_frustum view;
-    int *res, *order, *x, *y;
-    int i, k, f, fits;
-    sk_result r = SK_OK;
-    const char *fn = "skgl_point_atlas_pack";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, a, "a"));
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, lights, "lights"));
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, light_pos, "light_pos"));
-    if (n < 1) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: n = %d: 1 or more", fn, n);
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
-    for (i = 0; i < n; i++)
-        if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i]))
-            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: lights[%d] is NULL, not in this atlas, or its light_pos "
-                              "is not finite", fn, i);
-    res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 14);
-    if (!res) return SK_ERR_CAPACITY;
-    order = res + n;
-    x = order + n;
-    y = x + 6 * n;
-    skgl__st_begin(ctx, &st);
-    /* each light's side, selected as skgl_point_render selects it */
-    vp = sk_mat4_mul(cam->proj, cam->view);
-    view = sk_frustum_from_matrix(vp);
-    for (i = 0; i < n; i++) {
-        skgl_point *p = lights[i];
-        unsigned faces;
-        p->light_pos = light_pos[i];
-        p->view = view;
-        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1) && !viewport[2])
-            skgl__caller_viewport(ctx, &st, viewport);
-        res[i] = skgl__point_select(p, &vp, viewport, &faces);
-        if (res[i] < 1) res[i] = 1;
-        lights[i]->stats.atlas_wanted = res[i];
-    }
-    /* pack; while it does not fit, halve the largest side */
-    for (;;) {
-        for (i = 0; i < n; i++) order[i] = i;
-        for (i = 1; i < n; i++)   /* insertion sort by side, descending; stable */
-            for (k = i; k > 0 && res[order[k - 1]] < res[order[k]]; k--) {
-                int t = order[k]; order[k] = order[k - 1]; order[k - 1] = t;
-            }
-        fits = skgl__atlas_shelves(a->w, a->h, n, res, order, x, y);
-        if (fits || res[order[0]] <= 1) break;
-        res[order[0]] /= 2;
-    }
-    if (!fits) {
-        skgl__set_log(ctx, "skgl_point_atlas_pack: the faces do not fit even at one texel", NULL);
-        r = SK_ERR_CAPACITY;
-    }
-    for (i = 0; i < n && r == SK_OK; i++) {
-        sk_vsdct_layout l;
-        l.face_res = res[i];
-        l.atlas_w = a->w;
-        l.atlas_h = a->h;
-        for (f = 0; f < 6; f++) { l.face_x[f] = x[6 * i + f]; l.face_y[f] = y[6 * i + f]; }
-        r = skgl__point_fill(ctx, &st, lights[i], &l);
-        if (r == SK_OK) { lights[i]->packed = 1; lights[i]->face_res = res[i]; }
-    }
-    skgl__st_end(ctx, &st);
-    SKGL_FREE(res);
-    if (r != SK_OK) return r;
-    return skgl__check(ctx, "skgl_point_atlas_pack");
-}
-
-
-
-/* ---- area lights: PCSS and PVSM (Shen et al. 2011) ------------------- */
-struct skgl_soft {
-    skgl_soft_desc desc;
-    skgl__uint prog_mask;          /* PCSS: the mask; PVSM: the kernel-shape pass */
-    skgl__uint prog_cons, prog_smtg, prog_reduce, prog_filter, prog_resolve, prog_gbuf;
-    skgl__int cons_u_model, gbuf_u_model;
-    skgl__uint fbo, query_samples;
-    skgl__uint map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
-    int map_res;
-    skgl__uint low_color, low_true;    /* PVSM: R32F MIN pyramid of the conservative low-res map; the plain map */
-    int low_levels;
-    skgl__uint smtg;               /* PVSM: RG32F SMTG with its pyramid as mip levels */
-    int smtg_levels;
-    skgl__uint screen[4];          /* PVSM: kernel, prediction, plane, accumulation (RGBA32F) */
-    int sw, sh;
-    skgl__uint gb_depth, gb_normal;    /* the G-buffer rendered here (depth_tex = 0) */
-    int gw, gh;
-    float *pyramid;                /* the SMTG pyramid read back */
-    int pyramid_floats;
-    float *grid;                   /* level 0 as given to sk_fvsm_tiles (after any halving) */
-    sk_tile *tiles;
-    int ntiles, tiles_cap;
-    sk_mat4 light_view, light_proj, light_vp;
-    float p00, p11, zn, zf;
-    skgl_stats stats;
-};
-
-static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
-{
-    skgl_soft_desc r = *d;
-    if (r.resolution == 0) r.resolution = r.technique == SKGL_SOFT_PVSM ? 4096 : 2048;
-    if (r.lowres == 0) r.lowres = 1024;
-    if (r.grid == 0) r.grid = 64;
-    if (r.max_tiles == 0) r.max_tiles = 64;
-    if (r.conservative == 0) r.conservative = 1;
-    if (r.blocker_cells == 0) r.blocker_cells = 8;
-    if (r.pcf_taps == 0) r.pcf_taps = 12;
-    if (r.slope_bias == 0.0f) r.slope_bias = 1.5f;
-    if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
-    if (r.rel_bias == 0.0f) r.rel_bias = 0.002f;
-    if (r.antialias == 0) r.antialias = 1;
-    if (r.resolution_scale == 0.0f) r.resolution_scale = 1.0f;
-    return r;
-}
-
-/* vertex + geometry + fragment */
-static skgl__uint skgl__program_gs(skgl_context *ctx, const char *vs, const char *gs, const char *fs)
-{
-    skgl__uint sh[3];
-    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, vs, NULL);
-    sh[1] = sh[0] ? skgl__shader(ctx, SKGL__GEOMETRY_SHADER, gs, NULL) : 0;
-    sh[2] = sh[1] ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, fs, NULL) : 0;
-    return skgl__link(ctx, sh, 3);
-}
-
-/* a 2D texture with `levels` levels, nearest filtering, clamped */
-static skgl__uint skgl__soft_texture(skgl_context *ctx, skgl__int ifmt, int w, int h, int levels,
-                                     skgl__enum fmt, skgl__enum type)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl__uint t = 0;
-    int l;
-    gl->GenTextures(1, &t);
-    ctx->objects++;
-    gl->BindTexture(SKGL__TEXTURE_2D, t);
-    for (l = 0; l < levels; l++) {
-        gl->TexImage2D(SKGL__TEXTURE_2D, l, ifmt, w, h, 0, fmt, type, NULL);
-        w = w > 1 ? w / 2 : 1;
-        h = h > 1 ? h / 2 : 1;
-    }
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER,
-                      levels > 1 ? SKGL__NEAREST_MIPMAP_NEAREST : SKGL__NEAREST);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
-    return t;
-}
-
-static void skgl__soft_delete_tex(skgl_context *ctx, skgl__uint *t)
-{
-    if (*t) { ctx->gl.DeleteTextures(1, t); ctx->objects--; *t = 0; }
-}
-static void skgl__soft_delete_prog(skgl_context *ctx, skgl__uint *p)
-{
-    if (*p) { ctx->gl.DeleteProgram(*p); ctx->objects--; *p = 0; }
-}
-
-static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
-{
-    int i;
-    skgl__soft_delete_prog(ctx, &s->prog_mask);
-    skgl__soft_delete_prog(ctx, &s->prog_cons);
-    skgl__soft_delete_prog(ctx, &s->prog_smtg);
-    skgl__soft_delete_prog(ctx, &s->prog_reduce);
-    skgl__soft_delete_prog(ctx, &s->prog_filter);
-    skgl__soft_delete_prog(ctx, &s->prog_resolve);
-    skgl__soft_delete_prog(ctx, &s->prog_gbuf);
-    skgl__soft_delete_tex(ctx, &s->map);
-    skgl__soft_delete_tex(ctx, &s->low_color);
-    skgl__soft_delete_tex(ctx, &s->low_true);
-    skgl__soft_delete_tex(ctx, &s->smtg);
-    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
-    skgl__soft_delete_tex(ctx, &s->gb_depth);
-    skgl__soft_delete_tex(ctx, &s->gb_normal);
-    if (s->fbo) { ctx->gl.DeleteFramebuffers(1, &s->fbo); ctx->objects--; s->fbo = 0; }
-    if (s->query_samples) { ctx->gl.DeleteQueries(1, &s->query_samples); ctx->objects--; s->query_samples = 0; }
-    SKGL_FREE(s->pyramid);
-    SKGL_FREE(s->grid);
-    SKGL_FREE(s->tiles);
-    s->pyramid = s->grid = NULL;
-    s->tiles = NULL;
-}
-
-SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out)
-{
-    skgl_soft *s;
-    skgl_soft_desc d;
-    skgl__api *gl;
-    skgl__int max_size = 0, unit;
-    skgl__state st;
-    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
-    *out = NULL;
-    d = skgl__soft_defaults(desc);
-    gl = &ctx->gl;
-    gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
-    if ((d.technique != SKGL_SOFT_PCSS && d.technique != SKGL_SOFT_PVSM) || d.resolution < 16 ||
-        d.resolution > max_size || d.lowres < 16 || d.lowres > 8192 || (d.lowres & (d.lowres - 1)) != 0 ||
-        d.lowres > max_size || d.grid < 4 || d.grid > 256 || (d.grid & (d.grid - 1)) != 0 || d.max_tiles < 1 || d.max_tiles > 4096 ||
-        (d.conservative != 1 && d.conservative != -1) || d.static_scene < 0 || d.static_scene > 1 ||
-        d.blocker_cells < 2 || d.blocker_cells > 16 || d.pcf_taps < 1 || d.pcf_taps > 16 ||
-        !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.rel_bias) ||
-        d.rel_bias < 0.0f || d.rel_bias > 0.5f || (d.antialias != 1 && d.antialias != -1) ||
-        !(d.resolution_scale >= 0.125f && d.resolution_scale <= 8.0f))
-        return SK_ERR_INVALID_ARG;
-    s = (skgl_soft *)SKGL_MALLOC(sizeof *s);
-    if (!s) return SK_ERR_CAPACITY;
-    memset(s, 0, sizeof *s);
-    s->desc = d;
-    skgl__save(gl, &st);
-    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &unit);
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    gl->GenFramebuffers(1, &s->fbo); ctx->objects++;
-    gl->GenQueries(1, &s->query_samples); ctx->objects++;
-    s->map_res = d.resolution;
-    s->map = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, d.resolution, d.resolution, 1,
-                                SKGL__DEPTH_COMPONENT, SKGL__FLOAT);
-    if (d.technique == SKGL_SOFT_PCSS) {
-        s->prog_mask = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_common_glsl,
-                                     skgl__src_pcss_mask_frag);
-    } else {
-        int l = 1, n = d.lowres, g = d.grid;
-        while (n > 1) { n /= 2; l++; }
-        s->low_levels = l;
-        s->low_color = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, l, SKGL__RED, SKGL__FLOAT);
-        s->low_true = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, 1, SKGL__RED, SKGL__FLOAT);
-        l = 1;
-        while (g > 1) { g = (g + 1) / 2; l++; }
-        s->smtg_levels = l;
-        s->smtg = skgl__soft_texture(ctx, (skgl__int)SKGL__RG32F, d.grid, d.grid, l, SKGL__RG, SKGL__FLOAT);
-        s->pyramid_floats = sk_smtg_pyramid_size(d.grid, d.grid);
-        s->pyramid = (float *)SKGL_MALLOC(sizeof(float) * (size_t)s->pyramid_floats);
-        s->grid = (float *)SKGL_MALLOC(sizeof(float) * 2u * (size_t)d.grid * (size_t)d.grid);
-        s->tiles_cap = d.grid * d.grid;
-        s->tiles = (sk_tile *)SKGL_MALLOC(sizeof(sk_tile) * (size_t)s->tiles_cap);
-        s->prog_mask = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_common_glsl,
-                                     skgl__src_soft_kernel_frag);
-        s->prog_cons = skgl__program_gs(ctx, skgl__src_depth_vert, skgl__src_soft_cons_geom,
-                                        skgl__src_soft_cons_frag);
-        s->prog_smtg = skgl__program(ctx, skgl__src_soft_smtg_vert, skgl__src_soft_smtg_frag, NULL);
-        s->prog_reduce = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_reduce_frag, NULL);
-        s->prog_filter = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_filter_frag, NULL);
-        s->prog_resolve = skgl__program(ctx, skgl__src_fullscreen_vert, skgl__src_soft_resolve_frag, NULL);
-        if (s->prog_cons) s->cons_u_model = gl->GetUniformLocation(s->prog_cons, "u_model");
-    }
-    s->prog_gbuf = skgl__program(ctx, skgl__src_soft_gbuffer_vert, skgl__src_soft_gbuffer_frag, NULL);
-    if (s->prog_gbuf) s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "u_model");
-    gl->ActiveTexture((skgl__enum)unit);
-    skgl__restore(gl, &st);
-    if (!s->prog_mask || !s->prog_gbuf ||
-        (d.technique == SKGL_SOFT_PVSM && (!s->prog_cons || !s->prog_smtg || !s->prog_reduce || !s->prog_filter ||
-                                           !s->prog_resolve || !s->pyramid || !s->grid || !s->tiles)) ||
-        gl->GetError() != 0) {
-        sk_result r = d.technique == SKGL_SOFT_PVSM && (!s->pyramid || !s->grid || !s->tiles) ? SK_ERR_CAPACITY
-                                                                                               : SK_ERR_GL;
-        if (!skgl_error_log(ctx)[0]) skgl__set_log(ctx, "skgl_soft_create: GL error while creating its objects", NULL);
-        skgl__soft_free(ctx, s);
-        SKGL_FREE(s);
-        return r;
-    }
-    s->stats.shadow_ms = s->stats.mask_ms = -1.0f;
-    *out = s;
-    return SK_OK;
-}
-
-SKGLDEF void skgl_soft_destroy(skgl_context *ctx, skgl_soft *s)
-{
-    if (!ctx || !s) return;
-    skgl__soft_free(ctx, s);
-    SKGL_FREE(s);
-}
-
-SKGLDEF skgl_soft_desc skgl_soft_get_desc(const skgl_soft *s)
-{
-    skgl_soft_desc d;
-    if (s) return s->desc;
-    memset(&d, 0, sizeof d);
-    return d;
-}
-SKGLDEF const skgl_stats *skgl_soft_stats(const skgl_soft *s) { return s ? &s->stats : NULL; }
-SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s) { return s ? s->light_vp : sk_mat4_identity(); }
-SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap)
-{
-    int i;
-    if (!s) return 0;
-    for (i = 0; out && i < cap && i < s->ntiles; i++) out[i] = s->tiles[i];
-    return s->ntiles;
-}
-SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap)
-{
-    int i;
-    if (!s || !s->pyramid || !s->stats.passes) return 0;
-    for (i = 0; out && i < cap && i < s->pyramid_floats; i++) out[i] = s->pyramid[i];
-    return s->pyramid_floats;
-}
-
-/* the light's frame as sk_mat4_look_at builds it: x = direction x up, y, -z = direction */
-static int skgl__area_frame(const skgl_area_light *l, sk_vec3 *x, sk_vec3 *y, sk_vec3 *f)
-{
-    sk_vec3 s;
-    if (!sk__v3_finite(l->direction) || !sk__v3_finite(l->up) || !(sk__len(l->direction) > 0.0f)) return 0;
-    *f = sk__normalize(l->direction);
-    s = sk__cross(*f, l->up);
-    if (!(sk__len(s) > 1e-6f * (sk__len(l->up) > 0.0f ? sk__len(l->up) : 1.0f)))
-        s = sk__cross(*f, sk__least_aligned_axis(*f));
-    *x = sk__normalize(s);
-    *y = sk__cross(*x, *f);
-    return 1;
-}
-
-SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u, sk_vec3 *half_v)
-{
-    sk_vec3 x, y, f;
-    if (!half_u || !half_v) return;
-    if (!light || !skgl__area_frame(light, &x, &y, &f)) {
-        *half_u = *half_v = sk__v3(0.0f, 0.0f, 0.0f);
-        return;
-    }
-    *half_u = sk__scale(x, light->half_width);
-    *half_v = sk__scale(y, light->half_height);
-}
-
-/* glFrustum from tangents of the light's view: x/z in [x0, x1], y/z in [y0, y1] */
-static sk_mat4 skgl__tan_frustum(double x0, double x1, double y0, double y1, double zn, double zf)
-{
-    sk_mat4 p;
-    memset(&p, 0, sizeof p);
-    p.m[0] = (float)(2.0 / (x1 - x0));
-    p.m[5] = (float)(2.0 / (y1 - y0));
-    p.m[8] = (float)((x1 + x0) / (x1 - x0));
-    p.m[9] = (float)((y1 + y0) / (y1 - y0));
-    p.m[10] = (float)(-(zf + zn) / (zf - zn));
-    p.m[11] = -1.0f;
-    p.m[14] = (float)(-2.0 * zf * zn / (zf - zn));
-    return p;
-}
-
-/* nearest distance along the light's axis of the scene bounds inside the
-   frustum of those tangents (zf when none is) */
-static double skgl__soft_near(const skgl_soft *s, const skgl_scene *scene, double x0, double x1, double y0,
-                              double y1, double zf)
-{
-    sk_vec3 pts[SK_CLIP_MAX_POINTS];
-    sk_frustum f = sk_frustum_from_matrix(sk_mat4_mul(skgl__tan_frustum(x0, x1, y0, y1, zf * 1e-5, zf),
-                                                      s->light_view));
-    double zn = zf;
-    int i, n = sk_clip_frustum_aabb(&f, scene->bounds, pts, SK_CLIP_MAX_POINTS);
-    for (i = 0; i < n; i++) {
-        double z = -(double)sk_mat4_transform_point(s->light_view, pts[i]).z;
-        if (z < zn) zn = z;
-    }
-    return zn;
-}
-
-/* The base frustum: from the light's centre, around the receivers the
-   camera sees (the view clipped to the bounds) grown by the widest blocker
-   search and kept within the bounds; its near plane at the nearest point
-   of the bounds inside it, its far plane at the farthest corner. */
-static sk_result skgl__soft_fit(skgl_soft *s, const skgl_camera *cam, const skgl_scene *scene,
-                                const skgl_area_light *l)
-{
-    sk_vec3 pts[SK_CLIP_MAX_POINTS], corners[8], x, y, f;
-    sk_frustum view;
-    double zmax = -1e300, zn, zf, rx0 = 1e300, rx1 = -1e300, ry0 = 1e300, ry1 = -1e300;
-    double bx0 = 1e300, bx1 = -1e300, by0 = 1e300, by1 = -1e300, mx, my, lim = 5.67;   /* tan 80 degrees */
-    double x0, x1, y0, y1;
-    int i, n;
-    if (!skgl__area_frame(l, &x, &y, &f)) return SK_ERR_INVALID_ARG;
-    s->light_view = sk_mat4_look_at(l->position, sk__add(l->position, f), l->up);
-    for (i = 0; i < 8; i++) {
-        sk_vec3 c = sk__v3(i & 1 ? scene->bounds.max.x : scene->bounds.min.x,
-                           i & 2 ? scene->bounds.max.y : scene->bounds.min.y,
-                           i & 4 ? scene->bounds.max.z : scene->bounds.min.z);
-        corners[i] = sk_mat4_transform_point(s->light_view, c);
-        if (-corners[i].z > zmax) zmax = -corners[i].z;
-    }
-    if (!(zmax > 0.0)) return SK_ERR_DEGENERATE;
-    zf = zmax * 1.01;
-    zn = zf * 1e-3;
-    for (i = 0; i < 8; i++) {
-        double z = -corners[i].z > zn ? -corners[i].z : zn;
-        double tx = corners[i].x / z, ty = corners[i].y / z;
-        if (tx < bx0) bx0 = tx;
-        if (tx > bx1) bx1 = tx;
-        if (ty < by0) by0 = ty;
-        if (ty > by1) by1 = ty;
-    }
-    view = sk_frustum_from_matrix(sk_mat4_mul(cam->proj, cam->view));
-    n = sk_clip_frustum_aabb(&view, scene->bounds, pts, SK_CLIP_MAX_POINTS);
-    for (i = 0; i < n; i++) {
-        sk_vec3 q = sk_mat4_transform_point(s->light_view, pts[i]);
-        double tx, ty;
-        if (!(-q.z > zn)) continue;               /* behind the light's plane: never lit by it */
-        tx = q.x / -q.z; ty = q.y / -q.z;
-        if (tx < rx0) rx0 = tx;
-        if (tx > rx1) rx1 = tx;
-        if (ty < ry0) ry0 = ty;
-        if (ty > ry1) ry1 = ty;
-    }
-    if (!(rx1 >= rx0)) { rx0 = bx0; rx1 = bx1; ry0 = by0; ry1 = by1; }
-    if (rx0 < -lim) rx0 = -lim;
-    if (rx1 > lim) rx1 = lim;
-    if (ry0 < -lim) ry0 = -lim;
-    if (ry1 > lim) ry1 = lim;
-    /* blockers of a receiver lie within half-size / distance of its ray:
-       grow by that at the nearest bounds in front of the receivers, twice
-       (the growth can only bring the near plane closer) */
-    x0 = rx0; x1 = rx1; y0 = ry0; y1 = ry1;
-    for (i = 0; i < 2; i++) {
-        double z = skgl__soft_near(s, scene, x0, x1 > x0 ? x1 : x0 + 1e-6, y0, y1 > y0 ? y1 : y0 + 1e-6, zf);
-        zn = z * 0.99 > zf * 1e-3 ? z * 0.99 : zf * 1e-3;
-        mx = l->half_width / zn;
-        my = l->half_height / zn;
-        x0 = rx0 - mx > bx0 ? rx0 - mx : bx0;
-        x1 = rx1 + mx < bx1 ? rx1 + mx : bx1;
-        y0 = ry0 - my > by0 ? ry0 - my : by0;
-        y1 = ry1 + my < by1 ? ry1 + my : by1;
-        if (x0 < -lim) x0 = -lim;
-        if (x1 > lim) x1 = lim;
-        if (y0 < -lim) y0 = -lim;
-        if (y1 > lim) y1 = lim;
-    }
-    if (!(x1 > x0) || !(y1 > y0)) { x0 = y0 = -1.0; x1 = y1 = 1.0; }
-    /* steady under camera motion: the sides snapped outwards to multiples of
-       a power of two near 1/16 of the width, the near plane down to a step
-       of 2^(1/8), so the texel grid only moves when a side crosses a step */
-    {
-        double sx = SK_POW(2.0, SK_FLOOR(SK_LOG2((x1 - x0) / 16.0)));
-        double sy = SK_POW(2.0, SK_FLOOR(SK_LOG2((y1 - y0) / 16.0)));
-        x0 = SK_FLOOR(x0 / sx) * sx; x1 = SK_CEIL(x1 / sx) * sx;
-        y0 = SK_FLOOR(y0 / sy) * sy; y1 = SK_CEIL(y1 / sy) * sy;
-        zn = SK_POW(2.0, SK_FLOOR(SK_LOG2(zn) * 8.0) / 8.0);
-    }
-    s->light_proj = skgl__tan_frustum(x0, x1, y0, y1, zn, zf);
-    s->light_vp = sk_mat4_mul(s->light_proj, s->light_view);
-    s->p00 = s->light_proj.m[0];
-    s->p11 = s->light_proj.m[5];
-    s->zn = (float)zn;
-    s->zf = (float)zf;
-    return sk__mat_finite(&s->light_vp) ? SK_OK : SK_ERR_DEGENERATE;
-}
-
-static void skgl__soft_begin(skgl_context *ctx) { skgl__query_begin(ctx); }
-static float skgl__soft_end(skgl_context *ctx) { return skgl__query_end(ctx); }
-
-/* colour targets of the soft object's framebuffer (0 ends the list) */
-static void skgl__soft_attach(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
-                              skgl__uint depth)
-{
-    static const skgl__enum bufs[4] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1,
-                                        SKGL__COLOR_ATTACHMENT2, SKGL__COLOR_ATTACHMENT0 + 3};
-    skgl__api *gl = &ctx->gl;
-    int i;
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
-    for (i = 0; i < 4; i++)
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, bufs[i], SKGL__TEXTURE_2D, i < n ? tex[i] : 0, i < n ? level : 0);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
-    gl->DrawBuffers(n, bufs);
-}
-static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
-                              skgl__uint depth)
-{
-    skgl__soft_attach(ctx, s, tex, n, level, depth);
-    return ctx->gl.CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
-}
-/* everything detached, no status check: the check of a framebuffer with no
-   attachments is a GL_KHR_debug message on Mesa (MEDIUM, "FBO incomplete") */
-static void skgl__soft_detach(skgl_context *ctx, skgl_soft *s)
-{
-    skgl__soft_attach(ctx, s, NULL, 0, 0, 0);
-    ctx->gl.DrawBuffer(SKGL__NONE);
-}
-
-/* the depth pass of one map (PCSS's, or a PVSM tile) into s->map */
-static void skgl__soft_depth(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene, sk_mat4 vp,
-                             int w, int h, int index)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl_draw_info info;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    skgl_shadow_desc bias;
-    memset(&bias, 0, sizeof bias);
-    bias.slope_bias = s->desc.slope_bias;
-    bias.depth_bias = s->desc.depth_bias;
-    skgl__soft_targets(ctx, s, NULL, 0, 0, s->map);
-    gl->DrawBuffer(SKGL__NONE);
-    gl->ReadBuffer(SKGL__NONE);
-    gl->Viewport(0, 0, w, h);
-    gl->Enable(SKGL__SCISSOR_TEST);
-    /* one texel more than the tile: the filter's last panel may sample it */
-    gl->Scissor(0, 0, w < s->map_res ? w + 1 : w, h < s->map_res ? h + 1 : h);
-    skgl__depth_pass_state(gl, &bias);
-    gl->ColorMask(0, 0, 0, 0);
-    gl->Clear(SKGL__DEPTH_BUFFER_BIT);
-    gl->UseProgram(ctx->depth_prog);
-    gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
-    gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
-    memset(&info, 0, sizeof info);
-    info.kind = SKGL_PASS_AREA;
-    info.index = index;
-    info.view_proj = vp;
-    info.frustum = sk_frustum_from_matrix(vp);
-    scene->draw(scene->user, &info);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    gl->ColorMask(1, 1, 1, 1);
-    s->stats.passes++;
-    s->stats.texels += (double)w * h;
-}
-
-/* the camera's depth and normals through the draw callback (depth_tex = 0) */
-static int skgl__soft_gbuffer(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam, const skgl_scene *scene,
-                              int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view), inv_view;
-    skgl_draw_info info;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    float eye[3];
-    if (s->gw != w || s->gh != h) {
-        skgl__soft_delete_tex(ctx, &s->gb_depth);
-        skgl__soft_delete_tex(ctx, &s->gb_normal);
-        gl->ActiveTexture(SKGL__TEXTURE0);
-        s->gb_depth = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, w, h, 1, SKGL__DEPTH_COMPONENT,
-                                         SKGL__FLOAT);
-        s->gb_normal = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA16F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
-        s->gw = w; s->gh = h;
-    }
-    if (!skgl__soft_targets(ctx, s, &s->gb_normal, 1, 0, s->gb_depth)) return 0;
-    gl->Viewport(0, 0, w, h);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->Enable(SKGL__DEPTH_TEST);
-    gl->DepthFunc(SKGL__LESS);
-    gl->DepthMask(1);
-    gl->ColorMask(1, 1, 1, 1);
-    gl->ClearDepth(1.0);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    gl->Clear(SKGL__DEPTH_BUFFER_BIT | SKGL__COLOR_BUFFER_BIT);
-    gl->UseProgram(s->prog_gbuf);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_gbuf, "u_view_proj"), 1, 0, vp.m);
-    gl->UniformMatrix4fv(s->gbuf_u_model, 1, 0, identity);
-    if (!sk_mat4_inverse(cam->view, &inv_view)) inv_view = sk_mat4_identity();
-    eye[0] = inv_view.m[12]; eye[1] = inv_view.m[13]; eye[2] = inv_view.m[14];
-    gl->Uniform3fv(gl->GetUniformLocation(s->prog_gbuf, "u_eye"), 1, eye);
-    memset(&info, 0, sizeof info);
-    info.kind = SKGL_PASS_CAMERA;
-    info.view_proj = vp;
-    info.frustum = sk_frustum_from_matrix(vp);
-    ctx->model_loc = s->gbuf_u_model;
-    scene->draw(scene->user, &info);
-    ctx->model_loc = ctx->depth_u_model;
-    s->stats.passes++;
-    skgl__soft_detach(ctx, s);
-    return 1;
-}
-
-/* uniforms of soft_common.glsl */
-static void skgl__soft_common(skgl_context *ctx, const skgl_soft *s, skgl__uint prog, const sk_mat4 *inv,
-                              const skgl_area_light *l, unsigned normal_tex)
-{
-    skgl__api *gl = &ctx->gl;
-    float pos[3], half[2], proj[4];
-    pos[0] = l->position.x; pos[1] = l->position.y; pos[2] = l->position.z;
-    half[0] = l->half_width; half[1] = l->half_height;
-    proj[0] = s->p00; proj[1] = s->p11; proj[2] = s->zn; proj[3] = s->zf;
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv->m);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_light_vp"), 1, 0, s->light_vp.m);
-    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_light_pos"), 1, pos);
-    gl->Uniform2fv(gl->GetUniformLocation(prog, "u_light_half"), 1, half);
-    gl->Uniform4fv(gl->GetUniformLocation(prog, "u_light_proj"), 1, proj);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_rel_bias"), s->desc.rel_bias);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_blocker_cells"), s->desc.blocker_cells);
-}
-
-/* levels 1.. of a MIN pyramid stored as the mip chain of tex (level 0 drawn) */
-static void skgl__soft_reduce(skgl_context *ctx, skgl_soft *s, skgl__uint tex, int w, int h, int levels)
-{
-    skgl__api *gl = &ctx->gl;
-    int l;
-    gl->UseProgram(s->prog_reduce);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_reduce, "u_src"), 0);
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    gl->BindSampler(0, 0);
-    gl->BindTexture(SKGL__TEXTURE_2D, tex);
-    for (l = 1; l < levels; l++) {
-        skgl__int size[2];
-        size[0] = w; size[1] = h;
-        w = w > 1 ? (w + 1) / 2 : 1;
-        h = h > 1 ? (h + 1) / 2 : 1;
-        /* sample only level l-1 while level l is drawn */
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, l - 1);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, l - 1);
-        skgl__soft_targets(ctx, s, &tex, 1, l, 0);
-        gl->Viewport(0, 0, w, h);
-        gl->Uniform2i(gl->GetUniformLocation(s->prog_reduce, "u_src_size"), size[0], size[1]);
-        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    }
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
-    skgl__soft_detach(ctx, s);
-}
-
-/* PVSM step 2: the low-resolution map, conservative, into the MIN pyramid
-   (and plain into low_true); MIN blending takes the place of the depth test */
-static void skgl__soft_lowres(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl_draw_info info;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    skgl__uint targets[2];
-    skgl_shadow_desc bias;
-    float texel[2];
-    int r = s->desc.lowres;
-    targets[0] = s->low_color;
-    targets[1] = s->low_true;
-    skgl__soft_targets(ctx, s, targets, 2, 0, 0);
-    gl->Viewport(0, 0, r, r);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    /* the slope-scaled offset (it moves gl_FragCoord.z), without the depth test */
-    memset(&bias, 0, sizeof bias);
-    bias.slope_bias = s->desc.slope_bias;
-    bias.depth_bias = s->desc.depth_bias;
-    skgl__depth_pass_state(gl, &bias);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->ColorMask(1, 1, 1, 1);
-    gl->ClearColor(1.0f, 1.0f, 1.0f, 1.0f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    gl->Enable(SKGL__BLEND);
-    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
-    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
-    gl->Enable(SKGL__DEPTH_CLAMP);
-    gl->UseProgram(s->prog_cons);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_cons, "u_view_proj"), 1, 0, s->light_vp.m);
-    gl->UniformMatrix4fv(s->cons_u_model, 1, 0, identity);
-    texel[0] = texel[1] = 2.0f / (float)r;
-    gl->Uniform2fv(gl->GetUniformLocation(s->prog_cons, "u_texel"), 1, texel);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_cons, "u_conservative"), s->desc.conservative == 1);
-    memset(&info, 0, sizeof info);
-    info.kind = SKGL_PASS_AREA;
-    info.index = 0;
-    info.view_proj = s->light_vp;
-    info.frustum = sk_frustum_from_matrix(s->light_vp);
-    ctx->model_loc = s->cons_u_model;
-    scene->draw(scene->user, &info);
-    ctx->model_loc = ctx->depth_u_model;
-    gl->Disable(SKGL__DEPTH_CLAMP);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
-    s->stats.passes++;
-    s->stats.texels += (double)r * r;
-    gl->BindVertexArray(ctx->empty_vao);
-    skgl__soft_reduce(ctx, s, s->low_color, r, r, s->low_levels);
-}
-
-/* PVSM steps 4 and 5: the SMTG's pyramid read back, "no sample" as +INF */
-static int skgl__soft_read_pyramid(skgl_context *ctx, skgl_soft *s)
-{
-    skgl__api *gl = &ctx->gl;
-    int l, w = s->desc.grid, h = s->desc.grid, off = 0, i;
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
-    skgl__pixel_store_plain(gl);
-    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
-    for (l = 0; l < s->smtg_levels; l++) {
-        skgl__soft_targets(ctx, s, &s->smtg, 1, l, 0);
-        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
-        gl->ReadPixels(0, 0, w, h, SKGL__RG, SKGL__FLOAT, s->pyramid + off);
-        off += w * h * 2;
-        w = w > 1 ? (w + 1) / 2 : 1;
-        h = h > 1 ? (h + 1) / 2 : 1;
-    }
-    gl->ReadBuffer(SKGL__NONE);
-    skgl__soft_detach(ctx, s);
-    for (i = 0; i < off; i++)
-        if (!(s->pyramid[i] < 1e29f)) s->pyramid[i] = SK__INF;
-    return off;
-}
-
-/* a tile side rounded up to a step of 2^(1/4): under slow motion the
-   predicted sizes drift, the rounded ones (and the texel grid) seldom move */
-static int skgl__soft_round_res(int r, int max_res)
-{
-    double q = SK_POW(2.0, SK_CEIL(SK_LOG2((double)r) * 4.0 - 1e-9) / 4.0);
-    int v = (int)SK_CEIL(q - 1e-9);
-    return v > max_res ? max_res : v < r ? r : v;
-}
-
-/* PVSM step 6: the kd-tree's tiles; more than max_tiles: every required
-   texel twice as large (half the resolution) until they fit */
-static int skgl__soft_tiles(skgl_soft *s)
-{
-    int g = s->desc.grid, n = g * g * 2, i, k, count = 0;
-    const float *top = s->pyramid + s->pyramid_floats - 2;
-    if (!(top[0] < SK__INF) && !(top[1] < SK__INF)) return 0;      /* the SMTG is empty */
-    memcpy(s->grid, s->pyramid, sizeof(float) * (size_t)n);
-    for (k = 0; k < 24; k++) {
-        count = sk_fvsm_tiles(s->grid, g, g, s->desc.resolution, s->tiles, s->tiles_cap);
-        if (count >= 0 && count <= s->desc.max_tiles) break;
-        for (i = 0; i < n; i++) s->grid[i] *= 2.0f;
-    }
-    if (count < 0) return 0;
-    if (count > s->desc.max_tiles) count = s->desc.max_tiles;
-    for (i = 0; i < count; i++) {
-        s->tiles[i].res_x = skgl__soft_round_res(s->tiles[i].res_x, s->desc.resolution);
-        s->tiles[i].res_y = skgl__soft_round_res(s->tiles[i].res_y, s->desc.resolution);
-    }
-    return count;
-}
-
-static sk_result skgl__soft_screen(skgl_context *ctx, skgl_soft *s, int w, int h)
-{
-    int i;
-    if (s->sw == w && s->sh == h) return SK_OK;
-    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
-    ctx->gl.ActiveTexture(SKGL__TEXTURE0);
-    for (i = 0; i < 4; i++)
-        s->screen[i] = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
-    s->sw = w; s->sh = h;
-    return SK_OK;
-}
-
-static void skgl__soft_bind(skgl_context *ctx, int unit, skgl__uint tex, skgl__uint sampler)
-{
-    ctx->gl.ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
-    ctx->gl.BindTexture(SKGL__TEXTURE_2D, tex);
-    ctx->gl.BindSampler((skgl__uint)unit, sampler);
-}
-
-static float skgl__soft_ms(float a, float b) { return a < 0.0f || b < 0.0f ? -1.0f : a + b; }
-
-static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
-                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
-                                 unsigned mask_tex, int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl__u64 covered = 0, penumbra = 0;
-    float *ms = s->stats.step_ms;
-    int i, hard = !(l->half_width > 0.0f) && !(l->half_height > 0.0f);
-    skgl__soft_screen(ctx, s, w, h);
-
-    /* 2: the conservative low-resolution map and its MIN pyramid */
-    skgl__soft_begin(ctx);
-    skgl__soft_lowres(ctx, s, scene);
-    ms[1] = skgl__soft_end(ctx);
-
-    /* 3: the kernel-shape buffer (inputs: depth 1, normals 2, pyramid 0) */
-    skgl__soft_begin(ctx);
-    skgl__soft_targets(ctx, s, s->screen, 3, 0, 0);
-    gl->Viewport(0, 0, w, h);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    gl->UseProgram(s->prog_mask);
-    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_true"), 3);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_size"), s->desc.lowres);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_levels"), s->low_levels);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_static_scene"), s->desc.static_scene);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_hard"), hard);
-    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_antialias"), s->desc.antialias == 1 ? 1.0f : 0.0f);
-    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_res_scale"), s->desc.resolution_scale);
-    skgl__soft_bind(ctx, 0, s->low_color, 0);
-    skgl__soft_bind(ctx, 3, s->low_true, 0);
-    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->EndQuery(SKGL__SAMPLES_PASSED);
-    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &covered);
-    ms[2] = skgl__soft_end(ctx);
-
-    /* 4: prediction into the SMTG, one point per pixel, MIN blending */
-    skgl__soft_begin(ctx);
-    skgl__soft_targets(ctx, s, &s->smtg, 1, 0, 0);
-    gl->Viewport(0, 0, s->desc.grid, s->desc.grid);
-    gl->ClearColor(1e30f, 1e30f, 1e30f, 1e30f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    gl->Enable(SKGL__BLEND);
-    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
-    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
-    gl->UseProgram(s->prog_smtg);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_kernel"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_pred"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_width"), w);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_grid"), s->desc.grid);
-    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
-    skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
-    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
-    gl->DrawArrays(SKGL__POINTS, 0, w * h);
-    gl->EndQuery(SKGL__SAMPLES_PASSED);
-    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &penumbra);
-    gl->Disable(SKGL__BLEND);
-    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
-    ms[3] = skgl__soft_end(ctx);
-
-    /* 5, 6: the SMTG pyramid on the GPU, read back; the kd-tree */
-    skgl__soft_begin(ctx);
-    skgl__soft_reduce(ctx, s, s->smtg, s->desc.grid, s->desc.grid, s->smtg_levels);
-    ms[4] = skgl__soft_end(ctx);
-    skgl__soft_read_pyramid(ctx, s);
-    s->ntiles = skgl__soft_tiles(s);
-
-    /* 7, 8: per tile, its map, then the filtering of the pixels it serves */
-    ms[5] = ms[6] = ctx->timing ? 0.0f : -1.0f;
-    skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    s->stats.resolution = 0;
-    for (i = 0; i < s->ntiles; i++) {
-        const sk_tile *t = &s->tiles[i];
-        float g = (float)s->desc.grid, rect[4], res[2];
-        sk_rect r;
-        sk_mat4 vp;
-        r.x0 = -1.0f + 2.0f * (float)t->x0 / g; r.x1 = -1.0f + 2.0f * (float)t->x1 / g;
-        r.y0 = -1.0f + 2.0f * (float)t->y0 / g; r.y1 = -1.0f + 2.0f * (float)t->y1 / g;
-        vp = sk_mat4_mul(sk_crop_matrix(r, -1.0f, 1.0f), s->light_vp);
-        skgl__soft_begin(ctx);
-        skgl__soft_depth(ctx, s, scene, vp, t->res_x, t->res_y, 1 + i);
-        ms[5] = skgl__soft_ms(ms[5], skgl__soft_end(ctx));
-        if (t->res_x > s->stats.resolution) s->stats.resolution = t->res_x;
-        if (t->res_y > s->stats.resolution) s->stats.resolution = t->res_y;
-
-        skgl__soft_begin(ctx);
-        skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
-        gl->Viewport(0, 0, w, h);
-        gl->Disable(SKGL__DEPTH_TEST);
-        gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-        gl->Enable(SKGL__BLEND);
-        gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
-        gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
-        gl->UseProgram(s->prog_filter);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_kernel"), 0);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_pred"), 1);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_plane"), 2);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_tile"), 3);
-        rect[0] = r.x0; rect[1] = r.y0; rect[2] = r.x1; rect[3] = r.y1;
-        res[0] = (float)t->res_x; res[1] = (float)t->res_y;
-        gl->Uniform4fv(gl->GetUniformLocation(s->prog_filter, "u_tile_rect"), 1, rect);
-        gl->Uniform2fv(gl->GetUniformLocation(s->prog_filter, "u_tile_res"), 1, res);
-        skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
-        skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
-        skgl__soft_bind(ctx, 2, s->screen[2], ctx->point_sampler);
-        skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
-        gl->BindVertexArray(ctx->empty_vao);
-        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-        gl->Disable(SKGL__BLEND);
-        skgl__soft_bind(ctx, 3, 0, 0);
-        ms[6] = skgl__soft_ms(ms[6], skgl__soft_end(ctx));
-    }
-    skgl__soft_detach(ctx, s);
-
-    /* resolve into the mask */
-    skgl__soft_begin(ctx);
-    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
-        skgl__soft_end(ctx);
-        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
-        return SK_ERR_GL;
-    }
-    gl->UseProgram(s->prog_resolve);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_kernel"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_acc"), 1);
-    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
-    skgl__soft_bind(ctx, 1, s->screen[3], ctx->point_sampler);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-    ms[7] = skgl__soft_end(ctx);
-
-    s->stats.tiles = s->ntiles;
-    s->stats.maps = s->ntiles;
-    s->stats.lit_fraction = covered > 0 ? 1.0f - (float)((double)penumbra / (double)covered) : 1.0f;
-    s->stats.shadow_ms = skgl__soft_ms(ms[1], ms[5]);
-    s->stats.mask_ms = skgl__soft_ms(skgl__soft_ms(skgl__soft_ms(ms[2], ms[3]), skgl__soft_ms(ms[4], ms[6])), ms[7]);
-    return SK_OK;
-}
-
-static sk_result skgl__soft_pcss(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
-                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
-                                 unsigned mask_tex, int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl__soft_begin(ctx);
-    skgl__soft_depth(ctx, s, scene, s->light_vp, s->map_res, s->map_res, 0);
-    s->stats.shadow_ms = skgl__soft_end(ctx);
-    skgl__soft_begin(ctx);
-    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
-        skgl__soft_end(ctx);
-        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
-        return SK_ERR_GL;
-    }
-    gl->UseProgram(s->prog_mask);
-    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map_cmp"), 3);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_pcf_taps"), s->desc.pcf_taps);
-    skgl__soft_bind(ctx, 0, s->map, ctx->point_sampler);
-    skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-    s->stats.mask_ms = skgl__soft_end(ctx);
-    s->stats.maps = 1;
-    s->stats.resolution = s->map_res;
-    s->stats.tiles = 0;
-    s->stats.lit_fraction = -1.0f;
-    return SK_OK;
-}
-
-SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
-                                   const skgl_scene *scene, const skgl_area_light *light,
-                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
-{
-    skgl__api *gl;
-    skgl__state st;
-    skgl__int w = 0, h = 0;
-    sk_mat4 inv;
-    sk_result r;
-    int i;
-    if (!ctx || !s || !cam || !scene || !scene->draw || !light || !mask_tex || !sk__mat_finite(&cam->view) ||
-        !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) || !sk__v3_finite(light->position) ||
-        !sk__finite(light->half_width) || !sk__finite(light->half_height) || light->half_width < 0.0f ||
-        light->half_height < 0.0f || !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
-        return SK_ERR_INVALID_ARG;
-    r = skgl__soft_fit(s, cam, scene, light);
-    if (r != SK_OK) return r;
-    gl = &ctx->gl;
-    skgl__save(gl, &st);
-    s->stats.passes = 0;
-    s->stats.texels = 0.0;
-    for (i = 0; i < SKGL_SOFT_STEPS; i++) s->stats.step_ms[i] = ctx->timing ? 0.0f : -1.0f;
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
-    if (w <= 0 || h <= 0) {
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_soft_render: mask texture has no level 0", NULL);
-        return SK_ERR_INVALID_ARG;
-    }
-    gl->BindVertexArray(ctx->empty_vao);
-    if (!depth_tex) {
-        skgl__soft_begin(ctx);
-        if (!skgl__soft_gbuffer(ctx, s, cam, scene, w, h)) {
-            skgl__soft_end(ctx);
-            skgl__soft_detach(ctx, s);
-            skgl__restore(gl, &st);
-            skgl__set_log(ctx, "skgl_soft_render: G-buffer framebuffer incomplete", NULL);
-            return SK_ERR_GL;
-        }
-        s->stats.step_ms[0] = skgl__soft_end(ctx);
-        depth_tex = s->gb_depth;
-        normal_tex = s->gb_normal;
-    }
-    gl->BindVertexArray(ctx->empty_vao);
-    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
-    if (s->desc.technique == SKGL_SOFT_PVSM)
-        r = skgl__soft_pvsm(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
-    else
-        r = skgl__soft_pcss(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
-    skgl__soft_detach(ctx, s);
-    skgl__restore(gl, &st);
-    if (r != SK_OK) return r;
-    return skgl__check(ctx, "skgl_soft_render");
+/* the one way the code above reaches the sources */
+static const char *skgl__glsl(skgl__glsl_id id)
+{
+    static const char *const src[SKGL__GLSL_N] = {
+        skgl__src_depth_vert,
+        skgl__src_depth_frag,
+        skgl__src_fullscreen_vert,
+        skgl__src_shadow_sample_glsl,
+        skgl__src_shadow_mask_frag,
+        skgl__src_ferko_analyze_frag,
+        skgl__src_ferko_reduce_frag,
+        skgl__src_rmsm_analyze_frag,
+        skgl__src_rmsm_request_vert,
+        skgl__src_rmsm_request_frag,
+        skgl__src_point_sample_glsl,
+        skgl__src_point_mask_frag,
+        skgl__src_soft_common_glsl,
+        skgl__src_soft_kernel_frag,
+        skgl__src_soft_smtg_vert,
+        skgl__src_soft_smtg_frag,
+        skgl__src_soft_reduce_frag,
+        skgl__src_soft_filter_frag,
+        skgl__src_soft_resolve_frag,
+        skgl__src_soft_cons_geom,
+        skgl__src_soft_cons_frag,
+        skgl__src_soft_gbuffer_vert,
+        skgl__src_soft_gbuffer_frag,
+        skgl__src_pcss_mask_frag,
+    };
+    return (int)id >= 0 && id < SKGL__GLSL_N ? src[id] : "";
 }
 
 #ifdef __cplusplus
