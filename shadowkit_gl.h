@@ -2577,6 +2577,37 @@ static void skgl__mask_camera(skgl_context *ctx, skgl__int loc, const sk_mat4 *i
 /* ---- 6. Directional lights ---------------------------------------------- */
 // >>shadow
 /* a directional light; each technique's own state in its own part */
+/* FERKO's part (Ferko 2013): the analysis at 1/4 of the G-buffer and its
+   16x16 reductions (2-layer textures: bounds, patch; skgl__ferko_targets),
+   the final 2x1 texel pair and its read-back ring; the G-buffer size they
+   were made for; the estimate in use */
+typedef struct skgl__ferko {
+    skgl__uint tex[3], fbo[3], final, final_fbo;
+    int lw[SKGL__FERKO_LEVELS], lh[SKGL__FERKO_LEVELS];   /* [0] the analysis, then the reductions */
+    int w, h, levels;
+    skgl__ring ring;
+    int state;                     /* 0 no estimate yet, 1 an estimate */
+    sk_mat4 lvp;                   /* the uncropped light frustum of the estimate */
+    sk_res_estimate est;
+    double origin[3];              /* the world point lvp is relative to */
+} skgl__ferko;
+
+/* RMSM's part (Romanick's VGP353 notes): the per-pixel samples (G-buffer
+   size) and their framebuffer, the request atlas (R8) and the page table
+   (RGBA8), atlas_w x atlas_h, the requests read back, the table as
+   uploaded and as built, the pages resident, the virtual map's light
+   frustum, the read-back ring */
+typedef struct skgl__rmsm {
+    skgl__uint samples, samples_fbo, requests, requests_fbo, table;
+    int atlas_w, atlas_h, pages0, levels, w, h;
+    unsigned char *req_cpu, *table_cpu, *table_new;
+    sk_page *pages;
+    int npages, analyzed;
+    sk_mat4 lvp;
+    skgl__ring ring;
+    double origin[3];              /* the world point lvp is relative to */
+} skgl__rmsm;
+
 struct skgl_shadow {
     skgl_shadow_desc desc;
     unsigned id;                   /* per context, never reused: whose constants a program holds */
@@ -2584,39 +2615,45 @@ struct skgl_shadow {
     skgl__uint fbo[SKGL_MAX_CASCADES];   /* one framebuffer per layer, checked when made */
     int layers;                    /* allocated */
     int maps;                      /* used by the last render (LSPSM: its partition count) */
+    int tex_size;                  /* side of the texture (RMSM: the page pool) */
     float select_extent;           /* LSPSM: |light NDC| <= this selects a partition (its rect) */
-    sk_mat4 render_vp[SKGL_MAX_CASCADES];   /* the depth pass's matrix (vp: the lookup's) */
+    sk_mat4 vp[SKGL_MAX_CASCADES];          /* each layer's lookup matrix */
+    sk_mat4 render_vp[SKGL_MAX_CASCADES];   /* the depth pass's matrix */
     int view_w, view_h;            /* viewport of every layer's depth pass */
     skgl__timer t_render, t_mask, t_analyze;
-    /* FERKO: the analysis at 1/4 of the G-buffer and its 16x16 reductions
-       (2-layer textures: bounds, patch; skgl__ferko_targets), the final
-       2x1 texel pair and its read-back ring; the G-buffer size they were
-       made for; the estimate in use */
-    skgl__uint ferko_tex[3], ferko_fbo[3], ferko_final, ferko_final_fbo;
-    int ferko_lw[SKGL__FERKO_LEVELS], ferko_lh[SKGL__FERKO_LEVELS];   /* [0] the analysis, then the reductions */
-    int ferko_w, ferko_h, ferko_levels;
-    skgl__ring ferko_ring;
-    int ferko_state;               /* 0 no estimate yet, 1 an estimate */
-    sk_mat4 ferko_lvp;             /* the uncropped light frustum of the estimate */
-    sk_res_estimate ferko_est;
-    /* RMSM: the per-pixel samples (G-buffer size) and their framebuffer,
-       the request atlas (R8) and the page table (RGBA8), atlas_w x atlas_h,
-       the requests read back, the table as uploaded and as built, the
-       pages resident, the virtual map's light frustum, the read-back ring */
-    skgl__uint rmsm_samples, rmsm_samples_fbo, rmsm_requests, rmsm_requests_fbo, rmsm_table;
-    int atlas_w, atlas_h, pages0, levels, tex_size, rmsm_w, rmsm_h;
-    unsigned char *rmsm_req_cpu, *rmsm_table_cpu, *rmsm_table_new;
-    sk_page *rmsm_pages;
-    int rmsm_npages, rmsm_analyzed;
-    sk_mat4 rmsm_lvp;
-    skgl__ring rmsm_ring;
-    sk_mat4 vp[SKGL_MAX_CASCADES];
-    /* the world point vp and render_vp are relative to (they take p - origin;
-       see skgl__origin), and those of the FERKO estimate and the RMSM frustum */
-    double origin[3], ferko_origin[3], rmsm_origin[3];
+    double origin[3];              /* the world point vp and render_vp are relative to (they
+                                      take p - origin; see skgl__origin) */
     sk_vec3 light_dir;             /* unit travel direction of the last render */
+    skgl__ferko ferko;             /* SKGL_FERKO only */
+    skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl_stats stats;
 };
+
+/* what a fit starts from: the camera and the scene (relative to the
+   light's origin), the light, the view frustum, its near and far planes
+   and the far end of the shadows */
+typedef struct skgl__fit_in {
+    const skgl_camera *cam;
+    const skgl_scene *scene;
+    sk_vec3 light_dir;
+    sk_mat4 lview;                 /* sk_light_view_directional(light_dir) */
+    sk_frustum view;
+    float zn, cam_zf, zf;
+} skgl__fit_in;
+
+/* >>techniques  What differs from technique to technique, one row each in
+   skgl_technique order: its own objects, its analysis (skgl_shadow_analyze;
+   NULL: none), the fit of its layers and its caster passes. */
+typedef struct skgl__technique {
+    const char *name;
+    sk_result (*create)(skgl_context *ctx, skgl__st *st, skgl_shadow *s);   /* NULL: nothing of its own */
+    void (*destroy)(skgl_context *ctx, skgl_shadow *s);
+    sk_result (*analyze)(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv, const sk_mat4 *lvp,
+                         const double o[3], unsigned depth_tex, int w, int h);
+    sk_result (*fit)(skgl_shadow *s, const skgl__fit_in *in);
+    sk_result (*render)(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir);
+} skgl__technique;
+static const skgl__technique *skgl__technique_of(const skgl_shadow *s);
 
 /* defined in 6.3 and 6.4, used by the light's lifecycle and its fits */
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
@@ -2762,21 +2799,7 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
             r = SK_ERR_GL;
         }
     }
-    if (r == SK_OK && d.technique == SKGL_FERKO) {
-        /* the estimate's 2x1 texels and their read-back ring (the analysis
-           targets follow the G-buffer's size: skgl__ferko_targets) */
-        s->ferko_final = skgl__color_texture(ctx, &st, SKGL__RGBA32F, 2, 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
-        s->ferko_final_fbo = skgl__framebuffer(ctx, &st, s->ferko_final, 1, 0, 0);
-        skgl__ring_create(ctx, &st, &s->ferko_ring, 8 * sizeof(float));
-        if (!s->ferko_final_fbo) {
-            skgl__set_log(ctx, "skgl_shadow_create: RGBA32F targets not renderable", NULL);
-            r = SK_ERR_GL;
-        }
-    }
-    if (r == SK_OK && d.technique == SKGL_RMSM) {
-        r = skgl__rmsm_create(ctx, &st, s);
-        if (r == SK_ERR_CAPACITY) skgl__set_log(ctx, "out of memory for the RMSM page tables", NULL);
-    }
+    if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
     skgl__st_end(ctx, &st);
     if (r == SK_OK && gl->GetError() != 0) {
         skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
@@ -2798,19 +2821,15 @@ SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
     if (ctx) {
         skgl__delete_texture(ctx, &s->tex);
         for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
-        skgl__ferko_free(ctx, s);
-        skgl__delete_texture(ctx, &s->ferko_final);
-        skgl__delete_framebuffer(ctx, &s->ferko_final_fbo);
-        skgl__ring_free(ctx, &s->ferko_ring);
-        skgl__rmsm_free(ctx, s);
+        if (skgl__technique_of(s)->destroy) skgl__technique_of(s)->destroy(ctx, s);
         skgl__timer_free(ctx, &s->t_render);
         skgl__timer_free(ctx, &s->t_mask);
         skgl__timer_free(ctx, &s->t_analyze);
     }
-    SKGL_FREE(s->rmsm_req_cpu);
-    SKGL_FREE(s->rmsm_table_cpu);
-    SKGL_FREE(s->rmsm_table_new);
-    SKGL_FREE(s->rmsm_pages);
+    SKGL_FREE(s->rmsm.req_cpu);
+    SKGL_FREE(s->rmsm.table_cpu);
+    SKGL_FREE(s->rmsm.table_new);
+    SKGL_FREE(s->rmsm.pages);
     SKGL_FREE(s);
 }
 
@@ -2828,13 +2847,13 @@ SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
 }
 SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
-SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm_samples : 0; }
+SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm.samples : 0; }
 SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap)
 {
     int i;
     if (!s) return 0;
-    for (i = 0; out && i < s->rmsm_npages && i < cap; i++) out[i] = s->rmsm_pages[i];
-    return s->rmsm_npages;
+    for (i = 0; out && i < s->rmsm.npages && i < cap; i++) out[i] = s->rmsm.pages[i];
+    return s->rmsm.npages;
 }
 
 /* ---- 6.2 fits: the layers' crops and warps ---------------------------- */
@@ -2995,11 +3014,16 @@ static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const s
 static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const skgl_scene *scene, sk_vec3 light_dir)
 {
     const skgl_shadow_desc *d = &s->desc;
-    sk_mat4 cam_vp = sk_mat4_mul(cam->proj, cam->view), lview = sk_light_view_directional(light_dir);
-    sk_frustum view = sk_frustum_from_matrix(cam_vp);
+    sk_mat4 cam_vp = sk_mat4_mul(cam->proj, cam->view);
+    skgl__fit_in in;
     float zn, cam_zf, zf, far_scene = 0.0f;
     int i;
-    if (!skgl__near_far(&cam->proj, &zn, &cam_zf) || sk__frustum_invalid(&view)) return SK_ERR_INVALID_ARG;
+    in.cam = cam;
+    in.scene = scene;
+    in.light_dir = light_dir;
+    in.lview = sk_light_view_directional(light_dir);
+    in.view = sk_frustum_from_matrix(cam_vp);
+    if (!skgl__near_far(&cam->proj, &zn, &cam_zf) || sk__frustum_invalid(&in.view)) return SK_ERR_INVALID_ARG;
     /* shadows end at max_distance, and (focused mode only) where the scene
        ends: stable mode needs a range that does not depend on where the
        camera is, or the cascade spheres and their texels would change size */
@@ -3020,48 +3044,97 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     s->stats.lspsm_fallback = 0;
     for (i = 0; i < s->layers; i++) { s->stats.warp_n[i] = SK__INF; s->stats.warped[i] = 0; }
     s->view_w = s->view_h = d->resolution;
-    if (d->technique == SKGL_RMSM) { s->maps = 1; return SK_OK; }   /* pages: skgl__render_rmsm */
-    if (d->technique == SKGL_PSM) return skgl__fit_psm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
-    if (d->technique == SKGL_LSPSM) return skgl__fit_lspsm(s, cam, scene, light_dir, &view, zn, cam_zf, zf);
-    if (d->technique == SKGL_FERKO && s->ferko_state != 0) {
-        skgl__fit_ferko(s, cam_zf > zf ? cam_zf : zf);
-        return SK_OK;
-    }
+    in.zn = zn;
+    in.cam_zf = cam_zf;
+    in.zf = zf;
+    return skgl__technique_of(s)->fit(s, &in);
+}
+
+/* layer i's slice of the view, from its split (less the blend band of
+   the layer before: layer i is also sampled in the blend region at the end
+   of layer i-1, [s_i - band, s_i), so its crop covers that region too, or
+   the blend would fade toward "outside the map", lit); *z0: where it starts */
+static sk_result skgl__layer_slice(const skgl_shadow *s, const skgl__fit_in *in, int i, sk_frustum *slice, float *z0)
+{
+    const float *sp = s->stats.splits;
+    *z0 = i > 0 ? sp[i] - s->desc.blend_band * (sp[i] - sp[i - 1]) : sp[0];
+    return sk_frustum_slice(&in->view, in->zn, in->cam_zf, *z0, sp[i + 1], slice);
+}
+
+/* STANDARD, PSSM: per layer a focused crop of the slice clipped to the
+   scene, or (.stable) the crop of a sphere that depends only on the
+   camera's projection and the splits */
+static sk_result skgl__fit_ortho_layers(skgl_shadow *s, const skgl__fit_in *in)
+{
+    const skgl_shadow_desc *d = &s->desc;
+    int i;
     for (i = 0; i < s->layers; i++) {
         sk_frustum slice;
         sk_mat4 proj;
-        /* layer i is also sampled in the blend region at the end of layer
-           i-1, [s_i - band, s_i): its crop covers that region too, or the
-           blend would fade toward "outside the map" (lit) */
-        float z0 = i > 0 ? s->stats.splits[i] - d->blend_band * (s->stats.splits[i] - s->stats.splits[i - 1])
-                         : s->stats.splits[0];
-        sk_result r = sk_frustum_slice(&view, zn, cam_zf, z0, s->stats.splits[i + 1], &slice);
+        float z0;
+        sk_result r = skgl__layer_slice(s, in, i, &slice, &z0);
         if (r != SK_OK) return r;
-        if (d->technique == SKGL_LISPSM) {
-            r = skgl__fit_lispsm(s, i, cam, scene, light_dir, &slice, z0);
-            if (r != SK_OK) return r;
-            continue;
-        }
         if (d->stable) {
             /* radius from the camera's parameters only: bitwise the same
                wherever the camera goes (fovy and aspect of a GL perspective) */
-            float fovy = (float)(2.0 * SK_ATAN(1.0 / cam->proj.m[5])), aspect = cam->proj.m[5] / cam->proj.m[0];
-            sk_sphere sph = sk_cascade_sphere(cam->view, fovy, aspect, z0, s->stats.splits[i + 1]);
+            const sk_mat4 *pr = &in->cam->proj;
+            float fovy = (float)(2.0 * SK_ATAN(1.0 / pr->m[5])), aspect = pr->m[5] / pr->m[0];
+            sk_sphere sph = sk_cascade_sphere(in->cam->view, fovy, aspect, z0, s->stats.splits[i + 1]);
             if (!(sph.r > 0.0f)) sph = sk_frustum_bounding_sphere(&slice);
             /* the texel grid fixed in world light space, not at the origin */
-            r = sk_stable_crop_origin(sph, lview, d->resolution, &scene->bounds,
+            r = sk_stable_crop_origin(sph, in->lview, d->resolution, &in->scene->bounds,
                                       s->origin[0] == 0.0 && s->origin[1] == 0.0 && s->origin[2] == 0.0 ? NULL
                                                                                                           : s->origin,
                                       &proj);
         } else {
             sk_vec3 pts[SK_CLIP_MAX_POINTS];
-            int n = sk_clip_frustum_aabb(&slice, scene->bounds, pts, SK_CLIP_MAX_POINTS);
-            r = n > 0 ? sk_fit_ortho(pts, n, lview, &scene->bounds, &proj)
-                      : sk_fit_ortho(slice.corners, 8, lview, &scene->bounds, &proj);
+            int n = sk_clip_frustum_aabb(&slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
+            r = n > 0 ? sk_fit_ortho(pts, n, in->lview, &in->scene->bounds, &proj)
+                      : sk_fit_ortho(slice.corners, 8, in->lview, &in->scene->bounds, &proj);
         }
         if (r != SK_OK) return r;
-        s->vp[i] = sk_mat4_mul(proj, lview);
+        s->vp[i] = sk_mat4_mul(proj, in->lview);
     }
+    return SK_OK;
+}
+
+/* LiSPSM: one warp per layer (a single one with .cascades 1) */
+static sk_result skgl__fit_lispsm_layers(skgl_shadow *s, const skgl__fit_in *in)
+{
+    int i;
+    for (i = 0; i < s->layers; i++) {
+        sk_frustum slice;
+        float z0;
+        sk_result r = skgl__layer_slice(s, in, i, &slice, &z0);
+        if (r == SK_OK) r = skgl__fit_lispsm(s, i, in->cam, in->scene, in->light_dir, &slice, z0);
+        if (r != SK_OK) return r;
+    }
+    return SK_OK;
+}
+
+static sk_result skgl__fit_psm_layer(skgl_shadow *s, const skgl__fit_in *in)
+{
+    return skgl__fit_psm(s, in->cam, in->scene, in->light_dir, &in->view, in->zn, in->cam_zf, in->zf);
+}
+
+static sk_result skgl__fit_lspsm_layers(skgl_shadow *s, const skgl__fit_in *in)
+{
+    return skgl__fit_lspsm(s, in->cam, in->scene, in->light_dir, &in->view, in->zn, in->cam_zf, in->zf);
+}
+
+/* FERKO: the estimate's crop once there is one, the focused map before */
+static sk_result skgl__fit_ferko_layer(skgl_shadow *s, const skgl__fit_in *in)
+{
+    if (s->ferko.state == 0) return skgl__fit_ortho_layers(s, in);
+    skgl__fit_ferko(s, in->cam_zf > in->zf ? in->cam_zf : in->zf);
+    return SK_OK;
+}
+
+/* RMSM: the pages are fitted by skgl__render_rmsm */
+static sk_result skgl__fit_rmsm(skgl_shadow *s, const skgl__fit_in *in)
+{
+    (void)in;
+    s->maps = 1;
     return SK_OK;
 }
 
@@ -3071,10 +3144,29 @@ static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
 {
     int i;
     for (i = 0; i < 3; i++) {
-        skgl__delete_texture(ctx, &s->ferko_tex[i]);
-        skgl__delete_framebuffer(ctx, &s->ferko_fbo[i]);
+        skgl__delete_texture(ctx, &s->ferko.tex[i]);
+        skgl__delete_framebuffer(ctx, &s->ferko.fbo[i]);
     }
-    s->ferko_w = s->ferko_h = s->ferko_levels = 0;
+    s->ferko.w = s->ferko.h = s->ferko.levels = 0;
+}
+
+/* the estimate's 2x1 texels and their read-back ring (the analysis
+   targets follow the G-buffer's size: skgl__ferko_targets) */
+static sk_result skgl__ferko_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    s->ferko.final = skgl__color_texture(ctx, st, SKGL__RGBA32F, 2, 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->ferko.final_fbo = skgl__framebuffer(ctx, st, s->ferko.final, 1, 0, 0);
+    skgl__ring_create(ctx, st, &s->ferko.ring, 8 * sizeof(float));
+    if (!s->ferko.final_fbo) return skgl__fail(ctx, SK_ERR_GL, "skgl_shadow_create: RGBA32F targets not renderable");
+    return SK_OK;
+}
+
+static void skgl__ferko_destroy(skgl_context *ctx, skgl_shadow *s)
+{
+    skgl__ferko_free(ctx, s);
+    skgl__delete_texture(ctx, &s->ferko.final);
+    skgl__delete_framebuffer(ctx, &s->ferko.final_fbo);
+    skgl__ring_free(ctx, &s->ferko.ring);
 }
 
 /* The analysis targets for a w x h G-buffer: level 0, the analysis, at 1/4
@@ -3088,23 +3180,23 @@ static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
 static int skgl__ferko_targets(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int w, int h)
 {
     int k, lw = (w + 3) / 4, lh = (h + 3) / 4, ok = 1;
-    if (s->ferko_w == w && s->ferko_h == h) return 1;
+    if (s->ferko.w == w && s->ferko.h == h) return 1;
     skgl__ferko_free(ctx, s);
     for (k = 0; k < SKGL__FERKO_LEVELS; k++) {
-        s->ferko_lw[k] = lw;
-        s->ferko_lh[k] = lh;
+        s->ferko.lw[k] = lw;
+        s->ferko.lh[k] = lh;
         if (k < 3) {
-            s->ferko_tex[k] = skgl__color_texture(ctx, st, SKGL__RGBA32F, lw, lh, 2, SKGL__RGBA, SKGL__FLOAT, NULL);
-            s->ferko_fbo[k] = skgl__framebuffer(ctx, st, s->ferko_tex[k], 2, 0, 0);
-            ok &= s->ferko_fbo[k] != 0;
+            s->ferko.tex[k] = skgl__color_texture(ctx, st, SKGL__RGBA32F, lw, lh, 2, SKGL__RGBA, SKGL__FLOAT, NULL);
+            s->ferko.fbo[k] = skgl__framebuffer(ctx, st, s->ferko.tex[k], 2, 0, 0);
+            ok &= s->ferko.fbo[k] != 0;
         }
         if (lw <= 32 && lh <= 32) break;
         lw = (lw + 15) / 16;
         lh = (lh + 15) / 16;
     }
-    s->ferko_levels = k < SKGL__FERKO_LEVELS ? k + 1 : SKGL__FERKO_LEVELS;
-    s->ferko_w = w;
-    s->ferko_h = h;
+    s->ferko.levels = k < SKGL__FERKO_LEVELS ? k + 1 : SKGL__FERKO_LEVELS;
+    s->ferko.w = w;
+    s->ferko.h = h;
     return ok;
 }
 
@@ -3141,10 +3233,10 @@ static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate 
    the lookup matrix maps the crop onto that region */
 static void skgl__fit_ferko(skgl_shadow *s, float zf)
 {
-    const sk_res_estimate *e = &s->ferko_est;
+    const sk_res_estimate *e = &s->ferko.est;
     int res = s->desc.resolution, w = e->width, h = e->height;
     int margin = s->desc.pcf_radius + 2 + (int)SK_CEIL(s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
-    sk_mat4 m, t = sk_mat4_identity(), lvp = skgl__shift(&s->ferko_lvp, s->ferko_origin, s->origin);
+    sk_mat4 m, t = sk_mat4_identity(), lvp = skgl__shift(&s->ferko.lvp, s->ferko.origin, s->origin);
     sk_rect b = e->bounds;
     if (e->samples > 0 && w > 0 && h > 0) {
         float mx = margin * (b.x1 - b.x0) / (float)w, my = margin * (b.y1 - b.y0) / (float)h;
@@ -3167,7 +3259,7 @@ static void skgl__fit_ferko(skgl_shadow *s, float zf)
     s->maps = 1;
     s->stats.splits[1] = zf;
     s->stats.estimate = *e;
-    s->stats.estimate_light = skgl__shift(&s->ferko_lvp, s->ferko_origin, skgl__zero3);
+    s->stats.estimate_light = skgl__shift(&s->ferko.lvp, s->ferko.origin, skgl__zero3);
 }
 
 /* the uncropped light frustum: an orthographic map around the scene */
@@ -3193,25 +3285,25 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     skgl__api *gl = &ctx->gl;
     sk_mat4 ndc_to_light;
     float world_w[4], v[8];
-    int k, sync = s->desc.sync_readback || s->ferko_state == 0, slot;
+    int k, sync = s->desc.sync_readback || s->ferko.state == 0, slot;
     if (!skgl__ferko_targets(ctx, st, s, w, h)) {
         skgl__ferko_free(ctx, s);
         skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
         return SK_ERR_GL;
     }
     /* an earlier frame's estimate, if it has landed (the last one kept if not) */
-    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko_ring, v)) >= 0) {
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
-        s->ferko_lvp = s->ferko_ring.lvp[slot];
-        memcpy(s->ferko_origin, s->ferko_ring.origin[slot], sizeof s->ferko_origin);
-        s->ferko_state = 1;
+    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko.ring, v)) >= 0) {
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko.est);
+        s->ferko.lvp = s->ferko.ring.lvp[slot];
+        memcpy(s->ferko.origin, s->ferko.ring.origin[slot], sizeof s->ferko.origin);
+        s->ferko.state = 1;
     }
     skgl__timer_begin(ctx, &s->t_analyze);
     skgl__st_screen_pass(ctx, st);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     /* level 0: 4x4 blocks of the G-buffer */
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[0]);
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[0], s->ferko_lh[0]);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko.fbo[0]);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko.lw[0], s->ferko.lh[0]);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
     skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
     ndc_to_light = sk_mat4_mul(*lvp, *inv);
@@ -3221,22 +3313,22 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
     /* 16x16 MIN reductions (the source level on unit 1's 2D-array target),
        then the final pass over what is left into the 2x1 texels */
-    for (k = 1; k <= s->ferko_levels; k++) {
-        int fin = k == s->ferko_levels, src = k - 1;
+    for (k = 1; k <= s->ferko.levels; k++) {
+        int fin = k == s->ferko.levels, src = k - 1;
         int *cache = fin ? ctx->final_src : ctx->reduce_src;
         skgl__int loc = fin ? ctx->final_u_src_size : ctx->reduce_u_src_size;
         if (fin) {
-            skgl__st_framebuffer(ctx, st, s->ferko_final_fbo);   /* read back from it too */
+            skgl__st_framebuffer(ctx, st, s->ferko.final_fbo);   /* read back from it too */
             skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, 2, 1);
         } else {
-            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko_fbo[skgl__ferko_slot(k)]);
-            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko_lw[k], s->ferko_lh[k]);
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->ferko.fbo[skgl__ferko_slot(k)]);
+            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko.lw[k], s->ferko.lh[k]);
         }
         skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)(fin ? ctx->final_prog : ctx->reduce_prog));
-        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D_ARRAY), (skgl__int)s->ferko_tex[skgl__ferko_slot(src)]);
-        if (cache[0] != s->ferko_lw[src] || cache[1] != s->ferko_lh[src]) {
-            cache[0] = s->ferko_lw[src];
-            cache[1] = s->ferko_lh[src];
+        skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D_ARRAY), (skgl__int)s->ferko.tex[skgl__ferko_slot(src)]);
+        if (cache[0] != s->ferko.lw[src] || cache[1] != s->ferko.lh[src]) {
+            cache[0] = s->ferko.lw[src];
+            cache[1] = s->ferko.lh[src];
             if (loc >= 0) gl->Uniform2i(loc, cache[0], cache[1]);
         }
         gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
@@ -3245,18 +3337,18 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
         /* this frame's estimate: the read-back waits for the GPU */
         skgl__st_pack(ctx, st, 0, 1);
         gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, v);
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko_est);
-        s->ferko_lvp = *lvp;
-        memcpy(s->ferko_origin, o, sizeof s->ferko_origin);
-        s->ferko_state = 1;
-    } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko_ring)) >= 0) {
+        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko.est);
+        s->ferko.lvp = *lvp;
+        memcpy(s->ferko.origin, o, sizeof s->ferko.origin);
+        s->ferko.state = 1;
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko.ring)) >= 0) {
         /* with a pixel pack buffer bound, glReadPixels' pointer is an
            offset into it, and the call returns without waiting */
-        skgl__st_pack(ctx, st, s->ferko_ring.buf[slot], 1);
+        skgl__st_pack(ctx, st, s->ferko.ring.buf[slot], 1);
         gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
-        s->ferko_ring.lvp[slot] = *lvp;
-        memcpy(s->ferko_ring.origin[slot], o, sizeof s->ferko_ring.origin[slot]);
-        skgl__ring_fence(ctx, &s->ferko_ring, slot);
+        s->ferko.ring.lvp[slot] = *lvp;
+        memcpy(s->ferko.ring.origin[slot], o, sizeof s->ferko.ring.origin[slot]);
+        skgl__ring_fence(ctx, &s->ferko.ring, slot);
     }
     skgl__timer_end(ctx, &s->t_analyze);
     s->stats.analysis_ms = s->t_analyze.ms;
@@ -3272,24 +3364,24 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
 {
     int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
     size_t bytes;
-    s->pages0 = s->desc.resolution / s->desc.rmsm_page_size;
-    for (s->levels = 1; (1 << (s->levels - 1)) < s->pages0; s->levels++) {}
-    s->atlas_w = 2 * s->pages0 - 1;
-    s->atlas_h = s->pages0;
-    bytes = (size_t)s->atlas_w * (size_t)s->atlas_h;
-    s->rmsm_req_cpu = (unsigned char *)SKGL_MALLOC(bytes);
-    s->rmsm_table_cpu = (unsigned char *)SKGL_MALLOC(4 * bytes);
-    s->rmsm_table_new = (unsigned char *)SKGL_MALLOC(4 * bytes);
-    s->rmsm_pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
-    if (!s->rmsm_req_cpu || !s->rmsm_table_cpu || !s->rmsm_table_new || !s->rmsm_pages) return SK_ERR_CAPACITY;
-    memset(s->rmsm_table_cpu, 0, 4 * bytes);
-    s->rmsm_requests = skgl__color_texture(ctx, st, SKGL__R8, s->atlas_w, s->atlas_h, 1, SKGL__RED,
+    s->rmsm.pages0 = s->desc.resolution / s->desc.rmsm_page_size;
+    for (s->rmsm.levels = 1; (1 << (s->rmsm.levels - 1)) < s->rmsm.pages0; s->rmsm.levels++) {}
+    s->rmsm.atlas_w = 2 * s->rmsm.pages0 - 1;
+    s->rmsm.atlas_h = s->rmsm.pages0;
+    bytes = (size_t)s->rmsm.atlas_w * (size_t)s->rmsm.atlas_h;
+    s->rmsm.req_cpu = (unsigned char *)SKGL_MALLOC(bytes);
+    s->rmsm.table_cpu = (unsigned char *)SKGL_MALLOC(4 * bytes);
+    s->rmsm.table_new = (unsigned char *)SKGL_MALLOC(4 * bytes);
+    s->rmsm.pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
+    if (!s->rmsm.req_cpu || !s->rmsm.table_cpu || !s->rmsm.table_new || !s->rmsm.pages) return SK_ERR_CAPACITY;
+    memset(s->rmsm.table_cpu, 0, 4 * bytes);
+    s->rmsm.requests = skgl__color_texture(ctx, st, SKGL__R8, s->rmsm.atlas_w, s->rmsm.atlas_h, 1, SKGL__RED,
                                            SKGL__UNSIGNED_BYTE, NULL);
-    s->rmsm_table = skgl__color_texture(ctx, st, SKGL__RGBA8, s->atlas_w, s->atlas_h, 1, SKGL__RGBA,
-                                        SKGL__UNSIGNED_BYTE, s->rmsm_table_cpu);
-    s->rmsm_requests_fbo = skgl__framebuffer(ctx, st, s->rmsm_requests, 1, 0, 0);
-    skgl__ring_create(ctx, st, &s->rmsm_ring, bytes);
-    if (!s->rmsm_requests_fbo) {
+    s->rmsm.table = skgl__color_texture(ctx, st, SKGL__RGBA8, s->rmsm.atlas_w, s->rmsm.atlas_h, 1, SKGL__RGBA,
+                                        SKGL__UNSIGNED_BYTE, s->rmsm.table_cpu);
+    s->rmsm.requests_fbo = skgl__framebuffer(ctx, st, s->rmsm.requests, 1, 0, 0);
+    skgl__ring_create(ctx, st, &s->rmsm.ring, bytes);
+    if (!s->rmsm.requests_fbo) {
         skgl__set_log(ctx, "skgl_shadow_create: the RMSM request atlas (R8) is not renderable", NULL);
         return SK_ERR_GL;
     }
@@ -3298,20 +3390,20 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
 
 static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
 {
-    skgl__delete_texture(ctx, &s->rmsm_samples);
-    skgl__delete_texture(ctx, &s->rmsm_requests);
-    skgl__delete_texture(ctx, &s->rmsm_table);
-    skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
-    skgl__delete_framebuffer(ctx, &s->rmsm_requests_fbo);
-    skgl__ring_free(ctx, &s->rmsm_ring);
+    skgl__delete_texture(ctx, &s->rmsm.samples);
+    skgl__delete_texture(ctx, &s->rmsm.requests);
+    skgl__delete_texture(ctx, &s->rmsm.table);
+    skgl__delete_framebuffer(ctx, &s->rmsm.samples_fbo);
+    skgl__delete_framebuffer(ctx, &s->rmsm.requests_fbo);
+    skgl__ring_free(ctx, &s->rmsm.ring);
 }
 
 /* texel index of page (level, px, py) in the request atlas and the page
    table (level l's n_l pages a side from column 2 pages0 - 2 n_l) */
 static size_t skgl__atlas_index(const skgl_shadow *s, int level, int px, int py)
 {
-    int n = s->pages0 >> level;
-    return (size_t)py * (size_t)s->atlas_w + (size_t)(2 * s->pages0 - 2 * n + px);
+    int n = s->rmsm.pages0 >> level;
+    return (size_t)py * (size_t)s->rmsm.atlas_w + (size_t)(2 * s->rmsm.pages0 - 2 * n + px);
 }
 
 /* The pages to render from the requests read back (a nonzero texel per
@@ -3325,32 +3417,32 @@ static size_t skgl__atlas_index(const skgl_shadow *s, int level, int px, int py)
 static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
 {
     int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count = 0, l, px, py;
-    int top = s->levels - 1;
-    for (l = 0; l < s->levels; l++)
-        for (py = 0; py < (s->pages0 >> l); py++)
-            for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
+    int top = s->rmsm.levels - 1;
+    for (l = 0; l < s->rmsm.levels; l++)
+        for (py = 0; py < (s->rmsm.pages0 >> l); py++)
+            for (px = 0; px < (s->rmsm.pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
     s->stats.pages_requested = count;
     while (count + 1 > cap && min_level < top) {
-        int n = s->pages0 >> min_level;
+        int n = s->rmsm.pages0 >> min_level;
         count = 0;
         for (py = 0; py < n; py++)
             for (px = 0; px < n; px++)
                 if (req[skgl__atlas_index(s, min_level, px, py)])
                     req[skgl__atlas_index(s, min_level + 1, px / 2, py / 2)] = 1;
         min_level++;
-        for (l = min_level; l < s->levels; l++)
-            for (py = 0; py < (s->pages0 >> l); py++)
-                for (px = 0; px < (s->pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
+        for (l = min_level; l < s->rmsm.levels; l++)
+            for (py = 0; py < (s->rmsm.pages0 >> l); py++)
+                for (px = 0; px < (s->rmsm.pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
     }
-    s->rmsm_npages = 0;
-    for (l = min_level; l < s->levels; l++)
-        for (py = 0; py < (s->pages0 >> l); py++)
-            for (px = 0; px < (s->pages0 >> l); px++)
-                if ((req[skgl__atlas_index(s, l, px, py)] != 0 || l == top) && s->rmsm_npages < cap) {
-                    s->rmsm_pages[s->rmsm_npages].level = l;
-                    s->rmsm_pages[s->rmsm_npages].px = px;
-                    s->rmsm_pages[s->rmsm_npages].py = py;
-                    s->rmsm_npages++;
+    s->rmsm.npages = 0;
+    for (l = min_level; l < s->rmsm.levels; l++)
+        for (py = 0; py < (s->rmsm.pages0 >> l); py++)
+            for (px = 0; px < (s->rmsm.pages0 >> l); px++)
+                if ((req[skgl__atlas_index(s, l, px, py)] != 0 || l == top) && s->rmsm.npages < cap) {
+                    s->rmsm.pages[s->rmsm.npages].level = l;
+                    s->rmsm.pages[s->rmsm.npages].px = px;
+                    s->rmsm.pages[s->rmsm.npages].py = py;
+                    s->rmsm.npages++;
                 }
     s->stats.rmsm_min_level = min_level;
 }
@@ -3361,28 +3453,28 @@ static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
    pages are those of the last frame. Bound on unit 0 to upload. */
 static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
-    size_t row = (size_t)4 * (size_t)s->atlas_w;
+    size_t row = (size_t)4 * (size_t)s->rmsm.atlas_w;
     int i, pool = s->desc.rmsm_pool_pages, r0 = -1, r1 = -1, y;
-    memset(s->rmsm_table_new, 0, row * (size_t)s->atlas_h);
-    for (i = 0; i < s->rmsm_npages; i++) {
-        unsigned char *e = s->rmsm_table_new + 4 * skgl__atlas_index(s, s->rmsm_pages[i].level, s->rmsm_pages[i].px,
-                                                                    s->rmsm_pages[i].py);
+    memset(s->rmsm.table_new, 0, row * (size_t)s->rmsm.atlas_h);
+    for (i = 0; i < s->rmsm.npages; i++) {
+        unsigned char *e = s->rmsm.table_new + 4 * skgl__atlas_index(s, s->rmsm.pages[i].level, s->rmsm.pages[i].px,
+                                                                    s->rmsm.pages[i].py);
         e[0] = (unsigned char)(i % pool);
         e[1] = (unsigned char)(i / pool);
         e[3] = 255;
     }
-    for (y = 0; y < s->atlas_h; y++)
-        if (memcmp(s->rmsm_table_new + row * (size_t)y, s->rmsm_table_cpu + row * (size_t)y, row) != 0) {
+    for (y = 0; y < s->rmsm.atlas_h; y++)
+        if (memcmp(s->rmsm.table_new + row * (size_t)y, s->rmsm.table_cpu + row * (size_t)y, row) != 0) {
             if (r0 < 0) r0 = y;
             r1 = y;
         }
     if (r0 < 0) return;
-    memcpy(s->rmsm_table_cpu + row * (size_t)r0, s->rmsm_table_new + row * (size_t)r0, row * (size_t)(r1 - r0 + 1));
+    memcpy(s->rmsm.table_cpu + row * (size_t)r0, s->rmsm.table_new + row * (size_t)r0, row * (size_t)(r1 - r0 + 1));
     skgl__st_unpack(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->rmsm_table);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->rmsm.table);
     skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
-    ctx->gl.TexSubImage2D(SKGL__TEXTURE_2D, 0, 0, r0, s->atlas_w, r1 - r0 + 1, SKGL__RGBA, SKGL__UNSIGNED_BYTE,
-                          s->rmsm_table_cpu + row * (size_t)r0);
+    ctx->gl.TexSubImage2D(SKGL__TEXTURE_2D, 0, 0, r0, s->rmsm.atlas_w, r1 - r0 + 1, SKGL__RGBA, SKGL__UNSIGNED_BYTE,
+                          s->rmsm.table_cpu + row * (size_t)r0);
 }
 
 /* RMSM analysis: per-pixel samples, page requests scattered on the GPU into
@@ -3394,31 +3486,31 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
 {
     skgl__api *gl = &ctx->gl;
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    int sync = s->desc.sync_readback || !s->rmsm_analyzed, slot;
-    if (s->rmsm_w != w || s->rmsm_h != h) {
-        skgl__delete_texture(ctx, &s->rmsm_samples);
-        skgl__delete_framebuffer(ctx, &s->rmsm_samples_fbo);
-        s->rmsm_samples = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
-        s->rmsm_samples_fbo = skgl__framebuffer(ctx, st, s->rmsm_samples, 1, 0, 0);
-        s->rmsm_w = s->rmsm_samples_fbo ? w : 0;
-        s->rmsm_h = s->rmsm_samples_fbo ? h : 0;
-        if (!s->rmsm_samples_fbo) {
+    int sync = s->desc.sync_readback || !s->rmsm.analyzed, slot;
+    if (s->rmsm.w != w || s->rmsm.h != h) {
+        skgl__delete_texture(ctx, &s->rmsm.samples);
+        skgl__delete_framebuffer(ctx, &s->rmsm.samples_fbo);
+        s->rmsm.samples = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+        s->rmsm.samples_fbo = skgl__framebuffer(ctx, st, s->rmsm.samples, 1, 0, 0);
+        s->rmsm.w = s->rmsm.samples_fbo ? w : 0;
+        s->rmsm.h = s->rmsm.samples_fbo ? h : 0;
+        if (!s->rmsm.samples_fbo) {
             skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F target not renderable", NULL);
             return SK_ERR_GL;
         }
     }
     /* last frame's requests, if they have landed */
-    if (!sync && (slot = skgl__ring_poll(ctx, st, &s->rmsm_ring, s->rmsm_req_cpu)) >= 0) {
-        skgl__rmsm_pages(s, s->rmsm_req_cpu);
-        s->rmsm_lvp = s->rmsm_ring.lvp[slot];
-        memcpy(s->rmsm_origin, s->rmsm_ring.origin[slot], sizeof s->rmsm_origin);
+    if (!sync && (slot = skgl__ring_poll(ctx, st, &s->rmsm.ring, s->rmsm.req_cpu)) >= 0) {
+        skgl__rmsm_pages(s, s->rmsm.req_cpu);
+        s->rmsm.lvp = s->rmsm.ring.lvp[slot];
+        memcpy(s->rmsm.origin, s->rmsm.ring.origin[slot], sizeof s->rmsm.origin);
         skgl__rmsm_table(ctx, st, s);
     }
     skgl__timer_begin(ctx, &s->t_analyze);
     skgl__st_screen_pass(ctx, st);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     /* the samples: one per pixel */
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm_samples_fbo);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm.samples_fbo);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
     skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
@@ -3430,17 +3522,17 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
     }
     gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
     /* the requests: a point per sample onto its page's texel */
-    skgl__st_framebuffer(ctx, st, s->rmsm_requests_fbo);
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->atlas_w, s->atlas_h);
+    skgl__st_framebuffer(ctx, st, s->rmsm.requests_fbo);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h);
     gl->ClearBufferfv(SKGL__COLOR, 0, zero);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
-    if (ctx->request_pages0 != s->pages0 || ctx->request_levels != s->levels) {
-        ctx->request_pages0 = s->pages0;
-        ctx->request_levels = s->levels;
-        skgl__u1i(gl, ctx->request_u_pages0, s->pages0);
-        skgl__u1i(gl, ctx->request_u_levels, s->levels);
+    if (ctx->request_pages0 != s->rmsm.pages0 || ctx->request_levels != s->rmsm.levels) {
+        ctx->request_pages0 = s->rmsm.pages0;
+        ctx->request_levels = s->rmsm.levels;
+        skgl__u1i(gl, ctx->request_u_pages0, s->rmsm.pages0);
+        skgl__u1i(gl, ctx->request_u_levels, s->rmsm.levels);
     }
-    skgl__st_texture(ctx, st, 1, SKGL__T_2D, s->rmsm_samples, ctx->point_sampler);
+    skgl__st_texture(ctx, st, 1, SKGL__T_2D, s->rmsm.samples, ctx->point_sampler);
     /* the vertex shader's gl_PointSize, not the glPointSize the caller set */
     skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
     gl->DrawArrays(SKGL__POINTS, 0, w * h);
@@ -3448,20 +3540,20 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
         /* this frame's requests: the read-back waits for the GPU. A byte
            a texel (GL_RED of the R8 atlas): rows of atlas_w bytes, hence
            the pack alignment of 1 (the default 4 would pad them) */
-        skgl__st_pack(ctx, st, 0, s->atlas_h);
-        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm_req_cpu);
-        skgl__rmsm_pages(s, s->rmsm_req_cpu);
-        s->rmsm_lvp = *lvp;
-        memcpy(s->rmsm_origin, o, sizeof s->rmsm_origin);
+        skgl__st_pack(ctx, st, 0, s->rmsm.atlas_h);
+        gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm.req_cpu);
+        skgl__rmsm_pages(s, s->rmsm.req_cpu);
+        s->rmsm.lvp = *lvp;
+        memcpy(s->rmsm.origin, o, sizeof s->rmsm.origin);
         skgl__rmsm_table(ctx, st, s);
-    } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm_ring)) >= 0) {
-        skgl__st_pack(ctx, st, s->rmsm_ring.buf[slot], s->atlas_h);
-        gl->ReadPixels(0, 0, s->atlas_w, s->atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
-        s->rmsm_ring.lvp[slot] = *lvp;
-        memcpy(s->rmsm_ring.origin[slot], o, sizeof s->rmsm_ring.origin[slot]);
-        skgl__ring_fence(ctx, &s->rmsm_ring, slot);
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm.ring)) >= 0) {
+        skgl__st_pack(ctx, st, s->rmsm.ring.buf[slot], s->rmsm.atlas_h);
+        gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
+        s->rmsm.ring.lvp[slot] = *lvp;
+        memcpy(s->rmsm.ring.origin[slot], o, sizeof s->rmsm.ring.origin[slot]);
+        skgl__ring_fence(ctx, &s->rmsm.ring, slot);
     }
-    s->rmsm_analyzed = 1;
+    s->rmsm.analyzed = 1;
     skgl__timer_end(ctx, &s->t_analyze);
     s->stats.analysis_ms = s->t_analyze.ms;
     return SK_OK;
@@ -3478,20 +3570,20 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     int i, P = s->desc.rmsm_page_size, slot = P + 2, pool = s->desc.rmsm_pool_pages;
     sk_result r = SK_OK, rc;
     skgl__st_begin(ctx, &st);
-    if (!s->rmsm_analyzed) {
+    if (!s->rmsm.analyzed) {
         /* no analysis: the coarsest page alone */
-        r = skgl__ferko_light(scene, light_dir, &s->rmsm_lvp);
+        r = skgl__ferko_light(scene, light_dir, &s->rmsm.lvp);
         if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
-        memcpy(s->rmsm_origin, s->origin, sizeof s->rmsm_origin);
-        s->rmsm_pages[0].level = s->levels - 1;
-        s->rmsm_pages[0].px = s->rmsm_pages[0].py = 0;
-        s->rmsm_npages = 1;
+        memcpy(s->rmsm.origin, s->origin, sizeof s->rmsm.origin);
+        s->rmsm.pages[0].level = s->rmsm.levels - 1;
+        s->rmsm.pages[0].px = s->rmsm.pages[0].py = 0;
+        s->rmsm.npages = 1;
         s->stats.pages_requested = 0;
         s->stats.rmsm_min_level = 0;
         skgl__rmsm_table(ctx, &st, s);
     }
     s->light_dir = sk__normalize(light_dir);
-    s->vp[0] = skgl__shift(&s->rmsm_lvp, s->rmsm_origin, s->origin);
+    s->vp[0] = skgl__shift(&s->rmsm.lvp, s->rmsm.origin, s->origin);
     s->maps = 1;
     skgl__st_save(ctx, &st, SKGL__S_VAO);
     skgl__timer_begin(ctx, &s->t_render);
@@ -3502,8 +3594,8 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     skgl__model_begin(ctx, s->origin);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
-    for (i = 0; i < s->rmsm_npages; i++) {
-        const sk_page *pg = &s->rmsm_pages[i];
+    for (i = 0; i < s->rmsm.npages; i++) {
+        const sk_page *pg = &s->rmsm.pages[i];
         double lres = (double)(s->desc.resolution >> pg->level);
         sk_rect rc_;
         sk_mat4 vp;
@@ -3536,86 +3628,26 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     s->stats.maps = 1;
     s->stats.resolution = s->desc.resolution;
     s->stats.map_width = s->stats.map_height = s->tex_size;
-    s->stats.pages_rendered = s->rmsm_npages;
+    s->stats.pages_rendered = s->rmsm.npages;
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
 
 /* ---- 6.5 analyze and render ------------------------------------------- */
 // >>render
-SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
-                                      const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex)
-{
-    skgl__st st;
-    sk_mat4 inv, lvp;
-    int w = 0, h = 0;
-    double o[3];
-    skgl_camera rc;
-    skgl_scene rs;
-    sk_result r;
-    const char *why;
-    const char *fn = "skgl_shadow_analyze";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    if (s->desc.technique != SKGL_FERKO && s->desc.technique != SKGL_RMSM)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
-                          fn, (int)s->desc.technique);
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
-    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 0));
-    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
-    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
-    /* positions and the light frustum relative to the camera's origin */
-    skgl__origin(&cam->view, o);
-    rc = skgl__camera_rel(cam, o);
-    rs = skgl__scene_rel(scene, o);
-    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
-    r = skgl__ferko_light(&rs, light_dir, &lvp);
-    if (r != SK_OK) return r;
-    skgl__st_begin(ctx, &st);
-    why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
-    if (why) {
-        skgl__st_end(ctx, &st);
-        skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
-        return SK_ERR_INVALID_ARG;
-    }
-    if (s->desc.technique == SKGL_RMSM) r = skgl__analyze_rmsm(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
-    else r = skgl__analyze_ferko(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
-}
-
-SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
-                                     const skgl_scene *scene, sk_vec3 light_dir)
+/* every layer's caster pass, into its own framebuffer (scene relative to
+   the light's origin, as the fits saw it) */
+static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const skgl_scene *rs, sk_vec3 light_dir)
 {
     static const float one = 1.0f;
-    skgl__api *gl;
+    skgl__api *gl = &ctx->gl;
     skgl__st st;
-    sk_result r, rc;
+    sk_result r = SK_OK, rc;
     int i, res;
-    double o[3], was[3];
-    skgl_camera rcam;
-    skgl_scene rs;
-    const char *fn = "skgl_shadow_render";
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
-    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
-    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
-    /* the maps are fitted and rendered relative to the camera's origin */
-    skgl__origin(&cam->view, o);
-    rcam = skgl__camera_rel(cam, o);
-    rs = skgl__scene_rel(scene, o);
-    memcpy(was, s->origin, sizeof was);
-    memcpy(s->origin, o, sizeof o);
-    r = skgl__fit_layers(s, &rcam, &rs, light_dir);
-    if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
-    if (s->desc.technique == SKGL_RMSM) return skgl__render_rmsm(ctx, s, &rs, light_dir);
-    if (s->desc.technique != SKGL_FERKO || s->ferko_state == 0)
+    const double *o = s->origin;
+    if (s->desc.technique != SKGL_FERKO || s->ferko.state == 0)
         for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
     s->light_dir = sk__normalize(light_dir);
-    gl = &ctx->gl;
     res = s->desc.resolution;
     skgl__st_begin(ctx, &st);
     skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
@@ -3644,7 +3676,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
         info.view_proj = skgl__shift(&s->render_vp[i], o, skgl__zero3);   /* world space for the callback */
         info.frustum = sk_frustum_from_matrix(info.view_proj);
         info.program = ctx->depth_prog;
-        scene->draw(scene->user, &info);
+        rs->draw(rs->user, &info);
         rc = skgl__after_draw(ctx, &st);
         if (rc != SK_OK) r = rc;
         s->stats.passes++;
@@ -3660,14 +3692,97 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
+/* >>techniques, the table (declared in 6) */
+static const skgl__technique skgl__techniques[] = {
+    {"STANDARD", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
+    {"PSSM", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
+    {"PSM", NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers},
+    {"LISPSM", NULL, NULL, NULL, skgl__fit_lispsm_layers, skgl__render_layers},
+    {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
+    {"FERKO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ferko_layer,
+     skgl__render_layers},
+    {"RMSM", skgl__rmsm_create, skgl__rmsm_free, skgl__analyze_rmsm, skgl__fit_rmsm, skgl__render_rmsm},
+};
 
+/* the row of s's technique (validated at create: always in the table) */
+static const skgl__technique *skgl__technique_of(const skgl_shadow *s)
+{
+    return &skgl__techniques[s->desc.technique];
+}
+
+SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                      const skgl_scene *scene, sk_vec3 light_dir, unsigned depth_tex)
+{
+    skgl__st st;
+    sk_mat4 inv, lvp;
+    int w = 0, h = 0;
+    double o[3];
+    skgl_camera rc;
+    skgl_scene rs;
+    sk_result r;
+    const char *why;
+    const char *fn = "skgl_shadow_analyze";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    if (!skgl__technique_of(s)->analyze)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
+                          fn, (int)s->desc.technique);
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 0));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
+    SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
+    /* positions and the light frustum relative to the camera's origin */
+    skgl__origin(&cam->view, o);
+    rc = skgl__camera_rel(cam, o);
+    rs = skgl__scene_rel(scene, o);
+    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    r = skgl__ferko_light(&rs, light_dir, &lvp);
+    if (r != SK_OK) return r;
+    skgl__st_begin(ctx, &st);
+    why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
+    if (why) {
+        skgl__st_end(ctx, &st);
+        skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
+        return SK_ERR_INVALID_ARG;
+    }
+    r = skgl__technique_of(s)->analyze(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
+}
+
+SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                     const skgl_scene *scene, sk_vec3 light_dir)
+{
+    sk_result r;
+    double o[3], was[3];
+    skgl_camera rcam;
+    skgl_scene rs;
+    const char *fn = "skgl_shadow_render";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
+    /* the maps are fitted and rendered relative to the camera's origin */
+    skgl__origin(&cam->view, o);
+    rcam = skgl__camera_rel(cam, o);
+    rs = skgl__scene_rel(scene, o);
+    memcpy(was, s->origin, sizeof was);
+    memcpy(s->origin, o, sizeof o);
+    r = skgl__fit_layers(s, &rcam, &rs, light_dir);
+    if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
+    return skgl__technique_of(s)->render(ctx, s, &rs, light_dir);
+}
+
+/* ---- 6.6 bind: the snippet's uniforms in a forward shader ------------- */
+// >>bind
 /* The directional snippet's uniforms on the current program (entry e):
    the light's constants when the program holds another light's (or none),
    the values that seldom change when they did, the per-frame ones always.
    unit, table_unit: the units of the map and of the RMSM page table;
    origin: the world point the program's positions are relative to. */
-/* ---- 6.6 bind: the snippet's uniforms in a forward shader ------------- */
-// >>bind
 static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl__progent *e, int unit,
                                   int table_unit, const double origin[3])
 {
@@ -3682,8 +3797,8 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
         skgl__u1i(gl, L[SKGL__L_MAP], unit);
         skgl__u1i(gl, L[SKGL__L_TABLE], table_unit);
         skgl__u1i(gl, L[SKGL__L_RMSM], s->desc.technique == SKGL_RMSM);
-        skgl__u1i(gl, L[SKGL__L_PAGES0], s->pages0);
-        skgl__u1i(gl, L[SKGL__L_LEVELS], s->levels);
+        skgl__u1i(gl, L[SKGL__L_PAGES0], s->rmsm.pages0);
+        skgl__u1i(gl, L[SKGL__L_LEVELS], s->rmsm.levels);
         skgl__u1i(gl, L[SKGL__L_PAGE], s->desc.rmsm_page_size);
         skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], s->desc.technique == SKGL_LSPSM);
         skgl__u1f(gl, L[SKGL__L_BLEND_BAND], s->desc.blend_band);
@@ -3761,7 +3876,7 @@ SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *
     if (s->desc.technique == SKGL_RMSM) {
         last = SKGL__TEXTURE0 + unit + 1;
         gl->ActiveTexture((skgl__enum)last);
-        gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm_table);
+        gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
         gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
     }
     if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
@@ -3798,7 +3913,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
         skgl__unitbind b[4];
         int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
         skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm_table, 0);
+        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm.table, 0);
         skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
         skgl__st_units(ctx, &st, b, n);
         skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
