@@ -5,7 +5,8 @@
      build/examples/01_hard_shadows --headless       writes out/01_hard_shadows.png
      build/examples/01_hard_shadows --scene FILE     any glTF/OBJ file instead
    Options: --frames N (quit after N frames), --out FILE (PNG of the last
-   frame; a window given --out steps its clock like --headless).
+   frame; a window given --out steps its clock like --headless), --debug
+   (check GL errors after every shadowkit pass), --timing (GPU times).
 
    The steps, in the order you would write them in your engine:
      1. skgl_create         a shadowkit GL context, loading GL through your getproc
@@ -80,14 +81,21 @@ int main(int argc, char **argv) {
     if (ex_app_load_scene(&app, build_scene) != 0) goto done;
     if (opt.scene_path) ex_camera_from_bounds(app.model_bounds, &eye, &target, &zn, &zf);
 
-    /* 1. The shadowkit context. It loads the ~50 GL entry points it needs
+    /* 1. The shadowkit context. It loads the GL entry points it needs
        through the same getproc you give your own loader (here
        glfwGetProcAddress, or the headless context's), into a private table.
-       debug: glGetError after every pass, reported as SK_ERR_GL.
-       timing: GPU timer queries per pass (a CPU-GPU sync: for measuring). */
+       Both switches below cost time every frame, so they stay off unless
+       asked for (as they should in the program you ship):
+       debug (--debug): glGetError after every pass, reported as SK_ERR_GL,
+         and extra checks of your textures and programs. Each glGetError
+         is a round trip to the driver (with a driver that runs on its own
+         thread, the CPU waits for it to catch up).
+       timing (--timing): a GPU timer query around every pass, into
+         skgl_shadow_stats(). Results are read only once the GPU has them,
+         2-3 frames later, so the stats say -1 until then. */
     desc.getproc = app.getproc;
-    desc.debug = 1;
-    desc.timing = 1;
+    desc.debug = opt.debug;
+    desc.timing = opt.timing;
     if ((r = skgl_create(&desc, &sk)) != SK_OK) goto done;
 
     /* 2. One shadow map. Zeroed fields take the defaults (listed in
@@ -148,10 +156,10 @@ int main(int argc, char **argv) {
         const skgl_stats *st = skgl_shadow_stats(sun);
         /* skgl_shadow_matrix: the light's world -> clip matrix of the map;
            from it, how much ground one texel covers after the fit */
-        printf("shadow map: %d x %d, one texel = %.1f cm, %d pass(es), %.3f ms on the GPU\n",
-               st->resolution, st->resolution,
-               100.0f * ex_texel_size(skgl_shadow_matrix(sun, 0), st->resolution), st->passes,
-               st->shadow_ms);
+        printf("shadow map: %d x %d, one texel = %.3g cm, %d pass(es)\n", st->resolution, st->resolution,
+               100.0f * ex_texel_size(skgl_shadow_matrix(sun, 0), st->resolution), st->passes);
+        /* the depth pass's GPU time of a frame 2-3 frames back (-1 until one arrives) */
+        if (opt.timing) ex_print_ms("depth pass", st->shadow_ms);
         status = 0;
     }
 

@@ -5,21 +5,26 @@
      build/examples/04_adaptive --technique lspsm    light space partitions
      build/examples/04_adaptive --technique rmsm     a virtual map, page by page
      build/examples/04_adaptive --headless           writes out/04_adaptive.png
-   Options: --scene FILE, --frames N, --out FILE.
+   Options: --scene FILE, --frames N, --out FILE, --debug, --timing.
 
    Tutorials 01 to 03 fit their maps to the view frustum. These three look
    at what the view holds:
-   - LSPSM (Tang et al. 2017, seed 003) projects the view onto the light
-     plane, fits a trapezoid around it and cuts it into partitions (Eq. 1),
-     one map each: as many as the view's perspective needs, at most 8.
-   - FERKO (Ferko 2013, seed 000) reads the camera's depth buffer, bounds
-     the points the light sees (the crop) and finds the smallest texel any
-     pixel needs: one map of exactly that size, up to .resolution.
-   - RMSM (seed 002) cuts a huge virtual map (.resolution = 16384) into
-     pages; each pixel asks for the page of its level of detail, and only
-     those pages are rendered, into a pool, found again through a page table.
+   - LSPSM (Tang et al. 2017) projects the view onto the light plane, fits
+     a trapezoid around it and cuts it into partitions (Eq. 1), one map
+     each: as many as the view's perspective needs, at most 8.
+   - FERKO (Ferko 2013) reads the camera's depth buffer, bounds the points
+     the light sees (the crop) and finds the smallest texel any pixel
+     needs: one map of exactly that size, up to .resolution.
+   - RMSM (Lefohn et al. 2007) cuts a huge virtual map (.resolution =
+     16384) into pages; each pixel asks for the page of its level of
+     detail, and only those pages are rendered, into a pool, found again
+     through a page table.
    FERKO and RMSM need the camera's depth first: a depth pass into a
-   texture, then skgl_shadow_analyze(), then the usual render and draw. */
+   texture, then skgl_shadow_analyze(), then the usual render and draw.
+   What the analysis finds comes back to the CPU without a stall, through
+   a ring of read-back buffers: the render uses the result of an earlier
+   frame (a frame late on a GPU that keeps up; the first frame reads at
+   once). */
 
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
@@ -42,8 +47,6 @@ int main(int argc, char **argv) {
     skgl_context *sk = NULL;
     skgl_shadow *sun = NULL;
     skgl_scene scene;
-    tb_gl_gbuffer gpass = {0};
-    tb_gl_fbo depth = {0};
     sk_vec3 eye = {1.5f, 2.2f, 3.0f}, target = {0.0f, 0.6f, -30.0f}, up = {0, 1, 0};
     sk_vec3 light = ex_normalize(ex_v3(0.75f, -0.6f, -0.3f));
     float zn = 0.1f, zf = 200.0f;
@@ -68,15 +71,13 @@ int main(int argc, char **argv) {
     if (ex_app_open(&app, &opt, "shadowkit 04: maps that adapt to the view") != 0) return 1;
     if (ex_app_load_scene(&app, build_scene) != 0) goto done;
     if (opt.scene_path) ex_camera_from_bounds(app.model_bounds, &eye, &target, &zn, &zf);
+    /* debug and timing only when asked for (tutorial 01 says what they cost) */
     desc.getproc = app.getproc;
-    desc.debug = 1;
-    desc.timing = 1;
+    desc.debug = opt.debug;
+    desc.timing = opt.timing;
     if ((r = skgl_create(&desc, &sk)) != SK_OK) goto done;
     if ((r = skgl_shadow_create(sk, &sdesc, &sun)) != SK_OK) goto done;
     if (ex_forward_create(&app, skgl_glsl_snippet()) != 0) goto done;
-    /* the camera's depth, for the analysis (the testbed's G-buffer pass
-       stands in for your engine's depth pre-pass) */
-    if (tb_gl_gbuffer_create(&app.gl, &gpass, NULL, 0) != 0) goto done;
     scene.draw = ex_draw_casters;
     scene.user = &app;
     scene.bounds = app.scene.bounds;
@@ -86,14 +87,11 @@ int main(int argc, char **argv) {
         cam.view = sk_mat4_look_at(eye, target, up);
         cam.proj = sk_mat4_perspective(1.0f, (float)app.width / (float)app.height, zn, zf);
         if (sdesc.technique != SKGL_LSPSM) {
-            sk_mat4 vp = sk_mat4_mul(cam.proj, cam.view);
-            if (depth.width != app.width || depth.height != app.height) {
-                tb_gl_fbo_destroy(&app.gl, &depth);
-                if (tb_gl_fbo_create(&app.gl, &depth, app.width, app.height, TB_GL_COLOR_NONE) != 0) goto done;
-            }
-            if (tb_gl_gbuffer_render(&app.gl, &gpass, &app.mesh, &depth, &vp) != 0) goto done;
-            /* FERKO: crop and size of this frame's map; RMSM: its pages */
-            if ((r = skgl_shadow_analyze(sk, sun, &cam, &scene, light, depth.depth_tex)) != SK_OK) break;
+            /* the camera's depth (common.c's G-buffer pass stands in for
+               your engine's depth pre-pass), then the analysis of it.
+               FERKO: crop and size of the map; RMSM: the pages it needs */
+            if (ex_gbuffer_render(&app, sk, &cam) != 0) goto done;
+            if ((r = skgl_shadow_analyze(sk, sun, &cam, &scene, light, app.gbuffer.depth_tex)) != SK_OK) break;
         }
         if ((r = skgl_shadow_render(sk, sun, &cam, &scene, light)) != SK_OK) break;
         app.gl.UseProgram(app.program);
@@ -103,9 +101,7 @@ int main(int argc, char **argv) {
     }
     if (r == SK_OK) {
         const skgl_stats *st = skgl_shadow_stats(sun);
-        printf("%s: %d pass(es), %.0f texels rendered, %.3f ms shadow", name, st->passes, st->texels, st->shadow_ms);
-        if (sdesc.technique != SKGL_LSPSM) printf(" + %.3f ms analysis", st->analysis_ms);
-        printf("\n");
+        printf("%s: %d pass(es), %.0f texels rendered\n", name, st->passes, st->texels);
         if (sdesc.technique == SKGL_LSPSM)
             printf("  %d partitions of %d^2%s\n", st->maps, st->resolution, st->lspsm_fallback ? " (fallback)" : "");
         if (sdesc.technique == SKGL_FERKO)
@@ -114,14 +110,17 @@ int main(int argc, char **argv) {
         if (sdesc.technique == SKGL_RMSM)
             printf("  %d pages requested, %d rendered, finest level %d\n", st->pages_requested, st->pages_rendered,
                    st->rmsm_min_level);
+        /* GPU times of 2-3 frames back (-1 until they arrive) */
+        if (opt.timing) {
+            ex_print_ms("depth passes", st->shadow_ms);
+            if (sdesc.technique != SKGL_LSPSM) ex_print_ms("analysis", st->analysis_ms);
+        }
         status = 0;
     }
 
 done:
     if (r != SK_OK)
         fprintf(stderr, "shadowkit: %s %s\n", sk_result_string(r), sk ? skgl_error_log(sk) : "");
-    if (depth.fbo) tb_gl_fbo_destroy(&app.gl, &depth);
-    if (gpass.program) tb_gl_gbuffer_destroy(&app.gl, &gpass);
     if (sun) skgl_shadow_destroy(sk, sun);
     if (sk) skgl_destroy(sk);
     ex_app_close(&app);

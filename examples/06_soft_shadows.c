@@ -1,5 +1,5 @@
 /* 06_soft_shadows.c - shadowkit tutorial 6: an area light, soft shadows
-   with predicted virtual soft shadow maps (Shen Li et al. 2011, seed 001)
+   with predicted virtual soft shadow maps (Shen et al. 2011)
    and with PCSS on one map.
 
    Run (from the repository root, after `make examples`):
@@ -8,7 +8,9 @@
      build/examples/06_soft_shadows --technique tiles     PVSM, its tiles drawn over
                                                           the picture (Fig. 10)
      build/examples/06_soft_shadows --headless            writes out/06_soft_shadows.png
-   Options: --frames N, --out FILE, --scene FILE (default: the fence).
+   Options: --frames N, --out FILE, --scene FILE (default: the fence),
+   --debug, --timing (area lights read their timer queries at once: with
+   --timing every timed step waits for the GPU; for measuring only).
 
    Soft shadows are a deferred effect here: skgl_soft_render takes the
    camera's depth and normals and writes visibility per pixel into a mask
@@ -83,38 +85,6 @@ static const char fs_src[] =
     "    o_color = vec4(albedo * (0.12 + 0.95 * lit * v), 1.0);\n"
     "}\n";
 
-static unsigned compile(const tb_gl_funcs *gl, unsigned type, const char *src) {
-    unsigned sh = gl->CreateShader(type);
-    int ok = 0;
-    gl->ShaderSource(sh, 1, &src, NULL);
-    gl->CompileShader(sh);
-    gl->GetShaderiv(sh, 0x8B81 /* GL_COMPILE_STATUS */, &ok);
-    if (!ok) {
-        char log[2048] = "";
-        gl->GetShaderInfoLog(sh, (int)sizeof log, NULL, log);
-        fprintf(stderr, "shader: %s\n", log);
-        gl->DeleteShader(sh);
-        return 0;
-    }
-    return sh;
-}
-
-static unsigned make_program(const tb_gl_funcs *gl) {
-    unsigned v = compile(gl, 0x8B31 /* GL_VERTEX_SHADER */, vs_src);
-    unsigned f = compile(gl, 0x8B30 /* GL_FRAGMENT_SHADER */, fs_src), p;
-    int ok = 0;
-    if (!v || !f) return 0;
-    p = gl->CreateProgram();
-    gl->AttachShader(p, v);
-    gl->AttachShader(p, f);
-    gl->LinkProgram(p);
-    gl->DeleteShader(v);
-    gl->DeleteShader(f);
-    gl->GetProgramiv(p, 0x8B82 /* GL_LINK_STATUS */, &ok);
-    if (!ok) { gl->DeleteProgram(p); return 0; }
-    return p;
-}
-
 int main(int argc, char **argv) {
     ex_options opt;
     ex_app app;
@@ -124,16 +94,15 @@ int main(int argc, char **argv) {
     skgl_soft *soft = NULL;
     skgl_scene scene;
     skgl_area_light light;
-    tb_gl_fbo mask;
     sk_vec3 eye, target, up = {0, 1, 0}, c;
     float zn = 0.1f, zf = 80.0f, size;
     unsigned prog = 0;
+    const char *vs = vs_src, *fs = fs_src;
     sk_result r = SK_OK;
-    int status = 1, show_tiles = 0, mask_w = 0, mask_h = 0;
+    int status = 1, show_tiles = 0;
     int rc = ex_parse_args(argc, argv, "out/06_soft_shadows.png", 0, &opt);
     if (rc != 0) return rc == 1 ? 0 : 2;
     memset(&sdesc, 0, sizeof sdesc);   /* zero fields take the defaults */
-    memset(&mask, 0, sizeof mask);
     sdesc.technique = SKGL_SOFT_PVSM;
     if (opt.technique && strcmp(opt.technique, "pcss") == 0) {
         sdesc.technique = SKGL_SOFT_PCSS;
@@ -146,12 +115,16 @@ int main(int argc, char **argv) {
 
     if (ex_app_open(&app, &opt, "shadowkit 06: soft shadows") != 0) return 1;
     if (ex_app_load_scene(&app, build_scene) != 0) goto done;
+    /* debug and timing only when asked for (tutorial 01 says what they cost) */
     desc.getproc = app.getproc;
-    desc.debug = 1;
-    desc.timing = 1;
+    desc.debug = opt.debug;
+    desc.timing = opt.timing;
     if ((r = skgl_create(&desc, &sk)) != SK_OK) goto done;
     if ((r = skgl_soft_create(sk, &sdesc, &soft)) != SK_OK) goto done;
-    if (!(prog = make_program(&app.gl))) goto done;
+    if (!(prog = ex_link_program(&app, ex_compile_shader(&app, EX_GL_VERTEX_SHADER, 1, &vs, "06 lighting"),
+                                 ex_compile_shader(&app, EX_GL_FRAGMENT_SHADER, 1, &fs, "06 lighting"),
+                                 "06 lighting")))
+        goto done;
 
     scene.draw = ex_draw_casters;
     scene.user = &app;
@@ -171,7 +144,8 @@ int main(int argc, char **argv) {
 
     while (ex_app_begin_frame(&app)) {
         skgl_camera cam;
-        sk_mat4 vp, lvp;
+        sk_mat4 lvp;
+        unsigned mask;
         float rects[4 * MAX_TILES];
         sk_tile tiles[MAX_TILES];
         int nt = 0, i;
@@ -181,21 +155,11 @@ int main(int argc, char **argv) {
         light.direction = ex_v3(c.x - light.position.x, -light.position.y, c.z - light.position.z);
         cam.view = sk_mat4_look_at(eye, target, up);
         cam.proj = sk_mat4_perspective(0.9f, (float)app.width / (float)app.height, zn, zf);
-        vp = sk_mat4_mul(cam.proj, cam.view);
-        if (mask_w != app.width || mask_h != app.height) {   /* the mask follows the framebuffer */
-            if (mask.fbo) tb_gl_fbo_destroy(&app.gl, &mask);
-            if (tb_gl_fbo_create(&app.gl, &mask, app.width, app.height, TB_GL_COLOR_R16F) != 0) goto done;
-            mask_w = app.width;
-            mask_h = app.height;
-            /* creating it bound another framebuffer: ours again */
-            if (app.headless) tb_gl_fbo_bind(&app.gl, &app.target);
-            else {
-                app.gl.BindFramebuffer(0x8D40 /* GL_FRAMEBUFFER */, 0);
-                app.gl.Viewport(0, 0, app.width, app.height);
-            }
-        }
-        /* the soft shadows of this frame, G-buffer included, into the mask */
-        if ((r = skgl_soft_render(sk, soft, &cam, &scene, &light, 0, 0, mask.color_tex)) != SK_OK) break;
+        /* an R16F texture the size of the framebuffer (common.c); the soft
+           shadows of this frame, G-buffer included, go into it: every pixel
+           is written, so it needs no clearing (-1) */
+        if (!(mask = ex_mask_texture(&app, sk, -1.0f))) goto done;
+        if ((r = skgl_soft_render(sk, soft, &cam, &scene, &light, 0, 0, mask)) != SK_OK) break;
         lvp = skgl_soft_matrix(soft);
         if (show_tiles) {
             const float g = (float)skgl_soft_get_desc(soft).grid;
@@ -208,37 +172,41 @@ int main(int argc, char **argv) {
                 rects[4 * i + 3] = -1.0f + 2.0f * (float)tiles[i].y1 / g;
             }
         }
-        app.gl.Enable(0x0B71 /* GL_DEPTH_TEST */);
-        app.gl.DepthFunc(0x0201 /* GL_LESS */);
-        app.gl.DepthMask(1);
+        /* our lighting pass: the scene drawn again, each pixel reading the
+           mask at its own position */
         app.gl.UseProgram(prog);
-        app.gl.UniformMatrix4fv(app.gl.GetUniformLocation(prog, "u_view_proj"), 1, 0, vp.m);
         app.gl.UniformMatrix4fv(app.gl.GetUniformLocation(prog, "u_light_vp"), 1, 0, lvp.m);
         app.gl.Uniform3f(app.gl.GetUniformLocation(prog, "u_light_pos"), light.position.x, light.position.y,
                          light.position.z);
         app.glx.Uniform1i(app.gl.GetUniformLocation(prog, "u_tiles"), nt);
         if (nt > 0) app.glx.Uniform1fv(app.gl.GetUniformLocation(prog, "u_rects"), 4 * nt, rects);
-        app.glx.Uniform1i(app.gl.GetUniformLocation(prog, "u_mask"), 0);
-        app.gl.ActiveTexture(0x84C0 /* GL_TEXTURE0 */);
-        app.gl.BindTexture(0x0DE1 /* GL_TEXTURE_2D */, mask.color_tex);
-        tb_gl_mesh_draw(&app.gl, &app.mesh, 0, 0);
-        app.gl.BindTexture(0x0DE1, 0);
+        ex_bind_texture(&app, prog, "u_mask", 0, mask);
+        ex_draw_scene(&app, prog, &cam);
+        app.gl.BindTexture(EX_GL_TEXTURE_2D, 0);
         app.gl.UseProgram(0);
         if (ex_app_end_frame(&app) != 0) goto done;
     }
     if (r == SK_OK) {
         const skgl_stats *st = skgl_soft_stats(soft);
         int k;
+        /* GPU times only with --timing: an area light reads its timer
+           queries at once, so they are this frame's (and each one waits) */
         if (sdesc.technique == SKGL_SOFT_PVSM) {
             printf("pvsm: %d tiles (largest side %d), %.2f Mtexels (%.2fx one 4096^2 map), %.0f%% of the pixels "
-                   "settled by the low-res map; ms per step:",
+                   "settled by the low-res map\n",
                    st->tiles, st->resolution, st->texels * 1e-6, st->texels / (4096.0 * 4096.0),
                    100.0 * st->lit_fraction);
-            for (k = 0; k < SKGL_SOFT_STEPS; k++) printf(" %.2f", st->step_ms[k]);
-            printf("\n");
+            if (opt.timing) {
+                printf("  ms per step:");
+                for (k = 0; k < SKGL_SOFT_STEPS; k++) printf(" %.2f", st->step_ms[k]);
+                printf("\n");
+            }
         } else {
-            printf("pcss: one %d^2 map, %.3f ms depth pass, %.3f ms mask\n", st->resolution, st->shadow_ms,
-                   st->mask_ms);
+            printf("pcss: one %d^2 map\n", st->resolution);
+            if (opt.timing) {
+                ex_print_ms("depth pass", st->shadow_ms);
+                ex_print_ms("mask", st->mask_ms);
+            }
         }
         status = 0;
     }
@@ -246,7 +214,6 @@ int main(int argc, char **argv) {
 done:
     if (r != SK_OK) fprintf(stderr, "shadowkit: %s %s\n", sk_result_string(r), sk ? skgl_error_log(sk) : "");
     if (prog) app.gl.DeleteProgram(prog);
-    if (mask.fbo) tb_gl_fbo_destroy(&app.gl, &mask);
     if (soft) skgl_soft_destroy(sk, soft);
     if (sk) skgl_destroy(sk);
     ex_app_close(&app);

@@ -1,5 +1,5 @@
 /* examples/common.c - see common.h. Window/headless setup, scene loading,
-   the forward shader and the caster draw callback. */
+   shaders, the G-buffer and mask textures, and the caster draw callback. */
 #include "common.h"
 #include "tb_image.h"
 
@@ -10,19 +10,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* the few GL enums used here */
-#define EX_GL_COLOR_BUFFER_BIT 0x4000
-#define EX_GL_DEPTH_BUFFER_BIT 0x0100
-#define EX_GL_DEPTH_TEST 0x0B71
-#define EX_GL_CULL_FACE 0x0B44
-#define EX_GL_LESS 0x0201
-#define EX_GL_FRAMEBUFFER 0x8D40
-#define EX_GL_VERTEX_SHADER 0x8B31
-#define EX_GL_FRAGMENT_SHADER 0x8B30
-#define EX_GL_COMPILE_STATUS 0x8B81
-#define EX_GL_LINK_STATUS 0x8B82
-#define EX_GL_BACK 0x0405
 
 sk_vec3 ex_v3(float x, float y, float z) {
     sk_vec3 r;
@@ -41,8 +28,7 @@ float ex_texel_size(sk_mat4 m, int res) {
 }
 
 /* ------------------------------------------------------------ command line */
-int ex_parse_args(int argc, char **argv, const char *default_out, int allow_cascades,
-                  ex_options *o) {
+int ex_parse_args(int argc, char **argv, const char *default_out, int extra, ex_options *o) {
     int i, out_given = 0;
     memset(o, 0, sizeof *o);
     o->out_path = default_out;
@@ -59,20 +45,36 @@ int ex_parse_args(int argc, char **argv, const char *default_out, int allow_casc
             out_given = 1;
         } else if (strcmp(a, "--technique") == 0 && i + 1 < argc) {
             o->technique = argv[++i];
-        } else if (allow_cascades && strcmp(a, "--show-cascades") == 0) {
+        } else if (strcmp(a, "--debug") == 0) {
+            o->debug = 1;
+        } else if (strcmp(a, "--timing") == 0) {
+            o->timing = 1;
+        } else if ((extra & EX_ARG_CASCADES) && strcmp(a, "--show-cascades") == 0) {
             o->show_cascades = 1;
+        } else if ((extra & EX_ARG_FORWARD) && strcmp(a, "--forward") == 0) {
+            o->forward = 1;
         } else {
             int help = strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0;
+            FILE *f = help ? stdout : stderr;
             if (!help) fprintf(stderr, "unknown or incomplete option: %s\n", a);
-            fprintf(help ? stdout : stderr,
-                    "usage: %s [--headless] [--scene FILE] [--frames N] [--out FILE] [--technique NAME]%s\n"
+            fprintf(f,
+                    "usage: %s [--headless] [--scene FILE] [--frames N] [--out FILE] [--technique NAME]\n"
+                    "          [--debug] [--timing]%s%s\n"
                     "  --headless        render off-screen and write a PNG (default %s)\n"
                     "  --scene FILE      load a glTF/OBJ scene (on a ground plane) instead of the procedural one\n"
                     "  --frames N        quit after N frames\n"
                     "  --out FILE        PNG path for --headless; in a window: save the last frame there\n"
-                    "  --technique NAME  the shadow technique, where the example offers a choice\n%s",
-                    argv[0], allow_cascades ? " [--show-cascades]" : "", default_out,
-                    allow_cascades ? "  --show-cascades   colour each pixel by its cascade\n" : "");
+                    "  --technique NAME  the shadow technique, where the example offers a choice\n"
+                    "  --debug           skgl_desc.debug: glGetError after every shadowkit pass, GL errors\n"
+                    "                    reported as SK_ERR_GL (each check waits for the driver: for development)\n"
+                    "  --timing          skgl_desc.timing: GPU timer queries around every pass, printed at the\n"
+                    "                    end (directional and point lights read them 2-3 frames late: use\n"
+                    "                    --frames 5 or more; area lights at once, waiting for the GPU)\n",
+                    argv[0], (extra & EX_ARG_CASCADES) ? " [--show-cascades]" : "",
+                    (extra & EX_ARG_FORWARD) ? " [--forward]" : "", default_out);
+            if (extra & EX_ARG_CASCADES) fprintf(f, "  --show-cascades   colour each pixel by its cascade\n");
+            if (extra & EX_ARG_FORWARD)
+                fprintf(f, "  --forward         shadows in the forward shader instead of the deferred mask\n");
             return help ? 1 : 2;
         }
     }
@@ -156,6 +158,9 @@ int ex_app_open(ex_app *app, const ex_options *o, const char *title) {
 
 void ex_app_close(ex_app *app) {
     if (app->program) app->gl.DeleteProgram(app->program);
+    if (app->gpass.program) tb_gl_gbuffer_destroy(&app->gl, &app->gpass);
+    if (app->gbuffer.fbo) tb_gl_fbo_destroy(&app->gl, &app->gbuffer);
+    if (app->mask.fbo) tb_gl_fbo_destroy(&app->gl, &app->mask);
     if (app->mesh.vao) tb_gl_mesh_destroy(&app->gl, &app->mesh);
     if (app->target.fbo) tb_gl_fbo_destroy(&app->gl, &app->target);
     tb_scene_free(&app->scene);
@@ -207,6 +212,17 @@ void ex_camera_from_bounds(sk_aabb b, sk_vec3 *eye, sk_vec3 *target, float *zn, 
 }
 
 /* ------------------------------------------------------------ frame loop */
+/* binds the framebuffer the frame is drawn into: the window's, or the
+   headless render target; sets the viewport to its size */
+static void ex_bind_target(ex_app *app) {
+    if (app->window) {
+        app->gl.BindFramebuffer(EX_GL_FRAMEBUFFER, 0);
+        app->gl.Viewport(0, 0, app->width, app->height);
+    } else {
+        tb_gl_fbo_bind(&app->gl, &app->target);
+    }
+}
+
 int ex_app_begin_frame(ex_app *app) {
     if (app->opt.frames > 0 && app->frame >= app->opt.frames) return 0;
     if (app->window) {
@@ -216,12 +232,10 @@ int ex_app_begin_frame(ex_app *app) {
         glfwGetFramebufferSize(w, &app->width, &app->height);
         if (app->width <= 0 || app->height <= 0) { app->width = 1; app->height = 1; }  /* minimised */
         app->time = app->opt.save_window ? app->frame / 60.0 : glfwGetTime();
-        app->gl.BindFramebuffer(EX_GL_FRAMEBUFFER, 0);
-        app->gl.Viewport(0, 0, app->width, app->height);
     } else {
         app->time = app->frame / 60.0;
-        tb_gl_fbo_bind(&app->gl, &app->target);   /* binds and sets the viewport */
     }
+    ex_bind_target(app);
     app->frame++;
     app->gl.ClearColor(0.55f, 0.68f, 0.85f, 1.0f);   /* sky */
     app->gl.ClearDepth(1.0);
@@ -301,49 +315,60 @@ static const char *ex_fs_body =
     "    o_color = vec4(pow(c, vec3(1.0 / 2.2)), 1.0);   /* to sRGB, roughly */\n"
     "}\n";
 
-static unsigned ex_compile(ex_app *app, unsigned type, int count, const char *const *src) {
-    unsigned sh = app->gl.CreateShader(type);
+unsigned ex_compile_shader(const ex_app *app, unsigned type, int count, const char *const *src,
+                           const char *what) {
+    const tb_gl_funcs *gl = &app->gl;
+    unsigned sh = gl->CreateShader(type);
     int ok = 0;
-    app->gl.ShaderSource(sh, count, src, NULL);
-    app->gl.CompileShader(sh);
-    app->gl.GetShaderiv(sh, EX_GL_COMPILE_STATUS, &ok);
+    gl->ShaderSource(sh, count, src, NULL);
+    gl->CompileShader(sh);
+    gl->GetShaderiv(sh, EX_GL_COMPILE_STATUS, &ok);
     if (!ok) {
-        char log[2048] = "";
-        app->gl.GetShaderInfoLog(sh, (int)sizeof log, NULL, log);
-        fprintf(stderr, "%s shader:\n%s\n", type == EX_GL_VERTEX_SHADER ? "vertex" : "fragment", log);
-        app->gl.DeleteShader(sh);
+        char log[4096] = "";
+        gl->GetShaderInfoLog(sh, (int)sizeof log, NULL, log);
+        fprintf(stderr, "%s: the %s shader does not compile:\n%s\n", what,
+                type == EX_GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+        gl->DeleteShader(sh);
         return 0;
     }
     return sh;
 }
 
+unsigned ex_link_program(const ex_app *app, unsigned vs, unsigned fs, const char *what) {
+    const tb_gl_funcs *gl = &app->gl;
+    unsigned p;
+    int ok = 0;
+    if (!vs || !fs) {
+        if (vs) gl->DeleteShader(vs);
+        if (fs) gl->DeleteShader(fs);
+        return 0;
+    }
+    p = gl->CreateProgram();
+    gl->AttachShader(p, vs);
+    gl->AttachShader(p, fs);
+    gl->LinkProgram(p);
+    gl->DeleteShader(vs);      /* freed with the program */
+    gl->DeleteShader(fs);
+    gl->GetProgramiv(p, EX_GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[4096] = "";
+        gl->GetProgramInfoLog(p, (int)sizeof log, NULL, log);
+        fprintf(stderr, "%s: the program does not link:\n%s\n", what, log);
+        gl->DeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
 int ex_forward_create(ex_app *app, const char *shadow_snippet) {
     const char *fs_src[3];
-    unsigned vs, fs;
-    int ok = 0;
     fs_src[0] = "#version 330 core\n";
     fs_src[1] = shadow_snippet;
     fs_src[2] = ex_fs_body;
-    vs = ex_compile(app, EX_GL_VERTEX_SHADER, 1, &ex_vs);
-    fs = ex_compile(app, EX_GL_FRAGMENT_SHADER, 3, fs_src);
-    if (!vs || !fs) {
-        if (vs) app->gl.DeleteShader(vs);
-        if (fs) app->gl.DeleteShader(fs);
-        return -1;
-    }
-    app->program = app->gl.CreateProgram();
-    app->gl.AttachShader(app->program, vs);
-    app->gl.AttachShader(app->program, fs);
-    app->gl.LinkProgram(app->program);
-    app->gl.DeleteShader(vs);
-    app->gl.DeleteShader(fs);
-    app->gl.GetProgramiv(app->program, EX_GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048] = "";
-        app->gl.GetProgramInfoLog(app->program, (int)sizeof log, NULL, log);
-        fprintf(stderr, "forward program link:\n%s\n", log);
-        return -1;
-    }
+    app->program = ex_link_program(app, ex_compile_shader(app, EX_GL_VERTEX_SHADER, 1, &ex_vs, "forward"),
+                                   ex_compile_shader(app, EX_GL_FRAGMENT_SHADER, 3, fs_src, "forward"),
+                                   "forward");
+    if (!app->program) return -1;
 #define EX_U(field, name) app->field = app->gl.GetUniformLocation(app->program, name)
     EX_U(u_view_proj, "u_view_proj");
     EX_U(u_view, "u_view");
@@ -397,6 +422,92 @@ void ex_forward_draw(ex_app *app, const skgl_camera *cam, sk_vec3 light_dir,
         gl->Uniform3f(app->u_albedo, rgb[0], rgb[1], rgb[2]);
         tb_gl_mesh_draw(gl, &app->mesh, o->first_index, o->index_count);
     }
+}
+
+void ex_draw_scene(ex_app *app, unsigned program, const skgl_camera *cam) {
+    const tb_gl_funcs *gl = &app->gl;
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
+    gl->Enable(EX_GL_DEPTH_TEST);
+    gl->DepthFunc(EX_GL_LESS);
+    gl->DepthMask(1);
+    gl->Disable(EX_GL_CULL_FACE);      /* single-sided ground, room and foliage */
+    gl->UniformMatrix4fv(gl->GetUniformLocation(program, "u_view_proj"), 1, 0, vp.m);
+    tb_gl_mesh_draw(gl, &app->mesh, 0, 0);
+}
+
+void ex_bind_texture(ex_app *app, unsigned program, const char *name, int unit, unsigned tex) {
+    app->glx.Uniform1i(app->gl.GetUniformLocation(program, name), unit);
+    app->gl.ActiveTexture(EX_GL_TEXTURE0 + (unsigned)unit);
+    app->gl.BindTexture(EX_GL_TEXTURE_2D, tex);
+}
+
+/* ------------------------------------------------- G-buffer and mask */
+/* (Re)makes f at the framebuffer's size. shadowkit remembers a texture's
+   size by its name, and a new texture may get the old one's name: it is
+   told to forget the old textures (skgl_forget_texture) before they go.
+   Making an FBO binds it: the frame's framebuffer is bound again after. */
+static int ex_fit_fbo(ex_app *app, skgl_context *sk, tb_gl_fbo *f, tb_gl_color_format format) {
+    if (f->fbo && f->width == app->width && f->height == app->height) return 0;
+    if (f->fbo) {
+        if (sk) {
+            skgl_forget_texture(sk, f->depth_tex);
+            if (f->color_tex) skgl_forget_texture(sk, f->color_tex);
+        }
+        tb_gl_fbo_destroy(&app->gl, f);
+    }
+    if (tb_gl_fbo_create(&app->gl, f, app->width, app->height, format) != 0) {
+        fprintf(stderr, "cannot create a %dx%d render target\n", app->width, app->height);
+        memset(f, 0, sizeof *f);
+        return -1;
+    }
+    ex_bind_target(app);
+    return 0;
+}
+
+int ex_gbuffer_render(ex_app *app, skgl_context *sk, const skgl_camera *cam) {
+    const tb_gl_funcs *gl = &app->gl;
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
+    if (!app->gpass.program) {
+        char err[1024] = "";
+        if (tb_gl_gbuffer_create(&app->gl, &app->gpass, err, sizeof err) != 0) {
+            fprintf(stderr, "G-buffer program: %s\n", err);
+            return -1;
+        }
+    }
+    if (ex_fit_fbo(app, sk, &app->gbuffer, TB_GL_COLOR_RGBA16F) != 0) return -1;
+    /* the testbed's G-buffer program (window depth, and world normals
+       turned toward the camera, alpha 1 where covered); the pass is ours,
+       as an engine's would be: no state read back, no glGetError */
+    tb_gl_fbo_bind(gl, &app->gbuffer);
+    gl->Enable(EX_GL_DEPTH_TEST);
+    gl->DepthFunc(EX_GL_LESS);
+    gl->DepthMask(1);
+    gl->Disable(EX_GL_CULL_FACE);
+    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    gl->ClearDepth(1.0);
+    gl->Clear(EX_GL_COLOR_BUFFER_BIT | EX_GL_DEPTH_BUFFER_BIT);
+    gl->UseProgram(app->gpass.program);
+    gl->UniformMatrix4fv(app->gpass.u_view_proj, 1, 0, vp.m);
+    tb_gl_mesh_draw(gl, &app->mesh, 0, 0);
+    gl->UseProgram(0);
+    ex_bind_target(app);
+    return 0;
+}
+
+unsigned ex_mask_texture(ex_app *app, skgl_context *sk, float clear) {
+    if (ex_fit_fbo(app, sk, &app->mask, TB_GL_COLOR_R16F) != 0) return 0;
+    if (clear >= 0.0f) {
+        tb_gl_fbo_bind(&app->gl, &app->mask);
+        app->gl.ClearColor(clear, clear, clear, clear);
+        app->gl.Clear(EX_GL_COLOR_BUFFER_BIT);
+        ex_bind_target(app);
+    }
+    return app->mask.color_tex;
+}
+
+void ex_print_ms(const char *what, float ms) {
+    if (ms >= 0.0f) printf("  %s: %.3f ms on the GPU\n", what, ms);
+    else printf("  %s: no GPU time yet (timer results arrive 2-3 frames late: run more --frames)\n", what);
 }
 
 /* ------------------------------------------------------ shadow-pass callback */

@@ -3,7 +3,8 @@
 
    What lives here (none of it is shadowkit):
    - command line: --headless, --scene FILE, --frames N, --out FILE,
-     --technique NAME (03), --show-cascades (02 only), --help;
+     --technique NAME, --debug, --timing, --show-cascades (02 only),
+     --forward (05 only), --help;
    - a window (GLFW, GL 3.3 core) or, with --headless, an off-screen GL 3.3
      core context from the testbed (OSMesa or EGL) rendering into a 1280x720
      framebuffer object that is saved as a PNG at the end; a window given
@@ -11,8 +12,11 @@
      the two);
    - the scene: a procedural one built by the example, or any glTF/OBJ file
      through the testbed's assimp loader, uploaded as one mesh;
-   - the forward shader: lambert lighting times sk_shadow() from the GLSL
+   - shader compiling and linking (ex_compile_shader, ex_link_program), and
+     the forward shader: lambert lighting times sk_shadow() from the GLSL
      snippet of shadowkit_gl.h, with an optional colour per cascade;
+   - the camera's G-buffer (depth and normals) and a visibility-mask texture
+     for the deferred examples;
    - the draw callback shadowkit calls for each shadow pass.
 
    The examples depend on shadowkit_gl.h and on the testbed (the tb_*.h headers),
@@ -30,6 +34,28 @@
 #define EX_WIDTH 1280    /* headless image and initial window size */
 #define EX_HEIGHT 720
 
+/* The GL enums the examples use, by their GL names. The testbed loads GL
+   through a table of its own and includes no GL header, so they are
+   spelt out here (values from the GL 3.3 core specification). */
+#define EX_GL_DEPTH_BUFFER_BIT 0x0100
+#define EX_GL_COLOR_BUFFER_BIT 0x4000
+#define EX_GL_LESS 0x0201
+#define EX_GL_BACK 0x0405
+#define EX_GL_CULL_FACE 0x0B44
+#define EX_GL_DEPTH_TEST 0x0B71
+#define EX_GL_TEXTURE_2D 0x0DE1
+#define EX_GL_TEXTURE0 0x84C0
+#define EX_GL_TEXTURE_CUBE_MAP_SEAMLESS 0x884F
+#define EX_GL_FRAGMENT_SHADER 0x8B30
+#define EX_GL_VERTEX_SHADER 0x8B31
+#define EX_GL_COMPILE_STATUS 0x8B81
+#define EX_GL_LINK_STATUS 0x8B82
+#define EX_GL_FRAMEBUFFER 0x8D40
+
+/* options an example may accept besides the common ones (ex_parse_args) */
+#define EX_ARG_CASCADES 1        /* --show-cascades */
+#define EX_ARG_FORWARD 2         /* --forward */
+
 typedef struct ex_options {
     int headless;              /* --headless: no window, write a PNG */
     const char *scene_path;    /* --scene FILE (NULL: procedural scene) */
@@ -40,6 +66,9 @@ typedef struct ex_options {
                                   headless, and the last frame's back buffer is saved */
     int show_cascades;         /* --show-cascades: colour pixels by cascade */
     const char *technique;     /* --technique NAME (NULL: the example's default) */
+    int debug;                 /* --debug: skgl_desc.debug (glGetError after every pass) */
+    int timing;                /* --timing: skgl_desc.timing (GPU timer queries) */
+    int forward;               /* --forward: 05's forward path instead of the deferred mask */
 } ex_options;
 
 /* GL entry points the examples call: the testbed's table, plus the few
@@ -67,6 +96,12 @@ typedef struct ex_app {
     unsigned program;
     int u_view_proj, u_view, u_light_dir, u_albedo, u_cascades, u_splits;
 
+    /* the deferred examples' textures, the size of the framebuffer:
+       the camera's G-buffer (ex_gbuffer_render) and a mask (ex_mask_texture) */
+    tb_gl_gbuffer gpass;
+    tb_gl_fbo gbuffer;         /* depth_tex: window depth; color_tex: world normals (RGBA16F) */
+    tb_gl_fbo mask;            /* color_tex: R16F */
+
     /* the window, or the headless context and its render target */
     void *window;              /* GLFWwindow * */
     tb_gl_context *headless;
@@ -74,10 +109,10 @@ typedef struct ex_app {
 } ex_app;
 
 /* Parses argv into o. `default_out` is the headless PNG path when --out is
-   not given; allow_cascades enables --show-cascades. Returns 0 to go on, 1
-   when the program should exit with status 0 (--help), 2 on a usage error. */
-int ex_parse_args(int argc, char **argv, const char *default_out, int allow_cascades,
-                  ex_options *o);
+   not given; `extra` (EX_ARG_* bits) enables the example's own options.
+   Returns 0 to go on, 1 when the program should exit with status 0
+   (--help), 2 on a usage error. */
+int ex_parse_args(int argc, char **argv, const char *default_out, int extra, ex_options *o);
 
 /* Opens the window or the headless context and loads the GL tables.
    0 on success, -1 (message on stderr). */
@@ -101,6 +136,42 @@ void ex_camera_from_bounds(sk_aabb b, sk_vec3 *eye, sk_vec3 *target, float *zn, 
    reads its back buffer before showing the last frame. 0 ok, -1 on failure. */
 int ex_app_begin_frame(ex_app *app);
 int ex_app_end_frame(ex_app *app);
+
+/* Shader objects and programs. ex_compile_shader joins count source
+   strings (e.g. "#version", a shadowkit snippet, your code) into one
+   shader of `type` (EX_GL_VERTEX_SHADER, EX_GL_FRAGMENT_SHADER); on failure
+   it prints the info log under `what` and returns 0. ex_link_program links
+   the two into a program and deletes them (they are no longer needed once
+   linked); it returns 0, after printing the log, when either is 0 or the
+   link fails. */
+unsigned ex_compile_shader(const ex_app *app, unsigned type, int count, const char *const *src,
+                           const char *what);
+unsigned ex_link_program(const ex_app *app, unsigned vs, unsigned fs, const char *what);
+
+/* Draws the whole scene with `program`, which must be current, with depth
+   test LESS and no face culling; sets its mat4 u_view_proj from cam. */
+void ex_draw_scene(ex_app *app, unsigned program, const skgl_camera *cam);
+
+/* Binds the 2D texture tex to texture unit `unit` and points the sampler
+   uniform `name` of the current program at it. */
+void ex_bind_texture(ex_app *app, unsigned program, const char *name, int unit, unsigned tex);
+
+/* The camera's G-buffer, for the deferred passes: renders the scene's
+   window depth (app->gbuffer.depth_tex) and world-space normals
+   (app->gbuffer.color_tex) for cam, in textures the size of the
+   framebuffer. When the framebuffer changes size they are made again, and
+   sk (may be NULL) is told to forget the old ones (skgl_forget_texture).
+   0 ok, -1 (message on stderr). */
+int ex_gbuffer_render(ex_app *app, skgl_context *sk, const skgl_camera *cam);
+
+/* An R16F texture the size of the framebuffer, for a visibility mask (made
+   again, and forgotten by sk, as the G-buffer's); `clear` >= 0 clears it
+   to that value first. Returns the texture, 0 on failure. */
+unsigned ex_mask_texture(ex_app *app, skgl_context *sk, float clear);
+
+/* Prints "  <what>: N.NNN ms" for a GPU time from skgl_stats, or says it
+   is not measured yet (-1: timer results arrive frames late). */
+void ex_print_ms(const char *what, float ms);
 
 /* Builds the forward program: our vertex shader, and a fragment shader made
    of "#version 330 core", shadowkit's GLSL snippet (it declares
