@@ -2510,6 +2510,34 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
     return r;
 }
 
+/* >>caster_pass  Every caster pass of the directional and point lights
+   goes through these two. skgl__casters_begin, once per call: the depth
+   pass's state (skgl__st_depth_pass), shadowkit's depth program, the
+   identity model (positions relative to origin), the caller's vertex array
+   saved for the callback. skgl__casters_draw, per layer, page or face,
+   into the target and viewport already set (and cleared): the pass's
+   matrix, the callback with the matrix in world space, then what the
+   callback may have changed. */
+static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias,
+                                const double origin[3])
+{
+    skgl__st_save(ctx, st, SKGL__S_VAO);   /* the callback may bind its own */
+    skgl__st_depth_pass(ctx, st, slope_bias, depth_bias);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+    skgl__model_begin(ctx, origin);
+}
+
+static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
+                                    const double origin[3], skgl_draw_info *info)
+{
+    ctx->gl.UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp->m);
+    info->view_proj = skgl__shift(vp, origin, skgl__zero3);
+    info->frustum = sk_frustum_from_matrix(info->view_proj);
+    info->program = ctx->depth_prog;
+    scene->draw(scene->user, info);
+    return skgl__after_draw(ctx, st);
+}
+
 /* 5.4 the masks' inputs ------------------------------------------------- */
 /* The mask texture as the only colour target of the masks' framebuffer,
    attached by name at every call (a texture deleted and made again under
@@ -3585,13 +3613,10 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     s->light_dir = sk__normalize(light_dir);
     s->vp[0] = skgl__shift(&s->rmsm.lvp, s->rmsm.origin, s->origin);
     s->maps = 1;
-    skgl__st_save(ctx, &st, SKGL__S_VAO);
     skgl__timer_begin(ctx, &s->t_render);
     skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[0]);
     skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
-    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
-    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-    skgl__model_begin(ctx, s->origin);
+    skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, s->origin);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
     for (i = 0; i < s->rmsm.npages; i++) {
@@ -3609,15 +3634,10 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, x, y, slot, slot);
         skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, x, y, slot, slot);
         gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
-        info.view_proj = skgl__shift(&vp, s->origin, skgl__zero3);   /* world space for the callback */
-        info.frustum = sk_frustum_from_matrix(info.view_proj);
-        info.program = ctx->depth_prog;
-        scene->draw(scene->user, &info);
-        rc = skgl__after_draw(ctx, &st);
+        rc = skgl__casters_draw(ctx, &st, scene, &vp, s->origin, &info);
         if (rc != SK_OK) r = rc;
         s->stats.passes++;
         s->stats.texels += (double)slot * slot;
@@ -3650,7 +3670,6 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     s->light_dir = sk__normalize(light_dir);
     res = s->desc.resolution;
     skgl__st_begin(ctx, &st);
-    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
     skgl__timer_begin(ctx, &s->t_render);
     skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
     /* a map smaller than its texture (FERKO): clear and draw only its
@@ -3660,24 +3679,17 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, s->view_w < res ? s->view_w + 1 : res,
                       s->view_h < res ? s->view_h + 1 : res);
     } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-    skgl__st_depth_pass(ctx, &st, s->desc.slope_bias, s->desc.depth_bias);
-    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-    skgl__model_begin(ctx, o);
+    skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
     for (i = 0; i < s->maps; i++) {
         skgl_draw_info info;
         skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
         gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, s->render_vp[i].m);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
-        info.view_proj = skgl__shift(&s->render_vp[i], o, skgl__zero3);   /* world space for the callback */
-        info.frustum = sk_frustum_from_matrix(info.view_proj);
-        info.program = ctx->depth_prog;
-        rs->draw(rs->user, &info);
-        rc = skgl__after_draw(ctx, &st);
+        rc = skgl__casters_draw(ctx, &st, rs, &s->render_vp[i], o, &info);
         if (rc != SK_OK) r = rc;
         s->stats.passes++;
         s->stats.texels += (double)s->view_w * s->view_h;
@@ -4400,7 +4412,7 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     static const float one = 1.0f;
     skgl__api *gl;
     skgl__st st;
-    sk_mat4 vp, proj;
+    sk_mat4 vp, proj, face_vp;
     unsigned faces;
     int f, m, vsdct, shared;
     float zn, zf;
@@ -4463,11 +4475,8 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     }
     p->face_res = m;
     proj = sk_cube_face_proj(zn, zf);   /* 90 deg, w = eye depth: window depth is Eq. (5.4.6) */
-    skgl__st_save(ctx, &st, SKGL__S_VAO);   /* the callback may bind its own */
     skgl__timer_begin(ctx, &p->t_render);
-    skgl__st_depth_pass(ctx, &st, p->desc.slope_bias, p->desc.depth_bias);
-    skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-    skgl__model_begin(ctx, skgl__zero3);
+    skgl__casters_begin(ctx, &st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
     if (vsdct) {
         /* the faces' region of an own atlas, one clear (culled faces read
            lit); in a shared atlas each face's rectangle, cleared in the loop
@@ -4501,15 +4510,11 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_CUBE_FACE;
         info.index = f;
-        info.view_proj = sk_mat4_mul(proj, sk_cube_face_view(f, light_pos));
-        info.frustum = sk_frustum_from_matrix(info.view_proj);
         info.light_pos = light_pos;
         info.light_range = zf;
         info.point = p;
-        info.program = ctx->depth_prog;
-        gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, info.view_proj.m);
-        scene->draw(scene->user, &info);
-        rc = skgl__after_draw(ctx, &st);
+        face_vp = sk_mat4_mul(proj, sk_cube_face_view(f, light_pos));
+        rc = skgl__casters_draw(ctx, &st, scene, &face_vp, skgl__zero3, &info);
         if (rc != SK_OK) r = rc;
         p->stats.passes++;
         p->stats.faces_rendered++;
