@@ -2190,7 +2190,7 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__api *gl = &ctx->gl;
     ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "u_view_proj");
     ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "u_model");
-    ctx->model_loc = ctx->depth_u_model;
+    ctx->model_loc = -1;   /* no caster pass under way */
     skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW);
     ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
     ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
@@ -2459,7 +2459,7 @@ static void skgl__model(skgl_context *ctx, const float model[16])
 
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
 {
-    if (!ctx || !model) return;
+    if (!ctx || !model || ctx->model_loc < 0) return;   /* outside a caster pass: nothing to set */
     skgl__model(ctx, model);
     ctx->model_dirty = 1;   /* the pass sets its identity again before the next callback */
 }
@@ -2483,6 +2483,13 @@ static void skgl__model_begin(skgl_context *ctx, const double origin[3])
     ctx->model_loc = ctx->depth_u_model;
     skgl__model(ctx, skgl__identity);
     ctx->model_dirty = 0;
+}
+
+/* the caster passes are over: skgl_set_model does nothing until the next */
+static void skgl__model_end(skgl_context *ctx)
+{
+    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
+    ctx->model_loc = -1;
 }
 
 static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
@@ -2743,6 +2750,10 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_RMSM, fn, "technique",
                d->technique, "one of skgl_technique");
     SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
+    /* LSPSM's layers are h_max * nw_max (the defaults set .cascades to it):
+       that rule first, so that the message names the fields the caller set */
+    SKGL__RULE(!lspsm || d->lspsm.h_max * d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn, "lspsm.h_max * lspsm.nw_max",
+               d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
     SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
     SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
     SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
@@ -2767,8 +2778,6 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                d->lspsm.h_max, "in 1..SKGL_MAX_CASCADES");
     SKGL__RULE(d->lspsm.nw_max >= 1 && (!lspsm || d->lspsm.nw_max <= SKGL_MAX_CASCADES), fn, "lspsm.nw_max",
                d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
-    SKGL__RULE(!lspsm || d->lspsm.h_max * d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn, "lspsm.h_max * lspsm.nw_max",
-               d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
     SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
     if (!rmsm) return SK_OK;
     SKGL__RULE(d->rmsm_page_size >= 16 && d->rmsm_page_size <= 1024 && !(d->rmsm_page_size & (d->rmsm_page_size - 1)),
@@ -3642,7 +3651,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         s->stats.passes++;
         s->stats.texels += (double)slot * slot;
     }
-    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
+    skgl__model_end(ctx);
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;
     s->stats.maps = 1;
@@ -3694,7 +3703,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         s->stats.passes++;
         s->stats.texels += (double)s->view_w * s->view_h;
     }
-    memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
+    skgl__model_end(ctx);
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;
     s->stats.maps = s->maps;
@@ -4520,6 +4529,7 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
         p->stats.faces_rendered++;
         p->stats.texels += (double)m * m;
     }
+    skgl__model_end(ctx);
     skgl__timer_end(ctx, &p->t_render);
     p->stats.shadow_ms = p->t_render.ms;
     p->stats.maps = p->stats.faces_rendered;
@@ -5338,7 +5348,9 @@ static void skgl__soft_depth(skgl_context *ctx, skgl_soft *s, const skgl_scene *
     info.index = index;
     info.view_proj = vp;
     info.frustum = sk_frustum_from_matrix(vp);
+    ctx->model_loc = ctx->depth_u_model;
     scene->draw(scene->user, &info);
+    ctx->model_loc = -1;
     gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
     gl->Disable(SKGL__SCISSOR_TEST);
     gl->ColorMask(1, 1, 1, 1);
@@ -5389,7 +5401,7 @@ static int skgl__soft_gbuffer(skgl_context *ctx, skgl_soft *s, const skgl_camera
     info.frustum = sk_frustum_from_matrix(vp);
     ctx->model_loc = s->gbuf_u_model;
     scene->draw(scene->user, &info);
-    ctx->model_loc = ctx->depth_u_model;
+    ctx->model_loc = -1;
     s->stats.passes++;
     skgl__soft_detach(ctx, s);
     return 1;
@@ -5486,7 +5498,7 @@ static void skgl__soft_lowres(skgl_context *ctx, skgl_soft *s, const skgl_scene 
     info.frustum = sk_frustum_from_matrix(s->light_vp);
     ctx->model_loc = s->cons_u_model;
     scene->draw(scene->user, &info);
-    ctx->model_loc = ctx->depth_u_model;
+    ctx->model_loc = -1;
     gl->Disable(SKGL__DEPTH_CLAMP);
     gl->Disable(SKGL__BLEND);
     gl->Disable(SKGL__POLYGON_OFFSET_FILL);
