@@ -1794,8 +1794,10 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         w.m[10] = 1.0f;
         w.m[7] = 1.0f;
         w = sk_mat4_mul(w, t);
+        /* the light-space body kept above, or (a longer one) transformed again */
+        const sk_vec3 *kept = d->body_count <= SK_CLIP_MAX_POINTS ? lbody : NULL;
         for (i = 0; i < d->body_count; i++) {
-            sk_vec3 p = sk__xform_point(&w, i < SK_CLIP_MAX_POINTS ? lbody[i] : sk__xform_affine(&lv, d->body[i]));
+            sk_vec3 p = sk__xform_point(&w, kept ? kept[i] : sk__xform_affine(&lv, d->body[i]));
             for (k = 0; k < 3; k++) {
                 if ((&p.x)[k] < wlo[k]) wlo[k] = (&p.x)[k];
                 if ((&p.x)[k] > whi[k]) whi[k] = (&p.x)[k];

@@ -406,6 +406,33 @@ typedef struct skgl_scene {
     sk_aabb bounds;               /* all casters and receivers */
 } skgl_scene;
 
+/* What a directional light's last frame did (skgl_shadow_stats). */
+typedef struct skgl_shadow_frame_stats {
+    float shadow_ms;              /* GPU time of the depth passes (the latest measured: two frames
+                                     old, TIMING); -1 without timing or before the first */
+    float mask_ms;                /* GPU time of a skgl_shadow_mask, likewise */
+    float analysis_ms;            /* FERKO, RMSM: GPU time of a skgl_shadow_analyze, likewise */
+    double texels;                /* shadow texels rendered (sum of viewport areas) */
+    int passes;                   /* draw callbacks made */
+    int maps;                     /* layers rendered */
+    int resolution;               /* per layer */
+    int map_width, map_height;    /* texels rendered per layer (FERKO: the estimate, clamped) */
+    float splits[SKGL_MAX_CASCADES + 1];  /* view depths of the layers */
+    /* warping (PSM, LiSPSM), per layer */
+    float warp_n[SKGL_MAX_CASCADES];      /* LiSPSM: n of the warp (n_opt); +INF: uniform map */
+    int warped[SKGL_MAX_CASCADES];        /* 1: the layer's map is perspective-warped */
+    int depth_reversed;                   /* PSM: light behind the viewer (depth order flipped back) */
+    float psm_slide;                      /* PSM: how far the virtual camera slid back */
+    int lspsm_fallback;                   /* LSPSM: no trapezoid axis (view along the light): one focused map */
+    sk_res_estimate estimate;             /* FERKO: the estimate the last render used, in the clip
+                                             space of estimate_light (see skgl_shadow_analyze) */
+    sk_mat4 estimate_light;               /* FERKO: the uncropped light frustum of that estimate */
+    int pages_requested;                  /* RMSM: distinct pages the view asked for (finest levels) */
+    int pages_rendered;                   /* RMSM: pages in the pool this frame (the coarsest always) */
+    int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
+} skgl_shadow_frame_stats;
+
+/* What an area light's last frame did (skgl_soft_stats). */
 typedef struct skgl_stats {
     float shadow_ms;              /* GPU time of the depth passes (the latest measured: two frames
                                      old, TIMING); -1 without timing or before the first */
@@ -517,7 +544,7 @@ SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
 /* light view-projection of one layer (world -> light clip) */
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
-SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s);
+SKGLDEF const skgl_shadow_frame_stats *skgl_shadow_stats(const skgl_shadow *s);
 /* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
    sorted by (level, py, px); writes at most cap, returns how many there are */
 SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap);
@@ -584,6 +611,21 @@ typedef struct skgl_point_desc {
                                      the light's own, 3 x 2 faces of .resolution] */
 } skgl_point_desc;
 
+/* What a point light's last frame did (skgl_point_stats). */
+typedef struct skgl_point_frame_stats {
+    float shadow_ms;              /* GPU time of the face passes (two frames old, TIMING); -1
+                                     without timing or before the first */
+    float mask_ms;                /* GPU time of a skgl_point_mask, likewise */
+    double texels;                /* shadow texels rendered (sum of viewport areas) */
+    int passes;                   /* draw callbacks made */
+    int resolution;               /* face side rendered this frame */
+    int faces_rendered, faces_culled;     /* cube faces drawn / skipped by face culling */
+    int casters_drawn, casters_culled;    /* (face, caster) pairs skgl_point_caster_visible passed / culled */
+    int scissor[4];                       /* the last mask's rectangle x, y, w, h (all 0: nothing drawn) */
+    int atlas_wanted;                     /* shared atlas: face side selected before packing (greater
+                                             than .resolution when skgl_point_atlas_pack halved it to fit) */
+} skgl_point_frame_stats;
+
 typedef struct skgl_point skgl_point;
 
 SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out);
@@ -612,7 +654,7 @@ SKGLDEF const char *skgl_point_glsl_snippet(void);
    on for SKGL_POINT_CUBE (filtering across faces) and off for
    SKGL_POINT_VSDCT (the indirection must not blend faces). */
 SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit);
-SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p);
+SKGLDEF const skgl_point_frame_stats *skgl_point_stats(const skgl_point *p);
 /* the depth texture: GL_TEXTURE_CUBE_MAP (cube) or GL_TEXTURE_2D atlas (VSDCT;
    the shared atlas's texture with desc.atlas) */
 SKGLDEF unsigned skgl_point_texture(const skgl_point *p);
@@ -2661,7 +2703,7 @@ struct skgl_shadow {
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl__ferko ferko;             /* SKGL_FERKO only */
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
-    skgl_stats stats;
+    skgl_shadow_frame_stats stats;
 };
 
 /* what a fit starts from: the camera and the scene (relative to the
@@ -2882,7 +2924,7 @@ SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
     if (!s || layer < 0 || layer >= s->layers) return sk_mat4_identity();
     return skgl__shift(&s->vp[layer], s->origin, skgl__zero3);
 }
-SKGLDEF const skgl_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
+SKGLDEF const skgl_shadow_frame_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
 SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm.samples : 0; }
 SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap)
@@ -3098,10 +3140,11 @@ static sk_result skgl__layer_slice(const skgl_shadow *s, const skgl__fit_in *in,
     return sk_frustum_slice(&in->view, in->zn, in->cam_zf, *z0, sp[i + 1], slice);
 }
 
-/* STANDARD, PSSM: per layer a focused crop of the slice clipped to the
+/* per layer: STANDARD, PSSM a focused crop of the slice clipped to the
    scene, or (.stable) the crop of a sphere that depends only on the
-   camera's projection and the splits */
-static sk_result skgl__fit_ortho_layers(skgl_shadow *s, const skgl__fit_in *in)
+   camera's projection and the splits; LiSPSM (warp = 1) a warp of the
+   slice's receivers */
+static sk_result skgl__fit_slices(skgl_shadow *s, const skgl__fit_in *in, int warp)
 {
     const skgl_shadow_desc *d = &s->desc;
     int i;
@@ -3111,6 +3154,11 @@ static sk_result skgl__fit_ortho_layers(skgl_shadow *s, const skgl__fit_in *in)
         float z0;
         sk_result r = skgl__layer_slice(s, in, i, &slice, &z0);
         if (r != SK_OK) return r;
+        if (warp) {
+            r = skgl__fit_lispsm(s, i, in->cam, in->scene, in->light_dir, &slice, z0);
+            if (r != SK_OK) return r;
+            continue;
+        }
         if (d->stable) {
             /* radius from the camera's parameters only: bitwise the same
                wherever the camera goes (fovy and aspect of a GL perspective) */
@@ -3135,18 +3183,15 @@ static sk_result skgl__fit_ortho_layers(skgl_shadow *s, const skgl__fit_in *in)
     return SK_OK;
 }
 
+static sk_result skgl__fit_ortho_layers(skgl_shadow *s, const skgl__fit_in *in)
+{
+    return skgl__fit_slices(s, in, 0);
+}
+
 /* LiSPSM: one warp per layer (a single one with .cascades 1) */
 static sk_result skgl__fit_lispsm_layers(skgl_shadow *s, const skgl__fit_in *in)
 {
-    int i;
-    for (i = 0; i < s->layers; i++) {
-        sk_frustum slice;
-        float z0;
-        sk_result r = skgl__layer_slice(s, in, i, &slice, &z0);
-        if (r == SK_OK) r = skgl__fit_lispsm(s, i, in->cam, in->scene, in->light_dir, &slice, z0);
-        if (r != SK_OK) return r;
-    }
-    return SK_OK;
+    return skgl__fit_slices(s, in, 1);
 }
 
 static sk_result skgl__fit_psm_layer(skgl_shadow *s, const skgl__fit_in *in)
@@ -3983,7 +4028,7 @@ struct skgl_point {
     unsigned layout_serial;        /* changes with layout (its rectangles in the snippet) */
     int packed;                    /* shared atlas: 1 once skgl_point_atlas_pack placed the faces */
     skgl__timer t_render, t_mask;
-    skgl_stats stats;
+    skgl_point_frame_stats stats;
 };
 
 struct skgl_point_atlas {
@@ -4277,7 +4322,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
         r = SK_ERR_GL;
     }
     if (r != SK_OK) { skgl__point_free(ctx, p); SKGL_FREE(p); return r; }
-    p->stats.shadow_ms = p->stats.mask_ms = p->stats.analysis_ms = -1.0f;
+    p->stats.shadow_ms = p->stats.mask_ms = -1.0f;
     *out = p;
     return SK_OK;
 }
@@ -4296,7 +4341,7 @@ SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p)
     memset(&d, 0, sizeof d);
     return d;
 }
-SKGLDEF const skgl_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
+SKGLDEF const skgl_point_frame_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
 SKGLDEF unsigned skgl_point_texture(const skgl_point *p)
 {
     return p ? skgl__point_tex(p) : 0;
@@ -4532,8 +4577,7 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     skgl__model_end(ctx);
     skgl__timer_end(ctx, &p->t_render);
     p->stats.shadow_ms = p->t_render.ms;
-    p->stats.maps = p->stats.faces_rendered;
-    p->stats.resolution = p->stats.map_width = p->stats.map_height = m;
+    p->stats.resolution = m;
     p->rendered = 1;
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_point_render");

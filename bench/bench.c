@@ -35,8 +35,8 @@
        error      hard_pct: tb_metric_hard's % of covered pixels misclassified;
                   soft_mae: tb_metric_soft's mean absolute visibility error over
                   the covered pixels
-       texels     shadow texels rendered (skgl_stats.texels)
-       passes     draw callbacks made (skgl_stats.passes)
+       texels     shadow texels rendered (the stats' texels)
+       passes     draw callbacks made (the stats' passes)
        shadow_ms  GPU time of the depth passes (timer query; on a CPU
                   rasteriser the wall clock between two glFinish calls, see
                   g_wall_timing), median of
@@ -1027,7 +1027,7 @@ static void score_soft(const float *ref, const float *res, run_rec *rr) {
 
 /* the mask of the map just rendered for this view, read back and scored */
 static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px, run_rec *rr, const char **why) {
-    const skgl_stats *st;
+    const skgl_shadow_frame_stats *st;
     sk_result r = skgl_shadow_mask(B->sk, sh, &vd->v.cam, vd->gbuf.depth_tex, vd->gbuf.color_tex, B->mask.color_tex);
     if (r != SK_OK) { *why = "skgl_shadow_mask"; return -1; }
     if (tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, mask_px) != 0) { *why = "mask readback"; return -1; }
@@ -1298,7 +1298,7 @@ static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float 
             const point_cfg *pc = &point_cfgs[c];
             skgl_point_desc d;
             skgl_point *p = NULL;
-            const skgl_stats *st;
+            const skgl_point_frame_stats *st;
             float sms[BENCH_MAX_REPEAT], mms[BENCH_MAX_REPEAT];
             run_rec rr;
             char params[160];

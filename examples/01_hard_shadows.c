@@ -153,7 +153,7 @@ int main(int argc, char **argv) {
         if (ex_app_end_frame(&app) != 0) goto done;
     }
     if (r == SK_OK) {
-        const skgl_stats *st = skgl_shadow_stats(sun);
+        const skgl_shadow_frame_stats *st = skgl_shadow_stats(sun);
         /* skgl_shadow_matrix: the light's world -> clip matrix of the map;
            from it, how much ground one texel covers after the fit */
         printf("shadow map: %d x %d, one texel = %.3g cm, %d pass(es)\n", st->resolution, st->resolution,

@@ -92,7 +92,7 @@ int main(int argc, char **argv) {
 
     while (ex_app_begin_frame(&app)) {
         skgl_camera cam;
-        const skgl_stats *st;
+        const skgl_shadow_frame_stats *st;
         /* in a window the camera walks slowly down the terrace and back */
         float walk = opt.scene_path ? 0.0f : 12.0f * (1.0f - cosf(0.25f * (float)app.time));
         sk_vec3 e = ex_v3(eye.x, eye.y, eye.z - walk), t = ex_v3(target.x, target.y, target.z - walk);
@@ -117,7 +117,7 @@ int main(int argc, char **argv) {
         if (ex_app_end_frame(&app) != 0) goto done;
     }
     if (r == SK_OK) {
-        const skgl_stats *st = skgl_shadow_stats(sun);
+        const skgl_shadow_frame_stats *st = skgl_shadow_stats(sun);
         int i;
         printf("%d cascades of %d^2 texels, %d pass(es)\n", st->maps, st->resolution, st->passes);
         for (i = 0; i < st->maps && i < SKGL_MAX_CASCADES; i++)   /* texels grow with distance */

@@ -102,7 +102,7 @@ int main(int argc, char **argv) {
     }
     if (r == SK_OK) {
         /* what the warp did this frame */
-        const skgl_stats *st = skgl_shadow_stats(sun);
+        const skgl_shadow_frame_stats *st = skgl_shadow_stats(sun);
         printf("%s: one %d^2 map, receivers at view depth %.2f .. %.2f m\n",
                sdesc.technique == SKGL_PSM ? "psm" : sdesc.technique == SKGL_LISPSM ? "lispsm" : "standard",
                st->resolution, st->splits[0], st->splits[1]);

@@ -100,7 +100,7 @@ int main(int argc, char **argv) {
         if (ex_app_end_frame(&app) != 0) goto done;
     }
     if (r == SK_OK) {
-        const skgl_stats *st = skgl_shadow_stats(sun);
+        const skgl_shadow_frame_stats *st = skgl_shadow_stats(sun);
         printf("%s: %d pass(es), %.0f texels rendered\n", name, st->passes, st->texels);
         if (sdesc.technique == SKGL_LSPSM)
             printf("  %d partitions of %d^2%s\n", st->maps, st->resolution, st->lspsm_fallback ? " (fallback)" : "");

@@ -230,7 +230,7 @@ int main(int argc, char **argv) {
         if (ex_app_end_frame(&app) != 0) goto done;
     }
     if (r == SK_OK) {
-        const skgl_stats *st = skgl_point_stats(lamp);
+        const skgl_point_frame_stats *st = skgl_point_stats(lamp);
         printf("%s, %s: %d faces rendered (%d culled) at %d^2, %d (face, caster) pairs culled\n",
                pdesc.technique == SKGL_POINT_VSDCT ? "vsdct" : "cube", opt.forward ? "forward" : "deferred",
                st->faces_rendered, st->faces_culled, st->resolution, st->casters_culled);

@@ -474,7 +474,7 @@ static inline const char *gt_shadow_error_str(const tb_shadow_error *se, char *b
 typedef struct gt_run_result {
     double pct;
     tb_shadow_error se;
-    skgl_stats st;
+    skgl_shadow_frame_stats st;
     int finite;
     size_t shadowed;
     double false_lit_pct;

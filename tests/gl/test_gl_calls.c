@@ -767,7 +767,7 @@ static skgl_context *cg_context(int mode) {
 /* one frame of a directional light; its unit count */
 static int cg_frame_dir(cg_env *x, skgl_context *sk, skgl_shadow *s, const cg_row *row, int *ok_out) {
     skgl_scene sc = cg_scene(x);
-    const skgl_stats *st;
+    const skgl_shadow_frame_stats *st;
     int ok = 1;
     if (row->technique == SKGL_FERKO || row->technique == SKGL_RMSM)
         CG_OK(skgl_shadow_analyze(sk, s, &x->cam, &sc, x->light, x->e.gbuf.depth_tex));

@@ -84,7 +84,7 @@ static void seam_case(float blend) {
     sk_vec3 light = gt_v3(0.6f, -1, 0.3f);
     skgl_camera cam = gt_camera(gt_v3(0, 4, 6), gt_v3(0, 0, -15), 0.9f, 0.3f, 200, W, H);
     float *ref, *res;
-    const skgl_stats *st;
+    const skgl_shadow_frame_stats *st;
     count band[4], flank[4];
     size_t i;
     int c;

@@ -107,7 +107,7 @@ static void test_matches_cpu(void) {
         skgl_shadow *s;
         skgl_scene sc;
         sk_res_estimate cpu;
-        const skgl_stats *st;
+        const skgl_shadow_frame_stats *st;
         int lat;
         if (gt_env_init_named(&e, k->scene, W, H) != 0) { gt_env_free(&e); continue; }
         sc = gt_scene(&e);
@@ -231,7 +231,7 @@ static void test_failure_cases(void) {
             skgl_camera cam;
             skgl_shadow_desc d;
             skgl_shadow *s;
-            const skgl_stats *st;
+            const skgl_shadow_frame_stats *st;
             size_t i, covered = 0, bad = 0;
             int f;
             sc = gt_scene(&e);

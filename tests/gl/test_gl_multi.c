@@ -219,7 +219,7 @@ static void run_shared(int aw, int ah, const int *expect, size_t max_diff, const
     for (i = 0; i < NL; i++) SK_CHECK(mask_of(&e, shared[i], &cam, a[i]) == 0);
     check_rects(shared, aw, ah, what);
     for (i = 0; i < NL; i++) {
-        const skgl_stats *st = skgl_point_stats(shared[i]);
+        const skgl_point_frame_stats *st = skgl_point_stats(shared[i]);
         size_t covered, diff, off, shadow = 0, k;
         tb_hard_error err;
         tb_shadow_error se;

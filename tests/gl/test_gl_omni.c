@@ -467,7 +467,7 @@ static void test_scissor(void) {
         skgl_point *p = NULL, *q = NULL;
         sk_vec3 lp = gt_v3(0.5f, 1.2f, -1.0f);
         skgl_camera cam = gt_camera(gt_v3(0, 2.5f, 4.8f), gt_v3(0, 1, -5), 1.2f, 0.05f, 30.0f, W, H);
-        const skgl_stats *st;
+        const skgl_point_frame_stats *st;
         size_t i;
         int outside = 0, outside_bad = 0, inside_bad = 0, x, y;
         memset(&d, 0, sizeof d);
@@ -529,7 +529,7 @@ static void test_resolution_selection(void) {
         skgl_point *p = NULL;
         sk_vec3 lp = gt_v3(0.3f, 0.8f, -4.0f);
         skgl_camera cam = gt_camera(gt_v3(0, 2.5f, 4.8f), gt_v3(0, 1, -5), 1.0f, 0.05f, 30.0f, W, H);
-        const skgl_stats *st;
+        const skgl_point_frame_stats *st;
         int rect[4], expect;
         float s_pixels;
         tb_hard_error err;

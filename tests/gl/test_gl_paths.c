@@ -664,7 +664,7 @@ static void test_shadow_techniques(void) {
         for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
             skgl_shadow_desc d;
             skgl_shadow *s = NULL;
-            const skgl_stats *st;
+            const skgl_shadow_frame_stats *st;
             int lit, dark;
             memset(&d, 0, sizeof d);
             d.technique = cases[k].t;
@@ -1420,7 +1420,7 @@ static void test_point_paths(void) {
         int tech;
         if (!c) continue;
         for (tech = 0; tech < 2; tech++) {
-            const skgl_stats *st;
+            const skgl_point_frame_stats *st;
             int lit, dark, cb = skgl_gl_object_count(c);
             p = NULL;
             memset(&pd, 0, sizeof pd);

@@ -450,7 +450,7 @@ static void test_timer_ring(void) {
     if (!sk || !s) { skgl_destroy(sk); gt_env_free(&e); return; }
     SK_CHECK(gt_gbuffer(&e, &ca) == 0);
     for (f = 1; f <= 6; f++) {
-        const skgl_stats *st = skgl_shadow_stats(s);
+        const skgl_shadow_frame_stats *st = skgl_shadow_stats(s);
         R.not_available = f == 4 || f == 5;
         counts_reset();
         SK_CHECK(skgl_shadow_render(sk, s, &ca, &sc, light_dir()) == SK_OK);

@@ -106,7 +106,7 @@ static void test_pages_match_cpu(void) {
         sk_vec3 *pts;
         size_t i;
         int ns = 0, ng, nc, j, extra, mism = 0;
-        const skgl_stats *st;
+        const skgl_shadow_frame_stats *st;
         if (gt_env_init_named(&e, k->scene, W, H) != 0) { gt_env_free(&e); continue; }
         sc = gt_scene(&e);
         samp = (float *)malloc(sizeof(float) * 4 * e.n);
@@ -220,7 +220,7 @@ static void test_degraded(void) {
     for (t = 0; t < 3; t++) {
         static const char *const names[3] = {"pool 2x2", "pool 4x4", "no analysis"};
         skgl_shadow *s = rmsm_shadow(&e, 16384, 128, t == 0 ? 2 : t == 1 ? 4 : 24);
-        const skgl_stats *st;
+        const skgl_shadow_frame_stats *st;
         double er;
         tb_shadow_error se;
         char buf[256];

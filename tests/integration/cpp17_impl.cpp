@@ -71,9 +71,9 @@ bool SunShadow::render_mask(const skgl_camera &cam, const skgl_scene &scene, sk_
     return true;
 }
 
-const skgl_stats &SunShadow::stats() const {
-    static const skgl_stats none{};
-    const skgl_stats *st = skgl_shadow_stats(sun_);
+const skgl_shadow_frame_stats &SunShadow::stats() const {
+    static const skgl_shadow_frame_stats none{};
+    const skgl_shadow_frame_stats *st = skgl_shadow_stats(sun_);
     return st ? *st : none;
 }
 

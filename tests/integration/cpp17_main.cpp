@@ -182,7 +182,7 @@ void test_mask_against_reference() {
     SK_CHECK_MSG(e.pct <= 0.5, "error %.3f%%", e.pct);
     SK_CHECK(shadowed * 10 > size_t(e.covered));
 
-    const skgl_stats &st = sun.stats();
+    const skgl_shadow_frame_stats &st = sun.stats();
     SK_CHECK(st.maps == app::kCascades);
     for (int i = 0; i < app::kCascades; i++) {
         SK_CHECK(st.splits[i] < st.splits[i + 1]);

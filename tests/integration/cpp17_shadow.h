@@ -34,7 +34,7 @@ public:
     // the map for this camera and light, then visibility into mask_tex
     [[nodiscard]] bool render_mask(const skgl_camera &cam, const skgl_scene &scene, sk_vec3 light_dir,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
-    const skgl_stats &stats() const;
+    const skgl_shadow_frame_stats &stats() const;
     sk_mat4 light_matrix(int layer) const;
     skgl_shadow_desc desc() const;        // with shadowkit's defaults filled in
     int gl_objects() const;               // GL objects the context owns
