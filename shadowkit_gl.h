@@ -4460,18 +4460,119 @@ static void skgl__caller_viewport(skgl_context *ctx, skgl__st *st, skgl__int v[4
     } else ctx->gl.GetIntegerv(SKGL__VIEWPORT, v);
 }
 
+/* the face side this frame and the faces to render: the side
+   skgl_point_atlas_pack placed (a halved side reaches further, so it may
+   add a face), or the selected one; the cube's mip level for it */
+static int skgl__point_side(skgl_context *ctx, skgl__st *st, skgl_point *p, const sk_mat4 *vp, unsigned *faces)
+{
+    skgl__int viewport[4] = {0, 0, 0, 0};
+    float zn = p->desc.near_plane, zf = p->desc.range;
+    int m;
+    if (p->desc.atlas) {
+        m = p->layout.face_res;
+        *faces = p->desc.cull_faces ? skgl__point_faces(p->light_pos, zn, zf, &p->view, skgl__point_reach(p, m))
+                                    : 0x3fu;
+    } else {
+        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1))
+            skgl__caller_viewport(ctx, st, viewport);
+        m = skgl__point_select(p, vp, viewport, faces);
+    }
+    p->cull_margin = (float)(skgl__point_reach(p, m) * zf);
+    p->level = 0;
+    if (p->desc.technique == SKGL_POINT_VSDCT) return m;
+    while ((p->desc.resolution >> p->level) > m) p->level++;
+    return p->desc.resolution >> p->level;
+}
+
+/* what the faces render into at side m: an own VSDCT atlas's indirection
+   for the layout, or the cube's level (sampled alone) and its framebuffers */
+static sk_result skgl__point_target(skgl_context *ctx, skgl__st *st, skgl_point *p, int m)
+{
+    skgl__api *gl = &ctx->gl;
+    if (p->desc.technique == SKGL_POINT_VSDCT) {
+        sk_vsdct_layout l;
+        if (p->desc.atlas) return SK_OK;   /* skgl_point_atlas_pack filled it */
+        l = skgl__point_layout(p, m);
+        return skgl__point_fill(ctx, st, p, &l);
+    }
+    /* sampling reads the level rendered, and only that one: set when it changes */
+    if (p->tex_level != p->level) {
+        skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
+        skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE));
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
+        gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->level);
+        p->tex_level = p->level;
+    }
+    /* the faces' framebuffers follow the level: attached and checked again when it changes */
+    if (p->fbo_level != p->level && !skgl__point_cube_fbos(ctx, st, p, p->level))
+        return skgl__fail(ctx, SK_ERR_GL, "skgl_point_render: a cube face's framebuffer is incomplete at level %d",
+                          p->level);
+    return SK_OK;
+}
+
+/* the caster pass of each face in `faces` at side m (Eq. (5.4.6)'s window
+   depth: 90 degrees, w = eye depth); every face is cleared, culled ones
+   too: a filter tap near a visible face's edge may step into one, and must
+   read "lit" there */
+static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                        unsigned faces, int m)
+{
+    static const float one = 1.0f;
+    skgl__api *gl = &ctx->gl;
+    sk_mat4 proj = sk_cube_face_proj(p->desc.near_plane, p->desc.range), face_vp;
+    int f, vsdct = p->desc.technique == SKGL_POINT_VSDCT, shared = p->desc.atlas != NULL;
+    sk_result r = SK_OK, rc;
+    skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+    if (vsdct) {
+        /* the faces' region of an own atlas, one clear; in a shared atlas
+           each face's rectangle, cleared in the loop (the other lights'
+           faces stay) */
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(shared ? p->desc.atlas->fbo : p->fbo[0]));
+        skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+        if (!shared) {
+            skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, 0, 0, 3 * m, 2 * m);
+            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        }
+    } else {
+        skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+        skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, m, m);
+    }
+    for (f = 0; f < 6; f++) {
+        skgl_draw_info info;
+        if (vsdct) {
+            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, p->layout.face_x[f], p->layout.face_y[f], m, m);
+            skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, p->layout.face_x[f], p->layout.face_y[f], m, m);
+            if (shared) gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        } else {
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
+            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        }
+        if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_CUBE_FACE;
+        info.index = f;
+        info.light_pos = p->light_pos;
+        info.light_range = p->desc.range;
+        info.point = p;
+        face_vp = sk_mat4_mul(proj, sk_cube_face_view(f, p->light_pos));
+        rc = skgl__casters_draw(ctx, st, scene, &face_vp, skgl__zero3, &info);
+        if (rc != SK_OK) r = rc;
+        p->stats.passes++;
+        p->stats.faces_rendered++;
+        p->stats.texels += (double)m * m;
+    }
+    skgl__model_end(ctx);
+    return r;
+}
+
 SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
                                     const skgl_scene *scene, sk_vec3 light_pos)
 {
-    static const float one = 1.0f;
-    skgl__api *gl;
     skgl__st st;
-    sk_mat4 vp, proj, face_vp;
-    unsigned faces;
-    int f, m, vsdct, shared;
-    float zn, zf;
-    sk_result r = SK_OK, rc;
-    skgl__int viewport[4] = {0, 0, 0, 0};
+    sk_mat4 vp;
+    unsigned faces = 0;
+    int m;
+    sk_result r;
     const char *fn = "skgl_point_render";
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
@@ -4480,101 +4581,21 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
     if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
-    shared = p->desc.atlas != NULL;
-    if (shared && !p->packed) {
-        skgl__set_log(ctx, "skgl_point_render: a shared-atlas light needs skgl_point_atlas_pack first", NULL);
-        return SK_ERR_INVALID_ARG;
-    }
-    gl = &ctx->gl;
-    vsdct = p->desc.technique == SKGL_POINT_VSDCT;
-    zn = p->desc.near_plane;
-    zf = p->desc.range;
+    if (p->desc.atlas && !p->packed)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: a shared-atlas light needs skgl_point_atlas_pack first", fn);
     vp = sk_mat4_mul(cam->proj, cam->view);
     p->light_pos = light_pos;
     p->view = sk_frustum_from_matrix(vp);
     skgl__st_begin(ctx, &st);
-    if (shared) {
-        /* the side skgl_point_atlas_pack placed; the faces for its reach
-           (a halved side reaches further, so it may add a face) */
-        m = p->layout.face_res;
-        faces = p->desc.cull_faces ? skgl__point_faces(light_pos, zn, zf, &p->view, skgl__point_reach(p, m)) : 0x3fu;
-    } else {
-        if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1))
-            skgl__caller_viewport(ctx, &st, viewport);
-        m = skgl__point_select(p, &vp, viewport, &faces);
-    }
-    p->cull_margin = (float)(skgl__point_reach(p, m) * zf);
-    p->level = 0;
-    if (!vsdct) while ((p->desc.resolution >> p->level) > m) p->level++;
-    m = vsdct ? m : p->desc.resolution >> p->level;
-    if (vsdct && !shared) {
-        sk_vsdct_layout l = skgl__point_layout(p, m);
-        r = skgl__point_fill(ctx, &st, p, &l);
-        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
-    } else if (!vsdct) {
-        /* sampling reads the level rendered, and only that one: set when it changes */
-        if (p->tex_level != p->level) {
-            skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)p->tex);
-            skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_CUBE));
-            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_BASE_LEVEL, p->level);
-            gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->level);
-            p->tex_level = p->level;
-        }
-        /* the faces' framebuffers follow the level: attached and checked again when it changes */
-        if (p->fbo_level != p->level && !skgl__point_cube_fbos(ctx, &st, p, p->level)) {
-            skgl__st_end(ctx, &st);
-            skgl__set_log(ctx, "point shadow framebuffer incomplete", NULL);
-            return SK_ERR_GL;
-        }
-    }
+    m = skgl__point_side(ctx, &st, p, &vp, &faces);
+    r = skgl__point_target(ctx, &st, p, m);
+    if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
     p->face_res = m;
-    proj = sk_cube_face_proj(zn, zf);   /* 90 deg, w = eye depth: window depth is Eq. (5.4.6) */
-    skgl__timer_begin(ctx, &p->t_render);
-    skgl__casters_begin(ctx, &st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
-    if (vsdct) {
-        /* the faces' region of an own atlas, one clear (culled faces read
-           lit); in a shared atlas each face's rectangle, cleared in the loop
-           (the other lights' faces stay) */
-        skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)(shared ? p->desc.atlas->fbo : p->fbo[0]));
-        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
-        if (!shared) {
-            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, 3 * m, 2 * m);
-            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        }
-    } else {
-        skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, m, m);
-    }
     p->stats.passes = p->stats.faces_rendered = p->stats.faces_culled = 0;
     p->stats.casters_drawn = p->stats.casters_culled = 0;
     p->stats.texels = 0.0;
-    for (f = 0; f < 6; f++) {
-        skgl_draw_info info;
-        if (vsdct) {
-            skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, p->layout.face_x[f], p->layout.face_y[f], m, m);
-            skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, p->layout.face_x[f], p->layout.face_y[f], m, m);
-            if (shared) gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        } else {
-            /* a culled face is cleared too: a filter tap near a visible
-               face's edge may step into it, and must read "lit" there */
-            skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
-            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        }
-        if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
-        memset(&info, 0, sizeof info);
-        info.kind = SKGL_PASS_CUBE_FACE;
-        info.index = f;
-        info.light_pos = light_pos;
-        info.light_range = zf;
-        info.point = p;
-        face_vp = sk_mat4_mul(proj, sk_cube_face_view(f, light_pos));
-        rc = skgl__casters_draw(ctx, &st, scene, &face_vp, skgl__zero3, &info);
-        if (rc != SK_OK) r = rc;
-        p->stats.passes++;
-        p->stats.faces_rendered++;
-        p->stats.texels += (double)m * m;
-    }
-    skgl__model_end(ctx);
+    skgl__timer_begin(ctx, &p->t_render);
+    r = skgl__point_draw_faces(ctx, &st, p, scene, faces, m);
     skgl__timer_end(ctx, &p->t_render);
     p->stats.shadow_ms = p->t_render.ms;
     p->stats.resolution = m;
