@@ -163,6 +163,30 @@
        Maps", JCGT 3(4).
      Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques", GDC.
 
+   GLSL SNIPPETS
+     skgl_glsl_snippet() and skgl_point_glsl_snippet() are GLSL 330 core to
+     paste after your #version line; skgl_shadow_bind and skgl_point_bind
+     set all of their uniforms, so a program holds one light of each kind.
+     Their names, all prefixed, are reserved in your shader:
+       directional: float sk_shadow(vec3 world_pos, vec3 world_normal,
+         float view_depth) (view_depth: the distance along the camera's
+         view direction, positive in front), and the uniforms
+         sk_shadow_map (sampler2DArrayShadow, on `unit`), sk_light_vp[8],
+         sk_splits[9], sk_layers, sk_blend_band, sk_bias_mode,
+         sk_normal_bias, sk_plane_bias, sk_pcf_radius, sk_light_dir,
+         sk_select_by_map, sk_select_extent, sk_map_extent, sk_rmsm,
+         sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
+         sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; the global
+         float sk_receiver_slack (0; yours to set: the world-space
+         uncertainty of your positions);
+       point: float sk_point_shadow(vec3 world_pos, vec3 world_normal),
+         and sk_point_cube (samplerCubeShadow) or, with SK_POINT_VSDCT,
+         sk_point_atlas (sampler2DShadow) and sk_point_indirection
+         (samplerCube, on `unit` + 1), sk_point_faces[6], sk_point_pos,
+         sk_point_range, sk_point_depth, sk_point_texel,
+         sk_point_normal_bias, sk_point_bias_mode, sk_point_plane_bias,
+         sk_point_pcf; the global float sk_point_receiver_slack.
+
    GL STATE
      Two modes, skgl_desc.caller_owns_state:
      0 (the default): every call leaves the GL state as it found it. It
@@ -193,6 +217,17 @@
            with shadowkit's nearest-texel sampler), 3 RMSM's page table or
            VSDCT's indirection (sampler 0); the analysis uses unit 1 only
            (left active); unit 0 active after a mask;
+         skgl_soft_render (area lights): the mask's state above (its
+           resolve or PCSS mask program), depth test on with GL_LESS and
+           writes, polygon offset on with the light's bias (off without),
+           depth clamp off; PVSM also blending's equation GL_FUNC_ADD and
+           function GL_ONE, GL_ONE (blending itself off),
+           GL_PROGRAM_POINT_SIZE on, the scissor box of its tile passes;
+           textures on units 0-3: PCSS 0 its map (nearest-texel sampler),
+           1 and 2 the G-buffer, 3 its map (comparison sampler); PVSM 0 its
+           low-res pyramid (sampler 0) and its screen targets (2D array),
+           1 its accumulation (sampler 0), 2 the normals, 3 its plain low-
+           res map;
          create calls: texture unit 0 bindings, unpack alignment 1, row
            length and skips 0, the last program linked (skgl_create);
          skgl_*_bind: the map and its sampler on `unit`, RMSM's page table
@@ -216,8 +251,10 @@
      16 programs); constants (sampler units, filter, bias) are sent when a
      program holds another light's, the rest when it changes or, for the
      matrices, split depths, light direction and position, every call.
-     Area lights (skgl_soft_*) save and restore the whole state in both
-     modes. With desc.debug set, glGetError is checked after every pass
+     Area lights (skgl_soft_*) go through the same tracker, each target
+     with a framebuffer of its own made once (the screen-sized ones again
+     when the mask's size changes): PCSS 67 calls a frame (35 in caller-
+     owns mode), PVSM 165 with one tile (119). With desc.debug set, glGetError is checked after every pass
      and a GL error is reported as SK_ERR_GL. skgl_gl_object_count() tells
      how many GL objects the context holds (0 after every shadow and the
      context are destroyed).
@@ -236,6 +273,22 @@
      .sync_readback = 1, every frame; the first analysis of a light (no
      earlier result exists), once. A FERKO light never analysed renders
      the focused map at full resolution; an RMSM light, the coarsest page.
+     PVSM (skgl_soft_render) reads its Shadow Map Tile Grid the same way,
+     one read of grid x (grid + 1) RGBA32F texels (66560 bytes at the
+     default 64: the grid's predicted texel sizes and, in the row above,
+     the pixel counts of stats.lit_fraction; the pyramid is built on the
+     CPU) and tiles from the newest prediction landed, carried into this
+     frame's light frustum (skgl_soft_tile_rects): the same light position
+     and frame, exactly (a rectangle's sides keep their tangents); a light
+     that moved or turned, each tile's pyramid between the prediction's
+     near and far planes bounded in the new frustum (a little larger). It
+     reads at once, with that stall, on .sync_readback = 1, on a light's
+     first render, and when a tile of the landed prediction reaches behind
+     the light's plane as it is now; stats.prediction_age and
+     readback_sync say which. Under motion the region a frame newly shows
+     has no tile for that frame (lit); measured on the test scene, camera
+     at up to 30 cm a frame and the light at 5 cm, within a few percent of
+     this frame's prediction (tests/gl/test_gl_soft_rings.c).
 
    LARGE WORLDS
      Directional lights work relative to an origin near the camera (its
@@ -259,7 +312,11 @@
      desc.timing = SKGL_TIMING_SYNC reads each pass's query right after it
      (GL_QUERY_RESULT: the CPU waits for the GPU, once per timed pass), so
      the stats hold this frame's times: for benchmarks, never for shipping.
-     Area lights read their queries at once (a sync: for measuring).
+     An area light's frame has a varying number of timed passes (PVSM: two
+     per tile), so each of its frames takes a set of queries (one per
+     pass, the set grown as needed), read whole when the set comes round
+     three frames later, or two, if every result is there; a set still
+     busy leaves that frame untimed. stats.step_ms holds each step's sum.
 
    LICENSE: see the end of the file.
 */
@@ -287,7 +344,7 @@ extern "C" {
 #endif
 
 #define SKGL_MAX_CASCADES 8
-#define SKGL_SOFT_STEPS 8            /* PVSM steps timed in skgl_stats.step_ms */
+#define SKGL_SOFT_STEPS 8            /* area light steps timed in skgl_soft_frame_stats.step_ms */
 
 typedef void *(*skgl_getproc_fn)(const char *name);
 
@@ -323,7 +380,7 @@ typedef struct skgl_desc {
     skgl_getproc_fn getproc;      /* required */
     int debug;                    /* glGetError after each pass -> SK_ERR_GL; checks the draw
                                      callback's program and the cached program locations */
-    int timing;                   /* GL timer queries into skgl_stats, read two or three frames
+    int timing;                   /* GL timer queries into the stats, read two or three frames
                                      late; SKGL_TIMING_SYNC: each pass's own time, read at
                                      once (a stall per timed pass: for benchmarks) */
     int caller_owns_state;        /* 0: every call leaves the GL state as it found it (reads
@@ -432,42 +489,6 @@ typedef struct skgl_shadow_frame_stats {
     int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
 } skgl_shadow_frame_stats;
 
-/* What an area light's last frame did (skgl_soft_stats). */
-typedef struct skgl_stats {
-    float shadow_ms;              /* GPU time of the depth passes (the latest measured: two frames
-                                     old, TIMING); -1 without timing or before the first */
-    float mask_ms;                /* GPU time of a skgl_shadow_mask, likewise */
-    double texels;                /* shadow texels rendered (sum of viewport areas) */
-    int passes;                   /* draw callbacks made */
-    int maps;                     /* layers rendered */
-    int resolution;               /* per layer */
-    float splits[SKGL_MAX_CASCADES + 1];  /* view depths of the layers */
-    /* warping (PSM, LiSPSM), per layer */
-    float warp_n[SKGL_MAX_CASCADES];      /* LiSPSM: n of the warp (n_opt); +INF: uniform map */
-    int warped[SKGL_MAX_CASCADES];        /* 1: the layer's map is perspective-warped */
-    int depth_reversed;                   /* PSM: light behind the viewer (depth order flipped back) */
-    int lspsm_fallback;                   /* LSPSM: no trapezoid axis (view along the light): one focused map */
-    float analysis_ms;                    /* FERKO, RMSM: GPU time of a skgl_shadow_analyze, as shadow_ms */
-    sk_res_estimate estimate;             /* FERKO: the estimate the last render used, in the clip
-                                             space of estimate_light (see skgl_shadow_analyze) */
-    sk_mat4 estimate_light;               /* FERKO: the uncropped light frustum of that estimate */
-    int map_width, map_height;            /* texels rendered per layer (FERKO: the estimate, clamped) */
-    int pages_requested;                  /* RMSM: distinct pages the view asked for (finest levels) */
-    int pages_rendered;                   /* RMSM: pages in the pool this frame (the coarsest always) */
-    int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
-    float psm_slide;                      /* PSM: how far the virtual camera slid back */
-    /* point lights (skgl_point_*): resolution = face side rendered this frame */
-    int faces_rendered, faces_culled;     /* cube faces drawn / skipped by face culling */
-    int casters_drawn, casters_culled;    /* (face, caster) pairs skgl_point_caster_visible passed / culled */
-    int scissor[4];                       /* the last point mask's rectangle x, y, w, h (all 0: nothing drawn) */
-    int atlas_wanted;                     /* shared point atlas: face side selected before packing (greater
-                                             than .resolution when skgl_point_atlas_pack halved it to fit) */
-    /* area lights (skgl_soft_*) */
-    int tiles;                            /* PVSM: tile maps rendered (resolution: the largest side) */
-    float lit_fraction;                   /* PVSM: covered pixels the low-res map settled without filtering
-                                             (fully lit, facing away, outside the light); -1 for PCSS */
-    float step_ms[SKGL_SOFT_STEPS];       /* PVSM: GPU ms per step (see skgl_soft_*); -1 without timing */
-} skgl_stats;
 
 typedef struct skgl_context skgl_context;
 typedef struct skgl_shadow skgl_shadow;
@@ -711,8 +732,10 @@ SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *h
                    buffer (blocker search, filter axes u_h, v_h, fully-lit
                    pixels flagged), 3 the prediction (Eqs. 4, 5) into the
                    .grid^2 Shadow Map Tile Grid by one point per pixel with
-                   MIN blending, 4 the SMTG pyramid (GPU) read back and the
-                   kd-tree of tiles (sk_fvsm_tiles), 5 one map per tile at
+                   MIN blending, 4 the SMTG read back (one read of level 0,
+                   its pyramid built on the CPU by sk_smtg_pyramid; by
+                   default a frame late, .sync_readback) and the kd-tree of
+                   tiles (sk_fvsm_tiles), 5 one map per tile at
                    its predicted resolution up to .resolution, 6 the smooth
                    texel-coverage filtering of every pixel whose kernel
                    meets the tile, merged as V*A / A, 7 the resolve.
@@ -736,25 +759,58 @@ typedef struct skgl_area_light {
 typedef struct skgl_soft_desc {
     skgl_soft_technique technique; /* [SKGL_SOFT_PCSS] */
     int resolution;               /* PCSS: the map's side [2048]; PVSM: the largest tile's [4096] */
-    int lowres;                   /* PVSM: the conservative low-resolution map's side, a power of two [1024] */
+    int lowres;                   /* PVSM: the conservative low-resolution map's side, a power of two
+                                     in 16..8192 [1024] */
     int grid;                     /* PVSM: the SMTG's side, a power of two in 4..256 [64] */
     int max_tiles;                /* PVSM: at most this many tiles; more halve every
-                                     predicted resolution until they fit [64] */
-    int conservative;             /* PVSM: 1 conservative rasterisation of the low-res
-                                     map [1]; -1 plain (thin casters can vanish) */
+                                     predicted resolution until they fit, 1..4096 [64] */
+    int disable_conservative;     /* PVSM: 1 the low-res map rasterised plainly (thin casters
+                                     can vanish from the blocker search) [0] */
     int static_scene;             /* PVSM: 1 rho_static (only the camera moves) [0: rho_dynamic] */
     int blocker_cells;            /* blocker search samples per axis, 2..16 [8] */
     int pcf_taps;                 /* PCSS: PCF taps per axis at most, 1..16 [12] */
-    float slope_bias;             /* polygon offset factor of the depth passes [1.5]; < 0: none */
-    float depth_bias;             /* polygon offset units [1.0]; < 0: none */
-    float rel_bias;               /* comparison tolerance, fraction of the distance to the light [0.002] */
-    int antialias;                /* PVSM: 1 the warped pixel footprint is convolved into every
-                                     kernel (Sec. 4.2, anisotropic anti-aliasing) [1]; -1 off: the
-                                     kernel is the light's filter alone, as a point-sampled
-                                     reference sees it */
+    float slope_bias;             /* polygon offset factor of the depth passes, 0 or more [1.5] */
+    float depth_bias;             /* polygon offset units, 0 or more [1.0] */
+    int disable_polygon_offset;   /* 1: no polygon offset in the depth passes [0] */
+    float rel_bias;               /* comparison tolerance, fraction of the distance to the
+                                     light, 0..0.5 [0.002] */
+    int disable_antialias;        /* PVSM: 1 the kernel is the light's filter alone, as a
+                                     point-sampled reference sees it; 0 the warped pixel
+                                     footprint is convolved into every kernel (Sec. 4.2,
+                                     anisotropic anti-aliasing) [0] */
     float resolution_scale;       /* PVSM: every predicted resolution times this, the quality
                                      against speed trade-off (Sec. 7), 0.125..8 [1] */
+    int sync_readback;            /* PVSM: 0 (the default) the tiles come from the prediction of
+                                     an earlier frame (the last whose read-back has landed, a
+                                     frame late on a GPU that keeps up), through a ring of
+                                     fenced pixel buffers, no stall; its tiles are carried
+                                     into this frame's light frustum (READ-BACKS). 1: this
+                                     frame's prediction, read back at once (a CPU-GPU stall
+                                     every frame). The first render reads at once either way. */
 } skgl_soft_desc;
+
+/* What an area light's last frame did (skgl_soft_stats). */
+typedef struct skgl_soft_frame_stats {
+    float shadow_ms;              /* GPU time of the depth passes (PCSS: its map; PVSM: steps 1
+                                     and 5), two or three frames old (TIMING); -1 without
+                                     timing or before the first */
+    float mask_ms;                /* GPU time of the rest but the G-buffer, likewise */
+    float step_ms[SKGL_SOFT_STEPS];   /* GPU ms per step, likewise (PCSS: 0 the G-buffer, 1 the
+                                     map, 7 the mask; PVSM: the eight steps); -1: not timed */
+    double texels;                /* shadow texels rendered (the low-res map included) */
+    int passes;                   /* draw callbacks made */
+    int maps;                     /* maps rendered (PVSM: the tiles') */
+    int resolution;               /* the largest side rendered */
+    int tiles;                    /* PVSM: tile maps rendered */
+    float lit_fraction;           /* PVSM: covered pixels the low-res map settled without filtering
+                                     (fully lit, facing away, outside the light), counted in
+                                     the prediction's read-back (as old as the prediction);
+                                     -1 for PCSS */
+    int prediction_age;           /* PVSM: frames since the prediction the tiles came from was
+                                     made (0: this frame's, read back at once) */
+    int readback_bytes;           /* PVSM: bytes this frame read back (at once, or into the ring) */
+    int readback_sync;            /* PVSM: 1 when this frame's read-back waited for the GPU */
+} skgl_soft_frame_stats;
 
 typedef struct skgl_soft skgl_soft;
 
@@ -770,17 +826,23 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
 /* stats: shadow_ms = the depth passes (PCSS: its map; PVSM: steps 1 and 5),
    mask_ms = the rest but the G-buffer; tiles, texels (low-res map included),
    lit_fraction, step_ms (PVSM) */
-SKGLDEF const skgl_stats *skgl_soft_stats(const skgl_soft *s);
+SKGLDEF const skgl_soft_frame_stats *skgl_soft_stats(const skgl_soft *s);
 /* world-space half-axes of the light's rectangle, as its maps see it */
 SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u, sk_vec3 *half_v);
 /* the base frustum of the last render (world -> light clip); PVSM tiles
-   are sk_crop_matrix crops of it in clip units, 2/grid per SMTG cell */
+   are sk_crop_matrix crops of it (skgl_soft_tile_rects) */
 SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s);
-/* PVSM: the tiles of the last render (cells of the SMTG); writes at most
-   cap, returns how many there are */
+/* PVSM: the tiles of the last render, cells of the SMTG of the prediction
+   they came from (2/grid clip units per cell of that frame's base frustum,
+   this frame's when stats.prediction_age is 0); writes at most cap,
+   returns how many there are */
 SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap);
-/* PVSM: the SMTG pyramid of the last render as read back, laid out as
-   sk_smtg_pyramid's (+INFINITY: no sample); returns the float count
+/* PVSM: the same tiles' rectangles as the last render drew them, in clip
+   units of its base frustum (skgl_soft_matrix), carried there from the
+   prediction's; writes at most cap, returns how many there are */
+SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
+/* PVSM: the SMTG pyramid of the prediction the last render used, laid out
+   as sk_smtg_pyramid's (+INFINITY: no sample); returns the float count
    (writes at most cap), 0 before any */
 SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 
@@ -830,8 +892,9 @@ extern "C" {
      3. Saved state: the per-call tracker ..... >>state
      4. The context: log and arguments, programs, the uniform and texture
         caches, GPU timers, read-back rings, skgl_create ......... >>context
-     5. Shared pass helpers: the lights' objects, large worlds, the draw
-        callback and the one caster pass, the masks' inputs ...... >>passes
+     5. Shared pass helpers: the lights' lifecycle (>>lifecycle) and
+        objects, large worlds, the draw callback and the one caster pass
+        (>>caster_pass), the masks' inputs ........................ >>passes
      6. Directional lights ...................... >>shadow
         6.1 the light: desc, create, destroy ... >>shadow_life
         6.2 fits: PSSM, PSM, LiSPSM, LSPSM ...... >>fits
@@ -842,7 +905,8 @@ extern "C" {
         6.7 the deferred mask ................... >>mask
      7. Point lights: cube maps and VSDCT ...... >>point
      8. Several point lights in one atlas ...... >>atlas
-     9. Area lights: PCSS and PVSM ............. >>soft
+     9. Area lights: PCSS and PVSM: the frame timer, the light, its
+        frustum, the passes ...................... >>soft
     10. Embedded GLSL, behind skgl__glsl() ..... >>glsl
 */
 
@@ -950,7 +1014,6 @@ typedef unsigned long long skgl__u64;
 #define SKGL__MIN 0x8007
 #define SKGL__ONE 1
 #define SKGL__DEPTH_CLAMP 0x864F
-#define SKGL__SAMPLES_PASSED 0x8914
 #define SKGL__R32F 0x822E
 #define SKGL__RG32F 0x8230
 #define SKGL__RED 0x1903
@@ -1095,6 +1158,7 @@ typedef enum skgl__glsl_id {
     SKGL__GLSL_SOFT_KERNEL_FRAG,
     SKGL__GLSL_SOFT_SMTG_VERT,
     SKGL__GLSL_SOFT_SMTG_FRAG,
+    SKGL__GLSL_SOFT_REDUCE_VERT,
     SKGL__GLSL_SOFT_REDUCE_FRAG,
     SKGL__GLSL_SOFT_FILTER_FRAG,
     SKGL__GLSL_SOFT_RESOLVE_FRAG,
@@ -1164,7 +1228,7 @@ struct skgl_context {
     skgl__api gl;
     int debug, timing, objects;
     int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
-    skgl__uint depth_prog, mask_prog, empty_vao, fbo, query;
+    skgl__uint depth_prog, mask_prog, empty_vao;
     skgl__uint mask_fbo;                   /* the deferred masks' target: the mask texture attached per call */
     skgl__uint mask_fbo_tex;               /* the texture attached to it now (0: none) */
     skgl__uint cmp_sampler, point_sampler;
@@ -1172,6 +1236,9 @@ struct skgl_context {
     skgl__uint final_prog;                 /* resolution estimation: the last reduction, into 2x1 texels */
     skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
     skgl__int depth_u_view_proj, depth_u_model;
+    skgl__uint pass_prog;                  /* the current caster pass's program (depth_prog, or an area
+                                              light's low-res or G-buffer program) */
+    skgl__int pass_vp_loc;                 /* its u_view_proj */
     skgl__int model_loc;                   /* where skgl_set_model writes: the current pass's u_model */
     int model_dirty;                       /* skgl_set_model was called since the pass set its model */
     double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
@@ -1193,126 +1260,12 @@ struct skgl_context {
 
 /* ---- 3. Saved state ----------------------------------------------------- */
 // >>state
-/* 3.1 the full save and restore (the area lights) */
-typedef struct skgl__state {
-    skgl__int draw_fb, read_fb, viewport[4], scissor_box[4], program, vao, active_tex;
-    skgl__int tex2d[SKGL__UNITS], tex2da[SKGL__UNITS], sampler[SKGL__UNITS];
-    skgl__int texcube[SKGL__UNITS];            /* point lights' cube maps */
-    skgl__bool cube_seamless;
-    skgl__int depth_func, cull_mode, pack_buffer;
-    skgl__bool point_size;
-    float clear_color[4];
-    skgl__int unpack_buffer, pixel_store[8];   /* (UN)PACK_ROW_LENGTH, SKIP_ROWS, SKIP_PIXELS, ALIGNMENT */
-    skgl__bool depth_test, depth_mask, cull, blend, scissor, poly_fill, color_mask[4];
-    skgl__bool depth_clamp;
-    skgl__int blend_eq[2], blend_func[4];      /* RGB, alpha; src RGB, dst RGB, src alpha, dst alpha */
-    float poly_factor, poly_units;
-    double clear_depth;
-} skgl__state;
-
 static void skgl__enable(const skgl__api *gl, skgl__enum cap, int on)
 {
     if (on) gl->Enable(cap); else gl->Disable(cap);
 }
 
-/* GL_UNPACK_ROW_LENGTH, _SKIP_ROWS, _SKIP_PIXELS, _ALIGNMENT, then the PACK ones */
-static const skgl__enum skgl__pixel_store_names[8] = {0x0CF2, 0x0CF3, 0x0CF4, 0x0CF5, 0x0D02, 0x0D03, 0x0D04, 0x0D05};
-
-/* tightly packed client memory for pixel transfers, no pixel buffers (inside save/restore) */
-static void skgl__pixel_store_plain(const skgl__api *gl)
-{
-    int i;
-    for (i = 0; i < 8; i++) gl->PixelStorei(skgl__pixel_store_names[i], (i & 3) == 3 ? 1 : 0);
-    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, 0);
-    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
-}
-
-static void skgl__save(const skgl__api *gl, skgl__state *st)
-{
-    int u;
-    gl->GetIntegerv(SKGL__DRAW_FRAMEBUFFER_BINDING, &st->draw_fb);
-    gl->GetIntegerv(SKGL__READ_FRAMEBUFFER_BINDING, &st->read_fb);
-    gl->GetIntegerv(SKGL__VIEWPORT, st->viewport);
-    gl->GetIntegerv(SKGL__SCISSOR_BOX, st->scissor_box);
-    gl->GetIntegerv(SKGL__CURRENT_PROGRAM, &st->program);
-    gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, &st->vao);
-    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &st->active_tex);
-    for (u = 0; u < SKGL__UNITS; u++) {
-        gl->ActiveTexture(SKGL__TEXTURE0 + u);
-        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D, &st->tex2d[u]);
-        gl->GetIntegerv(SKGL__TEXTURE_BINDING_2D_ARRAY, &st->tex2da[u]);
-        gl->GetIntegerv(SKGL__TEXTURE_BINDING_CUBE_MAP, &st->texcube[u]);
-        gl->GetIntegerv(SKGL__SAMPLER_BINDING, &st->sampler[u]);
-    }
-    gl->ActiveTexture((skgl__enum)st->active_tex);
-    st->cube_seamless = gl->IsEnabled(SKGL__TEXTURE_CUBE_MAP_SEAMLESS);
-    gl->GetIntegerv(SKGL__DEPTH_FUNC, &st->depth_func);
-    gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, &st->pack_buffer);
-    st->point_size = gl->IsEnabled(SKGL__PROGRAM_POINT_SIZE);
-    gl->GetIntegerv(SKGL__PIXEL_UNPACK_BUFFER_BINDING, &st->unpack_buffer);
-    for (u = 0; u < 8; u++) gl->GetIntegerv(skgl__pixel_store_names[u], &st->pixel_store[u]);
-    gl->GetFloatv(SKGL__COLOR_CLEAR_VALUE, st->clear_color);
-    gl->GetIntegerv(SKGL__CULL_FACE_MODE, &st->cull_mode);
-    st->depth_test = gl->IsEnabled(SKGL__DEPTH_TEST);
-    gl->GetBooleanv(SKGL__DEPTH_WRITEMASK, &st->depth_mask);
-    st->cull = gl->IsEnabled(SKGL__CULL_FACE);
-    st->blend = gl->IsEnabled(SKGL__BLEND);
-    st->scissor = gl->IsEnabled(SKGL__SCISSOR_TEST);
-    st->poly_fill = gl->IsEnabled(SKGL__POLYGON_OFFSET_FILL);
-    st->depth_clamp = gl->IsEnabled(SKGL__DEPTH_CLAMP);
-    gl->GetIntegerv(SKGL__BLEND_EQUATION_RGB, &st->blend_eq[0]);
-    gl->GetIntegerv(SKGL__BLEND_EQUATION_ALPHA, &st->blend_eq[1]);
-    gl->GetIntegerv(SKGL__BLEND_SRC_RGB, &st->blend_func[0]);
-    gl->GetIntegerv(SKGL__BLEND_DST_RGB, &st->blend_func[1]);
-    gl->GetIntegerv(SKGL__BLEND_SRC_ALPHA, &st->blend_func[2]);
-    gl->GetIntegerv(SKGL__BLEND_DST_ALPHA, &st->blend_func[3]);
-    gl->GetBooleanv(SKGL__COLOR_WRITEMASK, st->color_mask);
-    gl->GetFloatv(SKGL__POLYGON_OFFSET_FACTOR, &st->poly_factor);
-    gl->GetFloatv(SKGL__POLYGON_OFFSET_UNITS, &st->poly_units);
-    gl->GetDoublev(SKGL__DEPTH_CLEAR_VALUE, &st->clear_depth);
-}
-
-static void skgl__restore(const skgl__api *gl, const skgl__state *st)
-{
-    int u;
-    gl->BindFramebuffer(SKGL__DRAW_FRAMEBUFFER, (skgl__uint)st->draw_fb);
-    gl->BindFramebuffer(SKGL__READ_FRAMEBUFFER, (skgl__uint)st->read_fb);
-    gl->Viewport(st->viewport[0], st->viewport[1], st->viewport[2], st->viewport[3]);
-    gl->Scissor(st->scissor_box[0], st->scissor_box[1], st->scissor_box[2], st->scissor_box[3]);
-    gl->UseProgram((skgl__uint)st->program);
-    gl->BindVertexArray((skgl__uint)st->vao);
-    for (u = 0; u < SKGL__UNITS; u++) {
-        gl->ActiveTexture(SKGL__TEXTURE0 + u);
-        gl->BindTexture(SKGL__TEXTURE_2D, (skgl__uint)st->tex2d[u]);
-        gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, (skgl__uint)st->tex2da[u]);
-        gl->BindTexture(SKGL__TEXTURE_CUBE_MAP, (skgl__uint)st->texcube[u]);
-        gl->BindSampler((skgl__uint)u, (skgl__uint)st->sampler[u]);
-    }
-    gl->ActiveTexture((skgl__enum)st->active_tex);
-    skgl__enable(gl, SKGL__TEXTURE_CUBE_MAP_SEAMLESS, st->cube_seamless);
-    gl->DepthFunc((skgl__enum)st->depth_func);
-    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)st->pack_buffer);
-    skgl__enable(gl, SKGL__PROGRAM_POINT_SIZE, st->point_size);
-    gl->BindBuffer(SKGL__PIXEL_UNPACK_BUFFER, (skgl__uint)st->unpack_buffer);
-    for (u = 0; u < 8; u++) gl->PixelStorei(skgl__pixel_store_names[u], st->pixel_store[u]);
-    gl->ClearColor(st->clear_color[0], st->clear_color[1], st->clear_color[2], st->clear_color[3]);
-    gl->CullFace((skgl__enum)st->cull_mode);
-    skgl__enable(gl, SKGL__DEPTH_TEST, st->depth_test);
-    gl->DepthMask(st->depth_mask);
-    skgl__enable(gl, SKGL__CULL_FACE, st->cull);
-    skgl__enable(gl, SKGL__BLEND, st->blend);
-    skgl__enable(gl, SKGL__SCISSOR_TEST, st->scissor);
-    skgl__enable(gl, SKGL__POLYGON_OFFSET_FILL, st->poly_fill);
-    skgl__enable(gl, SKGL__DEPTH_CLAMP, st->depth_clamp);
-    gl->BlendEquationSeparate((skgl__enum)st->blend_eq[0], (skgl__enum)st->blend_eq[1]);
-    gl->BlendFuncSeparate((skgl__enum)st->blend_func[0], (skgl__enum)st->blend_func[1],
-                          (skgl__enum)st->blend_func[2], (skgl__enum)st->blend_func[3]);
-    gl->ColorMask(st->color_mask[0], st->color_mask[1], st->color_mask[2], st->color_mask[3]);
-    gl->PolygonOffset(st->poly_factor, st->poly_units);
-    gl->ClearDepth(st->clear_depth);
-}
-
-/* 3.2 the state one call touches --------------------------------------
+/* the state one call touches --------------------------------------
    Directional and point lights go through this tracker instead of a full
    save and restore: each piece of state is set through skgl__st_set, which
    (default mode) reads the caller's value the first time the call touches
@@ -1328,8 +1281,9 @@ static void skgl__restore(const skgl__api *gl, const skgl__state *st)
 enum {
     SKGL__S_DRAW_FB, SKGL__S_READ_FB, SKGL__S_VIEWPORT, SKGL__S_SCISSOR_BOX,
     SKGL__S_SCISSOR_TEST, SKGL__S_BLEND, SKGL__S_CULL_FACE, SKGL__S_DEPTH_TEST, SKGL__S_POLY_FILL,
-    SKGL__S_POINT_SIZE, SKGL__S_SEAMLESS,
+    SKGL__S_POINT_SIZE, SKGL__S_SEAMLESS, SKGL__S_DEPTH_CLAMP,
     SKGL__S_DEPTH_FUNC, SKGL__S_DEPTH_MASK, SKGL__S_COLOR_MASK, SKGL__S_POLY_OFFSET, SKGL__S_POLYGON_MODE,
+    SKGL__S_BLEND_EQ, SKGL__S_BLEND_FUNC,
     SKGL__S_PROGRAM, SKGL__S_VAO, SKGL__S_PACK_BUFFER, SKGL__S_UNPACK_BUFFER,
     SKGL__S_PACK_ALIGNMENT, SKGL__S_PACK_ROW_LENGTH, SKGL__S_PACK_SKIP_PIXELS, SKGL__S_PACK_SKIP_ROWS,
     SKGL__S_UNPACK_ALIGNMENT, SKGL__S_UNPACK_ROW_LENGTH, SKGL__S_UNPACK_SKIP_PIXELS, SKGL__S_UNPACK_SKIP_ROWS,
@@ -1354,8 +1308,9 @@ typedef struct skgl__st {
 
 static int skgl__st_n(int item)
 {
-    return item == SKGL__S_VIEWPORT || item == SKGL__S_SCISSOR_BOX || item == SKGL__S_COLOR_MASK ? 4
-           : item == SKGL__S_POLY_OFFSET ? 2 : 1;
+    return item == SKGL__S_VIEWPORT || item == SKGL__S_SCISSOR_BOX || item == SKGL__S_COLOR_MASK ||
+                   item == SKGL__S_BLEND_FUNC ? 4
+           : item == SKGL__S_POLY_OFFSET || item == SKGL__S_BLEND_EQ ? 2 : 1;
 }
 
 static skgl__enum skgl__st_cap(int item)
@@ -1368,6 +1323,7 @@ static skgl__enum skgl__st_cap(int item)
     case SKGL__S_POLY_FILL: return SKGL__POLYGON_OFFSET_FILL;
     case SKGL__S_POINT_SIZE: return SKGL__PROGRAM_POINT_SIZE;
     case SKGL__S_SEAMLESS: return SKGL__TEXTURE_CUBE_MAP_SEAMLESS;
+    case SKGL__S_DEPTH_CLAMP: return SKGL__DEPTH_CLAMP;
     default: return 0;
     }
 }
@@ -1420,6 +1376,16 @@ static void skgl__st_query(const skgl__api *gl, int item, skgl__int v[4])
         gl->GetIntegerv(SKGL__POLYGON_MODE, mode);
         v[0] = mode[0];
         break;
+    case SKGL__S_BLEND_EQ:
+        gl->GetIntegerv(SKGL__BLEND_EQUATION_RGB, &v[0]);
+        gl->GetIntegerv(SKGL__BLEND_EQUATION_ALPHA, &v[1]);
+        break;
+    case SKGL__S_BLEND_FUNC:
+        gl->GetIntegerv(SKGL__BLEND_SRC_RGB, &v[0]);
+        gl->GetIntegerv(SKGL__BLEND_DST_RGB, &v[1]);
+        gl->GetIntegerv(SKGL__BLEND_SRC_ALPHA, &v[2]);
+        gl->GetIntegerv(SKGL__BLEND_DST_ALPHA, &v[3]);
+        break;
     case SKGL__S_PROGRAM: gl->GetIntegerv(SKGL__CURRENT_PROGRAM, v); break;
     case SKGL__S_VAO: gl->GetIntegerv(SKGL__VERTEX_ARRAY_BINDING, v); break;
     case SKGL__S_PACK_BUFFER: gl->GetIntegerv(SKGL__PIXEL_PACK_BUFFER_BINDING, v); break;
@@ -1457,6 +1423,10 @@ static void skgl__st_apply(const skgl__api *gl, int item, const skgl__int v[4])
         break;
     case SKGL__S_POLY_OFFSET: memcpy(f, v, sizeof f); gl->PolygonOffset(f[0], f[1]); break;
     case SKGL__S_POLYGON_MODE: gl->PolygonMode(SKGL__FRONT_AND_BACK, (skgl__enum)v[0]); break;
+    case SKGL__S_BLEND_EQ: gl->BlendEquationSeparate((skgl__enum)v[0], (skgl__enum)v[1]); break;
+    case SKGL__S_BLEND_FUNC:
+        gl->BlendFuncSeparate((skgl__enum)v[0], (skgl__enum)v[1], (skgl__enum)v[2], (skgl__enum)v[3]);
+        break;
     case SKGL__S_PROGRAM: gl->UseProgram((skgl__uint)v[0]); break;
     case SKGL__S_VAO: gl->BindVertexArray((skgl__uint)v[0]); break;
     case SKGL__S_PACK_BUFFER: gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, (skgl__uint)v[0]); break;
@@ -1685,13 +1655,14 @@ static void skgl__st_screen_pass(skgl_context *ctx, skgl__st *st)
 
 /* pixel transfers between client memory and GL without padding or offsets
    (pack: read-backs; unpack: uploads), no pixel buffer bound unless given */
-static void skgl__st_pack(skgl_context *ctx, skgl__st *st, skgl__uint buffer, int rows)
+static void skgl__st_pack(skgl_context *ctx, skgl__st *st, skgl__uint buffer, int rows, int row_bytes)
 {
     skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)buffer);
     if (rows > 1) {
         /* a read of one row has no row stride: alignment and row length do
-           not apply to it, only the skips */
-        skgl__st_set1(ctx, st, SKGL__S_PACK_ALIGNMENT, 1);
+           not apply to it, only the skips; rows whose length is a multiple
+           of 8 bytes are aligned under every GL_PACK_ALIGNMENT (1, 2, 4, 8) */
+        if (row_bytes % 8 != 0) skgl__st_set1(ctx, st, SKGL__S_PACK_ALIGNMENT, 1);
         skgl__st_set1(ctx, st, SKGL__S_PACK_ROW_LENGTH, 0);
     }
     skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_PIXELS, 0);
@@ -2216,12 +2187,10 @@ static void skgl__release(skgl_context *ctx)
     for (i = 0; progs[i]; i++)
         if (*progs[i]) { gl->DeleteProgram(*progs[i]); ctx->objects--; *progs[i] = 0; }
     if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
-    if (ctx->fbo) { gl->DeleteFramebuffers(1, &ctx->fbo); ctx->objects--; }
     if (ctx->mask_fbo) { gl->DeleteFramebuffers(1, &ctx->mask_fbo); ctx->objects--; }
-    if (ctx->query) { gl->DeleteQueries(1, &ctx->query); ctx->objects--; }
     if (ctx->cmp_sampler) { gl->DeleteSamplers(1, &ctx->cmp_sampler); ctx->objects--; }
     if (ctx->point_sampler) { gl->DeleteSamplers(1, &ctx->point_sampler); ctx->objects--; }
-    ctx->empty_vao = ctx->fbo = ctx->mask_fbo = ctx->query = 0;
+    ctx->empty_vao = ctx->mask_fbo = 0;
     ctx->cmp_sampler = ctx->point_sampler = 0;
 }
 
@@ -2308,9 +2277,7 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     skgl__own_programs(ctx, &st);
     skgl__st_end(ctx, &st);
     ctx->gl.GenVertexArrays(1, &ctx->empty_vao); ctx->objects++;
-    ctx->gl.GenFramebuffers(1, &ctx->fbo); ctx->objects++;
     ctx->gl.GenFramebuffers(1, &ctx->mask_fbo); ctx->objects++;
-    ctx->gl.GenQueries(1, &ctx->query); ctx->objects++;
     ctx->cmp_sampler = skgl__sampler(ctx, 1);
     ctx->point_sampler = skgl__sampler(ctx, 0);
     if (ctx->gl.GetError() != 0) {
@@ -2345,6 +2312,33 @@ static sk_result skgl__check(skgl_context *ctx, const char *what)
 
 /* ---- 5. Shared pass helpers --------------------------------------------- */
 // >>passes
+/* >>lifecycle  One lifecycle for every kind of light (shadow, point,
+   soft): create fills the defaults, checks every rule of the desc (one
+   message per broken rule, naming the field), makes its GL objects inside
+   one state-tracked call and frees everything it made on any failure;
+   destroy gives back its GL objects (the kind's free function) and the
+   struct, and does nothing without a context (the GL objects need it);
+   get_desc is the filled desc (zeros for NULL); stats the last frame's
+   (NULL for NULL). */
+#define SKGL__LIFECYCLE(kind, free_fn)                                                                  \
+    SKGLDEF void skgl_##kind##_destroy(skgl_context *ctx, skgl_##kind *o)                               \
+    {                                                                                                   \
+        if (!ctx || !o) return;                                                                         \
+        free_fn(ctx, o);                                                                                \
+        SKGL_FREE(o);                                                                                   \
+    }                                                                                                   \
+    SKGLDEF skgl_##kind##_desc skgl_##kind##_get_desc(const skgl_##kind *o)                             \
+    {                                                                                                   \
+        skgl_##kind##_desc d;                                                                           \
+        if (o) return o->desc;                                                                          \
+        memset(&d, 0, sizeof d);                                                                        \
+        return d;                                                                                       \
+    }                                                                                                   \
+    SKGLDEF const skgl_##kind##_frame_stats *skgl_##kind##_stats(const skgl_##kind *o)                  \
+    {                                                                                                   \
+        return o ? &o->stats : NULL;                                                                    \
+    }
+
 /* 5.1 the lights' objects (made inside a state-tracked call) */
 /* a 2D texture (target 2D) or 2-layer array (layers 2), nearest filtering,
    made on unit 0; data: level 0's texels or NULL */
@@ -2519,10 +2513,15 @@ SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__glsl(SKGL__GLSL_SHADO
    vertex array back at the end). */
 static const float skgl__identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
-static void skgl__model_begin(skgl_context *ctx, const double origin[3])
+/* a caster pass with program prog (current) begins: its view-projection
+   and model locations, the identity model (relative to origin) */
+static void skgl__model_begin(skgl_context *ctx, skgl__uint prog, skgl__int vp_loc, skgl__int model_loc,
+                              const double origin[3])
 {
     memcpy(ctx->model_origin, origin, sizeof ctx->model_origin);
-    ctx->model_loc = ctx->depth_u_model;
+    ctx->pass_prog = prog;
+    ctx->pass_vp_loc = vp_loc;
+    ctx->model_loc = model_loc;
     skgl__model(ctx, skgl__identity);
     ctx->model_dirty = 0;
 }
@@ -2540,10 +2539,10 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
     if (ctx->debug) {
         skgl__int cur = 0;
         ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
-        if (cur != (skgl__int)ctx->depth_prog) {
+        if (cur != (skgl__int)ctx->pass_prog) {
             skgl__set_log(ctx, "the draw callback returned with another program current",
                           "bind info->program again before returning");
-            ctx->gl.UseProgram(ctx->depth_prog);
+            ctx->gl.UseProgram(ctx->pass_prog);
             r = SK_ERR_INVALID_ARG;
         }
     }
@@ -2567,22 +2566,29 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
    into the target and viewport already set (and cleared): the pass's
    matrix, the callback with the matrix in world space, then what the
    callback may have changed. */
-static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias,
-                                const double origin[3])
+static void skgl__casters_begin_with(skgl_context *ctx, skgl__st *st, skgl__uint prog, skgl__int vp_loc,
+                                     skgl__int model_loc, float slope_bias, float depth_bias, const double origin[3])
 {
     skgl__st_save(ctx, st, SKGL__S_VAO);   /* the callback may bind its own */
     skgl__st_depth_pass(ctx, st, slope_bias, depth_bias);
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-    skgl__model_begin(ctx, origin);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)prog);
+    skgl__model_begin(ctx, prog, vp_loc, model_loc, origin);
+}
+/* with shadowkit's depth program */
+static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias,
+                                const double origin[3])
+{
+    skgl__casters_begin_with(ctx, st, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, slope_bias,
+                             depth_bias, origin);
 }
 
 static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
                                     const double origin[3], skgl_draw_info *info)
 {
-    ctx->gl.UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp->m);
+    ctx->gl.UniformMatrix4fv(ctx->pass_vp_loc, 1, 0, vp->m);
     info->view_proj = skgl__shift(vp, origin, skgl__zero3);
     info->frustum = sk_frustum_from_matrix(info->view_proj);
-    info->program = ctx->depth_prog;
+    info->program = ctx->pass_prog;
     scene->draw(scene->user, info);
     return skgl__after_draw(ctx, st);
 }
@@ -2893,38 +2899,31 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     return SK_OK;
 }
 
-SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
+/* everything the light holds but the struct itself */
+static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
 {
     int i;
-    if (!s) return;
-    if (ctx) {
-        skgl__delete_texture(ctx, &s->tex);
-        for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
-        if (skgl__technique_of(s)->destroy) skgl__technique_of(s)->destroy(ctx, s);
-        skgl__timer_free(ctx, &s->t_render);
-        skgl__timer_free(ctx, &s->t_mask);
-        skgl__timer_free(ctx, &s->t_analyze);
-    }
+    skgl__delete_texture(ctx, &s->tex);
+    for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
+    if (skgl__technique_of(s)->destroy) skgl__technique_of(s)->destroy(ctx, s);
+    skgl__timer_free(ctx, &s->t_render);
+    skgl__timer_free(ctx, &s->t_mask);
+    skgl__timer_free(ctx, &s->t_analyze);
     SKGL_FREE(s->rmsm.req_cpu);
     SKGL_FREE(s->rmsm.table_cpu);
     SKGL_FREE(s->rmsm.table_new);
     SKGL_FREE(s->rmsm.pages);
-    SKGL_FREE(s);
+    s->rmsm.req_cpu = NULL;
+    s->rmsm.table_cpu = s->rmsm.table_new = NULL;
+    s->rmsm.pages = NULL;
 }
+SKGL__LIFECYCLE(shadow, skgl__shadow_free)
 
-SKGLDEF skgl_shadow_desc skgl_shadow_get_desc(const skgl_shadow *s)
-{
-    skgl_shadow_desc d;
-    if (s) return s->desc;
-    memset(&d, 0, sizeof d);
-    return d;
-}
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
 {
     if (!s || layer < 0 || layer >= s->layers) return sk_mat4_identity();
     return skgl__shift(&s->vp[layer], s->origin, skgl__zero3);
 }
-SKGLDEF const skgl_shadow_frame_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
 SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm.samples : 0; }
 SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap)
@@ -3417,7 +3416,7 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     }
     if (sync) {
         /* this frame's estimate: the read-back waits for the GPU */
-        skgl__st_pack(ctx, st, 0, 1);
+        skgl__st_pack(ctx, st, 0, 1, 32);
         gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, v);
         skgl__ferko_estimate(v, s->desc.resolution, &s->ferko.est);
         s->ferko.lvp = *lvp;
@@ -3426,7 +3425,7 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko.ring)) >= 0) {
         /* with a pixel pack buffer bound, glReadPixels' pointer is an
            offset into it, and the call returns without waiting */
-        skgl__st_pack(ctx, st, s->ferko.ring.buf[slot], 1);
+        skgl__st_pack(ctx, st, s->ferko.ring.buf[slot], 1, 32);
         gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
         s->ferko.ring.lvp[slot] = *lvp;
         memcpy(s->ferko.ring.origin[slot], o, sizeof s->ferko.ring.origin[slot]);
@@ -3622,14 +3621,14 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
         /* this frame's requests: the read-back waits for the GPU. A byte
            a texel (GL_RED of the R8 atlas): rows of atlas_w bytes, hence
            the pack alignment of 1 (the default 4 would pad them) */
-        skgl__st_pack(ctx, st, 0, s->rmsm.atlas_h);
+        skgl__st_pack(ctx, st, 0, s->rmsm.atlas_h, s->rmsm.atlas_w);
         gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm.req_cpu);
         skgl__rmsm_pages(s, s->rmsm.req_cpu);
         s->rmsm.lvp = *lvp;
         memcpy(s->rmsm.origin, o, sizeof s->rmsm.origin);
         skgl__rmsm_table(ctx, st, s);
     } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm.ring)) >= 0) {
-        skgl__st_pack(ctx, st, s->rmsm.ring.buf[slot], s->rmsm.atlas_h);
+        skgl__st_pack(ctx, st, s->rmsm.ring.buf[slot], s->rmsm.atlas_h, s->rmsm.atlas_w);
         gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
         s->rmsm.ring.lvp[slot] = *lvp;
         memcpy(s->rmsm.ring.origin[slot], o, sizeof s->rmsm.ring.origin[slot]);
@@ -4327,21 +4326,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     return SK_OK;
 }
 
-SKGLDEF void skgl_point_destroy(skgl_context *ctx, skgl_point *p)
-{
-    if (!ctx || !p) return;
-    skgl__point_free(ctx, p);
-    SKGL_FREE(p);
-}
-
-SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p)
-{
-    skgl_point_desc d;
-    if (p) return p->desc;
-    memset(&d, 0, sizeof d);
-    return d;
-}
-SKGLDEF const skgl_point_frame_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
+SKGL__LIFECYCLE(point, skgl__point_free)
 SKGLDEF unsigned skgl_point_texture(const skgl_point *p)
 {
     return p ? skgl__point_tex(p) : 0;
@@ -4910,101 +4895,186 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
 
 /* ---- 9. Area lights: PCSS and PVSM (Shen et al. 2011) ------------------- */
 // >>soft
-static void skgl__query_begin(skgl_context *ctx)
-{
-    if (ctx->timing) ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, ctx->query);
-}
-static float skgl__query_end(skgl_context *ctx)
-{
-    skgl__u64 ns = 0;
-    if (!ctx->timing) return -1.0f;
-    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
-    ctx->gl.GetQueryObjectui64v(ctx->query, SKGL__QUERY_RESULT, &ns);
-    return (float)((double)ns * 1e-6);
-}
+/* 9.1 pass timing of a frame -------------------------------------------
+   An area light's frame has a varying number of timed passes (PVSM: two
+   per tile), so each frame takes a set of queries, set frame % ring,
+   grown as needed: each timed pass the next query of the set, noted with
+   its step. When a set comes round again (three frames later) it is read
+   whole if its results are there (each query asked with
+   GL_QUERY_RESULT_AVAILABLE first), then the set of two frames ago
+   likewise; a set still busy leaves this frame untimed rather than wait.
+   SKGL_TIMING_SYNC reads each pass at once (a stall per pass). */
+typedef struct skgl__frame_timer {
+    skgl__uint *q[SKGL__TIMER_RING];
+    unsigned char *step[SKGL__TIMER_RING];
+    int cap[SKGL__TIMER_RING], used[SKGL__TIMER_RING];
+    unsigned frame;
+    int skip;                              /* 1: this frame untimed (its set still busy) */
+    int running;                           /* 1: a query of this frame's set is open */
+    int out_of_memory;                     /* 1: a set could not grow this frame */
+    float ms[SKGL_SOFT_STEPS];             /* per step, of the latest frame read; -1: not timed */
+} skgl__frame_timer;
 
-/* the state of every depth pass (inside save/restore): no blending, both
-   faces (open meshes cast from both sides), LESS, slope-scaled bias */
-static void skgl__depth_pass_state(const skgl__api *gl, const skgl_shadow_desc *d)
+static void skgl__ftimer_free(skgl_context *ctx, skgl__frame_timer *t)
 {
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Enable(SKGL__DEPTH_TEST);
-    gl->DepthFunc(SKGL__LESS);
-    gl->DepthMask(1);
-    gl->ClearDepth(1.0);
-    if (d->slope_bias > 0.0f || d->depth_bias > 0.0f) {
-        gl->Enable(SKGL__POLYGON_OFFSET_FILL);
-        gl->PolygonOffset(d->slope_bias > 0.0f ? d->slope_bias : 0.0f, d->depth_bias > 0.0f ? d->depth_bias : 0.0f);
-    } else gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-}
-
-
-/* 9.1 the masks' inputs, inside the full save and restore */
-/* the G-buffer on units 1 (depth) and 2 (normals, may be 0) with the point
-   sampler; *w, *h: the mask texture's level 0 (0 when it has none) */
-static void skgl__mask_inputs(skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, unsigned mask_tex,
-                              skgl__int *w, skgl__int *h)
-{
-    skgl__api *gl = &ctx->gl;
-    *w = *h = 0;
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, w);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, h);
-    gl->BindTexture(SKGL__TEXTURE_2D, depth_tex);
-    gl->BindSampler(1, ctx->point_sampler);
-    gl->ActiveTexture(SKGL__TEXTURE0 + 2);
-    gl->BindTexture(SKGL__TEXTURE_2D, normal_tex);
-    gl->BindSampler(2, ctx->point_sampler);
-}
-
-/* the mask texture as the only colour target, full viewport, no blending,
-   culling, depth or polygon offset; 0 when it is not renderable (detached) */
-static int skgl__mask_target(skgl_context *ctx, unsigned mask_tex, int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, ctx->fbo);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, mask_tex, 0);
-    gl->DrawBuffer(SKGL__COLOR_ATTACHMENT0);
-    if (gl->CheckFramebufferStatus(SKGL__FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-        return 0;
+    int i;
+    for (i = 0; i < SKGL__TIMER_RING; i++) {
+        if (t->cap[i]) { ctx->gl.DeleteQueries(t->cap[i], t->q[i]); ctx->objects -= t->cap[i]; }
+        SKGL_FREE(t->q[i]);
+        SKGL_FREE(t->step[i]);
+        t->q[i] = NULL;
+        t->step[i] = NULL;
+        t->cap[i] = t->used[i] = 0;
     }
-    gl->Viewport(0, 0, w, h);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->ColorMask(1, 1, 1, 1);
+}
+
+static void skgl__ftimer_clear(float ms[SKGL_SOFT_STEPS])
+{
+    int k;
+    for (k = 0; k < SKGL_SOFT_STEPS; k++) ms[k] = -1.0f;
+}
+static void skgl__ftimer_add(float ms[SKGL_SOFT_STEPS], int step, skgl__u64 ns)
+{
+    ms[step] = (ms[step] < 0.0f ? 0.0f : ms[step]) + (float)((double)ns * 1e-6);
+}
+
+/* set i read whole if every result is there (then 1; 1 too when empty) */
+static int skgl__ftimer_read(skgl_context *ctx, skgl__frame_timer *t, int i)
+{
+    float ms[SKGL_SOFT_STEPS];
+    int k;
+    if (!t->used[i]) return 1;
+    for (k = t->used[i] - 1; k >= 0; k--) {   /* the last first: busy, the others may be too */
+        skgl__uint avail = 0;
+        ctx->gl.GetQueryObjectuiv(t->q[i][k], SKGL__QUERY_RESULT_AVAILABLE, &avail);
+        if (!avail) return 0;
+    }
+    skgl__ftimer_clear(ms);
+    for (k = 0; k < t->used[i]; k++) {
+        skgl__u64 ns = 0;
+        ctx->gl.GetQueryObjectui64v(t->q[i][k], SKGL__QUERY_RESULT, &ns);
+        skgl__ftimer_add(ms, t->step[i][k], ns);
+    }
+    memcpy(t->ms, ms, sizeof ms);
+    t->used[i] = 0;
     return 1;
 }
 
-/* 9.2 the soft light */
+static void skgl__ftimer_frame(skgl_context *ctx, skgl__frame_timer *t)
+{
+    int slot;
+    t->frame++;
+    t->skip = t->out_of_memory = 0;
+    if (!ctx->timing) return;
+    if (ctx->timing == SKGL_TIMING_SYNC) { skgl__ftimer_clear(t->ms); return; }
+    slot = (int)(t->frame % SKGL__TIMER_RING);
+    t->skip = !skgl__ftimer_read(ctx, t, slot);
+    (void)skgl__ftimer_read(ctx, t, (int)((t->frame + 1) % SKGL__TIMER_RING));
+}
+
+static void skgl__ftimer_begin(skgl_context *ctx, skgl__frame_timer *t, int step)
+{
+    int slot = (int)(t->frame % SKGL__TIMER_RING), n;
+    t->running = 0;
+    if (!ctx->timing || t->skip) return;
+    n = t->used[slot];
+    if (n == t->cap[slot]) {   /* the set grows; a failed allocation leaves the pass untimed */
+        int cap = n ? 2 * n : 8;
+        skgl__uint *q = (skgl__uint *)SKGL_MALLOC(sizeof *q * (size_t)cap);
+        unsigned char *st = (unsigned char *)SKGL_MALLOC((size_t)cap);
+        if (!q || !st) {
+            SKGL_FREE(q);
+            SKGL_FREE(st);
+            t->out_of_memory = 1;
+            return;
+        }
+        if (n) {
+            memcpy(q, t->q[slot], sizeof *q * (size_t)n);
+            memcpy(st, t->step[slot], (size_t)n);
+        }
+        ctx->gl.GenQueries(cap - n, q + n);
+        ctx->objects += cap - n;
+        SKGL_FREE(t->q[slot]);
+        SKGL_FREE(t->step[slot]);
+        t->q[slot] = q;
+        t->step[slot] = st;
+        t->cap[slot] = cap;
+    }
+    t->step[slot][n] = (unsigned char)step;
+    ctx->gl.BeginQuery(SKGL__TIME_ELAPSED, t->q[slot][n]);
+    t->running = 1;
+}
+
+static void skgl__ftimer_end(skgl_context *ctx, skgl__frame_timer *t)
+{
+    int slot = (int)(t->frame % SKGL__TIMER_RING), n = t->used[slot];
+    if (!t->running) return;
+    t->running = 0;
+    if (ctx->timing == SKGL_TIMING_SYNC) {
+        /* measuring mode: the pass's own time, waited for (see skgl__timer_end) */
+        skgl__u64 ns = 0;
+        ctx->gl.Finish();
+        ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
+        ctx->gl.GetQueryObjectui64v(t->q[slot][n], SKGL__QUERY_RESULT, &ns);
+        skgl__ftimer_add(t->ms, t->step[slot][n], ns);
+        return;
+    }
+    ctx->gl.EndQuery(SKGL__TIME_ELAPSED);
+    t->used[slot] = n + 1;
+}
+
+/* 9.2 the light ----------------------------------------------------------- */
+#define SKGL__SOFT_LEVELS 14               /* the low-res map's levels: 8192 down to 1 */
+
 struct skgl_soft {
     skgl_soft_desc desc;
-    skgl__uint prog_mask;          /* PCSS: the mask; PVSM: the kernel-shape pass */
+    /* the programs, their per-frame locations and the values last sent */
+    skgl__uint prog_mask;                  /* PCSS: the mask; PVSM: the kernel-shape pass */
     skgl__uint prog_cons, prog_smtg, prog_reduce, prog_filter, prog_resolve, prog_gbuf;
-    skgl__int cons_u_model, gbuf_u_model;
-    skgl__uint fbo, query_samples;
-    skgl__uint map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
-    int map_res;
-    skgl__uint low_color, low_true;    /* PVSM: R32F MIN pyramid of the conservative low-res map; the plain map */
+    skgl__int u_inv_view_proj, u_light_vp, u_light_pos, u_light_half, u_light_proj, u_has_normals, u_hard;
+    skgl__int cons_u_view_proj, cons_u_model, gbuf_u_view_proj, gbuf_u_model, gbuf_u_eye;
+    skgl__int smtg_u_width, filter_u_rect, filter_u_res;
+    int sent_has_normals, sent_hard, sent_width;     /* -1: not sent yet */
+    int sent_common;                                 /* 1: sent holds the mask program's values */
+    struct {
+        sk_mat4 inv, lvp;
+        float pos[3], half[2], proj[4];
+    } sent;
+    /* the targets, each with its framebuffer, made and checked once (the
+       screen-sized ones again when the mask's size changes) */
+    skgl__uint map, fb_map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
+    skgl__uint low_color, low_true, fb_low;            /* PVSM: R32F MIN pyramid of the conservative
+                                                          low-res map (mip levels); the plain map */
+    skgl__uint fb_level[SKGL__SOFT_LEVELS];            /* level l of low_color (l >= 1) */
     int low_levels;
-    skgl__uint smtg;               /* PVSM: RG32F SMTG with its pyramid as mip levels */
-    int smtg_levels;
-    skgl__uint screen[4];          /* PVSM: kernel, prediction, plane, accumulation (RGBA32F) */
+    skgl__uint smtg, fb_smtg;              /* PVSM: RGBA32F, grid x (grid + 1): the SMTG, then a row of counts */
+    skgl__uint screen, acc, fb_kernel, fb_acc;         /* PVSM: a 3-layer array (kernel, prediction,
+                                                          plane), the accumulation */
     int sw, sh;
-    skgl__uint gb_depth, gb_normal;    /* the G-buffer rendered here (depth_tex = 0) */
+    skgl__uint gb_depth, gb_normal, fb_gbuf;           /* the G-buffer rendered here (depth_tex = 0) */
     int gw, gh;
-    float *pyramid;                /* the SMTG pyramid read back */
+    /* PVSM's prediction: the SMTG read back (at once or through the ring),
+       its pyramid and tiles, the frustum it was made in */
+    skgl__ring ring;                       /* lvp[i]: the light projection of read-back i */
+    sk_mat4 ring_view[SKGL__RING];
+    unsigned ring_frame[SKGL__RING];
+    float *readback;                       /* grid x (grid + 1) RGBA */
+    float *pyramid;                        /* laid out as sk_smtg_pyramid's */
     int pyramid_floats;
-    float *grid;                   /* level 0 as given to sk_fvsm_tiles (after any halving) */
+    float *grid;                           /* level 0 as given to sk_fvsm_tiles (after any halving) */
     sk_tile *tiles;
+    sk_rect *rects;                        /* the tiles on this frame's base map (clip units) */
     int ntiles, tiles_cap;
+    int have_prediction;
+    unsigned prediction_frame;
+    sk_mat4 pred_view, pred_proj;
+    float lit_fraction;
+    /* this frame */
+    unsigned frame;
     sk_mat4 light_view, light_proj, light_vp;
     float p00, p11, zn, zf;
-    skgl_stats stats;
+    skgl__frame_timer timer;
+    skgl_soft_frame_stats stats;
 };
 
 static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
@@ -5014,15 +5084,48 @@ static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
     if (r.lowres == 0) r.lowres = 1024;
     if (r.grid == 0) r.grid = 64;
     if (r.max_tiles == 0) r.max_tiles = 64;
-    if (r.conservative == 0) r.conservative = 1;
     if (r.blocker_cells == 0) r.blocker_cells = 8;
     if (r.pcf_taps == 0) r.pcf_taps = 12;
     if (r.slope_bias == 0.0f) r.slope_bias = 1.5f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
     if (r.rel_bias == 0.0f) r.rel_bias = 0.002f;
-    if (r.antialias == 0) r.antialias = 1;
     if (r.resolution_scale == 0.0f) r.resolution_scale = 1.0f;
     return r;
+}
+
+/* every rule of a skgl_soft_desc (defaults filled), in field order */
+static sk_result skgl__soft_validate(skgl_context *ctx, const skgl_soft_desc *d)
+{
+    const char *fn = "skgl_soft_create";
+    skgl__int max_size = 0;
+    SKGL__RULE(d->technique == SKGL_SOFT_PCSS || d->technique == SKGL_SOFT_PVSM, fn, "technique", d->technique,
+               "one of skgl_soft_technique");
+    ctx->gl.GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
+    SKGL__RULE(d->resolution >= 16 && d->resolution <= max_size, fn, "resolution", d->resolution,
+               "in 16..GL_MAX_TEXTURE_SIZE");
+    SKGL__RULE(d->lowres >= 16 && d->lowres <= 8192 && skgl__is_pow2(d->lowres) && d->lowres <= max_size, fn,
+               "lowres", d->lowres, "a power of two in 16..8192 (and GL_MAX_TEXTURE_SIZE)");
+    SKGL__RULE(d->grid >= 4 && d->grid <= 256 && skgl__is_pow2(d->grid), fn, "grid", d->grid,
+               "a power of two in 4..256");
+    SKGL__RULE(d->max_tiles >= 1 && d->max_tiles <= 4096, fn, "max_tiles", d->max_tiles, "in 1..4096");
+    SKGL__RULE(d->disable_conservative == 0 || d->disable_conservative == 1, fn, "disable_conservative",
+               d->disable_conservative, "0 or 1");
+    SKGL__RULE(d->static_scene == 0 || d->static_scene == 1, fn, "static_scene", d->static_scene, "0 or 1");
+    SKGL__RULE(d->blocker_cells >= 2 && d->blocker_cells <= 16, fn, "blocker_cells", d->blocker_cells, "in 2..16");
+    SKGL__RULE(d->pcf_taps >= 1 && d->pcf_taps <= 16, fn, "pcf_taps", d->pcf_taps, "in 1..16");
+    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
+               "in [0, 10000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
+               "in [0, 1000000] (disable_polygon_offset for none)");
+    SKGL__RULE(d->disable_polygon_offset == 0 || d->disable_polygon_offset == 1, fn, "disable_polygon_offset",
+               d->disable_polygon_offset, "0 or 1");
+    SKGL__RULE(d->rel_bias >= 0.0f && d->rel_bias <= 0.5f, fn, "rel_bias", d->rel_bias, "in [0, 0.5]");
+    SKGL__RULE(d->disable_antialias == 0 || d->disable_antialias == 1, fn, "disable_antialias",
+               d->disable_antialias, "0 or 1");
+    SKGL__RULE(d->resolution_scale >= 0.125f && d->resolution_scale <= 8.0f, fn, "resolution_scale",
+               d->resolution_scale, "in [0.125, 8]");
+    SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
+    return SK_OK;
 }
 
 /* vertex + geometry + fragment */
@@ -5035,162 +5138,277 @@ static skgl__uint skgl__program_gs(skgl_context *ctx, const char *vs, const char
     return skgl__link(ctx, sh, 3);
 }
 
-/* a 2D texture with `levels` levels, nearest filtering, clamped */
-static skgl__uint skgl__soft_texture(skgl_context *ctx, skgl__int ifmt, int w, int h, int levels,
-                                     skgl__enum fmt, skgl__enum type)
+/* A framebuffer of n colour targets (level `level` of each; layered: the
+   first n layers of the array texture color[0]) and a depth target (0:
+   none), checked complete here, once; glDrawBuffers and
+   glReadBuffer (the first colour target, or none) are its own state, set
+   here too. 0 when it is not complete. */
+static skgl__uint skgl__framebuffer_mrt(skgl_context *ctx, skgl__st *st, const skgl__uint *color, int n, int level,
+                                        skgl__uint depth, int layered)
 {
+    static const skgl__enum bufs[4] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1, SKGL__COLOR_ATTACHMENT2,
+                                       SKGL__COLOR_ATTACHMENT0 + 3};
     skgl__api *gl = &ctx->gl;
-    skgl__uint t = 0;
-    int l;
-    gl->GenTextures(1, &t);
+    skgl__uint fb = 0;
+    int i;
+    gl->GenFramebuffers(1, &fb);
     ctx->objects++;
-    gl->BindTexture(SKGL__TEXTURE_2D, t);
-    for (l = 0; l < levels; l++) {
-        gl->TexImage2D(SKGL__TEXTURE_2D, l, ifmt, w, h, 0, fmt, type, NULL);
-        w = w > 1 ? w / 2 : 1;
-        h = h > 1 ? h / 2 : 1;
+    skgl__st_framebuffer(ctx, st, fb);   /* glReadBuffer sets the READ framebuffer's state */
+    for (i = 0; i < n; i++) {
+        if (layered) gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, bufs[i], color[0], level, i);
+        else gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, bufs[i], SKGL__TEXTURE_2D, color[i], level);
     }
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER,
-                      levels > 1 ? SKGL__NEAREST_MIPMAP_NEAREST : SKGL__NEAREST);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
-    return t;
+    if (depth) gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
+    if (n) {
+        gl->DrawBuffers(n, bufs);
+        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
+    } else {
+        gl->DrawBuffer(SKGL__NONE);
+        gl->ReadBuffer(SKGL__NONE);
+    }
+    if (gl->CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {
+        gl->DeleteFramebuffers(1, &fb);
+        ctx->objects--;
+        st->cur[SKGL__S_DRAW_FB][0] = 0;   /* GL fell back to 0 */
+        st->cur[SKGL__S_READ_FB][0] = 0;
+        return 0;
+    }
+    return fb;
 }
 
-static void skgl__soft_delete_tex(skgl_context *ctx, skgl__uint *t)
-{
-    if (*t) { ctx->gl.DeleteTextures(1, t); ctx->objects--; *t = 0; }
-}
-static void skgl__soft_delete_prog(skgl_context *ctx, skgl__uint *p)
+static void skgl__delete_program(skgl_context *ctx, skgl__uint *p)
 {
     if (*p) { ctx->gl.DeleteProgram(*p); ctx->objects--; *p = 0; }
+}
+
+/* the screen-sized targets (PVSM) */
+static void skgl__soft_free_screen(skgl_context *ctx, skgl_soft *s)
+{
+    skgl__delete_texture(ctx, &s->screen);
+    skgl__delete_texture(ctx, &s->acc);
+    skgl__delete_framebuffer(ctx, &s->fb_kernel);
+    skgl__delete_framebuffer(ctx, &s->fb_acc);
+    s->sw = s->sh = 0;
+}
+static void skgl__soft_free_gbuffer(skgl_context *ctx, skgl_soft *s)
+{
+    skgl__delete_texture(ctx, &s->gb_depth);
+    skgl__delete_texture(ctx, &s->gb_normal);
+    skgl__delete_framebuffer(ctx, &s->fb_gbuf);
+    s->gw = s->gh = 0;
 }
 
 static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
 {
     int i;
-    skgl__soft_delete_prog(ctx, &s->prog_mask);
-    skgl__soft_delete_prog(ctx, &s->prog_cons);
-    skgl__soft_delete_prog(ctx, &s->prog_smtg);
-    skgl__soft_delete_prog(ctx, &s->prog_reduce);
-    skgl__soft_delete_prog(ctx, &s->prog_filter);
-    skgl__soft_delete_prog(ctx, &s->prog_resolve);
-    skgl__soft_delete_prog(ctx, &s->prog_gbuf);
-    skgl__soft_delete_tex(ctx, &s->map);
-    skgl__soft_delete_tex(ctx, &s->low_color);
-    skgl__soft_delete_tex(ctx, &s->low_true);
-    skgl__soft_delete_tex(ctx, &s->smtg);
-    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
-    skgl__soft_delete_tex(ctx, &s->gb_depth);
-    skgl__soft_delete_tex(ctx, &s->gb_normal);
-    if (s->fbo) { ctx->gl.DeleteFramebuffers(1, &s->fbo); ctx->objects--; s->fbo = 0; }
-    if (s->query_samples) { ctx->gl.DeleteQueries(1, &s->query_samples); ctx->objects--; s->query_samples = 0; }
+    skgl__delete_program(ctx, &s->prog_mask);
+    skgl__delete_program(ctx, &s->prog_cons);
+    skgl__delete_program(ctx, &s->prog_smtg);
+    skgl__delete_program(ctx, &s->prog_reduce);
+    skgl__delete_program(ctx, &s->prog_filter);
+    skgl__delete_program(ctx, &s->prog_resolve);
+    skgl__delete_program(ctx, &s->prog_gbuf);
+    skgl__delete_texture(ctx, &s->map);
+    skgl__delete_framebuffer(ctx, &s->fb_map);
+    skgl__delete_texture(ctx, &s->low_color);
+    skgl__delete_texture(ctx, &s->low_true);
+    skgl__delete_framebuffer(ctx, &s->fb_low);
+    for (i = 0; i < SKGL__SOFT_LEVELS; i++) skgl__delete_framebuffer(ctx, &s->fb_level[i]);
+    skgl__delete_texture(ctx, &s->smtg);
+    skgl__delete_framebuffer(ctx, &s->fb_smtg);
+    skgl__soft_free_screen(ctx, s);
+    skgl__soft_free_gbuffer(ctx, s);
+    skgl__ring_free(ctx, &s->ring);
+    skgl__ftimer_free(ctx, &s->timer);
+    SKGL_FREE(s->readback);
     SKGL_FREE(s->pyramid);
     SKGL_FREE(s->grid);
     SKGL_FREE(s->tiles);
-    s->pyramid = s->grid = NULL;
+    SKGL_FREE(s->rects);
+    s->readback = s->pyramid = s->grid = NULL;
     s->tiles = NULL;
+    s->rects = NULL;
+}
+
+/* the programs of the technique, and of the G-buffer */
+static sk_result skgl__soft_programs(skgl_context *ctx, skgl_soft *s)
+{
+    const char *full = skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), *common = skgl__glsl(SKGL__GLSL_SOFT_COMMON_GLSL);
+    if (s->desc.technique == SKGL_SOFT_PCSS) {
+        s->prog_mask = skgl__program(ctx, full, common, skgl__glsl(SKGL__GLSL_PCSS_MASK_FRAG));
+    } else {
+        s->prog_mask = skgl__program(ctx, full, common, skgl__glsl(SKGL__GLSL_SOFT_KERNEL_FRAG));
+        s->prog_cons = skgl__program_gs(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM),
+                                        skgl__glsl(SKGL__GLSL_SOFT_CONS_FRAG));
+        s->prog_smtg = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_SMTG_VERT), skgl__glsl(SKGL__GLSL_SOFT_SMTG_FRAG),
+                                     NULL);
+        s->prog_reduce = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_REDUCE_VERT),
+                                       skgl__glsl(SKGL__GLSL_SOFT_REDUCE_FRAG), NULL);
+        s->prog_filter = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_FILTER_FRAG), NULL);
+        s->prog_resolve = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_RESOLVE_FRAG), NULL);
+    }
+    s->prog_gbuf = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_VERT), skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_FRAG),
+                                 NULL);
+    if (!s->prog_mask || !s->prog_gbuf ||
+        (s->desc.technique == SKGL_SOFT_PVSM && (!s->prog_cons || !s->prog_smtg || !s->prog_reduce ||
+                                                 !s->prog_filter || !s->prog_resolve)))
+        return SK_ERR_GL;   /* the log holds the compiler's or linker's message */
+    return SK_OK;
+}
+
+/* the uniforms that never change, set once; the locations of the others */
+static void skgl__soft_constants(skgl_context *ctx, skgl__st *st, skgl_soft *s)
+{
+    skgl__api *gl = &ctx->gl;
+    const skgl_soft_desc *d = &s->desc;
+    skgl__uint p = s->prog_mask;
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+    s->u_inv_view_proj = gl->GetUniformLocation(p, "u_inv_view_proj");
+    s->u_light_vp = gl->GetUniformLocation(p, "u_light_vp");
+    s->u_light_pos = gl->GetUniformLocation(p, "u_light_pos");
+    s->u_light_half = gl->GetUniformLocation(p, "u_light_half");
+    s->u_light_proj = gl->GetUniformLocation(p, "u_light_proj");
+    s->u_has_normals = gl->GetUniformLocation(p, "u_has_normals");
+    s->u_hard = gl->GetUniformLocation(p, "u_hard");
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_depth"), 1);
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_normals"), 2);
+    skgl__u1f(gl, gl->GetUniformLocation(p, "u_rel_bias"), d->rel_bias);
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_blocker_cells"), d->blocker_cells);
+    if (d->technique == SKGL_SOFT_PCSS) {
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_map"), 0);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_map_cmp"), 3);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_pcf_taps"), d->pcf_taps);
+    } else {
+        float texel[2];
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres"), 0);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres_true"), 3);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres_size"), d->lowres);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres_levels"), s->low_levels);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_static_scene"), d->static_scene);
+        skgl__u1f(gl, gl->GetUniformLocation(p, "u_antialias"), d->disable_antialias ? 0.0f : 1.0f);
+        skgl__u1f(gl, gl->GetUniformLocation(p, "u_res_scale"), d->resolution_scale);
+        p = s->prog_cons;
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        s->cons_u_view_proj = gl->GetUniformLocation(p, "u_view_proj");
+        s->cons_u_model = gl->GetUniformLocation(p, "u_model");
+        texel[0] = texel[1] = 2.0f / (float)d->lowres;
+        if (gl->GetUniformLocation(p, "u_texel") >= 0) gl->Uniform2fv(gl->GetUniformLocation(p, "u_texel"), 1, texel);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_conservative"), !d->disable_conservative);
+        p = s->prog_smtg;
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        s->smtg_u_width = gl->GetUniformLocation(p, "u_width");
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_grid"), d->grid);
+        p = s->prog_reduce;
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_src"), 0);
+        p = s->prog_filter;
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        s->filter_u_rect = gl->GetUniformLocation(p, "u_tile_rect");
+        s->filter_u_res = gl->GetUniformLocation(p, "u_tile_res");
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_tile"), 1);
+        p = s->prog_resolve;
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_acc"), 1);
+    }
+    s->gbuf_u_view_proj = gl->GetUniformLocation(s->prog_gbuf, "u_view_proj");
+    s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "u_model");
+    s->gbuf_u_eye = gl->GetUniformLocation(s->prog_gbuf, "u_eye");
+    s->sent_has_normals = s->sent_hard = s->sent_width = -1;
+}
+
+/* levels 1.. of a texture made by skgl__color_texture (bound on unit 0's
+   GL_TEXTURE_2D), sampled as a mipmap */
+static void skgl__soft_levels(skgl_context *ctx, skgl__int ifmt, int w, int h, int levels, skgl__enum fmt)
+{
+    skgl__api *gl = &ctx->gl;
+    int l;
+    for (l = 1; l < levels; l++) {
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+        gl->TexImage2D(SKGL__TEXTURE_2D, l, ifmt, w, h, 0, fmt, SKGL__FLOAT, NULL);
+    }
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST_MIPMAP_NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
+}
+
+/* the maps, the SMTG and their framebuffers, the read-back ring and the
+   CPU side of the prediction */
+static sk_result skgl__soft_targets(skgl_context *ctx, skgl__st *st, skgl_soft *s)
+{
+    const skgl_soft_desc *d = &s->desc;
+    const char *fn = "skgl_soft_create";
+    skgl__uint low[2];
+    int l, g = d->grid, ok;
+    s->map = skgl__color_texture(ctx, st, SKGL__DEPTH_COMPONENT32F, d->resolution, d->resolution, 1,
+                                 SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    s->fb_map = skgl__framebuffer_mrt(ctx, st, NULL, 0, 0, s->map, 0);
+    if (!s->fb_map) return skgl__fail(ctx, SK_ERR_GL, "%s: the DEPTH32F map's framebuffer is incomplete", fn);
+    if (d->technique == SKGL_SOFT_PCSS) return SK_OK;
+    for (l = d->lowres, s->low_levels = 1; l > 1; l /= 2) s->low_levels++;
+    s->low_color = skgl__color_texture(ctx, st, SKGL__R32F, d->lowres, d->lowres, 1, SKGL__RED, SKGL__FLOAT, NULL);
+    skgl__soft_levels(ctx, SKGL__R32F, d->lowres, d->lowres, s->low_levels, SKGL__RED);
+    s->low_true = skgl__color_texture(ctx, st, SKGL__R32F, d->lowres, d->lowres, 1, SKGL__RED, SKGL__FLOAT, NULL);
+    low[0] = s->low_color;
+    low[1] = s->low_true;
+    s->fb_low = skgl__framebuffer_mrt(ctx, st, low, 2, 0, 0, 0);
+    ok = s->fb_low != 0;
+    for (l = 1; ok && l < s->low_levels; l++)
+        ok = (s->fb_level[l] = skgl__framebuffer_mrt(ctx, st, &s->low_color, 1, l, 0, 0)) != 0;
+    if (!ok) return skgl__fail(ctx, SK_ERR_GL, "%s: R32F targets are not renderable here", fn);
+    s->smtg = skgl__color_texture(ctx, st, SKGL__RGBA32F, g, g + 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->fb_smtg = skgl__framebuffer_mrt(ctx, st, &s->smtg, 1, 0, 0, 0);
+    if (!s->fb_smtg) return skgl__fail(ctx, SK_ERR_GL, "%s: RGBA32F targets are not renderable here", fn);
+    skgl__ring_create(ctx, st, &s->ring, sizeof(float) * 4u * (size_t)g * (size_t)(g + 1));
+    s->readback = (float *)SKGL_MALLOC(s->ring.bytes);
+    s->pyramid_floats = sk_smtg_pyramid_size(g, g);
+    s->pyramid = (float *)SKGL_MALLOC(sizeof(float) * (size_t)s->pyramid_floats);
+    s->grid = (float *)SKGL_MALLOC(sizeof(float) * 2u * (size_t)g * (size_t)g);
+    s->tiles_cap = g * g;
+    s->tiles = (sk_tile *)SKGL_MALLOC(sizeof(sk_tile) * (size_t)s->tiles_cap);
+    s->rects = (sk_rect *)SKGL_MALLOC(sizeof(sk_rect) * (size_t)s->tiles_cap);
+    if (!s->readback || !s->pyramid || !s->grid || !s->tiles || !s->rects) return SK_ERR_CAPACITY;
+    return SK_OK;
 }
 
 SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out)
 {
     skgl_soft *s;
     skgl_soft_desc d;
-    skgl__api *gl;
-    skgl__int max_size = 0, unit;
-    skgl__state st;
+    skgl__st st;
+    sk_result r;
+    if (out) *out = NULL;
     if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
-    *out = NULL;
+    skgl__log_clear(ctx);
     d = skgl__soft_defaults(desc);
-    gl = &ctx->gl;
-    gl->GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
-    if ((d.technique != SKGL_SOFT_PCSS && d.technique != SKGL_SOFT_PVSM) || d.resolution < 16 ||
-        d.resolution > max_size || d.lowres < 16 || d.lowres > 8192 || (d.lowres & (d.lowres - 1)) != 0 ||
-        d.lowres > max_size || d.grid < 4 || d.grid > 256 || (d.grid & (d.grid - 1)) != 0 || d.max_tiles < 1 || d.max_tiles > 4096 ||
-        (d.conservative != 1 && d.conservative != -1) || d.static_scene < 0 || d.static_scene > 1 ||
-        d.blocker_cells < 2 || d.blocker_cells > 16 || d.pcf_taps < 1 || d.pcf_taps > 16 ||
-        !sk__finite(d.slope_bias) || !sk__finite(d.depth_bias) || !sk__finite(d.rel_bias) ||
-        d.rel_bias < 0.0f || d.rel_bias > 0.5f || (d.antialias != 1 && d.antialias != -1) ||
-        !(d.resolution_scale >= 0.125f && d.resolution_scale <= 8.0f))
-        return SK_ERR_INVALID_ARG;
+    SKGL__TRY(skgl__soft_validate(ctx, &d));
     s = (skgl_soft *)SKGL_MALLOC(sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
     memset(s, 0, sizeof *s);
     s->desc = d;
-    skgl__save(gl, &st);
-    gl->GetIntegerv(SKGL__ACTIVE_TEXTURE, &unit);
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    gl->GenFramebuffers(1, &s->fbo); ctx->objects++;
-    gl->GenQueries(1, &s->query_samples); ctx->objects++;
-    s->map_res = d.resolution;
-    s->map = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, d.resolution, d.resolution, 1,
-                                SKGL__DEPTH_COMPONENT, SKGL__FLOAT);
-    if (d.technique == SKGL_SOFT_PCSS) {
-        s->prog_mask = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_COMMON_GLSL),
-                                     skgl__glsl(SKGL__GLSL_PCSS_MASK_FRAG));
-    } else {
-        int l = 1, n = d.lowres, g = d.grid;
-        while (n > 1) { n /= 2; l++; }
-        s->low_levels = l;
-        s->low_color = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, l, SKGL__RED, SKGL__FLOAT);
-        s->low_true = skgl__soft_texture(ctx, (skgl__int)SKGL__R32F, d.lowres, d.lowres, 1, SKGL__RED, SKGL__FLOAT);
-        l = 1;
-        while (g > 1) { g = (g + 1) / 2; l++; }
-        s->smtg_levels = l;
-        s->smtg = skgl__soft_texture(ctx, (skgl__int)SKGL__RG32F, d.grid, d.grid, l, SKGL__RG, SKGL__FLOAT);
-        s->pyramid_floats = sk_smtg_pyramid_size(d.grid, d.grid);
-        s->pyramid = (float *)SKGL_MALLOC(sizeof(float) * (size_t)s->pyramid_floats);
-        s->grid = (float *)SKGL_MALLOC(sizeof(float) * 2u * (size_t)d.grid * (size_t)d.grid);
-        s->tiles_cap = d.grid * d.grid;
-        s->tiles = (sk_tile *)SKGL_MALLOC(sizeof(sk_tile) * (size_t)s->tiles_cap);
-        s->prog_mask = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_COMMON_GLSL),
-                                     skgl__glsl(SKGL__GLSL_SOFT_KERNEL_FRAG));
-        s->prog_cons = skgl__program_gs(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM),
-                                        skgl__glsl(SKGL__GLSL_SOFT_CONS_FRAG));
-        s->prog_smtg = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_SMTG_VERT), skgl__glsl(SKGL__GLSL_SOFT_SMTG_FRAG), NULL);
-        s->prog_reduce = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_REDUCE_FRAG), NULL);
-        s->prog_filter = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_FILTER_FRAG), NULL);
-        s->prog_resolve = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SOFT_RESOLVE_FRAG), NULL);
-        if (s->prog_cons) s->cons_u_model = gl->GetUniformLocation(s->prog_cons, "u_model");
-    }
-    s->prog_gbuf = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_VERT), skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_FRAG), NULL);
-    if (s->prog_gbuf) s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "u_model");
-    gl->ActiveTexture((skgl__enum)unit);
-    skgl__restore(gl, &st);
-    if (!s->prog_mask || !s->prog_gbuf ||
-        (d.technique == SKGL_SOFT_PVSM && (!s->prog_cons || !s->prog_smtg || !s->prog_reduce || !s->prog_filter ||
-                                           !s->prog_resolve || !s->pyramid || !s->grid || !s->tiles)) ||
-        gl->GetError() != 0) {
-        sk_result r = d.technique == SKGL_SOFT_PVSM && (!s->pyramid || !s->grid || !s->tiles) ? SK_ERR_CAPACITY
-                                                                                               : SK_ERR_GL;
-        if (!skgl_error_log(ctx)[0]) skgl__set_log(ctx, "skgl_soft_create: GL error while creating its objects", NULL);
+    r = skgl__soft_programs(ctx, s);
+    skgl__st_begin(ctx, &st);
+    if (r == SK_OK) r = skgl__soft_targets(ctx, &st, s);
+    if (r == SK_OK) skgl__soft_constants(ctx, &st, s);
+    skgl__st_end(ctx, &st);
+    if (r == SK_OK && ctx->gl.GetError() != 0)
+        r = skgl__fail(ctx, SK_ERR_GL, "skgl_soft_create: GL error while creating its objects");
+    if (r != SK_OK) {
         skgl__soft_free(ctx, s);
         SKGL_FREE(s);
         return r;
     }
+    skgl__ftimer_clear(s->timer.ms);
+    skgl__ftimer_clear(s->stats.step_ms);
     s->stats.shadow_ms = s->stats.mask_ms = -1.0f;
+    s->stats.lit_fraction = d.technique == SKGL_SOFT_PVSM ? 1.0f : -1.0f;
     *out = s;
     return SK_OK;
 }
 
-SKGLDEF void skgl_soft_destroy(skgl_context *ctx, skgl_soft *s)
-{
-    if (!ctx || !s) return;
-    skgl__soft_free(ctx, s);
-    SKGL_FREE(s);
-}
-
-SKGLDEF skgl_soft_desc skgl_soft_get_desc(const skgl_soft *s)
-{
-    skgl_soft_desc d;
-    if (s) return s->desc;
-    memset(&d, 0, sizeof d);
-    return d;
-}
-SKGLDEF const skgl_stats *skgl_soft_stats(const skgl_soft *s) { return s ? &s->stats : NULL; }
+SKGL__LIFECYCLE(soft, skgl__soft_free)
 SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s) { return s ? s->light_vp : sk_mat4_identity(); }
 SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap)
 {
@@ -5199,14 +5417,22 @@ SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap)
     for (i = 0; out && i < cap && i < s->ntiles; i++) out[i] = s->tiles[i];
     return s->ntiles;
 }
+SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap)
+{
+    int i;
+    if (!s) return 0;
+    for (i = 0; out && i < cap && i < s->ntiles; i++) out[i] = s->rects[i];
+    return s->ntiles;
+}
 SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap)
 {
     int i;
-    if (!s || !s->pyramid || !s->stats.passes) return 0;
+    if (!s || !s->pyramid || !s->have_prediction) return 0;
     for (i = 0; out && i < cap && i < s->pyramid_floats; i++) out[i] = s->pyramid[i];
     return s->pyramid_floats;
 }
 
+/* 9.3 the light's frustum ------------------------------------------------ */
 /* the light's frame as sk_mat4_look_at builds it: x = direction x up, y, -z = direction */
 static int skgl__area_frame(const skgl_area_light *l, sk_vec3 *x, sk_vec3 *y, sk_vec3 *f)
 {
@@ -5353,249 +5579,6 @@ static sk_result skgl__soft_fit(skgl_soft *s, const skgl_camera *cam, const skgl
     return sk__mat_finite(&s->light_vp) ? SK_OK : SK_ERR_DEGENERATE;
 }
 
-static void skgl__soft_begin(skgl_context *ctx) { skgl__query_begin(ctx); }
-static float skgl__soft_end(skgl_context *ctx) { return skgl__query_end(ctx); }
-
-/* colour targets of the soft object's framebuffer (0 ends the list) */
-static void skgl__soft_attach(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
-                              skgl__uint depth)
-{
-    static const skgl__enum bufs[4] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1,
-                                        SKGL__COLOR_ATTACHMENT2, SKGL__COLOR_ATTACHMENT0 + 3};
-    skgl__api *gl = &ctx->gl;
-    int i;
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
-    for (i = 0; i < 4; i++)
-        gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, bufs[i], SKGL__TEXTURE_2D, i < n ? tex[i] : 0, i < n ? level : 0);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
-    gl->DrawBuffers(n, bufs);
-}
-static int skgl__soft_targets(skgl_context *ctx, skgl_soft *s, const skgl__uint *tex, int n, int level,
-                              skgl__uint depth)
-{
-    skgl__soft_attach(ctx, s, tex, n, level, depth);
-    return ctx->gl.CheckFramebufferStatus(SKGL__FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
-}
-/* everything detached, no status check: the check of a framebuffer with no
-   attachments is a GL_KHR_debug message on Mesa (MEDIUM, "FBO incomplete") */
-static void skgl__soft_detach(skgl_context *ctx, skgl_soft *s)
-{
-    skgl__soft_attach(ctx, s, NULL, 0, 0, 0);
-    ctx->gl.DrawBuffer(SKGL__NONE);
-}
-
-/* the depth pass of one map (PCSS's, or a PVSM tile) into s->map */
-static void skgl__soft_depth(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene, sk_mat4 vp,
-                             int w, int h, int index)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl_draw_info info;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    skgl_shadow_desc bias;
-    memset(&bias, 0, sizeof bias);
-    bias.slope_bias = s->desc.slope_bias;
-    bias.depth_bias = s->desc.depth_bias;
-    skgl__soft_targets(ctx, s, NULL, 0, 0, s->map);
-    gl->DrawBuffer(SKGL__NONE);
-    gl->ReadBuffer(SKGL__NONE);
-    gl->Viewport(0, 0, w, h);
-    gl->Enable(SKGL__SCISSOR_TEST);
-    /* one texel more than the tile: the filter's last panel may sample it */
-    gl->Scissor(0, 0, w < s->map_res ? w + 1 : w, h < s->map_res ? h + 1 : h);
-    skgl__depth_pass_state(gl, &bias);
-    gl->ColorMask(0, 0, 0, 0);
-    gl->Clear(SKGL__DEPTH_BUFFER_BIT);
-    gl->UseProgram(ctx->depth_prog);
-    gl->UniformMatrix4fv(ctx->depth_u_view_proj, 1, 0, vp.m);
-    gl->UniformMatrix4fv(ctx->depth_u_model, 1, 0, identity);
-    memset(&info, 0, sizeof info);
-    info.kind = SKGL_PASS_AREA;
-    info.index = index;
-    info.view_proj = vp;
-    info.frustum = sk_frustum_from_matrix(vp);
-    ctx->model_loc = ctx->depth_u_model;
-    scene->draw(scene->user, &info);
-    ctx->model_loc = -1;
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, 0, 0);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    gl->ColorMask(1, 1, 1, 1);
-    s->stats.passes++;
-    s->stats.texels += (double)w * h;
-}
-
-/* the camera's depth and normals through the draw callback (depth_tex = 0) */
-static int skgl__soft_gbuffer(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam, const skgl_scene *scene,
-                              int w, int h)
-{
-    skgl__api *gl = &ctx->gl;
-    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view), inv_view;
-    skgl_draw_info info;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    float eye[3];
-    if (s->gw != w || s->gh != h) {
-        skgl__soft_delete_tex(ctx, &s->gb_depth);
-        skgl__soft_delete_tex(ctx, &s->gb_normal);
-        gl->ActiveTexture(SKGL__TEXTURE0);
-        s->gb_depth = skgl__soft_texture(ctx, (skgl__int)SKGL__DEPTH_COMPONENT32F, w, h, 1, SKGL__DEPTH_COMPONENT,
-                                         SKGL__FLOAT);
-        s->gb_normal = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA16F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
-        s->gw = w; s->gh = h;
-    }
-    if (!skgl__soft_targets(ctx, s, &s->gb_normal, 1, 0, s->gb_depth)) return 0;
-    gl->Viewport(0, 0, w, h);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__CULL_FACE);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->Enable(SKGL__DEPTH_TEST);
-    gl->DepthFunc(SKGL__LESS);
-    gl->DepthMask(1);
-    gl->ColorMask(1, 1, 1, 1);
-    gl->ClearDepth(1.0);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    gl->Clear(SKGL__DEPTH_BUFFER_BIT | SKGL__COLOR_BUFFER_BIT);
-    gl->UseProgram(s->prog_gbuf);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_gbuf, "u_view_proj"), 1, 0, vp.m);
-    gl->UniformMatrix4fv(s->gbuf_u_model, 1, 0, identity);
-    if (!sk_mat4_inverse(cam->view, &inv_view)) inv_view = sk_mat4_identity();
-    eye[0] = inv_view.m[12]; eye[1] = inv_view.m[13]; eye[2] = inv_view.m[14];
-    gl->Uniform3fv(gl->GetUniformLocation(s->prog_gbuf, "u_eye"), 1, eye);
-    memset(&info, 0, sizeof info);
-    info.kind = SKGL_PASS_CAMERA;
-    info.view_proj = vp;
-    info.frustum = sk_frustum_from_matrix(vp);
-    ctx->model_loc = s->gbuf_u_model;
-    scene->draw(scene->user, &info);
-    ctx->model_loc = -1;
-    s->stats.passes++;
-    skgl__soft_detach(ctx, s);
-    return 1;
-}
-
-/* uniforms of soft_common.glsl */
-static void skgl__soft_common(skgl_context *ctx, const skgl_soft *s, skgl__uint prog, const sk_mat4 *inv,
-                              const skgl_area_light *l, unsigned normal_tex)
-{
-    skgl__api *gl = &ctx->gl;
-    float pos[3], half[2], proj[4];
-    pos[0] = l->position.x; pos[1] = l->position.y; pos[2] = l->position.z;
-    half[0] = l->half_width; half[1] = l->half_height;
-    proj[0] = s->p00; proj[1] = s->p11; proj[2] = s->zn; proj[3] = s->zf;
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_depth"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_normals"), 2);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_has_normals"), normal_tex != 0);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_inv_view_proj"), 1, 0, inv->m);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(prog, "u_light_vp"), 1, 0, s->light_vp.m);
-    gl->Uniform3fv(gl->GetUniformLocation(prog, "u_light_pos"), 1, pos);
-    gl->Uniform2fv(gl->GetUniformLocation(prog, "u_light_half"), 1, half);
-    gl->Uniform4fv(gl->GetUniformLocation(prog, "u_light_proj"), 1, proj);
-    gl->Uniform1f(gl->GetUniformLocation(prog, "u_rel_bias"), s->desc.rel_bias);
-    gl->Uniform1i(gl->GetUniformLocation(prog, "u_blocker_cells"), s->desc.blocker_cells);
-}
-
-/* levels 1.. of a MIN pyramid stored as the mip chain of tex (level 0 drawn) */
-static void skgl__soft_reduce(skgl_context *ctx, skgl_soft *s, skgl__uint tex, int w, int h, int levels)
-{
-    skgl__api *gl = &ctx->gl;
-    int l;
-    gl->UseProgram(s->prog_reduce);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_reduce, "u_src"), 0);
-    gl->ActiveTexture(SKGL__TEXTURE0);
-    gl->BindSampler(0, 0);
-    gl->BindTexture(SKGL__TEXTURE_2D, tex);
-    for (l = 1; l < levels; l++) {
-        skgl__int size[2];
-        size[0] = w; size[1] = h;
-        w = w > 1 ? (w + 1) / 2 : 1;
-        h = h > 1 ? (h + 1) / 2 : 1;
-        /* sample only level l-1 while level l is drawn */
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, l - 1);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, l - 1);
-        skgl__soft_targets(ctx, s, &tex, 1, l, 0);
-        gl->Viewport(0, 0, w, h);
-        gl->Uniform2i(gl->GetUniformLocation(s->prog_reduce, "u_src_size"), size[0], size[1]);
-        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    }
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_BASE_LEVEL, 0);
-    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
-    skgl__soft_detach(ctx, s);
-}
-
-/* PVSM step 2: the low-resolution map, conservative, into the MIN pyramid
-   (and plain into low_true); MIN blending takes the place of the depth test */
-static void skgl__soft_lowres(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene)
-{
-    skgl__api *gl = &ctx->gl;
-    skgl_draw_info info;
-    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-    skgl__uint targets[2];
-    skgl_shadow_desc bias;
-    float texel[2];
-    int r = s->desc.lowres;
-    targets[0] = s->low_color;
-    targets[1] = s->low_true;
-    skgl__soft_targets(ctx, s, targets, 2, 0, 0);
-    gl->Viewport(0, 0, r, r);
-    gl->Disable(SKGL__SCISSOR_TEST);
-    /* the slope-scaled offset (it moves gl_FragCoord.z), without the depth test */
-    memset(&bias, 0, sizeof bias);
-    bias.slope_bias = s->desc.slope_bias;
-    bias.depth_bias = s->desc.depth_bias;
-    skgl__depth_pass_state(gl, &bias);
-    gl->Disable(SKGL__DEPTH_TEST);
-    gl->ColorMask(1, 1, 1, 1);
-    gl->ClearColor(1.0f, 1.0f, 1.0f, 1.0f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    gl->Enable(SKGL__BLEND);
-    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
-    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
-    gl->Enable(SKGL__DEPTH_CLAMP);
-    gl->UseProgram(s->prog_cons);
-    gl->UniformMatrix4fv(gl->GetUniformLocation(s->prog_cons, "u_view_proj"), 1, 0, s->light_vp.m);
-    gl->UniformMatrix4fv(s->cons_u_model, 1, 0, identity);
-    texel[0] = texel[1] = 2.0f / (float)r;
-    gl->Uniform2fv(gl->GetUniformLocation(s->prog_cons, "u_texel"), 1, texel);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_cons, "u_conservative"), s->desc.conservative == 1);
-    memset(&info, 0, sizeof info);
-    info.kind = SKGL_PASS_AREA;
-    info.index = 0;
-    info.view_proj = s->light_vp;
-    info.frustum = sk_frustum_from_matrix(s->light_vp);
-    ctx->model_loc = s->cons_u_model;
-    scene->draw(scene->user, &info);
-    ctx->model_loc = -1;
-    gl->Disable(SKGL__DEPTH_CLAMP);
-    gl->Disable(SKGL__BLEND);
-    gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
-    s->stats.passes++;
-    s->stats.texels += (double)r * r;
-    gl->BindVertexArray(ctx->empty_vao);
-    skgl__soft_reduce(ctx, s, s->low_color, r, r, s->low_levels);
-}
-
-/* PVSM steps 4 and 5: the SMTG's pyramid read back, "no sample" as +INF */
-static int skgl__soft_read_pyramid(skgl_context *ctx, skgl_soft *s)
-{
-    skgl__api *gl = &ctx->gl;
-    int l, w = s->desc.grid, h = s->desc.grid, off = 0, i;
-    gl->BindFramebuffer(SKGL__FRAMEBUFFER, s->fbo);
-    skgl__pixel_store_plain(gl);
-    gl->BindBuffer(SKGL__PIXEL_PACK_BUFFER, 0);
-    for (l = 0; l < s->smtg_levels; l++) {
-        skgl__soft_targets(ctx, s, &s->smtg, 1, l, 0);
-        gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
-        gl->ReadPixels(0, 0, w, h, SKGL__RG, SKGL__FLOAT, s->pyramid + off);
-        off += w * h * 2;
-        w = w > 1 ? (w + 1) / 2 : 1;
-        h = h > 1 ? (h + 1) / 2 : 1;
-    }
-    gl->ReadBuffer(SKGL__NONE);
-    skgl__soft_detach(ctx, s);
-    for (i = 0; i < off; i++)
-        if (!(s->pyramid[i] < 1e29f)) s->pyramid[i] = SK__INF;
-    return off;
-}
 
 /* a tile side rounded up to a step of 2^(1/4): under slow motion the
    predicted sizes drift, the rounded ones (and the texel grid) seldom move */
@@ -5628,200 +5611,521 @@ static int skgl__soft_tiles(skgl_soft *s)
     return count;
 }
 
-static sk_result skgl__soft_screen(skgl_context *ctx, skgl_soft *s, int w, int h)
+
+/* 9.4 the passes ------------------------------------------------------------
+   One state-tracked call (section 3) renders everything: the G-buffer when
+   none is given, the technique's passes, the mask. Each target is bound by
+   its own framebuffer (no attachment changes, no status checks in a
+   frame); uniforms that never change were set at create. */
+
+/* PVSM's screen-sized targets for a w x h mask: kernel, prediction and
+   plane, three layers of one array texture (one unit binds them all), in
+   one framebuffer; the accumulation in another */
+static sk_result skgl__soft_screen(skgl_context *ctx, skgl__st *st, skgl_soft *s, int w, int h)
 {
-    int i;
     if (s->sw == w && s->sh == h) return SK_OK;
-    for (i = 0; i < 4; i++) skgl__soft_delete_tex(ctx, &s->screen[i]);
-    ctx->gl.ActiveTexture(SKGL__TEXTURE0);
-    for (i = 0; i < 4; i++)
-        s->screen[i] = skgl__soft_texture(ctx, (skgl__int)SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT);
-    s->sw = w; s->sh = h;
+    skgl__soft_free_screen(ctx, s);
+    s->screen = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 3, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->acc = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->fb_kernel = skgl__framebuffer_mrt(ctx, st, &s->screen, 3, 0, 0, 1);
+    s->fb_acc = skgl__framebuffer_mrt(ctx, st, &s->acc, 1, 0, 0, 0);
+    if (!s->fb_kernel || !s->fb_acc) {
+        skgl__soft_free_screen(ctx, s);
+        return skgl__fail(ctx, SK_ERR_GL, "skgl_soft_render: RGBA32F screen targets are not renderable here");
+    }
+    s->sw = w;
+    s->sh = h;
     return SK_OK;
 }
 
-static void skgl__soft_bind(skgl_context *ctx, int unit, skgl__uint tex, skgl__uint sampler)
+/* a caster pass of the light with program prog: the depth passes' state
+   (its polygon offset; the low-res pass has no depth buffer, so only the
+   offset's effect on gl_FragCoord.z matters there), the program, the
+   identity model */
+static void skgl__soft_casters(skgl_context *ctx, skgl__st *st, const skgl_soft *s, skgl__uint prog,
+                               skgl__int vp_loc, skgl__int model_loc)
 {
-    ctx->gl.ActiveTexture(SKGL__TEXTURE0 + (skgl__enum)unit);
-    ctx->gl.BindTexture(SKGL__TEXTURE_2D, tex);
-    ctx->gl.BindSampler((skgl__uint)unit, sampler);
+    float slope = s->desc.disable_polygon_offset ? 0.0f : s->desc.slope_bias;
+    float units = s->desc.disable_polygon_offset ? 0.0f : s->desc.depth_bias;
+    skgl__casters_begin_with(ctx, st, prog, vp_loc, model_loc, slope, units, skgl__zero3);
 }
 
-static float skgl__soft_ms(float a, float b) { return a < 0.0f || b < 0.0f ? -1.0f : a + b; }
+static void skgl__soft_info(skgl_draw_info *info, skgl_pass_kind kind, int index)
+{
+    memset(info, 0, sizeof *info);
+    info->kind = kind;
+    info->index = index;
+}
 
-static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
-                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
-                                 unsigned mask_tex, int w, int h)
+/* step 0: the camera's depth and normals through the draw callback (depth_tex = 0) */
+static sk_result skgl__soft_gbuffer(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_camera *cam,
+                                    const skgl_scene *scene, int w, int h)
+{
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one = 1.0f;
+    skgl__api *gl = &ctx->gl;
+    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view), inv_view;
+    skgl_draw_info info;
+    float eye[3];
+    sk_result r;
+    if (s->gw != w || s->gh != h) {
+        skgl__soft_free_gbuffer(ctx, s);
+        s->gb_depth = skgl__color_texture(ctx, st, SKGL__DEPTH_COMPONENT32F, w, h, 1, SKGL__DEPTH_COMPONENT,
+                                          SKGL__FLOAT, NULL);
+        s->gb_normal = skgl__color_texture(ctx, st, SKGL__RGBA16F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+        s->fb_gbuf = skgl__framebuffer_mrt(ctx, st, &s->gb_normal, 1, 0, s->gb_depth, 0);
+        if (!s->fb_gbuf) {
+            skgl__soft_free_gbuffer(ctx, s);
+            return skgl__fail(ctx, SK_ERR_GL, "skgl_soft_render: the G-buffer's framebuffer (DEPTH32F + RGBA16F) "
+                                              "is incomplete");
+        }
+        s->gw = w;
+        s->gh = h;
+    }
+    skgl__ftimer_begin(ctx, &s->timer, 0);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_gbuf);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__st_set1(ctx, st, SKGL__S_BLEND, 0);
+    skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
+    skgl__casters_begin_with(ctx, st, s->prog_gbuf, s->gbuf_u_view_proj, s->gbuf_u_model, 0.0f, 0.0f, skgl__zero3);
+    gl->ClearBufferfv(SKGL__COLOR, 0, zero);
+    gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+    if (!sk_mat4_inverse(cam->view, &inv_view)) inv_view = sk_mat4_identity();
+    eye[0] = inv_view.m[12];
+    eye[1] = inv_view.m[13];
+    eye[2] = inv_view.m[14];
+    if (s->gbuf_u_eye >= 0) gl->Uniform3fv(s->gbuf_u_eye, 1, eye);
+    skgl__soft_info(&info, SKGL_PASS_CAMERA, 0);
+    r = skgl__casters_draw(ctx, st, scene, &vp, skgl__zero3, &info);
+    s->stats.passes++;
+    skgl__ftimer_end(ctx, &s->timer);
+    return r;
+}
+
+/* the uniforms of soft_common.glsl that follow the camera and the light */
+static void skgl__soft_common(skgl_context *ctx, skgl_soft *s, const sk_mat4 *inv, const skgl_area_light *l,
+                              unsigned normal_tex, int hard)
 {
     skgl__api *gl = &ctx->gl;
-    skgl__u64 covered = 0, penumbra = 0;
-    float *ms = s->stats.step_ms;
-    int i, hard = !(l->half_width > 0.0f) && !(l->half_height > 0.0f);
-    skgl__soft_screen(ctx, s, w, h);
+    float pos[3], half[2], proj[4];
+    pos[0] = l->position.x; pos[1] = l->position.y; pos[2] = l->position.z;
+    half[0] = l->half_width; half[1] = l->half_height;
+    proj[0] = s->p00; proj[1] = s->p11; proj[2] = s->zn; proj[3] = s->zf;
+    /* each sent when it differs from the value last sent (bit for bit) */
+    if (!s->sent_common || memcmp(&s->sent.inv, inv, sizeof *inv) != 0) {
+        s->sent.inv = *inv;
+        if (s->u_inv_view_proj >= 0) gl->UniformMatrix4fv(s->u_inv_view_proj, 1, 0, inv->m);
+    }
+    if (!s->sent_common || memcmp(&s->sent.lvp, &s->light_vp, sizeof s->light_vp) != 0) {
+        s->sent.lvp = s->light_vp;
+        if (s->u_light_vp >= 0) gl->UniformMatrix4fv(s->u_light_vp, 1, 0, s->light_vp.m);
+    }
+    if (!s->sent_common || memcmp(s->sent.pos, pos, sizeof pos) != 0) {
+        memcpy(s->sent.pos, pos, sizeof pos);
+        if (s->u_light_pos >= 0) gl->Uniform3fv(s->u_light_pos, 1, pos);
+    }
+    if (!s->sent_common || memcmp(s->sent.half, half, sizeof half) != 0) {
+        memcpy(s->sent.half, half, sizeof half);
+        if (s->u_light_half >= 0) gl->Uniform2fv(s->u_light_half, 1, half);
+    }
+    if (!s->sent_common || memcmp(s->sent.proj, proj, sizeof proj) != 0) {
+        memcpy(s->sent.proj, proj, sizeof proj);
+        if (s->u_light_proj >= 0) gl->Uniform4fv(s->u_light_proj, 1, proj);
+    }
+    s->sent_common = 1;
+    if (s->sent_has_normals != (normal_tex != 0)) {
+        s->sent_has_normals = normal_tex != 0;
+        skgl__u1i(gl, s->u_has_normals, s->sent_has_normals);
+    }
+    if (s->sent_hard != hard) {
+        s->sent_hard = hard;
+        skgl__u1i(gl, s->u_hard, hard);
+    }
+}
 
-    /* 2: the conservative low-resolution map and its MIN pyramid */
-    skgl__soft_begin(ctx);
-    skgl__soft_lowres(ctx, s, scene);
-    ms[1] = skgl__soft_end(ctx);
+/* PCSS (Fernando 2005): step 1 the map, step 7 the mask */
+static sk_result skgl__soft_pcss(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene,
+                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned depth_tex,
+                                 unsigned normal_tex, unsigned mask_tex)
+{
+    static const float one = 1.0f;
+    skgl__unitbind b[4];
+    skgl_draw_info info;
+    int res = s->desc.resolution, w, h, n;
+    sk_result r;
+    skgl__ftimer_begin(ctx, &s->timer, 1);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_map);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, res, res);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model);
+    ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    skgl__soft_info(&info, SKGL_PASS_AREA, 0);
+    r = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
+    skgl__ftimer_end(ctx, &s->timer);
+    s->stats.passes++;
+    s->stats.texels += (double)res * res;
+    s->stats.maps = 1;
+    s->stats.resolution = res;
+    if (r != SK_OK) return r;
+    skgl__ftimer_begin(ctx, &s->timer, 7);
+    r = skgl__mask_begin(ctx, st, mask_tex, &w, &h, "skgl_soft_render");
+    if (r == SK_OK) {
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_mask);
+        skgl__soft_common(ctx, s, inv, l, normal_tex, 0);
+        n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
+        skgl__bind_unit(&b[n++], 0, SKGL__T_2D, s->map, ctx->point_sampler);
+        skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->map, ctx->cmp_sampler);
+        skgl__st_units(ctx, st, b, n);
+        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    skgl__ftimer_end(ctx, &s->timer);
+    return r;
+}
 
-    /* 3: the kernel-shape buffer (inputs: depth 1, normals 2, pyramid 0) */
-    skgl__soft_begin(ctx);
-    skgl__soft_targets(ctx, s, s->screen, 3, 0, 0);
-    gl->Viewport(0, 0, w, h);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    gl->UseProgram(s->prog_mask);
-    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_true"), 3);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_size"), s->desc.lowres);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_lowres_levels"), s->low_levels);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_static_scene"), s->desc.static_scene);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_hard"), hard);
-    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_antialias"), s->desc.antialias == 1 ? 1.0f : 0.0f);
-    gl->Uniform1f(gl->GetUniformLocation(s->prog_mask, "u_res_scale"), s->desc.resolution_scale);
-    skgl__soft_bind(ctx, 0, s->low_color, 0);
-    skgl__soft_bind(ctx, 3, s->low_true, 0);
-    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->EndQuery(SKGL__SAMPLES_PASSED);
-    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &covered);
-    ms[2] = skgl__soft_end(ctx);
+/* PVSM step 1: the low-resolution map, conservative, into level 0 of the
+   MIN pyramid (and plain into low_true): MIN blending takes the place of
+   the depth test (there is no depth buffer), depth clamping keeps casters
+   before the near plane. Then the pyramid's levels, one triangle each
+   (soft_reduce.vert), reading level l - 1 through the non-mipmap point
+   sampler while level l is drawn. */
+static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene)
+{
+    static const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    skgl__unitbind b;
+    skgl_draw_info info;
+    int r = s->desc.lowres, l;
+    sk_result rc;
+    skgl__ftimer_begin(ctx, &s->timer, 1);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_low);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, r, r);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
+    ctx->gl.ClearBufferfv(SKGL__COLOR, 0, one);
+    ctx->gl.ClearBufferfv(SKGL__COLOR, 1, one);
+    skgl__soft_casters(ctx, st, s, s->prog_cons, s->cons_u_view_proj, s->cons_u_model);
+    skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
+    /* the alpha equation is the SMTG pass's: R32F targets have no alpha */
+    skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__MIN, SKGL__FUNC_ADD, 0, 0);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 1);
+    skgl__soft_info(&info, SKGL_PASS_AREA, 0);
+    rc = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 0);
+    s->stats.passes++;
+    s->stats.texels += (double)r * r;
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, r / 2, r / 2);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_reduce);
+    skgl__bind_unit(&b, 0, SKGL__T_2D, s->low_color, ctx->point_sampler);
+    skgl__st_units(ctx, st, &b, 1);
+    for (l = 1; l < s->low_levels; l++) {
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_level[l]);
+        ctx->gl.DrawArrays(SKGL__TRIANGLES, 3 * (l - 1), 3);
+    }
+    skgl__ftimer_end(ctx, &s->timer);
+    return rc;
+}
 
-    /* 4: prediction into the SMTG, one point per pixel, MIN blending */
-    skgl__soft_begin(ctx);
-    skgl__soft_targets(ctx, s, &s->smtg, 1, 0, 0);
-    gl->Viewport(0, 0, s->desc.grid, s->desc.grid);
-    gl->ClearColor(1e30f, 1e30f, 1e30f, 1e30f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    gl->Enable(SKGL__BLEND);
-    gl->BlendEquationSeparate(SKGL__MIN, SKGL__MIN);
-    gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
-    gl->UseProgram(s->prog_smtg);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_kernel"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_pred"), 1);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_width"), w);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_smtg, "u_grid"), s->desc.grid);
-    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
-    skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
-    gl->BeginQuery(SKGL__SAMPLES_PASSED, s->query_samples);
-    gl->DrawArrays(SKGL__POINTS, 0, w * h);
-    gl->EndQuery(SKGL__SAMPLES_PASSED);
-    gl->GetQueryObjectui64v(s->query_samples, SKGL__QUERY_RESULT, &penumbra);
-    gl->Disable(SKGL__BLEND);
-    gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
-    ms[3] = skgl__soft_end(ctx);
+/* PVSM step 2: the kernel-shape buffer (inputs: the pyramid on unit 0
+   through the texture's own mipmap sampling, the G-buffer on 1 and 2, the
+   plain map on 3); background pixels keep the cleared state 0 */
+static void skgl__soft_kernel(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_area_light *l,
+                              const sk_mat4 *inv, unsigned depth_tex, unsigned normal_tex, int w, int h, int hard)
+{
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    skgl__unitbind b[4];
+    int n;
+    skgl__ftimer_begin(ctx, &s->timer, 2);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_kernel);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
+    ctx->gl.ClearBufferfv(SKGL__COLOR, 0, zero);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_mask);
+    skgl__soft_common(ctx, s, inv, l, normal_tex, hard);
+    n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
+    skgl__bind_unit(&b[n++], 0, SKGL__T_2D, s->low_color, 0);
+    skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->low_true, ctx->point_sampler);
+    skgl__st_units(ctx, st, b, n);
+    ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
+    skgl__ftimer_end(ctx, &s->timer);
+}
 
-    /* 5, 6: the SMTG pyramid on the GPU, read back; the kd-tree */
-    skgl__soft_begin(ctx);
-    skgl__soft_reduce(ctx, s, s->smtg, s->desc.grid, s->desc.grid, s->smtg_levels);
-    ms[4] = skgl__soft_end(ctx);
-    skgl__soft_read_pyramid(ctx, s);
+/* PVSM step 3: the prediction into the SMTG and its row of counts, one
+   point per pixel; MIN blending of the sizes, additive of the counts */
+static void skgl__soft_smtg(skgl_context *ctx, skgl__st *st, skgl_soft *s, int w, int h)
+{
+    static const float empty[4] = {1e30f, 1e30f, 1e30f, 0.0f};
+    skgl__unitbind b;
+    skgl__ftimer_begin(ctx, &s->timer, 3);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_smtg);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->desc.grid, s->desc.grid + 1);
+    ctx->gl.ClearBufferfv(SKGL__COLOR, 0, empty);
+    skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
+    skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__MIN, SKGL__FUNC_ADD, 0, 0);
+    skgl__st_set4(ctx, st, SKGL__S_BLEND_FUNC, SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+    /* the point size from the shader (1), not the caller's glPointSize */
+    skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_smtg);
+    if (s->sent_width != w) {
+        s->sent_width = w;
+        skgl__u1i(&ctx->gl, s->smtg_u_width, w);
+    }
+    /* texelFetch: the sampler does not matter, the kernel pass's stays */
+    skgl__bind_unit(&b, 0, SKGL__T_2D_ARRAY, s->screen, 0);
+    skgl__st_units(ctx, st, &b, 1);
+    ctx->gl.DrawArrays(SKGL__POINTS, 0, w * h);
+    skgl__ftimer_end(ctx, &s->timer);
+}
+
+/* A read-back of the SMTG target: level 0 (+INF: no sample), its pyramid
+   (sk_smtg_pyramid), the counts of the row above it; the tiles. view, proj:
+   the frustum it was made in. */
+static void skgl__soft_prediction(skgl_soft *s, const float *rgba, const sk_mat4 *view, const sk_mat4 *proj,
+                                  unsigned frame)
+{
+    int g = s->desc.grid, i, c;
+    double pen = 0.0, lit = 0.0;
+    for (i = 0; i < g * g; i++) {
+        for (c = 0; c < 2; c++) s->grid[2 * i + c] = rgba[4 * i + c] < 1e29f ? rgba[4 * i + c] : SK__INF;
+        if (rgba[4 * i + 3] > 0.0f && rgba[4 * i + 3] < 1e30f) pen += rgba[4 * i + 3];
+    }
+    for (i = 0; i < g; i++)
+        if (rgba[4 * (g * g + i) + 3] > 0.0f && rgba[4 * (g * g + i) + 3] < 1e30f) lit += rgba[4 * (g * g + i) + 3];
+    (void)sk_smtg_pyramid(s->grid, g, g, s->pyramid, s->pyramid_floats);
+    s->lit_fraction = pen + lit > 0.0 ? (float)(1.0 - pen / (pen + lit)) : 1.0f;
     s->ntiles = skgl__soft_tiles(s);
+    s->pred_view = *view;
+    s->pred_proj = *proj;
+    s->prediction_frame = frame;
+    s->have_prediction = 1;
+}
 
-    /* 7, 8: per tile, its map, then the filtering of the pixels it serves */
-    ms[5] = ms[6] = ctx->timing ? 0.0f : -1.0f;
-    skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
-    gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-    gl->Clear(SKGL__COLOR_BUFFER_BIT);
-    s->stats.resolution = 0;
+/* The tiles' rectangles on this frame's base map (s->rects, clip units),
+   from the frustum the prediction was made in. The same light position
+   and frame: exact, both frusta are from the light's centre with the same
+   view, so a side at tangent t = (ndc + P[8]) / P[0] (x; y with P[9],
+   P[5]) stays at that tangent. The light moved or turned: each tile's
+   pyramid between the prediction's near and far planes (its 8 corners in
+   world space) projected into this frame's frustum, and its bounding
+   rectangle (the same receivers, a little more). 0 when a corner lies
+   behind this frame's light plane: that prediction is of no use. */
+static int skgl__soft_tile_rects(skgl_soft *s)
+{
+    const float *a = s->pred_proj.m, *b = s->light_proj.m;
+    float g = (float)s->desc.grid;
+    int same_view = memcmp(&s->pred_view, &s->light_view, sizeof s->light_view) == 0;
+    int same_proj = memcmp(a, b, sizeof s->light_proj.m) == 0, i, k;
+    sk_mat4 inv;
+    if (!same_view && !sk_mat4_inverse(sk_mat4_mul(s->pred_proj, s->pred_view), &inv)) return 0;
     for (i = 0; i < s->ntiles; i++) {
         const sk_tile *t = &s->tiles[i];
-        float g = (float)s->desc.grid, rect[4], res[2];
         sk_rect r;
-        sk_mat4 vp;
-        r.x0 = -1.0f + 2.0f * (float)t->x0 / g; r.x1 = -1.0f + 2.0f * (float)t->x1 / g;
-        r.y0 = -1.0f + 2.0f * (float)t->y0 / g; r.y1 = -1.0f + 2.0f * (float)t->y1 / g;
-        vp = sk_mat4_mul(sk_crop_matrix(r, -1.0f, 1.0f), s->light_vp);
-        skgl__soft_begin(ctx);
-        skgl__soft_depth(ctx, s, scene, vp, t->res_x, t->res_y, 1 + i);
-        ms[5] = skgl__soft_ms(ms[5], skgl__soft_end(ctx));
-        if (t->res_x > s->stats.resolution) s->stats.resolution = t->res_x;
-        if (t->res_y > s->stats.resolution) s->stats.resolution = t->res_y;
-
-        skgl__soft_begin(ctx);
-        skgl__soft_targets(ctx, s, &s->screen[3], 1, 0, 0);
-        gl->Viewport(0, 0, w, h);
-        gl->Disable(SKGL__DEPTH_TEST);
-        gl->Disable(SKGL__POLYGON_OFFSET_FILL);
-        gl->Enable(SKGL__BLEND);
-        gl->BlendEquationSeparate(SKGL__FUNC_ADD, SKGL__FUNC_ADD);
-        gl->BlendFuncSeparate(SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
-        gl->UseProgram(s->prog_filter);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_kernel"), 0);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_pred"), 1);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_plane"), 2);
-        gl->Uniform1i(gl->GetUniformLocation(s->prog_filter, "u_tile"), 3);
-        rect[0] = r.x0; rect[1] = r.y0; rect[2] = r.x1; rect[3] = r.y1;
-        res[0] = (float)t->res_x; res[1] = (float)t->res_y;
-        gl->Uniform4fv(gl->GetUniformLocation(s->prog_filter, "u_tile_rect"), 1, rect);
-        gl->Uniform2fv(gl->GetUniformLocation(s->prog_filter, "u_tile_res"), 1, res);
-        skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
-        skgl__soft_bind(ctx, 1, s->screen[1], ctx->point_sampler);
-        skgl__soft_bind(ctx, 2, s->screen[2], ctx->point_sampler);
-        skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
-        gl->BindVertexArray(ctx->empty_vao);
-        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-        gl->Disable(SKGL__BLEND);
-        skgl__soft_bind(ctx, 3, 0, 0);
-        ms[6] = skgl__soft_ms(ms[6], skgl__soft_end(ctx));
+        r.x0 = -1.0f + 2.0f * (float)t->x0 / g;
+        r.x1 = -1.0f + 2.0f * (float)t->x1 / g;
+        r.y0 = -1.0f + 2.0f * (float)t->y0 / g;
+        r.y1 = -1.0f + 2.0f * (float)t->y1 / g;
+        if (same_view && !same_proj) {
+            r.x0 = (float)(b[0] * (((double)r.x0 + a[8]) / a[0]) - b[8]);
+            r.x1 = (float)(b[0] * (((double)r.x1 + a[8]) / a[0]) - b[8]);
+            r.y0 = (float)(b[5] * (((double)r.y0 + a[9]) / a[5]) - b[9]);
+            r.y1 = (float)(b[5] * (((double)r.y1 + a[9]) / a[5]) - b[9]);
+        } else if (!same_view) {
+            sk_rect box;
+            box.x0 = box.y0 = 1e30f;
+            box.x1 = box.y1 = -1e30f;
+            for (k = 0; k < 8; k++) {
+                sk_vec4 c, w;
+                c.x = k & 1 ? r.x1 : r.x0;
+                c.y = k & 2 ? r.y1 : r.y0;
+                c.z = k & 4 ? 1.0f : -1.0f;
+                c.w = 1.0f;
+                w = sk_mat4_transform_vec4(inv, c);
+                if (!(w.w != 0.0f)) return 0;
+                w.x /= w.w; w.y /= w.w; w.z /= w.w; w.w = 1.0f;
+                c = sk_mat4_transform_vec4(s->light_vp, w);
+                if (!(c.w > 1e-6f * (s->zf > 0.0f ? s->zf : 1.0f))) return 0;   /* behind the light's plane */
+                c.x /= c.w;
+                c.y /= c.w;
+                if (c.x < box.x0) box.x0 = c.x;
+                if (c.x > box.x1) box.x1 = c.x;
+                if (c.y < box.y0) box.y0 = c.y;
+                if (c.y > box.y1) box.y1 = c.y;
+            }
+            if (!(box.x1 > box.x0) || !(box.y1 > box.y0) || !(box.x1 - box.x0 < 1e6f) || !(box.y1 - box.y0 < 1e6f))
+                return 0;
+            r = box;
+        }
+        s->rects[i] = r;
     }
-    skgl__soft_detach(ctx, s);
-
-    /* resolve into the mask */
-    skgl__soft_begin(ctx);
-    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
-        skgl__soft_end(ctx);
-        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
-        return SK_ERR_GL;
-    }
-    gl->UseProgram(s->prog_resolve);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_kernel"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_resolve, "u_acc"), 1);
-    skgl__soft_bind(ctx, 0, s->screen[0], ctx->point_sampler);
-    skgl__soft_bind(ctx, 1, s->screen[3], ctx->point_sampler);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-    ms[7] = skgl__soft_end(ctx);
-
-    s->stats.tiles = s->ntiles;
-    s->stats.maps = s->ntiles;
-    s->stats.lit_fraction = covered > 0 ? 1.0f - (float)((double)penumbra / (double)covered) : 1.0f;
-    s->stats.shadow_ms = skgl__soft_ms(ms[1], ms[5]);
-    s->stats.mask_ms = skgl__soft_ms(skgl__soft_ms(skgl__soft_ms(ms[2], ms[3]), skgl__soft_ms(ms[4], ms[6])), ms[7]);
-    return SK_OK;
+    return 1;
 }
 
-static sk_result skgl__soft_pcss(skgl_context *ctx, skgl_soft *s, const skgl_scene *scene,
-                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned normal_tex,
-                                 unsigned mask_tex, int w, int h)
+/* PVSM step 4: the prediction the tiles come from (READ-BACKS). By default
+   an earlier frame's, the newest landed in the ring, its tiles carried into
+   this frame's frustum, and this frame's goes into the ring; at once (a
+   stall) with sync_readback, on the first render, and when a tile of the
+   landed prediction reaches behind the light's plane as it is now. */
+static void skgl__soft_predict(skgl_context *ctx, skgl__st *st, skgl_soft *s)
 {
-    skgl__api *gl = &ctx->gl;
-    skgl__soft_begin(ctx);
-    skgl__soft_depth(ctx, s, scene, s->light_vp, s->map_res, s->map_res, 0);
-    s->stats.shadow_ms = skgl__soft_end(ctx);
-    skgl__soft_begin(ctx);
-    if (!skgl__mask_target(ctx, mask_tex, w, h)) {
-        skgl__soft_end(ctx);
-        skgl__set_log(ctx, "skgl_soft_render: mask texture is not colour-renderable", NULL);
-        return SK_ERR_GL;
+    int g = s->desc.grid, slot = -1, sync;
+    skgl__ftimer_begin(ctx, &s->timer, 4);
+    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ring, s->readback)) >= 0)
+        skgl__soft_prediction(s, s->readback, &s->ring_view[slot], &s->ring.lvp[slot], s->ring_frame[slot]);
+    sync = s->desc.sync_readback || !s->have_prediction || !skgl__soft_tile_rects(s);
+    skgl__st_framebuffer(ctx, st, s->fb_smtg);   /* glReadPixels reads the READ framebuffer */
+    if (sync) {
+        skgl__st_pack(ctx, st, 0, g + 1, 16 * g);
+        ctx->gl.ReadPixels(0, 0, g, g + 1, SKGL__RGBA, SKGL__FLOAT, s->readback);
+        skgl__soft_prediction(s, s->readback, &s->light_view, &s->light_proj, s->frame);
+        (void)skgl__soft_tile_rects(s);   /* this frame's own frustum: the cells as they are */
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->ring)) >= 0) {
+        /* into a pixel pack buffer: the pointer is an offset, the call returns at once */
+        skgl__st_pack(ctx, st, s->ring.buf[slot], g + 1, 16 * g);
+        ctx->gl.ReadPixels(0, 0, g, g + 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
+        s->ring.lvp[slot] = s->light_proj;
+        s->ring_view[slot] = s->light_view;
+        s->ring_frame[slot] = s->frame;
+        skgl__ring_fence(ctx, &s->ring, slot);
     }
-    gl->UseProgram(s->prog_mask);
-    skgl__soft_common(ctx, s, s->prog_mask, inv, l, normal_tex);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map"), 0);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_map_cmp"), 3);
-    gl->Uniform1i(gl->GetUniformLocation(s->prog_mask, "u_pcf_taps"), s->desc.pcf_taps);
-    skgl__soft_bind(ctx, 0, s->map, ctx->point_sampler);
-    skgl__soft_bind(ctx, 3, s->map, ctx->cmp_sampler);
-    gl->BindVertexArray(ctx->empty_vao);
-    gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    gl->FramebufferTexture2D(SKGL__FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, SKGL__TEXTURE_2D, 0, 0);
-    s->stats.mask_ms = skgl__soft_end(ctx);
-    s->stats.maps = 1;
-    s->stats.resolution = s->map_res;
-    s->stats.tiles = 0;
-    s->stats.lit_fraction = -1.0f;
+    s->stats.readback_bytes = sync || slot >= 0 ? (int)s->ring.bytes : 0;
+    s->stats.readback_sync = sync;
+    skgl__ftimer_end(ctx, &s->timer);
+}
+
+/* a draw callback may rebind textures and samplers on any unit: the
+   filtering's inputs (units 0 and 1) are bound again after each */
+static void skgl__st_forget_units(skgl__st *st)
+{
+    skgl__st_forget(st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
+    skgl__st_forget(st, SKGL__S_TEX(0, SKGL__T_SAMPLER));
+    skgl__st_forget(st, SKGL__S_TEX(1, SKGL__T_2D));
+    skgl__st_forget(st, SKGL__S_TEX(1, SKGL__T_SAMPLER));
+}
+
+/* PVSM steps 5 and 6, per tile: its map at its resolution into the lower-
+   left of the tile map (one texel more each way: the filter's last panel
+   may sample it), then the filtering of the pixels whose kernel meets it,
+   added into the accumulation. The two passes share their state: the maps
+   have no colour buffer (blending does not touch them), the accumulation
+   no depth buffer (the depth state does not touch it). */
+static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene,
+                                        int w, int h)
+{
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one = 1.0f;
+    skgl__api *gl = &ctx->gl;
+    skgl__unitbind b[2];
+    skgl_draw_info info;
+    int i, sx = w, sy = h;
+    sk_result r = SK_OK;
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_acc);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
+    gl->ClearBufferfv(SKGL__COLOR, 0, zero);
+    skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__FUNC_ADD, SKGL__FUNC_ADD, 0, 0);
+    skgl__st_set4(ctx, st, SKGL__S_BLEND_FUNC, SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+    skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model);
+    skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
+    /* one scissor box for both passes: the largest tile and a texel (a
+       tile's clear then covers at least its own region), the screen (the
+       filtering's full-screen pass) */
+    for (i = 0; i < s->ntiles; i++) {
+        if (s->tiles[i].res_x + 1 > sx) sx = s->tiles[i].res_x + 1;
+        if (s->tiles[i].res_y + 1 > sy) sy = s->tiles[i].res_y + 1;
+    }
+    skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, 0, 0, sx, sy);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+    for (i = 0; i < s->ntiles && r == SK_OK; i++) {
+        const sk_tile *t = &s->tiles[i];
+        sk_rect rc = s->rects[i];
+        sk_mat4 vp = sk_mat4_mul(sk_crop_matrix(rc, -1.0f, 1.0f), s->light_vp);
+        float rect[4], tres[2];
+        skgl__ftimer_begin(ctx, &s->timer, 5);
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_map);
+        skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, t->res_x, t->res_y);
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
+        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        skgl__soft_info(&info, SKGL_PASS_AREA, 1 + i);
+        r = skgl__casters_draw(ctx, st, scene, &vp, skgl__zero3, &info);
+        skgl__st_forget_units(st);
+        skgl__ftimer_end(ctx, &s->timer);
+        s->stats.passes++;
+        s->stats.texels += (double)t->res_x * t->res_y;
+        if (t->res_x > s->stats.resolution) s->stats.resolution = t->res_x;
+        if (t->res_y > s->stats.resolution) s->stats.resolution = t->res_y;
+        skgl__ftimer_begin(ctx, &s->timer, 6);
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_acc);
+        skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_filter);
+        skgl__st_set1(ctx, st, SKGL__S_VAO, (skgl__int)ctx->empty_vao);
+        skgl__bind_unit(&b[0], 0, SKGL__T_2D_ARRAY, s->screen, 0);
+        skgl__bind_unit(&b[1], 1, SKGL__T_2D, s->map, ctx->cmp_sampler);
+        skgl__st_units(ctx, st, b, 2);
+        rect[0] = rc.x0; rect[1] = rc.y0; rect[2] = rc.x1; rect[3] = rc.y1;
+        tres[0] = (float)t->res_x;
+        tres[1] = (float)t->res_y;
+        if (s->filter_u_rect >= 0) gl->Uniform4fv(s->filter_u_rect, 1, rect);
+        if (s->filter_u_res >= 0) gl->Uniform2fv(s->filter_u_res, 1, tres);
+        gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+        skgl__ftimer_end(ctx, &s->timer);
+    }
+    return r;
+}
+
+/* PVSM step 7: the mask from the kernel states and the accumulation */
+static sk_result skgl__soft_resolve(skgl_context *ctx, skgl__st *st, skgl_soft *s, unsigned mask_tex)
+{
+    skgl__unitbind b[2];
+    int w, h;
+    sk_result r;
+    skgl__ftimer_begin(ctx, &s->timer, 7);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    r = skgl__mask_begin(ctx, st, mask_tex, &w, &h, "skgl_soft_render");
+    if (r == SK_OK) {
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_resolve);
+        skgl__bind_unit(&b[0], 0, SKGL__T_2D_ARRAY, s->screen, 0);
+        skgl__bind_unit(&b[1], 1, SKGL__T_2D, s->acc, 0);
+        skgl__st_units(ctx, st, b, 2);
+        ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
+    }
+    skgl__ftimer_end(ctx, &s->timer);
+    return r;
+}
+
+static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene,
+                                 const skgl_area_light *l, const sk_mat4 *inv, unsigned depth_tex,
+                                 unsigned normal_tex, unsigned mask_tex, int w, int h)
+{
+    int hard = !(l->half_width > 0.0f) && !(l->half_height > 0.0f);
+    sk_result r = skgl__soft_screen(ctx, st, s, w, h);
+    if (r == SK_OK) r = skgl__soft_lowres(ctx, st, s, scene);
+    if (r != SK_OK) return r;
+    skgl__soft_kernel(ctx, st, s, l, inv, depth_tex, normal_tex, w, h, hard);
+    skgl__soft_smtg(ctx, st, s, w, h);
+    skgl__soft_predict(ctx, st, s);
+    r = skgl__soft_tile_passes(ctx, st, s, scene, w, h);
+    if (r == SK_OK) r = skgl__soft_resolve(ctx, st, s, mask_tex);
+    s->stats.tiles = s->ntiles;
+    s->stats.maps = s->ntiles;
+    s->stats.lit_fraction = s->lit_fraction;
+    s->stats.prediction_age = (int)(s->frame - s->prediction_frame);
+    return r;
+}
+
+/* the sum of the timed steps among `steps` (-1 ends); -1 when none was timed */
+static float skgl__soft_ms(const float *ms, const int *steps)
+{
+    float t = -1.0f;
+    for (; *steps >= 0; steps++)
+        if (ms[*steps] >= 0.0f) t = (t < 0.0f ? 0.0f : t) + ms[*steps];
+    return t;
+}
+
+static sk_result skgl__arg_area_light(skgl_context *ctx, const char *fn, const skgl_area_light *l)
+{
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, l, "light"));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, l->position, "light->position", 0));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, l->direction, "light->direction", 1));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, l->up, "light->up", 0));
+    if (!(l->half_width >= 0.0f && l->half_width < 1e30f) || !(l->half_height >= 0.0f && l->half_height < 1e30f))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: light->half_width, half_height = %g, %g: finite, 0 or more",
+                          fn, (double)l->half_width, (double)l->half_height);
     return SK_OK;
 }
 
@@ -5829,57 +6133,51 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
                                    const skgl_scene *scene, const skgl_area_light *light,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
 {
-    skgl__api *gl;
-    skgl__state st;
-    skgl__int w = 0, h = 0;
+    static const int shadow_steps[3] = {1, 5, -1}, mask_steps[6] = {2, 3, 4, 6, 7, -1};
+    const char *fn = "skgl_soft_render", *why;
+    skgl__st st;
     sk_mat4 inv;
     sk_result r;
-    int i;
-    if (!ctx || !s || !cam || !scene || !scene->draw || !light || !mask_tex || !sk__mat_finite(&cam->view) ||
-        !sk__mat_finite(&cam->proj) || !sk__aabb_valid(&scene->bounds) || !sk__v3_finite(light->position) ||
-        !sk__finite(light->half_width) || !sk__finite(light->half_height) || light->half_width < 0.0f ||
-        light->half_height < 0.0f || !sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
-        return SK_ERR_INVALID_ARG;
+    int w = 0, h = 0;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
+    SKGL__TRY(skgl__arg_area_light(ctx, fn, light));
+    SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
     r = skgl__soft_fit(s, cam, scene, light);
-    if (r != SK_OK) return r;
-    gl = &ctx->gl;
-    skgl__save(gl, &st);
-    s->stats.passes = 0;
-    s->stats.texels = 0.0;
-    for (i = 0; i < SKGL_SOFT_STEPS; i++) s->stats.step_ms[i] = ctx->timing ? 0.0f : -1.0f;
-    gl->ActiveTexture(SKGL__TEXTURE0 + 1);
-    gl->BindTexture(SKGL__TEXTURE_2D, mask_tex);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &w);
-    gl->GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &h);
-    if (w <= 0 || h <= 0) {
-        skgl__restore(gl, &st);
-        skgl__set_log(ctx, "skgl_soft_render: mask texture has no level 0", NULL);
-        return SK_ERR_INVALID_ARG;
+    if (r != SK_OK) return skgl__fail(ctx, r, "%s: the scene is wholly behind the light's plane", fn);
+    skgl__st_begin(ctx, &st);
+    why = skgl__texture_size(ctx, &st, mask_tex, &w, &h);
+    if (why) {
+        skgl__st_end(ctx, &st);
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: mask_tex = %u: %s", fn, mask_tex, why);
     }
-    gl->BindVertexArray(ctx->empty_vao);
+    s->frame++;
+    skgl__ftimer_frame(ctx, &s->timer);
+    s->stats.passes = s->stats.maps = s->stats.resolution = 0;
+    s->stats.texels = 0.0;
+    s->stats.readback_bytes = s->stats.readback_sync = 0;
     if (!depth_tex) {
-        skgl__soft_begin(ctx);
-        if (!skgl__soft_gbuffer(ctx, s, cam, scene, w, h)) {
-            skgl__soft_end(ctx);
-            skgl__soft_detach(ctx, s);
-            skgl__restore(gl, &st);
-            skgl__set_log(ctx, "skgl_soft_render: G-buffer framebuffer incomplete", NULL);
-            return SK_ERR_GL;
-        }
-        s->stats.step_ms[0] = skgl__soft_end(ctx);
+        r = skgl__soft_gbuffer(ctx, &st, s, cam, scene, w, h);
         depth_tex = s->gb_depth;
         normal_tex = s->gb_normal;
     }
-    gl->BindVertexArray(ctx->empty_vao);
-    skgl__mask_inputs(ctx, depth_tex, normal_tex, mask_tex, &w, &h);
-    if (s->desc.technique == SKGL_SOFT_PVSM)
-        r = skgl__soft_pvsm(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
-    else
-        r = skgl__soft_pcss(ctx, s, scene, light, &inv, normal_tex, mask_tex, w, h);
-    skgl__soft_detach(ctx, s);
-    skgl__restore(gl, &st);
+    if (r == SK_OK)
+        r = s->desc.technique == SKGL_SOFT_PVSM
+                ? skgl__soft_pvsm(ctx, &st, s, scene, light, &inv, depth_tex, normal_tex, mask_tex, w, h)
+                : skgl__soft_pcss(ctx, &st, s, scene, light, &inv, depth_tex, normal_tex, mask_tex);
+    skgl__model_end(ctx);
+    skgl__st_end(ctx, &st);
+    memcpy(s->stats.step_ms, s->timer.ms, sizeof s->stats.step_ms);
+    s->stats.shadow_ms = skgl__soft_ms(s->timer.ms, shadow_steps);
+    s->stats.mask_ms = skgl__soft_ms(s->timer.ms, mask_steps);
     if (r != SK_OK) return r;
-    return skgl__check(ctx, "skgl_soft_render");
+    if (s->timer.out_of_memory)
+        return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: no memory for more timer queries (the frame is drawn; some "
+                                                "passes untimed)", fn);
+    return skgl__check(ctx, fn);
 }
 
 
@@ -6708,7 +7006,7 @@ static const char skgl__src_soft_kernel_frag[] =
     "   filter s_alpha from the average blocker depth, its convolution with the\n"
     "   warped pixel footprint (appendix), and the predicted texel size (Eqs. 4\n"
     "   and 5). Background pixels are discarded (the target keeps its clear\n"
-    "   state 0), so a samples-passed query counts the covered pixels.\n"
+    "   state 0; the SMTG pass counts the covered pixels from it).\n"
     "   o_kernel: u_h.x, u_h.y, v_h.y (v_h.x is 0), state\n"
     "             (1 fully lit, 2 in penumbra or umbra: filter, 3 faces away: 0)\n"
     "   o_pred:   NDC x, y on the base map, r0, r1 (Eq. 5, clip units per texel)\n"
@@ -6854,57 +7152,81 @@ static const char skgl__src_soft_kernel_frag[] =
     "}\n"
     ;
 static const char skgl__src_soft_smtg_vert[] =
-    "/* PVSM step 4 (Sec. 5.2): one attribute-less point per screen pixel; the\n"
-    "   pixel's predicted texel sizes land in its SMTG cell, where MIN blending\n"
-    "   keeps the smallest. Pixels that need no filtering fall outside the clip\n"
-    "   volume. */\n"
-    "uniform sampler2D u_kernel;\n"
-    "uniform sampler2D u_pred;\n"
+    "/* PVSM step 3 (Sec. 5.2): one attribute-less point per screen pixel. A\n"
+    "   pixel that needs filtering puts its predicted texel sizes in its SMTG\n"
+    "   cell, where MIN blending keeps the smallest (red, green) and additive\n"
+    "   blending counts the pixels (alpha). Every other covered pixel (fully lit,\n"
+    "   facing away, outside the light) is counted in the row above the grid,\n"
+    "   spread over its cells. Background pixels fall outside the clip volume.\n"
+    "   The target is grid x (grid + 1) texels: one read-back brings the SMTG and\n"
+    "   the counts of stats.lit_fraction. */\n"
+    "uniform sampler2DArray u_screen;  /* layers: kernel, prediction, plane */\n"
     "uniform int u_width;\n"
     "uniform int u_grid;\n"
     "flat out vec2 v_r;\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_VertexID % u_width, gl_VertexID / u_width);\n"
-    "    vec4 k = texelFetch(u_kernel, px, 0);\n"
-    "    vec4 p = texelFetch(u_pred, px, 0);\n"
-    "    v_r = p.zw;\n"
+    "    vec4 k = texelFetch(u_screen, ivec3(px, 0), 0);\n"
+    "    vec4 p = texelFetch(u_screen, ivec3(px, 1), 0);\n"
+    "    float g = float(u_grid);\n"
+    "    vec2 cell;\n"
     "    gl_PointSize = 1.0;\n"
-    "    if (k.w != 2.0 || any(greaterThan(abs(p.xy), vec2(1.0)))) {\n"
+    "    v_r = p.zw;\n"
+    "    if (k.w == 0.0) {\n"
     "        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);\n"
     "        return;\n"
     "    }\n"
-    "    vec2 cell = min(floor((p.xy * 0.5 + 0.5) * float(u_grid)), vec2(float(u_grid - 1)));\n"
-    "    gl_Position = vec4((cell + 0.5) / float(u_grid) * 2.0 - 1.0, 0.0, 1.0);\n"
+    "    if (k.w != 2.0 || any(greaterThan(abs(p.xy), vec2(1.0)))) {\n"
+    "        v_r = vec2(1e30);\n"
+    "        cell = vec2(float(px.x % u_grid), g);\n"
+    "    } else {\n"
+    "        cell = min(floor((p.xy * 0.5 + 0.5) * g), vec2(g - 1.0));\n"
+    "    }\n"
+    "    gl_Position = vec4((cell + 0.5) / vec2(g, g + 1.0) * 2.0 - 1.0, 0.0, 1.0);\n"
     "}\n"
     ;
 static const char skgl__src_soft_smtg_frag[] =
-    "/* PVSM step 4: the point's predicted texel sizes (MIN-blended). */\n"
+    "/* PVSM step 3: the point's predicted texel sizes (MIN-blended) and a count\n"
+    "   of one (added). */\n"
     "flat in vec2 v_r;\n"
     "out vec4 o_r;\n"
     "void main()\n"
     "{\n"
-    "    o_r = vec4(v_r, 0.0, 1.0);\n"
+    "    o_r = vec4(v_r, 1e30, 1.0);\n"
+    "}\n"
+    ;
+static const char skgl__src_soft_reduce_vert[] =
+    "/* One level of PVSM's low-resolution MIN pyramid per triangle, all from one\n"
+    "   program: triangle k (vertices 3k..3k+2, glDrawArrays' first) draws level\n"
+    "   k + 1. The viewport is level 1's; the triangle covers level k + 1's\n"
+    "   texels, the lower-left 1/2^k of it. */\n"
+    "flat out int v_level;\n"
+    "void main()\n"
+    "{\n"
+    "    int k = gl_VertexID / 3, v = gl_VertexID - 3 * k;\n"
+    "    vec2 p = vec2(float((v << 1) & 2), float(v & 2));\n"
+    "    v_level = k + 1;\n"
+    "    gl_Position = vec4(p * (2.0 / float(1 << k)) - 1.0, 0.0, 1.0);\n"
     "}\n"
     ;
 static const char skgl__src_soft_reduce_frag[] =
-    "/* One level of a MIN pyramid: each texel the minimum of the 2x2 texels\n"
-    "   below it (odd sizes: the missing ones are skipped). The source is the\n"
-    "   same texture with its base and max level set to the level below, so\n"
-    "   level 0 of textureLod is that level. PVSM: the low-res map's blocker\n"
-    "   search pyramid and the SMTG pyramid (step 5). */\n"
+    "/* One level of a MIN pyramid stored as the mip chain of u_src: each texel\n"
+    "   the minimum of the 2x2 texels of the level below (odd sizes: the missing\n"
+    "   ones are skipped). Only the level below is read (texelFetch), never the\n"
+    "   one drawn; with a non-mipmap sampler on u_src, only the base level would\n"
+    "   be a rendering feedback loop. */\n"
     "uniform sampler2D u_src;\n"
-    "uniform ivec2 u_src_size;\n"
+    "flat in int v_level;\n"
     "out vec4 o_min;\n"
     "void main()\n"
     "{\n"
-    "    ivec2 d = ivec2(gl_FragCoord.xy) * 2;\n"
+    "    ivec2 d = ivec2(gl_FragCoord.xy) * 2, size = textureSize(u_src, v_level - 1);\n"
     "    vec4 m = vec4(1e30);\n"
     "    for (int y = 0; y < 2; y++)\n"
     "        for (int x = 0; x < 2; x++) {\n"
     "            ivec2 s = d + ivec2(x, y);\n"
-    "            if (s.x < u_src_size.x && s.y < u_src_size.y)\n"
-    "                m = min(m, textureLod(u_src, (vec2(s) + 0.5) / vec2(u_src_size), 0.0));\n"
+    "            if (s.x < size.x && s.y < size.y) m = min(m, texelFetch(u_src, s, v_level - 1));\n"
     "        }\n"
     "    o_min = m;\n"
     "}\n"
@@ -6927,19 +7249,17 @@ static const char skgl__src_soft_filter_frag[] =
     "   scale > 1. At most 128 blocks per axis, whatever is asked. */\n"
     "in vec2 v_uv;\n"
     "out vec4 o_acc;\n"
-    "uniform sampler2D u_kernel;\n"
-    "uniform sampler2D u_pred;\n"
-    "uniform sampler2D u_plane;\n"
+    "uniform sampler2DArray u_screen;  /* layers: kernel, prediction, plane */\n"
     "uniform sampler2DShadow u_tile;   /* window depth, LEQUAL comparison; the tile fills [0, res) of it */\n"
     "uniform vec4 u_tile_rect;         /* NDC x0, y0, x1, y1 of the tile on the base map */\n"
     "uniform vec2 u_tile_res;\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
-    "    vec4 k = texelFetch(u_kernel, px, 0);\n"
+    "    vec4 k = texelFetch(u_screen, ivec3(px, 0), 0);\n"
     "    if (k.w != 2.0) discard;\n"
-    "    vec4 pr = texelFetch(u_pred, px, 0);\n"
-    "    vec4 pl = texelFetch(u_plane, px, 0);\n"
+    "    vec4 pr = texelFetch(u_screen, ivec3(px, 1), 0);\n"
+    "    vec4 pl = texelFetch(u_screen, ivec3(px, 2), 0);\n"
     "    float ux = k.x, uy = k.y, vy = k.z;\n"
     "    vec2 c = pr.xy;\n"
     "    if (c.x + ux <= u_tile_rect.x || c.x - ux >= u_tile_rect.z ||\n"
@@ -6983,12 +7303,12 @@ static const char skgl__src_soft_resolve_frag[] =
     "   (V*A, A) of every tile (Sec. 5.2). */\n"
     "in vec2 v_uv;\n"
     "out float o_visibility;\n"
-    "uniform sampler2D u_kernel;\n"
+    "uniform sampler2DArray u_screen;  /* layer 0: the kernel */\n"
     "uniform sampler2D u_acc;\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
-    "    float state = texelFetch(u_kernel, px, 0).w;\n"
+    "    float state = texelFetch(u_screen, ivec3(px, 0), 0).w;\n"
     "    vec2 acc = texelFetch(u_acc, px, 0).xy;\n"
     "    if (state == 3.0) o_visibility = 0.0;\n"
     "    else if (state == 2.0 && acc.y > 0.0) o_visibility = clamp(acc.x / acc.y, 0.0, 1.0);\n"
@@ -7195,6 +7515,7 @@ static const char *skgl__glsl(skgl__glsl_id id)
         skgl__src_soft_kernel_frag,
         skgl__src_soft_smtg_vert,
         skgl__src_soft_smtg_frag,
+        skgl__src_soft_reduce_vert,
         skgl__src_soft_reduce_frag,
         skgl__src_soft_filter_frag,
         skgl__src_soft_resolve_frag,

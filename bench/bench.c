@@ -1457,7 +1457,7 @@ static tb_light soft_tb_light(const skgl_area_light *l) {
 /* one method on one prepared view: reps timed frames (after a warm-up),
    the last mask scored; 0 ok */
 static int soft_run(bench_gl *B, const soft_cfg *cfg, const view_data *vd, const skgl_scene *sc,
-                    const skgl_area_light *l, int reps, float *mask_px, run_rec *rr, skgl_stats *st) {
+                    const skgl_area_light *l, int reps, float *mask_px, run_rec *rr, skgl_soft_frame_stats *st) {
     skgl_soft_desc d;
     skgl_soft *so = NULL;
     float tot[BENCH_MAX_REPEAT], sh[BENCH_MAX_REPEAT], an[BENCH_MAX_REPEAT];
@@ -1466,14 +1466,14 @@ static int soft_run(bench_gl *B, const soft_cfg *cfg, const view_data *vd, const
     memset(&d, 0, sizeof d);
     d.technique = cfg->technique;
     d.resolution = cfg->resolution;
-    d.antialias = cfg->antialias;
+    d.disable_antialias = cfg->antialias < 0;
     d.resolution_scale = cfg->scale;
     d.lowres = cfg->lowres;
     if (skgl_soft_create(B->sk, &d, &so) != SK_OK) return -1;
     memset(rr, 0, sizeof *rr);
     rr->kind = "soft_mae";
     for (k = 0; k <= reps; k++) {
-        const skgl_stats *s;
+        const skgl_soft_frame_stats *s;
         r = skgl_soft_render(B->sk, so, &vd->v.cam, sc, l, vd->gbuf.depth_tex, vd->gbuf.color_tex, B->mask.color_tex);
         if (r != SK_OK) {
             fprintf(stderr, "bench: skgl_soft_render %s: %s (%s)\n", cfg->method, sk_result_string(r),
@@ -1572,7 +1572,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                         vd.v.name, soft_size_names[z], (double)l.half_width, now_s() - t0);
                 for (c = 0; c < SOFT_CFGS; c++) {
                     run_rec rr;
-                    skgl_stats st;
+                    skgl_soft_frame_stats st;
                     char params[160], view[40];
                     float tot;
                     if (soft_run(B, &soft_cfgs[c], &vd, &sc, &l, reps, mask_px, &rr, &st) != 0) continue;
@@ -1659,7 +1659,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                 if (prepare_view(B, &s, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) { ok = 0; break; }
                 for (c = 0; c < SOFT_CFGS && ok; c++) {
                     run_rec rr;
-                    skgl_stats st;
+                    skgl_soft_frame_stats st;
                     if (soft_run(B, &soft_cfgs[c], &vd, &sc, &l, 1, cur[c], &rr, &st) != 0) ok = 0;
                 }
                 if (ok && f > 0)

@@ -9,8 +9,8 @@
                                                           the picture (Fig. 10)
      build/examples/06_soft_shadows --headless            writes out/06_soft_shadows.png
    Options: --frames N, --out FILE, --scene FILE (default: the fence),
-   --debug, --timing (area lights read their timer queries at once: with
-   --timing every timed step waits for the GPU; for measuring only).
+   --debug, --timing (each step's GPU time, read two or three frames late:
+   a run of a single frame prints none).
 
    Soft shadows are a deferred effect here: skgl_soft_render takes the
    camera's depth and normals and writes visibility per pixel into a mask
@@ -147,7 +147,7 @@ int main(int argc, char **argv) {
         sk_mat4 lvp;
         unsigned mask;
         float rects[4 * MAX_TILES];
-        sk_tile tiles[MAX_TILES];
+        sk_rect tiles[MAX_TILES];
         int nt = 0, i;
         /* the light swings slowly from side to side above the content */
         float a = 0.35f * sinf(0.4f * (float)app.time);
@@ -162,14 +162,14 @@ int main(int argc, char **argv) {
         if ((r = skgl_soft_render(sk, soft, &cam, &scene, &light, 0, 0, mask)) != SK_OK) break;
         lvp = skgl_soft_matrix(soft);
         if (show_tiles) {
-            const float g = (float)skgl_soft_get_desc(soft).grid;
-            nt = skgl_soft_tiles(soft, tiles, MAX_TILES);
+            /* the tiles as this frame drew them, on its base frustum */
+            nt = skgl_soft_tile_rects(soft, tiles, MAX_TILES);
             if (nt > MAX_TILES) nt = MAX_TILES;
             for (i = 0; i < nt; i++) {
-                rects[4 * i] = -1.0f + 2.0f * (float)tiles[i].x0 / g;
-                rects[4 * i + 1] = -1.0f + 2.0f * (float)tiles[i].y0 / g;
-                rects[4 * i + 2] = -1.0f + 2.0f * (float)tiles[i].x1 / g;
-                rects[4 * i + 3] = -1.0f + 2.0f * (float)tiles[i].y1 / g;
+                rects[4 * i] = tiles[i].x0;
+                rects[4 * i + 1] = tiles[i].y0;
+                rects[4 * i + 2] = tiles[i].x1;
+                rects[4 * i + 3] = tiles[i].y1;
             }
         }
         /* our lighting pass: the scene drawn again, each pixel reading the
@@ -187,10 +187,10 @@ int main(int argc, char **argv) {
         if (ex_app_end_frame(&app) != 0) goto done;
     }
     if (r == SK_OK) {
-        const skgl_stats *st = skgl_soft_stats(soft);
+        const skgl_soft_frame_stats *st = skgl_soft_stats(soft);
         int k;
-        /* GPU times only with --timing: an area light reads its timer
-           queries at once, so they are this frame's (and each one waits) */
+        /* GPU times only with --timing: read two or three frames late,
+           never waited for */
         if (sdesc.technique == SKGL_SOFT_PVSM) {
             printf("pvsm: %d tiles (largest side %d), %.2f Mtexels (%.2fx one 4096^2 map), %.0f%% of the pixels "
                    "settled by the low-res map\n",

@@ -169,7 +169,7 @@ int ex_gbuffer_render(ex_app *app, skgl_context *sk, const skgl_camera *cam);
    to that value first. Returns the texture, 0 on failure. */
 unsigned ex_mask_texture(ex_app *app, skgl_context *sk, float clear);
 
-/* Prints "  <what>: N.NNN ms" for a GPU time from skgl_stats, or says it
+/* Prints "  <what>: N.NNN ms" for a GPU time from the stats, or says it
    is not measured yet (-1: timer results arrive frames late). */
 void ex_print_ms(const char *what, float ms);
 

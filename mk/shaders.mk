@@ -10,7 +10,7 @@ SHADER_SRCS := shaders_embedded/depth.vert shaders_embedded/depth.frag \
                shaders_embedded/point_sample.glsl shaders_embedded/point_mask.frag \
                shaders_embedded/soft_common.glsl shaders_embedded/soft_kernel.frag \
                shaders_embedded/soft_smtg.vert shaders_embedded/soft_smtg.frag \
-               shaders_embedded/soft_reduce.frag shaders_embedded/soft_filter.frag \
+               shaders_embedded/soft_reduce.vert shaders_embedded/soft_reduce.frag shaders_embedded/soft_filter.frag \
                shaders_embedded/soft_resolve.frag shaders_embedded/soft_cons.geom \
                shaders_embedded/soft_cons.frag shaders_embedded/soft_gbuffer.vert \
                shaders_embedded/soft_gbuffer.frag shaders_embedded/pcss_mask.frag

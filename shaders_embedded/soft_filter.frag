@@ -15,19 +15,17 @@
    scale > 1. At most 128 blocks per axis, whatever is asked. */
 in vec2 v_uv;
 out vec4 o_acc;
-uniform sampler2D u_kernel;
-uniform sampler2D u_pred;
-uniform sampler2D u_plane;
+uniform sampler2DArray u_screen;  /* layers: kernel, prediction, plane */
 uniform sampler2DShadow u_tile;   /* window depth, LEQUAL comparison; the tile fills [0, res) of it */
 uniform vec4 u_tile_rect;         /* NDC x0, y0, x1, y1 of the tile on the base map */
 uniform vec2 u_tile_res;
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
-    vec4 k = texelFetch(u_kernel, px, 0);
+    vec4 k = texelFetch(u_screen, ivec3(px, 0), 0);
     if (k.w != 2.0) discard;
-    vec4 pr = texelFetch(u_pred, px, 0);
-    vec4 pl = texelFetch(u_plane, px, 0);
+    vec4 pr = texelFetch(u_screen, ivec3(px, 1), 0);
+    vec4 pl = texelFetch(u_screen, ivec3(px, 2), 0);
     float ux = k.x, uy = k.y, vy = k.z;
     vec2 c = pr.xy;
     if (c.x + ux <= u_tile_rect.x || c.x - ux >= u_tile_rect.z ||

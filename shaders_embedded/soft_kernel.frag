@@ -3,7 +3,7 @@
    filter s_alpha from the average blocker depth, its convolution with the
    warped pixel footprint (appendix), and the predicted texel size (Eqs. 4
    and 5). Background pixels are discarded (the target keeps its clear
-   state 0), so a samples-passed query counts the covered pixels.
+   state 0; the SMTG pass counts the covered pixels from it).
    o_kernel: u_h.x, u_h.y, v_h.y (v_h.x is 0), state
              (1 fully lit, 2 in penumbra or umbra: filter, 3 faces away: 0)
    o_pred:   NDC x, y on the base map, r0, r1 (Eq. 5, clip units per texel)

@@ -1,7 +1,8 @@
-/* PVSM step 4: the point's predicted texel sizes (MIN-blended). */
+/* PVSM step 3: the point's predicted texel sizes (MIN-blended) and a count
+   of one (added). */
 flat in vec2 v_r;
 out vec4 o_r;
 void main()
 {
-    o_r = vec4(v_r, 0.0, 1.0);
+    o_r = vec4(v_r, 1e30, 1.0);
 }

@@ -597,7 +597,7 @@ static inline gt_agreement gt_agree(const float *a, const float *b, size_t n) {
 /* skgl_soft_render over the last G-buffer, read back (-1 on background);
    the stats into *st when not NULL. 0 ok. */
 static inline int gt_soft_mask(gt_env *e, skgl_soft *s, const skgl_camera *cam, const skgl_area_light *light,
-                               float *vis, skgl_stats *st) {
+                               float *vis, skgl_soft_frame_stats *st) {
     skgl_scene sc = gt_scene(e);
     sk_result r = skgl_soft_render(e->sk, s, cam, &sc, light, e->gbuf.depth_tex, e->gbuf.color_tex,
                                    e->mask.color_tex);

@@ -33,23 +33,28 @@
    SKGL_MALLOC returns NULL, n = 1 .. until the case runs through): each
    failing call returns an error, nothing leaks, nothing crashes.
 
-   Measured (the table): every case 2 framebuffers (the masks' target and
-   the area lights'), 2 samplers, 1 vertex array, 1 query and 7 programs
-   (14 shaders) of the context; a directional light +1 texture and +1
-   framebuffer per layer, +9 timer queries (three per timed pass: render,
-   mask, analysis); FERKO 8 textures and 10 framebuffers (its map, the
-   final 2x1 pair, and the analysis and reduction levels each time the
-   G-buffer size changes: three times over the frames) and 3 pixel buffers
-   (the read-back ring), ferko-late 2 fences (the ring's); RMSM 6 textures
-   (map, request atlas, page table, the samples made once per G-buffer
-   size), 3 pixel buffers and 2 fences; a cube light +1 program, +1
-   texture, +6 framebuffers (its faces), +6 timer queries; a VSDCT light +1
-   program, +2 textures, +1 framebuffer, +1 sampler; the atlas case 4
-   textures, 3 programs, 3 samplers, 1 framebuffer; PCSS +3 textures, +1
-   framebuffer, +1 query, +2 programs; PVSM +10 textures, +1 framebuffer,
-   +1 query, +7 programs. Nothing is left: this version of shadowkit_gl.h
-   releases everything, on the failure paths too (22 of skgl_create, 65
-   host allocation failures).
+   Measured (the table): every case 1 framebuffer (the masks' target), 2
+   samplers, 1 vertex array and 7 programs (14 shaders) of the context; a
+   directional light +1 texture and +1 framebuffer per layer, +9 timer
+   queries (three per timed pass: render, mask, analysis); FERKO 8
+   textures and 9 framebuffers (its map, the final 2x1 pair, and the
+   analysis and reduction levels each time the G-buffer size changes:
+   three times over the frames) and 3 pixel buffers (the read-back ring),
+   ferko-late 2 fences (the ring's); RMSM 6 textures (map, request atlas,
+   page table, the samples made once per G-buffer size), 3 pixel buffers
+   and 2 fences; a cube light +1 program, +1 texture, +6 framebuffers (its
+   faces), +6 timer queries; a VSDCT light +1 program, +2 textures, +1
+   framebuffer, +1 sampler; the atlas case 4 textures, 3 programs, 3
+   samplers, 1 framebuffer; PCSS +3 textures (its map, the G-buffer it
+   renders itself), +2 framebuffers, +2 programs, 24 timer queries (three
+   frame sets of 8); PVSM +8 textures (map, low-res pyramid and plain map,
+   SMTG, screen array, accumulation, G-buffer), +14 framebuffers (one per
+   target and per pyramid level at lowres 256), +3 pixel buffers (the
+   prediction's ring), +7 programs, 56 timer queries (sets grown to the
+   tiles' passes). Nothing is left: this version of shadowkit_gl.h releases
+   everything, on the failure paths too (22 of skgl_create, 84 host
+   allocation failures, a failed timer-set growth reported by
+   skgl_soft_render as SK_ERR_CAPACITY).
    Can fail: in local copies of the header with skgl__ring_free's fence
    delete removed, ferko-late and rmsm reported "1 sync(s) live (2 created,
    1 deleted)" (the fence still in flight at destroy), also on their

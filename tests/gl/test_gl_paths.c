@@ -1,7 +1,7 @@
 /* test_gl_paths.c - the error paths and the less travelled branches of
-   shadowkit_gl.h outside the area lights (skgl_soft_*, whose tests come
-   with their rewrite): the context, directional lights of every technique,
-   point lights, the shared point atlas, and what shadowkit keeps between
+   shadowkit_gl.h: the context, directional lights of every technique,
+   point lights, the shared point atlas, area lights (test_soft_paths,
+   described there), and what shadowkit keeps between
    calls (read-back rings, timer rings, the uniform-location cache per
    program, the texture-size cache per texture name, framebuffer checks).
 
@@ -1884,6 +1884,296 @@ static void test_log_cleared(void) {
     gt_env_free(&e);
 }
 
+/* ======================================================================= */
+/* ---- area lights (skgl_soft_*) ---- */
+typedef struct soft_rule {
+    const char *field;
+    double value;
+} soft_rule;
+
+/* a PCSS (or, for PVSM-only fields, PVSM) desc with one field broken */
+static skgl_soft_desc soft_rule_desc(const soft_rule *r) {
+    skgl_soft_desc d;
+    const char *f = r->field;
+    float v = (float)r->value;
+    int i = (int)r->value;
+    memset(&d, 0, sizeof d);
+    d.resolution = RES;
+    if (!strcmp(f, "technique")) d.technique = (skgl_soft_technique)i;
+    else if (!strcmp(f, "resolution")) d.resolution = i;
+    else if (!strcmp(f, "lowres")) d.lowres = i;
+    else if (!strcmp(f, "grid")) d.grid = i;
+    else if (!strcmp(f, "max_tiles")) d.max_tiles = i;
+    else if (!strcmp(f, "disable_conservative")) d.disable_conservative = i;
+    else if (!strcmp(f, "static_scene")) d.static_scene = i;
+    else if (!strcmp(f, "blocker_cells")) d.blocker_cells = i;
+    else if (!strcmp(f, "pcf_taps")) d.pcf_taps = i;
+    else if (!strcmp(f, "slope_bias")) d.slope_bias = v;
+    else if (!strcmp(f, "depth_bias")) d.depth_bias = v;
+    else if (!strcmp(f, "disable_polygon_offset")) d.disable_polygon_offset = i;
+    else if (!strcmp(f, "rel_bias")) d.rel_bias = v;
+    else if (!strcmp(f, "disable_antialias")) d.disable_antialias = i;
+    else if (!strcmp(f, "resolution_scale")) d.resolution_scale = v;
+    else if (!strcmp(f, "sync_readback")) d.sync_readback = i;
+    return d;
+}
+
+static int soft_mask(gt_env *e, skgl_context *sk, skgl_soft *s, const skgl_camera *cam, const skgl_area_light *l,
+                     unsigned depth_tex, float *mask) {
+    skgl_scene sc = gt_scene(e);
+    size_t i;
+    sk_result r = skgl_soft_render(sk, s, cam, &sc, l, depth_tex, depth_tex ? e->gbuf.color_tex : 0,
+                                   e->mask.color_tex);
+    if (r != SK_OK) { printf("soft render: %s (%s)\n", sk_result_string(r), skgl_error_log(sk)); return -1; }
+    if (!mask) return 0;
+    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, mask) != 0) return -1;
+    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) mask[i] = -1.0f;
+    return 0;
+}
+
+static skgl_area_light soft_light(void) {
+    skgl_area_light l;
+    memset(&l, 0, sizeof l);
+    l.position = gt_v3(2.0f, 9.0f, -2.5f);
+    l.direction = gt_v3(-0.3f, -1.0f, 0.4f);
+    l.up = gt_v3(0, 0, 1);
+    l.half_width = l.half_height = 0.3f;
+    return l;
+}
+
+/* test_soft_paths: every rule of skgl_soft_desc broken once (28 cases, the
+   field named, nothing made); the defaults; the NULL accessors; render's
+   arguments, each named; a scene wholly behind the light
+   (SK_ERR_DEGENERATE); a mask texture without level 0 and one that is not
+   colour-renderable; a framebuffer incomplete at each target made at
+   create (PCSS's map; PVSM's low-res map, a pyramid level, the SMTG) and at
+   render (PVSM's screen targets, the own G-buffer), a compile and a link
+   failure, a GL error at create and (desc.debug) at render: SK_ERR_GL, the
+   log says which, the object count unchanged, the next call good; both
+   techniques in caller-owns mode, with and without a G-buffer given,
+   mask for mask equal to the default mode's. It found a framebuffer
+   leaked when a pyramid level's was incomplete ("PVSM fb 2: 12 objects,
+   11 before"), fixed since. */
+static void test_soft_paths(void) {
+    static const soft_rule rules[] = {
+        {"technique", 2}, {"technique", -1}, {"resolution", 8}, {"resolution", 1 << 20}, {"lowres", 24},
+        {"lowres", 8}, {"lowres", 16384}, {"grid", 2}, {"grid", 12}, {"grid", 512}, {"max_tiles", -1},
+        {"max_tiles", 5000}, {"disable_conservative", 2}, {"static_scene", -1}, {"blocker_cells", 1},
+        {"blocker_cells", 17}, {"pcf_taps", -1}, {"pcf_taps", 17}, {"slope_bias", -1}, {"slope_bias", 1e5},
+        {"depth_bias", -1}, {"disable_polygon_offset", 2}, {"rel_bias", -0.1}, {"rel_bias", 0.6},
+        {"disable_antialias", -1}, {"resolution_scale", 0.1}, {"resolution_scale", 9}, {"sync_readback", 2}};
+    gt_env e;
+    skgl_context *sk, *own;
+    skgl_soft_desc d, g;
+    skgl_soft *s = NULL;
+    skgl_scene sc, nodraw;
+    skgl_camera cam = view_a(), badcam;
+    skgl_area_light l = soft_light(), bad;
+    sk_vec3 hu, hv;
+    float *m0, *m1;
+    size_t i;
+    int base, k, t, differ;
+    if (env_init(&e) != 0) return;
+    sk = fault_context(1, 0, 0);
+    if (!sk) { gt_env_free(&e); return; }
+    sc = gt_scene(&e);
+    m0 = gt_alloc(&e);
+    m1 = gt_alloc(&e);
+    SK_CHECK(gt_gbuffer(&e, &cam) == 0);
+    base = skgl_gl_object_count(sk);
+    for (k = 0; k < (int)(sizeof rules / sizeof rules[0]); k++) {
+        d = soft_rule_desc(&rules[k]);
+        s = (skgl_soft *)&d;   /* must come back NULL */
+        SK_CHECK_MSG(skgl_soft_create(sk, &d, &s) == SK_ERR_INVALID_ARG && s == NULL, "soft rule %s = %g accepted",
+                     rules[k].field, rules[k].value);
+        CHECK_LOG(sk, rules[k].field);
+        SK_CHECK(skgl_gl_object_count(sk) == base);
+    }
+    /* NaN biases */
+    memset(&d, 0, sizeof d);
+    d.slope_bias = NAN;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "slope_bias");
+    SK_CHECK(skgl_soft_create(NULL, &d, &s) == SK_ERR_INVALID_ARG);
+    SK_CHECK(skgl_soft_create(sk, NULL, &s) == SK_ERR_INVALID_ARG);
+    SK_CHECK(skgl_soft_create(sk, &d, NULL) == SK_ERR_INVALID_ARG);
+    /* the defaults, and the NULL accessors */
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_SOFT_PVSM;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_OK && s);
+    SK_CHECK(skgl_error_log(sk)[0] == 0);
+    g = skgl_soft_get_desc(s);
+    SK_CHECK_MSG(g.resolution == 4096 && g.lowres == 1024 && g.grid == 64 && g.max_tiles == 64 &&
+                     g.blocker_cells == 8 && g.pcf_taps == 12 && g.slope_bias == 1.5f && g.depth_bias == 1.0f &&
+                     g.rel_bias == 0.002f && g.resolution_scale == 1.0f && g.sync_readback == 0 &&
+                     g.disable_conservative == 0 && g.disable_antialias == 0,
+                 "PVSM defaults: %d %d %d %d", g.resolution, g.lowres, g.grid, g.max_tiles);
+    SK_CHECK(skgl_soft_pyramid(s, NULL, 0) == 0 && skgl_soft_tiles(s, NULL, 0) == 0);
+    SK_CHECK(skgl_soft_stats(s)->lit_fraction == 1.0f && skgl_soft_stats(s)->shadow_ms == -1.0f);
+    skgl_soft_destroy(sk, s);
+    s = NULL;
+    g = skgl_soft_get_desc(NULL);
+    SK_CHECK(g.resolution == 0 && g.technique == SKGL_SOFT_PCSS);
+    SK_CHECK(skgl_soft_stats(NULL) == NULL && skgl_soft_tiles(NULL, NULL, 0) == 0 &&
+             skgl_soft_tile_rects(NULL, NULL, 0) == 0 && skgl_soft_pyramid(NULL, NULL, 0) == 0);
+    SK_CHECK(memcmp(skgl_soft_matrix(NULL).m, sk_mat4_identity().m, sizeof(float) * 16) == 0);
+    skgl_soft_destroy(sk, NULL);
+    skgl_soft_destroy(NULL, NULL);
+    skgl_area_light_axes(NULL, &hu, &hv);
+    SK_CHECK(hu.x == 0.0f && hv.y == 0.0f);
+    skgl_area_light_axes(&l, NULL, &hv);
+    bad = l;
+    bad.up = gt_v3(-0.3f, -1.0f, 0.4f);   /* along the direction: another axis is taken */
+    skgl_area_light_axes(&bad, &hu, &hv);
+    SK_CHECK(fabs(sqrt((double)hu.x * hu.x + (double)hu.y * hu.y + (double)hu.z * hu.z) - 0.3) < 1e-5 &&
+             fabs(sqrt((double)hv.x * hv.x + (double)hv.y * hv.y + (double)hv.z * hv.z) - 0.3) < 1e-5);
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+
+    /* render's arguments */
+    memset(&d, 0, sizeof d);
+    d.resolution = RES;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_OK && s);
+    if (!s) goto done;
+    SK_CHECK(skgl_soft_render(NULL, s, &cam, &sc, &l, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    SK_CHECK(skgl_soft_render(sk, NULL, &cam, &sc, &l, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "s is NULL");
+    badcam = cam;
+    badcam.view.m[5] = NAN;
+    SK_CHECK(skgl_soft_render(sk, s, &badcam, &sc, &l, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "cam");
+    nodraw = sc;
+    nodraw.draw = NULL;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &nodraw, &l, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "draw");
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, NULL, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "light");
+    bad = l;
+    bad.direction = gt_v3(0, 0, 0);
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &bad, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "direction");
+    bad = l;
+    bad.position.y = INFINITY;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &bad, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "position");
+    bad = l;
+    bad.up.x = NAN;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &bad, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "up");
+    bad = l;
+    bad.half_height = -1.0f;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &bad, 0, 0, e.mask.color_tex) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "half_width");
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, 0, 0, 0) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "mask_tex");
+    /* the whole scene behind the light's plane */
+    bad = l;
+    bad.position = gt_v3(0, -50, 0);
+    bad.direction = gt_v3(0, -1, 0);
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &bad, 0, 0, e.mask.color_tex) == SK_ERR_DEGENERATE);
+    CHECK_LOG(sk, "behind");
+    /* a mask texture with no level 0, one that is not colour-renderable */
+    F.tex_w = -1;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex) ==
+             SK_ERR_INVALID_ARG);
+    CHECK_LOG(sk, "level 0");
+    faults_off();
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, e.gbuf.depth_tex, e.gbuf.color_tex, e.gbuf.depth_tex) ==
+             SK_ERR_GL);
+    CHECK_LOG(sk, "colour-renderable");
+    SK_CHECK(soft_mask(&e, sk, s, &cam, &l, e.gbuf.depth_tex, NULL) == 0);
+    SK_CHECK(skgl_error_log(sk)[0] == 0);
+    skgl_soft_destroy(sk, s);
+    s = NULL;
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+
+    /* framebuffers incomplete at create: PCSS's map; PVSM's low-res map, its
+       pyramid's first level, the SMTG (after the map, the low-res map and
+       its 5 levels at lowres 64) */
+    memset(&d, 0, sizeof d);
+    d.resolution = RES;
+    F.fb_fail = 1;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_ERR_GL && !s);
+    CHECK_LOG(sk, "DEPTH32F");
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+    d.technique = SKGL_SOFT_PVSM;
+    d.lowres = 64;
+    for (k = 0; k < 3; k++) {
+        static const int skip[3] = {1, 2, 8};
+        static const char *const what[3] = {"R32F", "R32F", "RGBA32F"};
+        faults_off();
+        F.fb_skip = skip[k];
+        F.fb_fail = 1;
+        SK_CHECK_MSG(skgl_soft_create(sk, &d, &s) == SK_ERR_GL && !s, "PVSM framebuffer %d made", skip[k]);
+        CHECK_LOG(sk, what[k]);
+        SK_CHECK_MSG(skgl_gl_object_count(sk) == base, "PVSM fb %d: %d objects, %d before", skip[k], skgl_gl_object_count(sk), base);
+    }
+    /* a compile and a link failure, a GL error at the end of create */
+    faults_off();
+    F.compile_fail = 1;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_ERR_GL && !s);
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+    F.link_fail = 1;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_ERR_GL && !s);
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+    F.gl_error = 1;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_ERR_GL && !s);
+    CHECK_LOG(sk, "GL error");
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+    faults_off();
+    /* at render: PVSM's screen targets, the own G-buffer; desc.debug's GL error */
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_OK && s);
+    if (!s) goto done;
+    F.fb_fail = 1;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex) ==
+             SK_ERR_GL);
+    CHECK_LOG(sk, "screen targets");
+    F.fb_fail = 1;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, 0, 0, e.mask.color_tex) == SK_ERR_GL);
+    CHECK_LOG(sk, "G-buffer");
+    faults_off();
+    F.gl_error = 1;
+    SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex) ==
+             SK_ERR_GL);
+    CHECK_LOG(sk, "skgl_soft_render");
+    faults_off();
+    SK_CHECK(soft_mask(&e, sk, s, &cam, &l, 0, NULL) == 0);
+    SK_CHECK(skgl_error_log(sk)[0] == 0);
+    skgl_soft_destroy(sk, s);
+    s = NULL;
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+
+    /* caller-owns mode: the same masks, with and without a G-buffer given */
+    own = fault_context(0, 0, 1);
+    for (t = 0; own && t < 4; t++) {
+        skgl_soft *a = NULL, *b = NULL;
+        memset(&d, 0, sizeof d);
+        d.technique = t & 1 ? SKGL_SOFT_PVSM : SKGL_SOFT_PCSS;
+        d.resolution = RES;
+        d.sync_readback = 1;
+        SK_CHECK(skgl_soft_create(sk, &d, &a) == SK_OK && skgl_soft_create(own, &d, &b) == SK_OK);
+        if (a && b) {
+            unsigned depth = t & 2 ? 0 : e.gbuf.depth_tex;
+            SK_CHECK(soft_mask(&e, sk, a, &cam, &l, depth, m0) == 0);
+            SK_CHECK(soft_mask(&e, own, b, &cam, &l, depth, m1) == 0);
+            for (i = 0, differ = 0; i < e.n; i++) differ += m0[i] != m1[i];
+            SK_CHECK_MSG(differ == 0, "%s%s, caller owns the state: %d mask values differ",
+                         t & 1 ? "PVSM" : "PCSS", t & 2 ? " (own G-buffer)" : "", differ);
+        }
+        skgl_soft_destroy(sk, a);
+        skgl_soft_destroy(own, b);
+    }
+    skgl_destroy(own);
+done:
+    faults_off();
+    if (s) skgl_soft_destroy(sk, s);
+    SK_CHECK(skgl_gl_object_count(sk) == base);
+    SK_CHECK(e.gl.GetError() == 0);
+    skgl_destroy(sk);
+    free(m0);
+    free(m1);
+    gt_env_free(&e);
+}
+
 SK_TEST_MAIN(test_context, test_shadow_rules, test_shadow_args, test_shadow_techniques, test_faults, test_textures,
              test_rings, test_program_cache, test_point_paths, test_atlas, test_callback_program, test_set_model,
-             test_log_cleared)
+             test_log_cleared, test_soft_paths)

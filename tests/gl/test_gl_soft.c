@@ -42,7 +42,7 @@
    low-res map, the camera close to the pole's shadow) still shadows the
    ground: of the pixels the reference puts below 0.5, PVSM
    puts 100% below 0.5 with conservative rasterisation; switched off
-   (conservative = -1) the low-resolution map loses the pole, every pixel
+   (disable_conservative) the low-resolution map loses the pole, every pixel
    is taken as fully lit and the share is 0% (that run is part of the test).
 
    test_edges: zero-size light (hard shadows through the same path), a
@@ -103,7 +103,7 @@ static int soft_valid(const gt_env *e, const float *v) {
 
 /* one frame of a technique: the mask's MAE against ref; -1 on failure */
 static double soft_frame(gt_env *e, const skgl_soft_desc *d, const skgl_camera *cam, const skgl_area_light *l,
-                         const float *ref, float *mask, skgl_stats *st, const char *image) {
+                         const float *ref, float *mask, skgl_soft_frame_stats *st, const char *image) {
     skgl_soft *s = NULL;
     sk_result r = skgl_soft_create(e->sk, d, &s);
     double mae = -1.0;
@@ -144,7 +144,7 @@ static void test_accuracy(void) {
         skgl_area_light l = contact_light(halves[k]);
         skgl_soft_desc pv = soft_desc(SKGL_SOFT_PVSM, (int)(4096 * scale));
         skgl_soft_desc p4 = soft_desc(SKGL_SOFT_PCSS, 4096), p2 = soft_desc(SKGL_SOFT_PCSS, 2048);
-        skgl_stats st;
+        skgl_soft_frame_stats st;
         double e_pv, e_p4, e_p2;
         char name[64];
         gt_area_reference(&e, &l, STRATA, ref);
@@ -261,7 +261,7 @@ static void test_thin_caster(void) {
         skgl_soft *s = NULL;
         size_t i, dark = 0, hit = 0;
         double texel;
-        d.conservative = pass == 0 ? 1 : -1;
+        d.disable_conservative = pass != 0;
         d.lowres = 16;           /* texels large enough to lose the pole */
         if (skgl_soft_create(e.sk, &d, &s) != SK_OK) { SK_CHECK_MSG(0, "create"); break; }
         if (gt_soft_mask(&e, s, &cam, &l, mask, NULL) != 0) { SK_CHECK_MSG(0, "render"); skgl_soft_destroy(e.sk, s); break; }
@@ -299,7 +299,7 @@ typedef struct edge_case {
     double bound;            /* MAE bound; hard shadows: % misclassified */
 } edge_case;
 
-static void edge_run(gt_env *e, const edge_case *c, float *ref, float *mask, skgl_stats *st, double *err) {
+static void edge_run(gt_env *e, const edge_case *c, float *ref, float *mask, skgl_soft_frame_stats *st, double *err) {
     skgl_soft_desc d = soft_desc(SKGL_SOFT_PVSM, c->resolution);
     char name[64];
     d.max_tiles = c->max_tiles;
@@ -313,7 +313,7 @@ static void edge_run(gt_env *e, const edge_case *c, float *ref, float *mask, skg
 static void test_edges(void) {
     gt_env e;
     float *ref, *mask;
-    skgl_stats st;
+    skgl_soft_frame_stats st;
     double err;
     edge_case c;
     size_t i, lit, covered;

@@ -35,7 +35,7 @@
    Runs: PCSS at 2048^2 and 4096^2 and PVSM with every default (tiles up
    to 4096^2, rho_dynamic, anti-aliasing on) everywhere; PVSM at
    resolution_scale 4 (not on the low plate), PVSM at resolution_scale 8
-   with antialias = -1 (the filter is the light's alone, point-sampled like
+   with disable_antialias (the filter is the light's alone, point-sampled like
    the truth; overhead and low), and PVSM at resolution_scale 4 with tiles
    of at most 256^2 (offset: several tiles, merged).
 
@@ -61,7 +61,7 @@ typedef struct cf_run {
     int resolution;
     float scale;
     int antialias;
-    float rel_bias, slope_bias, depth_bias;   /* 0: the default */
+    float rel_bias, slope_bias, depth_bias;   /* 0: the default; both biases < 0: disable_polygon_offset */
 } cf_run;
 
 static const cf_run cf_runs[NRUNS] = {
@@ -352,7 +352,7 @@ static cf_err cf_frame(gt_env *e, const cf_scene *c, const cf_run *r, const skgl
     skgl_soft_desc d;
     skgl_soft *so = NULL;
     skgl_camera cam = cf_camera(c);
-    skgl_stats st;
+    skgl_soft_frame_stats st;
     cf_err s;
     sk_result rr;
     memset(&s, 0, sizeof s);
@@ -361,10 +361,11 @@ static cf_err cf_frame(gt_env *e, const cf_scene *c, const cf_run *r, const skgl
     d.technique = r->technique;
     d.resolution = r->resolution;
     d.resolution_scale = r->scale;
-    d.antialias = r->antialias;
+    d.disable_antialias = r->antialias < 0;
     d.rel_bias = r->rel_bias;
-    d.slope_bias = r->slope_bias;
-    d.depth_bias = r->depth_bias;
+    d.slope_bias = r->slope_bias < 0.0f ? 0.0f : r->slope_bias;
+    d.depth_bias = r->depth_bias < 0.0f ? 0.0f : r->depth_bias;
+    d.disable_polygon_offset = r->slope_bias < 0.0f && r->depth_bias < 0.0f;
     rr = skgl_soft_create(e->sk, &d, &so);
     if (rr != SK_OK) {
         SK_CHECK_MSG(0, "skgl_soft_create: %s (%s)", sk_result_string(rr), skgl_error_log(e->sk));
@@ -523,7 +524,7 @@ static void cf_measure_all(void) {
      DESIGN.md) samples the pixel's centre; for penumbrae of 0.4-8 pixels
      (overhead, low) that difference dominates: overhead L 0.1 at x4
      measures 0.0171 against the centre and 0.0089 against the pixel's
-     box average. With antialias = -1 at x8, PVSM is at or below PCSS-4096
+     box average. With disable_antialias at x8, PVSM is at or below PCSS-4096
      in overhead at every size and low at L 0.2 and 0.4 (asserted).
    - low L 0.1 (penumbra 0.4 cm, 0.4 pixel): at x8 without anti-aliasing
      PVSM's texel (0.15-0.18 cm) equals PCSS-4096's and rounding decides;
