@@ -1711,6 +1711,24 @@ static sk_result skgl__fail(skgl_context *ctx, sk_result r, const char *fmt, ...
                               (double)(value), rule);                                              \
     } while (0)
 
+/* the bias and filtering rules directional and point lights share */
+static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope_bias, float depth_bias,
+                                  float normal_bias, skgl_bias bias, float plane_bias, int pcf_radius)
+{
+    SKGL__RULE(slope_bias >= 0.0f && slope_bias <= 1e4f, fn, "slope_bias", slope_bias,
+               "in [0, 10000] (disable_polygon_offset for none)");
+    SKGL__RULE(depth_bias >= 0.0f && depth_bias <= 1e6f, fn, "depth_bias", depth_bias,
+               "in [0, 1000000] (disable_polygon_offset for none)");
+    SKGL__RULE(normal_bias >= 0.0f && normal_bias <= 64.0f, fn, "normal_bias", normal_bias, "in [0, 64] texels");
+    SKGL__RULE((int)bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)bias <= (int)SKGL_BIAS_NONE, fn, "bias", bias,
+               "one of skgl_bias");
+    SKGL__RULE(plane_bias >= 0.0f && plane_bias <= 64.0f, fn, "plane_bias", plane_bias,
+               "in [0, 64] texels (disable_plane_bias for none)");
+    SKGL__RULE(pcf_radius >= 0 && pcf_radius <= 8, fn, "pcf_radius", pcf_radius,
+               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
+    return SK_OK;
+}
+
 /* >>args  a call's arguments: each check names the argument and its value */
 #define SKGL__TRY(call)                                                                            \
     do {                                                                                           \
@@ -2805,18 +2823,8 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
     SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
     SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
-    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
-               "in [0, 10000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
-               "in [0, 1000000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
-               "in [0, 64] texels");
-    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
-               "bias", d->bias, "one of skgl_bias");
-    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
-               "in [0, 64] texels (disable_plane_bias for none)");
-    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
-               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
+    SKGL__TRY(skgl__bias_rules(ctx, fn, d->slope_bias, d->depth_bias, d->normal_bias, d->bias, d->plane_bias,
+                               d->pcf_radius));
     SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
     SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
                "in [0, 1000] (disable_psm_slide for none)");
@@ -4166,18 +4174,8 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
                "resolution", d->resolution, "a power of two with select_resolution and SKGL_POINT_CUBE");
     SKGL__RULE(sk__finite(d->near_plane) && d->near_plane > 0.0f, fn, "near_plane", d->near_plane, "more than 0");
     SKGL__RULE(sk__finite(d->range) && d->range > d->near_plane, fn, "range", d->range, "more than near_plane");
-    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
-               "in [0, 10000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
-               "in [0, 1000000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->normal_bias >= 0.0f && d->normal_bias <= 64.0f, fn, "normal_bias", d->normal_bias,
-               "in [0, 64] texels");
-    SKGL__RULE((int)d->bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)d->bias <= (int)SKGL_BIAS_NONE, fn,
-               "bias", d->bias, "one of skgl_bias");
-    SKGL__RULE(d->plane_bias >= 0.0f && d->plane_bias <= 64.0f, fn, "plane_bias", d->plane_bias,
-               "in [0, 64] texels (disable_plane_bias for none)");
-    SKGL__RULE(d->pcf_radius >= 0 && d->pcf_radius <= 8, fn, "pcf_radius", d->pcf_radius,
-               "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
+    SKGL__TRY(skgl__bias_rules(ctx, fn, d->slope_bias, d->depth_bias, d->normal_bias, d->bias, d->plane_bias,
+                               d->pcf_radius));
     SKGL__RULE(sk__finite(d->resolution_c) && d->resolution_c > 0.0f, fn, "resolution_c", d->resolution_c,
                "more than 0");
     SKGL__RULE(d->screen_w >= 0, fn, "screen_w", d->screen_w, "0 or more");
