@@ -417,6 +417,12 @@ typedef struct skgl_shadow_desc {
     int cascades;                 /* PSSM, 1..SKGL_MAX_CASCADES [4] */
     float lambda;                 /* PSSM split scheme weight in (0, 1] [0.75] */
     int uniform_splits;           /* 1: lambda 0, the uniform split scheme [0] */
+    float splits[SKGL_MAX_CASCADES - 1];  /* PSSM, LiSPSM per cascade: hand-set view depths where
+                                     cascade i ends and i + 1 begins, increasing, one per
+                                     boundary (cascades - 1), the rest 0; all 0: lambda's
+                                     scheme [0]. Each frame they are kept inside the shadow
+                                     range (the camera's near plane to the end of the
+                                     shadows): a boundary past it makes its cascades thin. */
     float blend_band;             /* PSSM: fraction of a cascade blended into the next [0: off] */
     int stable;                   /* 1: texel-snapped crops (sphere fit) [0] */
     float slope_bias;             /* polygon offset factor, 0 or more [2.0] */
@@ -561,6 +567,11 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
    world_pos - origin); NULL: world space, as skgl_shadow_bind */
 SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
                                           const double origin[3]);
+/* After drawing with a bound light: plain sampling again on `unit` and
+   `unit` + 1 (the sampler objects skgl_shadow_bind / skgl_point_bind left
+   there, a comparison sampler among them, unbound; the textures stay), so
+   a later texture on those units samples by its own parameters. */
+SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit);
 /* the info log of the last shader or framebuffer failure ("" if none) */
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
 /* light view-projection of one layer (world -> light clip) */
@@ -2808,6 +2819,52 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     return r;
 }
 
+/* hand-set splits: all 0, or one finite increasing depth > 0 per boundary
+   between the cascades and none past them */
+static sk_result skgl__split_rules(skgl_context *ctx, const char *fn, const skgl_shadow_desc *d)
+{
+    int i, given = 0, n = d->cascades > 1 ? d->cascades - 1 : 0;
+    for (i = 0; i < SKGL_MAX_CASCADES - 1; i++) given |= d->splits[i] != 0.0f;
+    if (!given) return SK_OK;
+    if (d->technique != SKGL_PSSM && d->technique != SKGL_LISPSM)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.splits is set: only SKGL_PSSM and SKGL_LISPSM have "
+                                                   "cascades to split", fn);
+    if (d->uniform_splits)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.splits and desc.uniform_splits are both set", fn);
+    for (i = 0; i < SKGL_MAX_CASCADES - 1; i++) {
+        float v = d->splits[i];
+        if (i >= n && v != 0.0f)
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.splits[%d] = %g: %d cascades have %d boundaries "
+                                                       "(the rest 0)", fn, i, (double)v, d->cascades, n);
+        if (i < n && !(v > 0.0f && v < 1e30f))
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.splits[%d] = %g: a finite view depth more than 0",
+                              fn, i, (double)v);
+        if (i > 0 && i < n && !(v > d->splits[i - 1]))
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.splits[%d] = %g: more than desc.splits[%d] = %g",
+                              fn, i, (double)v, i - 1, (double)d->splits[i - 1]);
+    }
+    return SK_OK;
+}
+
+/* The layers' view depths this frame: zn, the boundaries, zf. Hand-set
+   boundaries are kept inside (zn, zf), each a little past the one before
+   (a relative step of 1e-4), so no cascade is empty. */
+static sk_result skgl__splits(const skgl_shadow_desc *d, int layers, float zn, float zf, float *out)
+{
+    int i;
+    if (layers == 1) { out[0] = zn; out[1] = zf; return SK_OK; }
+    if (d->splits[0] == 0.0f) return sk_pssm_splits(zn, zf, layers, d->lambda, out);
+    out[0] = zn;
+    out[layers] = zf;
+    for (i = 1; i < layers; i++) {
+        float lo = out[i - 1] * (1.0f + 1e-4f), hi = zf * (1.0f - 1e-4f * (float)(layers - i));
+        float v = d->splits[i - 1];
+        out[i] = v > hi ? hi : v;
+        if (out[i] < lo) out[i] = lo;
+    }
+    return SK_OK;
+}
+
 /* every rule of a skgl_shadow_desc (defaults filled), in field order */
 static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc *d)
 {
@@ -2822,6 +2879,7 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
     SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
     SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
+    SKGL__TRY(skgl__split_rules(ctx, fn, d));
     SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
     SKGL__TRY(skgl__bias_rules(ctx, fn, d->slope_bias, d->depth_bias, d->normal_bias, d->bias, d->plane_bias,
                                d->pcf_radius));
@@ -3122,8 +3180,7 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
         if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
     }
     if (d->max_distance > zn && d->max_distance < zf) zf = d->max_distance;
-    if (s->layers == 1) { s->stats.splits[0] = zn; s->stats.splits[1] = zf; }
-    else if (sk_pssm_splits(zn, zf, s->layers, d->lambda, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
+    if (skgl__splits(d, s->layers, zn, zf, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
     s->stats.depth_reversed = 0;
     s->stats.psm_slide = 0.0f;
     s->maps = s->layers;
@@ -3955,6 +4012,16 @@ SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *
     if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
     skgl__shadow_uniforms(ctx, s, e, unit, unit + 1, origin ? origin : skgl__zero3);
     return skgl__check(ctx, "skgl_shadow_bind");
+}
+
+SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit)
+{
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_unit(ctx, "skgl_unbind", unit, 30));
+    ctx->gl.BindSampler((skgl__uint)unit, 0);
+    ctx->gl.BindSampler((skgl__uint)unit + 1, 0);
+    return skgl__check(ctx, "skgl_unbind");
 }
 
 /* ---- 6.7 the deferred mask ------------------------------------------- */

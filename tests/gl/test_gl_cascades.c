@@ -143,4 +143,90 @@ done:
 static void test_no_seam(void) { seam_case(0.0f); }
 static void test_blend_band(void) { seam_case(0.2f); }
 
-SK_TEST_MAIN(test_no_seam, test_blend_band)
+/* test_hand_set_splits: desc.splits. The lambda scheme's boundaries (from
+   a first light's stats) given by hand: the same splits and the same mask,
+   value for value. Other boundaries (2, 5, 12 m): they are the frame's
+   splits and the mask differs. Boundaries past the shadow range
+   (max_distance 30 m: 10, 20, 50): pulled inside it, increasing, the last
+   one short of 30. Each rule named: set on STANDARD, with uniform_splits,
+   not increasing, NaN, a boundary past cascades - 1. Measured: lambda's
+   8.220 18.774 40.979 given back: 0 mask values differ; 2 5 12: 7099
+   differ; 10 20 50 at max_distance 30: 10 20 29.997 30. Can fail: the
+   hand-set boundaries ignored (lambda's scheme always) fails the second
+   and third cases. */
+static void test_hand_set_splits(void) {
+    gt_env e;
+    skgl_shadow_desc d;
+    skgl_shadow *a = NULL, *b = NULL, *c = NULL, *bad = NULL;
+    sk_vec3 light = gt_v3(0.6f, -1, 0.3f);
+    skgl_camera cam = gt_camera(gt_v3(0, 4, 6), gt_v3(0, 0, -15), 0.9f, 0.3f, 200, W, H);
+    float *ma, *mb, sa[SKGL_MAX_CASCADES + 1];
+    const skgl_shadow_frame_stats *st;
+    size_t i, differ;
+    int k;
+    if (rails_env(&e) != 0) { gt_env_free(&e); return; }
+    ma = gt_alloc(&e);
+    mb = gt_alloc(&e);
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_PSSM;
+    d.resolution = 1024;
+    d.cascades = 4;
+    a = gt_shadow(&e, &d);
+    if (!a || gt_gbuffer(&e, &cam) != 0 || gt_mask(&e, a, &cam, light, ma) != 0) { SK_CHECK(0); goto done; }
+    memcpy(sa, skgl_shadow_stats(a)->splits, sizeof sa);
+    for (k = 0; k < 3; k++) d.splits[k] = sa[k + 1];
+    b = gt_shadow(&e, &d);
+    if (!b || gt_mask(&e, b, &cam, light, mb) != 0) { SK_CHECK(0); goto done; }
+    st = skgl_shadow_stats(b);
+    for (i = 0, differ = 0; i < e.n; i++) differ += ma[i] != mb[i];
+    printf("hand-set = lambda's (%.3f %.3f %.3f): splits %.3f %.3f %.3f %.3f %.3f, %zu mask values differ\n",
+           sa[1], sa[2], sa[3], st->splits[0], st->splits[1], st->splits[2], st->splits[3], st->splits[4], differ);
+    SK_CHECK_MSG(memcmp(st->splits, sa, sizeof(float) * 5) == 0 && differ == 0,
+                 "hand-set lambda splits: %zu mask values differ", differ);
+    skgl_shadow_destroy(e.sk, b);
+    d.splits[0] = 2.0f; d.splits[1] = 5.0f; d.splits[2] = 12.0f;
+    b = gt_shadow(&e, &d);
+    if (!b || gt_mask(&e, b, &cam, light, mb) != 0) { SK_CHECK(0); goto done; }
+    st = skgl_shadow_stats(b);
+    for (i = 0, differ = 0; i < e.n; i++) differ += ma[i] != mb[i];
+    printf("hand-set 2 5 12: splits %.3f %.3f %.3f %.3f %.3f, %zu mask values differ from lambda's\n",
+           st->splits[0], st->splits[1], st->splits[2], st->splits[3], st->splits[4], differ);
+    SK_CHECK(st->splits[1] == 2.0f && st->splits[2] == 5.0f && st->splits[3] == 12.0f && st->splits[0] == sa[0] &&
+             differ > 0);
+    d.splits[0] = 10.0f; d.splits[1] = 20.0f; d.splits[2] = 50.0f;
+    d.max_distance = 30.0f;
+    c = gt_shadow(&e, &d);
+    if (!c || gt_mask(&e, c, &cam, light, mb) != 0) { SK_CHECK(0); goto done; }
+    st = skgl_shadow_stats(c);
+    printf("hand-set 10 20 50, max_distance 30: splits %.3f %.3f %.3f %.3f %.3f\n", st->splits[0], st->splits[1],
+           st->splits[2], st->splits[3], st->splits[4]);
+    SK_CHECK(st->splits[1] == 10.0f && st->splits[2] == 20.0f && st->splits[3] > 20.0f && st->splits[3] < 30.0f &&
+             st->splits[4] == 30.0f);
+    /* the rules */
+    {
+        static const char *const what[5] = {"only SKGL_PSSM", "uniform_splits", "more than desc.splits[1]",
+                                            "a finite view depth", "boundaries"};
+        for (k = 0; k < 5; k++) {
+            skgl_shadow_desc x = d;
+            x.max_distance = 0.0f;
+            if (k == 0) x.technique = SKGL_STANDARD;
+            if (k == 1) x.uniform_splits = 1;
+            if (k == 2) x.splits[2] = 4.0f;
+            if (k == 3) x.splits[1] = NAN;
+            if (k == 4) x.splits[3] = 60.0f;
+            SK_CHECK_MSG(skgl_shadow_create(e.sk, &x, &bad) == SK_ERR_INVALID_ARG && !bad, "splits rule %d", k);
+            SK_CHECK_MSG(strstr(skgl_error_log(e.sk), "splits") && strstr(skgl_error_log(e.sk), what[k]),
+                         "splits rule %d: \"%s\"", k, skgl_error_log(e.sk));
+        }
+    }
+done:
+    SK_CHECK(e.gl.GetError() == 0);
+    free(ma);
+    free(mb);
+    skgl_shadow_destroy(e.sk, a);
+    skgl_shadow_destroy(e.sk, b);
+    skgl_shadow_destroy(e.sk, c);
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_no_seam, test_blend_band, test_hand_set_splits)

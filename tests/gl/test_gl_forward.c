@@ -18,7 +18,9 @@
    bounds for this view: covered 0.09% / 0.065% (previously 0.30% /
    0.13%), area 3.3% / 2.4%. Can fail: with the normal-offset bias
    (SK_GL_TEST_BIAS=normal-offset) the forward pass's errors are 0.1824%
-   / 0.0851%, area 6.90% / 3.22%: all four fail. */
+   / 0.0851%, area 6.90% / 3.22%: all four fail. After the forward pass
+   skgl_unbind(3) leaves sampler 0 on units 3 and 4 (the bind's comparison
+   sampler was on 3), and refuses unit 31 naming the unit. */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -49,6 +51,23 @@ static void run(skgl_technique tech) {
     SK_CHECK(gt_reference(&e, light, ref) == 0);
     SK_CHECK(gt_mask(&e, s, &cam, light, mask) == 0);
     SK_CHECK(gt_forward_render(&e, &fw, s, &cam, 3, fwd, fdepth) == 0);
+    {
+        /* the bind left shadowkit's comparison sampler on unit 3;
+           skgl_unbind gives plain sampling back on 3 and 4 */
+        int before = 0, after3 = -1, after4 = -1, active = 0;
+        e.gl.GetIntegerv(0x84E0 /* ACTIVE_TEXTURE */, &active);
+        e.gl.ActiveTexture(0x84C0 + 3);
+        e.gl.GetIntegerv(0x8919 /* SAMPLER_BINDING */, &before);
+        SK_CHECK(skgl_unbind(e.sk, 3) == SK_OK);
+        e.gl.GetIntegerv(0x8919, &after3);
+        e.gl.ActiveTexture(0x84C0 + 4);
+        e.gl.GetIntegerv(0x8919, &after4);
+        e.gl.ActiveTexture((unsigned)active);
+        SK_CHECK_MSG(before != 0 && after3 == 0 && after4 == 0, "unbind: sampler %d on unit 3 before, %d / %d after",
+                     before, after3, after4);
+        SK_CHECK(skgl_unbind(e.sk, 31) == SK_ERR_INVALID_ARG && strstr(skgl_error_log(e.sk), "unit"));
+        SK_CHECK(skgl_unbind(NULL, 3) == SK_ERR_INVALID_ARG);
+    }
     for (i = 0; i < e.n; i++) {
         if ((mask[i] < 0) != (fwd[i] < 0)) { cov_only_one++; continue; }
         if (mask[i] < 0) continue;
