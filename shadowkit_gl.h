@@ -42,16 +42,20 @@
      A pass of several layers, faces or pages binds its program and sets
      the identity model once, before the first callback; after a callback
      that called skgl_set_model it sets the identity again. So the callback
-     may change: the model (skgl_set_model), the vertex array, buffer and
-     texture bindings, the active texture unit and sampler bindings (the
-     depth program samples nothing), and the current program, if it binds
-     info->program again before it returns (a caster program of its own
-     for skinning or alpha-tested foliage: then it sets its own view-
-     projection from info->view_proj). Everything else (framebuffer,
-     viewport, scissor, depth, culling, polygon offset and mode) it must
-     leave as it found it. With desc.debug the program is checked after
-     each callback (SK_ERR_INVALID_ARG, and skgl_error_log says so). The
-     default mode puts the caller's vertex array back after the passes.
+     may change: the model (skgl_set_model), the vertex array, buffer
+     bindings (pixel pack and unpack buffers included), texture bindings,
+     the active texture unit and sampler bindings (the depth program
+     samples nothing), culling (glEnable(GL_CULL_FACE), glCullFace: single-
+     sided casters; shadowkit's passes draw both faces otherwise), and the
+     current program, if it binds info->program again before it returns (a
+     caster program of its own for skinning or alpha-tested foliage: then
+     it sets its own view-projection from info->view_proj). Everything else
+     it must leave as it found it: the framebuffer, viewport, scissor,
+     depth test, function, writes and clamping, polygon offset and mode,
+     blending and the colour mask. With desc.debug each of those shadowkit
+     set, and the program, is checked after each callback: a change gets
+     SK_ERR_INVALID_ARG, and skgl_error_log names what changed. The default
+     mode puts the caller's vertex array and culling back after the passes.
 
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
@@ -192,7 +196,7 @@
      0 (the default): every call leaves the GL state as it found it. It
        reads only what it touches, once, the first time (glGet*, glIsEnabled),
        sets only what differs, and puts back only what it changed (a
-       standard map's render and mask: 73 GL calls a frame, 29 of them
+       standard map's render and mask: 74 GL calls a frame, 29 of them
        reads; skgl_shadow_bind 10).
      1: nothing is read and nothing put back: each call sets what it needs
        (40 GL calls a frame for the same render and mask; skgl_shadow_bind
@@ -253,8 +257,8 @@
      matrices, split depths, light direction and position, every call.
      Area lights (skgl_soft_*) go through the same tracker, each target
      with a framebuffer of its own made once (the screen-sized ones again
-     when the mask's size changes): PCSS 67 calls a frame (35 in caller-
-     owns mode), PVSM 165 with one tile (119). With desc.debug set, glGetError is checked after every pass
+     when the mask's size changes): PCSS 68 calls a frame (36 in caller-
+     owns mode), PVSM 167 with one tile (120). With desc.debug set, glGetError is checked after every pass
      and a GL error is reported as SK_ERR_GL. skgl_gl_object_count() tells
      how many GL objects the context holds (0 after every shadow and the
      context are destroyed).
@@ -2562,28 +2566,63 @@ static void skgl__model_end(skgl_context *ctx)
     ctx->model_loc = -1;
 }
 
+/* What a draw callback must leave as it found it (SCENE ACCESS), checked
+   with desc.debug: each item shadowkit has set in this call, GL's value
+   against the one set. The first that differs is named in the log and
+   set back. */
+static const struct skgl__kept {
+    int item;
+    const char *name;
+} skgl__callback_keeps[] = {
+    {SKGL__S_DRAW_FB, "the draw framebuffer"}, {SKGL__S_VIEWPORT, "the viewport"},
+    {SKGL__S_SCISSOR_TEST, "the scissor test"}, {SKGL__S_SCISSOR_BOX, "the scissor box"},
+    {SKGL__S_DEPTH_TEST, "the depth test"}, {SKGL__S_DEPTH_FUNC, "the depth function"},
+    {SKGL__S_DEPTH_MASK, "the depth write mask"}, {SKGL__S_DEPTH_CLAMP, "depth clamping"},
+    {SKGL__S_POLY_FILL, "polygon offset (GL_POLYGON_OFFSET_FILL)"}, {SKGL__S_POLY_OFFSET, "the polygon offset"},
+    {SKGL__S_POLYGON_MODE, "the polygon mode"}, {SKGL__S_BLEND, "blending"},
+    {SKGL__S_BLEND_EQ, "the blend equation"}, {SKGL__S_COLOR_MASK, "the colour mask"}};
+
+static sk_result skgl__callback_check(skgl_context *ctx, skgl__st *st)
+{
+    size_t k;
+    skgl__int cur = 0, v[4];
+    ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
+    if (cur != (skgl__int)ctx->pass_prog) {
+        skgl__set_log(ctx, "the draw callback returned with another program current",
+                      "bind info->program again before returning");
+        ctx->gl.UseProgram(ctx->pass_prog);
+        return SK_ERR_INVALID_ARG;
+    }
+    for (k = 0; k < sizeof skgl__callback_keeps / sizeof skgl__callback_keeps[0]; k++) {
+        int item = skgl__callback_keeps[k].item;
+        if (!(st->flags[item] & SKGL__S_KNOWN)) continue;
+        v[0] = v[1] = v[2] = v[3] = 0;
+        skgl__st_query(&ctx->gl, item, v);
+        if (memcmp(v, st->cur[item], sizeof(skgl__int) * (size_t)skgl__st_n(item)) == 0) continue;
+        skgl__st_apply(&ctx->gl, item, st->cur[item]);
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "the draw callback changed %s: a callback leaves the framebuffer, viewport, scissor, "
+                          "depth, blend and polygon state as it found them (SCENE ACCESS)",
+                          skgl__callback_keeps[k].name);
+    }
+    return SK_OK;
+}
+
 static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
 {
-    sk_result r = SK_OK;
-    if (ctx->debug) {
-        skgl__int cur = 0;
-        ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
-        if (cur != (skgl__int)ctx->pass_prog) {
-            skgl__set_log(ctx, "the draw callback returned with another program current",
-                          "bind info->program again before returning");
-            ctx->gl.UseProgram(ctx->pass_prog);
-            r = SK_ERR_INVALID_ARG;
-        }
-    }
+    sk_result r = ctx->debug ? skgl__callback_check(ctx, st) : SK_OK;
     if (ctx->model_dirty) {
         skgl__model(ctx, skgl__identity);
         ctx->model_dirty = 0;
     }
-    /* the callback may have bound a vertex array and switched the active
-       unit: neither is known any more (what shadowkit set on a unit before
-       is then put back on the right one) */
+    /* what the callback may change (SCENE ACCESS) is no longer known: the
+       vertex array, the active unit (what shadowkit set on a unit before is
+       then put back on the right one), culling, the pixel buffer bindings */
     skgl__st_forget(st, SKGL__S_VAO);
     skgl__st_forget(st, SKGL__S_ACTIVE);
+    skgl__st_forget(st, SKGL__S_CULL_FACE);
+    skgl__st_forget(st, SKGL__S_PACK_BUFFER);
+    skgl__st_forget(st, SKGL__S_UNPACK_BUFFER);
     return r;
 }
 
@@ -6119,6 +6158,7 @@ static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_so
         skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
         skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_filter);
         skgl__st_set1(ctx, st, SKGL__S_VAO, (skgl__int)ctx->empty_vao);
+        skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
         skgl__bind_unit(&b[0], 0, SKGL__T_2D_ARRAY, s->screen, 0);
         skgl__bind_unit(&b[1], 1, SKGL__T_2D, s->map, ctx->cmp_sampler);
         skgl__st_units(ctx, st, b, 2);

@@ -2174,6 +2174,105 @@ done:
     gt_env_free(&e);
 }
 
+/* test_callback_state: desc.debug, draw callbacks that break SCENE ACCESS
+   after drawing (the viewport, the depth function, the polygon offset, in
+   a STANDARD render; the blend equation, in PVSM's low-res pass):
+   SK_ERR_INVALID_ARG, the log names what changed; and the changes it
+   allows: culling switched on (SK_OK, the caller's culling off again
+   after the call), a pixel pack buffer of its own bound in PVSM's low-res
+   pass (SK_OK, the mask value for value the plain callback's, no GL
+   error: the read-back does not land in the callback's buffer). Can fail:
+   the kept state not compared ("callback changing viewport: ok", and the
+   depth function, polygon offset, blend equation); culling taken as still
+   known after a callback ("culling left on after the call"). */
+static int cb_mode;
+static unsigned cb_buffer;
+static void (*cb_polygon_offset)(float, float);
+static void (*cb_blend_equation)(unsigned);
+static void state_draw(void *user, const skgl_draw_info *info) {
+    gt_env *e = (gt_env *)user;
+    tb_gl_mesh_draw(&e->gl, &e->mesh, 0, 0);
+    if (info->index != 0) return;
+    switch (cb_mode) {
+    case 1: e->gl.Viewport(0, 0, 7, 7); break;
+    case 2: e->gl.DepthFunc(0x0207 /* ALWAYS */); break;
+    case 3: cb_polygon_offset(0.0f, 0.0f); break;
+    case 4: cb_blend_equation(0x8006 /* FUNC_ADD */); break;
+    case 5: e->gl.Enable(0x0B44 /* CULL_FACE */); break;
+    case 6: e->gl.BindBuffer(0x88EB /* PIXEL_PACK_BUFFER */, cb_buffer); break;
+    default: break;
+    }
+}
+
+static void test_callback_state(void) {
+    static const char *const what[5] = {"", "viewport", "depth function", "polygon offset", "blend equation"};
+    gt_env e;
+    skgl_context *sk;
+    skgl_shadow_desc d;
+    skgl_shadow *s = NULL;
+    skgl_soft_desc sd;
+    skgl_soft *so = NULL;
+    skgl_scene sc;
+    skgl_camera cam = view_a();
+    skgl_area_light l = soft_light();
+    float *m0, *m1;
+    void *p;
+    size_t i;
+    int k, differ;
+    if (env_init(&e) != 0) return;
+    sk = fault_context(1, 0, 0);
+    if (!sk) { gt_env_free(&e); return; }
+    p = real_getproc("glPolygonOffset"); memcpy(&cb_polygon_offset, &p, sizeof p);
+    p = real_getproc("glBlendEquation"); memcpy(&cb_blend_equation, &p, sizeof p);
+    SK_CHECK(gt_gbuffer(&e, &cam) == 0);
+    sc = gt_scene(&e);
+    sc.draw = state_draw;
+    m0 = gt_alloc(&e);
+    m1 = gt_alloc(&e);
+    memset(&d, 0, sizeof d);
+    d.resolution = RES;
+    memset(&sd, 0, sizeof sd);
+    sd.technique = SKGL_SOFT_PVSM;
+    sd.resolution = RES;
+    sd.lowres = 64;
+    sd.sync_readback = 1;
+    SK_CHECK(skgl_shadow_create(sk, &d, &s) == SK_OK && skgl_soft_create(sk, &sd, &so) == SK_OK);
+    if (!s || !so) goto done;
+    for (k = 1; k <= 4; k++) {
+        sk_result r;
+        cb_mode = k;
+        if (k < 4) r = skgl_shadow_render(sk, s, &cam, &sc, light_dir());
+        else r = skgl_soft_render(sk, so, &cam, &sc, &l, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex);
+        SK_CHECK_MSG(r == SK_ERR_INVALID_ARG, "callback changing %s: %s", what[k], sk_result_string(r));
+        CHECK_LOG(sk, what[k]);
+        SK_CHECK(e.gl.GetError() == 0);
+    }
+    /* allowed: culling (put back), a pixel pack buffer of its own */
+    cb_mode = 5;
+    SK_CHECK(skgl_shadow_render(sk, s, &cam, &sc, light_dir()) == SK_OK);
+    SK_CHECK_MSG(!e.gl.IsEnabled(0x0B44), "culling left on after the call");
+    cb_mode = 0;
+    SK_CHECK(soft_mask(&e, sk, so, &cam, &l, e.gbuf.depth_tex, m0) == 0);
+    e.gl.GenBuffers(1, &cb_buffer);
+    e.gl.BindBuffer(0x88EB, cb_buffer);
+    e.gl.BufferData(0x88EB, 64, NULL, 0x88E1 /* STREAM_DRAW */);
+    e.gl.BindBuffer(0x88EB, 0);
+    cb_mode = 6;
+    SK_CHECK(soft_mask(&e, sk, so, &cam, &l, e.gbuf.depth_tex, m1) == 0);
+    for (i = 0, differ = 0; i < e.n; i++) differ += m0[i] != m1[i];
+    SK_CHECK_MSG(differ == 0, "a pack buffer bound by the callback: %d mask values differ", differ);
+    SK_CHECK(e.gl.GetError() == 0);
+    e.gl.DeleteBuffers(1, &cb_buffer);
+done:
+    cb_mode = 0;
+    skgl_shadow_destroy(sk, s);
+    skgl_soft_destroy(sk, so);
+    skgl_destroy(sk);
+    free(m0);
+    free(m1);
+    gt_env_free(&e);
+}
+
 SK_TEST_MAIN(test_context, test_shadow_rules, test_shadow_args, test_shadow_techniques, test_faults, test_textures,
              test_rings, test_program_cache, test_point_paths, test_atlas, test_callback_program, test_set_model,
-             test_log_cleared, test_soft_paths)
+             test_log_cleared, test_soft_paths, test_callback_state)
