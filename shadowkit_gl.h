@@ -169,7 +169,9 @@
 
    GLSL SNIPPETS
      skgl_glsl_snippet() and skgl_point_glsl_snippet() are GLSL 330 core to
-     paste after your #version line; skgl_shadow_bind and skgl_point_bind
+     paste after your #version line (the same text ships as the files
+     shaders_embedded/shadow_sample.glsl and point_sample.glsl, for shader
+     pipelines that include files); skgl_shadow_bind and skgl_point_bind
      set all of their uniforms, so a program holds one light of each kind.
      Their names, all prefixed, are reserved in your shader:
        directional: float sk_shadow(vec3 world_pos, vec3 world_normal,
