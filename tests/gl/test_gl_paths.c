@@ -2142,6 +2142,27 @@ static void test_soft_paths(void) {
     s = NULL;
     SK_CHECK(skgl_gl_object_count(sk) == base);
 
+    /* more tiles than max_tiles: every predicted resolution halved until
+       they fit (256-texel tiles make 7 here; at most 2 allowed) */
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_SOFT_PVSM;
+    d.resolution = 256;
+    d.sync_readback = 1;
+    SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_OK && s);
+    if (s) {
+        int many, few;
+        SK_CHECK(soft_mask(&e, sk, s, &cam, &l, e.gbuf.depth_tex, NULL) == 0);
+        many = skgl_soft_stats(s)->tiles;
+        skgl_soft_destroy(sk, s);
+        d.max_tiles = 2;
+        s = NULL;
+        SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_OK && s);
+        SK_CHECK(s && soft_mask(&e, sk, s, &cam, &l, e.gbuf.depth_tex, NULL) == 0);
+        few = s ? skgl_soft_stats(s)->tiles : -1;
+        SK_CHECK_MSG(many > 2 && few >= 1 && few <= 2, "max_tiles 2: %d tiles (%d without the cap)", few, many);
+        skgl_soft_destroy(sk, s);
+        s = NULL;
+    }
     /* caller-owns mode: the same masks, with and without a G-buffer given */
     own = fault_context(0, 0, 1);
     for (t = 0; own && t < 4; t++) {
