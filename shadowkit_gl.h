@@ -46,16 +46,79 @@
      bindings (pixel pack and unpack buffers included), texture bindings,
      the active texture unit and sampler bindings (the depth program
      samples nothing), culling (glEnable(GL_CULL_FACE), glCullFace: single-
-     sided casters; shadowkit's passes draw both faces otherwise), and the
-     current program, if it binds info->program again before it returns (a
-     caster program of its own for skinning or alpha-tested foliage: then
-     it sets its own view-projection from info->view_proj). Everything else
+     sided casters; shadowkit's passes draw both faces otherwise), the
+     caster program (skgl_use_caster, CASTER PROGRAMS) and its uniforms,
+     and the current program, if it binds info->program again before it
+     returns (then it sets its own view-projection from info->view_proj,
+     and a large world's origin and PSM's warp are its own to get right:
+     caster programs are the way that needs neither). Everything else
      it must leave as it found it: the framebuffer, viewport, scissor,
      depth test, function, writes and clamping, polygon offset and mode,
      blending and the colour mask. With desc.debug each of those shadowkit
      set, and the program, is checked after each callback: a change gets
      SK_ERR_INVALID_ARG, and skgl_error_log names what changed. The default
      mode puts the caller's vertex array and culling back after the passes.
+
+   CASTER PROGRAMS (skgl_caster_*: skinning, wind, instancing, alpha tests)
+     Casters whose vertices are not a vec3 at attribute 0 times a model
+     matrix, or that discard fragments, give shadowkit a hook once:
+
+         skgl_caster_desc cd = {0};
+         cd.vertex =
+             "layout(location = 0) in vec3 a_pos;\n"
+             "layout(location = 1) in vec2 a_uv;\n"
+             "layout(location = 2) in vec4 a_offset;       // per instance\n"
+             "uniform float u_time;\n"
+             "vec4 skgl_caster_position() {\n"
+             "    v_uv = a_uv;\n"
+             "    vec3 p = a_pos + a_offset.xyz;\n"
+             "    p.x += 0.1 * sin(u_time + p.y);            // wind\n"
+             "    return vec4(p, 1.0);\n"
+             "}\n";
+         cd.fragment = "uniform sampler2D u_leaf;\n"
+                       "void skgl_caster_fragment() {\n"
+                       "    if (texture(u_leaf, v_uv).a < 0.5) discard;\n"
+                       "}\n";
+         cd.varyings = "vec2 v_uv;";
+         cd.uniforms[0] = "u_time"; cd.uniforms[1] = "u_leaf";
+         skgl_caster_create(gl, &cd, &foliage);
+
+     and select it in the draw callback, per object, then set its uniforms
+     with the program bound:
+
+         const int *loc = skgl_use_caster(gl, foliage);
+         if (loc) {
+             glUniform1f(loc[0], time); glUniform1i(loc[1], 4);   // leaf texture on unit 4
+             skgl_set_model(gl, tree_model);
+             glBindVertexArray(tree_vao);
+             glDrawElementsInstanced(...);
+         }
+         skgl_use_caster(gl, NULL);          // shadowkit's own program again
+
+     skgl_caster_position() returns the vertex in the space the model
+     matrix (skgl_set_model, the identity by default) takes to the world;
+     shadowkit applies the model, a large world's origin and the pass's
+     view-projection (PSM's post-perspective space, a cube face, a page)
+     itself, so one hook serves every technique. shadowkit links the hook
+     into each kind of caster pass the first time it is needed: the depth
+     passes (every directional map, cube faces, the VSDCT atlas, PCSS's map,
+     PVSM's tiles; linked by skgl_caster_create), PVSM's conservative
+     low-resolution pass (through its geometry shader, which carries the
+     varyings to the grown triangle's corners, perspective-correct) and the
+     area lights' own G-buffer. SKGL_CASTER_PASS is 0, 1 or 2 in those, for
+     hooks that differ. The hooks are GLSL 3.30 without #version or
+     #extension lines; they may declare anything but the names shadowkit's
+     passes use: main, u_view_proj, u_model, u_texel, u_conservative,
+     u_eye, v_world, g_box, g_edge, o_cons, o_true, o_normal and any name
+     starting with skgl_ or SKGL_. Varyings are written and read by name,
+     through an interface block, so they need no in/out of their own.
+     Textures the fragment hook samples go on units 4 and up: shadowkit's
+     passes bind their own samplers on units 0 to 3. Compile errors are
+     returned by skgl_caster_create (or, for the two later programs, by the
+     render that first needs them) with the driver's message, its line
+     numbers the hook's own. Each program sends the pass's matrix once per
+     callback, the model as the identity at every skgl_use_caster; after the
+     callback shadowkit's own program is current again.
 
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
@@ -511,6 +574,44 @@ SKGLDEF void skgl_destroy(skgl_context *ctx);
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
 /* inside a draw callback: model matrix of the next objects (column-major) */
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16]);
+
+/* Caster programs (CASTER PROGRAMS): the user's vertex code, and optionally
+   an alpha test, linked into every caster pass that needs them. */
+#define SKGL_CASTER_UNIFORMS 16       /* names whose locations skgl_use_caster returns */
+typedef struct skgl_caster_desc {
+    const char *vertex;           /* required: GLSL 3.30 declarations (attributes, uniforms,
+                                     buffers) and  vec4 skgl_caster_position(void),  the
+                                     vertex in the space skgl_set_model's matrix takes to
+                                     the world (the world itself under the identity) */
+    const char *fragment;         /* optional: declarations and  void skgl_caster_fragment(void),
+                                     which may discard (an alpha test); samplers on units 4
+                                     and up (shadowkit's passes leave those alone) */
+    const char *varyings;         /* optional: what the vertex hook hands the fragment hook,
+                                     one  [flat] type name;  each ("vec2 uv; flat int id;"),
+                                     at most 16, no arrays: written and read by name */
+    const char *uniforms[SKGL_CASTER_UNIFORMS];  /* the uniforms the callback sets, by name,
+                                     in the order of the locations skgl_use_caster returns */
+    const char *label;            /* names the caster in messages ["caster"] */
+} skgl_caster_desc;
+typedef struct skgl_caster skgl_caster;
+/* Compiles and links the hooks into the depth passes' program at once (a
+   compile error is returned here, SK_ERR_GL, the log quoting the driver's
+   message with the hook's own line numbers; shadowkit's own lines are
+   numbered from 10001); the area lights' low-resolution and G-buffer
+   programs are linked the first time a pass of theirs uses the caster. The
+   strings are copied. */
+SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *desc, skgl_caster **out);
+/* frees its programs (skgl_destroy frees those left) */
+SKGLDEF void skgl_caster_destroy(skgl_context *ctx, skgl_caster *caster);
+/* Inside a draw callback: the objects drawn next are this caster's (NULL:
+   shadowkit's own program again). Binds the caster's program for this pass,
+   its view-projection and the pass's own uniforms set, the model the
+   identity; returns the locations of desc.uniforms, in order (-1: not
+   found or not used), for the callback to set with the program bound. NULL
+   when the program could not be linked: the render call then returns
+   SK_ERR_GL with the driver's message in the log. After the callback
+   shadowkit's own program is current again. */
+SKGLDEF const int *skgl_use_caster(skgl_context *ctx, skgl_caster *caster);
 /* skgl_*_bind looks a program's uniform locations up once and remembers
    them (and which light's constants it holds) by program name. The default
    mode notices a program linked again or made anew under a freed name (two
@@ -882,6 +983,7 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 #error "SHADOWKIT_GL_IMPLEMENTATION needs SHADOWKIT_IMPLEMENTATION defined in the same file (before the #include)"
 #endif
 
+#include <ctype.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -1241,6 +1343,9 @@ typedef struct skgl__ring {
     double origin[SKGL__RING][3];
 } skgl__ring;
 
+/* the kinds of caster pass a caster program is linked for (>>casters) */
+enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_COUNT = 3 };
+
 struct skgl_context {
     skgl__api gl;
     int debug, timing, objects;
@@ -1256,8 +1361,21 @@ struct skgl_context {
     skgl__uint pass_prog;                  /* the current caster pass's program (depth_prog, or an area
                                               light's low-res or G-buffer program) */
     skgl__int pass_vp_loc;                 /* its u_view_proj */
-    skgl__int model_loc;                   /* where skgl_set_model writes: the current pass's u_model */
-    int model_dirty;                       /* skgl_set_model was called since the pass set its model */
+    skgl__int pass_model_loc;              /* its u_model */
+    skgl__int model_loc;                   /* where skgl_set_model writes: the current program's u_model */
+    int model_dirty;                       /* skgl_set_model was called on the pass's program since
+                                              the pass set its model */
+    /* caster programs (skgl_use_caster): what a caster's program for this
+       pass needs, kept when the pass begins and at each callback */
+    int pass_variant;                      /* SKGL__CV_DEPTH, _CONS, _GBUF */
+    unsigned pass_serial;                  /* counts callbacks: a caster program sent this one's matrix */
+    float pass_vp[16];                     /* the pass's view-projection (relative to its origin) */
+    float pass_texel[2];                   /* SKGL__CV_CONS: u_texel */
+    int pass_conservative;                 /* SKGL__CV_CONS: u_conservative */
+    float pass_eye[3];                     /* SKGL__CV_GBUF: u_eye */
+    struct skgl_caster *casters;           /* every caster made, freed with the context */
+    struct skgl_caster *cur_caster;        /* bound by the callback now (NULL: the pass's program) */
+    sk_result pass_error;                  /* a caster program that failed to link in this callback */
     double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
     /* the locations of shadowkit's own programs, found at link time, and the
        values of the uniforms that seldom change, as last sent */
@@ -2325,9 +2443,12 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     return SK_OK;
 }
 
+static void skgl__casters_release(skgl_context *ctx);
+
 SKGLDEF void skgl_destroy(skgl_context *ctx)
 {
     if (!ctx) return;
+    skgl__casters_release(ctx);
     skgl__release(ctx);
     SKGL_FREE(ctx);
 }
@@ -2532,7 +2653,9 @@ SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
 {
     if (!ctx || !model || ctx->model_loc < 0) return;   /* outside a caster pass: nothing to set */
     skgl__model(ctx, model);
-    ctx->model_dirty = 1;   /* the pass sets its identity again before the next callback */
+    /* the pass sets its identity again before the next callback (a caster's
+       program gets its identity from skgl_use_caster) */
+    if (!ctx->cur_caster) ctx->model_dirty = 1;
 }
 
 SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL); }
@@ -2551,11 +2674,13 @@ static const float skgl__identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 
 /* a caster pass with program prog (current) begins: its view-projection
    and model locations, the identity model (relative to origin) */
 static void skgl__model_begin(skgl_context *ctx, skgl__uint prog, skgl__int vp_loc, skgl__int model_loc,
-                              const double origin[3])
+                              int variant, const double origin[3])
 {
     memcpy(ctx->model_origin, origin, sizeof ctx->model_origin);
     ctx->pass_prog = prog;
     ctx->pass_vp_loc = vp_loc;
+    ctx->pass_model_loc = model_loc;
+    ctx->pass_variant = variant;
     ctx->model_loc = model_loc;
     skgl__model(ctx, skgl__identity);
     ctx->model_dirty = 0;
@@ -2584,14 +2709,17 @@ static const struct skgl__kept {
     {SKGL__S_POLYGON_MODE, "the polygon mode"}, {SKGL__S_BLEND, "blending"},
     {SKGL__S_BLEND_EQ, "the blend equation"}, {SKGL__S_COLOR_MASK, "the colour mask"}};
 
+static skgl__uint skgl__caster_current(const skgl_context *ctx);
+
 static sk_result skgl__callback_check(skgl_context *ctx, skgl__st *st)
 {
     size_t k;
     skgl__int cur = 0, v[4];
     ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
-    if (cur != (skgl__int)ctx->pass_prog) {
+    if (cur != (skgl__int)skgl__caster_current(ctx)) {
         skgl__set_log(ctx, "the draw callback returned with another program current",
-                      "bind info->program again before returning");
+                      "bind info->program again before returning, or select caster programs "
+                      "with skgl_use_caster");
         ctx->gl.UseProgram(ctx->pass_prog);
         return SK_ERR_INVALID_ARG;
     }
@@ -2613,6 +2741,13 @@ static sk_result skgl__callback_check(skgl_context *ctx, skgl__st *st)
 static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
 {
     sk_result r = ctx->debug ? skgl__callback_check(ctx, st) : SK_OK;
+    if (ctx->cur_caster) {   /* the pass's own program again, as the tracker has it */
+        ctx->gl.UseProgram(ctx->pass_prog);
+        ctx->cur_caster = NULL;
+        ctx->model_loc = ctx->pass_model_loc;
+    }
+    if (r == SK_OK) r = ctx->pass_error;
+    ctx->pass_error = SK_OK;
     if (ctx->model_dirty) {
         skgl__model(ctx, skgl__identity);
         ctx->model_dirty = 0;
@@ -2637,30 +2772,381 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
    matrix, the callback with the matrix in world space, then what the
    callback may have changed. */
 static void skgl__casters_begin_with(skgl_context *ctx, skgl__st *st, skgl__uint prog, skgl__int vp_loc,
-                                     skgl__int model_loc, float slope_bias, float depth_bias, const double origin[3])
+                                     skgl__int model_loc, int variant, float slope_bias, float depth_bias,
+                                     const double origin[3])
 {
     skgl__st_save(ctx, st, SKGL__S_VAO);   /* the callback may bind its own */
     skgl__st_depth_pass(ctx, st, slope_bias, depth_bias);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)prog);
-    skgl__model_begin(ctx, prog, vp_loc, model_loc, origin);
+    skgl__model_begin(ctx, prog, vp_loc, model_loc, variant, origin);
 }
 /* with shadowkit's depth program */
 static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias,
                                 const double origin[3])
 {
-    skgl__casters_begin_with(ctx, st, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, slope_bias,
-                             depth_bias, origin);
+    skgl__casters_begin_with(ctx, st, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, SKGL__CV_DEPTH,
+                             slope_bias, depth_bias, origin);
 }
 
 static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
                                     const double origin[3], skgl_draw_info *info)
 {
     ctx->gl.UniformMatrix4fv(ctx->pass_vp_loc, 1, 0, vp->m);
+    memcpy(ctx->pass_vp, vp->m, sizeof ctx->pass_vp);
+    ctx->pass_serial++;
     info->view_proj = skgl__shift(vp, origin, skgl__zero3);
     info->frustum = sk_frustum_from_matrix(info->view_proj);
     info->program = ctx->pass_prog;
     scene->draw(scene->user, info);
     return skgl__after_draw(ctx, st);
+}
+
+/* >>casters  Caster programs (skgl_caster_*). A caster's hooks become one
+   program per kind of caster pass, built from the same embedded sources as
+   shadowkit's own (SKGL_CASTER in place of attribute 0, SKGL_CASTER_FRAGMENT
+   calling the fragment hook first): the depth passes (depth.vert +
+   depth.frag: every directional, point and area light map), the PVSM
+   low-resolution pass (+ soft_cons.geom, whose varyings it forwards) and
+   the area lights' own G-buffer. Each program is linked the first time it
+   is needed; a use in a pass sends the pass's matrix and uniforms once per
+   callback. */
+#define SKGL__CASTER_VARYINGS 16
+
+typedef struct skgl__caster_prog {
+    skgl__uint prog;                       /* 0: not linked yet */
+    int failed;                            /* its link failed once: not tried again */
+    unsigned serial;                       /* ctx->pass_serial when the pass's uniforms were sent */
+    skgl__int vp, model, texel, conservative, eye;
+    int user[SKGL_CASTER_UNIFORMS];        /* desc.uniforms' locations */
+} skgl__caster_prog;
+
+struct skgl_caster {
+    struct skgl_caster *next;
+    char *text;                            /* one block: the hooks, varyings and names, copied */
+    const char *vertex, *fragment, *varyings, *label;
+    const char *names[SKGL_CASTER_UNIFORMS];
+    char *forward;                         /* soft_cons.geom's skgl_caster_varyings(), or NULL */
+    skgl__caster_prog v[SKGL__CV_COUNT];
+};
+
+static skgl__uint skgl__caster_current(const skgl_context *ctx)
+{
+    return ctx->cur_caster ? ctx->cur_caster->v[ctx->pass_variant].prog : ctx->pass_prog;
+}
+
+/* one `[qualifiers] type name` of desc.varyings: the name's span; 0 when
+   the declaration is not of that shape */
+static int skgl__varying_name(const char *d, size_t n, size_t *at, size_t *len, int *flat)
+{
+    size_t i = n, e;
+    while (i > 0 && (d[i - 1] == ' ' || d[i - 1] == '\t' || d[i - 1] == '\n' || d[i - 1] == '\r')) i--;
+    e = i;
+    while (i > 0 && (isalnum((unsigned char)d[i - 1]) || d[i - 1] == '_')) i--;
+    if (i == e || isdigit((unsigned char)d[i]) || i == 0) return 0;
+    if (d[i - 1] != ' ' && d[i - 1] != '\t' && d[i - 1] != '\n' && d[i - 1] != '\r') return 0;
+    *at = i;
+    *len = e - i;
+    *flat = 0;
+    for (i = 0; i + 4 <= *at; i++)
+        if (memcmp(d + i, "flat", 4) == 0 && (i == 0 || !isalnum((unsigned char)d[i - 1])) &&
+            (d[i + 4] == ' ' || d[i + 4] == '\t' || d[i + 4] == '\n'))
+            *flat = 1;
+    return 1;
+}
+
+/* soft_cons.geom's skgl_caster_varyings(b): each varying at barycentric
+   weights b on the triangle's vertices (a flat one: the vertex of largest
+   weight's); NULL with the log set when desc.varyings does not parse */
+static char *skgl__caster_forward(skgl_context *ctx, const char *v)
+{
+    size_t total = strlen(v), start = 0, end, at, len, need = 64, used = 0;
+    int flat, count = 0;
+    char *out;
+    for (end = 0; end <= total; end++)
+        if (v[end] == ';') need += 160 + 4 * (end - start), start = end + 1;
+    out = (char *)SKGL_MALLOC(need);
+    if (!out) return NULL;
+    used += (size_t)sprintf(out, "void skgl_caster_varyings(vec3 b)\n{\n");
+    for (start = 0, end = 0; end <= total; end++) {
+        if (end < total && v[end] != ';') continue;
+        {
+            size_t k = start;
+            while (k < end && isspace((unsigned char)v[k])) k++;
+            if (k == end) { start = end + 1; continue; }   /* an empty declaration */
+        }
+        if (end == total || !skgl__varying_name(v + start, end - start, &at, &len, &flat) ||
+            ++count > SKGL__CASTER_VARYINGS) {
+            SKGL_FREE(out);
+            skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                       "skgl_caster_create: desc.varyings must be at most %d declarations `[flat] type name;`, each "
+                       "ending in ';', no arrays or lists (at \"%.40s\")",
+                       SKGL__CASTER_VARYINGS, v + start);
+            return NULL;
+        }
+        at += start;
+        if (flat)
+            used += (size_t)sprintf(out + used, "    skgl_out.%.*s = skgl_in[b.x >= b.y && b.x >= b.z ? 0 : "
+                                                "(b.y >= b.z ? 1 : 2)].%.*s;\n",
+                                    (int)len, v + at, (int)len, v + at);
+        else
+            used += (size_t)sprintf(out + used, "    skgl_out.%.*s = b.x * skgl_in[0].%.*s + b.y * skgl_in[1].%.*s "
+                                                "+ b.z * skgl_in[2].%.*s;\n",
+                                    (int)len, v + at, (int)len, v + at, (int)len, v + at, (int)len, v + at);
+        start = end + 1;
+    }
+    sprintf(out + used, "}\n");
+    return out;
+}
+
+/* compiles n strings (after #version) into a shader of the given type;
+   0 with the log naming the caster and the stage on failure */
+static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, skgl__enum type, const char **src,
+                                      int n, const char *fn)
+{
+    const char *all[12];
+    skgl__uint sh = ctx->gl.CreateShader(type);
+    skgl__int ok = 0;
+    int i;
+    all[0] = "#version 330 core\n";
+    for (i = 0; i < n; i++) all[i + 1] = src[i];
+    ctx->gl.ShaderSource(sh, n + 1, all, NULL);
+    ctx->gl.CompileShader(sh);
+    ctx->gl.GetShaderiv(sh, SKGL__COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[700];
+        log[0] = 0;
+        ctx->gl.GetShaderInfoLog(sh, (skgl__sizei)sizeof log, NULL, log);
+        skgl__fail(ctx, SK_ERR_GL,
+                   "%s: caster '%s': the %s does not compile (lines 1 to 10000 are the hook's own, from 10001 "
+                   "shadowkit's pass; drivers that keep #line's source number show 1 for the vertex hook, 2 for "
+                   "the fragment hook): %s",
+                   fn, c->label,
+                   type == SKGL__VERTEX_SHADER     ? "vertex shader"
+                   : type == SKGL__GEOMETRY_SHADER ? "geometry shader"
+                                                   : "fragment shader",
+                   log);
+        ctx->gl.DeleteShader(sh);
+        return 0;
+    }
+    return sh;
+}
+
+/* links the caster's program for pass kind `variant`, finds its locations */
+static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int variant, const char *fn)
+{
+    static const char *passes[SKGL__CV_COUNT] = {"#define SKGL_CASTER_PASS 0\n", "#define SKGL_CASTER_PASS 1\n",
+                                                 "#define SKGL_CASTER_PASS 2\n"};
+    skgl__caster_prog *v = &c->v[variant];
+    const char *src[10];
+    skgl__uint sh[3] = {0, 0, 0};
+    int n, k, stages = variant == SKGL__CV_CONS ? 3 : 2;
+    const char *vs = skgl__glsl(variant == SKGL__CV_GBUF ? SKGL__GLSL_SOFT_GBUFFER_VERT : SKGL__GLSL_DEPTH_VERT);
+    const char *fs = skgl__glsl(variant == SKGL__CV_GBUF   ? SKGL__GLSL_SOFT_GBUFFER_FRAG
+                                : variant == SKGL__CV_CONS ? SKGL__GLSL_SOFT_CONS_FRAG
+                                                           : SKGL__GLSL_DEPTH_FRAG);
+    /* vertex: the varyings as an output block (its members named as declared) */
+    n = 0;
+    src[n++] = "#define SKGL_CASTER 1\n";
+    src[n++] = passes[variant];
+    if (c->varyings) { src[n++] = "out SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
+    src[n++] = "#line 1 1\n";
+    src[n++] = c->vertex;
+    src[n++] = "\n#line 10001 0\n";
+    src[n++] = vs;
+    sh[0] = skgl__caster_shader(ctx, c, SKGL__VERTEX_SHADER, src, n, fn);
+    if (sh[0] && variant == SKGL__CV_CONS) {
+        n = 0;
+        src[n++] = "#define SKGL_CASTER 1\n";
+        if (c->varyings) {
+            src[n++] = "#define SKGL_CASTER_VARYINGS 1\nin SkglCasterVaryings {\n";
+            src[n++] = c->varyings;
+            src[n++] = "\n} skgl_in[];\nout SkglCasterVaryings {\n";
+            src[n++] = c->varyings;
+            src[n++] = "\n} skgl_out;\n";
+            src[n++] = c->forward;
+        }
+        src[n++] = skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM);
+        sh[1] = skgl__caster_shader(ctx, c, SKGL__GEOMETRY_SHADER, src, n, fn);
+    }
+    if (sh[0] && (stages == 2 || sh[1])) {
+        n = 0;
+        src[n++] = "#define SKGL_CASTER 1\n";
+        src[n++] = passes[variant];
+        if (c->varyings) { src[n++] = "in SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
+        if (c->fragment) {
+            src[n++] = "#define SKGL_CASTER_FRAGMENT 1\n";
+            src[n++] = "#line 1 2\n";
+            src[n++] = c->fragment;
+            src[n++] = "\n#line 10001 0\n";
+        }
+        src[n++] = fs;
+        sh[stages - 1] = skgl__caster_shader(ctx, c, SKGL__FRAGMENT_SHADER, src, n, fn);
+    }
+    if (variant != SKGL__CV_CONS) sh[2] = 0;
+    v->prog = skgl__link(ctx, sh, stages);
+    if (!v->prog) {
+        v->failed = 1;
+        if (sh[0] && sh[stages - 1])   /* compiled, but the link failed: skgl__link's log, named */
+            skgl__fail(ctx, SK_ERR_GL, "%s: caster '%s': %.900s", fn, c->label, ctx->log);
+        return SK_ERR_GL;
+    }
+    v->vp = ctx->gl.GetUniformLocation(v->prog, "u_view_proj");
+    v->model = ctx->gl.GetUniformLocation(v->prog, "u_model");
+    v->texel = ctx->gl.GetUniformLocation(v->prog, "u_texel");
+    v->conservative = ctx->gl.GetUniformLocation(v->prog, "u_conservative");
+    v->eye = ctx->gl.GetUniformLocation(v->prog, "u_eye");
+    for (k = 0; k < SKGL_CASTER_UNIFORMS; k++)
+        v->user[k] = c->names[k] ? ctx->gl.GetUniformLocation(v->prog, c->names[k]) : -1;
+    v->serial = ctx->pass_serial - 1u;
+    return SK_OK;
+}
+
+static void skgl__caster_free(skgl_context *ctx, skgl_caster *c)
+{
+    int k;
+    for (k = 0; k < SKGL__CV_COUNT; k++)
+        if (c->v[k].prog) {
+            ctx->gl.DeleteProgram(c->v[k].prog);
+            ctx->objects--;
+        }
+    SKGL_FREE(c->forward);
+    SKGL_FREE(c->text);
+    SKGL_FREE(c);
+}
+
+/* copies s into the block at *p (NULL stays NULL) */
+static const char *skgl__caster_copy(char **p, const char *s)
+{
+    char *r = *p;
+    size_t n;
+    if (!s) return NULL;
+    n = strlen(s) + 1;
+    memcpy(r, s, n);
+    *p += n;
+    return r;
+}
+
+SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *desc, skgl_caster **out)
+{
+    static const char fn[] = "skgl_caster_create";
+    skgl_caster *c;
+    size_t bytes = 0;
+    char *p;
+    int k;
+    sk_result r;
+    if (out) *out = NULL;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    if (!desc || !out) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s is NULL", fn, !desc ? "desc" : "out");
+    if (!desc->vertex || !desc->vertex[0])
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "%s: desc.vertex is required: GLSL declaring vec4 skgl_caster_position(void)", fn);
+    if (ctx->model_loc >= 0)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: called inside a draw callback (make casters beforehand)",
+                          fn);
+    bytes += strlen(desc->vertex) + 1;
+    bytes += desc->fragment ? strlen(desc->fragment) + 1 : 0;
+    bytes += desc->varyings ? strlen(desc->varyings) + 1 : 0;
+    bytes += strlen(desc->label ? desc->label : "caster") + 1;
+    for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) bytes += desc->uniforms[k] ? strlen(desc->uniforms[k]) + 1 : 0;
+    c = (skgl_caster *)SKGL_MALLOC(sizeof *c);
+    if (!c) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
+    memset(c, 0, sizeof *c);
+    c->text = p = (char *)SKGL_MALLOC(bytes);
+    if (!p) {
+        SKGL_FREE(c);
+        return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
+    }
+    c->vertex = skgl__caster_copy(&p, desc->vertex);
+    c->fragment = desc->fragment && desc->fragment[0] ? skgl__caster_copy(&p, desc->fragment) : NULL;
+    c->varyings = desc->varyings && desc->varyings[0] ? skgl__caster_copy(&p, desc->varyings) : NULL;
+    c->label = skgl__caster_copy(&p, desc->label ? desc->label : "caster");
+    for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) c->names[k] = skgl__caster_copy(&p, desc->uniforms[k]);
+    if (c->varyings && !(c->forward = skgl__caster_forward(ctx, c->varyings))) {
+        r = ctx->log[0] ? SK_ERR_INVALID_ARG : skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
+        skgl__caster_free(ctx, c);
+        return r;
+    }
+    ctx->log[0] = 0;
+    r = skgl__caster_link(ctx, c, SKGL__CV_DEPTH, fn);
+    if (r != SK_OK) {
+        skgl__caster_free(ctx, c);
+        return r;
+    }
+    c->next = ctx->casters;
+    ctx->casters = c;
+    *out = c;
+    return SK_OK;
+}
+
+SKGLDEF void skgl_caster_destroy(skgl_context *ctx, skgl_caster *caster)
+{
+    skgl_caster **at;
+    if (!ctx || !caster) return;
+    for (at = &ctx->casters; *at && *at != caster; at = &(*at)->next) continue;
+    if (!*at) return;   /* not this context's, or destroyed already */
+    *at = caster->next;
+    skgl__caster_free(ctx, caster);
+}
+
+/* every caster left, at skgl_destroy */
+static void skgl__casters_release(skgl_context *ctx)
+{
+    while (ctx->casters) {
+        skgl_caster *c = ctx->casters;
+        ctx->casters = c->next;
+        skgl__caster_free(ctx, c);
+    }
+}
+
+/* the pass's uniforms into caster program v (bound), once per callback */
+static void skgl__caster_send(skgl_context *ctx, skgl__caster_prog *v)
+{
+    skgl__api *gl = &ctx->gl;
+    if (v->serial == ctx->pass_serial) return;
+    v->serial = ctx->pass_serial;
+    gl->UniformMatrix4fv(v->vp, 1, 0, ctx->pass_vp);
+    if (ctx->pass_variant == SKGL__CV_CONS) {
+        if (v->texel >= 0) gl->Uniform2fv(v->texel, 1, ctx->pass_texel);
+        skgl__u1i(gl, v->conservative, ctx->pass_conservative);
+    }
+    if (ctx->pass_variant == SKGL__CV_GBUF && v->eye >= 0) gl->Uniform3fv(v->eye, 1, ctx->pass_eye);
+}
+
+SKGLDEF const int *skgl_use_caster(skgl_context *ctx, skgl_caster *caster)
+{
+    static const int none[SKGL_CASTER_UNIFORMS] = {-1, -1, -1, -1, -1, -1, -1, -1,
+                                                   -1, -1, -1, -1, -1, -1, -1, -1};
+    skgl__caster_prog *v;
+    if (!ctx) return NULL;
+    if (ctx->model_loc < 0) {
+        skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_use_caster: called outside a draw callback");
+        return NULL;
+    }
+    if (caster == ctx->cur_caster) return caster ? caster->v[ctx->pass_variant].user : none;
+    if (!caster) {
+        ctx->gl.UseProgram(ctx->pass_prog);
+        ctx->cur_caster = NULL;
+        ctx->model_loc = ctx->pass_model_loc;
+        if (ctx->model_dirty) {
+            skgl__model(ctx, skgl__identity);
+            ctx->model_dirty = 0;
+        }
+        return none;
+    }
+    v = &caster->v[ctx->pass_variant];
+    if (!v->prog && (v->failed || skgl__caster_link(ctx, caster, ctx->pass_variant, "skgl_use_caster") != SK_OK)) {
+        if (v->failed && ctx->pass_error == SK_OK && !v->prog)
+            skgl__fail(ctx, SK_ERR_GL, "skgl_use_caster: caster '%s' has no program for this pass (its link failed "
+                       "before)", caster->label);
+        ctx->pass_error = SK_ERR_GL;
+        return NULL;
+    }
+    ctx->gl.UseProgram(v->prog);
+    ctx->cur_caster = caster;
+    ctx->model_loc = v->model;
+    skgl__caster_send(ctx, v);
+    skgl__model(ctx, skgl__identity);
+    return v->user;
 }
 
 /* 5.4 the masks' inputs ------------------------------------------------- */
@@ -5749,11 +6235,11 @@ static sk_result skgl__soft_screen(skgl_context *ctx, skgl__st *st, skgl_soft *s
    offset's effect on gl_FragCoord.z matters there), the program, the
    identity model */
 static void skgl__soft_casters(skgl_context *ctx, skgl__st *st, const skgl_soft *s, skgl__uint prog,
-                               skgl__int vp_loc, skgl__int model_loc)
+                               skgl__int vp_loc, skgl__int model_loc, int variant)
 {
     float slope = s->desc.disable_polygon_offset ? 0.0f : s->desc.slope_bias;
     float units = s->desc.disable_polygon_offset ? 0.0f : s->desc.depth_bias;
-    skgl__casters_begin_with(ctx, st, prog, vp_loc, model_loc, slope, units, skgl__zero3);
+    skgl__casters_begin_with(ctx, st, prog, vp_loc, model_loc, variant, slope, units, skgl__zero3);
 }
 
 static void skgl__soft_info(skgl_draw_info *info, skgl_pass_kind kind, int index)
@@ -5793,7 +6279,8 @@ static sk_result skgl__soft_gbuffer(skgl_context *ctx, skgl__st *st, skgl_soft *
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     skgl__st_set1(ctx, st, SKGL__S_BLEND, 0);
     skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
-    skgl__casters_begin_with(ctx, st, s->prog_gbuf, s->gbuf_u_view_proj, s->gbuf_u_model, 0.0f, 0.0f, skgl__zero3);
+    skgl__casters_begin_with(ctx, st, s->prog_gbuf, s->gbuf_u_view_proj, s->gbuf_u_model, SKGL__CV_GBUF, 0.0f, 0.0f,
+                             skgl__zero3);
     gl->ClearBufferfv(SKGL__COLOR, 0, zero);
     gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
     if (!sk_mat4_inverse(cam->view, &inv_view)) inv_view = sk_mat4_identity();
@@ -5801,6 +6288,7 @@ static sk_result skgl__soft_gbuffer(skgl_context *ctx, skgl__st *st, skgl_soft *
     eye[1] = inv_view.m[13];
     eye[2] = inv_view.m[14];
     if (s->gbuf_u_eye >= 0) gl->Uniform3fv(s->gbuf_u_eye, 1, eye);
+    memcpy(ctx->pass_eye, eye, sizeof eye);
     skgl__soft_info(&info, SKGL_PASS_CAMERA, 0);
     r = skgl__casters_draw(ctx, st, scene, &vp, skgl__zero3, &info);
     s->stats.passes++;
@@ -5863,7 +6351,7 @@ static sk_result skgl__soft_pcss(skgl_context *ctx, skgl__st *st, skgl_soft *s, 
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_map);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, res, res);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
-    skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model);
+    skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, SKGL__CV_DEPTH);
     ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
     skgl__soft_info(&info, SKGL_PASS_AREA, 0);
     r = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
@@ -5908,7 +6396,9 @@ static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s
     skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
     ctx->gl.ClearBufferfv(SKGL__COLOR, 0, one);
     ctx->gl.ClearBufferfv(SKGL__COLOR, 1, one);
-    skgl__soft_casters(ctx, st, s, s->prog_cons, s->cons_u_view_proj, s->cons_u_model);
+    ctx->pass_texel[0] = ctx->pass_texel[1] = 2.0f / (float)r;
+    ctx->pass_conservative = !s->desc.disable_conservative;
+    skgl__soft_casters(ctx, st, s, s->prog_cons, s->cons_u_view_proj, s->cons_u_model, SKGL__CV_CONS);
     skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
     /* the alpha equation is the SMTG pass's: R32F targets have no alpha */
     skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__MIN, SKGL__FUNC_ADD, 0, 0);
@@ -6126,7 +6616,7 @@ static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_so
     gl->ClearBufferfv(SKGL__COLOR, 0, zero);
     skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__FUNC_ADD, SKGL__FUNC_ADD, 0, 0);
     skgl__st_set4(ctx, st, SKGL__S_BLEND_FUNC, SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
-    skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model);
+    skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, SKGL__CV_DEPTH);
     skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
     /* one scissor box for both passes: the largest tile and a texel (a
        tile's clear then covers at least its own region), the screen (the
@@ -6299,20 +6789,29 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
 #endif
 /* SKGL_EMBEDDED_SHADERS_BEGIN */
 static const char skgl__src_depth_vert[] =
-    "/* Depth-only pass: shadow maps of every technique. Attribute 0 is the\n"
-    "   position; u_model is set per object through skgl_set_model(). */\n"
+    "/* Depth-only pass: shadow maps of every technique. u_model is set per\n"
+    "   object through skgl_set_model(). A caster program (skgl_caster_create)\n"
+    "   defines SKGL_CASTER and its own skgl_caster_position(); without one,\n"
+    "   attribute 0 is the position. */\n"
+    "#ifndef SKGL_CASTER\n"
     "layout(location = 0) in vec3 a_position;\n"
+    "vec4 skgl_caster_position() { return vec4(a_position, 1.0); }\n"
+    "#endif\n"
     "uniform mat4 u_view_proj;\n"
     "uniform mat4 u_model;\n"
     "void main()\n"
     "{\n"
-    "    gl_Position = u_view_proj * (u_model * vec4(a_position, 1.0));\n"
+    "    gl_Position = u_view_proj * (u_model * skgl_caster_position());\n"
     "}\n"
     ;
 static const char skgl__src_depth_frag[] =
-    "/* Depth-only pass: the rasteriser writes depth; no colour output. */\n"
+    "/* Depth-only pass: the rasteriser writes depth; no colour output. A\n"
+    "   caster program's fragment hook may discard (an alpha test). */\n"
     "void main()\n"
     "{\n"
+    "#ifdef SKGL_CASTER_FRAGMENT\n"
+    "    skgl_caster_fragment();\n"
+    "#endif\n"
     "}\n"
     ;
 static const char skgl__src_fullscreen_vert[] =
@@ -7431,7 +7930,13 @@ static const char skgl__src_soft_cons_geom[] =
     "   own plane, extended; the fragment stage also gets the original edges,\n"
     "   so that it can tell the triangle's own texels from the grown border.\n"
     "   Triangles crossing the light's plane (w <= 0) are passed through\n"
-    "   unchanged. u_conservative = 0: plain rasterisation. */\n"
+    "   unchanged. u_conservative = 0: plain rasterisation.\n"
+    "   A caster program's varyings (SKGL_CASTER_VARYINGS) reach each emitted\n"
+    "   vertex through skgl_caster_varyings(b), b its barycentric weights on the\n"
+    "   original vertices: a grown corner's are extrapolated from its NDC\n"
+    "   position, weighted by 1/w so that the rasteriser's perspective-correct\n"
+    "   interpolation (the corner is emitted at w = 1 / sum(b / w)) gives the\n"
+    "   values the original triangle would have there. */\n"
     "layout(triangles) in;\n"
     "layout(triangle_strip, max_vertices = 3) out;\n"
     "uniform vec2 u_texel;             /* 2 / resolution: one texel in NDC */\n"
@@ -7448,6 +7953,9 @@ static const char skgl__src_soft_cons_geom[] =
     "        for (int i = 0; i < 3; i++) {\n"
     "            g_box = box;\n"
     "            g_edge = edge;\n"
+    "#ifdef SKGL_CASTER_VARYINGS\n"
+    "            skgl_caster_varyings(vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0));\n"
+    "#endif\n"
     "            gl_Position = gl_in[i].gl_Position;\n"
     "            EmitVertex();\n"
     "        }\n"
@@ -7457,7 +7965,8 @@ static const char skgl__src_soft_cons_geom[] =
     "    vec3 p[3] = vec3[3](c0.xyz / c0.w, c1.xyz / c1.w, c2.xyz / c2.w);\n"
     "    float area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);\n"
     "    if (area == 0.0) return;\n"
-    "    if (area < 0.0) { vec3 t = p[1]; p[1] = p[2]; p[2] = t; area = -area; }\n"
+    "    bool swapped = area < 0.0;\n"
+    "    if (swapped) { vec3 t = p[1]; p[1] = p[2]; p[2] = t; area = -area; }\n"
     "    vec2 h = 0.5 * u_texel;\n"
     "    /* depth plane z = A x + B y + C through the three vertices */\n"
     "    vec2 e1 = p[1].xy - p[0].xy, e2 = p[2].xy - p[0].xy;\n"
@@ -7486,7 +7995,19 @@ static const char skgl__src_soft_cons_geom[] =
     "        float z = p[0].z + A * (q.x - p[0].x) + B * (q.y - p[0].y);\n"
     "        g_box = box;\n"
     "        g_edge = edge;\n"
+    "#ifdef SKGL_CASTER_VARYINGS\n"
+    "        vec2 d0 = q - p[0].xy, d1 = p[1].xy - p[0].xy, d2 = p[2].xy - p[0].xy;\n"
+    "        vec3 b = vec3(0.0, (d0.x * d2.y - d0.y * d2.x) / area, (d1.x * d0.y - d1.y * d0.x) / area);\n"
+    "        b.x = 1.0 - b.y - b.z;\n"
+    "        if (swapped) b = b.xzy;\n"
+    "        vec3 bw = b / vec3(c0.w, c1.w, c2.w);\n"
+    "        float s = bw.x + bw.y + bw.z;\n"
+    "        float W = s > 1e-20 ? 1.0 / s : 1.0;\n"
+    "        skgl_caster_varyings(s > 1e-20 ? bw * W : b);\n"
+    "        gl_Position = vec4(q * W, z * W, W);\n"
+    "#else\n"
     "        gl_Position = vec4(q, z, 1.0);\n"
+    "#endif\n"
     "        EmitVertex();\n"
     "    }\n"
     "    EndPrimitive();\n"
@@ -7497,13 +8018,17 @@ static const char skgl__src_soft_cons_frag[] =
     "   depth test): o_cons every texel the grown triangle touches (level 0 of\n"
     "   the blocker-search pyramid), o_true only texels whose centre the\n"
     "   original triangle covers (the plain map, for the average blocker\n"
-    "   depth); overfill outside the grown bounding box discarded. */\n"
+    "   depth); overfill outside the grown bounding box discarded. A caster\n"
+    "   program's fragment hook may discard first (an alpha test). */\n"
     "flat in vec4 g_box;\n"
     "flat in vec3 g_edge[3];\n"
     "layout(location = 0) out vec4 o_cons;\n"
     "layout(location = 1) out vec4 o_true;\n"
     "void main()\n"
     "{\n"
+    "#ifdef SKGL_CASTER_FRAGMENT\n"
+    "    skgl_caster_fragment();\n"
+    "#endif\n"
     "    vec2 p = gl_FragCoord.xy;\n"
     "    if (any(lessThan(p, g_box.xy)) || any(greaterThan(p, g_box.zw))) discard;\n"
     "    bool inside = dot(p, g_edge[0].xy) <= g_edge[0].z && dot(p, g_edge[1].xy) <= g_edge[1].z &&\n"
@@ -7514,14 +8039,18 @@ static const char skgl__src_soft_cons_frag[] =
     ;
 static const char skgl__src_soft_gbuffer_vert[] =
     "/* Area-light shadows without a user G-buffer: the camera's depth and\n"
-    "   world normals rendered through the draw callback. */\n"
+    "   world normals rendered through the draw callback (a caster program's\n"
+    "   skgl_caster_position() in place of attribute 0, as in depth.vert). */\n"
+    "#ifndef SKGL_CASTER\n"
     "layout(location = 0) in vec3 a_position;\n"
+    "vec4 skgl_caster_position() { return vec4(a_position, 1.0); }\n"
+    "#endif\n"
     "uniform mat4 u_view_proj;\n"
     "uniform mat4 u_model;\n"
     "out vec3 v_world;\n"
     "void main()\n"
     "{\n"
-    "    vec4 w = u_model * vec4(a_position, 1.0);\n"
+    "    vec4 w = u_model * skgl_caster_position();\n"
     "    v_world = w.xyz / w.w;\n"
     "    gl_Position = u_view_proj * w;\n"
     "}\n"
@@ -7533,6 +8062,9 @@ static const char skgl__src_soft_gbuffer_frag[] =
     "uniform vec3 u_eye;\n"
     "void main()\n"
     "{\n"
+    "#ifdef SKGL_CASTER_FRAGMENT\n"
+    "    skgl_caster_fragment();\n"
+    "#endif\n"
     "    vec3 n = cross(dFdx(v_world), dFdy(v_world));\n"
     "    n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 1.0, 0.0);\n"
     "    if (dot(n, u_eye - v_world) < 0.0) n = -n;\n"

@@ -1,9 +1,14 @@
-/* Depth-only pass: shadow maps of every technique. Attribute 0 is the
-   position; u_model is set per object through skgl_set_model(). */
+/* Depth-only pass: shadow maps of every technique. u_model is set per
+   object through skgl_set_model(). A caster program (skgl_caster_create)
+   defines SKGL_CASTER and its own skgl_caster_position(); without one,
+   attribute 0 is the position. */
+#ifndef SKGL_CASTER
 layout(location = 0) in vec3 a_position;
+vec4 skgl_caster_position() { return vec4(a_position, 1.0); }
+#endif
 uniform mat4 u_view_proj;
 uniform mat4 u_model;
 void main()
 {
-    gl_Position = u_view_proj * (u_model * vec4(a_position, 1.0));
+    gl_Position = u_view_proj * (u_model * skgl_caster_position());
 }

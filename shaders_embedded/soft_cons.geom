@@ -6,7 +6,13 @@
    own plane, extended; the fragment stage also gets the original edges,
    so that it can tell the triangle's own texels from the grown border.
    Triangles crossing the light's plane (w <= 0) are passed through
-   unchanged. u_conservative = 0: plain rasterisation. */
+   unchanged. u_conservative = 0: plain rasterisation.
+   A caster program's varyings (SKGL_CASTER_VARYINGS) reach each emitted
+   vertex through skgl_caster_varyings(b), b its barycentric weights on the
+   original vertices: a grown corner's are extrapolated from its NDC
+   position, weighted by 1/w so that the rasteriser's perspective-correct
+   interpolation (the corner is emitted at w = 1 / sum(b / w)) gives the
+   values the original triangle would have there. */
 layout(triangles) in;
 layout(triangle_strip, max_vertices = 3) out;
 uniform vec2 u_texel;             /* 2 / resolution: one texel in NDC */
@@ -23,6 +29,9 @@ void main()
         for (int i = 0; i < 3; i++) {
             g_box = box;
             g_edge = edge;
+#ifdef SKGL_CASTER_VARYINGS
+            skgl_caster_varyings(vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0));
+#endif
             gl_Position = gl_in[i].gl_Position;
             EmitVertex();
         }
@@ -32,7 +41,8 @@ void main()
     vec3 p[3] = vec3[3](c0.xyz / c0.w, c1.xyz / c1.w, c2.xyz / c2.w);
     float area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
     if (area == 0.0) return;
-    if (area < 0.0) { vec3 t = p[1]; p[1] = p[2]; p[2] = t; area = -area; }
+    bool swapped = area < 0.0;
+    if (swapped) { vec3 t = p[1]; p[1] = p[2]; p[2] = t; area = -area; }
     vec2 h = 0.5 * u_texel;
     /* depth plane z = A x + B y + C through the three vertices */
     vec2 e1 = p[1].xy - p[0].xy, e2 = p[2].xy - p[0].xy;
@@ -61,7 +71,19 @@ void main()
         float z = p[0].z + A * (q.x - p[0].x) + B * (q.y - p[0].y);
         g_box = box;
         g_edge = edge;
+#ifdef SKGL_CASTER_VARYINGS
+        vec2 d0 = q - p[0].xy, d1 = p[1].xy - p[0].xy, d2 = p[2].xy - p[0].xy;
+        vec3 b = vec3(0.0, (d0.x * d2.y - d0.y * d2.x) / area, (d1.x * d0.y - d1.y * d0.x) / area);
+        b.x = 1.0 - b.y - b.z;
+        if (swapped) b = b.xzy;
+        vec3 bw = b / vec3(c0.w, c1.w, c2.w);
+        float s = bw.x + bw.y + bw.z;
+        float W = s > 1e-20 ? 1.0 / s : 1.0;
+        skgl_caster_varyings(s > 1e-20 ? bw * W : b);
+        gl_Position = vec4(q * W, z * W, W);
+#else
         gl_Position = vec4(q, z, 1.0);
+#endif
         EmitVertex();
     }
     EndPrimitive();

@@ -27,6 +27,13 @@ struct tb_reference {
     float *pos;              /* copy of the vertex positions (exact method) */
     unsigned *idx;           /* copy of the triangle indices */
     unsigned tri_count;
+    unsigned vertex_count;
+    /* tb_reference_set_alpha: uv per vertex, the alpha-tested triangles, the texture */
+    float *uv;
+    unsigned alpha_first, alpha_count;
+    unsigned char *alpha;
+    int alpha_w, alpha_h;
+    float cutoff;
 };
 
 static void tb_embree_error_(void *user, enum RTCError code, const char *msg) {
@@ -70,6 +77,7 @@ tb_reference *tb_reference_create(const tb_scene *s) {
     memcpy(vb, s->positions, (size_t)s->vertex_count * 3 * sizeof(float));
     memcpy(ib, s->indices, (size_t)(s->index_count / 3) * 3 * sizeof(unsigned));
     r->tri_count = s->index_count / 3;
+    r->vertex_count = s->vertex_count;
     r->pos = (float *)malloc((size_t)s->vertex_count * 3 * sizeof(float));
     r->idx = (unsigned *)malloc((size_t)r->tri_count * 3 * sizeof(unsigned));
     if (!r->pos || !r->idx) {
@@ -97,6 +105,8 @@ void tb_reference_destroy(tb_reference *r) {
     if (r->device) rtcReleaseDevice(r->device);
     free(r->pos);
     free(r->idx);
+    free(r->uv);
+    free(r->alpha);
     free(r);
 }
 
@@ -444,8 +454,45 @@ static void tb_receiver_filter_(const struct RTCFilterFunctionNArguments *args) 
             if (tol < x->tol) tol = x->tol;
             if (fabs(tb_dot_(x->n, v) - x->d) > tol) in_plane = 0;
         }
-        if (in_plane) args->valid[i] = 0;
+        if (in_plane) { args->valid[i] = 0; continue; }
+        if (x->ref->alpha && prim - x->ref->alpha_first < x->ref->alpha_count) {
+            /* u, v: the hit's barycentric weights of vertices 1 and 2 */
+            const float *hit = (const float *)(const void *)args->hit;
+            double bu = hit[3 * args->N + i], bv = hit[4 * args->N + i], t[2];
+            const float *uv0 = x->ref->uv + 2 * x->ref->idx[3 * prim], *uv1 = x->ref->uv + 2 * x->ref->idx[3 * prim + 1];
+            const float *uv2 = x->ref->uv + 2 * x->ref->idx[3 * prim + 2];
+            long tx, ty;
+            for (k = 0; k < 2; k++) t[k] = (1.0 - bu - bv) * uv0[k] + bu * uv1[k] + bv * uv2[k];
+            tx = (long)floor(t[0] * x->ref->alpha_w) % x->ref->alpha_w;
+            ty = (long)floor(t[1] * x->ref->alpha_h) % x->ref->alpha_h;
+            if (tx < 0) tx += x->ref->alpha_w;
+            if (ty < 0) ty += x->ref->alpha_h;
+            if (x->ref->alpha[ty * x->ref->alpha_w + tx] < x->ref->cutoff * 255.0f) args->valid[i] = 0;
+        }
     }
+}
+
+int tb_reference_set_alpha(tb_reference *r, const float *uv, unsigned first_tri, unsigned tri_count,
+                           const unsigned char *alpha, int w, int h, float cutoff) {
+    if (!r || !uv || !alpha || w <= 0 || h <= 0 || first_tri > r->tri_count || tri_count > r->tri_count - first_tri)
+        return -1;
+    free(r->uv);
+    free(r->alpha);
+    r->uv = (float *)malloc(sizeof(float) * 2 * r->vertex_count);
+    r->alpha = (unsigned char *)malloc((size_t)w * (size_t)h);
+    if (!r->uv || !r->alpha) {
+        free(r->uv); free(r->alpha);
+        r->uv = NULL; r->alpha = NULL;
+        return -1;
+    }
+    memcpy(r->uv, uv, sizeof(float) * 2 * r->vertex_count);
+    memcpy(r->alpha, alpha, (size_t)w * (size_t)h);
+    r->alpha_first = first_tri;
+    r->alpha_count = tri_count;
+    r->alpha_w = w;
+    r->alpha_h = h;
+    r->cutoff = cutoff;
+    return 0;
 }
 
 static void tb_ray_fill_(struct RTCRay *ray, const double o[3], const double d[3], double tnear, double tfar) {

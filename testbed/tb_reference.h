@@ -215,6 +215,18 @@ int tb_reference_trace_exact(const tb_reference *ref, const tb_view *view, const
                              const tb_light *light, const tb_ref_options *opt, float *vis,
                              tb_ref_stats *stats);
 
+/* Alpha-tested casters, as a fragment stage that discards on a texture's
+   alpha draws them: the exact method's shadow rays (point 4's filter) pass
+   through triangles first_tri .. first_tri + tri_count - 1 where the
+   texture's alpha at the hit is below `cutoff` (0..1). uv: 2 floats per
+   scene vertex; the hit's uv is the barycentric blend of its triangle's
+   (in double); the texel is the nearest one under GL_REPEAT
+   (floor(u * w) mod w, row floor(v * h) mod h, row 0 first, as glTexImage2D
+   takes it). alpha: w x h bytes. The arrays are copied. Primary rays do
+   not alpha-test. 0 ok, -1 bad arguments. */
+int tb_reference_set_alpha(tb_reference *ref, const float *uv, unsigned first_tri, unsigned tri_count,
+                           const unsigned char *alpha, int w, int h, float cutoff);
+
 /* The same for arbitrary world points (3 doubles each) and optional normals
    (3 doubles each, NULL = none); the jitter seed uses the point index. */
 int tb_reference_trace_points(const tb_reference *ref, const double *points, const double *normals,

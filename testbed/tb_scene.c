@@ -191,6 +191,42 @@ static int tb_add_box_faces_(tb_scene *s, sk_vec3 mn, sk_vec3 mx) {
     return 0;
 }
 
+int tb_scene_add_mesh(tb_scene *s, const char *name, const float *pos, uint32_t nv, const uint32_t *idx,
+                      uint32_t ni) {
+    uint32_t vc = s->vertex_count, i;
+    int obj;
+    if (!pos || !idx || nv == 0 || ni % 3 != 0) return -1;
+    for (i = 0; i < ni; i++)
+        if (idx[i] >= nv) return -1;
+    obj = tb_begin_object_(s, name);
+    if (obj < 0) return -1;
+    if (tb_reserve_(s, nv, ni)) { tb_abort_object_(s, obj, vc); return -1; }
+    memcpy(s->positions + 3 * (size_t)vc, pos, sizeof(float) * 3 * (size_t)nv);
+    memset(s->normals + 3 * (size_t)vc, 0, sizeof(float) * 3 * (size_t)nv);
+    for (i = 0; i < ni; i += 3) {
+        const float *a = pos + 3 * (size_t)idx[i], *b = pos + 3 * (size_t)idx[i + 1], *c = pos + 3 * (size_t)idx[i + 2];
+        double e1[3], e2[3], n[3];
+        int k, v;
+        for (k = 0; k < 3; k++) { e1[k] = (double)b[k] - a[k]; e2[k] = (double)c[k] - a[k]; }
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        for (v = 0; v < 3; v++)
+            for (k = 0; k < 3; k++) s->normals[3 * ((size_t)vc + idx[i + v]) + k] += (float)n[k];
+    }
+    for (i = 0; i < nv; i++) {
+        float *n = s->normals + 3 * ((size_t)vc + i);
+        double len = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
+        if (len > 0) { n[0] = (float)(n[0] / len); n[1] = (float)(n[1] / len); n[2] = (float)(n[2] / len); }
+        else n[1] = 1.0f;
+    }
+    for (i = 0; i < ni; i++) s->indices[s->index_count + i] = vc + idx[i];
+    s->vertex_count += nv;
+    s->index_count += ni;
+    tb_end_object_(s, obj);
+    return obj;
+}
+
 int tb_scene_add_box(tb_scene *s, const char *name, sk_vec3 mn, sk_vec3 mx) {
     uint32_t vc = s->vertex_count;
     int obj = tb_begin_object_(s, name);

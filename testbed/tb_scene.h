@@ -73,6 +73,10 @@ int tb_scene_load(tb_scene *s, const char *path);
    split into nx x nz quads (each >= 1; 2*nx*nz triangles). */
 int tb_scene_add_ground(tb_scene *s, const char *name, float cx, float cz,
                         float hx, float hz, float y0, int nx, int nz);
+/* Any triangle mesh: nv vertices (3 floats each), ni indices (3 per
+   triangle, into those vertices); area-weighted vertex normals. */
+int tb_scene_add_mesh(tb_scene *s, const char *name, const float *pos, uint32_t nv, const uint32_t *idx,
+                      uint32_t ni);
 /* Axis-aligned closed box from mn to mx, outward normals, 12 triangles. */
 int tb_scene_add_box(tb_scene *s, const char *name, sk_vec3 mn, sk_vec3 mx);
 /* A thin vertical pole: square prism of side 2*r standing on (x, y0, z),
