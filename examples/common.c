@@ -223,6 +223,8 @@ static void ex_bind_target(ex_app *app) {
     }
 }
 
+void ex_bind_frame(ex_app *app) { ex_bind_target(app); }
+
 int ex_app_begin_frame(ex_app *app) {
     if (app->opt.frames > 0 && app->frame >= app->opt.frames) return 0;
     if (app->window) {

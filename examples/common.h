@@ -136,6 +136,9 @@ void ex_camera_from_bounds(sk_aabb b, sk_vec3 *eye, sk_vec3 *target, float *zn, 
    reads its back buffer before showing the last frame. 0 ok, -1 on failure. */
 int ex_app_begin_frame(ex_app *app);
 int ex_app_end_frame(ex_app *app);
+/* binds the frame's framebuffer again (after a pass of the example's own
+   into another one) and sets the viewport to its size */
+void ex_bind_frame(ex_app *app);
 
 /* Shader objects and programs. ex_compile_shader joins count source
    strings (e.g. "#version", a shadowkit snippet, your code) into one

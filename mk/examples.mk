@@ -1,5 +1,5 @@
 # mk/examples.mk - the tutorial programs in examples/ (included by the Makefile).
-#   make examples        build build/examples/01_hard_shadows .. 06_soft_shadows
+#   make examples        build build/examples/01_hard_shadows .. 07_engine_casters
 #   make examples-demo   render each one headless into out/ (part of make demo)
 # Each example is one C99 file holding the shadowkit implementation, plus
 # examples/common.c, linked with the testbed library and GLFW.
@@ -9,7 +9,7 @@
 .SECONDEXPANSION:
 
 EX_DIR   := $(BUILD)/examples
-EX_NAMES := 01_hard_shadows 02_cascades 03_warping 04_adaptive 05_point_light 06_soft_shadows
+EX_NAMES := 01_hard_shadows 02_cascades 03_warping 04_adaptive 05_point_light 06_soft_shadows 07_engine_casters
 EX_BINS  := $(addprefix $(EX_DIR)/,$(EX_NAMES))
 EX_OBJS  := $(addprefix $(EX_DIR)/obj/,$(addsuffix .o,$(EX_NAMES)))
 EX_HDRS  := shadowkit.h shadowkit_gl.h examples/common.h
@@ -55,6 +55,7 @@ examples-demo: $(EX_BINS)
 	./$(EX_DIR)/06_soft_shadows --headless --technique pcss --out $(OUT)/06_soft_shadows-pcss.png
 	./$(EX_DIR)/06_soft_shadows --headless --technique tiles --out $(OUT)/06_soft_shadows-tiles.png
 	./$(EX_DIR)/05_point_light --headless --technique vsdct --out $(OUT)/05_point_light-vsdct.png
-	@echo "examples: images in $(OUT)/: 01_hard_shadows.png 02_cascades.png 02_cascades-show.png 03_warping-{lispsm,psm,standard}.png 04_adaptive-{ferko,lspsm,rmsm}.png 05_point_light-{cube,vsdct}.png 06_soft_shadows-{pvsm,pcss,tiles}.png"
+	./$(EX_DIR)/07_engine_casters --headless --out $(OUT)/07_engine_casters.png
+	@echo "examples: images in $(OUT)/: 01_hard_shadows.png 02_cascades.png 02_cascades-show.png 03_warping-{lispsm,psm,standard}.png 04_adaptive-{ferko,lspsm,rmsm}.png 05_point_light-{cube,vsdct}.png 06_soft_shadows-{pvsm,pcss,tiles}.png 07_engine_casters.png"
 
 DEMO_TARGETS += examples-demo

@@ -74,6 +74,7 @@ VARIANTS=(
     "06_soft_shadows-pvsm|06_soft_shadows --technique pvsm"
     "06_soft_shadows-pcss|06_soft_shadows --technique pcss"
     "06_soft_shadows-tiles|06_soft_shadows --technique tiles"
+    "07_engine_casters|07_engine_casters"
 )
 
 pairs=()
