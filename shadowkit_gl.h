@@ -255,6 +255,17 @@
          sk_point_range, sk_point_depth, sk_point_texel,
          sk_point_normal_bias, sk_point_bias_mode, sk_point_plane_bias,
          sk_point_pcf; the global float sk_point_receiver_slack.
+     Several lights in one program: each light gets its own copy of its
+     snippet with its names under a prefix of yours,
+     skgl_glsl_snippet_prefixed("sun0_", buf, size) (sk_shadow ->
+     sun0_shadow, sk_light_vp -> sun0_light_vp, SK_ -> SUN0_) and
+     skgl_point_glsl_snippet_prefixed("lamp0_", ...) (lamp0_point_shadow;
+     a VSDCT lamp needs "#define LAMP0_POINT_VSDCT 1"); paste them all
+     after #version, and bind each light under its prefix and on units of
+     its own: skgl_shadow_bind_named(gl, sun0, prog, 0, "sun0_", NULL),
+     skgl_point_bind_named(gl, lamp0, prog, 2, "lamp0_"). Each light takes
+     two units (unit and unit + 1), so a fragment shader's 16 units hold 8
+     lights. The bind caches locations per program and prefix.
 
    GL STATE
      Two modes, skgl_desc.caller_owns_state:
@@ -413,6 +424,7 @@ extern "C" {
 #endif
 
 #define SKGL_MAX_CASCADES 8
+#define SKGL_PREFIX_MAX 24            /* the longest prefix of a prefixed GLSL snippet */
 #define SKGL_SOFT_STEPS 8            /* area light steps timed in skgl_soft_frame_stats.step_ms */
 
 typedef void *(*skgl_getproc_fn)(const char *name);
@@ -663,6 +675,15 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
    float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth);
    Paste it into a fragment shader after the #version line. */
 SKGLDEF const char *skgl_glsl_snippet(void);
+/* The same snippet for one of several directional lights in one program
+   (GLSL SNIPPETS, several lights): every name that starts with sk_ starts
+   with prefix instead (sk_shadow -> sun0_shadow for "sun0_"), every SK_
+   with prefix in capitals. Like snprintf: writes at most cap bytes into
+   out (NUL-terminated; out may be NULL with cap 0) and returns the length
+   of the whole text, or -1 when prefix is not a GLSL identifier of 1 to
+   SKGL_PREFIX_MAX characters (a letter first, not gl_, no double
+   underscore). Bind the light with skgl_shadow_bind_named(.., prefix, ..). */
+SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
 /* For a forward shader containing the snippet: program must be current;
    binds the map (and a comparison sampler) to texture unit `unit` and sets
    the snippet's uniforms. The binding is left in place for the draw.
@@ -674,6 +695,12 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
    world_pos - origin); NULL: world space, as skgl_shadow_bind */
 SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
                                           const double origin[3]);
+/* Several lights in one program (GLSL SNIPPETS, several lights): the bind
+   of a light whose snippet came from skgl_glsl_snippet_prefixed(prefix);
+   prefix NULL or "": the plain snippet's sk_ names. origin as in
+   skgl_shadow_bind_origin (NULL: world space). */
+SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
+                                         const char *prefix, const double origin[3]);
 /* After drawing with a bound light: plain sampling again on `unit` and
    `unit` + 1 (the sampler objects skgl_shadow_bind / skgl_point_bind left
    there, a comparison sampler among them, unbound; the textures stay), so
@@ -787,12 +814,19 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
    float sk_point_shadow(vec3 world_pos, vec3 world_normal);
    SKGL_POINT_VSDCT needs "#define SK_POINT_VSDCT 1" before it. */
 SKGLDEF const char *skgl_point_glsl_snippet(void);
+/* skgl_glsl_snippet_prefixed for a point light: sk_point_shadow ->
+   lamp0_point_shadow, SK_POINT_VSDCT -> LAMP0_POINT_VSDCT for "lamp0_";
+   bind with skgl_point_bind_named */
+SKGLDEF int skgl_point_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
 /* For a forward shader with the snippet, program current: binds the map to
    unit `unit` (VSDCT: the indirection cube map to unit + 1) and sets the
    uniforms. The bindings stay for the draw. Turn GL_TEXTURE_CUBE_MAP_SEAMLESS
    on for SKGL_POINT_CUBE (filtering across faces) and off for
    SKGL_POINT_VSDCT (the indirection must not blend faces). */
 SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit);
+/* skgl_point_bind for a snippet from skgl_point_glsl_snippet_prefixed(prefix) */
+SKGLDEF sk_result skgl_point_bind_named(skgl_context *ctx, const skgl_point *p, unsigned program, int unit,
+                                        const char *prefix);
 SKGLDEF const skgl_point_frame_stats *skgl_point_stats(const skgl_point *p);
 /* the depth texture: GL_TEXTURE_CUBE_MAP (cube) or GL_TEXTURE_2D atlas (VSDCT;
    the shared atlas's texture with desc.atlas) */
@@ -1305,6 +1339,7 @@ enum { SKGL__PK_SHADOW = 0, SKGL__PK_POINT = 1 };
 typedef struct skgl__progent {
     skgl__uint program;                    /* 0: a free entry */
     int kind;                              /* SKGL__PK_SHADOW, SKGL__PK_POINT */
+    char prefix[SKGL_PREFIX_MAX + 1];      /* the snippet's names start with this ("": sk_) */
     unsigned tick;                         /* last use: the least recent goes first */
     skgl__int loc[SKGL__LOCS];
     skgl__int uniforms;                    /* GL_ACTIVE_UNIFORMS at look-up (the default mode's check) */
@@ -1881,6 +1916,56 @@ static sk_result skgl__arg_name(skgl_context *ctx, const char *fn, unsigned name
     return name ? SK_OK : skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = 0: a GL name is required", fn, what);
 }
 
+/* a snippet prefix: NULL, "", or a GLSL identifier of at most
+   SKGL_PREFIX_MAX characters not reserved by GLSL (gl_, a double
+   underscore); 0 when it is one */
+static int skgl__prefix_bad(const char *prefix)
+{
+    size_t i, n;
+    if (!prefix || !prefix[0]) return 0;
+    n = strlen(prefix);
+    if (n > SKGL_PREFIX_MAX || !isalpha((unsigned char)prefix[0]) || strncmp(prefix, "gl_", 3) == 0) return 1;
+    for (i = 0; i < n; i++)
+        if (!(isalnum((unsigned char)prefix[i]) || prefix[i] == '_') || (prefix[i] == '_' && prefix[i + 1] == '_'))
+            return 1;
+    return 0;
+}
+
+static sk_result skgl__arg_prefix(skgl_context *ctx, const char *fn, const char *prefix)
+{
+    if (!skgl__prefix_bad(prefix)) return SK_OK;
+    return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                      "%s: prefix = \"%.40s\": a GLSL identifier of 1 to %d characters, a letter first, not "
+                      "gl_ and no double underscore",
+                      fn, prefix, SKGL_PREFIX_MAX);
+}
+
+/* src with every identifier that starts with sk_ starting with prefix
+   instead, and every SK_ with prefix in capitals (the snippet's names and
+   its #defines); into out (cap bytes, NUL-terminated, cut short if it does
+   not fit); returns the whole length, or -1 for a bad prefix */
+static int skgl__glsl_prefixed(const char *src, const char *prefix, char *out, int cap)
+{
+    size_t n = 0, k, plen;
+    const char *c;
+    if (skgl__prefix_bad(prefix) || !prefix || !prefix[0] || cap < 0) return -1;
+    plen = strlen(prefix);
+#define SKGL__PUT(ch) do { if (out && n + 1 < (size_t)cap) out[n] = (ch); n++; } while (0)
+    for (c = src; *c; c++) {
+        int start = c == src || !(isalnum((unsigned char)c[-1]) || c[-1] == '_');
+        if (start && (strncmp(c, "sk_", 3) == 0 || strncmp(c, "SK_", 3) == 0)) {
+            int upper = c[0] == 'S';
+            for (k = 0; k < plen; k++) SKGL__PUT(upper ? (char)toupper((unsigned char)prefix[k]) : prefix[k]);
+            c += 2;
+            continue;
+        }
+        SKGL__PUT(*c);
+    }
+#undef SKGL__PUT
+    if (out && cap > 0) out[n < (size_t)cap ? n : (size_t)cap - 1] = 0;
+    return (int)n;
+}
+
 /* a camera with finite matrices whose view-projection inverts (into *inv) */
 static sk_result skgl__arg_camera(skgl_context *ctx, const char *fn, const skgl_camera *cam, sk_mat4 *inv)
 {
@@ -2046,15 +2131,22 @@ static const char *const skgl__point_names[SKGL__L_POINT_N] = {
     "sk_point_texel", "sk_point_normal_bias", "sk_point_pcf", "sk_point_bias_mode", "sk_point_plane_bias",
     "sk_point_faces"};
 
-static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint program, int kind)
+static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint program, int kind,
+                                 const char *prefix)
 {
     int i, n = kind == SKGL__PK_SHADOW ? (int)SKGL__L_SHADOW_N : (int)SKGL__L_POINT_N;
     const char *const *names = kind == SKGL__PK_SHADOW ? skgl__shadow_names : skgl__point_names;
+    char name[SKGL_PREFIX_MAX + 32];
     memset(e, 0, sizeof *e);
     e->program = program;
     e->kind = kind;
+    strcpy(e->prefix, prefix);
     for (i = 0; i < SKGL__LOCS; i++) e->loc[i] = -1;
-    for (i = 0; i < n; i++) e->loc[i] = ctx->gl.GetUniformLocation(program, names[i]);
+    for (i = 0; i < n; i++) {
+        /* "sk_x" is "<prefix>x" in a prefixed snippet (skgl__glsl_prefixed) */
+        if (prefix[0]) snprintf(name, sizeof name, "%s%s", prefix, names[i] + 3);
+        e->loc[i] = ctx->gl.GetUniformLocation(program, prefix[0] ? name : names[i]);
+    }
     ctx->gl.GetProgramiv(program, SKGL__ACTIVE_UNIFORMS, &e->uniforms);
 }
 
@@ -2074,7 +2166,7 @@ static int skgl__progent_changed(skgl_context *ctx, const skgl__progent *e)
     int i;
     if (ctx->debug) {
         skgl__progent fresh;
-        skgl__progent_lookup(ctx, &fresh, e->program, e->kind);
+        skgl__progent_lookup(ctx, &fresh, e->program, e->kind, e->prefix);
         for (i = 0; i < SKGL__LOCS; i++)
             if (fresh.loc[i] != e->loc[i]) return 1;
     } else if (ctx->caller_owns) {
@@ -2098,21 +2190,21 @@ static int skgl__progent_changed(skgl_context *ctx, const skgl__progent *e)
 
 /* the cache entry of a user program, looked up anew on a miss or when the
    program changed under its name */
-static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, int kind)
+static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, int kind, const char *prefix)
 {
     skgl__progent *e, *victim = &ctx->progs[0];
     int i;
     ctx->tick++;
     for (i = 0; i < SKGL__PROG_CACHE; i++) {
         e = &ctx->progs[i];
-        if (e->program == program && e->kind == kind) {
-            if (skgl__progent_changed(ctx, e)) skgl__progent_lookup(ctx, e, program, kind);
+        if (e->program == program && e->kind == kind && strcmp(e->prefix, prefix) == 0) {
+            if (skgl__progent_changed(ctx, e)) skgl__progent_lookup(ctx, e, program, kind, prefix);
             e->tick = ctx->tick;
             return e;
         }
         if (e->tick < victim->tick) victim = e;
     }
-    skgl__progent_lookup(ctx, victim, program, kind);
+    skgl__progent_lookup(ctx, victim, program, kind, prefix);
     victim->tick = ctx->tick;
     return victim;
 }
@@ -2355,7 +2447,7 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "u_view_proj");
     ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "u_model");
     ctx->model_loc = -1;   /* no caster pass under way */
-    skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW);
+    skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW, "");
     ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
     ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
@@ -2659,6 +2751,11 @@ SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16])
 }
 
 SKGLDEF const char *skgl_glsl_snippet(void) { return skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL); }
+
+SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap)
+{
+    return skgl__glsl_prefixed(skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL), prefix, out, cap);
+}
 
 /* 5.3 the draw callback ---------------------------------------------------
    A caster pass binds the depth program and sets the model matrix once;
@@ -4511,6 +4608,12 @@ static skgl__int skgl__bind_active(skgl_context *ctx)
 SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
                                           const double origin[3])
 {
+    return skgl_shadow_bind_named(ctx, s, program, unit, NULL, origin);
+}
+
+SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit,
+                                         const char *prefix, const double origin[3])
+{
     skgl__api *gl;
     skgl__int active, last;
     skgl__progent *e;
@@ -4518,12 +4621,13 @@ SKGLDEF sk_result skgl_shadow_bind_origin(skgl_context *ctx, const skgl_shadow *
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__arg_prefix(ctx, fn, prefix));
     SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
     SKGL__TRY(skgl__arg_unit(ctx, fn, unit, s->desc.technique == SKGL_RMSM ? 30 : 31));
     if (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: origin = (%g %g %g): finite, under 1e30", fn, origin[0],
                           origin[1], origin[2]);
-    e = skgl__user_program(ctx, program, SKGL__PK_SHADOW);
+    e = skgl__user_program(ctx, program, SKGL__PK_SHADOW, prefix ? prefix : "");
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
     last = SKGL__TEXTURE0 + unit;
@@ -4829,7 +4933,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     skgl__timer_init(ctx, &p->t_mask);
     /* the mask program's locations, its G-buffer units (the light's
        constants follow at its first mask) */
-    skgl__progent_lookup(ctx, &p->ent, p->prog, SKGL__PK_POINT);
+    skgl__progent_lookup(ctx, &p->ent, p->prog, SKGL__PK_POINT, "");
     p->ent.has_normals = -1;
     p->u_has_normals = gl->GetUniformLocation(p->prog, "u_has_normals");
     p->u_inv_view_proj = gl->GetUniformLocation(p->prog, "u_inv_view_proj");
@@ -4932,6 +5036,11 @@ SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p)
 }
 
 SKGLDEF const char *skgl_point_glsl_snippet(void) { return skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL); }
+
+SKGLDEF int skgl_point_glsl_snippet_prefixed(const char *prefix, char *out, int cap)
+{
+    return skgl__glsl_prefixed(skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL), prefix, out, cap);
+}
 
 SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster)
 {
@@ -5228,6 +5337,12 @@ static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__p
 
 SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit)
 {
+    return skgl_point_bind_named(ctx, p, program, unit, NULL);
+}
+
+SKGLDEF sk_result skgl_point_bind_named(skgl_context *ctx, const skgl_point *p, unsigned program, int unit,
+                                        const char *prefix)
+{
     skgl__api *gl;
     skgl__int active, last;
     skgl__progent *e;
@@ -5235,10 +5350,11 @@ SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsign
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_prefix(ctx, fn, prefix));
     SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
     SKGL__TRY(skgl__arg_unit(ctx, fn, unit, 30));
     if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
-    e = skgl__user_program(ctx, program, SKGL__PK_POINT);
+    e = skgl__user_program(ctx, program, SKGL__PK_POINT, prefix ? prefix : "");
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
     last = SKGL__TEXTURE0 + unit;
