@@ -120,6 +120,22 @@
      callback, the model as the identity at every skgl_use_caster; after the
      callback shadowkit's own program is current again.
 
+   LAYERED PASSES (skgl_shadow_desc.layered, skgl_point_desc.layered)
+     A light of several layers (PSSM, LSPSM, LiSPSM with cascades, a cube
+     map's faces) calls the callback once per layer by default. With
+     .layered = 1 it calls it once: what it draws goes to every layer
+     through a geometry shader that sends each triangle to each layer's
+     matrix and writes gl_Layer (one invocation per layer with
+     GL_ARB_gpu_shader5, a loop otherwise; both GL 3.3 core). info->layers
+     is then the number of layers, info->index -1, and
+     info->layer_view_proj[i] / layer_frustum[i] / layer_index[i] each
+     layer's matrix, frustum and cascade or face: cull against any of them
+     (skgl_point_caster_visible does). A caster program gets its layered
+     version the same way. The maps are the same as with a pass per layer;
+     the draw calls are divided by the layers, the geometry shader's cost
+     added: time both on your GPU (the stats' layered field says which ran).
+     VSDCT's atlas, RMSM's pages and one-map techniques keep one pass each.
+
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
                     bounds, fitted in light space (Ferko 2013's crop, Brabec);
@@ -452,6 +468,15 @@ typedef struct skgl_draw_info {
        callback that binds a program of its own binds this one again before
        it returns (SCENE ACCESS) */
     unsigned program;
+    /* Layered single-pass rendering (desc.layered, LAYERED PASSES): 0 when
+       the callback draws one layer (index); n > 0 when what it draws goes
+       to n layers at once (index -1; view_proj and frustum those of
+       layer_view_proj[0]): entry i is cascade or cube face layer_index[i],
+       for culling against any of them. */
+    int layers;
+    int layer_index[SKGL_MAX_CASCADES];
+    sk_mat4 layer_view_proj[SKGL_MAX_CASCADES];
+    sk_frustum layer_frustum[SKGL_MAX_CASCADES];
 } skgl_draw_info;
 typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
 
@@ -538,6 +563,10 @@ typedef struct skgl_shadow_desc {
                                      near plane with it: more uniform texels,
                                      0..1000 [0.5] */
     int disable_psm_slide;        /* 1: no slide (the plain PSM) [0] */
+    int layered;                  /* 1: a light of several layers (PSSM, LSPSM, LiSPSM with
+                                     cascades) draws them all in one pass through a
+                                     geometry shader: one callback instead of one per
+                                     layer (LAYERED PASSES); 0: a pass per layer [0] */
 } skgl_shadow_desc;
 
 typedef struct skgl_camera {
@@ -574,6 +603,9 @@ typedef struct skgl_shadow_frame_stats {
     int pages_requested;                  /* RMSM: distinct pages the view asked for (finest levels) */
     int pages_rendered;                   /* RMSM: pages in the pool this frame (the coarsest always) */
     int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
+    int layered;                          /* 1: the layers went in one pass (desc.layered honoured);
+                                             2: so, through one geometry shader invocation per layer
+                                             (GL_ARB_gpu_shader5) */
 } skgl_shadow_frame_stats;
 
 
@@ -775,6 +807,9 @@ typedef struct skgl_point_desc {
     skgl_point_atlas *atlas;      /* SKGL_POINT_VSDCT only: the six faces live in this shared
                                      atlas, placed by skgl_point_atlas_pack [NULL: an atlas of
                                      the light's own, 3 x 2 faces of .resolution] */
+    int layered;                  /* SKGL_POINT_CUBE: 1 draws the faces it renders in one pass
+                                     through a geometry shader, one callback a frame
+                                     (LAYERED PASSES); VSDCT keeps a pass per face [0] */
 } skgl_point_desc;
 
 /* What a point light's last frame did (skgl_point_stats). */
@@ -790,6 +825,7 @@ typedef struct skgl_point_frame_stats {
     int scissor[4];                       /* the last mask's rectangle x, y, w, h (all 0: nothing drawn) */
     int atlas_wanted;                     /* shared atlas: face side selected before packing (greater
                                              than .resolution when skgl_point_atlas_pack halved it to fit) */
+    int layered;                          /* as skgl_shadow_frame_stats.layered, for the faces */
 } skgl_point_frame_stats;
 
 typedef struct skgl_point skgl_point;
@@ -1221,6 +1257,7 @@ typedef unsigned long long skgl__u64;
     X(void, FramebufferTexture2D, (skgl__enum target, skgl__enum att, skgl__enum textarget, skgl__uint tex, skgl__int level)) \
     X(skgl__enum, CheckFramebufferStatus, (skgl__enum target)) \
     X(void, DrawBuffer, (skgl__enum buf)) \
+    X(void, FramebufferTexture, (skgl__enum target, skgl__enum att, skgl__uint tex, skgl__int level)) \
     X(void, ReadBuffer, (skgl__enum buf)) \
     X(void, GenTextures, (skgl__sizei n, skgl__uint *ids)) \
     X(void, DeleteTextures, (skgl__sizei n, const skgl__uint *ids)) \
@@ -1261,6 +1298,7 @@ typedef unsigned long long skgl__u64;
     X(void, UseProgram, (skgl__uint p)) \
     X(skgl__int, GetUniformLocation, (skgl__uint p, const char *name)) \
     X(void, Uniform1i, (skgl__int loc, skgl__int v)) \
+    X(void, Uniform1iv, (skgl__int loc, skgl__sizei n, const skgl__int *v)) \
     X(void, Uniform1f, (skgl__int loc, float v)) \
     X(void, Uniform1fv, (skgl__int loc, skgl__sizei n, const float *v)) \
     X(void, Uniform3fv, (skgl__int loc, skgl__sizei n, const float *v)) \
@@ -1320,6 +1358,7 @@ typedef enum skgl__glsl_id {
     SKGL__GLSL_SOFT_GBUFFER_VERT,
     SKGL__GLSL_SOFT_GBUFFER_FRAG,
     SKGL__GLSL_PCSS_MASK_FRAG,
+    SKGL__GLSL_LAYERED_GEOM,
     SKGL__GLSL_N
 } skgl__glsl_id;
 static const char *skgl__glsl(skgl__glsl_id id);
@@ -1379,7 +1418,7 @@ typedef struct skgl__ring {
 } skgl__ring;
 
 /* the kinds of caster pass a caster program is linked for (>>casters) */
-enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_COUNT = 3 };
+enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_LAYERED = 3, SKGL__CV_COUNT = 4 };
 
 struct skgl_context {
     skgl__api gl;
@@ -1411,6 +1450,14 @@ struct skgl_context {
     struct skgl_caster *casters;           /* every caster made, freed with the context */
     struct skgl_caster *cur_caster;        /* bound by the callback now (NULL: the pass's program) */
     sk_result pass_error;                  /* a caster program that failed to link in this callback */
+    /* layered passes (>>layered): the depth program with layered.geom, made
+       on first use; the layers of the pass under way */
+    skgl__uint layered_prog;
+    int layered_state;                     /* 0 not tried, 1 loop, 2 invocations, -1 no program */
+    skgl__int layered_u_model, layered_u_vp, layered_u_of, layered_u_count;
+    int pass_layers;                       /* 0: the pass draws one layer */
+    float pass_layer_vp[SKGL_MAX_CASCADES][16];
+    int pass_layer_of[SKGL_MAX_CASCADES];
     double model_origin[3];        /* skgl_set_model during a directional pass: models move to this origin */
     /* the locations of shadowkit's own programs, found at link time, and the
        values of the uniforms that seldom change, as last sent */
@@ -2424,11 +2471,11 @@ static void skgl__ring_fence(skgl_context *ctx, skgl__ring *r, int i)
 static void skgl__release(skgl_context *ctx)
 {
     skgl__api *gl = &ctx->gl;
-    skgl__uint *progs[8];
+    skgl__uint *progs[9];
     int i;
     progs[0] = &ctx->depth_prog; progs[1] = &ctx->mask_prog; progs[2] = &ctx->ferko_prog;
     progs[3] = &ctx->reduce_prog; progs[4] = &ctx->final_prog; progs[5] = &ctx->rmsm_prog;
-    progs[6] = &ctx->request_prog; progs[7] = NULL;
+    progs[6] = &ctx->request_prog; progs[7] = &ctx->layered_prog; progs[8] = NULL;
     for (i = 0; progs[i]; i++)
         if (*progs[i]) { gl->DeleteProgram(*progs[i]); ctx->objects--; *progs[i] = 0; }
     if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
@@ -2616,6 +2663,7 @@ static skgl__uint skgl__color_texture(skgl_context *ctx, skgl__st *st, skgl__int
    texture, or a 2D texture when layer < 0), checked complete here, once:
    the passes only bind it. glDrawBuffer(s) and glReadBuffer are state of
    the framebuffer object, set here too. 0 when it is not complete. */
+#define SKGL__ALL_LAYERS (-2)   /* skgl__framebuffer's depth_layer: the whole texture, layered */
 static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint color, int color_layers,
                                     skgl__uint depth, int depth_layer)
 {
@@ -2637,6 +2685,8 @@ static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint 
     } else {
         if (depth_layer >= 0)
             gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, depth, 0, depth_layer);
+        else if (depth_layer == SKGL__ALL_LAYERS)   /* layered: gl_Layer picks the layer */
+            gl->FramebufferTexture(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, depth, 0);
         else gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
         gl->DrawBuffer(SKGL__NONE);
         gl->ReadBuffer(SKGL__NONE);
@@ -2898,6 +2948,97 @@ static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_
     return skgl__after_draw(ctx, st);
 }
 
+/* >>layered  Layered single-pass caster rendering (desc.layered): the
+   layers of a directional light (array texture) or the faces of a cube map
+   attached whole (glFramebufferTexture), one callback, and layered.geom
+   sending each triangle to every layer with gl_Layer. The program is made
+   the first time a layered pass runs: with GL_ARB_gpu_shader5, one
+   geometry shader invocation per layer; otherwise (GL 3.3 core) one
+   invocation loops over the layers. Defining SKGL_LAYERED_LOOP before the
+   implementation keeps the loop everywhere (a driver whose invocations are
+   slow; the tests run both). */
+static const char skgl__gs_invocations[] = "#extension GL_ARB_gpu_shader5 : require\n#define SKGL_GS_INVOCATIONS 1\n";
+
+/* the layered depth program with the given start of its geometry shader */
+static skgl__uint skgl__layered_program(skgl_context *ctx, const char *gs_start)
+{
+    skgl__uint sh[3];
+    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, "#define SKGL_LAYERED 1\n", skgl__glsl(SKGL__GLSL_DEPTH_VERT));
+    sh[1] = sh[0] ? skgl__shader(ctx, SKGL__GEOMETRY_SHADER, gs_start, skgl__glsl(SKGL__GLSL_LAYERED_GEOM)) : 0;
+    sh[2] = sh[1] ? skgl__shader(ctx, SKGL__FRAGMENT_SHADER, skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL) : 0;
+    return skgl__link(ctx, sh, 3);
+}
+
+/* 1 when layered passes can run (the program made now if need be); a
+   context where neither geometry shader compiles keeps the per-layer passes */
+static int skgl__layered_ready(skgl_context *ctx)
+{
+    char keep[sizeof ctx->log];
+    if (ctx->layered_state != 0) return ctx->layered_state > 0;
+    memcpy(keep, ctx->log, sizeof keep);   /* the first try may fail without GL_ARB_gpu_shader5 */
+#ifndef SKGL_LAYERED_LOOP
+    ctx->layered_prog = skgl__layered_program(ctx, skgl__gs_invocations);
+#endif
+    ctx->layered_state = 2;
+    if (!ctx->layered_prog) {
+        ctx->layered_prog = skgl__layered_program(ctx, "");
+        ctx->layered_state = ctx->layered_prog ? 1 : -1;
+    }
+    memcpy(ctx->log, keep, sizeof keep);
+    if (ctx->layered_state < 0) return 0;
+    ctx->layered_u_model = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_model");
+    ctx->layered_u_vp = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_layer_vp");
+    ctx->layered_u_of = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_layer_of");
+    ctx->layered_u_count = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_layer_count");
+    return 1;
+}
+
+/* the layers of the pass under way into a layered program's uniforms */
+static void skgl__layers_send(skgl_context *ctx, skgl__int vp, skgl__int of, skgl__int count)
+{
+    int n = ctx->pass_layers;
+    if (vp >= 0) ctx->gl.UniformMatrix4fv(vp, n, 0, ctx->pass_layer_vp[0]);
+    if (of >= 0) ctx->gl.Uniform1iv(of, n, ctx->pass_layer_of);
+    skgl__u1i(&ctx->gl, count, n);
+}
+
+/* One callback for n layers: vps[i] (relative to origin) into layer
+   layer_of[i] of the layered target already bound and cleared, through
+   the layered program (current, skgl__casters_begin_layered). */
+static sk_result skgl__casters_draw_layered(skgl_context *ctx, skgl__st *st, const skgl_scene *scene,
+                                            const sk_mat4 *vps, const int *layer_of, int n, const double origin[3],
+                                            skgl_draw_info *info)
+{
+    int i;
+    ctx->pass_layers = n;
+    for (i = 0; i < n; i++) {
+        memcpy(ctx->pass_layer_vp[i], vps[i].m, sizeof vps[i].m);
+        ctx->pass_layer_of[i] = layer_of[i];
+        info->layer_index[i] = layer_of[i];
+        info->layer_view_proj[i] = skgl__shift(&vps[i], origin, skgl__zero3);
+        info->layer_frustum[i] = sk_frustum_from_matrix(info->layer_view_proj[i]);
+    }
+    skgl__layers_send(ctx, ctx->layered_u_vp, ctx->layered_u_of, ctx->layered_u_count);
+    memcpy(ctx->pass_vp, vps[0].m, sizeof ctx->pass_vp);
+    ctx->pass_serial++;
+    info->layers = n;
+    info->index = -1;
+    info->view_proj = info->layer_view_proj[0];
+    info->frustum = info->layer_frustum[0];
+    info->program = ctx->pass_prog;
+    scene->draw(scene->user, info);
+    ctx->pass_layers = 0;
+    return skgl__after_draw(ctx, st);
+}
+
+/* the caster passes' state with the layered program (skgl__casters_begin's) */
+static void skgl__casters_begin_layered(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias,
+                                        const double origin[3])
+{
+    skgl__casters_begin_with(ctx, st, ctx->layered_prog, -1, ctx->layered_u_model, SKGL__CV_LAYERED, slope_bias,
+                             depth_bias, origin);
+}
+
 /* >>casters  Caster programs (skgl_caster_*). A caster's hooks become one
    program per kind of caster pass, built from the same embedded sources as
    shadowkit's own (SKGL_CASTER in place of attribute 0, SKGL_CASTER_FRAGMENT
@@ -2914,6 +3055,7 @@ typedef struct skgl__caster_prog {
     int failed;                            /* its link failed once: not tried again */
     unsigned serial;                       /* ctx->pass_serial when the pass's uniforms were sent */
     skgl__int vp, model, texel, conservative, eye;
+    skgl__int layer_vp, layer_of, layer_count;   /* SKGL__CV_LAYERED */
     int user[SKGL_CASTER_UNIFORMS];        /* desc.uniforms' locations */
 } skgl__caster_prog;
 
@@ -3032,11 +3174,13 @@ static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, s
 static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int variant, const char *fn)
 {
     static const char *passes[SKGL__CV_COUNT] = {"#define SKGL_CASTER_PASS 0\n", "#define SKGL_CASTER_PASS 1\n",
-                                                 "#define SKGL_CASTER_PASS 2\n"};
+                                                 "#define SKGL_CASTER_PASS 2\n",
+                                                 "#define SKGL_CASTER_PASS 0\n#define SKGL_LAYERED 1\n"};
     skgl__caster_prog *v = &c->v[variant];
-    const char *src[10];
+    const char *src[11];
     skgl__uint sh[3] = {0, 0, 0};
-    int n, k, stages = variant == SKGL__CV_CONS ? 3 : 2;
+    int gs = variant == SKGL__CV_CONS || variant == SKGL__CV_LAYERED;
+    int n, k, stages = gs ? 3 : 2;
     const char *vs = skgl__glsl(variant == SKGL__CV_GBUF ? SKGL__GLSL_SOFT_GBUFFER_VERT : SKGL__GLSL_DEPTH_VERT);
     const char *fs = skgl__glsl(variant == SKGL__CV_GBUF   ? SKGL__GLSL_SOFT_GBUFFER_FRAG
                                 : variant == SKGL__CV_CONS ? SKGL__GLSL_SOFT_CONS_FRAG
@@ -3051,8 +3195,9 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
     src[n++] = "\n#line 10001 0\n";
     src[n++] = vs;
     sh[0] = skgl__caster_shader(ctx, c, SKGL__VERTEX_SHADER, src, n, fn);
-    if (sh[0] && variant == SKGL__CV_CONS) {
+    if (sh[0] && gs) {
         n = 0;
+        if (variant == SKGL__CV_LAYERED && ctx->layered_state == 2) src[n++] = skgl__gs_invocations;
         src[n++] = "#define SKGL_CASTER 1\n";
         if (c->varyings) {
             src[n++] = "#define SKGL_CASTER_VARYINGS 1\nin SkglCasterVaryings {\n";
@@ -3062,7 +3207,7 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
             src[n++] = "\n} skgl_out;\n";
             src[n++] = c->forward;
         }
-        src[n++] = skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM);
+        src[n++] = skgl__glsl(variant == SKGL__CV_CONS ? SKGL__GLSL_SOFT_CONS_GEOM : SKGL__GLSL_LAYERED_GEOM);
         sh[1] = skgl__caster_shader(ctx, c, SKGL__GEOMETRY_SHADER, src, n, fn);
     }
     if (sh[0] && (stages == 2 || sh[1])) {
@@ -3079,7 +3224,7 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
         src[n++] = fs;
         sh[stages - 1] = skgl__caster_shader(ctx, c, SKGL__FRAGMENT_SHADER, src, n, fn);
     }
-    if (variant != SKGL__CV_CONS) sh[2] = 0;
+    if (!gs) sh[2] = 0;
     v->prog = skgl__link(ctx, sh, stages);
     if (!v->prog) {
         v->failed = 1;
@@ -3092,6 +3237,9 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
     v->texel = ctx->gl.GetUniformLocation(v->prog, "u_texel");
     v->conservative = ctx->gl.GetUniformLocation(v->prog, "u_conservative");
     v->eye = ctx->gl.GetUniformLocation(v->prog, "u_eye");
+    v->layer_vp = ctx->gl.GetUniformLocation(v->prog, "u_layer_vp");
+    v->layer_of = ctx->gl.GetUniformLocation(v->prog, "u_layer_of");
+    v->layer_count = ctx->gl.GetUniformLocation(v->prog, "u_layer_count");
     for (k = 0; k < SKGL_CASTER_UNIFORMS; k++)
         v->user[k] = c->names[k] ? ctx->gl.GetUniformLocation(v->prog, c->names[k]) : -1;
     v->serial = ctx->pass_serial - 1u;
@@ -3207,6 +3355,7 @@ static void skgl__caster_send(skgl_context *ctx, skgl__caster_prog *v)
         skgl__u1i(gl, v->conservative, ctx->pass_conservative);
     }
     if (ctx->pass_variant == SKGL__CV_GBUF && v->eye >= 0) gl->Uniform3fv(v->eye, 1, ctx->pass_eye);
+    if (ctx->pass_variant == SKGL__CV_LAYERED) skgl__layers_send(ctx, v->layer_vp, v->layer_of, v->layer_count);
 }
 
 SKGLDEF const int *skgl_use_caster(skgl_context *ctx, skgl_caster *caster)
@@ -3349,6 +3498,7 @@ struct skgl_shadow {
     unsigned id;                   /* per context, never reused: whose constants a program holds */
     skgl__uint tex;                /* GL_TEXTURE_2D_ARRAY of depth, one layer per map */
     skgl__uint fbo[SKGL_MAX_CASCADES];   /* one framebuffer per layer, checked when made */
+    skgl__uint fbo_layered;              /* desc.layered: every layer at once (made on first use) */
     int layers;                    /* allocated */
     int maps;                      /* used by the last render (LSPSM: its partition count) */
     int tex_size;                  /* side of the texture (RMSM: the page pool) */
@@ -3510,6 +3660,7 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
     SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
                "in [0, 1000] (disable_psm_slide for none)");
+    SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
     SKGL__RULE(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f, fn, "lspsm.zeta", d->lspsm.zeta, "in (0, 0.5)");
     SKGL__RULE(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f, fn, "lspsm.sigma", d->lspsm.sigma, "in (0, 1000]");
     SKGL__RULE(d->lspsm.h_max >= 1 && (!lspsm || d->lspsm.h_max <= SKGL_MAX_CASCADES), fn, "lspsm.h_max",
@@ -3595,6 +3746,7 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     int i;
     skgl__delete_texture(ctx, &s->tex);
     for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
+    skgl__delete_framebuffer(ctx, &s->fbo_layered);
     if (skgl__technique_of(s)->destroy) skgl__technique_of(s)->destroy(ctx, s);
     skgl__timer_free(ctx, &s->t_render);
     skgl__timer_free(ctx, &s->t_mask);
@@ -4421,10 +4573,29 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, 0, 0, s->view_w < res ? s->view_w + 1 : res,
                       s->view_h < res ? s->view_h + 1 : res);
     } else skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-    skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
     s->stats.passes = 0;
     s->stats.texels = 0.0;
-    for (i = 0; i < s->maps; i++) {
+    s->stats.layered = 0;
+    if (s->desc.layered && s->maps > 1 && skgl__layered_ready(ctx)) {
+        /* every layer in one pass (LAYERED PASSES) */
+        int of[SKGL_MAX_CASCADES];
+        skgl_draw_info info;
+        if (!s->fbo_layered) s->fbo_layered = skgl__framebuffer(ctx, &st, 0, 0, s->tex, SKGL__ALL_LAYERS);
+        if (s->fbo_layered) {
+            skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo_layered);
+            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);   /* every layer */
+            skgl__casters_begin_layered(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
+            for (i = 0; i < s->maps; i++) of[i] = i;
+            memset(&info, 0, sizeof info);
+            info.kind = SKGL_PASS_DIRECTIONAL;
+            r = skgl__casters_draw_layered(ctx, &st, rs, s->render_vp, of, s->maps, o, &info);
+            s->stats.passes = 1;
+            s->stats.texels = (double)s->maps * s->view_w * s->view_h;
+            s->stats.layered = ctx->layered_state;
+        }
+    }
+    if (!s->stats.layered) skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
+    for (i = 0; !s->stats.layered && i < s->maps; i++) {
         skgl_draw_info info;
         skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
         gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
@@ -4717,6 +4888,7 @@ struct skgl_point {
     skgl__uint lin_sampler;        /* VSDCT: bilinear, no comparison (the indirection) */
     skgl__uint fbo[6];             /* cube: one framebuffer per face, at mip level fbo_level;
                                       VSDCT: [0] the light's own atlas's (a shared atlas has its own) */
+    skgl__uint fbo_layered;        /* cube with desc.layered: all six faces, at fbo_level */
     int fbo_level;
     int tex_level;                 /* cube: the one mip level sampling reads (-1: not set yet) */
     skgl__progent ent;             /* the mask program's snippet uniforms */
@@ -4832,6 +5004,7 @@ static void skgl__point_free(skgl_context *ctx, skgl_point *p)
     if (p->prog) { gl->DeleteProgram(p->prog); ctx->objects--; }
     if (p->lin_sampler) { gl->DeleteSamplers(1, &p->lin_sampler); ctx->objects--; }
     for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->fbo[f]);
+    skgl__delete_framebuffer(ctx, &p->fbo_layered);
     skgl__timer_free(ctx, &p->t_render);
     skgl__timer_free(ctx, &p->t_mask);
     p->prog = p->lin_sampler = 0;
@@ -4853,6 +5026,18 @@ static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p,
         skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
         ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
                                      SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, p->tex, level);
+        ok &= ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+    }
+    if (p->desc.layered) {   /* the whole cube: gl_Layer picks the face */
+        if (!p->fbo_layered) {
+            ctx->gl.GenFramebuffers(1, &p->fbo_layered);
+            ctx->objects++;
+            skgl__st_framebuffer(ctx, st, p->fbo_layered);
+            ctx->gl.DrawBuffer(SKGL__NONE);
+            ctx->gl.ReadBuffer(SKGL__NONE);
+        }
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo_layered);
+        ctx->gl.FramebufferTexture(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, p->tex, level);
         ok &= ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
     }
     p->fbo_level = ok ? level : -1;
@@ -4879,6 +5064,7 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
     SKGL__RULE(d->screen_w >= 0, fn, "screen_w", d->screen_w, "0 or more");
     SKGL__RULE(d->screen_h >= 0, fn, "screen_h", d->screen_h, "0 or more");
     SKGL__RULE(d->vsdct_grey_levels >= 1, fn, "vsdct_grey_levels", d->vsdct_grey_levels, "1 or more");
+    SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -5059,7 +5245,14 @@ SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster
     vis = sk_caster_visible(info->light_pos, info->light_range, caster, &p->view);
     if (vis) {
         sk_frustum bf;
-        if (sk_frustum_from_aabb(caster, &bf) == SK_OK) vis = sk_frustum_intersects(&bf, &info->frustum);
+        int i;
+        if (sk_frustum_from_aabb(caster, &bf) == SK_OK) {
+            /* a layered pass: visible through any of its faces */
+            if (info->layers > 0)
+                for (i = 0, vis = 0; i < info->layers && !vis && i < SKGL_MAX_CASCADES; i++)
+                    vis = sk_frustum_intersects(&bf, &info->layer_frustum[i]);
+            else vis = sk_frustum_intersects(&bf, &info->frustum);
+        }
     }
     if (vis) p->stats.casters_drawn++; else p->stats.casters_culled++;
     return vis;
@@ -5207,8 +5400,10 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
     skgl__api *gl = &ctx->gl;
     sk_mat4 proj = sk_cube_face_proj(p->desc.near_plane, p->desc.range), face_vp;
     int f, vsdct = p->desc.technique == SKGL_POINT_VSDCT, shared = p->desc.atlas != NULL;
+    int layered = !vsdct && p->desc.layered && p->fbo_layered && skgl__layered_ready(ctx);
     sk_result r = SK_OK, rc;
-    skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+    if (layered) skgl__casters_begin_layered(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+    else skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
     if (vsdct) {
         /* the faces' region of an own atlas, one clear; in a shared atlas
            each face's rectangle, cleared in the loop (the other lights'
@@ -5222,6 +5417,34 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
     } else {
         skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
         skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, m, m);
+    }
+    p->stats.layered = 0;
+    if (layered) {
+        /* the faces the view needs in one pass (LAYERED PASSES) */
+        sk_mat4 vps[6];
+        int of[6], n = 0;
+        skgl_draw_info info;
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo_layered);
+        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);   /* all six faces */
+        for (f = 0; f < 6; f++) {
+            if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
+            vps[n] = sk_mat4_mul(proj, sk_cube_face_view(f, p->light_pos));
+            of[n++] = f;
+        }
+        p->stats.layered = ctx->layered_state;
+        if (n > 0) {
+            memset(&info, 0, sizeof info);
+            info.kind = SKGL_PASS_CUBE_FACE;
+            info.light_pos = p->light_pos;
+            info.light_range = p->desc.range;
+            info.point = p;
+            r = skgl__casters_draw_layered(ctx, st, scene, vps, of, n, skgl__zero3, &info);
+            p->stats.passes = 1;
+            p->stats.faces_rendered = n;
+            p->stats.texels += (double)n * m * m;
+        }
+        skgl__model_end(ctx);
+        return r;
     }
     for (f = 0; f < 6; f++) {
         skgl_draw_info info;
@@ -6908,7 +7131,8 @@ static const char skgl__src_depth_vert[] =
     "/* Depth-only pass: shadow maps of every technique. u_model is set per\n"
     "   object through skgl_set_model(). A caster program (skgl_caster_create)\n"
     "   defines SKGL_CASTER and its own skgl_caster_position(); without one,\n"
-    "   attribute 0 is the position. */\n"
+    "   attribute 0 is the position. SKGL_LAYERED (layered.geom follows): the\n"
+    "   world position relative to the light's origin, for every layer at once. */\n"
     "#ifndef SKGL_CASTER\n"
     "layout(location = 0) in vec3 a_position;\n"
     "vec4 skgl_caster_position() { return vec4(a_position, 1.0); }\n"
@@ -6917,7 +7141,11 @@ static const char skgl__src_depth_vert[] =
     "uniform mat4 u_model;\n"
     "void main()\n"
     "{\n"
+    "#ifdef SKGL_LAYERED\n"
+    "    gl_Position = u_model * skgl_caster_position();   /* layered.geom applies each layer's matrix */\n"
+    "#else\n"
     "    gl_Position = u_view_proj * (u_model * skgl_caster_position());\n"
+    "#endif\n"
     "}\n"
     ;
 static const char skgl__src_depth_frag[] =
@@ -8245,6 +8473,56 @@ static const char skgl__src_pcss_mask_frag[] =
     "    o_visibility = lit / float(taps.x * taps.y);\n"
     "}\n"
     ;
+static const char skgl__src_layered_geom[] =
+    "/* Layered single-pass caster rendering: every triangle arrives in world\n"
+    "   space (relative to the light's origin: depth.vert with SKGL_LAYERED) and\n"
+    "   goes to each of the u_layer_count layers through that layer's\n"
+    "   view-projection, into layer u_layer_of[i] of the layered depth target\n"
+    "   (gl_Layer: a cascade of the array texture, a face of the cube map). A\n"
+    "   triangle wholly outside one of a layer's clip planes skips that layer.\n"
+    "   With SKGL_GS_INVOCATIONS (GL_ARB_gpu_shader5) one invocation per layer;\n"
+    "   otherwise one invocation loops over the layers. A caster program's\n"
+    "   varyings (SKGL_CASTER_VARYINGS) go through skgl_caster_varyings(b), b the\n"
+    "   vertex's unit weight. */\n"
+    "#ifdef SKGL_GS_INVOCATIONS\n"
+    "layout(triangles, invocations = 8) in;\n"
+    "layout(triangle_strip, max_vertices = 3) out;\n"
+    "#else\n"
+    "layout(triangles) in;\n"
+    "layout(triangle_strip, max_vertices = 24) out;\n"
+    "#endif\n"
+    "uniform mat4 u_layer_vp[8];\n"
+    "uniform int u_layer_of[8];\n"
+    "uniform int u_layer_count;\n"
+    "\n"
+    "void skgl_layer(int i)\n"
+    "{\n"
+    "    vec4 c[3];\n"
+    "    for (int k = 0; k < 3; k++) c[k] = u_layer_vp[i] * gl_in[k].gl_Position;\n"
+    "    for (int a = 0; a < 3; a++) {\n"
+    "        if (c[0][a] < -c[0].w && c[1][a] < -c[1].w && c[2][a] < -c[2].w) return;\n"
+    "        if (c[0][a] > c[0].w && c[1][a] > c[1].w && c[2][a] > c[2].w) return;\n"
+    "    }\n"
+    "    for (int k = 0; k < 3; k++) {\n"
+    "#ifdef SKGL_CASTER_VARYINGS\n"
+    "        skgl_caster_varyings(vec3(k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0));\n"
+    "#endif\n"
+    "        gl_Layer = u_layer_of[i];\n"
+    "        gl_Position = c[k];\n"
+    "        EmitVertex();\n"
+    "    }\n"
+    "    EndPrimitive();\n"
+    "}\n"
+    "\n"
+    "void main()\n"
+    "{\n"
+    "#ifdef SKGL_GS_INVOCATIONS\n"
+    "    if (gl_InvocationID < u_layer_count) skgl_layer(gl_InvocationID);\n"
+    "#else\n"
+    "    for (int i = 0; i < u_layer_count; i++) skgl_layer(i);\n"
+    "#endif\n"
+    "}\n"
+    ;
 /* SKGL_EMBEDDED_SHADERS_END */
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic pop
@@ -8279,6 +8557,7 @@ static const char *skgl__glsl(skgl__glsl_id id)
         skgl__src_soft_gbuffer_vert,
         skgl__src_soft_gbuffer_frag,
         skgl__src_pcss_mask_frag,
+        skgl__src_layered_geom,
     };
     return (int)id >= 0 && id < SKGL__GLSL_N ? src[id] : "";
 }

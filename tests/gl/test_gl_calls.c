@@ -236,6 +236,8 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
       (target, att, tex, level, layer), CG_CALL, (void)0, (void)0) \
     V(FramebufferTexture2D, (cg_enum target, cg_enum att, cg_enum textarget, cg_uint tex, cg_int level), \
       (target, att, textarget, tex, level), CG_CALL, (void)0, (void)0) \
+    V(FramebufferTexture, (cg_enum target, cg_enum att, cg_uint tex, cg_int level), (target, att, tex, level), \
+      CG_CALL, (void)0, (void)0) \
     R(cg_enum, CheckFramebufferStatus, (cg_enum target), (target), CG_FBSTATUS, (void)0, (void)0) \
     V(DrawBuffer, (cg_enum buf), (buf), CG_CALL, (void)0, (void)0) \
     V(ReadBuffer, (cg_enum buf), (buf), CG_CALL, (void)0, (void)0) \
@@ -291,6 +293,7 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
     V(UseProgram, (cg_uint p), (p), CG_CALL, (void)0, (void)0) \
     R(cg_int, GetUniformLocation, (cg_uint p, const char *name), (p, name), CG_LOCATION, (void)0, (void)0) \
     V(Uniform1i, (cg_int loc, cg_int v), (loc, v), CG_CALL, (void)0, (void)0) \
+    V(Uniform1iv, (cg_int loc, cg_sizei n, const cg_int *v), (loc, n, v), CG_CALL, (void)0, (void)0) \
     V(Uniform1f, (cg_int loc, float v), (loc, v), CG_CALL, (void)0, (void)0) \
     V(Uniform1fv, (cg_int loc, cg_sizei n, const float *v), (loc, n, v), CG_CALL, (void)0, (void)0) \
     V(Uniform3fv, (cg_int loc, cg_sizei n, const float *v), (loc, n, v), CG_CALL, (void)0, (void)0) \
