@@ -10,8 +10,11 @@
    fixed camera, lit by a fixed sun with shadowkit's PSSM (4 cascades of
    1024^2, PCF 1) through the forward path: the application uploads the
    mesh, builds its own program around skgl_glsl_snippet(), draws the
-   casters in shadowkit's callback, calls skgl_shadow_bind and draws the
-   lambert-lit scene into its own RGBA8 framebuffer, read back as RGB.
+   casters in shadowkit's callback through a caster program of its own
+   (skgl_caster_create: its vertex layout's position, as an engine hands
+   over its vertex code) in one layered pass for the four cascades
+   (desc.layered), calls skgl_shadow_bind and draws the lambert-lit scene
+   into its own RGBA8 framebuffer, read back as RGB.
    Only the GL enums below are used (no GL header needed here). */
 #ifndef LOADER_RENDER_H
 #define LOADER_RENDER_H
@@ -89,12 +92,22 @@ static const char lr_fs[] =
 typedef struct lr_gpu {
     unsigned vao, vbo[2], ibo;
     int index_count;
+    skgl_context *sk;
+    skgl_caster *caster;     /* the casters' vertex code */
+    int callbacks, failed;
 } lr_gpu;
 
-/* shadowkit's draw callback: the whole mesh with the depth program it bound */
+/* the application's caster vertex code: its own layout's position */
+static const char lr_caster_vs[] =
+    "layout(location = 0) in vec3 a_position;\n"
+    "vec4 skgl_caster_position() { return vec4(a_position, 1.0); }\n";
+
+/* shadowkit's draw callback: the whole mesh through our caster program */
 static void lr_draw_casters(void *user, const skgl_draw_info *info) {
-    const lr_gpu *g = (const lr_gpu *)user;
+    lr_gpu *g = (lr_gpu *)user;
     (void)info;
+    g->callbacks++;
+    if (!skgl_use_caster(g->sk, g->caster)) { g->failed = 1; return; }
     GL(BindVertexArray)(g->vao);
     GL(DrawElements)(LR_GL_TRIANGLES, g->index_count, LR_GL_UNSIGNED_INT, (const void *)0);
     GL(BindVertexArray)(0);
@@ -219,9 +232,21 @@ static int lr_render(skgl_context *sk, const tb_scene *scene, unsigned char *rgb
     sd.cascades = 4;
     sd.resolution = 1024;
     sd.pcf_radius = 1;
+    sd.layered = 1;
     if ((r = skgl_shadow_create(sk, &sd, &sun)) != SK_OK) {
         printf("loader_render: skgl_shadow_create: %s (%s)\n", sk_result_string(r), skgl_error_log(sk));
         goto done;
+    }
+    {
+        skgl_caster_desc cd;
+        memset(&cd, 0, sizeof cd);
+        cd.label = "loader_render";
+        cd.vertex = lr_caster_vs;
+        g.sk = sk;
+        if ((r = skgl_caster_create(sk, &cd, &g.caster)) != SK_OK) {
+            printf("loader_render: skgl_caster_create: %s (%s)\n", sk_result_string(r), skgl_error_log(sk));
+            goto done;
+        }
     }
     lr_view(&cam, &light);
     sc.draw = lr_draw_casters;
@@ -232,6 +257,11 @@ static int lr_render(skgl_context *sk, const tb_scene *scene, unsigned char *rgb
     GL(Viewport)(0, 0, LR_W, LR_H);
     if ((r = skgl_shadow_render(sk, sun, &cam, &sc, light)) != SK_OK) {
         printf("loader_render: skgl_shadow_render: %s (%s)\n", sk_result_string(r), skgl_error_log(sk));
+        goto done;
+    }
+    if (g.failed || g.callbacks != 1 || skgl_shadow_stats(sun)->layered == 0) {
+        printf("loader_render: the casters' pass: %d callbacks (1 expected), caster program %s, layered %d\n",
+               g.callbacks, g.failed ? "refused" : "used", skgl_shadow_stats(sun)->layered);
         goto done;
     }
     GL(ClearColor)(0.3f, 0.4f, 0.6f, 1.0f);
@@ -262,6 +292,7 @@ static int lr_render(skgl_context *sk, const tb_scene *scene, unsigned char *rgb
     status = 0;
 
 done:
+    if (g.caster) skgl_caster_destroy(sk, g.caster);
     if (sun) skgl_shadow_destroy(sk, sun);
     GL(BindFramebuffer)(LR_GL_FRAMEBUFFER, 0);
     GL(DeleteFramebuffers)(1, &fbo);
