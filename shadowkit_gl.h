@@ -283,6 +283,25 @@
      two units (unit and unit + 1), so a fragment shader's 16 units hold 8
      lights. The bind caches locations per program and prefix.
 
+   CAMERA CONVENTIONS
+     skgl_camera.proj may be any of the projections engines use for the
+     camera whose depth buffer shadowkit reads: OpenGL's (near at NDC z
+     -1), reverse-Z (near at the larger depth: a GREATER depth test, depth
+     cleared to 0), with a finite or an infinite far plane, perspective or
+     orthographic. Reverse-Z and the infinite far plane are read from proj
+     itself. The clip depth is the context's: skgl_desc.clip_zero_to_one = 1
+     says your cameras draw under glClipControl(GL_LOWER_LEFT,
+     GL_ZERO_TO_ONE) (proj maps to clip z in [0, w]; the window depth is
+     NDC z). Every call reads the depth buffer in the camera's convention
+     (positions rebuilt with your proj), fits the maps to the same camera
+     in OpenGL's convention (an infinite far plane ends at the farthest
+     corner of the scene's bounds, or at max_distance), and draws its own
+     depth passes under OpenGL's clip depth: with clip_zero_to_one the
+     render calls switch to GL_NEGATIVE_ONE_TO_ONE for their passes and
+     give GL_ZERO_TO_ONE back at the end (two glClipControl calls; the
+     origin is taken as GL_LOWER_LEFT). shadowkit's own maps keep OpenGL's
+     depth: their precision is set by their crops, not by a far plane.
+
    GL STATE
      Two modes, skgl_desc.caller_owns_state:
      0 (the default): every call leaves the GL state as it found it. It
@@ -489,6 +508,10 @@ typedef struct skgl_desc {
     int timing;                   /* GL timer queries into the stats, read two or three frames
                                      late; SKGL_TIMING_SYNC: each pass's own time, read at
                                      once (a stall per timed pass: for benchmarks) */
+    int clip_zero_to_one;         /* 1: your cameras draw under glClipControl(.., GL_ZERO_TO_ONE)
+                                     (GL 4.5 / ARB_clip_control): their projections map to clip
+                                     z in [0, w], window depth is NDC z (CAMERA CONVENTIONS)
+                                     [0: OpenGL's -1..1] */
     int caller_owns_state;        /* 0: every call leaves the GL state as it found it (reads
                                      what it touches, puts back what it changed); 1: no
                                      state is read or put back, each call sets what it
@@ -570,7 +593,10 @@ typedef struct skgl_shadow_desc {
 } skgl_shadow_desc;
 
 typedef struct skgl_camera {
-    sk_mat4 view, proj;           /* proj from sk_mat4_perspective (near/far are read back from it) */
+    sk_mat4 view, proj;           /* proj: a perspective (sk_mat4_perspective, glm::perspective) or
+                                     orthographic projection; near and far are read back from
+                                     it, and so is reverse-Z (the near plane at depth 1) and an
+                                     infinite far plane (CAMERA CONVENTIONS) */
 } skgl_camera;
 
 typedef struct skgl_scene {
@@ -1112,6 +1138,9 @@ typedef unsigned long long skgl__u64;
 #define SKGL__DEPTH_BUFFER_BIT 0x0100
 #define SKGL__TRIANGLES 0x0004
 #define SKGL__LESS 0x0201
+#define SKGL__LOWER_LEFT 0x8CA1
+#define SKGL__NEGATIVE_ONE_TO_ONE 0x935E
+#define SKGL__ZERO_TO_ONE 0x935F
 #define SKGL__LEQUAL 0x0203
 #define SKGL__CULL_FACE 0x0B44
 #define SKGL__CULL_FACE_MODE 0x0B45
@@ -1424,6 +1453,8 @@ struct skgl_context {
     skgl__api gl;
     int debug, timing, objects;
     int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
+    int clip_zero_to_one;                  /* desc.clip_zero_to_one */
+    void (SKGL__APIENTRY *ClipControl)(skgl__enum origin, skgl__enum depth);   /* with it: GL 4.5 */
     skgl__uint depth_prog, mask_prog, empty_vao;
     skgl__uint mask_fbo;                   /* the deferred masks' target: the mask texture attached per call */
     skgl__uint mask_fbo_tex;               /* the texture attached to it now (0: none) */
@@ -1463,6 +1494,11 @@ struct skgl_context {
        values of the uniforms that seldom change, as last sent */
     skgl__progent mask_ent;                /* the directional mask's snippet uniforms */
     skgl__int mask_u_has_normals, mask_u_camera;
+    /* u_depth_map (the camera's depth convention) of the mask and analysis
+       programs, and the values last sent (the default convention's at link) */
+    skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
+    float mask_dmap[4], ferko_dmap[4], rmsm_dmap[4];
+    float cam_dmap[4];                     /* the convention of the depth buffer the call under way reads */
     skgl__int ferko_u_ndc_to_light, ferko_u_world_w, reduce_u_src_size, final_u_src_size;
     skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
     int reduce_src[2], final_src[2], request_pages0, request_levels;
@@ -2027,6 +2063,121 @@ static sk_result skgl__arg_camera(skgl_context *ctx, const char *fn, const skgl_
     return SK_OK;
 }
 
+/* With desc.clip_zero_to_one, shadowkit's own depth passes run under
+   OpenGL's clip depth (its light matrices are OpenGL's): back = 0 around
+   them, then back = 1 gives the caller's zero-to-one back. */
+static void skgl__clip_depth(skgl_context *ctx, int back)
+{
+    if (ctx->clip_zero_to_one) ctx->ClipControl(SKGL__LOWER_LEFT, back ? SKGL__ZERO_TO_ONE : SKGL__NEGATIVE_ONE_TO_ONE);
+}
+
+/* >>camera  The camera's depth convention (CAMERA CONVENTIONS). Every
+   call that takes a camera works on the same camera in OpenGL's
+   convention (near at NDC z -1, a finite far at +1: what the fits and
+   shadowkit's own passes assume) and reads the caller's depth buffer
+   through u_depth_map: NDC z = d * x + y (2, -1 under OpenGL's clip
+   depth; 1, 0 with glClipControl's zero-to-one), z the near plane's depth
+   (1 with reverse-Z: background is 0), w a depth on every pixel's ray
+   (the far plane's, or 0.5 when it is at infinity). */
+static const float skgl__dmap_gl[4] = {2.0f, -1.0f, 0.0f, 1.0f};
+
+typedef struct skgl__cam {
+    skgl_camera gl;                        /* the camera in OpenGL's convention */
+    float dmap[4];                         /* u_depth_map for the caller's depth buffer */
+} skgl__cam;
+
+/* a mask or analysis program's u_depth_map (program current): OpenGL's
+   convention set now, as sent[] remembers; returns its location */
+static skgl__int skgl__depth_map_init(const skgl__api *gl, skgl__uint prog, float sent[4])
+{
+    skgl__int loc = gl->GetUniformLocation(prog, "u_depth_map");
+    if (loc >= 0) gl->Uniform4fv(loc, 1, skgl__dmap_gl);
+    memcpy(sent, skgl__dmap_gl, sizeof skgl__dmap_gl);
+    return loc;
+}
+
+/* u_depth_map when it differs from what the program holds (program current) */
+static void skgl__depth_map_send(const skgl__api *gl, skgl__int loc, float sent[4], const float dmap[4])
+{
+    if (memcmp(sent, dmap, sizeof(float) * 4) == 0) return;
+    memcpy(sent, dmap, sizeof(float) * 4);
+    if (loc >= 0) gl->Uniform4fv(loc, 1, dmap);
+}
+
+/* near n and far f (+INF: an infinite perspective) of proj under the clip
+   convention zo, and whether depth is reversed (the near plane at the
+   larger NDC z); 0 when proj is neither a perspective (NDC z = -a + b /
+   distance, a = m[10], b = m[14]) nor an orthographic (NDC z = b - a
+   distance) projection of positive near and larger far */
+static int skgl__cam_planes(const sk_mat4 *proj, int zo, double *n, double *f, int *reversed)
+{
+    const float *m = proj->m;
+    double a = m[10], b = m[14], lo = zo ? 0.0 : -1.0, vn, vf;
+    if (m[11] == -1.0f && m[15] == 0.0f && m[3] == 0.0f && m[7] == 0.0f) {
+        if (b == 0.0) return 0;
+        *reversed = b > 0.0;
+        vn = *reversed ? 1.0 : lo;
+        vf = *reversed ? lo : 1.0;
+        if (vn + a == 0.0) return 0;
+        *n = b / (vn + a);
+        *f = vf + a == 0.0 ? (double)SK__INF : b / (vf + a);
+        return *n > 0.0 && sk__finite((float)*n) && (*f == (double)SK__INF || (*f > *n && sk__finite((float)*f)));
+    }
+    if (m[11] == 0.0f && m[15] == 1.0f && m[3] == 0.0f && m[7] == 0.0f && a != 0.0) {
+        *reversed = a > 0.0;
+        vn = *reversed ? 1.0 : lo;
+        vf = *reversed ? lo : 1.0;
+        *n = (b - vn) / a;
+        *f = (b - vf) / a;
+        return sk__finite((float)*n) && sk__finite((float)*f) && *f > *n;
+    }
+    return 0;
+}
+
+/* the camera checked (skgl__arg_camera), and in OpenGL's
+   convention; an infinite far plane ends at the farthest corner of bounds
+   (a little beyond; at least twice the near plane), or at 100000 near
+   planes without bounds. OpenGL's own convention with a finite far plane
+   comes back unchanged, bit for bit. */
+static sk_result skgl__camera_in(skgl_context *ctx, const char *fn, const skgl_camera *cam, const sk_aabb *bounds,
+                                 skgl__cam *out)
+{
+    double n = 0.0, f = 0.0;
+    int reversed = 0, ortho, i;
+    float *m;
+    int zo = ctx->clip_zero_to_one;
+    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    out->gl = *cam;
+    memcpy(out->dmap, skgl__dmap_gl, sizeof skgl__dmap_gl);
+    if (!skgl__cam_planes(&cam->proj, zo, &n, &f, &reversed)) {
+        if (!zo) return SK_OK;   /* read as it is (a technique that needs near/far says so) */
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "%s: cam->proj is neither a perspective nor an orthographic projection with "
+                          "0 < near < far under desc.clip_zero_to_one",
+                          fn);
+    }
+    out->dmap[0] = zo ? 1.0f : 2.0f;
+    out->dmap[1] = zo ? 0.0f : -1.0f;
+    out->dmap[2] = reversed ? 1.0f : 0.0f;
+    out->dmap[3] = f == (double)SK__INF ? 0.5f : reversed ? 0.0f : 1.0f;
+    if (!zo && !reversed && f != (double)SK__INF) return SK_OK;
+    ortho = cam->proj.m[11] == 0.0f;
+    if (f == (double)SK__INF) {
+        f = 2.0 * n;
+        if (bounds && sk__aabb_valid(bounds)) {
+            for (i = 0; i < 8; i++) {
+                double z = -(double)sk__xform_affine(&cam->view, sk__aabb_corner(bounds, i)).z * 1.01;
+                if (z > f) f = z;
+            }
+        } else f = 1e5 * n;
+    }
+    m = out->gl.proj.m;
+    m[2] = m[6] = 0.0f;
+    m[10] = (float)(ortho ? -2.0 / (f - n) : -(f + n) / (f - n));
+    m[14] = (float)(ortho ? -(f + n) / (f - n) : -2.0 * f * n / (f - n));
+    return SK_OK;
+}
+
 /* a scene with a draw callback (when one is needed) and valid bounds */
 static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_scene *scene, int needs_draw)
 {
@@ -2498,6 +2649,7 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
     ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
+    ctx->mask_u_depth_map = skgl__depth_map_init(gl, ctx->mask_prog, ctx->mask_dmap);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_depth"), 1);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_normals"), 2);
     ctx->mask_ent.has_normals = -1;
@@ -2505,6 +2657,7 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
+    ctx->ferko_u_depth_map = skgl__depth_map_init(gl, ctx->ferko_prog, ctx->ferko_dmap);
     ctx->reduce_u_src_size = gl->GetUniformLocation(ctx->reduce_prog, "u_src_size");
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->reduce_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->reduce_prog, "u_src"), 1);
@@ -2517,6 +2670,7 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->rmsm_u_virtual_res = gl->GetUniformLocation(ctx->rmsm_prog, "u_virtual_res");
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->rmsm_prog, "u_depth"), 1);
+    ctx->rmsm_u_depth_map = skgl__depth_map_init(gl, ctx->rmsm_prog, ctx->rmsm_dmap);
     ctx->rmsm_vres = -1.0f;
     ctx->request_u_pages0 = gl->GetUniformLocation(ctx->request_prog, "u_pages0");
     ctx->request_u_levels = gl->GetUniformLocation(ctx->request_prog, "u_levels");
@@ -2531,7 +2685,8 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     skgl__st st;
     skgl__int major = 0, minor = 0;
     int missing = 0;
-    if (!desc || !desc->getproc || !out || desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC)
+    if (!desc || !desc->getproc || !out || desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC ||
+        (desc->clip_zero_to_one != 0 && desc->clip_zero_to_one != 1))
         return SK_ERR_INVALID_ARG;
     *out = NULL;
     ctx = (skgl_context *)SKGL_MALLOC(sizeof *ctx);
@@ -2549,6 +2704,12 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     ctx->debug = desc->debug;
     ctx->timing = desc->timing;
     ctx->caller_owns = desc->caller_owns_state != 0;
+    ctx->clip_zero_to_one = desc->clip_zero_to_one;
+    if (ctx->clip_zero_to_one) {   /* its passes draw under OpenGL's clip depth, then give zero-to-one back */
+        void *p_ = desc->getproc("glClipControl");
+        if (!p_) { SKGL_FREE(ctx); return SK_ERR_GL; }
+        memcpy(&ctx->ClipControl, &p_, sizeof p_);
+    }
     ctx->depth_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL);
     ctx->mask_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL),
                                    skgl__glsl(SKGL__GLSL_SHADOW_MASK_FRAG));
@@ -4228,6 +4389,7 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->ferko.lw[0], s->ferko.lh[0]);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
     skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    skgl__depth_map_send(gl, ctx->ferko_u_depth_map, ctx->ferko_dmap, ctx->cam_dmap);
     ndc_to_light = sk_mat4_mul(*lvp, *inv);
     world_w[0] = inv->m[3]; world_w[1] = inv->m[7]; world_w[2] = inv->m[11]; world_w[3] = inv->m[15];
     gl->UniformMatrix4fv(ctx->ferko_u_ndc_to_light, 1, 0, ndc_to_light.m);
@@ -4436,6 +4598,7 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->rmsm_prog);
     skgl__st_texture(ctx, st, 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    skgl__depth_map_send(gl, ctx->rmsm_u_depth_map, ctx->rmsm_dmap, ctx->cam_dmap);
     gl->UniformMatrix4fv(ctx->rmsm_u_inv_view_proj, 1, 0, inv->m);
     gl->UniformMatrix4fv(ctx->rmsm_u_light, 1, 0, lvp->m);
     if (ctx->rmsm_vres != (float)s->desc.resolution) {
@@ -4643,6 +4806,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     int w = 0, h = 0;
     double o[3];
     skgl_camera rc;
+    skgl__cam ci;
     skgl_scene rs;
     sk_result r;
     const char *why;
@@ -4653,15 +4817,17 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     if (!skgl__technique_of(s)->analyze)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
                           fn, (int)s->desc.technique);
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
     SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 0));
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
     SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
-    /* positions and the light frustum relative to the camera's origin */
+    /* positions and the light frustum relative to the camera's origin; the
+       depth buffer read in the caller's convention (cam->proj) */
     skgl__origin(&cam->view, o);
-    rc = skgl__camera_rel(cam, o);
+    rc = skgl__camera_rel(&ci.gl, o);
     rs = skgl__scene_rel(scene, o);
-    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    memcpy(ctx->cam_dmap, ci.dmap, sizeof ci.dmap);
     r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
     skgl__st_begin(ctx, &st);
@@ -4682,23 +4848,27 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     sk_result r;
     double o[3], was[3];
     skgl_camera rcam;
+    skgl__cam ci;
     skgl_scene rs;
     const char *fn = "skgl_shadow_render";
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
     SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_dir, "light_dir", 1));
     /* the maps are fitted and rendered relative to the camera's origin */
     skgl__origin(&cam->view, o);
-    rcam = skgl__camera_rel(cam, o);
+    rcam = skgl__camera_rel(&ci.gl, o);
     rs = skgl__scene_rel(scene, o);
     memcpy(was, s->origin, sizeof was);
     memcpy(s->origin, o, sizeof o);
     r = skgl__fit_layers(s, &rcam, &rs, light_dir);
     if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
-    return skgl__technique_of(s)->render(ctx, s, &rs, light_dir);
+    skgl__clip_depth(ctx, 0);
+    r = skgl__technique_of(s)->render(ctx, s, &rs, light_dir);
+    skgl__clip_depth(ctx, 1);
+    return r;
 }
 
 /* ---- 6.6 bind: the snippet's uniforms in a forward shader ------------- */
@@ -4836,15 +5006,17 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     sk_mat4 inv;
     double o[3];
     skgl_camera rc;
+    skgl__cam ci;
     sk_result r;
     const char *fn = "skgl_shadow_mask";
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, NULL, &ci));
     SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
     SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
-    /* positions reconstructed relative to this camera's origin */
+    /* positions reconstructed relative to this camera's origin, from depth
+       in the caller's convention (cam->proj, ci.dmap) */
     skgl__origin(&cam->view, o);
     rc = skgl__camera_rel(cam, o);
     if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
@@ -4859,6 +5031,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
         skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
         skgl__st_units(ctx, &st, b, n);
         skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
+        skgl__depth_map_send(&ctx->gl, ctx->mask_u_depth_map, ctx->mask_dmap, ci.dmap);
         skgl__shadow_uniforms(ctx, s, &ctx->mask_ent, 0, 3, o);
         if (ctx->mask_ent.has_normals != (normal_tex != 0)) {
             ctx->mask_ent.has_normals = normal_tex != 0;
@@ -4893,6 +5066,8 @@ struct skgl_point {
     int tex_level;                 /* cube: the one mip level sampling reads (-1: not set yet) */
     skgl__progent ent;             /* the mask program's snippet uniforms */
     skgl__int u_has_normals, u_inv_view_proj;
+    skgl__int u_depth_map;         /* the camera's depth convention, and its value last sent */
+    float dmap[4];
     int levels;                    /* cube: mip levels allocated */
     int ni;                        /* VSDCT: indirection side, Eq. (5.4.7) */
     int filled_res;                /* VSDCT: face side the indirection holds (0: none yet) */
@@ -5124,6 +5299,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     p->u_has_normals = gl->GetUniformLocation(p->prog, "u_has_normals");
     p->u_inv_view_proj = gl->GetUniformLocation(p->prog, "u_inv_view_proj");
     skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)p->prog);
+    p->u_depth_map = skgl__depth_map_init(gl, p->prog, p->dmap);
     skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_depth"), 1);
     skgl__u1i(gl, gl->GetUniformLocation(p->prog, "u_normals"), 2);
     if (!d.atlas) { gl->GenTextures(1, &p->tex); ctx->objects++; }
@@ -5474,7 +5650,7 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
     return r;
 }
 
-SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+static sk_result skgl__point_render_body(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
                                     const skgl_scene *scene, sk_vec3 light_pos)
 {
     skgl__st st;
@@ -5483,10 +5659,12 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     int m;
     sk_result r;
     const char *fn = "skgl_point_render";
+    skgl__cam ci;
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
+    cam = &ci.gl;   /* OpenGL's convention from here on */
     SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
     if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
@@ -5511,6 +5689,17 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
     p->rendered = 1;
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_point_render");
+}
+
+SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                    const skgl_scene *scene, sk_vec3 light_pos)
+{
+    sk_result r;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__clip_depth(ctx, 0);   /* the passes under OpenGL's clip depth (CAMERA CONVENTIONS) */
+    r = skgl__point_render_body(ctx, p, cam, scene, light_pos);
+    skgl__clip_depth(ctx, 1);
+    return r;
 }
 
 /* The point snippet's uniforms on the current program (entry e), as
@@ -5609,15 +5798,18 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     sk_result r;
     const char *why;
     const char *fn = "skgl_point_mask";
+    skgl__cam ci;
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, NULL, &ci));
     SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
     SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
     if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
-    vp = sk_mat4_mul(cam->proj, cam->view);
-    if (!sk_mat4_inverse(vp, &inv)) return SK_ERR_INVALID_ARG;
+    /* depth read in the caller's convention (cam->proj, ci.dmap); the
+       scissor from the camera in OpenGL's */
+    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv)) return SK_ERR_INVALID_ARG;
+    vp = sk_mat4_mul(ci.gl.proj, ci.gl.view);
     vsdct = p->desc.technique == SKGL_POINT_VSDCT;
     skgl__st_begin(ctx, &st);
     why = skgl__texture_size(ctx, &st, mask_tex, &w, &h);
@@ -5659,6 +5851,7 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
             skgl__u1i(&ctx->gl, p->u_has_normals, normal_tex != 0);
         }
         if (p->u_inv_view_proj >= 0) ctx->gl.UniformMatrix4fv(p->u_inv_view_proj, 1, 0, inv.m);
+        skgl__depth_map_send(&ctx->gl, p->u_depth_map, p->dmap, ci.dmap);
         ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
     }
     skgl__timer_end(ctx, &p->t_mask);
@@ -5760,13 +5953,15 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
     int i, k, f, fits;
     sk_result r = SK_OK;
     const char *fn = "skgl_point_atlas_pack";
+    skgl__cam ci;
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, a, "a"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, lights, "lights"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, light_pos, "light_pos"));
     if (n < 1) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: n = %d: 1 or more", fn, n);
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, NULL));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, NULL, &ci));
+    cam = &ci.gl;   /* OpenGL's convention from here on */
     for (i = 0; i < n; i++)
         if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i]))
             return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: lights[%d] is NULL, not in this atlas, or its light_pos "
@@ -5963,6 +6158,8 @@ struct skgl_soft {
     skgl__uint prog_mask;                  /* PCSS: the mask; PVSM: the kernel-shape pass */
     skgl__uint prog_cons, prog_smtg, prog_reduce, prog_filter, prog_resolve, prog_gbuf;
     skgl__int u_inv_view_proj, u_light_vp, u_light_pos, u_light_half, u_light_proj, u_has_normals, u_hard;
+    skgl__int u_depth_map;                 /* the camera's depth convention: last sent, this frame's */
+    float dmap[4], frame_dmap[4];
     skgl__int cons_u_view_proj, cons_u_model, gbuf_u_view_proj, gbuf_u_model, gbuf_u_eye;
     skgl__int smtg_u_width, filter_u_rect, filter_u_res;
     int sent_has_normals, sent_hard, sent_width;     /* -1: not sent yet */
@@ -6194,6 +6391,7 @@ static void skgl__soft_constants(skgl_context *ctx, skgl__st *st, skgl_soft *s)
     const skgl_soft_desc *d = &s->desc;
     skgl__uint p = s->prog_mask;
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+    s->u_depth_map = skgl__depth_map_init(gl, p, s->dmap);
     s->u_inv_view_proj = gl->GetUniformLocation(p, "u_inv_view_proj");
     s->u_light_vp = gl->GetUniformLocation(p, "u_light_vp");
     s->u_light_pos = gl->GetUniformLocation(p, "u_light_pos");
@@ -6649,6 +6847,7 @@ static void skgl__soft_common(skgl_context *ctx, skgl_soft *s, const sk_mat4 *in
         s->sent.inv = *inv;
         if (s->u_inv_view_proj >= 0) gl->UniformMatrix4fv(s->u_inv_view_proj, 1, 0, inv->m);
     }
+    skgl__depth_map_send(gl, s->u_depth_map, s->dmap, s->frame_dmap);
     if (!s->sent_common || memcmp(&s->sent.lvp, &s->light_vp, sizeof s->light_vp) != 0) {
         s->sent.lvp = s->light_vp;
         if (s->u_light_vp >= 0) gl->UniformMatrix4fv(s->u_light_vp, 1, 0, s->light_vp.m);
@@ -7065,12 +7264,13 @@ static sk_result skgl__arg_area_light(skgl_context *ctx, const char *fn, const s
     return SK_OK;
 }
 
-SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
+static sk_result skgl__soft_render_body(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
                                    const skgl_scene *scene, const skgl_area_light *light,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
 {
     static const int shadow_steps[3] = {1, 5, -1}, mask_steps[6] = {2, 3, 4, 6, 7, -1};
     const char *fn = "skgl_soft_render", *why;
+    skgl__cam ci;
     skgl__st st;
     sk_mat4 inv;
     sk_result r;
@@ -7078,10 +7278,16 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    SKGL__TRY(skgl__arg_camera(ctx, fn, cam, &inv));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
     SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
     SKGL__TRY(skgl__arg_area_light(ctx, fn, light));
     SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
+    /* the caller's depth buffer is read in its convention; shadowkit's own
+       G-buffer (depth_tex 0) is drawn in OpenGL's */
+    if (!sk_mat4_inverse(sk_mat4_mul(depth_tex ? cam->proj : ci.gl.proj, cam->view), &inv))
+        return SK_ERR_INVALID_ARG;
+    memcpy(s->frame_dmap, depth_tex ? ci.dmap : skgl__dmap_gl, sizeof s->frame_dmap);
+    cam = &ci.gl;
     r = skgl__soft_fit(s, cam, scene, light);
     if (r != SK_OK) return skgl__fail(ctx, r, "%s: the scene is wholly behind the light's plane", fn);
     skgl__st_begin(ctx, &st);
@@ -7114,6 +7320,18 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
         return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: no memory for more timer queries (the frame is drawn; some "
                                                 "passes untimed)", fn);
     return skgl__check(ctx, fn);
+}
+
+SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
+                                   const skgl_scene *scene, const skgl_area_light *light,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    sk_result r;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__clip_depth(ctx, 0);   /* the passes under OpenGL's clip depth (CAMERA CONVENTIONS) */
+    r = skgl__soft_render_body(ctx, s, cam, scene, light, depth_tex, normal_tex, mask_tex);
+    skgl__clip_depth(ctx, 1);
+    return r;
 }
 
 
@@ -7413,33 +7631,37 @@ static const char skgl__src_shadow_mask_frag[] =
     "/* Deferred shadow mask: camera depth (and optional world normals) in,\n"
     "   visibility out (1 lit, 0 shadowed), one value per pixel in an R16F target.\n"
     "   World positions are reconstructed from window depth exactly as the\n"
-    "   reference does: NDC from the pixel centre and 2*depth - 1, inverse\n"
-    "   view-projection, w-divide. */\n"
+    "   reference does: NDC from the pixel centre and 2*depth - 1 (the\n"
+    "   camera's convention: u_depth_map), inverse view-projection, w-divide. */\n"
     "in vec2 v_uv;\n"
     "out float o_visibility;\n"
     "uniform sampler2D u_depth;\n"
     "uniform sampler2D u_normals;\n"
     "uniform int u_has_normals;\n"
     "uniform mat4 u_camera[2];           /* [0]: inverse view-projection, [1]: view (one upload) */\n"
+    "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
+    "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
+    "                                      on every pixel's ray (0.5 when the far plane is at infinity) */\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    float d = texelFetch(u_depth, px, 0).r;\n"
+    "    bool background = u_depth_map.z == 0.0 ? d >= 1.0 : d <= 0.0;\n"
     "    /* background: done, except where sk_shadow() needs screen derivatives\n"
     "       (RMSM's level of detail; the receiver's plane without normals), which\n"
     "       need every pixel of a 2x2 quad (both conditions are uniform: this\n"
     "       branch keeps the control flow uniform) */\n"
-    "    if (d >= 1.0 && sk_rmsm == 0 && u_has_normals != 0) { o_visibility = 1.0; return; }\n"
+    "    if (background && sk_rmsm == 0 && u_has_normals != 0) { o_visibility = 1.0; return; }\n"
     "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
-    "    vec4 w = u_camera[0] * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w = u_camera[0] * vec4(ndc_xy, d * u_depth_map.x + u_depth_map.y, 1.0);\n"
     "    vec3 world = w.xyz / w.w;\n"
     "    /* the position four float ulps of depth away: the receiver's uncertainty */\n"
-    "    vec4 w2 = u_camera[0] * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w2 = u_camera[0] * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * u_depth_map.x + u_depth_map.y, 1.0);\n"
     "    sk_receiver_slack = distance(w2.xyz / w2.w, world);\n"
     "    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);\n"
     "    float view_depth = -(u_camera[1] * vec4(world, 1.0)).z;\n"
     "    float v = sk_shadow(world, n, view_depth);\n"
-    "    o_visibility = d >= 1.0 ? 1.0 : v;\n"
+    "    o_visibility = background ? 1.0 : v;\n"
     "}\n"
     ;
 static const char skgl__src_ferko_analyze_frag[] =
@@ -7459,6 +7681,9 @@ static const char skgl__src_ferko_analyze_frag[] =
     "uniform sampler2D u_depth;           /* window depth, row 0 at the bottom */\n"
     "uniform mat4 u_ndc_to_light;         /* light view-projection * inverse camera view-projection */\n"
     "uniform vec4 u_world_w;              /* row 3 of the inverse camera view-projection */\n"
+    "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
+    "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
+    "                                      on every pixel's ray (0.5 when the far plane is at infinity) */\n"
     "layout(location = 0) out vec4 o_bounds;\n"
     "layout(location = 1) out vec4 o_patch;\n"
     "\n"
@@ -7468,7 +7693,7 @@ static const char skgl__src_ferko_analyze_frag[] =
     "{\n"
     "    if (p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y) return -1.0;\n"
     "    float d = texelFetch(u_depth, p, 0).r;\n"
-    "    return d >= 0.0 && d < 1.0 ? d : -1.0;\n"
+    "    return d >= 0.0 && d <= 1.0 && (u_depth_map.z == 0.0 ? d < 1.0 : d > 0.0) ? d : -1.0;\n"
     "}\n"
     "\n"
     "/* light clip of NDC (x, y, z), with the sign of the homogeneous world w folded in */\n"
@@ -7501,13 +7726,13 @@ static const char skgl__src_ferko_analyze_frag[] =
     "            v = d[y * 6 + x + 1];       if (v >= 0.0) { s += v; n += 1.0; }\n"
     "            v = d[(y + 1) * 6 + x];     if (v >= 0.0) { s += v; n += 1.0; }\n"
     "            v = d[(y + 1) * 6 + x + 1]; if (v >= 0.0) { s += v; n += 1.0; }\n"
-    "            cz[y * 5 + x] = n > 0.0 ? 2.0 * (s * (1.0 / n)) - 1.0 : 2.0;\n"
+    "            cz[y * 5 + x] = n > 0.0 ? (s * (1.0 / n)) * u_depth_map.x + u_depth_map.y : 2.0;\n"
     "        }\n"
     "    for (y = 0; y < 4; y++)\n"
     "        for (x = 0; x < 4; x++) {\n"
     "            float dp = d[(y + 1) * 6 + x + 1];\n"
     "            if (dp < 0.0) continue;\n"
-    "            vec3 c = vec3((vec2(base + ivec2(x, y)) + 0.5) * to_ndc - 1.0, 2.0 * dp - 1.0);\n"
+    "            vec3 c = vec3((vec2(base + ivec2(x, y)) + 0.5) * to_ndc - 1.0, dp * u_depth_map.x + u_depth_map.y);\n"
     "            float ww = dot(u_world_w, vec4(c, 1.0));\n"
     "            vec4 l = sk_to_light(c);\n"
     "            if (!(l.w > 0.0) || any(greaterThan(abs(l.xyz), vec3(l.w)))) continue;\n"
@@ -7597,19 +7822,22 @@ static const char skgl__src_rmsm_analyze_frag[] =
     "uniform mat4 u_inv_view_proj;\n"
     "uniform mat4 u_light;            /* world -> the virtual map's light clip */\n"
     "uniform float u_virtual_res;\n"
+    "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
+    "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
+    "                                      on every pixel's ray (0.5 when the far plane is at infinity) */\n"
     "out vec4 o_sample;\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    float d = texelFetch(u_depth, px, 0).r;\n"
     "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
-    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * u_depth_map.x + u_depth_map.y, 1.0);\n"
     "    vec4 c = u_light * vec4(w.xyz / w.w, 1.0);\n"
     "    vec2 st = c.xy / c.w * 0.5 + 0.5;\n"
     "    /* derivatives first, in uniform control flow */\n"
     "    vec2 dx = dFdx(st) * u_virtual_res, dy = dFdy(st) * u_virtual_res;\n"
     "    float lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));\n"
-    "    bool ok = d < 1.0 && all(greaterThanEqual(st, vec2(0.0))) && all(lessThan(st, vec2(1.0))) &&\n"
+    "    bool ok = (u_depth_map.z == 0.0 ? d < 1.0 : d > 0.0) && all(greaterThanEqual(st, vec2(0.0))) && all(lessThan(st, vec2(1.0))) &&\n"
     "              abs(c.z) <= c.w;\n"
     "    o_sample = ok ? vec4(st, lod, 1.0) : vec4(0.0);\n"
     "}\n"
@@ -7809,16 +8037,19 @@ static const char skgl__src_point_mask_frag[] =
     "uniform sampler2D u_normals;\n"
     "uniform int u_has_normals;\n"
     "uniform mat4 u_inv_view_proj;\n"
+    "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
+    "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
+    "                                      on every pixel's ray (0.5 when the far plane is at infinity) */\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    float d = texelFetch(u_depth, px, 0).r;\n"
-    "    if (d >= 1.0) { o_visibility = 1.0; return; }\n"
+    "    if (u_depth_map.z == 0.0 ? d >= 1.0 : d <= 0.0) { o_visibility = 1.0; return; }\n"
     "    vec2 ndc_xy = gl_FragCoord.xy / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
-    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w = u_inv_view_proj * vec4(ndc_xy, d * u_depth_map.x + u_depth_map.y, 1.0);\n"
     "    vec3 world = w.xyz / w.w;\n"
     "    /* the position four float ulps of depth away: the receiver's uncertainty */\n"
-    "    vec4 w2 = u_inv_view_proj * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w2 = u_inv_view_proj * vec4(ndc_xy, (d + 4.0 * d / 8388608.0) * u_depth_map.x + u_depth_map.y, 1.0);\n"
     "    sk_point_receiver_slack = distance(w2.xyz / w2.w, world);\n"
     "    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);\n"
     "    o_visibility = sk_point_shadow(world, n);\n"
@@ -7841,11 +8072,14 @@ static const char skgl__src_soft_common_glsl[] =
     "uniform vec2 u_light_half;        /* world half sizes along the light's x and y */\n"
     "uniform vec4 u_light_proj;        /* P00, P11, near, far of the base frustum */\n"
     "uniform float u_rel_bias;         /* comparison tolerance, relative to the light distance */\n"
+    "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
+    "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
+    "                                      on every pixel's ray (0.5 when the far plane is at infinity) */\n"
     "\n"
     "vec3 sk_unproject(vec2 frag, float d)\n"
     "{\n"
     "    vec2 ndc = frag / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
-    "    vec4 w = u_inv_view_proj * vec4(ndc, d * 2.0 - 1.0, 1.0);\n"
+    "    vec4 w = u_inv_view_proj * vec4(ndc, d * u_depth_map.x + u_depth_map.y, 1.0);\n"
     "    return w.xyz / w.w;\n"
     "}\n"
     "\n"
@@ -7907,11 +8141,12 @@ static const char skgl__src_soft_common_glsl[] =
     "   (the affine approximation of the mapping M, Sec. 4.2) */\n"
     "vec3 sk_on_plane(vec2 frag, vec3 p, vec3 n)\n"
     "{\n"
-    "    vec3 o = sk_unproject(frag, 0.0), e = sk_unproject(frag, 1.0), dir = e - o;\n"
+    "    /* the ray from the near plane to the far one (to a point on it when the far plane is at infinity) */\n"
+    "    vec3 o = sk_unproject(frag, u_depth_map.z), e = sk_unproject(frag, u_depth_map.w), dir = e - o;\n"
     "    float den = dot(n, dir);\n"
     "    if (abs(den) < 1e-6 * length(dir)) return p;\n"
     "    float t = dot(n, p - o) / den;\n"
-    "    return o + clamp(t, 0.0, 1.0) * dir;\n"
+    "    return o + clamp(t, 0.0, u_depth_map.z + u_depth_map.w == 1.0 ? 1.0 : 1e30) * dir;\n"
     "}\n"
     "\n"
     "sk_receiver sk_receiver_at(ivec2 px, float d)\n"
@@ -7992,7 +8227,7 @@ static const char skgl__src_soft_kernel_frag[] =
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    float d = texelFetch(u_depth, px, 0).r;\n"
-    "    if (d >= 1.0) discard;\n"
+    "    if (u_depth_map.z == 0.0 ? d >= 1.0 : d <= 0.0) discard;\n"
     "    sk_receiver r = sk_receiver_at(px, d);\n"
     "    float tol = sk_light_tolerance(max(r.zlin, 1e-6));\n"
     "    o_plane = vec4(r.light.z, r.grad, tol);\n"
@@ -8437,7 +8672,7 @@ static const char skgl__src_pcss_mask_frag[] =
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
     "    float d = texelFetch(u_depth, px, 0).r;\n"
-    "    if (d >= 1.0) { o_visibility = 1.0; return; }\n"
+    "    if (u_depth_map.z == 0.0 ? d >= 1.0 : d <= 0.0) { o_visibility = 1.0; return; }\n"
     "    sk_receiver r = sk_receiver_at(px, d);\n"
     "    if (r.light.w <= 0.0 || any(greaterThan(abs(r.light.xy), vec2(1.0))) || r.light.z > 1.0) {\n"
     "        o_visibility = 1.0;\n"

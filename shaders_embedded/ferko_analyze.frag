@@ -14,6 +14,9 @@
 uniform sampler2D u_depth;           /* window depth, row 0 at the bottom */
 uniform mat4 u_ndc_to_light;         /* light view-projection * inverse camera view-projection */
 uniform vec4 u_world_w;              /* row 3 of the inverse camera view-projection */
+uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;
+                                      z: the near plane's depth (1 with reverse-Z), w: a far depth
+                                      on every pixel's ray (0.5 when the far plane is at infinity) */
 layout(location = 0) out vec4 o_bounds;
 layout(location = 1) out vec4 o_patch;
 
@@ -23,7 +26,7 @@ float sk_depth_at(ivec2 p, ivec2 size)
 {
     if (p.x < 0 || p.y < 0 || p.x >= size.x || p.y >= size.y) return -1.0;
     float d = texelFetch(u_depth, p, 0).r;
-    return d >= 0.0 && d < 1.0 ? d : -1.0;
+    return d >= 0.0 && d <= 1.0 && (u_depth_map.z == 0.0 ? d < 1.0 : d > 0.0) ? d : -1.0;
 }
 
 /* light clip of NDC (x, y, z), with the sign of the homogeneous world w folded in */
@@ -56,13 +59,13 @@ void main()
             v = d[y * 6 + x + 1];       if (v >= 0.0) { s += v; n += 1.0; }
             v = d[(y + 1) * 6 + x];     if (v >= 0.0) { s += v; n += 1.0; }
             v = d[(y + 1) * 6 + x + 1]; if (v >= 0.0) { s += v; n += 1.0; }
-            cz[y * 5 + x] = n > 0.0 ? 2.0 * (s * (1.0 / n)) - 1.0 : 2.0;
+            cz[y * 5 + x] = n > 0.0 ? (s * (1.0 / n)) * u_depth_map.x + u_depth_map.y : 2.0;
         }
     for (y = 0; y < 4; y++)
         for (x = 0; x < 4; x++) {
             float dp = d[(y + 1) * 6 + x + 1];
             if (dp < 0.0) continue;
-            vec3 c = vec3((vec2(base + ivec2(x, y)) + 0.5) * to_ndc - 1.0, 2.0 * dp - 1.0);
+            vec3 c = vec3((vec2(base + ivec2(x, y)) + 0.5) * to_ndc - 1.0, dp * u_depth_map.x + u_depth_map.y);
             float ww = dot(u_world_w, vec4(c, 1.0));
             vec4 l = sk_to_light(c);
             if (!(l.w > 0.0) || any(greaterThan(abs(l.xyz), vec3(l.w)))) continue;

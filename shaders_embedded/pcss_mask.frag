@@ -19,7 +19,7 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     float d = texelFetch(u_depth, px, 0).r;
-    if (d >= 1.0) { o_visibility = 1.0; return; }
+    if (u_depth_map.z == 0.0 ? d >= 1.0 : d <= 0.0) { o_visibility = 1.0; return; }
     sk_receiver r = sk_receiver_at(px, d);
     if (r.light.w <= 0.0 || any(greaterThan(abs(r.light.xy), vec2(1.0))) || r.light.z > 1.0) {
         o_visibility = 1.0;

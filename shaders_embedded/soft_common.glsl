@@ -14,11 +14,14 @@ uniform vec3 u_light_pos;
 uniform vec2 u_light_half;        /* world half sizes along the light's x and y */
 uniform vec4 u_light_proj;        /* P00, P11, near, far of the base frustum */
 uniform float u_rel_bias;         /* comparison tolerance, relative to the light distance */
+uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;
+                                      z: the near plane's depth (1 with reverse-Z), w: a far depth
+                                      on every pixel's ray (0.5 when the far plane is at infinity) */
 
 vec3 sk_unproject(vec2 frag, float d)
 {
     vec2 ndc = frag / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
-    vec4 w = u_inv_view_proj * vec4(ndc, d * 2.0 - 1.0, 1.0);
+    vec4 w = u_inv_view_proj * vec4(ndc, d * u_depth_map.x + u_depth_map.y, 1.0);
     return w.xyz / w.w;
 }
 
@@ -80,11 +83,12 @@ vec3 sk_gbuffer_normal(ivec2 px, vec3 world, float d)
    (the affine approximation of the mapping M, Sec. 4.2) */
 vec3 sk_on_plane(vec2 frag, vec3 p, vec3 n)
 {
-    vec3 o = sk_unproject(frag, 0.0), e = sk_unproject(frag, 1.0), dir = e - o;
+    /* the ray from the near plane to the far one (to a point on it when the far plane is at infinity) */
+    vec3 o = sk_unproject(frag, u_depth_map.z), e = sk_unproject(frag, u_depth_map.w), dir = e - o;
     float den = dot(n, dir);
     if (abs(den) < 1e-6 * length(dir)) return p;
     float t = dot(n, p - o) / den;
-    return o + clamp(t, 0.0, 1.0) * dir;
+    return o + clamp(t, 0.0, u_depth_map.z + u_depth_map.w == 1.0 ? 1.0 : 1e30) * dir;
 }
 
 sk_receiver sk_receiver_at(ivec2 px, float d)

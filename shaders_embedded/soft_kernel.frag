@@ -39,7 +39,7 @@ void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
     float d = texelFetch(u_depth, px, 0).r;
-    if (d >= 1.0) discard;
+    if (u_depth_map.z == 0.0 ? d >= 1.0 : d <= 0.0) discard;
     sk_receiver r = sk_receiver_at(px, d);
     float tol = sk_light_tolerance(max(r.zlin, 1e-6));
     o_plane = vec4(r.light.z, r.grad, tol);
