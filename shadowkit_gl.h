@@ -2223,23 +2223,35 @@ static void skgl__set_log(skgl_context *ctx, const char *what, const char *detai
     }
 }
 
-static skgl__uint skgl__shader(skgl_context *ctx, skgl__enum type, const char *a, const char *b)
+/* n sources (at most 11) after "#version 330 core" compiled into a shader
+   of the given type; 0 on failure, the driver's message in log */
+static skgl__uint skgl__shader_n(skgl_context *ctx, skgl__enum type, const char *const *src, int n, char *log,
+                                 int log_size)
 {
-    const char *src[3];
+    const char *all[12];
     skgl__uint sh = ctx->gl.CreateShader(type);
     skgl__int ok = 0;
-    src[0] = "#version 330 core\n"; src[1] = a; src[2] = b ? b : "";
-    ctx->gl.ShaderSource(sh, 3, src, NULL);
+    int i;
+    all[0] = "#version 330 core\n";
+    for (i = 0; i < n && i < 11; i++) all[i + 1] = src[i];
+    ctx->gl.ShaderSource(sh, i + 1, all, NULL);
     ctx->gl.CompileShader(sh);
     ctx->gl.GetShaderiv(sh, SKGL__COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[900];
-        log[0] = 0;
-        ctx->gl.GetShaderInfoLog(sh, (skgl__sizei)sizeof log, NULL, log);
-        skgl__set_log(ctx, "shader compile failed", log);
-        ctx->gl.DeleteShader(sh);
-        return 0;
-    }
+    if (ok) return sh;
+    log[0] = 0;
+    ctx->gl.GetShaderInfoLog(sh, (skgl__sizei)log_size, NULL, log);
+    ctx->gl.DeleteShader(sh);
+    return 0;
+}
+
+static skgl__uint skgl__shader(skgl_context *ctx, skgl__enum type, const char *a, const char *b)
+{
+    const char *src[2];
+    char log[900];
+    skgl__uint sh;
+    src[0] = a; src[1] = b ? b : "";
+    sh = skgl__shader_n(ctx, type, src, 2, log, (int)sizeof log);
+    if (!sh) skgl__set_log(ctx, "shader compile failed", log);
     return sh;
 }
 
@@ -3300,22 +3312,12 @@ static char *skgl__caster_forward(skgl_context *ctx, const char *v)
 
 /* compiles n strings (after #version) into a shader of the given type;
    0 with the log naming the caster and the stage on failure */
-static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, skgl__enum type, const char **src,
-                                      int n, const char *fn)
+static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, skgl__enum type,
+                                      const char *const *src, int n, const char *fn)
 {
-    const char *all[12];
-    skgl__uint sh = ctx->gl.CreateShader(type);
-    skgl__int ok = 0;
-    int i;
-    all[0] = "#version 330 core\n";
-    for (i = 0; i < n; i++) all[i + 1] = src[i];
-    ctx->gl.ShaderSource(sh, n + 1, all, NULL);
-    ctx->gl.CompileShader(sh);
-    ctx->gl.GetShaderiv(sh, SKGL__COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[700];
-        log[0] = 0;
-        ctx->gl.GetShaderInfoLog(sh, (skgl__sizei)sizeof log, NULL, log);
+    char log[700];
+    skgl__uint sh = skgl__shader_n(ctx, type, src, n, log, (int)sizeof log);
+    if (!sh) {
         skgl__fail(ctx, SK_ERR_GL,
                    "%s: caster '%s': the %s does not compile (lines 1 to 10000 are the hook's own, from 10001 "
                    "shadowkit's pass; drivers that keep #line's source number show 1 for the vertex hook, 2 for "
@@ -3325,8 +3327,6 @@ static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, s
                    : type == SKGL__GEOMETRY_SHADER ? "geometry shader"
                                                    : "fragment shader",
                    log);
-        ctx->gl.DeleteShader(sh);
-        return 0;
     }
     return sh;
 }
