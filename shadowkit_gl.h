@@ -3541,12 +3541,20 @@ SKGLDEF const int *skgl_use_caster(skgl_context *ctx, skgl_caster *caster)
         return none;
     }
     v = &caster->v[ctx->pass_variant];
-    if (!v->prog && (v->failed || skgl__caster_link(ctx, caster, ctx->pass_variant, "skgl_use_caster") != SK_OK)) {
-        if (v->failed && ctx->pass_error == SK_OK && !v->prog)
-            skgl__fail(ctx, SK_ERR_GL, "skgl_use_caster: caster '%s' has no program for this pass (its link failed "
-                       "before)", caster->label);
-        ctx->pass_error = SK_ERR_GL;
-        return NULL;
+    if (!v->prog) {
+        /* linked the first time this kind of pass needs it; a failed link is
+           not tried again (its message was logged then) */
+        if (v->failed) {
+            if (ctx->pass_error == SK_OK)
+                skgl__fail(ctx, SK_ERR_GL, "skgl_use_caster: caster '%s' has no program for this pass (its link "
+                           "failed before)", caster->label);
+            ctx->pass_error = SK_ERR_GL;
+            return NULL;
+        }
+        if (skgl__caster_link(ctx, caster, ctx->pass_variant, "skgl_use_caster") != SK_OK) {
+            ctx->pass_error = SK_ERR_GL;
+            return NULL;
+        }
     }
     ctx->gl.UseProgram(v->prog);
     ctx->cur_caster = caster;

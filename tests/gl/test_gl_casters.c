@@ -689,8 +689,17 @@ static int log_has(skgl_context *sk, const char *what) { return strstr(skgl_erro
    caster in user, and a model; counts NULL returns */
 typedef struct contract_user {
     skgl_caster *caster;
+    skgl_context *sk;
     int nulls, calls;
 } contract_user;
+
+/* the same with the real context: NULL when the caster cannot be linked */
+static void contract_draw_real(void *user, const skgl_draw_info *info) {
+    contract_user *u = (contract_user *)user;
+    (void)info;
+    u->calls++;
+    if (!skgl_use_caster(u->sk, u->caster)) u->nulls++;
+}
 
 static void contract_draw(void *user, const skgl_draw_info *info) {
     contract_user *u = (contract_user *)user;
@@ -765,6 +774,40 @@ static void test_contracts(void) {
         skgl_soft_destroy(sk, s);
     }
     skgl_caster_destroy(sk, c);
+    {
+        /* a hook that compiles for the depth passes (SKGL_CASTER_PASS 0, at
+           skgl_caster_create) but not for PVSM's low-resolution pass (1):
+           the render that first needs it returns SK_ERR_GL naming the
+           caster, and so does the next (not linked again) */
+        skgl_soft *s = gt_soft(&w.e, SKGL_SOFT_PVSM, 512);
+        skgl_area_light l = area_light();
+        skgl_camera cam = gt_camera(gt_v3(-10, 9, 13), gt_v3(0, 0.5f, 0), 0.9f, 0.5f, 60, W, H);
+        contract_user u;
+        skgl_scene sc;
+        skgl_caster *late = NULL;
+        memset(&d, 0, sizeof d);
+        d.label = "late";
+        d.vertex = "layout(location = 0) in vec3 a_pos;\n"
+                   "#if SKGL_CASTER_PASS == 1\n"
+                   "this does not compile;\n"
+                   "#endif\n"
+                   "vec4 skgl_caster_position() { return vec4(a_pos, 1.0); }\n";
+        SK_CHECK_MSG(skgl_caster_create(sk, &d, &late) == SK_OK, "%s", skgl_error_log(sk));
+        memset(&u, 0, sizeof u);
+        u.caster = late;
+        sc.draw = contract_draw_real;
+        sc.user = &u;
+        sc.bounds = w.e.scene.bounds;
+        u.sk = sk;
+        SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, 0, 0, w.e.mask.color_tex) == SK_ERR_GL);
+        SK_CHECK_MSG(log_has(sk, "skgl_use_caster") && log_has(sk, "'late'") && log_has(sk, ":3("), "log: %s",
+                     skgl_error_log(sk));
+        SK_CHECK(skgl_soft_render(sk, s, &cam, &sc, &l, 0, 0, w.e.mask.color_tex) == SK_ERR_GL &&
+                 log_has(sk, "its link failed before"));
+        SK_CHECK(u.nulls > 0);
+        skgl_caster_destroy(sk, late);
+        skgl_soft_destroy(sk, s);
+    }
     skgl_caster_destroy(sk, c);   /* a second time: not found, nothing happens */
     SK_CHECK(skgl_gl_object_count(sk) == before);
     world_free(&w);
