@@ -3266,18 +3266,20 @@ static int skgl__varying_name(const char *d, size_t n, size_t *at, size_t *len, 
     return 1;
 }
 
-/* soft_cons.geom's skgl_caster_varyings(b): each varying at barycentric
-   weights b on the triangle's vertices (a flat one: the vertex of largest
-   weight's); NULL with the log set when desc.varyings does not parse */
-static char *skgl__caster_forward(skgl_context *ctx, const char *v)
+/* the geometry shaders' skgl_caster_varyings(b) into *text: each varying
+   at barycentric weights b on the triangle's vertices (a flat one: the
+   vertex of largest weight's); SK_ERR_INVALID_ARG (logged) when
+   desc.varyings does not parse, SK_ERR_CAPACITY without memory */
+static sk_result skgl__caster_forward(skgl_context *ctx, const char *v, char **text)
 {
     size_t total = strlen(v), start = 0, end, at, len, need = 64, used = 0;
     int flat, count = 0;
     char *out;
+    *text = NULL;
     for (end = 0; end <= total; end++)
         if (v[end] == ';') need += 160 + 4 * (end - start), start = end + 1;
     out = (char *)SKGL_MALLOC(need);
-    if (!out) return NULL;
+    if (!out) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
     used += (size_t)sprintf(out, "void skgl_caster_varyings(vec3 b)\n{\n");
     for (start = 0, end = 0; end <= total; end++) {
         if (end < total && v[end] != ';') continue;
@@ -3289,11 +3291,10 @@ static char *skgl__caster_forward(skgl_context *ctx, const char *v)
         if (end == total || !skgl__varying_name(v + start, end - start, &at, &len, &flat) ||
             ++count > SKGL__CASTER_VARYINGS) {
             SKGL_FREE(out);
-            skgl__fail(ctx, SK_ERR_INVALID_ARG,
-                       "skgl_caster_create: desc.varyings must be at most %d declarations `[flat] type name;`, each "
-                       "ending in ';', no arrays or lists (at \"%.40s\")",
-                       SKGL__CASTER_VARYINGS, v + start);
-            return NULL;
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                              "skgl_caster_create: desc.varyings must be at most %d declarations `[flat] type name;`, "
+                              "each ending in ';', no arrays or lists (at \"%.40s\")",
+                              SKGL__CASTER_VARYINGS, v + start);
         }
         at += start;
         if (flat)
@@ -3307,7 +3308,8 @@ static char *skgl__caster_forward(skgl_context *ctx, const char *v)
         start = end + 1;
     }
     sprintf(out + used, "}\n");
-    return out;
+    *text = out;
+    return SK_OK;
 }
 
 /* compiles n strings (after #version) into a shader of the given type;
@@ -3467,8 +3469,7 @@ SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *
     c->varyings = desc->varyings && desc->varyings[0] ? skgl__caster_copy(&p, desc->varyings) : NULL;
     c->label = skgl__caster_copy(&p, desc->label ? desc->label : "caster");
     for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) c->names[k] = skgl__caster_copy(&p, desc->uniforms[k]);
-    if (c->varyings && !(c->forward = skgl__caster_forward(ctx, c->varyings))) {
-        r = ctx->log[0] ? SK_ERR_INVALID_ARG : skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
+    if (c->varyings && (r = skgl__caster_forward(ctx, c->varyings, &c->forward)) != SK_OK) {
         skgl__caster_free(ctx, c);
         return r;
     }

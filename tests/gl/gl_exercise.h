@@ -24,7 +24,7 @@
 #define GX_SMALL_H 120
 #define GX_FRAMES 3
 
-typedef enum gx_kind { GX_CONTEXT = 0, GX_DIRECTIONAL = 1, GX_POINT = 2, GX_ATLAS = 3, GX_SOFT = 4 } gx_kind;
+typedef enum gx_kind { GX_CONTEXT = 0, GX_DIRECTIONAL = 1, GX_POINT = 2, GX_ATLAS = 3, GX_SOFT = 4, GX_ENGINE = 5 } gx_kind;
 
 typedef struct gx_case {
     const char *name;
@@ -57,6 +57,10 @@ static const gx_case gx_cases[] = {
     {"point-atlas", GX_ATLAS, SKGL_STANDARD, 256, 0, 0, 0, 0.0f, SKGL_POINT_VSDCT, 1, SKGL_SOFT_PCSS},
     {"soft-pcss", GX_SOFT, SKGL_STANDARD, 1024, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PCSS},
     {"soft-pvsm", GX_SOFT, SKGL_STANDARD, 1024, 0, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PVSM},
+    /* a caster program (varyings, a fragment hook) through layered PSSM, a
+       layered cube and PVSM with its own G-buffer: every kind of program
+       the hook is linked into */
+    {"engine", GX_ENGINE, SKGL_PSSM, 512, 3, 0, 0, 0.0f, SKGL_POINT_CUBE, 0, SKGL_SOFT_PVSM},
 };
 #define GX_NCASES ((int)(sizeof gx_cases / sizeof gx_cases[0]))
 
@@ -158,12 +162,29 @@ static inline sk_result gx_point_bind(gx_env *x, skgl_context *sk, const skgl_po
     return r;
 }
 
+/* GX_ENGINE's callback: the mesh through the caster program */
+typedef struct gx_engine {
+    gt_env *e;
+    skgl_context *sk;
+    skgl_caster *hook;
+} gx_engine;
+
+static inline void gx_engine_draw(void *user, const skgl_draw_info *info) {
+    gx_engine *g = (gx_engine *)user;
+    (void)info;
+    if (!skgl_use_caster(g->sk, g->hook)) return;   /* the render reports it */
+    tb_gl_mesh_draw(&g->e->gl, &g->e->mesh, 0, 0);
+}
+
+static inline int gx_run_engine(gx_env *x, skgl_context *sk, const gx_case *c);
+
 static inline int gx_run(gx_env *x, skgl_context *sk, const gx_case *c) {
     gt_env *e = &x->e;
     skgl_scene sc = gt_scene(e), psc = sc;
     int f = 0, calls = 0, i;
     psc.draw = gx_point_draw;
     if (c->kind == GX_CONTEXT) return 0;
+    if (c->kind == GX_ENGINE) return gx_run_engine(x, sk, c);
     if (c->kind == GX_DIRECTIONAL) {
         skgl_shadow_desc d;
         skgl_shadow *s = NULL;
@@ -277,6 +298,69 @@ static inline int gx_run(gx_env *x, skgl_context *sk, const gx_case *c) {
         skgl_point_atlas_destroy(sk, a);
         return calls;
     }
+}
+
+static inline int gx_run_engine(gx_env *x, skgl_context *sk, const gx_case *c) {
+    gt_env *e = &x->e;
+    gx_engine g;
+    skgl_scene sc = gt_scene(e);
+    skgl_caster_desc cd;
+    skgl_shadow_desc sd;
+    skgl_point_desc pd;
+    skgl_soft_desc so_d;
+    skgl_caster *hook = NULL;
+    skgl_shadow *s = NULL;
+    skgl_point *p = NULL;
+    skgl_soft *so = NULL;
+    int f = 0, calls = 0;
+    memset(&cd, 0, sizeof cd);
+    cd.label = "engine";
+    cd.vertex = "layout(location = 0) in vec3 a_pos;\n"
+                "vec4 skgl_caster_position() { v_uv = a_pos.xz; return vec4(a_pos, 1.0); }\n";
+    cd.fragment = "void skgl_caster_fragment() { if (v_uv.x > 1e6) discard; }\n";
+    cd.varyings = "vec2 v_uv;";
+    GX_OK("skgl_caster_create", skgl_caster_create(sk, &cd, &hook));
+    if (!hook) return -1;
+    g.e = e;
+    g.sk = sk;
+    g.hook = hook;
+    sc.draw = gx_engine_draw;
+    sc.user = &g;
+    memset(&sd, 0, sizeof sd);
+    sd.technique = c->technique;
+    sd.resolution = c->resolution;
+    sd.cascades = c->cascades;
+    sd.layered = 1;
+    memset(&pd, 0, sizeof pd);
+    pd.resolution = 256;
+    pd.range = 20.0f;
+    pd.layered = 1;
+    memset(&so_d, 0, sizeof so_d);
+    so_d.technique = c->soft;
+    so_d.resolution = 1024;
+    so_d.lowres = 256; so_d.grid = 16; so_d.max_tiles = 16;
+    GX_OK("skgl_shadow_create", skgl_shadow_create(sk, &sd, &s));
+    GX_OK("skgl_point_create", skgl_point_create(sk, &pd, &p));
+    GX_OK("skgl_soft_create", skgl_soft_create(sk, &so_d, &so));
+    for (f = 0; f < GX_FRAMES && s && p && so; f++) {
+        skgl_area_light l;
+        memset(&l, 0, sizeof l);
+        l.position = gt_v3(2.0f, 9.0f, -2.5f);
+        l.direction = gt_v3(-0.3f, -1.0f, 0.4f);
+        l.half_width = l.half_height = 0.3f;
+        GX_OK("skgl_shadow_render", skgl_shadow_render(sk, s, &x->cam, &sc, x->light));
+        GX_OK("skgl_shadow_mask", skgl_shadow_mask(sk, s, &x->cam, e->gbuf.depth_tex, e->gbuf.color_tex,
+                                                   e->mask.color_tex));
+        GX_OK("skgl_point_render", skgl_point_render(sk, p, &x->cam, &sc, gt_v3(0.5f, 2.5f, 0.5f)));
+        GX_OK("skgl_point_mask", skgl_point_mask(sk, p, &x->cam, e->gbuf.depth_tex, e->gbuf.color_tex,
+                                                 e->mask.color_tex));
+        GX_OK("skgl_soft_render", skgl_soft_render(sk, so, &x->cam, &sc, &l, 0, 0, e->mask.color_tex));
+    }
+    skgl_soft_destroy(sk, so);
+    skgl_point_destroy(sk, p);
+    skgl_shadow_destroy(sk, s);
+    skgl_caster_destroy(sk, hook);
+    return calls;
 }
 #undef GX_OK
 

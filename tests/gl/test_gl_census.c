@@ -4,7 +4,12 @@
    Each case of gl_exercise.h (every directional technique, FERKO and RMSM
    through skgl_shadow_analyze at two G-buffer sizes, cube and VSDCT point
    lights naive and with every optimization, three VSDCT lights in one
-   shared atlas, area lights PCSS and PVSM, and a bare context) runs on a
+   shared atlas, area lights PCSS and PVSM, a caster program with varyings
+   and a fragment hook through layered PSSM, a layered cube and PVSM with
+   its own G-buffer ("engine": 13 programs besides the context's 7: the
+   point mask's, PVSM's 7, the layered depth program and the hook's 4 for
+   the depth, layered, low-resolution and G-buffer passes), and a bare
+   context) runs on a
    context of its own, loaded through a getproc of this test that wraps
    every entry point which makes or frees a GL object: glGen* / glDelete* of textures, framebuffers,
    renderbuffers, samplers, vertex arrays, buffers, queries, transform
