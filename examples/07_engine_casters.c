@@ -39,9 +39,7 @@
 
 #include "common.h"
 
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#include <stb/stb_image.h>
+#include <stb/stb_image.h>   /* Debian's libstb, as the testbed links it */
 
 #include <math.h>
 #include <stdio.h>
