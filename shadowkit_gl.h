@@ -501,6 +501,64 @@ typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
 
 #define SKGL_TIMING_SYNC 2            /* skgl_desc.timing: every pass timed and read at once */
 
+/* Which OpenGL the context speaks (OPENGL ES 3.0 AND WEBGL2) */
+typedef enum skgl_api {
+    SKGL_API_AUTO = 0,            /* read from GL_VERSION: "OpenGL ES ..." (WebGL2 through
+                                     Emscripten says "OpenGL ES 3.0 (WebGL 2.0 ...)") is
+                                     SKGL_API_GLES3, anything else SKGL_API_GL33 */
+    SKGL_API_GL33 = 1,            /* desktop OpenGL 3.3 core or later: "#version 330 core" */
+    SKGL_API_GLES3 = 2            /* OpenGL ES 3.0 or later, WebGL2: "#version 300 es" (320 es
+                                     where geometry shaders are used) with highp precision */
+} skgl_api;
+
+/* skgl_desc.disable_caps: capabilities treated as absent even when the
+   context has them (to run a phone's or a browser's path on a desktop, or
+   to keep a program off a slow feature). Each names a field of skgl_caps. */
+#define SKGL_CAP_GEOMETRY_SHADER   0x0001u
+#define SKGL_CAP_GPU_SHADER5       0x0002u
+#define SKGL_CAP_FLOAT_RENDER      0x0004u
+#define SKGL_CAP_FLOAT_BLEND       0x0008u
+#define SKGL_CAP_NORM16            0x0010u
+#define SKGL_CAP_DEPTH_CLAMP       0x0020u
+#define SKGL_CAP_TIMER_QUERY       0x0040u
+#define SKGL_CAP_TEXTURE_SIZE      0x0080u
+#define SKGL_CAP_BUFFER_READ       0x0100u
+#define SKGL_CAP_CLIP_CONTROL      0x0200u
+#define SKGL_CAP_MIP_RENDER_LEVEL  0x0400u
+
+/* What the context offers, probed once by skgl_create (skgl_get_caps).
+   1: present and used; 0: absent (or disabled), and the techniques that
+   need it take the fallback OPENGL ES 3.0 AND WEBGL2 lists, or fail at
+   create naming it. */
+typedef struct skgl_caps {
+    skgl_api api;                 /* the API in use (never SKGL_API_AUTO) */
+    int major, minor;             /* GL_MAJOR_VERSION, GL_MINOR_VERSION */
+    int webgl;                    /* 1: WebGL2 (GL_VERSION names it) */
+    int geometry_shader;          /* GL 3.2, ES 3.2: PVSM's conservative pass, layered passes */
+    int gpu_shader5;              /* GL 4.0 / GL_ARB_gpu_shader5, ES 3.2: geometry shader
+                                     invocations (layered passes; else a loop) */
+    int float_render;             /* 32- and 16-bit float colour targets: GL 3.0,
+                                     GL_EXT_color_buffer_float on ES (FERKO, RMSM, PVSM) */
+    int float_blend;              /* blending into 32-bit float targets: GL 3.0,
+                                     GL_EXT_float_blend on ES (RMSM's requests, PVSM's MIN
+                                     pyramid) */
+    int norm16;                   /* RG16 unorm textures: GL 3.0, GL_EXT_texture_norm16 on ES
+                                     (VSDCT's indirection; else RG32F) */
+    int depth_clamp;              /* GL 3.2, GL_EXT_depth_clamp on ES (PVSM's low-resolution
+                                     pass; else clamped in its shader) */
+    int timer_query;              /* GL 3.3, GL_EXT_disjoint_timer_query(_webgl2) on ES:
+                                     the stats' GPU times (else -1) */
+    int texture_size;             /* glGetTexLevelParameteriv: GL, ES 3.1 (else the size of a
+                                     texture you pass comes from skgl_remember_texture) */
+    int buffer_read;              /* glGetBufferSubData: GL, WebGL2 (else glMapBufferRange) */
+    int clip_control;             /* glClipControl: GL 4.5 / GL_ARB_clip_control,
+                                     GL_EXT_clip_control on ES (skgl_desc.clip_zero_to_one) */
+    int mip_render_level;         /* rendering into one mip level while sampling another of
+                                     the same texture: GL; refused by ANGLE (WebGL2), so
+                                     PVSM's pyramid is built in a second texture there */
+    int max_texture_size;         /* GL_MAX_TEXTURE_SIZE */
+} skgl_caps;
+
 typedef struct skgl_desc {
     skgl_getproc_fn getproc;      /* required */
     int debug;                    /* glGetError after each pass -> SK_ERR_GL; checks the draw
@@ -516,6 +574,8 @@ typedef struct skgl_desc {
                                      what it touches, puts back what it changed); 1: no
                                      state is read or put back, each call sets what it
                                      needs and leaves what GL STATE lists [0] */
+    skgl_api api;                 /* [SKGL_API_AUTO: read from GL_VERSION] */
+    unsigned disable_caps;        /* SKGL_CAP_* bits treated as absent [0: use all there are] */
 } skgl_desc;
 
 typedef enum skgl_technique {
@@ -694,6 +754,14 @@ SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program);
    attached to shadowkit's framebuffer until the next mask call; this lets
    go of it at once) */
 SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture);
+/* tells shadowkit the size of a texture you pass it (a mask target, a
+   camera depth buffer): needed where GL cannot be asked (skgl_caps
+   .texture_size 0: OpenGL ES 3.0, WebGL2), harmless elsewhere. Call it
+   again after giving the texture new storage. SK_ERR_INVALID_ARG for texture
+   0 or a size outside 1..65536. */
+SKGLDEF sk_result skgl_remember_texture(skgl_context *ctx, unsigned texture, int width, int height);
+/* what skgl_create probed (zeros for NULL) */
+SKGLDEF skgl_caps skgl_get_caps(const skgl_context *ctx);
 
 SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out);
 SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s);
@@ -1222,6 +1290,20 @@ typedef unsigned long long skgl__u64;
 #define SKGL__RG16 0x822C
 #define SKGL__UNSIGNED_SHORT 0x1403
 #define SKGL__GEOMETRY_SHADER 0x8DD9
+#define SKGL__VERSION 0x1F02
+#define SKGL__EXTENSIONS 0x1F03
+#define SKGL__NUM_EXTENSIONS 0x821D
+#define SKGL__MAX_TEXTURE_SIZE 0x0D33
+#define SKGL__MAP_READ_BIT 0x0001
+/* GLSL ES: no default precision for floats in fragment shaders, nor for
+   the array, shadow and integer samplers in any stage; highp everywhere
+   (the depth comparisons need 24 bits and more) */
+#define SKGL__ES_PRECISION                                                                          \
+    "precision highp float;\nprecision highp int;\nprecision highp sampler2D;\n"                   \
+    "precision highp sampler2DArray;\nprecision highp sampler2DShadow;\n"                          \
+    "precision highp sampler2DArrayShadow;\nprecision highp samplerCube;\n"                        \
+    "precision highp samplerCubeShadow;\nprecision highp isampler2D;\nprecision highp usampler2D;\n" \
+    "precision highp sampler3D;\n#define SKGL_ES 1\n"
 #define SKGL__BLEND_EQUATION_RGB 0x8009
 #define SKGL__BLEND_EQUATION_ALPHA 0x883D
 #define SKGL__BLEND_DST_RGB 0x80C8
@@ -1265,7 +1347,6 @@ typedef unsigned long long skgl__u64;
     X(void, Finish, (void)) \
     X(void, GetIntegerv, (skgl__enum pname, skgl__int *data)) \
     X(void, GetFloatv, (skgl__enum pname, float *data)) \
-    X(void, GetDoublev, (skgl__enum pname, double *data)) \
     X(void, GetBooleanv, (skgl__enum pname, skgl__bool *data)) \
     X(skgl__bool, IsEnabled, (skgl__enum cap)) \
     X(void, Enable, (skgl__enum cap)) \
@@ -1275,7 +1356,6 @@ typedef unsigned long long skgl__u64;
     X(void, ColorMask, (skgl__bool r, skgl__bool g, skgl__bool b, skgl__bool a)) \
     X(void, DepthMask, (skgl__bool flag)) \
     X(void, DepthFunc, (skgl__enum func)) \
-    X(void, ClearDepth, (double d)) \
     X(void, Clear, (skgl__uint mask)) \
     X(void, CullFace, (skgl__enum mode)) \
     X(void, PolygonOffset, (float factor, float units)) \
@@ -1285,8 +1365,6 @@ typedef unsigned long long skgl__u64;
     X(void, FramebufferTextureLayer, (skgl__enum target, skgl__enum att, skgl__uint tex, skgl__int level, skgl__int layer)) \
     X(void, FramebufferTexture2D, (skgl__enum target, skgl__enum att, skgl__enum textarget, skgl__uint tex, skgl__int level)) \
     X(skgl__enum, CheckFramebufferStatus, (skgl__enum target)) \
-    X(void, DrawBuffer, (skgl__enum buf)) \
-    X(void, FramebufferTexture, (skgl__enum target, skgl__enum att, skgl__uint tex, skgl__int level)) \
     X(void, ReadBuffer, (skgl__enum buf)) \
     X(void, GenTextures, (skgl__sizei n, skgl__uint *ids)) \
     X(void, DeleteTextures, (skgl__sizei n, const skgl__uint *ids)) \
@@ -1299,7 +1377,6 @@ typedef unsigned long long skgl__u64;
     X(void, DeleteBuffers, (skgl__sizei n, const skgl__uint *ids)) \
     X(void, BindBuffer, (skgl__enum target, skgl__uint buf)) \
     X(void, BufferData, (skgl__enum target, ptrdiff_t size, const void *data, skgl__enum usage)) \
-    X(void, GetBufferSubData, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, void *data)) \
     X(void, Uniform2i, (skgl__int loc, skgl__int a, skgl__int b)) \
     X(void, Uniform4fv, (skgl__int loc, skgl__sizei n, const float *v)) \
     X(void, Uniform2fv, (skgl__int loc, skgl__sizei n, const float *v)) \
@@ -1307,7 +1384,6 @@ typedef unsigned long long skgl__u64;
     X(void, PixelStorei, (skgl__enum pname, skgl__int v)) \
     X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
     X(void, TexParameteri, (skgl__enum target, skgl__enum pname, skgl__int v)) \
-    X(void, GetTexLevelParameteriv, (skgl__enum target, skgl__int level, skgl__enum pname, skgl__int *v)) \
     X(void, GenSamplers, (skgl__sizei n, skgl__uint *ids)) \
     X(void, DeleteSamplers, (skgl__sizei n, const skgl__uint *ids)) \
     X(void, BindSampler, (skgl__uint unit, skgl__uint sampler)) \
@@ -1340,10 +1416,8 @@ typedef unsigned long long skgl__u64;
     X(void, DeleteQueries, (skgl__sizei n, const skgl__uint *ids)) \
     X(void, BeginQuery, (skgl__enum target, skgl__uint id)) \
     X(void, EndQuery, (skgl__enum target)) \
-    X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v)) \
     X(void, BlendEquationSeparate, (skgl__enum rgb, skgl__enum alpha)) \
     X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a)) \
-    X(void, PolygonMode, (skgl__enum face, skgl__enum mode)) \
     X(skgl__bool, IsProgram, (skgl__uint p)) \
     X(void, ClearBufferfv, (skgl__enum buffer, skgl__int drawbuffer, const float *value)) \
     X(void, TexSubImage2D, (skgl__enum target, skgl__int level, skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, const void *data)) \
@@ -1352,11 +1426,27 @@ typedef unsigned long long skgl__u64;
     X(void, DeleteSync, (void *sync)) \
     X(void, GetQueryObjectuiv, (skgl__uint id, skgl__enum pname, skgl__uint *v)) \
     X(void, GetUniformiv, (skgl__uint p, skgl__int loc, skgl__int *v)) \
-    X(void, GetUniformfv, (skgl__uint p, skgl__int loc, float *v))
+    X(void, GetUniformfv, (skgl__uint p, skgl__int loc, float *v)) \
+    X(const unsigned char *, GetString, (skgl__enum name)) \
+    X(const unsigned char *, GetStringi, (skgl__enum name, skgl__uint i))
+
+/* entry points one API or extension has and another lacks: loaded by
+   skgl_create where skgl_caps says they exist (the name may differ: ES's
+   timer query is glGetQueryObjectui64vEXT), NULL elsewhere and never called
+   there */
+#define SKGL__FUNCS_OPT(X) \
+    X(void, FramebufferTexture, (skgl__enum target, skgl__enum att, skgl__uint tex, skgl__int level)) \
+    X(void, GetBufferSubData, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, void *data)) \
+    X(void, GetTexLevelParameteriv, (skgl__enum target, skgl__int level, skgl__enum pname, skgl__int *v)) \
+    X(void, GetQueryObjectui64v, (skgl__uint id, skgl__enum pname, skgl__u64 *v)) \
+    X(void, PolygonMode, (skgl__enum face, skgl__enum mode)) \
+    X(void *, MapBufferRange, (skgl__enum target, ptrdiff_t offset, ptrdiff_t size, skgl__uint access)) \
+    X(skgl__bool, UnmapBuffer, (skgl__enum target))
 
 typedef struct skgl__api {
 #define SKGL__X(ret, name, args) ret (SKGL__APIENTRY *name) args;
     SKGL__FUNCS(SKGL__X)
+    SKGL__FUNCS_OPT(SKGL__X)
 #undef SKGL__X
 } skgl__api;
 
@@ -1451,6 +1541,8 @@ enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_LAYERE
 
 struct skgl_context {
     skgl__api gl;
+    skgl_caps caps;                        /* probed at create, less desc.disable_caps */
+    const char *glsl_version;              /* the dialect's first lines (skgl__shader_n) */
     int debug, timing, objects;
     int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
     int clip_zero_to_one;                  /* desc.clip_zero_to_one */
@@ -1706,12 +1798,22 @@ static void skgl__st_unit(skgl_context *ctx, skgl__st *st, int item)
     }
 }
 
+/* state this API lacks: OpenGL ES has no polygon mode, takes every point's
+   size from gl_PointSize and samples cube maps seamlessly always; depth
+   clamp is GL_EXT_depth_clamp's. Never read, set or put back there. */
+static int skgl__st_absent(const skgl_context *ctx, int item)
+{
+    if (ctx->caps.api != SKGL_API_GLES3) return 0;
+    return item == SKGL__S_POLYGON_MODE || item == SKGL__S_POINT_SIZE || item == SKGL__S_SEAMLESS ||
+           (item == SKGL__S_DEPTH_CLAMP && !ctx->caps.depth_clamp);
+}
+
 /* reads the caller's value the first time (default mode); afterwards the
    tracked one. A sampler binding is read with its unit active, but set
    without (glBindSampler names the unit). */
 static void skgl__st_save(skgl_context *ctx, skgl__st *st, int item)
 {
-    if (!st->restore || (st->flags[item] & SKGL__S_SAVED)) return;
+    if (!st->restore || (st->flags[item] & SKGL__S_SAVED) || skgl__st_absent(ctx, item)) return;
     skgl__st_unit(ctx, st, item);
     skgl__st_query(&ctx->gl, item, st->orig[item]);
     memcpy(st->cur[item], st->orig[item], sizeof st->cur[item]);
@@ -1721,6 +1823,7 @@ static void skgl__st_save(skgl_context *ctx, skgl__st *st, int item)
 static void skgl__st_set(skgl_context *ctx, skgl__st *st, int item, const skgl__int *v)
 {
     int n = skgl__st_n(item);
+    if (skgl__st_absent(ctx, item)) return;
     skgl__st_save(ctx, st, item);
     if ((st->flags[item] & SKGL__S_KNOWN) && memcmp(st->cur[item], v, sizeof(skgl__int) * (size_t)n) == 0) return;
     if (item >= SKGL__S_UNIT0 && ((item - SKGL__S_UNIT0) & 3) != SKGL__T_SAMPLER) skgl__st_unit(ctx, st, item);
@@ -2223,7 +2326,7 @@ static void skgl__set_log(skgl_context *ctx, const char *what, const char *detai
     }
 }
 
-/* n sources (at most 11) after "#version 330 core" compiled into a shader
+/* n sources (at most 11) after the dialect's #version (and precision) compiled into a shader
    of the given type; 0 on failure, the driver's message in log */
 static skgl__uint skgl__shader_n(skgl_context *ctx, skgl__enum type, const char *const *src, int n, char *log,
                                  int log_size)
@@ -2232,7 +2335,7 @@ static skgl__uint skgl__shader_n(skgl_context *ctx, skgl__enum type, const char 
     skgl__uint sh = ctx->gl.CreateShader(type);
     skgl__int ok = 0;
     int i;
-    all[0] = "#version 330 core\n";
+    all[0] = ctx->glsl_version;
     for (i = 0; i < n && i < 11; i++) all[i + 1] = src[i];
     ctx->gl.ShaderSource(sh, i + 1, all, NULL);
     ctx->gl.CompileShader(sh);
@@ -2467,14 +2570,35 @@ SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
     }
 }
 
+SKGLDEF sk_result skgl_remember_texture(skgl_context *ctx, unsigned texture, int width, int height)
+{
+    skgl__texent *e;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    if (!texture || width < 1 || height < 1 || width > 65536 || height > 65536) {
+        skgl__set_log(ctx, "skgl_remember_texture",
+                      !texture ? "texture is 0" : "width and height must be in 1..65536");
+        return SK_ERR_INVALID_ARG;
+    }
+    skgl_forget_texture(ctx, texture);
+    e = skgl__texture(ctx, texture);
+    e->w = width;
+    e->h = height;
+    return SK_OK;
+}
+
 /* The size of a texture the caller made: level 0's, as GL had it the
-   first time (bound on unit 1's GL_TEXTURE_2D to ask). NULL, or what is
-   wrong: no level 0; with desc.debug, which asks every time, a size that
-   changed under the same name. */
+   first time (bound on unit 1's GL_TEXTURE_2D to ask), or as
+   skgl_remember_texture gave it. NULL, or what is wrong: no level 0; with
+   desc.debug, which asks every time, a size that changed under the same
+   name; without glGetTexLevelParameteriv, a size never given. */
 static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, int *w, int *h)
 {
     skgl__texent *e = skgl__texture(ctx, tex);
-    if (e->w <= 0 || e->h <= 0 || ctx->debug) {
+    if (!ctx->caps.texture_size) {
+        if (e->w <= 0 || e->h <= 0)
+            return "this GL cannot be asked a texture's size (OpenGL ES 3.0, WebGL2): give it with "
+                   "skgl_remember_texture";
+    } else if (e->w <= 0 || e->h <= 0 || ctx->debug) {
         skgl__int tw = 0, th = 0;
         skgl__st_set1(ctx, st, SKGL__S_TEX(1, SKGL__T_2D), (skgl__int)tex);
         skgl__st_unit(ctx, st, SKGL__S_TEX(1, SKGL__T_2D));
@@ -2572,6 +2696,23 @@ static void skgl__timer_end(skgl_context *ctx, skgl__timer *t)
    flight, the new read-back is skipped (the GPU is three frames behind;
    nothing is waited for). The poll flushes (GL_SYNC_FLUSH_COMMANDS_BIT): a
    fence never flushed to the GPU may never signal. */
+/* the bound pixel pack buffer's first `bytes` into out: glGetBufferSubData
+   (GL, WebGL2), else mapped for reading (OpenGL ES 3.0 has no
+   glGetBufferSubData). 0 when the map failed (out untouched). */
+static int skgl__pack_buffer_read(skgl_context *ctx, size_t bytes, void *out)
+{
+    void *map;
+    if (ctx->caps.buffer_read) {
+        ctx->gl.GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, (ptrdiff_t)bytes, out);
+        return 1;
+    }
+    map = ctx->gl.MapBufferRange(SKGL__PIXEL_PACK_BUFFER, 0, (ptrdiff_t)bytes, SKGL__MAP_READ_BIT);
+    if (!map) return 0;
+    memcpy(out, map, bytes);
+    ctx->gl.UnmapBuffer(SKGL__PIXEL_PACK_BUFFER);
+    return 1;
+}
+
 static void skgl__ring_free(skgl_context *ctx, skgl__ring *r)
 {
     int i;
@@ -2609,7 +2750,7 @@ static int skgl__ring_poll(skgl_context *ctx, skgl__st *st, skgl__ring *r, void 
     }
     if (newest < 0) return -1;
     skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)r->buf[newest]);
-    ctx->gl.GetBufferSubData(SKGL__PIXEL_PACK_BUFFER, 0, (ptrdiff_t)r->bytes, out);
+    if (!skgl__pack_buffer_read(ctx, r->bytes, out)) return -1;
     return newest;
 }
 /* the slot the next read-back goes to, bound as the pack buffer; -1 when
@@ -2691,6 +2832,92 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->request_pages0 = ctx->request_levels = -1;
 }
 
+/* >>caps  What the context offers (skgl_caps), from its version and
+   extension strings, less desc->disable_caps; the optional entry points
+   loaded where they exist. Fails below GL 3.3 and ES 3.0, and for an
+   api the context does not speak. */
+static int skgl__has_extension(skgl_context *ctx, const char *name)
+{
+    skgl__int n = 0, i;
+    ctx->gl.GetIntegerv(SKGL__NUM_EXTENSIONS, &n);
+    for (i = 0; i < n; i++) {
+        const char *e = (const char *)ctx->gl.GetStringi(SKGL__EXTENSIONS, (skgl__uint)i);
+        if (e && strcmp(e, name) == 0) return 1;
+    }
+    return 0;
+}
+
+static void *skgl__load_opt(const skgl_desc *desc, int wanted, const char *name)
+{
+    return wanted ? desc->getproc(name) : NULL;
+}
+
+static sk_result skgl__probe_caps(skgl_context *ctx, const skgl_desc *desc, int major, int minor)
+{
+    skgl_caps *c = &ctx->caps;
+    const char *version = (const char *)ctx->gl.GetString(SKGL__VERSION);
+    int es = version && strncmp(version, "OpenGL ES", 9) == 0, gl, off = (int)desc->disable_caps;
+    void *p;
+    if (desc->api == SKGL_API_GL33 && es) return SK_ERR_GL;
+    if (desc->api == SKGL_API_GLES3 && !es) return SK_ERR_GL;
+    if (es ? major < 3 : major < 3 || (major == 3 && minor < 3)) return SK_ERR_GL;
+    gl = !es;
+    memset(c, 0, sizeof *c);
+    c->api = es ? SKGL_API_GLES3 : SKGL_API_GL33;
+    c->major = major;
+    c->minor = minor;
+    c->webgl = es && strstr(version, "WebGL") != NULL;
+    c->geometry_shader = gl || major > 3 || minor >= 2;
+    c->gpu_shader5 = gl ? major >= 4 || skgl__has_extension(ctx, "GL_ARB_gpu_shader5") : c->geometry_shader;
+    c->float_render = gl || skgl__has_extension(ctx, "GL_EXT_color_buffer_float");
+    c->float_blend = gl || skgl__has_extension(ctx, "GL_EXT_float_blend");
+    c->norm16 = gl || skgl__has_extension(ctx, "GL_EXT_texture_norm16");
+    c->depth_clamp = gl || skgl__has_extension(ctx, "GL_EXT_depth_clamp");
+    c->timer_query = gl || skgl__has_extension(ctx, "GL_EXT_disjoint_timer_query") ||
+                     skgl__has_extension(ctx, "GL_EXT_disjoint_timer_query_webgl2");
+    c->texture_size = gl || (!c->webgl && (major > 3 || minor >= 1));
+    c->buffer_read = gl || c->webgl;
+    c->clip_control = gl ? major > 4 || (major == 4 && minor >= 5) || skgl__has_extension(ctx, "GL_ARB_clip_control")
+                         : skgl__has_extension(ctx, "GL_EXT_clip_control");
+    c->mip_render_level = gl;
+    ctx->gl.GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &c->max_texture_size);
+    /* what the desc turns off */
+    if (off & SKGL_CAP_GEOMETRY_SHADER) c->geometry_shader = 0;
+    if ((off & SKGL_CAP_GPU_SHADER5) || !c->geometry_shader) c->gpu_shader5 = 0;
+    if (off & SKGL_CAP_FLOAT_RENDER) c->float_render = 0;
+    if ((off & SKGL_CAP_FLOAT_BLEND) || !c->float_render) c->float_blend = 0;
+    if (off & SKGL_CAP_NORM16) c->norm16 = 0;
+    if (off & SKGL_CAP_DEPTH_CLAMP) c->depth_clamp = 0;
+    if (off & SKGL_CAP_TIMER_QUERY) c->timer_query = 0;
+    if (off & SKGL_CAP_TEXTURE_SIZE) c->texture_size = 0;
+    if (off & SKGL_CAP_BUFFER_READ) c->buffer_read = 0;
+    if (off & SKGL_CAP_CLIP_CONTROL) c->clip_control = 0;
+    if (off & SKGL_CAP_MIP_RENDER_LEVEL) c->mip_render_level = 0;
+    /* the entry points behind them (void* -> function pointer through memcpy) */
+#define SKGL__OPT(field, wanted, name) \
+    p = skgl__load_opt(desc, wanted, name); memcpy(&ctx->gl.field, &p, sizeof p); if ((wanted) && !p) return SK_ERR_GL;
+    SKGL__OPT(FramebufferTexture, c->geometry_shader, es ? "glFramebufferTextureEXT" : "glFramebufferTexture")
+    SKGL__OPT(GetBufferSubData, c->buffer_read, "glGetBufferSubData")
+    SKGL__OPT(MapBufferRange, !c->buffer_read, "glMapBufferRange")
+    SKGL__OPT(UnmapBuffer, !c->buffer_read, "glUnmapBuffer")
+    SKGL__OPT(GetTexLevelParameteriv, c->texture_size, "glGetTexLevelParameteriv")
+    SKGL__OPT(GetQueryObjectui64v, c->timer_query, es ? "glGetQueryObjectui64vEXT" : "glGetQueryObjectui64v")
+    SKGL__OPT(PolygonMode, gl, "glPolygonMode")
+#undef SKGL__OPT
+    ctx->glsl_version = gl ? "#version 330 core\n"
+                        : c->geometry_shader ? "#version 320 es\n" SKGL__ES_PRECISION
+                                             : "#version 300 es\n" SKGL__ES_PRECISION;
+    return SK_OK;
+}
+
+SKGLDEF skgl_caps skgl_get_caps(const skgl_context *ctx)
+{
+    skgl_caps c;
+    if (ctx) return ctx->caps;
+    memset(&c, 0, sizeof c);
+    return c;
+}
+
 SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
 {
     skgl_context *ctx;
@@ -2698,7 +2925,8 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     skgl__int major = 0, minor = 0;
     int missing = 0;
     if (!desc || !desc->getproc || !out || desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC ||
-        (desc->clip_zero_to_one != 0 && desc->clip_zero_to_one != 1))
+        (desc->clip_zero_to_one != 0 && desc->clip_zero_to_one != 1) || (int)desc->api < SKGL_API_AUTO ||
+        (int)desc->api > SKGL_API_GLES3)
         return SK_ERR_INVALID_ARG;
     *out = NULL;
     ctx = (skgl_context *)SKGL_MALLOC(sizeof *ctx);
@@ -2712,13 +2940,15 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     if (missing) { SKGL_FREE(ctx); return SK_ERR_GL; }
     ctx->gl.GetIntegerv(SKGL__MAJOR_VERSION, &major);
     ctx->gl.GetIntegerv(SKGL__MINOR_VERSION, &minor);
-    if (major < 3 || (major == 3 && minor < 3)) { SKGL_FREE(ctx); return SK_ERR_GL; }
+    if (skgl__probe_caps(ctx, desc, major, minor) != SK_OK) { SKGL_FREE(ctx); return SK_ERR_GL; }
     ctx->debug = desc->debug;
-    ctx->timing = desc->timing;
+    ctx->timing = ctx->caps.timer_query ? desc->timing : 0;
     ctx->caller_owns = desc->caller_owns_state != 0;
     ctx->clip_zero_to_one = desc->clip_zero_to_one;
     if (ctx->clip_zero_to_one) {   /* its passes draw under OpenGL's clip depth, then give zero-to-one back */
-        void *p_ = desc->getproc("glClipControl");
+        void *p_ = ctx->caps.clip_control ? desc->getproc(ctx->caps.api == SKGL_API_GLES3 ? "glClipControlEXT"
+                                                                                          : "glClipControl")
+                                          : NULL;
         if (!p_) { SKGL_FREE(ctx); return SK_ERR_GL; }
         memcpy(&ctx->ClipControl, &p_, sizeof p_);
     }
@@ -2837,6 +3067,12 @@ static skgl__uint skgl__color_texture(skgl_context *ctx, skgl__st *st, skgl__int
    the passes only bind it. glDrawBuffer(s) and glReadBuffer are state of
    the framebuffer object, set here too. 0 when it is not complete. */
 #define SKGL__ALL_LAYERS (-2)   /* skgl__framebuffer's depth_layer: the whole texture, layered */
+/* no colour output (ES 3.0 has glDrawBuffers only) */
+static void skgl__draw_buffers_none(skgl_context *ctx)
+{
+    static const skgl__enum none = SKGL__NONE;
+    ctx->gl.DrawBuffers(1, &none);
+}
 static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint color, int color_layers,
                                     skgl__uint depth, int depth_layer)
 {
@@ -2861,7 +3097,7 @@ static skgl__uint skgl__framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint 
         else if (depth_layer == SKGL__ALL_LAYERS)   /* layered: gl_Layer picks the layer */
             gl->FramebufferTexture(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, depth, 0);
         else gl->FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT, SKGL__TEXTURE_2D, depth, 0);
-        gl->DrawBuffer(SKGL__NONE);
+        skgl__draw_buffers_none(ctx);
         gl->ReadBuffer(SKGL__NONE);
     }
     status = gl->CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER);
@@ -5058,7 +5294,6 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
 
 /* ---- 7. Point lights: cube shadow maps and VSDCT (King & Newhall 2004) --- */
 // >>point
-#define SKGL__MAX_TEXTURE_SIZE 0x0D33
 #define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
 
 struct skgl_point {
@@ -5204,7 +5439,7 @@ static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p,
             ctx->gl.GenFramebuffers(1, &p->fbo[f]);
             ctx->objects++;
             skgl__st_framebuffer(ctx, st, p->fbo[f]);   /* glReadBuffer: the read target's */
-            ctx->gl.DrawBuffer(SKGL__NONE);
+            skgl__draw_buffers_none(ctx);
             ctx->gl.ReadBuffer(SKGL__NONE);
         }
         skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
@@ -5217,7 +5452,7 @@ static int skgl__point_cube_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p,
             ctx->gl.GenFramebuffers(1, &p->fbo_layered);
             ctx->objects++;
             skgl__st_framebuffer(ctx, st, p->fbo_layered);
-            ctx->gl.DrawBuffer(SKGL__NONE);
+            skgl__draw_buffers_none(ctx);
             ctx->gl.ReadBuffer(SKGL__NONE);
         }
         skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo_layered);
@@ -6300,7 +6535,7 @@ static skgl__uint skgl__framebuffer_mrt(skgl_context *ctx, skgl__st *st, const s
         gl->DrawBuffers(n, bufs);
         gl->ReadBuffer(SKGL__COLOR_ATTACHMENT0);
     } else {
-        gl->DrawBuffer(SKGL__NONE);
+        skgl__draw_buffers_none(ctx);
         gl->ReadBuffer(SKGL__NONE);
     }
     if (gl->CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) != SKGL__FRAMEBUFFER_COMPLETE) {

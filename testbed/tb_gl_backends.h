@@ -14,6 +14,7 @@ extern "C" {
 typedef struct tb_gl_backend_handle {
     void *a, *b, *c, *d;     /* backend-private (context, display, surface, buffer) */
     const char *name;        /* "osmesa", "egl-device", "egl-surfaceless" */
+    int es;                  /* EGL: an OpenGL ES context (eglBindAPI(EGL_OPENGL_ES_API)) */
 } tb_gl_backend_handle;
 
 /* 0 on success (context current); -1 with a message in err */
@@ -23,8 +24,9 @@ int tb_gl_osmesa_make_current(tb_gl_backend_handle *h);
 void *tb_gl_osmesa_getproc(const char *name);
 
 /* hardware_only: skip Mesa's software device and the surfaceless platform;
-   debug: ask for a debug context (EGL_CONTEXT_OPENGL_DEBUG) */
-int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int debug, char *err, size_t errlen);
+   flags: TB_GL_CONTEXT_DEBUG asks for a debug context (EGL_CONTEXT_OPENGL_DEBUG),
+   TB_GL_CONTEXT_ES3 for OpenGL ES 3.0 or later instead of 3.3 core */
+int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int flags, char *err, size_t errlen);
 void tb_gl_egl_destroy(tb_gl_backend_handle *h);
 int tb_gl_egl_make_current(tb_gl_backend_handle *h);
 void *tb_gl_egl_getproc(const char *name);

@@ -49,6 +49,12 @@ static void tb_query_strings_(tb_gl_context *c) {
         get_integerv(0x821E /* GL_CONTEXT_FLAGS */, &mask);
         c->debug = (mask & 2 /* GL_CONTEXT_FLAG_DEBUG_BIT */) ? 1 : 0;
     }
+    if (c->h.es) {   /* ES has no GL_CONTEXT_PROFILE_MASK: drop its GL_INVALID_ENUM */
+        void *p3 = gp("glGetError");
+        unsigned (*get_error)(void);
+        memcpy(&get_error, &p3, sizeof p3);
+        while (get_error && get_error() != 0) {}
+    }
 }
 
 static void tb_append_(char *err, size_t errlen, const char *what, const char *msg) {
@@ -81,13 +87,14 @@ tb_gl_context *tb_gl_context_create_flags(tb_gl_backend want, int flags, char *e
             return NULL;
         }
     }
+    if (flags & TB_GL_CONTEXT_ES3) want = TB_GL_EGL;   /* OSMesa makes desktop contexts only */
     if (want == TB_GL_AUTO) try_egl_hw = try_osmesa = 1;
     else if (want == TB_GL_EGL) try_egl_any = 1;
     else try_osmesa = 1;
 
     msg[0] = 0;
     if (try_egl_hw || try_egl_any) {
-        if (tb_gl_egl_create(&c->h, try_egl_hw, (flags & TB_GL_CONTEXT_DEBUG) != 0, msg, sizeof msg) == 0) {
+        if (tb_gl_egl_create(&c->h, try_egl_hw, flags, msg, sizeof msg) == 0) {
             c->backend = TB_GL_EGL;
             tb_query_strings_(c);
             return c;

@@ -46,6 +46,8 @@ tb_gl_context *tb_gl_context_create(tb_gl_backend want, char *err, size_t errlen
                                    attribute for one: its context is made as usual, and
                                    GL_KHR_debug output still works there once GL_DEBUG_OUTPUT is
                                    enabled; tb_gl_context_debug() tells which one you got */
+#define TB_GL_CONTEXT_ES3 2     /* OpenGL ES 3.0 or later through EGL (EGL_OPENGL_ES_API; Mesa gives
+                                   its highest ES, 3.2 on llvmpipe): AUTO and OSMESA are taken as EGL */
 tb_gl_context *tb_gl_context_create_flags(tb_gl_backend want, int flags, char *err, size_t errlen);
 void tb_gl_context_destroy(tb_gl_context *ctx);          /* NULL is fine */
 int tb_gl_context_make_current(tb_gl_context *ctx);      /* 0 ok, -1 failure */

@@ -43,7 +43,13 @@ static EGLDisplay tb_platform_display_(EGLenum platform, void *native) {
 }
 
 /* context on an initialised display; 0 ok */
-static int tb_egl_context_on_(tb_gl_backend_handle *h, EGLDisplay dpy, int debug, char *err, size_t errlen) {
+static int tb_egl_context_on_(tb_gl_backend_handle *h, EGLDisplay dpy, int flags, char *err, size_t errlen) {
+    const int debug = (flags & TB_GL_CONTEXT_DEBUG) != 0, es = (flags & TB_GL_CONTEXT_ES3) != 0;
+    const EGLint es_attribs[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 3,
+        EGL_CONTEXT_MINOR_VERSION, 0,
+        EGL_NONE
+    };
     const EGLint ctx_attribs[] = {
         EGL_CONTEXT_MAJOR_VERSION, 3,
         EGL_CONTEXT_MINOR_VERSION, 3,
@@ -51,9 +57,9 @@ static int tb_egl_context_on_(tb_gl_backend_handle *h, EGLDisplay dpy, int debug
         debug ? EGL_CONTEXT_OPENGL_DEBUG : EGL_NONE, EGL_TRUE,
         EGL_NONE
     };
-    static const EGLint cfg_attribs[] = {
+    const EGLint cfg_attribs[] = {
         EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-        EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+        EGL_RENDERABLE_TYPE, es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT,
         EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_ALPHA_SIZE, 8,
         EGL_DEPTH_SIZE, 24,
         EGL_NONE
@@ -66,8 +72,8 @@ static int tb_egl_context_on_(tb_gl_backend_handle *h, EGLDisplay dpy, int debug
     EGLContext ctx;
     EGLSurface surf = EGL_NO_SURFACE;
 
-    if (!eglBindAPI(EGL_OPENGL_API)) {
-        snprintf(err, errlen, "eglBindAPI(EGL_OPENGL_API) failed (0x%x)", (unsigned)eglGetError());
+    if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) {
+        snprintf(err, errlen, "eglBindAPI failed (0x%x)", (unsigned)eglGetError());
         return -1;
     }
     if (!surfaceless || !tb_has_ext_(exts, "EGL_KHR_no_config_context")) {
@@ -76,9 +82,10 @@ static int tb_egl_context_on_(tb_gl_backend_handle *h, EGLDisplay dpy, int debug
             return -1;
         }
     }
-    ctx = eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, ctx_attribs);
+    ctx = eglCreateContext(dpy, cfg, EGL_NO_CONTEXT, es ? es_attribs : ctx_attribs);
     if (ctx == EGL_NO_CONTEXT) {
-        snprintf(err, errlen, "eglCreateContext (3.3 core) failed (0x%x)", (unsigned)eglGetError());
+        snprintf(err, errlen, "eglCreateContext (%s) failed (0x%x)", es ? "ES 3.0" : "3.3 core",
+                 (unsigned)eglGetError());
         return -1;
     }
     if (!surfaceless) {
@@ -98,10 +105,11 @@ static int tb_egl_context_on_(tb_gl_backend_handle *h, EGLDisplay dpy, int debug
     h->a = ctx;
     h->b = dpy;
     h->c = surf;
+    h->es = es;
     return 0;
 }
 
-int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int debug, char *err, size_t errlen) {
+int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int flags, char *err, size_t errlen) {
     char msg[256] = "no EGL display";
     const char *client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     PFNEGLQUERYDEVICESEXTPROC query_devices;
@@ -128,7 +136,7 @@ int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int debug, char
                     snprintf(msg, sizeof msg, "EGL device %d: eglInitialize failed", (int)i);
                     continue;
                 }
-                if (tb_egl_context_on_(h, dpy, debug, msg, sizeof msg) == 0) {
+                if (tb_egl_context_on_(h, dpy, flags, msg, sizeof msg) == 0) {
                     h->name = "egl-device";
                     return 0;
                 }
@@ -141,7 +149,7 @@ int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int debug, char
         EGLDisplay dpy = tb_platform_display_(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY);
         EGLint maj = 0, min = 0;
         if (dpy != EGL_NO_DISPLAY && eglInitialize(dpy, &maj, &min)) {
-            if (tb_egl_context_on_(h, dpy, debug, msg, sizeof msg) == 0) {
+            if (tb_egl_context_on_(h, dpy, flags, msg, sizeof msg) == 0) {
                 h->name = "egl-surfaceless";
                 return 0;
             }
@@ -158,7 +166,7 @@ int tb_gl_egl_create(tb_gl_backend_handle *h, int hardware_only, int debug, char
 
 int tb_gl_egl_make_current(tb_gl_backend_handle *h) {
     EGLSurface s = (EGLSurface)h->c;
-    if (!eglBindAPI(EGL_OPENGL_API)) return -1;
+    if (!eglBindAPI(h->es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) return -1;
     return eglMakeCurrent((EGLDisplay)h->b, s, s, (EGLContext)h->a) ? 0 : -1;
 }
 

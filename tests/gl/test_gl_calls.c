@@ -218,6 +218,8 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
     V(GetDoublev, (cg_enum pname, double *data), (pname, data), CG_QUERY, (void)0, (void)0) \
     V(GetBooleanv, (cg_enum pname, cg_bool *data), (pname, data), CG_QUERY, (void)0, (void)0) \
     R(cg_bool, IsEnabled, (cg_enum cap), (cap), CG_QUERY, (void)0, (void)0) \
+    R(const unsigned char *, GetString, (cg_enum name), (name), CG_QUERY, (void)0, (void)0) \
+    R(const unsigned char *, GetStringi, (cg_enum name, cg_uint i), (name, i), CG_QUERY, (void)0, (void)0) \
     V(Enable, (cg_enum cap), (cap), CG_CALL, (void)0, (void)0) \
     V(Disable, (cg_enum cap), (cap), CG_CALL, (void)0, (void)0) \
     V(Viewport, (cg_int x, cg_int y, cg_sizei w, cg_sizei h), (x, y, w, h), CG_CALL, (void)0, (void)0) \
