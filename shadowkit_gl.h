@@ -554,8 +554,8 @@ typedef struct skgl_caps {
     int clip_control;             /* glClipControl: GL 4.5 / GL_ARB_clip_control,
                                      GL_EXT_clip_control on ES (skgl_desc.clip_zero_to_one) */
     int mip_render_level;         /* rendering into one mip level while sampling another of
-                                     the same texture: GL; refused by ANGLE (WebGL2), so
-                                     PVSM's pyramid is built in a second texture there */
+                                     the same texture: GL, ES; refused by ANGLE (WebGL2), so
+                                     PVSM's pyramid reads copies of its levels there */
     int max_texture_size;         /* GL_MAX_TEXTURE_SIZE */
 } skgl_caps;
 
@@ -1478,6 +1478,7 @@ typedef enum skgl__glsl_id {
     SKGL__GLSL_SOFT_GBUFFER_FRAG,
     SKGL__GLSL_PCSS_MASK_FRAG,
     SKGL__GLSL_LAYERED_GEOM,
+    SKGL__GLSL_SOFT_DILATE_FRAG,
     SKGL__GLSL_N
 } skgl__glsl_id;
 static const char *skgl__glsl(skgl__glsl_id id);
@@ -2084,6 +2085,18 @@ static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope
                "in 1..8 (disable_pcf_kernel for one 2x2 compare)");
     return SK_OK;
 }
+
+/* >>needs  what a technique needs of the context (skgl_caps): SK_ERR_GL at
+   create, the message naming the feature and the extension that gives it */
+#define SKGL__NEED(have, fn, what, feature)                                                        \
+    do {                                                                                           \
+        if (!(have))                                                                               \
+            return skgl__fail(ctx, SK_ERR_GL, "%s: %s needs %s, which this context lacks", fn, what, \
+                              feature);                                                            \
+    } while (0)
+#define SKGL__FLOAT_RENDER "float colour targets (GL_EXT_color_buffer_float on OpenGL ES and WebGL2)"
+#define SKGL__FLOAT_BLEND "blending into float targets (GL_EXT_float_blend on OpenGL ES and WebGL2)"
+#define SKGL__GEOMETRY "geometry shaders (OpenGL 3.2, OpenGL ES 3.2)"
 
 /* >>args  a call's arguments: each check names the argument and its value */
 #define SKGL__TRY(call)                                                                            \
@@ -2879,7 +2892,7 @@ static sk_result skgl__probe_caps(skgl_context *ctx, const skgl_desc *desc, int 
     c->buffer_read = gl || c->webgl;
     c->clip_control = gl ? major > 4 || (major == 4 && minor >= 5) || skgl__has_extension(ctx, "GL_ARB_clip_control")
                          : skgl__has_extension(ctx, "GL_EXT_clip_control");
-    c->mip_render_level = gl;
+    c->mip_render_level = !c->webgl;
     ctx->gl.GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &c->max_texture_size);
     /* what the desc turns off */
     if (off & SKGL_CAP_GEOMETRY_SHADER) c->geometry_shader = 0;
@@ -3474,6 +3487,7 @@ struct skgl_caster {
     const char *vertex, *fragment, *varyings, *label;
     const char *names[SKGL_CASTER_UNIFORMS];
     char *forward;                         /* soft_cons.geom's skgl_caster_varyings(), or NULL */
+    char *decl_out, *decl_in;              /* the varyings as plain outputs and inputs, or NULL */
     skgl__caster_prog v[SKGL__CV_COUNT];
 };
 
@@ -3548,6 +3562,39 @@ static sk_result skgl__caster_forward(skgl_context *ctx, const char *v, char **t
     return SK_OK;
 }
 
+/* the varyings as plain declarations with the storage qualifier `dir`
+   ("out " or "in "), after `flat` where there is one: the vertex and
+   fragment stages of a program without a geometry shader (GLSL ES 3.00
+   has no interface blocks between stages). desc.varyings parsed already
+   (skgl__caster_forward). */
+static sk_result skgl__caster_decls(skgl_context *ctx, const char *v, const char *dir, char **text)
+{
+    size_t total = strlen(v), start, end, at, len, used = 0, i;
+    int flat;
+    char *out = (char *)SKGL_MALLOC(2 * total + 16 * (SKGL__CASTER_VARYINGS + 1) + 1);
+    *text = out;
+    if (!out) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
+    for (start = 0, end = 0; end < total; end++) {
+        if (v[end] != ';') continue;
+        if (skgl__varying_name(v + start, end - start, &at, &len, &flat)) {
+            used += (size_t)sprintf(out + used, "%s%s", flat ? "flat " : "", dir);
+            for (i = start; i < end; i++) {   /* the declaration less its `flat` */
+                if (flat && memcmp(v + i, "flat", 4) == 0 && (i == start || !isalnum((unsigned char)v[i - 1])) &&
+                    i + 4 < end && isspace((unsigned char)v[i + 4])) {
+                    i += 3;
+                    continue;
+                }
+                out[used++] = v[i];
+            }
+            out[used++] = ';';
+            out[used++] = '\n';
+        }
+        start = end + 1;
+    }
+    out[used] = 0;
+    return SK_OK;
+}
+
 /* compiles n strings (after #version) into a shader of the given type;
    0 with the log naming the caster and the stage on failure */
 static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, skgl__enum type,
@@ -3584,11 +3631,13 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
     const char *fs = skgl__glsl(variant == SKGL__CV_GBUF   ? SKGL__GLSL_SOFT_GBUFFER_FRAG
                                 : variant == SKGL__CV_CONS ? SKGL__GLSL_SOFT_CONS_FRAG
                                                            : SKGL__GLSL_DEPTH_FRAG);
-    /* vertex: the varyings as an output block (its members named as declared) */
+    /* vertex: the varyings as an output block for a geometry shader (its
+       members named as declared), plain outputs for a fragment shader */
     n = 0;
     src[n++] = "#define SKGL_CASTER 1\n";
     src[n++] = passes[variant];
-    if (c->varyings) { src[n++] = "out SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
+    if (c->varyings && gs) { src[n++] = "out SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
+    if (c->varyings && !gs) src[n++] = c->decl_out;
     src[n++] = "#line 1 1\n";
     src[n++] = c->vertex;
     src[n++] = "\n#line 10001 0\n";
@@ -3613,7 +3662,8 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
         n = 0;
         src[n++] = "#define SKGL_CASTER 1\n";
         src[n++] = passes[variant];
-        if (c->varyings) { src[n++] = "in SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
+        if (c->varyings && gs) { src[n++] = "in SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
+        if (c->varyings && !gs) src[n++] = c->decl_in;
         if (c->fragment) {
             src[n++] = "#define SKGL_CASTER_FRAGMENT 1\n";
             src[n++] = "#line 1 2\n";
@@ -3654,6 +3704,8 @@ static void skgl__caster_free(skgl_context *ctx, skgl_caster *c)
             ctx->objects--;
         }
     SKGL_FREE(c->forward);
+    SKGL_FREE(c->decl_out);
+    SKGL_FREE(c->decl_in);
     SKGL_FREE(c->text);
     SKGL_FREE(c);
 }
@@ -3705,7 +3757,9 @@ SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *
     c->varyings = desc->varyings && desc->varyings[0] ? skgl__caster_copy(&p, desc->varyings) : NULL;
     c->label = skgl__caster_copy(&p, desc->label ? desc->label : "caster");
     for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) c->names[k] = skgl__caster_copy(&p, desc->uniforms[k]);
-    if (c->varyings && (r = skgl__caster_forward(ctx, c->varyings, &c->forward)) != SK_OK) {
+    if (c->varyings && ((r = skgl__caster_forward(ctx, c->varyings, &c->forward)) != SK_OK ||
+                        (r = skgl__caster_decls(ctx, c->varyings, "out ", &c->decl_out)) != SK_OK ||
+                        (r = skgl__caster_decls(ctx, c->varyings, "in ", &c->decl_in)) != SK_OK)) {
         skgl__caster_free(ctx, c);
         return r;
     }
@@ -4067,6 +4121,12 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
                "in [0, 1000] (disable_psm_slide for none)");
     SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
+    SKGL__NEED(!d->layered || ctx->caps.geometry_shader, fn, "desc.layered", SKGL__GEOMETRY);
+    SKGL__NEED(ctx->caps.float_render || (d->technique != SKGL_FERKO && d->technique != SKGL_RMSM), fn,
+               d->technique == SKGL_FERKO ? "SKGL_FERKO's analysis" : "SKGL_RMSM's page requests",
+               SKGL__FLOAT_RENDER);
+    SKGL__NEED(ctx->caps.float_blend || d->technique != SKGL_RMSM, fn, "SKGL_RMSM's page requests",
+               SKGL__FLOAT_BLEND);
     SKGL__RULE(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f, fn, "lspsm.zeta", d->lspsm.zeta, "in (0, 0.5)");
     SKGL__RULE(d->lspsm.sigma > 0.0f && d->lspsm.sigma <= 1e3f, fn, "lspsm.sigma", d->lspsm.sigma, "in (0, 1000]");
     SKGL__RULE(d->lspsm.h_max >= 1 && (!lspsm || d->lspsm.h_max <= SKGL_MAX_CASCADES), fn, "lspsm.h_max",
@@ -5379,6 +5439,12 @@ static sk_result skgl__point_fill(skgl_context *ctx, skgl__st *st, skgl_point *p
     unsigned short *buf;
     int f;
     if (p->filled_res != 0 && memcmp(&p->layout, l, sizeof *l) == 0) return SK_OK;
+    if (!ctx->caps.norm16) {   /* SK_POINT_VSDCT_ANALYTIC: the shader maps the faces itself */
+        p->layout = *l;
+        p->layout_serial++;
+        p->filled_res = l->face_res;
+        return SK_OK;
+    }
     buf = (unsigned short *)SKGL_MALLOC(sizeof(unsigned short) * face_n * 6);
     if (!buf) return SK_ERR_CAPACITY;
     if (sk_vsdct_indirection_fill(l, p->ni, buf) != SK_OK) { SKGL_FREE(buf); return SK_ERR_INVALID_ARG; }
@@ -5484,6 +5550,7 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
     SKGL__RULE(d->screen_h >= 0, fn, "screen_h", d->screen_h, "0 or more");
     SKGL__RULE(d->vsdct_grey_levels >= 1, fn, "vsdct_grey_levels", d->vsdct_grey_levels, "1 or more");
     SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
+    SKGL__NEED(!d->layered || ctx->caps.geometry_shader, fn, "desc.layered", SKGL__GEOMETRY);
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -5525,10 +5592,11 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     if (!p->id) p->id = ++ctx->next_id;
     p->tex_level = p->fbo_level = -1;
     /* the mask program: the technique's define, the snippet, the pass */
-    n = strlen(skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL)) + 64;
+    n = strlen(skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL)) + 96;
     fs = (char *)SKGL_MALLOC(n);
     if (!fs) { SKGL_FREE(p); return SK_ERR_CAPACITY; }
     strcpy(fs, d.technique == SKGL_POINT_VSDCT ? "#define SK_POINT_VSDCT 1\n" : "#define SK_POINT_VSDCT 0\n");
+    if (!ctx->caps.norm16) strcat(fs, "#define SK_POINT_VSDCT_ANALYTIC 1\n");
     strcat(fs, skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL));
     p->prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), fs, skgl__glsl(SKGL__GLSL_POINT_MASK_FRAG));
     SKGL_FREE(fs);
@@ -6395,6 +6463,7 @@ static void skgl__ftimer_end(skgl_context *ctx, skgl__frame_timer *t)
 
 /* 9.2 the light ----------------------------------------------------------- */
 #define SKGL__SOFT_LEVELS 14               /* the low-res map's levels: 8192 down to 1 */
+#define SKGL__SOFT_FINE 4                  /* PVSM without a geometry shader: fine texels per low-res texel side */
 
 struct skgl_soft {
     skgl_soft_desc desc;
@@ -6419,6 +6488,15 @@ struct skgl_soft {
                                                           low-res map (mip levels); the plain map */
     skgl__uint fb_level[SKGL__SOFT_LEVELS];            /* level l of low_color (l >= 1) */
     int low_levels;
+    /* PVSM without a geometry shader (skgl_caps.geometry_shader 0): the
+       low-resolution map drawn SKGL__SOFT_FINE times finer into low_fine
+       (DEPTH32F) and reduced by prog_dilate into low_color and low_true */
+    skgl__uint low_fine, fb_fine, prog_dilate;
+    /* PVSM where a texture cannot be sampled while one of its levels is
+       drawn (skgl_caps.mip_render_level 0: ANGLE calls it a feedback loop):
+       level l of the pyramid is also written to low_copy[l], a texture of
+       its own, which level l + 1 reads */
+    skgl__uint low_copy[SKGL__SOFT_LEVELS];
     skgl__uint smtg, fb_smtg;              /* PVSM: RGBA32F, grid x (grid + 1): the SMTG, then a row of counts */
     skgl__uint screen, acc, fb_kernel, fb_acc;         /* PVSM: a 3-layer array (kernel, prediction,
                                                           plane), the accumulation */
@@ -6472,6 +6550,8 @@ static sk_result skgl__soft_validate(skgl_context *ctx, const skgl_soft_desc *d)
     skgl__int max_size = 0;
     SKGL__RULE(d->technique == SKGL_SOFT_PCSS || d->technique == SKGL_SOFT_PVSM, fn, "technique", d->technique,
                "one of skgl_soft_technique");
+    SKGL__NEED(ctx->caps.float_render || d->technique != SKGL_SOFT_PVSM, fn, "SKGL_SOFT_PVSM", SKGL__FLOAT_RENDER);
+    SKGL__NEED(ctx->caps.float_blend || d->technique != SKGL_SOFT_PVSM, fn, "SKGL_SOFT_PVSM", SKGL__FLOAT_BLEND);
     ctx->gl.GetIntegerv(SKGL__MAX_TEXTURE_SIZE, &max_size);
     SKGL__RULE(d->resolution >= 16 && d->resolution <= max_size, fn, "resolution", d->resolution,
                "in 16..GL_MAX_TEXTURE_SIZE");
@@ -6575,6 +6655,9 @@ static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
     int i;
     skgl__delete_program(ctx, &s->prog_mask);
     skgl__delete_program(ctx, &s->prog_cons);
+    skgl__delete_program(ctx, &s->prog_dilate);
+    skgl__delete_texture(ctx, &s->low_fine);
+    skgl__delete_framebuffer(ctx, &s->fb_fine);
     skgl__delete_program(ctx, &s->prog_smtg);
     skgl__delete_program(ctx, &s->prog_reduce);
     skgl__delete_program(ctx, &s->prog_filter);
@@ -6586,6 +6669,7 @@ static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
     skgl__delete_texture(ctx, &s->low_true);
     skgl__delete_framebuffer(ctx, &s->fb_low);
     for (i = 0; i < SKGL__SOFT_LEVELS; i++) skgl__delete_framebuffer(ctx, &s->fb_level[i]);
+    for (i = 0; i < SKGL__SOFT_LEVELS; i++) skgl__delete_texture(ctx, &s->low_copy[i]);
     skgl__delete_texture(ctx, &s->smtg);
     skgl__delete_framebuffer(ctx, &s->fb_smtg);
     skgl__soft_free_screen(ctx, s);
@@ -6602,6 +6686,20 @@ static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
     s->rects = NULL;
 }
 
+/* the fine map's side without a geometry shader (.disable_conservative:
+   the low-res map's own, plain) */
+static int skgl__soft_fine_factor(const skgl_context *ctx, const skgl_soft *s)
+{
+    int k = SKGL__SOFT_FINE;
+    if (s->desc.disable_conservative) return 1;
+    while (k > 1 && s->desc.lowres * k > ctx->caps.max_texture_size) k /= 2;
+    return k;
+}
+static int skgl__soft_fine_size(const skgl_context *ctx, const skgl_soft *s)
+{
+    return s->desc.lowres * skgl__soft_fine_factor(ctx, s);
+}
+
 /* the programs of the technique, and of the G-buffer */
 static sk_result skgl__soft_programs(skgl_context *ctx, skgl_soft *s)
 {
@@ -6610,19 +6708,23 @@ static sk_result skgl__soft_programs(skgl_context *ctx, skgl_soft *s)
         s->prog_mask = skgl__program(ctx, full, common, skgl__glsl(SKGL__GLSL_PCSS_MASK_FRAG));
     } else {
         s->prog_mask = skgl__program(ctx, full, common, skgl__glsl(SKGL__GLSL_SOFT_KERNEL_FRAG));
-        s->prog_cons = skgl__program_gs(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM),
-                                        skgl__glsl(SKGL__GLSL_SOFT_CONS_FRAG));
+        if (ctx->caps.geometry_shader)
+            s->prog_cons = skgl__program_gs(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT),
+                                            skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM), skgl__glsl(SKGL__GLSL_SOFT_CONS_FRAG));
+        else
+            s->prog_dilate = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_DILATE_FRAG), NULL);
         s->prog_smtg = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_SMTG_VERT), skgl__glsl(SKGL__GLSL_SOFT_SMTG_FRAG),
                                      NULL);
         s->prog_reduce = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_REDUCE_VERT),
-                                       skgl__glsl(SKGL__GLSL_SOFT_REDUCE_FRAG), NULL);
+                                       ctx->caps.mip_render_level ? "" : "#define SKGL_REDUCE_COPY 1\n",
+                                       skgl__glsl(SKGL__GLSL_SOFT_REDUCE_FRAG));
         s->prog_filter = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_FILTER_FRAG), NULL);
         s->prog_resolve = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_RESOLVE_FRAG), NULL);
     }
     s->prog_gbuf = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_VERT), skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_FRAG),
                                  NULL);
     if (!s->prog_mask || !s->prog_gbuf ||
-        (s->desc.technique == SKGL_SOFT_PVSM && (!s->prog_cons || !s->prog_smtg || !s->prog_reduce ||
+        (s->desc.technique == SKGL_SOFT_PVSM && ((!s->prog_cons && !s->prog_dilate) || !s->prog_smtg || !s->prog_reduce ||
                                                  !s->prog_filter || !s->prog_resolve)))
         return SK_ERR_GL;   /* the log holds the compiler's or linker's message */
     return SK_OK;
@@ -6660,13 +6762,21 @@ static void skgl__soft_constants(skgl_context *ctx, skgl__st *st, skgl_soft *s)
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_static_scene"), d->static_scene);
         skgl__u1f(gl, gl->GetUniformLocation(p, "u_antialias"), d->disable_antialias ? 0.0f : 1.0f);
         skgl__u1f(gl, gl->GetUniformLocation(p, "u_res_scale"), d->resolution_scale);
-        p = s->prog_cons;
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-        s->cons_u_view_proj = gl->GetUniformLocation(p, "u_view_proj");
-        s->cons_u_model = gl->GetUniformLocation(p, "u_model");
-        texel[0] = texel[1] = 2.0f / (float)d->lowres;
-        if (gl->GetUniformLocation(p, "u_texel") >= 0) gl->Uniform2fv(gl->GetUniformLocation(p, "u_texel"), 1, texel);
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_conservative"), !d->disable_conservative);
+        if (s->prog_cons) {
+            p = s->prog_cons;
+            skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+            s->cons_u_view_proj = gl->GetUniformLocation(p, "u_view_proj");
+            s->cons_u_model = gl->GetUniformLocation(p, "u_model");
+            texel[0] = texel[1] = 2.0f / (float)d->lowres;
+            if (gl->GetUniformLocation(p, "u_texel") >= 0)
+                gl->Uniform2fv(gl->GetUniformLocation(p, "u_texel"), 1, texel);
+            skgl__u1i(gl, gl->GetUniformLocation(p, "u_conservative"), !d->disable_conservative);
+        } else {
+            p = s->prog_dilate;
+            skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+            skgl__u1i(gl, gl->GetUniformLocation(p, "u_fine"), 0);
+            skgl__u1i(gl, gl->GetUniformLocation(p, "u_factor"), skgl__soft_fine_factor(ctx, s));
+        }
         p = s->prog_smtg;
         skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
         s->smtg_u_width = gl->GetUniformLocation(p, "u_width");
@@ -6707,13 +6817,23 @@ static void skgl__soft_levels(skgl_context *ctx, skgl__int ifmt, int w, int h, i
     gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAX_LEVEL, levels - 1);
 }
 
+/* the framebuffer just made (bound) also draws its second output into
+   level 0 of copy; 1 when still complete */
+static int skgl__attach_copy(skgl_context *ctx, skgl__uint copy)
+{
+    static const skgl__enum bufs[2] = {SKGL__COLOR_ATTACHMENT0, SKGL__COLOR_ATTACHMENT1};
+    ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT1, SKGL__TEXTURE_2D, copy, 0);
+    ctx->gl.DrawBuffers(2, bufs);
+    return ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+}
+
 /* the maps, the SMTG and their framebuffers, the read-back ring and the
    CPU side of the prediction */
 static sk_result skgl__soft_targets(skgl_context *ctx, skgl__st *st, skgl_soft *s)
 {
     const skgl_soft_desc *d = &s->desc;
     const char *fn = "skgl_soft_create";
-    skgl__uint low[2];
+    skgl__uint low[3] = {0, 0, 0};
     int l, g = d->grid, ok;
     s->map = skgl__color_texture(ctx, st, SKGL__DEPTH_COMPONENT32F, d->resolution, d->resolution, 1,
                                  SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
@@ -6726,10 +6846,24 @@ static sk_result skgl__soft_targets(skgl_context *ctx, skgl__st *st, skgl_soft *
     s->low_true = skgl__color_texture(ctx, st, SKGL__R32F, d->lowres, d->lowres, 1, SKGL__RED, SKGL__FLOAT, NULL);
     low[0] = s->low_color;
     low[1] = s->low_true;
-    s->fb_low = skgl__framebuffer_mrt(ctx, st, low, 2, 0, 0, 0);
+    if (!ctx->caps.mip_render_level) {
+        int side = d->lowres;
+        for (l = 0; l + 1 < s->low_levels; l++, side = side > 1 ? side / 2 : 1)
+            s->low_copy[l] = skgl__color_texture(ctx, st, SKGL__R32F, side, side, 1, SKGL__RED, SKGL__FLOAT, NULL);
+        low[2] = s->low_copy[0];
+    }
+    s->fb_low = skgl__framebuffer_mrt(ctx, st, low, low[2] ? 3 : 2, 0, 0, 0);
     ok = s->fb_low != 0;
+    if (ok && s->prog_dilate) {
+        int fine = skgl__soft_fine_size(ctx, s);
+        s->low_fine = skgl__color_texture(ctx, st, SKGL__DEPTH_COMPONENT32F, fine, fine, 1, SKGL__DEPTH_COMPONENT,
+                                          SKGL__FLOAT, NULL);
+        s->fb_fine = skgl__framebuffer_mrt(ctx, st, NULL, 0, 0, s->low_fine, 0);
+        if (!s->fb_fine) return skgl__fail(ctx, SK_ERR_GL, "%s: the DEPTH32F fine low-res map's framebuffer is incomplete", fn);
+    }
     for (l = 1; ok && l < s->low_levels; l++)
-        ok = (s->fb_level[l] = skgl__framebuffer_mrt(ctx, st, &s->low_color, 1, l, 0, 0)) != 0;
+        ok = (s->fb_level[l] = skgl__framebuffer_mrt(ctx, st, &s->low_color, 1, l, 0, 0)) != 0 &&
+             (!s->low_copy[l] || skgl__attach_copy(ctx, s->low_copy[l]));
     if (!ok) return skgl__fail(ctx, SK_ERR_GL, "%s: R32F targets are not renderable here", fn);
     s->smtg = skgl__color_texture(ctx, st, SKGL__RGBA32F, g, g + 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
     s->fb_smtg = skgl__framebuffer_mrt(ctx, st, &s->smtg, 1, 0, 0, 0);
@@ -7164,6 +7298,37 @@ static sk_result skgl__soft_pcss(skgl_context *ctx, skgl__st *st, skgl_soft *s, 
    before the near plane. Then the pyramid's levels, one triangle each
    (soft_reduce.vert), reading level l - 1 through the non-mipmap point
    sampler while level l is drawn. */
+/* PVSM step 1 without a geometry shader: the casters plain into the fine
+   DEPTH32F map (depth test, no float blending), then soft_dilate.frag into
+   level 0 of the pyramid and the plain map */
+static sk_result skgl__soft_lowres_fine(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene)
+{
+    static const float one = 1.0f;
+    skgl__unitbind b;
+    skgl_draw_info info;
+    int fine = skgl__soft_fine_size(ctx, s);
+    sk_result rc;
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_fine);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, fine, fine);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, SKGL__CV_DEPTH);
+    ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 1);
+    skgl__soft_info(&info, SKGL_PASS_AREA, 0);
+    rc = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
+    skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 0);
+    s->stats.passes++;
+    s->stats.texels += (double)fine * fine;
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_low);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->desc.lowres, s->desc.lowres);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_dilate);
+    skgl__bind_unit(&b, 0, SKGL__T_2D, s->low_fine, ctx->point_sampler);
+    skgl__st_units(ctx, st, &b, 1);
+    ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
+    return rc;
+}
+
 static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene)
 {
     static const float one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
@@ -7172,24 +7337,29 @@ static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s
     int r = s->desc.lowres, l;
     sk_result rc;
     skgl__ftimer_begin(ctx, &s->timer, 1);
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_low);
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, r, r);
-    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
-    skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
-    ctx->gl.ClearBufferfv(SKGL__COLOR, 0, one);
-    ctx->gl.ClearBufferfv(SKGL__COLOR, 1, one);
-    ctx->pass_texel[0] = ctx->pass_texel[1] = 2.0f / (float)r;
-    ctx->pass_conservative = !s->desc.disable_conservative;
-    skgl__soft_casters(ctx, st, s, s->prog_cons, s->cons_u_view_proj, s->cons_u_model, SKGL__CV_CONS);
-    skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
-    /* the alpha equation is the SMTG pass's: R32F targets have no alpha */
-    skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__MIN, SKGL__FUNC_ADD, 0, 0);
-    skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 1);
-    skgl__soft_info(&info, SKGL_PASS_AREA, 0);
-    rc = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
-    skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 0);
-    s->stats.passes++;
-    s->stats.texels += (double)r * r;
+    if (s->prog_dilate) {
+        rc = skgl__soft_lowres_fine(ctx, st, s, scene);
+    } else {
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_low);
+        skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, r, r);
+        skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+        skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
+        ctx->gl.ClearBufferfv(SKGL__COLOR, 0, one);
+        ctx->gl.ClearBufferfv(SKGL__COLOR, 1, one);
+        if (s->low_copy[0]) ctx->gl.ClearBufferfv(SKGL__COLOR, 2, one);
+        ctx->pass_texel[0] = ctx->pass_texel[1] = 2.0f / (float)r;
+        ctx->pass_conservative = !s->desc.disable_conservative;
+        skgl__soft_casters(ctx, st, s, s->prog_cons, s->cons_u_view_proj, s->cons_u_model, SKGL__CV_CONS);
+        skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
+        /* the alpha equation is the SMTG pass's: R32F targets have no alpha */
+        skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__MIN, SKGL__FUNC_ADD, 0, 0);
+        skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 1);
+        skgl__soft_info(&info, SKGL_PASS_AREA, 0);
+        rc = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
+        skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 0);
+        s->stats.passes++;
+        s->stats.texels += (double)r * r;
+    }
     skgl__st_screen_pass(ctx, st);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, r / 2, r / 2);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_reduce);
@@ -7197,6 +7367,10 @@ static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s
     skgl__st_units(ctx, st, &b, 1);
     for (l = 1; l < s->low_levels; l++) {
         skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_level[l]);
+        if (s->low_copy[0]) {   /* the level below from its copy */
+            skgl__bind_unit(&b, 0, SKGL__T_2D, s->low_copy[l - 1], ctx->point_sampler);
+            skgl__st_units(ctx, st, &b, 1);
+        }
         ctx->gl.DrawArrays(SKGL__TRIANGLES, 3 * (l - 1), 3);
     }
     skgl__ftimer_end(ctx, &s->timer);
@@ -7667,7 +7841,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   them; mode 0 weighs the same texels with the same weights, one\n"
     "   comparison each. A surface facing away from the light (given a normal) is\n"
     "   in its own shadow: 0, whatever the map says near its silhouette. */\n"
-    "uniform sampler2DArrayShadow sk_shadow_map;\n"
+    "uniform highp sampler2DArrayShadow sk_shadow_map;\n"
     "uniform mat4 sk_light_vp[8];\n"
     "uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */\n"
     "uniform int sk_layers;\n"
@@ -7685,7 +7859,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "uniform vec3 sk_light_dir;         /* travel direction, unit */\n"
     "uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */\n"
     "uniform int sk_rmsm;               /* 1: a virtual map through sk_page_table */\n"
-    "uniform sampler2D sk_page_table;   /* RMSM: per page of every level, (slot x, slot y)/255 and a = resident */\n"
+    "uniform highp sampler2D sk_page_table;   /* RMSM: per page of every level, (slot x, slot y)/255 and a = resident */\n"
     "uniform int sk_rmsm_pages0;        /* RMSM: pages per side at level 0 */\n"
     "uniform int sk_rmsm_levels;        /* RMSM: levels, the last one page */\n"
     "uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered */\n"
@@ -8136,7 +8310,9 @@ static const char skgl__src_point_sample_glsl[] =
     "     atlas (u, v) (face selection, side divide, (s, t) remap, scale and face\n"
     "     offset in one lookup, King & Newhall Fig. 5.4.7), kept half a texel inside the\n"
     "     face so a 2x2 comparison never reads across a seam (King & Newhall: \"Sampling\n"
-    "     across Cube Map Seams\"); then sampler2DShadow in the atlas.\n"
+    "     across Cube Map Seams\"); then sampler2DShadow in the atlas. Where RG16\n"
+    "     textures are missing (OpenGL ES 3.0, WebGL2), SK_POINT_VSDCT_ANALYTIC 1\n"
+    "     computes the same (u, v) in the shader (the indirection is not used).\n"
     "   Both store window depth per Eq. (5.4.6): z = scale / MA + bias, MA the\n"
     "   major-axis component of the light-to-point vector (the eye depth in the\n"
     "   face that holds it), so both compare the same way.\n"
@@ -8160,6 +8336,9 @@ static const char skgl__src_point_sample_glsl[] =
     "#ifndef SK_POINT_VSDCT\n"
     "#define SK_POINT_VSDCT 0\n"
     "#endif\n"
+    "#ifndef SK_POINT_VSDCT_ANALYTIC\n"
+    "#define SK_POINT_VSDCT_ANALYTIC 0\n"
+    "#endif\n"
     "uniform vec3 sk_point_pos;          /* light position, world */\n"
     "uniform float sk_point_range;       /* far plane of the faces */\n"
     "uniform vec2 sk_point_depth;        /* Eq. (5.4.6): (scale, bias) of sk_vsdct_depth_coeffs */\n"
@@ -8173,11 +8352,11 @@ static const char skgl__src_point_sample_glsl[] =
     "float sk_point_receiver_slack = 0.0;\n"
     "uniform int sk_point_pcf;           /* 0: one 2x2 comparison; r: (2r)^2 of them */\n"
     "#if SK_POINT_VSDCT\n"
-    "uniform sampler2DShadow sk_point_atlas;\n"
-    "uniform samplerCube sk_point_indirection;\n"
+    "uniform highp sampler2DShadow sk_point_atlas;\n"
+    "uniform highp samplerCube sk_point_indirection;\n"
     "uniform vec4 sk_point_faces[6];     /* per face: its sub-rect inset by half a texel, (u0, v0, u1, v1) */\n"
     "#else\n"
-    "uniform samplerCubeShadow sk_point_cube;\n"
+    "uniform highp samplerCubeShadow sk_point_cube;\n"
     "#endif\n"
     "\n"
     "/* the major-axis component of |v| along the axis that d's face looks down */\n"
@@ -8198,32 +8377,53 @@ static const char skgl__src_point_sample_glsl[] =
     "    vec3 ad = abs(d);\n"
     "    int f = ad.x >= ad.y && ad.x >= ad.z ? (d.x >= 0.0 ? 0 : 1) : ad.y >= ad.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5);\n"
     "    vec4 r = sk_point_faces[f];\n"
+    "#if SK_POINT_VSDCT_ANALYTIC\n"
+    "    /* the indirection's arithmetic in the shader (no RG16 texture, which\n"
+    "       OpenGL ES 3.0 and WebGL2 lack): (s, t) on the face's axes (the GL\n"
+    "       cube map convention, sk_cube_face_view's), then into the face's\n"
+    "       sub-rect, whose full extent is the inset one grown by half a texel */\n"
+    "    const vec3 sk_axis_s[6] = vec3[6](vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0),\n"
+    "                                      vec3(1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(-1.0, 0.0, 0.0));\n"
+    "    const vec3 sk_axis_t[6] = vec3[6](vec3(0.0, -1.0, 0.0), vec3(0.0, -1.0, 0.0), vec3(0.0, 0.0, 1.0),\n"
+    "                                      vec3(0.0, 0.0, -1.0), vec3(0.0, -1.0, 0.0), vec3(0.0, -1.0, 0.0));\n"
+    "    float ma = max(ad.x, max(ad.y, ad.z));\n"
+    "    vec2 st = 0.5 * vec2(dot(sk_axis_s[f], d), dot(sk_axis_t[f], d)) / ma + 0.5;\n"
+    "    vec2 texel = 1.0 / vec2(textureSize(sk_point_atlas, 0));\n"
+    "    vec2 uv = clamp(r.xy - 0.5 * texel + st * (r.zw - r.xy + texel), r.xy, r.zw);\n"
+    "#else\n"
     "    vec2 uv = clamp(texture(sk_point_indirection, d).rg, r.xy, r.zw);\n"
+    "#endif\n"
     "    return texture(sk_point_atlas, vec3(uv, ref));\n"
     "#else\n"
     "    return texture(sk_point_cube, vec4(d, ref));\n"
     "#endif\n"
     "}\n"
     "\n"
-    "/* the window depth (Eq. 5.4.6) of the receiver's tangent plane (normal n\n"
-    "   through v, both relative to the light) along direction d, the ray's\n"
-    "   distance to the plane kept within [1/2, 2] of v's (at grazing incidence\n"
-    "   the plane leaves the tap's neighbourhood) */\n"
-    "float sk_point_plane_depth(vec3 v, vec3 n, vec3 d)\n"
+    "/* the major-axis distance (MA, Eq. 5.4.6's) at which the receiver's\n"
+    "   tangent plane (normal n through v, both relative to the light) meets the\n"
+    "   ray along direction d, the ray's distance to the plane kept within\n"
+    "   [1/2, 2] of v's (at grazing incidence the plane leaves the tap's\n"
+    "   neighbourhood) */\n"
+    "float sk_point_plane_ma(vec3 v, vec3 n, vec3 d)\n"
     "{\n"
     "    float t = dot(n, v) / dot(n, d);\n"
     "    float t0 = max(abs(v.x), max(abs(v.y), abs(v.z))) / max(sk_point_ma(abs(d), d), 1e-30);\n"
     "    t = clamp(t, 0.5 * t0, 2.0 * t0);\n"
-    "    return sk_point_depth.x / max(t * sk_point_ma(abs(d), d), 1e-30) + sk_point_depth.y;\n"
+    "    return t * sk_point_ma(abs(d), d);\n"
     "}\n"
     "\n"
-    "/* one tap along d compared with the receiver plane: the plane's depth\n"
-    "   along d, less its change over one texel in each face axis (t1, t2 of\n"
-    "   length one texel at d) */\n"
+    "/* one tap along d compared with the receiver plane: the plane's window\n"
+    "   depth along d (Eq. 5.4.6), less its change over one texel in each face\n"
+    "   axis (t1, t2 of length one texel at d). The change is taken on the\n"
+    "   distances, |dz/dMA| = |scale| / MA^2 times the change of MA: a difference\n"
+    "   of two window depths near 1 would keep only a few bits (and none on GPUs\n"
+    "   whose division is not correctly rounded). */\n"
     "float sk_point_plane_tap(vec3 v, vec3 n, vec3 d, vec3 t1, vec3 t2)\n"
     "{\n"
-    "    float z = sk_point_plane_depth(v, n, d);\n"
-    "    float slope = abs(sk_point_plane_depth(v, n, d + t1) - z) + abs(sk_point_plane_depth(v, n, d + t2) - z);\n"
+    "    float m = max(sk_point_plane_ma(v, n, d), 1e-30);\n"
+    "    float z = sk_point_depth.x / m + sk_point_depth.y;\n"
+    "    float dz_dma = abs(sk_point_depth.x) / (m * m);\n"
+    "    float slope = dz_dma * (abs(sk_point_plane_ma(v, n, d + t1) - m) + abs(sk_point_plane_ma(v, n, d + t2) - m));\n"
     "    /* the receiver's own uncertainty: dz/dMA = -scale / MA^2 at v */\n"
     "    float ma = max(abs(v.x), max(abs(v.y), abs(v.z)));\n"
     "    float slack = abs(sk_point_depth.x) / max(ma * ma, 1e-30) * sk_point_receiver_slack;\n"
@@ -8647,17 +8847,29 @@ static const char skgl__src_soft_reduce_frag[] =
     "   be a rendering feedback loop. */\n"
     "uniform sampler2D u_src;\n"
     "flat in int v_level;\n"
-    "out vec4 o_min;\n"
+    "layout(location = 0) out vec4 o_min;\n"
+    "#ifdef SKGL_REDUCE_COPY\n"
+    "/* skgl_caps.mip_render_level 0 (WebGL2: ANGLE refuses to sample a texture\n"
+    "   while one of its levels is drawn, whatever the sampler): u_src is a\n"
+    "   single-level copy of the level below, and this level goes to a copy too */\n"
+    "layout(location = 1) out vec4 o_copy;\n"
+    "#define SKGL_SRC_LEVEL 0\n"
+    "#else\n"
+    "#define SKGL_SRC_LEVEL (v_level - 1)\n"
+    "#endif\n"
     "void main()\n"
     "{\n"
-    "    ivec2 d = ivec2(gl_FragCoord.xy) * 2, size = textureSize(u_src, v_level - 1);\n"
+    "    ivec2 d = ivec2(gl_FragCoord.xy) * 2, size = textureSize(u_src, SKGL_SRC_LEVEL);\n"
     "    vec4 m = vec4(1e30);\n"
     "    for (int y = 0; y < 2; y++)\n"
     "        for (int x = 0; x < 2; x++) {\n"
     "            ivec2 s = d + ivec2(x, y);\n"
-    "            if (s.x < size.x && s.y < size.y) m = min(m, texelFetch(u_src, s, v_level - 1));\n"
+    "            if (s.x < size.x && s.y < size.y) m = min(m, texelFetch(u_src, s, SKGL_SRC_LEVEL));\n"
     "        }\n"
     "    o_min = m;\n"
+    "#ifdef SKGL_REDUCE_COPY\n"
+    "    o_copy = m;\n"
+    "#endif\n"
     "}\n"
     ;
 static const char skgl__src_soft_filter_frag[] =
@@ -8847,6 +9059,7 @@ static const char skgl__src_soft_cons_frag[] =
     "flat in vec3 g_edge[3];\n"
     "layout(location = 0) out vec4 o_cons;\n"
     "layout(location = 1) out vec4 o_true;\n"
+    "layout(location = 2) out vec4 o_cons_copy;   /* skgl_soft's low_copy[0], where it has one */\n"
     "void main()\n"
     "{\n"
     "#ifdef SKGL_CASTER_FRAGMENT\n"
@@ -8858,6 +9071,7 @@ static const char skgl__src_soft_cons_frag[] =
     "                  dot(p, g_edge[2].xy) <= g_edge[2].z;\n"
     "    o_cons = vec4(gl_FragCoord.z);\n"
     "    o_true = vec4(inside ? gl_FragCoord.z : 1.0);\n"
+    "    o_cons_copy = o_cons;\n"
     "}\n"
     ;
 static const char skgl__src_soft_gbuffer_vert[] =
@@ -9002,6 +9216,36 @@ static const char skgl__src_layered_geom[] =
     "#endif\n"
     "}\n"
     ;
+static const char skgl__src_soft_dilate_frag[] =
+    "/* PVSM step 1 without a geometry shader (OpenGL ES 3.0, WebGL2): the\n"
+    "   low-resolution map was rendered u_factor times finer with plain\n"
+    "   rasterisation into u_fine (window depth); each low-resolution texel takes\n"
+    "   o_cons, the minimum over its u_factor x u_factor block grown by one fine\n"
+    "   texel on every side (what conservative rasterisation catches of every\n"
+    "   caster at least one fine texel wide; thinner ones can slip between the\n"
+    "   fine texels' centres), and o_true, the minimum of the four fine texels\n"
+    "   around its centre (the plain map). */\n"
+    "uniform sampler2D u_fine;\n"
+    "uniform int u_factor;\n"
+    "layout(location = 0) out vec4 o_cons;\n"
+    "layout(location = 1) out vec4 o_true;\n"
+    "layout(location = 2) out vec4 o_cons_copy;   /* skgl_soft's low_copy[0], where it has one */\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 last = textureSize(u_fine, 0) - 1;\n"
+    "    ivec2 base = ivec2(gl_FragCoord.xy) * u_factor;\n"
+    "    float m = 1.0;\n"
+    "    for (int y = -1; y <= u_factor; y++)\n"
+    "        for (int x = -1; x <= u_factor; x++)\n"
+    "            m = min(m, texelFetch(u_fine, clamp(base + ivec2(x, y), ivec2(0), last), 0).r);\n"
+    "    ivec2 c = base + ivec2(u_factor / 2);\n"
+    "    float t = min(min(texelFetch(u_fine, c - ivec2(1, 1), 0).r, texelFetch(u_fine, c - ivec2(0, 1), 0).r),\n"
+    "                  min(texelFetch(u_fine, c - ivec2(1, 0), 0).r, texelFetch(u_fine, c, 0).r));\n"
+    "    o_cons = vec4(m);\n"
+    "    o_true = vec4(t);\n"
+    "    o_cons_copy = o_cons;\n"
+    "}\n"
+    ;
 /* SKGL_EMBEDDED_SHADERS_END */
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic pop
@@ -9037,6 +9281,7 @@ static const char *skgl__glsl(skgl__glsl_id id)
         skgl__src_soft_gbuffer_frag,
         skgl__src_pcss_mask_frag,
         skgl__src_layered_geom,
+        skgl__src_soft_dilate_frag,
     };
     return (int)id >= 0 && id < SKGL__GLSL_N ? src[id] : "";
 }

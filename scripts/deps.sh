@@ -9,6 +9,8 @@
 #   integration  examples + GLEW, glad (python3-glad), Xvfb and Mesa's
 #          GLX driver (tests/integration, part of make test)
 #   coverage  gl + lcov (genhtml; make coverage, mk/coverage.mk)
+#   web    gl + Emscripten, Chromium and glslang-tools, as one group (the
+#          browser test and the shader check in make test, make web)
 # To add a group or a package, edit the arrays and the case below.
 # Debian 12 (bookworm); needs root (or sudo) only when something is missing.
 set -euo pipefail
@@ -19,6 +21,7 @@ PKGS_EXAMPLES=(libglfw3-dev)
 PKGS_DEMO=(gnuplot-nox)
 PKGS_INTEGRATION=(libglew-dev python3-glad xvfb libgl1-mesa-dri)
 PKGS_COVERAGE=(lcov)
+PKGS_WEB=(emscripten chromium glslang-tools)
 
 groups=("$@")
 [ ${#groups[@]} -gt 0 ] || groups=(test)
@@ -32,7 +35,8 @@ for g in "${groups[@]}"; do
         demo) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_EXAMPLES[@]}" "${PKGS_DEMO[@]}") ;;
         integration) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_EXAMPLES[@]}" "${PKGS_INTEGRATION[@]}") ;;
         coverage) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_COVERAGE[@]}") ;;
-        *) echo "deps.sh: unknown group '$g' (known: test gl examples demo integration coverage)" >&2; exit 2 ;;
+        web) want+=("${PKGS_TEST[@]}" "${PKGS_GL[@]}" "${PKGS_WEB[@]}") ;;
+        *) echo "deps.sh: unknown group '$g' (known: test gl examples demo integration coverage web)" >&2; exit 2 ;;
     esac
 done
 

@@ -13,7 +13,9 @@
      atlas (u, v) (face selection, side divide, (s, t) remap, scale and face
      offset in one lookup, King & Newhall Fig. 5.4.7), kept half a texel inside the
      face so a 2x2 comparison never reads across a seam (King & Newhall: "Sampling
-     across Cube Map Seams"); then sampler2DShadow in the atlas.
+     across Cube Map Seams"); then sampler2DShadow in the atlas. Where RG16
+     textures are missing (OpenGL ES 3.0, WebGL2), SK_POINT_VSDCT_ANALYTIC 1
+     computes the same (u, v) in the shader (the indirection is not used).
    Both store window depth per Eq. (5.4.6): z = scale / MA + bias, MA the
    major-axis component of the light-to-point vector (the eye depth in the
    face that holds it), so both compare the same way.
@@ -37,6 +39,9 @@
 #ifndef SK_POINT_VSDCT
 #define SK_POINT_VSDCT 0
 #endif
+#ifndef SK_POINT_VSDCT_ANALYTIC
+#define SK_POINT_VSDCT_ANALYTIC 0
+#endif
 uniform vec3 sk_point_pos;          /* light position, world */
 uniform float sk_point_range;       /* far plane of the faces */
 uniform vec2 sk_point_depth;        /* Eq. (5.4.6): (scale, bias) of sk_vsdct_depth_coeffs */
@@ -50,11 +55,11 @@ uniform float sk_point_plane_bias;  /* mode 0: extra tolerance, in texels of the
 float sk_point_receiver_slack = 0.0;
 uniform int sk_point_pcf;           /* 0: one 2x2 comparison; r: (2r)^2 of them */
 #if SK_POINT_VSDCT
-uniform sampler2DShadow sk_point_atlas;
-uniform samplerCube sk_point_indirection;
+uniform highp sampler2DShadow sk_point_atlas;
+uniform highp samplerCube sk_point_indirection;
 uniform vec4 sk_point_faces[6];     /* per face: its sub-rect inset by half a texel, (u0, v0, u1, v1) */
 #else
-uniform samplerCubeShadow sk_point_cube;
+uniform highp samplerCubeShadow sk_point_cube;
 #endif
 
 /* the major-axis component of |v| along the axis that d's face looks down */
@@ -75,32 +80,53 @@ float sk_point_tap(vec3 d, float ref)
     vec3 ad = abs(d);
     int f = ad.x >= ad.y && ad.x >= ad.z ? (d.x >= 0.0 ? 0 : 1) : ad.y >= ad.z ? (d.y >= 0.0 ? 2 : 3) : (d.z >= 0.0 ? 4 : 5);
     vec4 r = sk_point_faces[f];
+#if SK_POINT_VSDCT_ANALYTIC
+    /* the indirection's arithmetic in the shader (no RG16 texture, which
+       OpenGL ES 3.0 and WebGL2 lack): (s, t) on the face's axes (the GL
+       cube map convention, sk_cube_face_view's), then into the face's
+       sub-rect, whose full extent is the inset one grown by half a texel */
+    const vec3 sk_axis_s[6] = vec3[6](vec3(0.0, 0.0, -1.0), vec3(0.0, 0.0, 1.0), vec3(1.0, 0.0, 0.0),
+                                      vec3(1.0, 0.0, 0.0), vec3(1.0, 0.0, 0.0), vec3(-1.0, 0.0, 0.0));
+    const vec3 sk_axis_t[6] = vec3[6](vec3(0.0, -1.0, 0.0), vec3(0.0, -1.0, 0.0), vec3(0.0, 0.0, 1.0),
+                                      vec3(0.0, 0.0, -1.0), vec3(0.0, -1.0, 0.0), vec3(0.0, -1.0, 0.0));
+    float ma = max(ad.x, max(ad.y, ad.z));
+    vec2 st = 0.5 * vec2(dot(sk_axis_s[f], d), dot(sk_axis_t[f], d)) / ma + 0.5;
+    vec2 texel = 1.0 / vec2(textureSize(sk_point_atlas, 0));
+    vec2 uv = clamp(r.xy - 0.5 * texel + st * (r.zw - r.xy + texel), r.xy, r.zw);
+#else
     vec2 uv = clamp(texture(sk_point_indirection, d).rg, r.xy, r.zw);
+#endif
     return texture(sk_point_atlas, vec3(uv, ref));
 #else
     return texture(sk_point_cube, vec4(d, ref));
 #endif
 }
 
-/* the window depth (Eq. 5.4.6) of the receiver's tangent plane (normal n
-   through v, both relative to the light) along direction d, the ray's
-   distance to the plane kept within [1/2, 2] of v's (at grazing incidence
-   the plane leaves the tap's neighbourhood) */
-float sk_point_plane_depth(vec3 v, vec3 n, vec3 d)
+/* the major-axis distance (MA, Eq. 5.4.6's) at which the receiver's
+   tangent plane (normal n through v, both relative to the light) meets the
+   ray along direction d, the ray's distance to the plane kept within
+   [1/2, 2] of v's (at grazing incidence the plane leaves the tap's
+   neighbourhood) */
+float sk_point_plane_ma(vec3 v, vec3 n, vec3 d)
 {
     float t = dot(n, v) / dot(n, d);
     float t0 = max(abs(v.x), max(abs(v.y), abs(v.z))) / max(sk_point_ma(abs(d), d), 1e-30);
     t = clamp(t, 0.5 * t0, 2.0 * t0);
-    return sk_point_depth.x / max(t * sk_point_ma(abs(d), d), 1e-30) + sk_point_depth.y;
+    return t * sk_point_ma(abs(d), d);
 }
 
-/* one tap along d compared with the receiver plane: the plane's depth
-   along d, less its change over one texel in each face axis (t1, t2 of
-   length one texel at d) */
+/* one tap along d compared with the receiver plane: the plane's window
+   depth along d (Eq. 5.4.6), less its change over one texel in each face
+   axis (t1, t2 of length one texel at d). The change is taken on the
+   distances, |dz/dMA| = |scale| / MA^2 times the change of MA: a difference
+   of two window depths near 1 would keep only a few bits (and none on GPUs
+   whose division is not correctly rounded). */
 float sk_point_plane_tap(vec3 v, vec3 n, vec3 d, vec3 t1, vec3 t2)
 {
-    float z = sk_point_plane_depth(v, n, d);
-    float slope = abs(sk_point_plane_depth(v, n, d + t1) - z) + abs(sk_point_plane_depth(v, n, d + t2) - z);
+    float m = max(sk_point_plane_ma(v, n, d), 1e-30);
+    float z = sk_point_depth.x / m + sk_point_depth.y;
+    float dz_dma = abs(sk_point_depth.x) / (m * m);
+    float slope = dz_dma * (abs(sk_point_plane_ma(v, n, d + t1) - m) + abs(sk_point_plane_ma(v, n, d + t2) - m));
     /* the receiver's own uncertainty: dz/dMA = -scale / MA^2 at v */
     float ma = max(abs(v.x), max(abs(v.y), abs(v.z)));
     float slack = abs(sk_point_depth.x) / max(ma * ma, 1e-30) * sk_point_receiver_slack;

@@ -34,7 +34,7 @@
    them; mode 0 weighs the same texels with the same weights, one
    comparison each. A surface facing away from the light (given a normal) is
    in its own shadow: 0, whatever the map says near its silhouette. */
-uniform sampler2DArrayShadow sk_shadow_map;
+uniform highp sampler2DArrayShadow sk_shadow_map;
 uniform mat4 sk_light_vp[8];
 uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */
 uniform int sk_layers;
@@ -52,7 +52,7 @@ uniform int sk_pcf_radius;
 uniform vec3 sk_light_dir;         /* travel direction, unit */
 uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */
 uniform int sk_rmsm;               /* 1: a virtual map through sk_page_table */
-uniform sampler2D sk_page_table;   /* RMSM: per page of every level, (slot x, slot y)/255 and a = resident */
+uniform highp sampler2D sk_page_table;   /* RMSM: per page of every level, (slot x, slot y)/255 and a = resident */
 uniform int sk_rmsm_pages0;        /* RMSM: pages per side at level 0 */
 uniform int sk_rmsm_levels;        /* RMSM: levels, the last one page */
 uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered */

@@ -8,6 +8,7 @@ flat in vec4 g_box;
 flat in vec3 g_edge[3];
 layout(location = 0) out vec4 o_cons;
 layout(location = 1) out vec4 o_true;
+layout(location = 2) out vec4 o_cons_copy;   /* skgl_soft's low_copy[0], where it has one */
 void main()
 {
 #ifdef SKGL_CASTER_FRAGMENT
@@ -19,4 +20,5 @@ void main()
                   dot(p, g_edge[2].xy) <= g_edge[2].z;
     o_cons = vec4(gl_FragCoord.z);
     o_true = vec4(inside ? gl_FragCoord.z : 1.0);
+    o_cons_copy = o_cons;
 }

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# check_glsl.sh DUMP OUTDIR - make check-glsl: DUMP (tests/es/glsl_dump.c)
+# writes every program composition shadowkit_gl.h compiles, in the desktop
+# and the ES dialects, and the snippets inside a minimal user shader, into
+# OUTDIR; glslangValidator (Debian's glslang-tools) compiles each one.
+# glslang rejects `layout(invocations = N)` under "#version 330 core" even
+# with GL_ARB_gpu_shader5 required, which drivers accept: such a geometry
+# shader is checked as "#version 400 core" (where invocations are core).
+# Ends "check-glsl: N shaders, M failed"; exit 1 when M > 0 or none ran.
+set -uo pipefail
+dump=${1:?usage: check_glsl.sh DUMP OUTDIR}
+dir=${2:?usage: check_glsl.sh DUMP OUTDIR}
+rm -rf "$dir" && mkdir -p "$dir" || exit 1
+"$dump" "$dir" || { echo "check-glsl: $dump failed"; exit 1; }
+n=0; failed=0
+for f in "$dir"/*.vert "$dir"/*.frag "$dir"/*.geom; do
+    [ -f "$f" ] || continue
+    n=$((n + 1))
+    src=$f
+    if grep -q '^#extension GL_ARB_gpu_shader5 : require' "$f"; then
+        src="${f%.geom}.v400.geom"
+        sed -e 's/^#version 330 core$/#version 400 core/' -e '/^#extension GL_ARB_gpu_shader5/d' "$f" > "$src"
+    fi
+    if ! log=$(glslangValidator "$src" 2>&1); then
+        failed=$((failed + 1))
+        echo "check-glsl: $(basename "$f"):"
+        printf '%s\n' "$log" | grep -E 'ERROR|error' | head -n 5 | sed 's/^/    /'
+    fi
+done
+echo "check-glsl: $n shaders, $failed failed"
+[ "$n" -gt 0 ] && [ "$failed" -eq 0 ]
