@@ -3904,6 +3904,11 @@ static void skgl__bind_unit(skgl__unitbind *b, int unit, int target, skgl__uint 
 static int skgl__mask_gbuffer(const skgl_context *ctx, unsigned depth_tex, unsigned normal_tex, skgl__unitbind *b)
 {
     skgl__bind_unit(&b[0], 1, SKGL__T_2D, depth_tex, ctx->point_sampler);
+    /* WebGL2 refuses a draw when any sampler of the program, used or not,
+       names a unit whose texture is attached to the framebuffer drawn to
+       (a mask texture the caller left bound there): an unused unit gets
+       no texture */
+    if (!normal_tex && ctx->caps.webgl) { skgl__bind_unit(&b[1], 2, SKGL__T_2D, 0, 0); return 2; }
     if (!normal_tex) return 1;
     skgl__bind_unit(&b[1], 2, SKGL__T_2D, normal_tex, ctx->point_sampler);
     return 2;
@@ -5333,6 +5338,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
         int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
         skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
         if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm.table, 0);
+        else if (ctx->caps.webgl) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, 0, 0);   /* see skgl__mask_gbuffer */
         skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
         skgl__st_units(ctx, &st, b, n);
         skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);

@@ -107,6 +107,7 @@ typedef void *(*esx_getproc)(const char *name);
     X(void, DrawElements, (unsigned m, int n, unsigned t, const void *p)) \
     X(void, GenTextures, (int n, unsigned *t)) \
     X(void, BindTexture, (unsigned t, unsigned x)) \
+    X(void, ActiveTexture, (unsigned u)) \
     X(void, TexImage2D, (unsigned t, int l, int f, int w, int h, int b, unsigned fm, unsigned ty, const void *d)) \
     X(void, TexParameteri, (unsigned t, unsigned p, int v)) \
     X(void, DeleteTextures, (int n, const unsigned *t)) \
@@ -319,6 +320,14 @@ static inline void esx_gbuffer(esx_run *r, const skgl_camera *cam)
     gl->UseProgram(0);
     gl->Disable(0x0B71);
     gl->BindFramebuffer(0x8D40, 0);
+    /* the mask left bound on units 2 and 3, as the caller's lighting pass
+       would leave it: WebGL2 refuses a draw into a texture any sampler of
+       the program names, used or not */
+    gl->ActiveTexture(0x84C2);
+    gl->BindTexture(0x0DE1, r->mask_tex);
+    gl->ActiveTexture(0x84C3);
+    gl->BindTexture(0x0DE1, r->mask_tex);
+    gl->ActiveTexture(0x84C0);
 }
 
 static inline void esx_free_light(esx_run *r)
@@ -382,7 +391,8 @@ static inline sk_result esx_frame(esx_run *r, const skgl_camera *cam)
         skgl_shadow *s = (skgl_shadow *)r->light;
         sk_vec3 dir = r->sun;
         res = SK_OK;
-        if (t->technique == SKGL_FERKO) res = skgl_shadow_analyze(r->sk, s, cam, &sc, dir, r->depth_tex);
+        if (t->technique == SKGL_FERKO || t->technique == SKGL_RMSM)
+            res = skgl_shadow_analyze(r->sk, s, cam, &sc, dir, r->depth_tex);
         if (res == SK_OK) res = skgl_shadow_render(r->sk, s, cam, &sc, dir);
         if (res == SK_OK) res = skgl_shadow_mask(r->sk, s, cam, r->depth_tex, r->normal_tex, r->mask_tex);
         if (res == SK_OK) {
