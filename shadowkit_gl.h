@@ -433,6 +433,64 @@
      three frames later, or two, if every result is there; a set still
      busy leaves that frame untimed. stats.step_ms holds each step's sum.
 
+   OPENGL ES 3.0 AND WEBGL2
+     The same header runs on OpenGL ES 3.0 and later and on WebGL2
+     (Emscripten). skgl_desc.api's zero reads GL_VERSION ("OpenGL ES ..."
+     is ES); skgl_create probes what the context offers into skgl_caps
+     (skgl_get_caps), and every shader gets its dialect's first lines:
+     "#version 300 es" with highp precision for floats, ints and every
+     sampler type ("320 es" where geometry shaders exist), "#version 330
+     core" on the desktop. The snippets declare their samplers highp, so
+     they paste into an ES shader that sets only `precision highp float`.
+     A technique that needs what the context lacks fails at create with
+     SK_ERR_GL and a log naming the feature and its extension. Per
+     technique:
+       STANDARD, PSSM, PSM, LiSPSM, LSPSM, cube, PCSS   ES 3.0 core.
+       FERKO        float colour targets (GL_EXT_color_buffer_float).
+       RMSM         float targets and blending (+ GL_EXT_float_blend).
+       VSDCT        without RG16 (GL_EXT_texture_norm16) the indirection
+                    cube is replaced by the same face mapping in the
+                    shader (SK_POINT_VSDCT_ANALYTIC; define it too in a
+                    forward shader on such a context).
+       PVSM         float targets and blending. Without a geometry
+                    shader its conservative low-resolution pass becomes
+                    a plain one 4 times finer (depth-tested: no float
+                    blending needed there), reduced per texel to the
+                    minimum over its 4x4 block grown by one fine texel:
+                    casters thinner than a fine texel can slip between
+                    its centres (test_gl_es measures the fence's 2 cm
+                    slats: the masks 0.0079 apart, mean |difference| over
+                    the penumbra). Where a texture cannot be sampled while
+                    one of its levels is drawn (WebGL2: ANGLE calls it a
+                    feedback loop; skgl_caps.mip_render_level), its MIN
+                    pyramid reads copies of its levels. Without depth
+                    clamp (GL_EXT_depth_clamp) casters before the light's
+                    near plane are clipped; the plane is fitted to the
+                    scene's bounds, so only geometry outside them is.
+       layered      geometry shaders (ES 3.2): desc.layered fails on ES 3.0.
+       clip_zero_to_one  GL_EXT_clip_control.
+     What differs in use:
+       - ES 3.0 and WebGL2 cannot be asked a texture's size: give the size
+         of every texture you pass (camera depth, normals, masks) once with
+         skgl_remember_texture (again after new storage).
+       - Read-backs use glGetBufferSubData on WebGL2, glMapBufferRange on
+         ES 3.0. A browser signals a fence only after the script yields:
+         run frames from requestAnimationFrame (the read-backs land a frame
+         or two later), or set .sync_readback.
+       - Timer queries come from GL_EXT_disjoint_timer_query (ES) or
+         GL_EXT_disjoint_timer_query_webgl2 (enable it first); without
+         them the stats' times read -1.
+       - WebGL2 refuses a draw when any sampler of its program, used or
+         not, names a unit holding the texture being drawn to: the mask
+         passes bind no texture on the units they leave unused there.
+       - Emscripten 3.1's emscripten_webgl_get_proc_address leaves out
+         glGetBufferSubData; wrap it (web/shadowkit_web.c shows how).
+       - GL_TEXTURE_CUBE_MAP_SEAMLESS, GL_PROGRAM_POINT_SIZE, the polygon
+         mode and depth clamp without the extension are never touched
+         (ES samples cube maps seamlessly and takes gl_PointSize always).
+     skgl_desc.disable_caps turns capabilities off on a richer context, to
+     run a phone's or a browser's path on a desktop (the tests do).
+
    LICENSE: see the end of the file.
 */
 #ifndef SHADOWKIT_GL_H
