@@ -479,7 +479,9 @@
          or two later), or set .sync_readback.
        - Timer queries come from GL_EXT_disjoint_timer_query (ES) or
          GL_EXT_disjoint_timer_query_webgl2 (enable it first); without
-         them the stats' times read -1.
+         them the stats' times read -1. A read that finds
+         GL_GPU_DISJOINT_EXT set keeps the previous times (one glGet per
+         read, on ES only).
        - WebGL2 refuses a draw when any sampler of its program, used or
          not, names a unit holding the texture being drawn to: the mask
          passes bind no texture on the units they leave unused there.
@@ -1353,6 +1355,7 @@ typedef unsigned long long skgl__u64;
 #define SKGL__NUM_EXTENSIONS 0x821D
 #define SKGL__MAX_TEXTURE_SIZE 0x0D33
 #define SKGL__MAP_READ_BIT 0x0001
+#define SKGL__GPU_DISJOINT 0x8FBB
 /* GLSL ES: no default precision for floats in fragment shaders, nor for
    the array, shadow and integer samplers in any stage; highp everywhere
    (the depth comparisons need 24 bits and more) */
@@ -2709,6 +2712,18 @@ static void skgl__timer_init(skgl_context *ctx, skgl__timer *t)
     if (!ctx->timing) return;
     for (i = 0; i < SKGL__TIMER_RING; i++) { ctx->gl.GenQueries(1, &t->q[i]); ctx->objects++; }
 }
+/* OpenGL ES's timer queries (GL_EXT_disjoint_timer_query): a disjoint
+   event (a clock change, a context switch on the GPU) since the last ask
+   makes the results read now unreliable; asking clears the flag. Desktop
+   GL has no such flag (no call made there). */
+static int skgl__timer_disjoint(skgl_context *ctx)
+{
+    skgl__int disjoint = 0;
+    if (ctx->caps.api != SKGL_API_GLES3) return 0;
+    ctx->gl.GetIntegerv(SKGL__GPU_DISJOINT, &disjoint);
+    return disjoint != 0;
+}
+
 /* 1 when slot i's result was there and has been read */
 static int skgl__timer_read(skgl_context *ctx, skgl__timer *t, int i)
 {
@@ -2719,7 +2734,7 @@ static int skgl__timer_read(skgl_context *ctx, skgl__timer *t, int i)
     if (!avail) return 0;
     ctx->gl.GetQueryObjectui64v(t->q[i], SKGL__QUERY_RESULT, &ns);
     t->pending[i] = 0;
-    t->ms = (float)((double)ns * 1e-6);
+    if (!skgl__timer_disjoint(ctx)) t->ms = (float)((double)ns * 1e-6);
     return 1;
 }
 static void skgl__timer_begin(skgl_context *ctx, skgl__timer *t)
@@ -2751,7 +2766,7 @@ static void skgl__timer_end(skgl_context *ctx, skgl__timer *t)
         skgl__u64 ns = 0;
         ctx->gl.GetQueryObjectui64v(t->q[t->frame % SKGL__TIMER_RING], SKGL__QUERY_RESULT, &ns);
         t->pending[t->frame % SKGL__TIMER_RING] = 0;
-        t->ms = (float)((double)ns * 1e-6);
+        if (!skgl__timer_disjoint(ctx)) t->ms = (float)((double)ns * 1e-6);
     }
     t->frame++;
     t->running = 0;
@@ -6457,7 +6472,7 @@ static int skgl__ftimer_read(skgl_context *ctx, skgl__frame_timer *t, int i)
         ctx->gl.GetQueryObjectui64v(t->q[i][k], SKGL__QUERY_RESULT, &ns);
         skgl__ftimer_add(ms, t->step[i][k], ns);
     }
-    memcpy(t->ms, ms, sizeof ms);
+    if (!skgl__timer_disjoint(ctx)) memcpy(t->ms, ms, sizeof ms);
     t->used[i] = 0;
     return 1;
 }
