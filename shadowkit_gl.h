@@ -487,6 +487,10 @@
          passes bind no texture on the units they leave unused there.
        - Emscripten 3.1's emscripten_webgl_get_proc_address leaves out
          glGetBufferSubData; wrap it (web/shadowkit_web.c shows how).
+       - Chromium's software WebGL (SwiftShader) offsets depth far less per
+         polygon offset unit than Mesa: point lights with the receiver-plane
+         bias show false shadow there (2% of the pixels in the test scene);
+         SKGL_BIAS_NORMAL_OFFSET, or depth_bias 64, brings them back.
        - GL_TEXTURE_CUBE_MAP_SEAMLESS, GL_PROGRAM_POINT_SIZE, the polygon
          mode and depth clamp without the extension are never touched
          (ES samples cube maps seamlessly and takes gl_PointSize always).
