@@ -12,9 +12,11 @@ browser=$(command -v chromium || command -v chromium-browser || true)
 if [ -z "$browser" ]; then
     echo "web_browser: chromium not found (scripts/deps.sh web)"; echo "web_browser: 0 passed, 1 failed"; exit 1
 fi
+profile=$(mktemp -d "${TMPDIR:-/tmp}/sk_chromium.XXXXXX") || exit 1
+trap 'rm -rf "$profile"' EXIT
 # --no-sandbox: CI runs as root, where Chromium's sandbox refuses to start
 out=$(timeout 150 "$browser" --headless=new --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader \
-      --use-gl=angle --disable-gpu-shader-disk-cache --user-data-dir="$(mktemp -d)" \
+      --use-gl=angle --disable-gpu-shader-disk-cache --user-data-dir="$profile" \
       --virtual-time-budget=60000 --dump-dom "file://$dir/es_test.html" 2>/dev/null)
 title=$(printf '%s' "$out" | sed -n 's:.*<title>\(.*\)</title>.*:\1:p' | head -n 1)
 printf '%s\n' "$out" | sed -n '/<pre id="log">/,/<\/pre>/p' | sed 's/<[^>]*>//g' | sed '/^$/d'
