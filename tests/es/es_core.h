@@ -149,6 +149,8 @@ typedef struct esx_run {
     int tech, frame;                /* where the run is */
     int last;                       /* the run ends before this technique [ESX_TECHS] */
     sk_vec3 sun;                    /* the directional light's travel direction [esx_sun_dir()] */
+    int async;                      /* 1: FERKO, RMSM and PVSM read back through the ring, a frame
+                                       or two late [0: at once, .sync_readback] */
     void *light;                    /* the technique's skgl_shadow / skgl_point / skgl_soft */
     int objects;                    /* shadowkit's GL objects before the first light */
     unsigned char mask[ESX_TECHS][ESX_W * ESX_H];
@@ -351,7 +353,7 @@ static inline sk_result esx_make_light(esx_run *r)
         memset(&d, 0, sizeof d);
         d.technique = (skgl_technique)t->technique;
         d.resolution = 1024;
-        d.sync_readback = 1;
+        d.sync_readback = !r->async;
         if (t->technique == SKGL_LISPSM) d.cascades = 1;
         res = skgl_shadow_create(r->sk, &d, (skgl_shadow **)&r->light);
     } else if (t->kind == ESX_POINT) {
@@ -373,7 +375,7 @@ static inline sk_result esx_make_light(esx_run *r)
         memset(&d, 0, sizeof d);
         d.technique = (skgl_soft_technique)t->technique;
         d.resolution = t->technique == SKGL_SOFT_PCSS ? 1024 : 2048;
-        d.sync_readback = 1;
+        d.sync_readback = !r->async;
         res = skgl_soft_create(r->sk, &d, (skgl_soft **)&r->light);
     }
     return res;

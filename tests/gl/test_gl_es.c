@@ -39,10 +39,29 @@
 
 static esx_run g_desk, g_es;
 
+/* a getproc that counts the two ways a read-back ends */
+typedef void *(*map_fn)(unsigned, ptrdiff_t, ptrdiff_t, unsigned);
+typedef void (*getsub_fn)(unsigned, ptrdiff_t, ptrdiff_t, void *);
+static tb_gl_getproc_fn g_real;
+static map_fn g_map;
+static getsub_fn g_getsub;
+static long g_maps, g_getsubs;
+static void *w_map(unsigned t, ptrdiff_t o, ptrdiff_t n, unsigned a) { g_maps++; return g_map(t, o, n, a); }
+static void w_getsub(unsigned t, ptrdiff_t o, ptrdiff_t n, void *d) { g_getsubs++; g_getsub(t, o, n, d); }
+static void *w_getproc(const char *name)
+{
+    map_fn m = w_map;
+    getsub_fn g = w_getsub;
+    void *p = g_real(name);
+    if (strcmp(name, "glMapBufferRange") == 0) { memcpy(&g_map, &p, sizeof p); memcpy(&p, &m, sizeof p); }
+    if (strcmp(name, "glGetBufferSubData") == 0) { memcpy(&g_getsub, &p, sizeof p); memcpy(&p, &g, sizeof p); }
+    return p;
+}
+
 /* the whole table (or the technique named by only) on a context made with
-   these flags; 0 ok, 1 no context */
+   these flags; 0 ok, 1 no context. async: read-backs through the ring. */
 static int run_some(esx_run *r, int flags, unsigned disable_caps, const esx_scene *sc, const char *label,
-                    const char *only)
+                    const char *only, int async)
 {
     char err[512];
     tb_gl_context *c = tb_gl_context_create_flags(TB_GL_AUTO, flags, err, sizeof err);
@@ -52,13 +71,15 @@ static int run_some(esx_run *r, int flags, unsigned disable_caps, const esx_scen
         return 1;
     }
     printf("%s: %s\n", label, tb_gl_context_version(c));
-    if (esx_begin(r, (esx_getproc)tb_gl_context_getproc(c), sc, disable_caps) != 0) {
+    g_real = tb_gl_context_getproc(c);
+    if (esx_begin(r, w_getproc, sc, disable_caps) != 0) {
         SK_CHECK_MSG(0, "%s: %s", label, r->log);
         esx_end(r);
         tb_gl_context_destroy(c);
         return 0;
     }
     if (only) SK_CHECK(esx_only(r, only) == 0);
+    r->async = async;
     while (!esx_step(r) && steps < 1000) steps++;
     left = esx_end(r);
     SK_CHECK_MSG(left == 0, "%s: %d GL objects left after every light was destroyed", label, left);
@@ -68,7 +89,7 @@ static int run_some(esx_run *r, int flags, unsigned disable_caps, const esx_scen
 
 static int run_all(esx_run *r, int flags, unsigned disable_caps, const esx_scene *sc, const char *label)
 {
-    return run_some(r, flags, disable_caps, sc, label, NULL);
+    return run_some(r, flags, disable_caps, sc, label, NULL, 0);
 }
 
 static esx_scene scene_of(const tb_scene *scene)
@@ -121,8 +142,8 @@ static void test_thin_casters(void)
     skgl_area_light_axes(&a, &l.half_u, &l.half_v);
     l.strata = 16;
     SK_CHECK(ref && tb_reference_trace_exact(ref, &view, NULL, &l, NULL, vis, NULL) == 0);
-    if (run_some(&cons, 0, 0, &sc, "fence, conservative", "PVSM") != 0 ||
-        run_some(&fine, 0, SKGL_CAP_GEOMETRY_SHADER, &sc, "fence, fine map dilated", "PVSM") != 0) {
+    if (run_some(&cons, 0, 0, &sc, "fence, conservative", "PVSM", 0) != 0 ||
+        run_some(&fine, 0, SKGL_CAP_GEOMETRY_SHADER, &sc, "fence, fine map dilated", "PVSM", 0) != 0) {
         SK_CHECK(0);
     } else {
         esx_only(&cons, "PVSM");
@@ -218,6 +239,32 @@ static void test_caps_contracts(void)
     tb_gl_context_destroy(c);
 }
 
+/* the read-backs a frame late through the ring on ES 3.0 (no
+   glGetBufferSubData: mapped): FERKO, RMSM and PVSM over ESX_FRAMES
+   frames, each mask within the bounds of the desktop's (sync) one */
+static void test_async_readbacks(const esx_scene *sc)
+{
+    static const char *names[3] = {"FERKO", "RMSM", "PVSM"};
+    static esx_run r;
+    int k;
+    for (k = 0; k < 3; k++) {
+        long maps = g_maps, subs = g_getsubs;
+        int t, soft;
+        double d;
+        if (run_some(&r, TB_GL_CONTEXT_ES3, ES30_CAPS, sc, "es30 ring", names[k], 1) != 0) return;
+        esx_only(&r, names[k]);
+        t = r.tech;
+        soft = esx_techs[t].kind == ESX_SOFT;
+        SK_CHECK_MSG(r.result[t] == SK_OK, "%s: %s", names[k], r.why[t]);
+        d = esx_mask_diff(g_desk.mask[t], r.mask[t], soft);
+        printf("es30 ring %-5s vs desktop %.4f%s; %ld maps, %ld glGetBufferSubData\n", names[k], d, soft ? "" : "%",
+               g_maps - maps, g_getsubs - subs);
+        SK_CHECK_MSG(d <= (soft ? BOUND_SOFT_DIFF : BOUND_HARD_DIFF), "es30 ring %s: %.4f from the desktop", names[k], d);
+        SK_CHECK_MSG(g_maps - maps >= 1 && g_getsubs == subs, "es30 ring %s: %ld maps, %ld glGetBufferSubData",
+                     names[k], g_maps - maps, g_getsubs - subs);
+    }
+}
+
 static void test_es(void)
 {
     tb_scene scene;
@@ -301,6 +348,7 @@ static void test_es(void)
                          "%s %s: %.4f from the reference, desktop %.4f", label, e->name, err_es, err_desk);
         }
     }
+    test_async_readbacks(&sc);
     tb_reference_destroy(ref);
     tb_scene_free(&scene);
 }
