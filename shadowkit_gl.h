@@ -523,6 +523,7 @@ extern "C" {
 #endif
 
 #define SKGL_MAX_CASCADES 8
+#define SKGL_CACHE_REGIONS 16         /* invalidated boxes a cached light keeps between renders */
 #define SKGL_PREFIX_MAX 24            /* the longest prefix of a prefixed GLSL snippet */
 #define SKGL_SOFT_STEPS 8            /* area light steps timed in skgl_soft_frame_stats.step_ms */
 
@@ -560,6 +561,14 @@ typedef struct skgl_draw_info {
     int layer_index[SKGL_MAX_CASCADES];
     sk_mat4 layer_view_proj[SKGL_MAX_CASCADES];
     sk_frustum layer_frustum[SKGL_MAX_CASCADES];
+    /* 1: this call is scene.draw_dynamic's (the casters that move, CACHED
+       MAPS); 0: scene.draw's */
+    int dynamic;
+    /* w > 0: the pass draws only into this texel rectangle of its target
+       (x, y, w, h: a cached map's newly exposed strip or an invalidated
+       region), so a callback may skip casters whose shadow misses it;
+       all 0: the whole target */
+    int rect[4];
 } skgl_draw_info;
 typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
 
@@ -689,6 +698,16 @@ typedef struct skgl_shadow_desc {
     int disable_plane_bias;       /* 1: no tolerance beyond the plane itself [0] */
     int pcf_radius;               /* (2r)^2 hardware 2x2 compares, 1..8 [1] */
     int disable_pcf_kernel;       /* 1: one hardware 2x2 compare, no kernel [0] */
+    int cache;                    /* 1: keep scene.draw's (static) casters' depth from frame
+                                     to frame and redraw only what changed (CACHED MAPS):
+                                     STANDARD, PSSM, PSM, LiSPSM, LSPSM [0] */
+    int cache_budget_kb;          /* .cache: the most GPU memory the cache may take, in KiB;
+                                     the nearest layers are cached while they fit, the rest
+                                     drawn every frame [0: no limit] */
+    int verify_cache;             /* .cache, desktop GL: also render every cached layer
+                                     uncached, read both back (a CPU-GPU stall: for
+                                     debugging) and fail the render when they differ
+                                     (CACHED MAPS) [0] */
     float max_distance;           /* shadows end at this view depth [camera far] */
     sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
                                      the paper's zeta 0.25, sigma 0.5, h_max 4,
@@ -724,9 +743,12 @@ typedef struct skgl_camera {
 } skgl_camera;
 
 typedef struct skgl_scene {
-    skgl_draw_fn draw;            /* required */
+    skgl_draw_fn draw;            /* required: the casters (the static ones, for a cache) */
     void *user;
     sk_aabb bounds;               /* all casters and receivers */
+    skgl_draw_fn draw_dynamic;    /* the casters that move or change (CACHED MAPS): drawn in
+                                     every pass after draw, and over a cached map's static
+                                     depth every frame; info->dynamic 1 [NULL: none] */
 } skgl_scene;
 
 /* What a directional light's last frame did (skgl_shadow_stats). */
@@ -756,6 +778,17 @@ typedef struct skgl_shadow_frame_stats {
     int layered;                          /* 1: the layers went in one pass (desc.layered honoured);
                                              2: so, through one geometry shader invocation per layer
                                              (GL_ARB_gpu_shader5) */
+    /* the cache (desc.cache, CACHED MAPS): cached layers this frame drawn
+       whole, scrolled (only the exposed strips drawn), reused as they
+       were; regions redrawn for skgl_shadow_invalidate; texels copied
+       between the cache and the map; the GPU memory the cache holds; the
+       layers it holds (the nearest, within cache_budget_kb) */
+    int cache_full, cache_scrolled, cache_reused, cache_regions;
+    double cache_copied;
+    double cache_bytes;
+    int cache_layers;
+    int cache_verify_texels;              /* .verify_cache: texels of the last render that differ
+                                             from the uncached map (-1: not verified) */
 } skgl_shadow_frame_stats;
 
 
@@ -841,6 +874,14 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
    size that receives visibility. */
 SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
+/* CACHED MAPS (desc.cache): what scene.draw draws inside `box` (world
+   space) changed, so the cached texels its shadow may cover are redrawn at
+   the next render: give the box a static caster left and the one it came
+   to, the box of a caster that appeared or went. box NULL: everything
+   (the next render draws every layer whole). Up to SKGL_CACHE_REGIONS
+   boxes between two renders; more are merged into their union. A light
+   without a cache has nothing to redraw: SK_OK. */
+SKGLDEF sk_result skgl_shadow_invalidate(skgl_context *ctx, skgl_shadow *s, const sk_aabb *box);
 /* SKGL_RMSM: the same call finds the pages of the virtual map the view
    needs (per pixel level of detail from the screen derivatives of its
    virtual-map texel coordinates, requests reduced on the GPU, read back:
@@ -1485,6 +1526,7 @@ typedef unsigned long long skgl__u64;
     X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a)) \
     X(skgl__bool, IsProgram, (skgl__uint p)) \
     X(void, ClearBufferfv, (skgl__enum buffer, skgl__int drawbuffer, const float *value)) \
+    X(void, BlitFramebuffer, (skgl__int sx0, skgl__int sy0, skgl__int sx1, skgl__int sy1, skgl__int dx0, skgl__int dy0, skgl__int dx1, skgl__int dy1, skgl__uint mask, skgl__enum filter)) \
     X(void, TexSubImage2D, (skgl__enum target, skgl__int level, skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, const void *data)) \
     X(void *, FenceSync, (skgl__enum condition, skgl__uint flags)) \
     X(skgl__enum, ClientWaitSync, (void *sync, skgl__uint flags, skgl__u64 timeout)) \
@@ -1605,11 +1647,17 @@ typedef struct skgl__ring {
 /* the kinds of caster pass a caster program is linked for (>>casters) */
 enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_LAYERED = 3, SKGL__CV_COUNT = 4 };
 
+/* which of the scene's callbacks a caster pass calls (CACHED MAPS) */
+#define SKGL__DRAW_ALL 0              /* draw, then draw_dynamic */
+#define SKGL__DRAW_STATIC 1           /* draw only: into a cache */
+#define SKGL__DRAW_DYNAMIC 2          /* draw_dynamic only: over a cached map */
+
 struct skgl_context {
     skgl__api gl;
     skgl_caps caps;                        /* probed at create, less desc.disable_caps */
     const char *glsl_version;              /* the dialect's first lines (skgl__shader_n) */
     int debug, timing, objects;
+    int draw_class;                        /* SKGL__DRAW_*: the callbacks the next caster passes call */
     int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
     int clip_zero_to_one;                  /* desc.clip_zero_to_one */
     void (SKGL__APIENTRY *ClipControl)(skgl__enum origin, skgl__enum depth);   /* with it: GL 4.5 */
@@ -3434,6 +3482,26 @@ static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bia
                              slope_bias, depth_bias, origin);
 }
 
+/* the scene's callbacks that ctx->draw_class names, each followed by what
+   a callback may have changed: draw (info->dynamic 0), then draw_dynamic
+   (info->dynamic 1) when the scene has one */
+static sk_result skgl__scene_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, skgl_draw_info *info)
+{
+    sk_result r = SK_OK, rc;
+    if (ctx->draw_class != SKGL__DRAW_DYNAMIC) {
+        info->dynamic = 0;
+        scene->draw(scene->user, info);
+        r = skgl__after_draw(ctx, st);
+    }
+    if (scene->draw_dynamic && ctx->draw_class != SKGL__DRAW_STATIC) {
+        info->dynamic = 1;
+        scene->draw_dynamic(scene->user, info);
+        rc = skgl__after_draw(ctx, st);
+        if (r == SK_OK) r = rc;
+    }
+    return r;
+}
+
 static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
                                     const double origin[3], skgl_draw_info *info)
 {
@@ -3443,8 +3511,7 @@ static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_
     info->view_proj = skgl__shift(vp, origin, skgl__zero3);
     info->frustum = sk_frustum_from_matrix(info->view_proj);
     info->program = ctx->pass_prog;
-    scene->draw(scene->user, info);
-    return skgl__after_draw(ctx, st);
+    return skgl__scene_draw(ctx, st, scene, info);
 }
 
 /* >>layered  Layered single-pass caster rendering (desc.layered): the
@@ -3509,6 +3576,7 @@ static sk_result skgl__casters_draw_layered(skgl_context *ctx, skgl__st *st, con
                                             skgl_draw_info *info)
 {
     int i;
+    sk_result r;
     ctx->pass_layers = n;
     for (i = 0; i < n; i++) {
         memcpy(ctx->pass_layer_vp[i], vps[i].m, sizeof vps[i].m);
@@ -3525,9 +3593,9 @@ static sk_result skgl__casters_draw_layered(skgl_context *ctx, skgl__st *st, con
     info->view_proj = info->layer_view_proj[0];
     info->frustum = info->layer_frustum[0];
     info->program = ctx->pass_prog;
-    scene->draw(scene->user, info);
+    r = skgl__scene_draw(ctx, st, scene, info);
     ctx->pass_layers = 0;
-    return skgl__after_draw(ctx, st);
+    return r;
 }
 
 /* the caster passes' state with the layered program (skgl__casters_begin's) */
@@ -4035,6 +4103,20 @@ typedef struct skgl__rmsm {
     double origin[3];              /* the world point lvp is relative to */
 } skgl__rmsm;
 
+/* the cache's part (CACHED MAPS, >>cache): the static casters' depth per
+   cached layer and the matrix each was drawn with; whether the map's layer
+   equals it; the boxes invalidated since the last render (all: every
+   layer); the scratch map of .verify_cache */
+typedef struct skgl__cache {
+    skgl__uint tex, fbo[SKGL_MAX_CASCADES];
+    int layers;
+    int valid[SKGL_MAX_CASCADES], same[SKGL_MAX_CASCADES];
+    double world[SKGL_MAX_CASCADES][16];
+    sk_aabb dirty[SKGL_CACHE_REGIONS];
+    int ndirty, all;
+    skgl__uint verify_tex, verify_fbo;
+} skgl__cache;
+
 struct skgl_shadow {
     skgl_shadow_desc desc;
     unsigned id;                   /* per context, never reused: whose constants a program holds */
@@ -4054,6 +4136,7 @@ struct skgl_shadow {
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     skgl__ferko ferko;             /* SKGL_FERKO only */
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
+    skgl__cache cache;             /* desc.cache only */
     skgl_shadow_frame_stats stats;
 };
 
@@ -4088,6 +4171,9 @@ static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
 static void skgl__fit_ferko(skgl_shadow *s, float zf);
 static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s);
+/* defined in 6.5 */
+static sk_result skgl__cache_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
+static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s);
 
 /* ---- 6.1 the light: its desc, create and destroy ---------------------- */
 // >>shadow_life
@@ -4216,6 +4302,17 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(d->lspsm.nw_max >= 1 && (!lspsm || d->lspsm.nw_max <= SKGL_MAX_CASCADES), fn, "lspsm.nw_max",
                d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
     SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
+    SKGL__RULE(d->cache == 0 || d->cache == 1, fn, "cache", d->cache, "0 or 1");
+    SKGL__RULE(!d->cache || (d->technique != SKGL_FERKO && d->technique != SKGL_RMSM), fn, "cache", d->cache,
+               "FERKO's crop and size follow the G-buffer every frame, and RMSM's pages have no cache: "
+               "STANDARD, PSSM, PSM, LiSPSM or LSPSM");
+    SKGL__RULE(!d->cache || !d->layered, fn, "cache", d->cache,
+               "a cached light draws its static and dynamic casters a pass per layer: not with desc.layered");
+    SKGL__RULE(d->cache_budget_kb >= 0, fn, "cache_budget_kb", d->cache_budget_kb, "0 (no limit) or more");
+    SKGL__RULE(d->verify_cache == 0 || (d->verify_cache == 1 && d->cache), fn, "verify_cache", d->verify_cache,
+               "0, or 1 with desc.cache");
+    SKGL__NEED(!d->verify_cache || ctx->caps.api == SKGL_API_GL33, fn, "desc.verify_cache",
+               "depth read-backs (glReadPixels of GL_DEPTH_COMPONENT: desktop OpenGL)");
     if (!rmsm) return SK_OK;
     SKGL__RULE(d->rmsm_page_size >= 16 && d->rmsm_page_size <= 1024 && !(d->rmsm_page_size & (d->rmsm_page_size - 1)),
                fn, "rmsm_page_size", d->rmsm_page_size, "a power of two in 16..1024");
@@ -4274,6 +4371,7 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
         }
     }
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
+    if (r == SK_OK && d.cache) r = skgl__cache_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
     if (r == SK_OK && gl->GetError() != 0) {
         skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
@@ -4295,6 +4393,7 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     skgl__delete_texture(ctx, &s->tex);
     for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
     skgl__delete_framebuffer(ctx, &s->fbo_layered);
+    skgl__cache_free(ctx, s);
     if (skgl__technique_of(s)->destroy) skgl__technique_of(s)->destroy(ctx, s);
     skgl__timer_free(ctx, &s->t_render);
     skgl__timer_free(ctx, &s->t_mask);
@@ -4528,6 +4627,26 @@ static sk_result skgl__layer_slice(const skgl_shadow *s, const skgl__fit_in *in,
     return sk_frustum_slice(&in->view, in->zn, in->cam_zf, *z0, sp[i + 1], slice);
 }
 
+/* A cached stable crop's depth range: the scene's bounds in light space
+   (a little wider), which do not move with the camera; the crop's own
+   (the cascade's sphere) would change every cached texel's depth as the
+   camera walks (CACHED MAPS). */
+static void skgl__scene_depth_range(sk_mat4 *proj, const sk_mat4 *lview, const sk_aabb *bounds)
+{
+    double zmin = 1e300, zmax = -1e300, n, f, pad;
+    int i;
+    for (i = 0; i < 8; i++) {
+        double z = sk__xform_affine(lview, sk__aabb_corner(bounds, i)).z;
+        if (z < zmin) zmin = z;
+        if (z > zmax) zmax = z;
+    }
+    pad = 1e-4 * (zmax - zmin) + 1e-4;
+    n = -zmax - pad;
+    f = -zmin + pad;
+    proj->m[10] = (float)(-2.0 / (f - n));
+    proj->m[14] = (float)(-(f + n) / (f - n));
+}
+
 /* per layer: STANDARD, PSSM a focused crop of the slice clipped to the
    scene, or (.stable) the crop of a sphere that depends only on the
    camera's projection and the splits; LiSPSM (warp = 1) a warp of the
@@ -4559,6 +4678,7 @@ static sk_result skgl__fit_slices(skgl_shadow *s, const skgl__fit_in *in, int wa
                                       s->origin[0] == 0.0 && s->origin[1] == 0.0 && s->origin[2] == 0.0 ? NULL
                                                                                                           : s->origin,
                                       &proj);
+            if (r == SK_OK && d->cache) skgl__scene_depth_range(&proj, &in->lview, &in->scene->bounds);
         } else {
             sk_vec3 pts[SK_CLIP_MAX_POINTS];
             int n = sk_clip_frustum_aabb(&slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
@@ -5098,6 +5218,334 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
 }
 
 /* ---- 6.5 analyze and render ------------------------------------------- */
+/* ---- 6.5 the cache: static casters kept from frame to frame ----------- */
+// >>cache
+/* CACHED MAPS. The cache holds, per cached layer, the depth of scene.draw's
+   casters and the world -> light clip matrix it was drawn with. Each
+   render compares the layer's new matrix with that one: the same map
+   (every entry equal) is reused; an orthographic map moved by whole texels
+   in x and y, nothing else changed (a stable crop following the camera),
+   is scrolled: the overlap copied, only the strips it exposes drawn; any
+   other change (the light turned, the scene's bounds, a warp that follows
+   the camera) draws the layer whole. Invalidated boxes are drawn again in
+   the rectangles their corners cover. The map the shaders sample is the
+   cache plus scene.draw_dynamic's casters, drawn over a copy each frame;
+   without dynamic casters the copy is made only when the cache changed. */
+
+/* world -> light clip of a matrix that takes p - o, in double */
+static void skgl__world_matrix(const sk_mat4 *m, const double o[3], double w[16])
+{
+    int k;
+    for (k = 0; k < 12; k++) w[k] = m->m[k];
+    for (k = 0; k < 4; k++)
+        w[12 + k] = (double)m->m[12 + k] - ((double)m->m[k] * o[0] + (double)m->m[4 + k] * o[1] +
+                                            (double)m->m[8 + k] * o[2]);
+}
+
+/* 1 when `now` is `was` moved by whole texels (*dx, *dy; 0 0: the same
+   map) of a res x res map; 0 when the layer must be drawn whole. Only an
+   orthographic map's content moves by a translation of its x and y: a
+   perspective one must match in every entry. The tolerances are float's:
+   a stable crop's scale is 2 / (right - left) of two floats that move with
+   the crop, so it changes in its last bit from frame to frame; a change
+   that moves no point of the map by more than 1e-3 texel is taken as
+   none (the linear entries within 1e-3 / res of the largest, the shift
+   within 1e-3 texel of a whole one, depth within 1e-6). */
+static int skgl__cache_shift(const double *was, const double *now, int res, int *dx, int *dy)
+{
+    int k, ortho = was[3] == 0.0 && was[7] == 0.0 && was[11] == 0.0 && was[15] == 1.0;
+    double fx = (now[12] - was[12]) * 0.5 * res, fy = (now[13] - was[13]) * 0.5 * res, big = 0.0;
+    for (k = 0; k < 12; k++) if (SK_FABS(was[k]) > big) big = SK_FABS(was[k]);
+    for (k = 0; k < 16; k++) {
+        double tol = k >= 12 ? 1e-6 : 1e-3 / res * big;
+        if ((ortho && (k == 12 || k == 13)) || SK_FABS(now[k] - was[k]) <= tol) continue;
+        return 0;
+    }
+    *dx = (int)SK_FLOOR(fx + 0.5);
+    *dy = (int)SK_FLOOR(fy + 0.5);
+    return SK_FABS(fx - *dx) <= 1e-3 && SK_FABS(fy - *dy) <= 1e-3;
+}
+
+/* the texel rectangle (x, y, w, h) of a res x res map that a world box's
+   shadow may touch: its corners' bounds, one texel wider each side (the
+   rasteriser's rounding); the whole map when a corner is behind a
+   perspective map's eye. 0: the box misses the map. */
+static int skgl__cache_box_rect(const double *w, const sk_aabb *box, int res, int rect[4])
+{
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    int i;
+    for (i = 0; i < 8; i++) {
+        sk_vec3 c = sk__aabb_corner(box, i);
+        double cx = w[0] * c.x + w[4] * c.y + w[8] * c.z + w[12];
+        double cy = w[1] * c.x + w[5] * c.y + w[9] * c.z + w[13];
+        double cw = w[3] * c.x + w[7] * c.y + w[11] * c.z + w[15];
+        if (!(cw > 1e-12)) { rect[0] = rect[1] = 0; rect[2] = rect[3] = res; return 1; }
+        cx /= cw; cy /= cw;
+        if (cx < x0) x0 = cx;
+        if (cx > x1) x1 = cx;
+        if (cy < y0) y0 = cy;
+        if (cy > y1) y1 = cy;
+    }
+    x0 = SK_FLOOR((x0 + 1.0) * 0.5 * res) - 1.0; x1 = SK_CEIL((x1 + 1.0) * 0.5 * res) + 1.0;
+    y0 = SK_FLOOR((y0 + 1.0) * 0.5 * res) - 1.0; y1 = SK_CEIL((y1 + 1.0) * 0.5 * res) + 1.0;
+    if (x0 < 0.0) x0 = 0.0;
+    if (y0 < 0.0) y0 = 0.0;
+    if (x1 > res) x1 = res;
+    if (y1 > res) y1 = res;
+    if (!(x1 > x0) || !(y1 > y0)) return 0;
+    rect[0] = (int)x0; rect[1] = (int)y0; rect[2] = (int)(x1 - x0); rect[3] = (int)(y1 - y0);
+    return 1;
+}
+
+/* the cache's memory for n layers of a light */
+static float skgl__minf(float a, float b) { return a < b ? a : b; }
+static float skgl__maxf(float a, float b) { return a > b ? a : b; }
+
+static double skgl__cache_layer_bytes(const skgl_shadow_desc *d) { return 4.0 * d->resolution * d->resolution; }
+
+/* the cache's texture and a framebuffer per cached layer: the nearest
+   layers that fit in cache_budget_kb (none fitting: no cache, the light
+   draws every frame) */
+static sk_result skgl__cache_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    skgl__api *gl = &ctx->gl;
+    int i, n = s->layers;
+    if (s->desc.cache_budget_kb > 0)
+        while (n > 0 && n * skgl__cache_layer_bytes(&s->desc) > 1024.0 * s->desc.cache_budget_kb) n--;
+    s->cache.layers = n;
+    s->stats.cache_layers = n;
+    s->stats.cache_bytes = n * skgl__cache_layer_bytes(&s->desc);
+    s->stats.cache_verify_texels = -1;
+    s->cache.all = 1;
+    if (n == 0) return SK_OK;
+    gl->GenTextures(1, &s->cache.tex);
+    ctx->objects++;
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->cache.tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, n, 0,
+                   SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    for (i = 0; i < n; i++) {
+        s->cache.fbo[i] = skgl__framebuffer(ctx, st, 0, 0, s->cache.tex, i);
+        if (!s->cache.fbo[i]) {
+            skgl__set_log(ctx, "skgl_shadow_create: cache framebuffer incomplete", NULL);
+            return SK_ERR_GL;
+        }
+    }
+    return SK_OK;
+}
+
+static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s)
+{
+    int i;
+    skgl__delete_texture(ctx, &s->cache.tex);
+    skgl__delete_texture(ctx, &s->cache.verify_tex);
+    for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->cache.fbo[i]);
+    skgl__delete_framebuffer(ctx, &s->cache.verify_fbo);
+}
+
+SKGLDEF sk_result skgl_shadow_invalidate(skgl_context *ctx, skgl_shadow *s, const sk_aabb *box)
+{
+    skgl__cache *c;
+    const char *fn = "skgl_shadow_invalidate";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    if (box && !(sk__v3_finite(box->min) && sk__v3_finite(box->max) && box->min.x <= box->max.x &&
+                 box->min.y <= box->max.y && box->min.z <= box->max.z))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: box: finite, min <= max on each axis", fn);
+    c = &s->cache;
+    if (!s->desc.cache || c->all) return SK_OK;
+    if (!box) { c->all = 1; return SK_OK; }
+    if (c->ndirty == SKGL_CACHE_REGIONS) {
+        /* full: the last slot takes the union */
+        sk_aabb *u = &c->dirty[SKGL_CACHE_REGIONS - 1];
+        u->min = sk__v3(skgl__minf(u->min.x, box->min.x), skgl__minf(u->min.y, box->min.y), skgl__minf(u->min.z, box->min.z));
+        u->max = sk__v3(skgl__maxf(u->max.x, box->max.x), skgl__maxf(u->max.y, box->max.y), skgl__maxf(u->max.z, box->max.z));
+        return SK_OK;
+    }
+    c->dirty[c->ndirty++] = *box;
+    return SK_OK;
+}
+
+/* one caster pass of layer i into framebuffer fb: the casters of `cls`
+   (SKGL__DRAW_*), in rect (NULL: the whole layer), cleared first unless
+   it draws over what is there */
+static sk_result skgl__cache_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs, int i,
+                                  skgl__uint fb, const int *rect, int cls, int clear)
+{
+    static const float one = 1.0f;
+    int res = s->desc.resolution;
+    skgl_draw_info info;
+    sk_result r;
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, rect != NULL);
+    if (rect) skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
+    if (clear) ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_DIRECTIONAL;
+    info.index = i;
+    if (rect) memcpy(info.rect, rect, sizeof info.rect);
+    ctx->draw_class = cls;
+    r = skgl__casters_draw(ctx, st, rs, &s->render_vp[i], s->origin, &info);
+    ctx->draw_class = SKGL__DRAW_ALL;
+    s->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && rs->draw_dynamic != NULL);
+    s->stats.texels += rect ? (double)rect[2] * rect[3] : (double)res * res;
+    return r;
+}
+
+/* a w x h rectangle of depth from (x, y) of src to (x + dx, y + dy) of dst
+   (the blit obeys the scissor test: off) */
+static void skgl__cache_copy(skgl_context *ctx, skgl__st *st, skgl_shadow *s, skgl__uint src, skgl__uint dst, int x,
+                             int y, int w, int h, int dx, int dy)
+{
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)src);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)dst);
+    ctx->gl.BlitFramebuffer(x, y, x + w, y + h, x + dx, y + dy, x + dx + w, y + dy + h, SKGL__DEPTH_BUFFER_BIT,
+                            SKGL__NEAREST);
+    s->stats.cache_copied += (double)w * h;
+}
+
+/* layer i scrolled by (dx, dy) texels: the overlap copied from the cache
+   into the map, the exposed strips drawn there, the result copied back */
+static sk_result skgl__cache_scroll(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs, int i,
+                                    int dx, int dy)
+{
+    int res = s->desc.resolution, strip[4];
+    int sx = dx < 0 ? -dx : 0, sy = dy < 0 ? -dy : 0, ax = dx < 0 ? -dx : dx, ay = dy < 0 ? -dy : dy;
+    sk_result r = SK_OK, rc;
+    skgl__cache_copy(ctx, st, s, s->cache.fbo[i], s->fbo[i], sx, sy, res - ax, res - ay, dx, dy);
+    if (ax > 0) {   /* the columns that came into the map, full height */
+        strip[0] = dx > 0 ? 0 : res - ax; strip[1] = 0; strip[2] = ax; strip[3] = res;
+        r = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], strip, SKGL__DRAW_STATIC, 1);
+    }
+    if (ay > 0) {   /* the rows, less those columns */
+        strip[0] = dx > 0 ? ax : 0; strip[1] = dy > 0 ? 0 : res - ay; strip[2] = res - ax; strip[3] = ay;
+        rc = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], strip, SKGL__DRAW_STATIC, 1);
+        if (r == SK_OK) r = rc;
+    }
+    skgl__cache_copy(ctx, st, s, s->fbo[i], s->cache.fbo[i], 0, 0, res, res, 0, 0);
+    return r;
+}
+
+/* the static part of cached layer i this frame: whole, scrolled or as it
+   was, then the invalidated regions; *same: the map's layer still equals
+   the cache's */
+static sk_result skgl__cache_update(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs, int i)
+{
+    skgl__cache *c = &s->cache;
+    int res = s->desc.resolution, dx = 0, dy = 0, k, rect[4];
+    double now[16];
+    sk_result r = SK_OK, rc;
+    skgl__world_matrix(&s->render_vp[i], s->origin, now);
+    if (c->all || !c->valid[i] || !skgl__cache_shift(c->world[i], now, res, &dx, &dy) || dx <= -res ||
+        dx >= res || dy <= -res || dy >= res) {
+        memcpy(c->world[i], now, sizeof now);
+        c->valid[i] = 1;
+        c->same[i] = 0;
+        s->stats.cache_full++;
+        return skgl__cache_pass(ctx, st, s, rs, i, c->fbo[i], NULL, SKGL__DRAW_STATIC, 1);
+    }
+    memcpy(c->world[i], now, sizeof now);
+    if (dx != 0 || dy != 0) {
+        r = skgl__cache_scroll(ctx, st, s, rs, i, dx, dy);
+        c->same[i] = 1;
+        s->stats.cache_scrolled++;
+    } else s->stats.cache_reused++;
+    for (k = 0; k < c->ndirty; k++) {
+        if (!skgl__cache_box_rect(now, &c->dirty[k], res, rect)) continue;
+        rc = skgl__cache_pass(ctx, st, s, rs, i, c->fbo[i], rect, SKGL__DRAW_STATIC, 1);
+        if (r == SK_OK) r = rc;
+        c->same[i] = 0;
+        s->stats.cache_regions++;
+    }
+    return r;
+}
+
+/* the boxes and the world matrix the cache has were given relative to the
+   world: an invalidated box is world space, as the API takes it */
+static sk_result skgl__render_cached(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs)
+{
+    skgl__cache *c = &s->cache;
+    int i, res = s->desc.resolution;
+    sk_result r = SK_OK, rc;
+    s->stats.cache_full = s->stats.cache_scrolled = s->stats.cache_reused = s->stats.cache_regions = 0;
+    s->stats.cache_copied = 0.0;
+    for (i = 0; i < s->maps; i++) {
+        if (i >= c->layers) {   /* past the budget: drawn every frame */
+            rc = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], NULL, SKGL__DRAW_ALL, 1);
+        } else {
+            rc = skgl__cache_update(ctx, st, s, rs, i);
+            if (rc == SK_OK && (rs->draw_dynamic || !c->same[i])) {
+                skgl__cache_copy(ctx, st, s, c->fbo[i], s->fbo[i], 0, 0, res, res, 0, 0);
+                c->same[i] = 1;
+            }
+            if (rc == SK_OK && rs->draw_dynamic) {
+                rc = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], NULL, SKGL__DRAW_DYNAMIC, 0);
+                c->same[i] = 0;
+            }
+        }
+        if (rc != SK_OK) { r = rc; c->valid[i] = 0; }
+    }
+    /* layers this frame did not use (LSPSM's partitions vary) missed its
+       invalidations */
+    for (; i < c->layers; i++) c->valid[i] = 0;
+    c->ndirty = 0;
+    c->all = 0;
+    return r;
+}
+
+/* .verify_cache: every cached layer drawn uncached into a scratch map and
+   both read back (a stall); SK_ERR_INVALID_ARG when more than 1e-5 of a
+   layer's texels (the scrolled crops' float rounding, CACHED MAPS) differ
+   by more than 1e-6 in depth */
+static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs)
+{
+    skgl__api *gl = &ctx->gl;
+    int i, res = s->desc.resolution, worst = 0, worst_layer = 0;
+    size_t k, n = (size_t)res * (size_t)res;
+    float *a, *b;
+    sk_result r = SK_OK;
+    if (!s->cache.verify_tex) {
+        gl->GenTextures(1, &s->cache.verify_tex);
+        ctx->objects++;
+        skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->cache.verify_tex);
+        skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
+        gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, res, res, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT,
+                       NULL);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+        s->cache.verify_fbo = skgl__framebuffer(ctx, st, 0, 0, s->cache.verify_tex, -1);
+        if (!s->cache.verify_fbo) return skgl__fail(ctx, SK_ERR_GL, "skgl_shadow_render: verify framebuffer incomplete");
+    }
+    a = (float *)SKGL_MALLOC(n * sizeof *a);
+    b = (float *)SKGL_MALLOC(n * sizeof *b);
+    if (!a || !b) { SKGL_FREE(a); SKGL_FREE(b); return SK_ERR_CAPACITY; }
+    skgl__st_pack(ctx, st, 0, res, 4 * res);
+    for (i = 0; i < s->maps && i < s->cache.layers && r == SK_OK; i++) {
+        int diff = 0;
+        r = skgl__cache_pass(ctx, st, s, rs, i, s->cache.verify_fbo, NULL, SKGL__DRAW_ALL, 1);
+        s->stats.passes -= 1 + (rs->draw_dynamic != NULL);   /* not the cache's work */
+        s->stats.texels -= (double)res * res;
+        skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)s->cache.verify_fbo);
+        gl->ReadPixels(0, 0, res, res, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, a);
+        skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)s->fbo[i]);
+        gl->ReadPixels(0, 0, res, res, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, b);
+        for (k = 0; k < n; k++) diff += SK_FABS(a[k] - b[k]) > 1e-6f;
+        if (diff > worst) { worst = diff; worst_layer = i; }
+    }
+    SKGL_FREE(a);
+    SKGL_FREE(b);
+    s->stats.cache_verify_texels = worst;
+    if (r == SK_OK && worst > (int)(1e-5 * (double)n))
+        r = skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_shadow_render: desc.verify_cache: layer %d of the cached map "
+                       "differs from the uncached one in %d texels: a caster scene.draw draws changed without "
+                       "skgl_shadow_invalidate (moving casters belong in scene.draw_dynamic)", worst_layer, worst);
+    return r;
+}
+
 // >>render
 /* every layer's caster pass, into its own framebuffer (scene relative to
    the light's origin, as the fits saw it) */
@@ -5126,7 +5574,13 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     s->stats.passes = 0;
     s->stats.texels = 0.0;
     s->stats.layered = 0;
-    if (s->desc.layered && s->maps > 1 && skgl__layered_ready(ctx)) {
+    if (s->desc.cache) {
+        skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
+        r = skgl__render_cached(ctx, &st, s, rs);
+        if (r == SK_OK && s->desc.verify_cache) r = skgl__cache_verify(ctx, &st, s, rs);
+        s->stats.layered = -1;   /* not the layered path, nor the per-layer loop below */
+    }
+    if (s->desc.layered && !s->desc.cache && s->maps > 1 && skgl__layered_ready(ctx)) {
         /* every layer in one pass (LAYERED PASSES) */
         int of[SKGL_MAX_CASCADES];
         skgl_draw_info info;
@@ -5157,6 +5611,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         s->stats.passes++;
         s->stats.texels += (double)s->view_w * s->view_h;
     }
+    if (s->stats.layered < 0) s->stats.layered = 0;
     skgl__model_end(ctx);
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;

@@ -345,6 +345,9 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
     V(PolygonMode, (cg_enum face, cg_enum mode), (face, mode), CG_CALL, (void)0, (void)0) \
     V(ClearBufferfv, (cg_enum buffer, cg_int drawbuffer, const float *value), (buffer, drawbuffer, value), CG_CALL, \
       (void)0, (void)0) \
+    V(BlitFramebuffer, (cg_int sx0, cg_int sy0, cg_int sx1, cg_int sy1, cg_int dx0, cg_int dy0, cg_int dx1, \
+                        cg_int dy1, cg_bitfield mask, cg_enum filter), \
+      (sx0, sy0, sx1, sy1, dx0, dy0, dx1, dy1, mask, filter), CG_CALL, (void)0, (void)0) \
     V(GetUniformiv, (cg_uint p, cg_int loc, cg_int *v), (p, loc, v), CG_QUERY, (void)0, (void)0) \
     V(GetUniformfv, (cg_uint p, cg_int loc, float *v), (p, loc, v), CG_QUERY, (void)0, (void)0)
 
