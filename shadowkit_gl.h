@@ -1009,6 +1009,13 @@ typedef struct skgl_point_desc {
     int layered;                  /* SKGL_POINT_CUBE: 1 draws the faces it renders in one pass
                                      through a geometry shader, one callback a frame
                                      (LAYERED PASSES); VSDCT keeps a pass per face [0] */
+    int cache;                    /* 1: keep the faces' static depth (scene.draw's casters)
+                                     while the light stays put; redraw only what
+                                     skgl_point_invalidate names (CACHED MAPS); not with
+                                     .layered or a shared .atlas [0] */
+    int cache_budget_kb;          /* .cache: the most GPU memory the cache may take, KiB; a
+                                     light whose cache is larger is drawn every frame [0: no
+                                     limit] */
 } skgl_point_desc;
 
 /* What a point light's last frame did (skgl_point_stats). */
@@ -1025,6 +1032,12 @@ typedef struct skgl_point_frame_stats {
     int atlas_wanted;                     /* shared atlas: face side selected before packing (greater
                                              than .resolution when skgl_point_atlas_pack halved it to fit) */
     int layered;                          /* as skgl_shadow_frame_stats.layered, for the faces */
+    /* the cache (desc.cache): faces drawn this frame from the cache as they
+       were (the others drawn whole), regions redrawn for
+       skgl_point_invalidate, texels copied, the GPU memory it holds (0:
+       no cache) */
+    int faces_reused, cache_regions;
+    double cache_copied, cache_bytes;
 } skgl_point_frame_stats;
 
 typedef struct skgl_point skgl_point;
@@ -1042,6 +1055,9 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
    face), 1 otherwise; always 1 without .cull_casters or outside a point
    pass. Counted in the stats. */
 SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster);
+/* CACHED MAPS (desc.cache): what scene.draw draws inside `box` changed;
+   NULL: everything. As skgl_shadow_invalidate. */
+SKGLDEF sk_result skgl_point_invalidate(skgl_context *ctx, skgl_point *p, const sk_aabb *box);
 /* Deferred point-light mask, arguments as skgl_shadow_mask. */
 SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
@@ -5269,18 +5285,25 @@ static int skgl__cache_shift(const double *was, const double *now, int res, int 
 /* the texel rectangle (x, y, w, h) of a res x res map that a world box's
    shadow may touch: its corners' bounds, one texel wider each side (the
    rasteriser's rounding); the whole map when a corner is behind a
-   perspective map's eye. 0: the box misses the map. */
+   perspective map's eye. 0: the box misses the map (all its corners
+   outside one clip plane). */
 static int skgl__cache_box_rect(const double *w, const sk_aabb *box, int res, int rect[4])
 {
-    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-    int i;
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300, cl[8][4];
+    int i, k, all_out = 0x3f, behind = 0;
     for (i = 0; i < 8; i++) {
         sk_vec3 c = sk__aabb_corner(box, i);
-        double cx = w[0] * c.x + w[4] * c.y + w[8] * c.z + w[12];
-        double cy = w[1] * c.x + w[5] * c.y + w[9] * c.z + w[13];
-        double cw = w[3] * c.x + w[7] * c.y + w[11] * c.z + w[15];
-        if (!(cw > 1e-12)) { rect[0] = rect[1] = 0; rect[2] = rect[3] = res; return 1; }
-        cx /= cw; cy /= cw;
+        int out = 0;
+        for (k = 0; k < 4; k++) cl[i][k] = w[k] * c.x + w[4 + k] * c.y + w[8 + k] * c.z + w[12 + k];
+        out |= (cl[i][0] < -cl[i][3]) | (cl[i][0] > cl[i][3]) << 1 | (cl[i][1] < -cl[i][3]) << 2 |
+               (cl[i][1] > cl[i][3]) << 3 | (cl[i][2] < -cl[i][3]) << 4 | (cl[i][2] > cl[i][3]) << 5;
+        all_out &= out;
+        behind |= !(cl[i][3] > 1e-12);
+    }
+    if (all_out) return 0;
+    if (behind) { rect[0] = rect[1] = 0; rect[2] = rect[3] = res; return 1; }
+    for (i = 0; i < 8; i++) {
+        double cx = cl[i][0] / cl[i][3], cy = cl[i][1] / cl[i][3];
         if (cx < x0) x0 = cx;
         if (cx > x1) x1 = cx;
         if (cy < y0) y0 = cy;
@@ -5295,6 +5318,33 @@ static int skgl__cache_box_rect(const double *w, const sk_aabb *box, int res, in
     if (!(x1 > x0) || !(y1 > y0)) return 0;
     rect[0] = (int)x0; rect[1] = (int)y0; rect[2] = (int)(x1 - x0); rect[3] = (int)(y1 - y0);
     return 1;
+}
+
+/* The rectangles of a res x res map to draw again for n invalidated
+   boxes: each box's (skgl__cache_box_rect), or their bounding rectangle
+   once when that is no larger than their areas added up (overlapping
+   boxes, a caster's old and new place). Returns how many, into out. */
+static int skgl__dirty_rects(const double *w, const sk_aabb *dirty, int n, int res, int out[][4])
+{
+    int k, m = 0, u[4] = {0, 0, 0, 0};
+    double sum = 0.0;
+    for (k = 0; k < n; k++) {
+        int *r = out[m];
+        if (!skgl__cache_box_rect(w, &dirty[k], res, r)) continue;
+        sum += (double)r[2] * r[3];
+        if (m == 0) memcpy(u, r, sizeof u);
+        else {
+            int x1 = u[0] + u[2] > r[0] + r[2] ? u[0] + u[2] : r[0] + r[2];
+            int y1 = u[1] + u[3] > r[1] + r[3] ? u[1] + u[3] : r[1] + r[3];
+            if (r[0] < u[0]) u[0] = r[0];
+            if (r[1] < u[1]) u[1] = r[1];
+            u[2] = x1 - u[0];
+            u[3] = y1 - u[1];
+        }
+        m++;
+    }
+    if (m > 1 && (double)u[2] * u[3] <= sum) { memcpy(out[0], u, sizeof u); m = 1; }
+    return m;
 }
 
 /* the cache's memory for n layers of a light */
@@ -5345,27 +5395,34 @@ static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s)
     skgl__delete_framebuffer(ctx, &s->cache.verify_fbo);
 }
 
+/* an invalidated box: NULL (everything) or finite with min <= max */
+static sk_result skgl__arg_box(skgl_context *ctx, const char *fn, const sk_aabb *box)
+{
+    if (box && !(sk__v3_finite(box->min) && sk__v3_finite(box->max) && box->min.x <= box->max.x &&
+                 box->min.y <= box->max.y && box->min.z <= box->max.z))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: box: finite, min <= max on each axis", fn);
+    return SK_OK;
+}
+
+/* box into a list of SKGL_CACHE_REGIONS; a full list's last entry takes the union */
+static void skgl__dirty_add(sk_aabb *dirty, int *n, const sk_aabb *box)
+{
+    sk_aabb *u = &dirty[SKGL_CACHE_REGIONS - 1];
+    if (*n < SKGL_CACHE_REGIONS) { dirty[(*n)++] = *box; return; }
+    u->min = sk__v3(skgl__minf(u->min.x, box->min.x), skgl__minf(u->min.y, box->min.y), skgl__minf(u->min.z, box->min.z));
+    u->max = sk__v3(skgl__maxf(u->max.x, box->max.x), skgl__maxf(u->max.y, box->max.y), skgl__maxf(u->max.z, box->max.z));
+}
+
 SKGLDEF sk_result skgl_shadow_invalidate(skgl_context *ctx, skgl_shadow *s, const sk_aabb *box)
 {
-    skgl__cache *c;
     const char *fn = "skgl_shadow_invalidate";
     if (!ctx) return SK_ERR_INVALID_ARG;
     skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    if (box && !(sk__v3_finite(box->min) && sk__v3_finite(box->max) && box->min.x <= box->max.x &&
-                 box->min.y <= box->max.y && box->min.z <= box->max.z))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: box: finite, min <= max on each axis", fn);
-    c = &s->cache;
-    if (!s->desc.cache || c->all) return SK_OK;
-    if (!box) { c->all = 1; return SK_OK; }
-    if (c->ndirty == SKGL_CACHE_REGIONS) {
-        /* full: the last slot takes the union */
-        sk_aabb *u = &c->dirty[SKGL_CACHE_REGIONS - 1];
-        u->min = sk__v3(skgl__minf(u->min.x, box->min.x), skgl__minf(u->min.y, box->min.y), skgl__minf(u->min.z, box->min.z));
-        u->max = sk__v3(skgl__maxf(u->max.x, box->max.x), skgl__maxf(u->max.y, box->max.y), skgl__maxf(u->max.z, box->max.z));
-        return SK_OK;
-    }
-    c->dirty[c->ndirty++] = *box;
+    SKGL__TRY(skgl__arg_box(ctx, fn, box));
+    if (!s->desc.cache || s->cache.all) return SK_OK;
+    if (!box) s->cache.all = 1;
+    else skgl__dirty_add(s->cache.dirty, &s->cache.ndirty, box);
     return SK_OK;
 }
 
@@ -5396,15 +5453,20 @@ static sk_result skgl__cache_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *
 }
 
 /* a w x h rectangle of depth from (x, y) of src to (x + dx, y + dy) of dst
-   (the blit obeys the scissor test: off) */
-static void skgl__cache_copy(skgl_context *ctx, skgl__st *st, skgl_shadow *s, skgl__uint src, skgl__uint dst, int x,
-                             int y, int w, int h, int dx, int dy)
+   (a blit obeys the scissor test: off) */
+static void skgl__blit_depth(skgl_context *ctx, skgl__st *st, skgl__uint src, skgl__uint dst, int x, int y, int w,
+                             int h, int dx, int dy)
 {
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)src);
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)dst);
     ctx->gl.BlitFramebuffer(x, y, x + w, y + h, x + dx, y + dy, x + dx + w, y + dy + h, SKGL__DEPTH_BUFFER_BIT,
                             SKGL__NEAREST);
+}
+static void skgl__cache_copy(skgl_context *ctx, skgl__st *st, skgl_shadow *s, skgl__uint src, skgl__uint dst, int x,
+                             int y, int w, int h, int dx, int dy)
+{
+    skgl__blit_depth(ctx, st, src, dst, x, y, w, h, dx, dy);
     s->stats.cache_copied += (double)w * h;
 }
 
@@ -5436,7 +5498,7 @@ static sk_result skgl__cache_scroll(skgl_context *ctx, skgl__st *st, skgl_shadow
 static sk_result skgl__cache_update(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs, int i)
 {
     skgl__cache *c = &s->cache;
-    int res = s->desc.resolution, dx = 0, dy = 0, k, rect[4];
+    int res = s->desc.resolution, dx = 0, dy = 0, k, nr, rects[SKGL_CACHE_REGIONS][4];
     double now[16];
     sk_result r = SK_OK, rc;
     skgl__world_matrix(&s->render_vp[i], s->origin, now);
@@ -5454,9 +5516,9 @@ static sk_result skgl__cache_update(skgl_context *ctx, skgl__st *st, skgl_shadow
         c->same[i] = 1;
         s->stats.cache_scrolled++;
     } else s->stats.cache_reused++;
-    for (k = 0; k < c->ndirty; k++) {
-        if (!skgl__cache_box_rect(now, &c->dirty[k], res, rect)) continue;
-        rc = skgl__cache_pass(ctx, st, s, rs, i, c->fbo[i], rect, SKGL__DRAW_STATIC, 1);
+    nr = skgl__dirty_rects(now, c->dirty, c->ndirty, res, rects);
+    for (k = 0; k < nr; k++) {
+        rc = skgl__cache_pass(ctx, st, s, rs, i, c->fbo[i], rects[k], SKGL__DRAW_STATIC, 1);
         if (r == SK_OK) r = rc;
         c->same[i] = 0;
         s->stats.cache_regions++;
@@ -5894,6 +5956,17 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
 // >>point
 #define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
 
+/* a point light's cache (>>point_cache): the faces' static depth, the
+   light position and face side it holds, per face valid and equal to the
+   map's face; the boxes invalidated since the last render */
+typedef struct skgl__point_cache {
+    skgl__uint tex, fbo[6];
+    int fbo_level, m, all, ndirty;
+    sk_vec3 pos;
+    int valid[6], same[6];
+    sk_aabb dirty[SKGL_CACHE_REGIONS];
+} skgl__point_cache;
+
 struct skgl_point {
     skgl_point_desc desc;
     unsigned id;                   /* per context, never reused: whose constants a program holds */
@@ -5922,6 +5995,7 @@ struct skgl_point {
     unsigned layout_serial;        /* changes with layout (its rectangles in the snippet) */
     int packed;                    /* shared atlas: 1 once skgl_point_atlas_pack placed the faces */
     skgl__timer t_render, t_mask;
+    skgl__point_cache cache;       /* desc.cache only */
     skgl_point_frame_stats stats;
 };
 
@@ -5930,6 +6004,10 @@ struct skgl_point_atlas {
     skgl__uint fbo;                /* its framebuffer, checked when made */
     int w, h;
 };
+
+/* defined with the faces' passes (>>point_cache) */
+static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
+static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
 
 /* the 2D depth texture the light renders into and samples: shared or its own */
 static skgl__uint skgl__point_tex(const skgl_point *p)
@@ -6028,6 +6106,7 @@ static void skgl__point_free(skgl_context *ctx, skgl_point *p)
     if (p->lin_sampler) { gl->DeleteSamplers(1, &p->lin_sampler); ctx->objects--; }
     for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->fbo[f]);
     skgl__delete_framebuffer(ctx, &p->fbo_layered);
+    skgl__point_cache_free(ctx, p);
     skgl__timer_free(ctx, &p->t_render);
     skgl__timer_free(ctx, &p->t_mask);
     p->prog = p->lin_sampler = 0;
@@ -6089,6 +6168,12 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
     SKGL__RULE(d->vsdct_grey_levels >= 1, fn, "vsdct_grey_levels", d->vsdct_grey_levels, "1 or more");
     SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
     SKGL__NEED(!d->layered || ctx->caps.geometry_shader, fn, "desc.layered", SKGL__GEOMETRY);
+    SKGL__RULE(d->cache == 0 || d->cache == 1, fn, "cache", d->cache, "0 or 1");
+    SKGL__RULE(!d->cache || !d->layered, fn, "cache", d->cache,
+               "a cached light draws its faces a pass each: not with desc.layered");
+    SKGL__RULE(!d->cache || !d->atlas, fn, "cache", d->cache,
+               "a shared atlas's rectangles move with every pack: not with desc.atlas");
+    SKGL__RULE(d->cache_budget_kb >= 0, fn, "cache_budget_kb", d->cache_budget_kb, "0 (no limit) or more");
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -6223,6 +6308,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     }
     p->face_res = d.resolution;
     p->layout = skgl__point_layout(p, d.resolution);
+    if (r == SK_OK && d.cache) r = skgl__point_cache_create(ctx, &st, p);
     skgl__st_end(ctx, &st);
     if (r == SK_OK && gl->GetError() != 0) {
         skgl__set_log(ctx, "skgl_point_create: GL error while allocating the maps", NULL);
@@ -6268,7 +6354,8 @@ SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster
         caster.min = sk__sub(caster.min, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
         caster.max = sk__add(caster.max, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
     }
-    vis = sk_caster_visible(info->light_pos, info->light_range, caster, &p->view);
+    /* a cached face keeps its static casters for every view: not culled by this one */
+    vis = (p->cache.tex && !info->dynamic) || sk_caster_visible(info->light_pos, info->light_range, caster, &p->view);
     if (vis) {
         sk_frustum bf;
         int i;
@@ -6415,6 +6502,195 @@ static sk_result skgl__point_target(skgl_context *ctx, skgl__st *st, skgl_point 
     return SK_OK;
 }
 
+/* >>point_cache  CACHED MAPS for point lights: the faces' static depth in
+   a texture shaped like the light's own (a cube with the same levels, or
+   the 3 x 2 atlas), valid while the light stays where it was at the same
+   face side; invalidated boxes redrawn in each face's rectangle of their
+   corners; a face culled this frame is cleared in the map and keeps its
+   cache unless a box was invalidated while it was away. */
+static double skgl__point_cache_bytes(const skgl_point *p)
+{
+    int lv;
+    double b = 0.0;
+    if (p->desc.technique == SKGL_POINT_VSDCT) return 4.0 * 6.0 * p->desc.resolution * p->desc.resolution;
+    for (lv = 0; lv < p->levels; lv++) b += 4.0 * 6.0 * (double)(p->desc.resolution >> lv) * (p->desc.resolution >> lv);
+    return b;
+}
+
+/* the cache's texture (at create, after the light's own) */
+static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__point_cache *c = &p->cache;
+    int f, lv;
+    c->all = 1;
+    c->fbo_level = -1;
+    p->stats.cache_bytes = skgl__point_cache_bytes(p);
+    if (p->desc.cache_budget_kb > 0 && p->stats.cache_bytes > 1024.0 * p->desc.cache_budget_kb) {
+        p->stats.cache_bytes = 0.0;   /* over the budget: drawn every frame */
+        return SK_OK;
+    }
+    gl->GenTextures(1, &c->tex);
+    ctx->objects++;
+    if (p->desc.technique == SKGL_POINT_VSDCT) {
+        skgl__atlas_alloc(ctx, st, c->tex, 3 * p->desc.resolution, 2 * p->desc.resolution);
+        c->fbo[0] = skgl__framebuffer(ctx, st, 0, 0, c->tex, -1);
+        return c->fbo[0] ? SK_OK : skgl__fail(ctx, SK_ERR_GL, "skgl_point_create: cache framebuffer incomplete");
+    }
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE), (skgl__int)c->tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_CUBE));
+    for (lv = 0; lv < p->levels; lv++)
+        for (f = 0; f < 6; f++)
+            gl->TexImage2D(SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, lv, SKGL__DEPTH_COMPONENT32F,
+                           p->desc.resolution >> lv, p->desc.resolution >> lv, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT,
+                           NULL);
+    gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAX_LEVEL, p->levels - 1);
+    gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_CUBE_MAP, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    return SK_OK;
+}
+
+static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p)
+{
+    int f;
+    skgl__delete_texture(ctx, &p->cache.tex);
+    for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->cache.fbo[f]);
+}
+
+/* a cube cache's face framebuffers onto the level the light renders */
+static int skgl__point_cache_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p)
+{
+    skgl__point_cache *c = &p->cache;
+    int f, ok = 1;
+    if (p->desc.technique == SKGL_POINT_VSDCT || c->fbo_level == p->level) return 1;
+    for (f = 0; f < 6; f++) {
+        if (!c->fbo[f]) {
+            ctx->gl.GenFramebuffers(1, &c->fbo[f]);
+            ctx->objects++;
+            skgl__st_framebuffer(ctx, st, c->fbo[f]);
+            skgl__draw_buffers_none(ctx);
+            ctx->gl.ReadBuffer(SKGL__NONE);
+        }
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)c->fbo[f]);
+        ctx->gl.FramebufferTexture2D(SKGL__DRAW_FRAMEBUFFER, SKGL__DEPTH_ATTACHMENT,
+                                     SKGL__TEXTURE_CUBE_MAP_POSITIVE_X + (skgl__enum)f, c->tex, p->level);
+        ok &= ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
+    }
+    c->fbo_level = ok ? p->level : -1;
+    return ok;
+}
+
+SKGLDEF sk_result skgl_point_invalidate(skgl_context *ctx, skgl_point *p, const sk_aabb *box)
+{
+    const char *fn = "skgl_point_invalidate";
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__arg_box(ctx, fn, box));
+    if (!p->cache.tex || p->cache.all) return SK_OK;
+    if (!box) p->cache.all = 1;
+    else skgl__dirty_add(p->cache.dirty, &p->cache.ndirty, box);
+    return SK_OK;
+}
+
+/* one caster pass of a face into fb, scissored to rect (x, y, w, h) */
+static sk_result skgl__point_face_pass(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                       int f, const sk_mat4 *vp, skgl__uint fb, const int *rect, int cls, int clear)
+{
+    static const float one = 1.0f;
+    skgl_draw_info info;
+    sk_result r;
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+    skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
+    if (clear) ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_CUBE_FACE;
+    info.index = f;
+    info.light_pos = p->light_pos;
+    info.light_range = p->desc.range;
+    info.point = p;
+    memcpy(info.rect, rect, sizeof info.rect);
+    ctx->draw_class = cls;
+    r = skgl__casters_draw(ctx, st, scene, vp, skgl__zero3, &info);
+    ctx->draw_class = SKGL__DRAW_ALL;
+    p->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && scene->draw_dynamic != NULL);
+    p->stats.texels += (double)rect[2] * rect[3];
+    return r;
+}
+
+/* the faces of a cached light (the non-layered loop of
+   skgl__point_draw_faces, its caster pass state begun) */
+static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                          unsigned faces, int m)
+{
+    static const float one = 1.0f;
+    skgl__point_cache *c = &p->cache;
+    sk_mat4 proj = sk_cube_face_proj(p->desc.near_plane, p->desc.range), face_vp;
+    int f, k, vsdct = p->desc.technique == SKGL_POINT_VSDCT;
+    sk_result r = SK_OK, rc = SK_OK;
+    if (!skgl__point_cache_fbos(ctx, st, p))
+        return skgl__fail(ctx, SK_ERR_GL, "skgl_point_render: a cache face's framebuffer is incomplete at level %d",
+                          p->level);
+    /* the light moved or changed its face side: every face drawn anew */
+    if (c->all || memcmp(&c->pos, &p->light_pos, sizeof c->pos) != 0 || c->m != m)
+        for (f = 0; f < 6; f++) c->valid[f] = 0;
+    p->stats.faces_reused = p->stats.cache_regions = 0;
+    p->stats.cache_copied = 0.0;
+    for (f = 0; f < 6; f++) {
+        int x0 = vsdct ? p->layout.face_x[f] : 0, y0 = vsdct ? p->layout.face_y[f] : 0, rect[4], nr;
+        int rects[SKGL_CACHE_REGIONS][4];
+        skgl__uint live = vsdct ? p->fbo[0] : p->fbo[f], cached = vsdct ? c->fbo[0] : c->fbo[f];
+        double w[16];
+        rect[0] = x0; rect[1] = y0; rect[2] = rect[3] = m;
+        skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, x0, y0, m, m);
+        if (!(faces & (1u << f))) {   /* culled: read as lit, as without a cache */
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)live);
+            skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+            skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, x0, y0, m, m);
+            ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+            c->same[f] = 0;
+            if (c->ndirty > 0) c->valid[f] = 0;
+            p->stats.faces_culled++;
+            continue;
+        }
+        face_vp = sk_mat4_mul(proj, sk_cube_face_view(f, p->light_pos));
+        if (!c->valid[f]) {
+            rc = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, cached, rect, SKGL__DRAW_STATIC, 1);
+            c->valid[f] = rc == SK_OK;
+            c->same[f] = 0;
+        } else {
+            p->stats.faces_reused++;
+            skgl__world_matrix(&face_vp, skgl__zero3, w);
+            nr = skgl__dirty_rects(w, c->dirty, c->ndirty, m, rects);
+            for (k = 0; k < nr && rc == SK_OK; k++) {
+                rects[k][0] += x0;
+                rects[k][1] += y0;
+                rc = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, cached, rects[k], SKGL__DRAW_STATIC, 1);
+                c->same[f] = 0;
+                p->stats.cache_regions++;
+            }
+        }
+        if (rc == SK_OK && !c->same[f]) {
+            skgl__blit_depth(ctx, st, cached, live, x0, y0, m, m, 0, 0);
+            p->stats.cache_copied += (double)m * m;
+            c->same[f] = 1;
+        }
+        if (rc == SK_OK && scene->draw_dynamic) {
+            rc = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, live, rect, SKGL__DRAW_DYNAMIC, 0);
+            c->same[f] = 0;
+        }
+        if (rc != SK_OK) { r = rc; c->valid[f] = 0; rc = SK_OK; }
+        p->stats.faces_rendered++;
+    }
+    c->pos = p->light_pos;
+    c->m = m;
+    c->ndirty = 0;
+    c->all = 0;
+    return r;
+}
+
 /* the caster pass of each face in `faces` at side m (Eq. (5.4.6)'s window
    depth: 90 degrees, w = eye depth); every face is cleared, culled ones
    too: a filter tap near a visible face's edge may step into one, and must
@@ -6430,6 +6706,11 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
     sk_result r = SK_OK, rc;
     if (layered) skgl__casters_begin_layered(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
     else skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+    if (p->cache.tex) {
+        r = skgl__point_faces_cached(ctx, st, p, scene, faces, m);
+        skgl__model_end(ctx);
+        return r;
+    }
     if (vsdct) {
         /* the faces' region of an own atlas, one clear; in a shared atlas
            each face's rectangle, cleared in the loop (the other lights'

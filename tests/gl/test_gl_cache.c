@@ -24,6 +24,10 @@
               invalidated each time);
      budget   PSSM-4 with cache_budget_kb for 2 layers: 2 cached, 2 drawn
               every frame, the walk again.
+   Point lights (cube and VSDCT, 256 a face, range 16, face and caster
+   culling on, the light at (1.5, 4.5, 1)): walk (the camera every other
+   frame of the walk: faces culled and back), dynamic, static, light (the
+   light moves 5 cm a frame: every face drawn whole), appear.
    Also: verify_cache fails a render when a static caster moved without an
    invalidation, and the contracts (FERKO, RMSM and layered refused, bad
    boxes).
@@ -38,12 +42,17 @@
    frame, cached / uncached: walk 0.004 (STANDARD) and 0.019 (PSSM-4),
    static 0.003 / 0.018, appear 0.0003 / 0.002; asserted below 0.35 on the
    walks (budget: 0.516, its two uncached cascades half of it by
-   themselves; asserted below 0.5 + 0.35 / 2).
+   themselves; asserted below 0.5 + 0.35 / 2). Point lights, cube and
+   VSDCT alike: walk 0 texels (every face reused), static 0.036, appear
+   0.004 (asserted below 0.35); dynamic 0.5 (the dynamic pass counts its
+   whole face).
    Can fail: SK_GL_TEST_NO_INVALIDATE=1 (the test makes no
    skgl_shadow_invalidate calls): static differs in 1.20% / 1.26% / 1.26%
    of the pixels, appear in 0.42% / 0.39% / 0.40% (6 checks fail). In a
    local copy of the header: skgl__cache_shift always "the same map": walk
    5.24% / 5.35% / 52.0%, light 33.3% / 43.5% / 2.2%, budget 0.82% (13
+   checks); point lights: static 1.79% / 1.78% (4 checks); the light's
+   position left out of the point cache's key: light 1.22% / 1.24% (6
    checks); no copy of the cache under the dynamic casters: dynamic 90.1%
    / 90.0% / 89.0% from the .cache 0 light (3 checks; the twin shares the
    fault, hence the second comparison). */
@@ -269,6 +278,120 @@ static void test_cached_equals_uncached(void) {
         }
 }
 
+/* ---- point lights: the cube and VSDCT ---- */
+static int point_mask_of(world *w, skgl_point *p, const skgl_camera *cam, const skgl_scene *sc, sk_vec3 pos,
+                         float *out) {
+    size_t i;
+    sk_result r = skgl_point_render(w->e.sk, p, cam, sc, pos);
+    if (r == SK_OK) r = skgl_point_mask(w->e.sk, p, cam, w->e.gbuf.depth_tex, w->e.gbuf.color_tex, w->e.mask.color_tex);
+    if (r != SK_OK) {
+        SK_CHECK_MSG(0, "point: %s (%s)", sk_result_string(r), skgl_error_log(w->e.sk));
+        return -1;
+    }
+    if (tb_gl_read_texture_red(&w->e.gl, w->e.mask.color_tex, w->e.w, w->e.h, out) != 0) return -1;
+    for (i = 0; i < w->e.n; i++) if (!(w->e.depth[i] < 1.0f)) out[i] = -1.0f;
+    return 0;
+}
+
+static skgl_point *point_light(world *w, skgl_point_technique tech, int cache) {
+    skgl_point_desc d;
+    skgl_point *p = NULL;
+    sk_result r;
+    memset(&d, 0, sizeof d);
+    d.technique = tech;
+    d.resolution = 256;
+    d.range = 16;
+    d.cull_faces = 1;
+    d.cull_casters = 1;
+    d.cache = cache;
+    gt_point_bias(&d);
+    r = skgl_point_create(w->e.sk, &d, &p);
+    SK_CHECK_MSG(r == SK_OK, "skgl_point_create: %s (%s)", sk_result_string(r), skgl_error_log(w->e.sk));
+    return p;
+}
+
+static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
+    skgl_point *cached = point_light(w, tech, 1), *twin = point_light(w, tech, 1), *plain = point_light(w, tech, 0);
+    float *a = gt_alloc(&w->e), *b = gt_alloc(&w->e), *c = gt_alloc(&w->e);
+    tally t;
+    int f, frames = sc_kind == WALK ? 12 : 8;
+    skgl_scene sc = scene_of(w, sc_kind == DYNAMIC);
+    const sk_aabb box0 = w->e.scene.objects[w->box0].bounds, box3 = w->e.scene.objects[w->box3].bounds;
+    memset(&t, 0, sizeof t);
+    if (!cached || !twin || !plain || !a || !b || !c) goto done;
+    for (f = 0; f < frames; f++) {
+        skgl_camera cam = sc_kind == WALK ? walk_camera(2 * f) : walk_camera(3);
+        sk_vec3 pos = gt_v3(1.5f, 4.5f, 1.0f);
+        gt_agreement g;
+        if (sc_kind == LIGHT) pos = gt_v3(1.5f + 0.05f * (float)f, 4.5f, 1.0f);
+        if (f > 0 && sc_kind == DYNAMIC) w->mover_at = gt_v3(-6 + 1.7f * (float)f, 0, -6 + 1.5f * (float)f);
+        if (f > 0 && sc_kind == STATIC) {
+            sk_vec3 now = gt_v3(0.35f * (float)f, 0, 0.2f * (float)f);
+            sk_aabb ob = moved(box0, w->box0_shift), nb = moved(box0, now);
+            if (!w->no_invalidate) {
+                SK_CHECK(skgl_point_invalidate(w->e.sk, cached, &ob) == SK_OK);
+                SK_CHECK(skgl_point_invalidate(w->e.sk, cached, &nb) == SK_OK);
+            }
+            w->box0_shift = now;
+        }
+        if (sc_kind == APPEAR && (f == 2 || f == 5)) {
+            w->box3_hidden = f == 2;
+            if (!w->no_invalidate) SK_CHECK(skgl_point_invalidate(w->e.sk, cached, &box3) == SK_OK);
+        }
+        SK_CHECK(gt_gbuffer(&w->e, &cam) == 0);
+        SK_CHECK(skgl_point_invalidate(w->e.sk, twin, NULL) == SK_OK);
+        if (point_mask_of(w, cached, &cam, &sc, pos, a) || point_mask_of(w, twin, &cam, &sc, pos, b) ||
+            point_mask_of(w, plain, &cam, &sc, pos, c))
+            break;
+        if (f > 0) {
+            t.texels_cached += skgl_point_stats(cached)->texels;
+            t.texels_twin += skgl_point_stats(twin)->texels;
+        }
+        t.reused += skgl_point_stats(cached)->faces_reused;
+        t.regions += skgl_point_stats(cached)->cache_regions;
+        SK_CHECK(skgl_point_stats(twin)->faces_reused == 0);
+        g = gt_agree(a, b, w->e.n);
+        t.differ += g.differ;
+        t.covered += g.both;
+        t.differ_plain += gt_agree(a, c, w->e.n).differ;
+    }
+done:
+    free(a); free(b); free(c);
+    skgl_point_destroy(w->e.sk, cached);
+    skgl_point_destroy(w->e.sk, twin);
+    skgl_point_destroy(w->e.sk, plain);
+    w->mover_at = gt_v3(-6, 0, -6);
+    w->box0_shift = gt_v3(0, 0, 0);
+    w->box3_hidden = 0;
+    return t;
+}
+
+static void test_point_cached_equals_uncached(void) {
+    world *w = &W_;
+    int ti, k;
+    for (ti = 0; ti < 2; ti++)
+        for (k = 0; k < BUDGET; k++) {
+            const char *name = ti ? "point-vsdct" : "point-cube";
+            tally t = run_point(w, ti ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE, (scenario)k);
+            double pct = t.covered ? 100.0 * (double)t.differ / (double)t.covered : 100.0;
+            double pct_plain = t.covered ? 100.0 * (double)t.differ_plain / (double)t.covered : 100.0;
+            printf("%-16s %-8s differ %llu of %llu (%.5f%%), from .cache 0 %llu; faces reused %d, regions %d; "
+                   "texels after frame 0 cached/uncached %.0f/%.0f = %.3f\n",
+                   name, scenario_name[k], (unsigned long long)t.differ, (unsigned long long)t.covered, pct,
+                   (unsigned long long)t.differ_plain, t.reused, t.regions, t.texels_cached, t.texels_twin,
+                   t.texels_twin > 0 ? t.texels_cached / t.texels_twin : 0.0);
+            SK_CHECK(t.covered > 0);
+            SK_CHECK_MSG(pct <= ALLOW_PCT, "%s %s: %.5f%% differ from the uncached mask", name, scenario_name[k], pct);
+            SK_CHECK_MSG(pct_plain <= ALLOW_PCT, "%s %s: %.5f%% differ from the .cache 0 light's mask", name,
+                         scenario_name[k], pct_plain);
+            if (k == LIGHT) SK_CHECK(t.reused == 0);
+            else SK_CHECK(t.reused > 0);
+            if (k == WALK || k == STATIC || k == APPEAR)
+                SK_CHECK_MSG(t.texels_cached < WALK_TEXELS_MAX * t.texels_twin, "%s %s: %.0f texels, uncached %.0f",
+                             name, scenario_name[k], t.texels_cached, t.texels_twin);
+        }
+}
+
 /* verify_cache catches a static caster moved without an invalidation */
 static void test_verify(void) {
     world *w = &W_;
@@ -369,6 +492,7 @@ static void test_cache(void) {
     /* the mover's room: the scene's bounds hold its whole path */
     w->e.scene.bounds = gt_box(-10, 0, -10, 10, 6, 10);
     test_cached_equals_uncached();
+    test_point_cached_equals_uncached();
     test_verify();
     test_contracts();
     SK_CHECK(w->e.gl.GetError() == 0);
