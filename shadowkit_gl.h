@@ -136,6 +136,63 @@
      added: time both on your GPU (the stats' layered field says which ran).
      VSDCT's atlas, RMSM's pages and one-map techniques keep one pass each.
 
+   CACHED MAPS (skgl_shadow_desc.cache, skgl_point_desc.cache)
+     Most casters do not move from one frame to the next. A cached light
+     keeps the depth of the casters scene.draw draws and redraws only what
+     changed. The model asks three things of the scene:
+       1. What moves is drawn by scene.draw_dynamic: characters, doors,
+          wind-swayed foliage, anything animated. It is drawn every frame,
+          over a copy of the cached depth, and needs no invalidation. Give
+          scene.dynamic_bounds (a box around them this frame) and only the
+          texels it covers are drawn, and last frame's copied back.
+       2. When something scene.draw draws changes (a static caster moved
+          once, appeared, went), say where: skgl_shadow_invalidate(gl,
+          sun, &box) / skgl_point_invalidate(gl, lamp, &box) with the world
+          box it left and the one it came to. The texels those boxes cover
+          are drawn again at the next render. box NULL: everything.
+       3. Nothing else. A change of the light, of the map's crop or warp,
+          of the scene's bounds or of the face side is seen by shadowkit
+          itself: each cached layer keeps the matrix it was drawn with and
+          is drawn whole when the new one differs. A stable crop (.stable
+          = 1) that follows the camera by whole texels is scrolled: the
+          overlap copied, only the strips it exposes drawn.
+
+         skgl_scene scene = {draw_static, me, bounds, draw_movers};
+         sdesc.technique = SKGL_PSSM; sdesc.stable = 1; sdesc.cache = 1;
+         ...
+         if (door_moved) {
+             skgl_shadow_invalidate(gl, sun, &door_box_before);
+             skgl_shadow_invalidate(gl, sun, &door_box_now);
+         }
+         skgl_shadow_render(gl, sun, &cam, &scene, light_dir);
+
+     What is reused: a cascade whose crop did not move renders only the
+     dynamic casters; a stable cascade that moved draws its new strips; a
+     focused crop or a LiSPSM/PSM/LSPSM warp follows the camera and is
+     drawn whole whenever the camera moves (reused while it stands still):
+     cache stable maps. A point light's faces are kept while the light
+     stays where it was at the same face side; its caster culling then
+     keeps every static caster a face can see, whatever the view, and culls
+     only the dynamic ones by the view. Not cached: FERKO (its crop and
+     size follow the G-buffer), RMSM (no page cache), layered passes and
+     shared atlases (refused at create, naming desc.cache).
+     A cached stable crop's depth range is the scene's bounds in light
+     space (the sphere's would move with the camera): set tight bounds.
+     The callbacks' info->rect is the texel rectangle a pass draws (an
+     exposed strip, an invalidated region; all 0: the whole map), for
+     callbacks that cull finely; info->dynamic says which callback runs.
+     Memory: one depth texture the size of the light's maps (stats
+     cache_bytes); .cache_budget_kb caps it: a directional light caches
+     its nearest layers while they fit and draws the rest every frame, a
+     point light whose cache does not fit is drawn every frame. Misuse is
+     caught with .verify_cache = 1 (desktop GL, a debugging aid: every
+     cached layer is also drawn uncached and both read back, a stall): a
+     render whose cached map differs from the uncached one in more than
+     1e-5 of a layer's texels (a stable scroll's float rounding may move a
+     few) fails with SK_ERR_INVALID_ARG, the log naming the layer and the
+     likely cause (a caster scene.draw draws moved without an
+     invalidation); stats.cache_verify_texels counts them.
+
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
                     bounds, fitted in light space (Ferko 2013's crop, Brabec);
@@ -749,6 +806,9 @@ typedef struct skgl_scene {
     skgl_draw_fn draw_dynamic;    /* the casters that move or change (CACHED MAPS): drawn in
                                      every pass after draw, and over a cached map's static
                                      depth every frame; info->dynamic 1 [NULL: none] */
+    sk_aabb dynamic_bounds;       /* where draw_dynamic's casters are this frame: a cached map
+                                     copies and draws them only in the texels it covers (and
+                                     restores last frame's) [all 0: not given, the whole map] */
 } skgl_scene;
 
 /* What a directional light's last frame did (skgl_shadow_stats). */
@@ -1304,10 +1364,12 @@ extern "C" {
         6.2 fits: PSSM, PSM, LiSPSM, LSPSM ...... >>fits
         6.3 FERKO's resolution estimation ....... >>ferko
         6.4 RMSM's pages ........................ >>rmsm
-        6.5 analyze and render .................. >>render
-        6.6 bind (forward shaders) .............. >>bind
-        6.7 the deferred mask ................... >>mask
+        6.5 the cache (CACHED MAPS) ............. >>cache
+        6.6 analyze and render .................. >>render
+        6.7 bind (forward shaders) .............. >>bind
+        6.8 the deferred mask ................... >>mask
      7. Point lights: cube maps and VSDCT ...... >>point
+        the faces' cache ........................ >>point_cache
      8. Several point lights in one atlas ...... >>atlas
      9. Area lights: PCSS and PVSM: the frame timer, the light, its
         frustum, the passes ...................... >>soft
@@ -2424,6 +2486,24 @@ static sk_result skgl__camera_in(skgl_context *ctx, const char *fn, const skgl_c
 }
 
 /* a scene with a draw callback (when one is needed) and valid bounds */
+/* 1 when the scene gives dynamic_bounds (not all 0) */
+static int skgl__has_dynamic_bounds(const skgl_scene *scene)
+{
+    const sk_aabb *b = &scene->dynamic_bounds;
+    return b->min.x != 0.0f || b->min.y != 0.0f || b->min.z != 0.0f || b->max.x != 0.0f || b->max.y != 0.0f ||
+           b->max.z != 0.0f;
+}
+static sk_result skgl__arg_dynamic_bounds(skgl_context *ctx, const char *fn, const skgl_scene *scene)
+{
+    const sk_aabb *b = &scene->dynamic_bounds;
+    if (skgl__has_dynamic_bounds(scene) && !sk__aabb_valid(b))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "%s: scene->dynamic_bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
+                          (double)b->min.x, (double)b->min.y, (double)b->min.z, (double)b->max.x, (double)b->max.y,
+                          (double)b->max.z);
+    return SK_OK;
+}
+
 static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_scene *scene, int needs_draw)
 {
     SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
@@ -2433,7 +2513,7 @@ static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_s
                           "%s: scene->bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
                           (double)scene->bounds.min.x, (double)scene->bounds.min.y, (double)scene->bounds.min.z,
                           (double)scene->bounds.max.x, (double)scene->bounds.max.y, (double)scene->bounds.max.z);
-    return SK_OK;
+    return skgl__arg_dynamic_bounds(ctx, fn, scene);
 }
 
 /* a finite vector; nonzero = 1: of some length (a direction) */
@@ -4126,7 +4206,7 @@ typedef struct skgl__rmsm {
 typedef struct skgl__cache {
     skgl__uint tex, fbo[SKGL_MAX_CASCADES];
     int layers;
-    int valid[SKGL_MAX_CASCADES], same[SKGL_MAX_CASCADES];
+    int valid[SKGL_MAX_CASCADES], same[SKGL_MAX_CASCADES], dyn[SKGL_MAX_CASCADES][4];
     double world[SKGL_MAX_CASCADES][16];
     sk_aabb dirty[SKGL_CACHE_REGIONS];
     int ndirty, all;
@@ -5233,7 +5313,6 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
 
-/* ---- 6.5 analyze and render ------------------------------------------- */
 /* ---- 6.5 the cache: static casters kept from frame to frame ----------- */
 // >>cache
 /* CACHED MAPS. The cache holds, per cached layer, the depth of scene.draw's
@@ -5514,6 +5593,7 @@ static sk_result skgl__cache_update(skgl_context *ctx, skgl__st *st, skgl_shadow
     if (dx != 0 || dy != 0) {
         r = skgl__cache_scroll(ctx, st, s, rs, i, dx, dy);
         c->same[i] = 1;
+        c->dyn[i][2] = c->dyn[i][3] = 0;
         s->stats.cache_scrolled++;
     } else s->stats.cache_reused++;
     nr = skgl__dirty_rects(now, c->dirty, c->ndirty, res, rects);
@@ -5526,12 +5606,36 @@ static sk_result skgl__cache_update(skgl_context *ctx, skgl__st *st, skgl_shadow
     return r;
 }
 
+/* The map's layer i from the cache, then the dynamic casters over it.
+   c->same[i]: the map equals the cache but inside c->dyn[i] (where the
+   last frame's dynamic casters were drawn): only that is copied back when
+   the cache did not change. With scene.dynamic_bounds the dynamic casters
+   are drawn in their rectangle alone (none when it misses the layer). */
+static sk_result skgl__cache_dynamic(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs, int i)
+{
+    skgl__cache *c = &s->cache;
+    int res = s->desc.resolution, rect[4] = {0, 0, 0, 0}, *d = c->dyn[i];
+    double w[16];
+    sk_result r;
+    if (!c->same[i]) skgl__cache_copy(ctx, st, s, c->fbo[i], s->fbo[i], 0, 0, res, res, 0, 0);
+    else if (d[2] > 0) skgl__cache_copy(ctx, st, s, c->fbo[i], s->fbo[i], d[0], d[1], d[2], d[3], 0, 0);
+    c->same[i] = 1;
+    d[2] = d[3] = 0;
+    if (!rs->draw_dynamic) return SK_OK;
+    rect[2] = rect[3] = res;
+    skgl__world_matrix(&s->render_vp[i], s->origin, w);
+    if (skgl__has_dynamic_bounds(rs) && !skgl__cache_box_rect(w, &rs->dynamic_bounds, res, rect)) return SK_OK;
+    r = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], rect, SKGL__DRAW_DYNAMIC, 0);
+    memcpy(d, rect, sizeof rect);
+    return r;
+}
+
 /* the boxes and the world matrix the cache has were given relative to the
    world: an invalidated box is world space, as the API takes it */
 static sk_result skgl__render_cached(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs)
 {
     skgl__cache *c = &s->cache;
-    int i, res = s->desc.resolution;
+    int i;
     sk_result r = SK_OK, rc;
     s->stats.cache_full = s->stats.cache_scrolled = s->stats.cache_reused = s->stats.cache_regions = 0;
     s->stats.cache_copied = 0.0;
@@ -5540,14 +5644,7 @@ static sk_result skgl__render_cached(skgl_context *ctx, skgl__st *st, skgl_shado
             rc = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], NULL, SKGL__DRAW_ALL, 1);
         } else {
             rc = skgl__cache_update(ctx, st, s, rs, i);
-            if (rc == SK_OK && (rs->draw_dynamic || !c->same[i])) {
-                skgl__cache_copy(ctx, st, s, c->fbo[i], s->fbo[i], 0, 0, res, res, 0, 0);
-                c->same[i] = 1;
-            }
-            if (rc == SK_OK && rs->draw_dynamic) {
-                rc = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], NULL, SKGL__DRAW_DYNAMIC, 0);
-                c->same[i] = 0;
-            }
+            if (rc == SK_OK) rc = skgl__cache_dynamic(ctx, st, s, rs, i);
         }
         if (rc != SK_OK) { r = rc; c->valid[i] = 0; }
     }
@@ -5608,6 +5705,7 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
     return r;
 }
 
+/* ---- 6.6 analyze and render ------------------------------------------- */
 // >>render
 /* every layer's caster pass, into its own framebuffer (scene relative to
    the light's origin, as the fits saw it) */
@@ -5636,13 +5734,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     s->stats.passes = 0;
     s->stats.texels = 0.0;
     s->stats.layered = 0;
-    if (s->desc.cache) {
-        skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
-        r = skgl__render_cached(ctx, &st, s, rs);
-        if (r == SK_OK && s->desc.verify_cache) r = skgl__cache_verify(ctx, &st, s, rs);
-        s->stats.layered = -1;   /* not the layered path, nor the per-layer loop below */
-    }
-    if (s->desc.layered && !s->desc.cache && s->maps > 1 && skgl__layered_ready(ctx)) {
+    if (s->desc.layered && s->maps > 1 && skgl__layered_ready(ctx)) {
         /* every layer in one pass (LAYERED PASSES) */
         int of[SKGL_MAX_CASCADES];
         skgl_draw_info info;
@@ -5661,7 +5753,11 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         }
     }
     if (!s->stats.layered) skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
-    for (i = 0; !s->stats.layered && i < s->maps; i++) {
+    if (s->desc.cache) {   /* CACHED MAPS (never layered: validated at create) */
+        r = skgl__render_cached(ctx, &st, s, rs);
+        if (r == SK_OK && s->desc.verify_cache) r = skgl__cache_verify(ctx, &st, s, rs);
+    }
+    for (i = 0; !s->stats.layered && !s->desc.cache && i < s->maps; i++) {
         skgl_draw_info info;
         skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
         gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
@@ -5673,7 +5769,6 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         s->stats.passes++;
         s->stats.texels += (double)s->view_w * s->view_h;
     }
-    if (s->stats.layered < 0) s->stats.layered = 0;
     skgl__model_end(ctx);
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;
@@ -5775,7 +5870,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     return r;
 }
 
-/* ---- 6.6 bind: the snippet's uniforms in a forward shader ------------- */
+/* ---- 6.7 bind: the snippet's uniforms in a forward shader ------------- */
 // >>bind
 /* The directional snippet's uniforms on the current program (entry e):
    the light's constants when the program holds another light's (or none),
@@ -5900,7 +5995,7 @@ SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit)
     return skgl__check(ctx, "skgl_unbind");
 }
 
-/* ---- 6.7 the deferred mask ------------------------------------------- */
+/* ---- 6.8 the deferred mask ------------------------------------------- */
 // >>mask
 SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
@@ -5963,7 +6058,7 @@ typedef struct skgl__point_cache {
     skgl__uint tex, fbo[6];
     int fbo_level, m, all, ndirty;
     sk_vec3 pos;
-    int valid[6], same[6];
+    int valid[6], same[6], dyn[6][4];
     sk_aabb dirty[SKGL_CACHE_REGIONS];
 } skgl__point_cache;
 
@@ -6672,14 +6767,24 @@ static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_
                 p->stats.cache_regions++;
             }
         }
-        if (rc == SK_OK && !c->same[f]) {
-            skgl__blit_depth(ctx, st, cached, live, x0, y0, m, m, 0, 0);
-            p->stats.cache_copied += (double)m * m;
+        /* the face from the cache, as skgl__cache_dynamic does a layer */
+        if (rc == SK_OK) {
+            int *d = c->dyn[f], x = c->same[f] ? d[0] : x0, y = c->same[f] ? d[1] : y0;
+            int cw = c->same[f] ? d[2] : m, ch = c->same[f] ? d[3] : m;
+            if (cw > 0) skgl__blit_depth(ctx, st, cached, live, x, y, cw, ch, 0, 0);
+            p->stats.cache_copied += (double)cw * ch;
             c->same[f] = 1;
+            d[2] = d[3] = 0;
         }
         if (rc == SK_OK && scene->draw_dynamic) {
-            rc = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, live, rect, SKGL__DRAW_DYNAMIC, 0);
-            c->same[f] = 0;
+            int dr[4];
+            memcpy(dr, rect, sizeof dr);
+            skgl__world_matrix(&face_vp, skgl__zero3, w);
+            if (!skgl__has_dynamic_bounds(scene) || skgl__cache_box_rect(w, &scene->dynamic_bounds, m, dr)) {
+                if (skgl__has_dynamic_bounds(scene)) { dr[0] += x0; dr[1] += y0; }
+                rc = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, live, dr, SKGL__DRAW_DYNAMIC, 0);
+                memcpy(c->dyn[f], dr, sizeof dr);
+            }
         }
         if (rc != SK_OK) { r = rc; c->valid[f] = 0; rc = SK_OK; }
         p->stats.faces_rendered++;
@@ -6798,6 +6903,7 @@ static sk_result skgl__point_render_body(skgl_context *ctx, skgl_point *p, const
     cam = &ci.gl;   /* OpenGL's convention from here on */
     SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
     if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
+    SKGL__TRY(skgl__arg_dynamic_bounds(ctx, fn, scene));
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
     if (p->desc.atlas && !p->packed)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: a shared-atlas light needs skgl_point_atlas_pack first", fn);

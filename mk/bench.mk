@@ -32,6 +32,7 @@ bench: $(BENCH_BIN) | deps-demo
 	@mkdir -p $(OUT)
 	./$(BENCH_BIN) --out $(OUT) $(BENCH_ARGS)
 	@echo "bench: $(OUT)/bench.csv and the charts $(OUT)/pareto-*.png"
+	@$(MAKE) --no-print-directory bench-cache
 
 bench-demo: $(BENCH_BIN) | deps-demo
 	@mkdir -p $(OUT)
@@ -42,3 +43,38 @@ bench-plot: $(BENCH_BIN) | deps-demo
 	./$(BENCH_BIN) --plot-only --out $(OUT) $(BENCH_ARGS)
 
 DEMO_TARGETS += bench-demo
+
+# ------------------------------------------------- cached maps (bench_cache.c)
+#   make bench-cache       cached (desc.cache = 1) against uncached shadow maps
+#                          along a 60-frame camera walk, with and without a
+#                          moving caster: PSSM-4 stable, the stable focused map
+#                          and a cube point light, every bench scene (the
+#                          shared ones when ../shared/scenes exists);
+#                          out/bench-cache.{csv,txt}, out/bench-cache-<scene>.png
+#                          (gnuplot, bench/cache.gp); about 7 minutes on 2
+#                          cores under llvmpipe. Part of `make bench` (run
+#                          after the sweep), not of `make test`.
+#   make bench-cache-demo  the quick run (procedural scenes, 20 frames; about
+#                          1 minute) for `make demo`
+# Extra arguments: make bench-cache BENCH_CACHE_ARGS="--only fence --frames 30"
+BENCH_CACHE_BIN  := $(BUILD)/bench/bench_cache
+BENCH_CACHE_ARGS ?=
+
+$(BENCH_CACHE_BIN): bench/bench_cache.c shadowkit.h shadowkit_gl.h $$(TESTBED_LIB) | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) $< -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
+
+.PHONY: bench-cache bench-cache-demo
+bench-cache: $(BENCH_CACHE_BIN) | deps-demo
+	@mkdir -p $(OUT)
+	./$(BENCH_CACHE_BIN) --out $(OUT) $(BENCH_CACHE_ARGS)
+	@echo "bench-cache: $(OUT)/bench-cache.csv, $(OUT)/bench-cache.txt and the charts $(OUT)/bench-cache-*.png"
+
+bench-cache-demo: $(BENCH_CACHE_BIN) | deps-demo
+	@mkdir -p $(OUT)
+	./$(BENCH_CACHE_BIN) --quick --out $(OUT) $(BENCH_CACHE_ARGS)
+	@echo "bench-cache-demo: $(OUT)/bench-cache.csv, $(OUT)/bench-cache.txt and the charts $(OUT)/bench-cache-*.png"
+
+# `make bench` runs bench-cache as its last step (after the sweep, so that
+# the two never share the CPU under make -j)
+DEMO_TARGETS += bench-cache-demo
