@@ -140,11 +140,12 @@
      Most casters do not move from one frame to the next. A cached light
      keeps the depth of the casters scene.draw draws and redraws only what
      changed. The model asks three things of the scene:
-       1. What moves is drawn by scene.draw_dynamic: characters, doors,
+       1. What moves is drawn by a second callback, skgl_set_dynamic(gl,
+          &dyn) (skgl_dynamic: draw, user, bounds): characters, doors,
           wind-swayed foliage, anything animated. It is drawn every frame,
           over a copy of the cached depth, and needs no invalidation. Give
-          scene.dynamic_bounds (a box around them this frame) and only the
-          texels it covers are drawn, and last frame's copied back.
+          dyn.bounds (a box around them this frame) and only the texels it
+          covers are drawn, and last frame's copied back.
        2. When something scene.draw draws changes (a static caster moved
           once, appeared, went), say where: skgl_shadow_invalidate(gl,
           sun, &box) / skgl_point_invalidate(gl, lamp, &box) with the world
@@ -157,9 +158,11 @@
           = 1) that follows the camera by whole texels is scrolled: the
           overlap copied, only the strips it exposes drawn.
 
-         skgl_scene scene = {draw_static, me, bounds, draw_movers};
+         skgl_scene scene = {draw_static, me, bounds};
+         skgl_dynamic movers = {draw_movers, me, movers_box};
          sdesc.technique = SKGL_PSSM; sdesc.stable = 1; sdesc.cache = 1;
          ...
+         skgl_set_dynamic(gl, &movers);      (each frame, as they move)
          if (door_moved) {
              skgl_shadow_invalidate(gl, sun, &door_box_before);
              skgl_shadow_invalidate(gl, sun, &door_box_now);
@@ -618,7 +621,7 @@ typedef struct skgl_draw_info {
     int layer_index[SKGL_MAX_CASCADES];
     sk_mat4 layer_view_proj[SKGL_MAX_CASCADES];
     sk_frustum layer_frustum[SKGL_MAX_CASCADES];
-    /* 1: this call is scene.draw_dynamic's (the casters that move, CACHED
+    /* 1: this call is the skgl_set_dynamic callback (the casters that move, CACHED
        MAPS); 0: scene.draw's */
     int dynamic;
     /* w > 0: the pass draws only into this texel rectangle of its target
@@ -803,13 +806,18 @@ typedef struct skgl_scene {
     skgl_draw_fn draw;            /* required: the casters (the static ones, for a cache) */
     void *user;
     sk_aabb bounds;               /* all casters and receivers */
-    skgl_draw_fn draw_dynamic;    /* the casters that move or change (CACHED MAPS): drawn in
-                                     every pass after draw, and over a cached map's static
-                                     depth every frame; info->dynamic 1 [NULL: none] */
-    sk_aabb dynamic_bounds;       /* where draw_dynamic's casters are this frame: a cached map
-                                     copies and draws them only in the texels it covers (and
-                                     restores last frame's) [all 0: not given, the whole map] */
 } skgl_scene;
+
+/* The casters that move or change (CACHED MAPS), given to
+   skgl_set_dynamic: drawn in every caster pass after scene.draw, and over
+   a cached map's static depth every frame (info->dynamic 1). */
+typedef struct skgl_dynamic {
+    skgl_draw_fn draw;            /* required */
+    void *user;
+    sk_aabb bounds;               /* where they are this frame: a cached map copies and draws
+                                     them only in the texels it covers (and restores last
+                                     frame's) [all 0: not given, the whole map] */
+} skgl_dynamic;
 
 /* What a directional light's last frame did (skgl_shadow_stats). */
 typedef struct skgl_shadow_frame_stats {
@@ -934,6 +942,10 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
    size that receives visibility. */
 SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex);
+/* CACHED MAPS: the dynamic casters of every render call that follows (all
+   lights), until the next call; NULL: none. Copied: set it again when the
+   bounds move. */
+SKGLDEF sk_result skgl_set_dynamic(skgl_context *ctx, const skgl_dynamic *dyn);
 /* CACHED MAPS (desc.cache): what scene.draw draws inside `box` (world
    space) changed, so the cached texels its shadow may cover are redrawn at
    the next render: give the box a static caster left and the one it came
@@ -1726,9 +1738,9 @@ typedef struct skgl__ring {
 enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_LAYERED = 3, SKGL__CV_COUNT = 4 };
 
 /* which of the scene's callbacks a caster pass calls (CACHED MAPS) */
-#define SKGL__DRAW_ALL 0              /* draw, then draw_dynamic */
+#define SKGL__DRAW_ALL 0              /* draw, then the dynamic casters (skgl_set_dynamic) */
 #define SKGL__DRAW_STATIC 1           /* draw only: into a cache */
-#define SKGL__DRAW_DYNAMIC 2          /* draw_dynamic only: over a cached map */
+#define SKGL__DRAW_DYNAMIC 2          /* the dynamic casters only: over a cached map */
 
 struct skgl_context {
     skgl__api gl;
@@ -1736,6 +1748,7 @@ struct skgl_context {
     const char *glsl_version;              /* the dialect's first lines (skgl__shader_n) */
     int debug, timing, objects;
     int draw_class;                        /* SKGL__DRAW_*: the callbacks the next caster passes call */
+    skgl_dynamic dyn;                      /* skgl_set_dynamic's (draw NULL: none) */
     int caller_owns;                       /* desc.caller_owns_state: no reads, no restore */
     int clip_zero_to_one;                  /* desc.clip_zero_to_one */
     void (SKGL__APIENTRY *ClipControl)(skgl__enum origin, skgl__enum depth);   /* with it: GL 4.5 */
@@ -2486,21 +2499,28 @@ static sk_result skgl__camera_in(skgl_context *ctx, const char *fn, const skgl_c
 }
 
 /* a scene with a draw callback (when one is needed) and valid bounds */
-/* 1 when the scene gives dynamic_bounds (not all 0) */
-static int skgl__has_dynamic_bounds(const skgl_scene *scene)
+/* 1 when skgl_dynamic.bounds is given (not all 0) */
+static int skgl__has_dynamic_bounds(const sk_aabb *b)
 {
-    const sk_aabb *b = &scene->dynamic_bounds;
     return b->min.x != 0.0f || b->min.y != 0.0f || b->min.z != 0.0f || b->max.x != 0.0f || b->max.y != 0.0f ||
            b->max.z != 0.0f;
 }
-static sk_result skgl__arg_dynamic_bounds(skgl_context *ctx, const char *fn, const skgl_scene *scene)
+
+SKGLDEF sk_result skgl_set_dynamic(skgl_context *ctx, const skgl_dynamic *dyn)
 {
-    const sk_aabb *b = &scene->dynamic_bounds;
-    if (skgl__has_dynamic_bounds(scene) && !sk__aabb_valid(b))
+    const char *fn = "skgl_set_dynamic";
+    const sk_aabb *b;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    if (!dyn) { memset(&ctx->dyn, 0, sizeof ctx->dyn); return SK_OK; }
+    b = &dyn->bounds;
+    if (!dyn->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: dyn->draw is NULL (NULL dyn: no dynamic casters)", fn);
+    if (skgl__has_dynamic_bounds(b) && !sk__aabb_valid(b))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG,
-                          "%s: scene->dynamic_bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
+                          "%s: dyn->bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
                           (double)b->min.x, (double)b->min.y, (double)b->min.z, (double)b->max.x, (double)b->max.y,
                           (double)b->max.z);
+    ctx->dyn = *dyn;
     return SK_OK;
 }
 
@@ -2513,7 +2533,7 @@ static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_s
                           "%s: scene->bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
                           (double)scene->bounds.min.x, (double)scene->bounds.min.y, (double)scene->bounds.min.z,
                           (double)scene->bounds.max.x, (double)scene->bounds.max.y, (double)scene->bounds.max.z);
-    return skgl__arg_dynamic_bounds(ctx, fn, scene);
+    return SK_OK;
 }
 
 /* a finite vector; nonzero = 1: of some length (a direction) */
@@ -3579,7 +3599,7 @@ static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bia
 }
 
 /* the scene's callbacks that ctx->draw_class names, each followed by what
-   a callback may have changed: draw (info->dynamic 0), then draw_dynamic
+   a callback may have changed: draw (info->dynamic 0), then the dynamic casters
    (info->dynamic 1) when the scene has one */
 static sk_result skgl__scene_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, skgl_draw_info *info)
 {
@@ -3589,9 +3609,9 @@ static sk_result skgl__scene_draw(skgl_context *ctx, skgl__st *st, const skgl_sc
         scene->draw(scene->user, info);
         r = skgl__after_draw(ctx, st);
     }
-    if (scene->draw_dynamic && ctx->draw_class != SKGL__DRAW_STATIC) {
+    if (ctx->dyn.draw && ctx->draw_class != SKGL__DRAW_STATIC) {
         info->dynamic = 1;
-        scene->draw_dynamic(scene->user, info);
+        ctx->dyn.draw(ctx->dyn.user, info);
         rc = skgl__after_draw(ctx, st);
         if (r == SK_OK) r = rc;
     }
@@ -5324,7 +5344,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
    other change (the light turned, the scene's bounds, a warp that follows
    the camera) draws the layer whole. Invalidated boxes are drawn again in
    the rectangles their corners cover. The map the shaders sample is the
-   cache plus scene.draw_dynamic's casters, drawn over a copy each frame;
+   cache plus the dynamic casters (skgl_set_dynamic), drawn over a copy each frame;
    without dynamic casters the copy is made only when the cache changed. */
 
 /* world -> light clip of a matrix that takes p - o, in double */
@@ -5526,7 +5546,7 @@ static sk_result skgl__cache_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *
     ctx->draw_class = cls;
     r = skgl__casters_draw(ctx, st, rs, &s->render_vp[i], s->origin, &info);
     ctx->draw_class = SKGL__DRAW_ALL;
-    s->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && rs->draw_dynamic != NULL);
+    s->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && ctx->dyn.draw != NULL);
     s->stats.texels += rect ? (double)rect[2] * rect[3] : (double)res * res;
     return r;
 }
@@ -5609,7 +5629,7 @@ static sk_result skgl__cache_update(skgl_context *ctx, skgl__st *st, skgl_shadow
 /* The map's layer i from the cache, then the dynamic casters over it.
    c->same[i]: the map equals the cache but inside c->dyn[i] (where the
    last frame's dynamic casters were drawn): only that is copied back when
-   the cache did not change. With scene.dynamic_bounds the dynamic casters
+   the cache did not change. With skgl_dynamic.bounds the dynamic casters
    are drawn in their rectangle alone (none when it misses the layer). */
 static sk_result skgl__cache_dynamic(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs, int i)
 {
@@ -5621,10 +5641,10 @@ static sk_result skgl__cache_dynamic(skgl_context *ctx, skgl__st *st, skgl_shado
     else if (d[2] > 0) skgl__cache_copy(ctx, st, s, c->fbo[i], s->fbo[i], d[0], d[1], d[2], d[3], 0, 0);
     c->same[i] = 1;
     d[2] = d[3] = 0;
-    if (!rs->draw_dynamic) return SK_OK;
+    if (!ctx->dyn.draw) return SK_OK;
     rect[2] = rect[3] = res;
     skgl__world_matrix(&s->render_vp[i], s->origin, w);
-    if (skgl__has_dynamic_bounds(rs) && !skgl__cache_box_rect(w, &rs->dynamic_bounds, res, rect)) return SK_OK;
+    if (skgl__has_dynamic_bounds(&ctx->dyn.bounds) && !skgl__cache_box_rect(w, &ctx->dyn.bounds, res, rect)) return SK_OK;
     r = skgl__cache_pass(ctx, st, s, rs, i, s->fbo[i], rect, SKGL__DRAW_DYNAMIC, 0);
     memcpy(d, rect, sizeof rect);
     return r;
@@ -5686,7 +5706,7 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
     for (i = 0; i < s->maps && i < s->cache.layers && r == SK_OK; i++) {
         int diff = 0;
         r = skgl__cache_pass(ctx, st, s, rs, i, s->cache.verify_fbo, NULL, SKGL__DRAW_ALL, 1);
-        s->stats.passes -= 1 + (rs->draw_dynamic != NULL);   /* not the cache's work */
+        s->stats.passes -= 1 + (ctx->dyn.draw != NULL);   /* not the cache's work */
         s->stats.texels -= (double)res * res;
         skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)s->cache.verify_fbo);
         gl->ReadPixels(0, 0, res, res, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, a);
@@ -5701,7 +5721,7 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
     if (r == SK_OK && worst > (int)(1e-5 * (double)n))
         r = skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_shadow_render: desc.verify_cache: layer %d of the cached map "
                        "differs from the uncached one in %d texels: a caster scene.draw draws changed without "
-                       "skgl_shadow_invalidate (moving casters belong in scene.draw_dynamic)", worst_layer, worst);
+                       "skgl_shadow_invalidate (moving casters belong in skgl_set_dynamic)", worst_layer, worst);
     return r;
 }
 
@@ -6710,7 +6730,7 @@ static sk_result skgl__point_face_pass(skgl_context *ctx, skgl__st *st, skgl_poi
     ctx->draw_class = cls;
     r = skgl__casters_draw(ctx, st, scene, vp, skgl__zero3, &info);
     ctx->draw_class = SKGL__DRAW_ALL;
-    p->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && scene->draw_dynamic != NULL);
+    p->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && ctx->dyn.draw != NULL);
     p->stats.texels += (double)rect[2] * rect[3];
     return r;
 }
@@ -6776,12 +6796,12 @@ static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_
             c->same[f] = 1;
             d[2] = d[3] = 0;
         }
-        if (rc == SK_OK && scene->draw_dynamic) {
+        if (rc == SK_OK && ctx->dyn.draw) {
             int dr[4];
             memcpy(dr, rect, sizeof dr);
             skgl__world_matrix(&face_vp, skgl__zero3, w);
-            if (!skgl__has_dynamic_bounds(scene) || skgl__cache_box_rect(w, &scene->dynamic_bounds, m, dr)) {
-                if (skgl__has_dynamic_bounds(scene)) { dr[0] += x0; dr[1] += y0; }
+            if (!skgl__has_dynamic_bounds(&ctx->dyn.bounds) || skgl__cache_box_rect(w, &ctx->dyn.bounds, m, dr)) {
+                if (skgl__has_dynamic_bounds(&ctx->dyn.bounds)) { dr[0] += x0; dr[1] += y0; }
                 rc = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, live, dr, SKGL__DRAW_DYNAMIC, 0);
                 memcpy(c->dyn[f], dr, sizeof dr);
             }
@@ -6903,7 +6923,6 @@ static sk_result skgl__point_render_body(skgl_context *ctx, skgl_point *p, const
     cam = &ci.gl;   /* OpenGL's convention from here on */
     SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
     if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
-    SKGL__TRY(skgl__arg_dynamic_bounds(ctx, fn, scene));
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
     if (p->desc.atlas && !p->packed)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: a shared-atlas light needs skgl_point_atlas_pack first", fn);

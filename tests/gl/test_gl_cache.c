@@ -16,9 +16,9 @@
    follows the camera: drawn whole whenever the camera moves, reused when
    it stops):
      walk     the camera walks 20 frames along the ground (static scene);
-     dynamic  the mover, drawn by scene.draw_dynamic, crosses the view,
-              scene.dynamic_bounds its box;
-     dynwhole the same without dynamic_bounds (drawn over the whole map);
+     dynamic  the mover, the dynamic casters (skgl_set_dynamic), crosses
+              the view, its box their bounds;
+     dynwhole the same without bounds (drawn over the whole map);
      static   box0, drawn by scene.draw, moves 6 frames; each move
               invalidates its old and its new box;
      light    the light turns a little every frame (drawn whole, by itself);
@@ -115,7 +115,7 @@ static void draw_static(void *user, const skgl_draw_info *info) {
     }
 }
 
-/* scene.draw_dynamic: the mover at mover_at */
+/* the dynamic casters (skgl_set_dynamic): the mover at mover_at */
 static void draw_dynamic(void *user, const skgl_draw_info *info) {
     world *w = (world *)user;
     float m[16];
@@ -125,20 +125,29 @@ static void draw_dynamic(void *user, const skgl_draw_info *info) {
     draw_object(w, w->mover);
 }
 
-static skgl_scene scene_of(world *w, int dynamic) {
-    skgl_scene sc;
-    memset(&sc, 0, sizeof sc);
-    sc.draw = draw_static;
-    sc.draw_dynamic = dynamic ? draw_dynamic : NULL;
-    sc.user = w;
-    sc.bounds = w->e.scene.bounds;
-    return sc;
-}
-
 static sk_aabb moved(sk_aabb b, sk_vec3 t) {
     b.min.x += t.x; b.min.y += t.y; b.min.z += t.z;
     b.max.x += t.x; b.max.y += t.y; b.max.z += t.z;
     return b;
+}
+
+/* the static scene, no dynamic casters; set_mover: the mover as the dynamic
+   casters, its box their bounds when `bounded` */
+static skgl_scene scene_of(world *w) {
+    skgl_scene sc;
+    sc.draw = draw_static;
+    sc.user = w;
+    sc.bounds = w->e.scene.bounds;
+    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
+    return sc;
+}
+static void set_mover(world *w, int bounded) {
+    skgl_dynamic dy;
+    memset(&dy, 0, sizeof dy);
+    dy.draw = draw_dynamic;
+    dy.user = w;
+    if (bounded) dy.bounds = moved(w->e.scene.objects[w->mover].bounds, w->mover_at);
+    SK_CHECK(skgl_set_dynamic(w->e.sk, &dy) == SK_OK);
 }
 
 static void invalidate(world *w, skgl_shadow *s, const sk_aabb *b) {
@@ -176,7 +185,7 @@ static tally run(world *w, skgl_technique tech, scenario sc_kind) {
     float *a = gt_alloc(&w->e), *b = gt_alloc(&w->e), *c = gt_alloc(&w->e);
     tally t;
     int f, frames = sc_kind == WALK || sc_kind == BUDGET ? 20 : 8;
-    skgl_scene sc = scene_of(w, sc_kind == DYNAMIC || sc_kind == DYNWHOLE);
+    skgl_scene sc = scene_of(w);
     const sk_aabb box0 = w->e.scene.objects[w->box0].bounds, box3 = w->e.scene.objects[w->box3].bounds;
     memset(&t, 0, sizeof t);
     memset(&d, 0, sizeof d);
@@ -205,7 +214,7 @@ static tally run(world *w, skgl_technique tech, scenario sc_kind) {
         if (sc_kind == LIGHT) light = gt_v3(-0.5f + 0.01f * (float)f, -1, -0.35f + 0.007f * (float)f);
         if (f > 0 && (sc_kind == DYNAMIC || sc_kind == DYNWHOLE))
             w->mover_at = gt_v3(-6 + 1.7f * (float)f, 0, -6 + 1.5f * (float)f);
-        if (sc_kind == DYNAMIC) sc.dynamic_bounds = moved(w->e.scene.objects[w->mover].bounds, w->mover_at);
+        if (sc_kind == DYNAMIC || sc_kind == DYNWHOLE) set_mover(w, sc_kind == DYNAMIC);
         if (f > 0 && sc_kind == STATIC) {
             sk_vec3 was = w->box0_shift, now = gt_v3(0.35f * (float)f, 0, 0.2f * (float)f);
             sk_aabb ob = moved(box0, was), nb = moved(box0, now);
@@ -239,6 +248,7 @@ static tally run(world *w, skgl_technique tech, scenario sc_kind) {
         t.differ_plain += gt_agree(a, c, w->e.n).differ;
     }
 done:
+    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
     free(a); free(b); free(c);
     skgl_shadow_destroy(w->e.sk, cached);
     skgl_shadow_destroy(w->e.sk, twin);
@@ -327,7 +337,7 @@ static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
     float *a = gt_alloc(&w->e), *b = gt_alloc(&w->e), *c = gt_alloc(&w->e);
     tally t;
     int f, frames = sc_kind == WALK ? 12 : 8;
-    skgl_scene sc = scene_of(w, sc_kind == DYNAMIC || sc_kind == DYNWHOLE);
+    skgl_scene sc = scene_of(w);
     const sk_aabb box0 = w->e.scene.objects[w->box0].bounds, box3 = w->e.scene.objects[w->box3].bounds;
     memset(&t, 0, sizeof t);
     if (!cached || !twin || !plain || !a || !b || !c) goto done;
@@ -338,7 +348,7 @@ static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
         if (sc_kind == LIGHT) pos = gt_v3(1.5f + 0.05f * (float)f, 4.5f, 1.0f);
         if (f > 0 && (sc_kind == DYNAMIC || sc_kind == DYNWHOLE))
             w->mover_at = gt_v3(-6 + 1.7f * (float)f, 0, -6 + 1.5f * (float)f);
-        if (sc_kind == DYNAMIC) sc.dynamic_bounds = moved(w->e.scene.objects[w->mover].bounds, w->mover_at);
+        if (sc_kind == DYNAMIC || sc_kind == DYNWHOLE) set_mover(w, sc_kind == DYNAMIC);
         if (f > 0 && sc_kind == STATIC) {
             sk_vec3 now = gt_v3(0.35f * (float)f, 0, 0.2f * (float)f);
             sk_aabb ob = moved(box0, w->box0_shift), nb = moved(box0, now);
@@ -370,6 +380,7 @@ static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
         t.differ_plain += gt_agree(a, c, w->e.n).differ;
     }
 done:
+    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
     free(a); free(b); free(c);
     skgl_point_destroy(w->e.sk, cached);
     skgl_point_destroy(w->e.sk, twin);
@@ -411,7 +422,7 @@ static void test_verify(void) {
     world *w = &W_;
     skgl_shadow_desc d;
     skgl_shadow *s;
-    skgl_scene sc = scene_of(w, 0);
+    skgl_scene sc = scene_of(w);
     skgl_camera cam = walk_camera(3);
     sk_vec3 light = gt_v3(-0.5f, -1, -0.35f);
     sk_result r;
@@ -461,6 +472,17 @@ static void test_contracts(void) {
     d.verify_cache = 1;
     SK_CHECK(skgl_shadow_create(w->e.sk, &d, &s) == SK_ERR_INVALID_ARG);
     SK_CHECK(strstr(skgl_error_log(w->e.sk), "desc.verify_cache") != NULL);
+    {
+        skgl_dynamic dy;
+        memset(&dy, 0, sizeof dy);
+        SK_CHECK(skgl_set_dynamic(w->e.sk, &dy) == SK_ERR_INVALID_ARG);
+        SK_CHECK(strstr(skgl_error_log(w->e.sk), "dyn->draw") != NULL);
+        dy.draw = draw_dynamic;
+        dy.bounds = bad;
+        SK_CHECK(skgl_set_dynamic(w->e.sk, &dy) == SK_ERR_INVALID_ARG);
+        SK_CHECK(strstr(skgl_error_log(w->e.sk), "dyn->bounds") != NULL);
+        SK_CHECK(skgl_set_dynamic(NULL, &dy) == SK_ERR_INVALID_ARG);
+    }
     d.verify_cache = 0;
     d.cache = 1;
     d.cache_budget_kb = -1;
