@@ -5,13 +5,14 @@
      Per scene, two walks of `--frames` frames (default 60) along one path:
        static  the camera walks; nothing moves;
        moving  the same walk, plus one box caster (the "mover", its side 5%
-               of the scene's diagonal) drawn by scene.draw_dynamic, crossing
-               the view: it travels along the camera's sideways axis through
-               the content's centre, from one side of the content to the
-               other over the walk. scene.dynamic_bounds gives its box each
-               frame, so that a cached map draws it only where it is (and
-               restores where it was): without it the dynamic pass covers
-               every texel of every cached layer.
+               of the scene's diagonal) given to skgl_set_dynamic each
+               frame, crossing the view: it travels along the camera's
+               sideways axis through the content's centre, from one side of
+               the content to the other over the walk. skgl_dynamic.bounds
+               is its box, so that a cached map draws it only where it is
+               (and restores where it was): without it the dynamic pass
+               covers every texel of every cached layer. The static walk
+               sets no dynamic casters (skgl_set_dynamic NULL).
      Each technique runs twice in the same process, the same desc but
      .cache: "cached" (1) and "uncached" (0). Both render every frame, the
      one first on even frames and the other first on odd ones. Techniques:
@@ -33,7 +34,7 @@
    scene's bounds seen from either end of the path): a stable crop keeps its
    size only while the near and far planes do.
 
-   The callbacks (draw_static, draw_dynamic) cull each object by its box
+   The callbacks (draw_static; draw_dynamic, the skgl_dynamic's) cull each object by its box
    against the pass's frustum, and a pass that draws only a rectangle of
    its map (info->rect: a scrolled crop's exposed strip, an invalidated
    region) against the frustum of that rectangle alone, as CACHED MAPS
@@ -45,7 +46,7 @@
    the GL timer query of the render (skgl_desc.timing = SKGL_TIMING_SYNC).
    The ratios take frames 1..N-1 (frame 0 draws everything in both modes).
 
-   Error: every `--error-every` frames (default 5, frame 0 included) the
+   Error: every `--error-every` frames (default 6, frame 0 included) the
    G-buffer at 1280x720 is drawn (with the mover where it is on the moving
    walk), the exact Embree reference traced (tb_reference_trace_exact; on
    the moving walk the reference scene is rebuilt with the mover in place)
@@ -64,9 +65,9 @@
        walk        static | moving;   mode  cached | uncached
        texels      the stats' texels (viewport areas drawn, exposed strips
                    and dynamic rectangles included)
-       passes      the stats' passes; callbacks: the draw callbacks this
-                   bench's scene received (draw and draw_dynamic counted
-                   apart)
+       passes      the stats' passes; callbacks: the calls this bench's
+                   draw callbacks received (scene.draw and the dynamic
+                   one counted apart)
        cache_*     the directional stats' (empty on point rows but
                    cache_regions, cache_copied, cache_bytes); faces_*: the
                    point light's (empty on directional rows)
@@ -413,7 +414,7 @@ static void draw_static(void *user, const skgl_draw_info *info) {
     }
 }
 
-/* scene.draw_dynamic: the mover, translated to mover_at */
+/* the skgl_dynamic callback: the mover, translated to mover_at */
 static void draw_dynamic(void *user, const skgl_draw_info *info) {
     world *w = (world *)user;
     float m[16];
@@ -892,8 +893,8 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
             if (id < 0 || !base) { status = 1; break; }
             memcpy(base, s.positions + 3 * v0, sizeof(float) * 3 * (s.vertex_count - (uint32_t)v0));
             mover_v0 = v0;
-            sc.draw_dynamic = draw_dynamic;
         }
+        skgl_set_dynamic(B->sk, NULL);   /* the static walk: none; the moving one sets it each frame */
         if (make_lights(B, &L, wp.point_range) != 0) { status = 1; break; }
         for (f = 0; f < frames; f++) {
             skgl_camera cam;
@@ -901,8 +902,16 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
             int score_now = f % o->every == 0;
             camera_at(&wp, f, &cam, &vp);
             if (wk == WALK_MOVING) {
+                skgl_dynamic dyn;
+                memset(&dyn, 0, sizeof dyn);
                 w.mover_at = mover_at(&wp, f, frames);
-                sc.dynamic_bounds = mover_box(&wp, w.mover_at);
+                dyn.draw = draw_dynamic;
+                dyn.user = &w;
+                dyn.bounds = mover_box(&wp, w.mover_at);
+                if (skgl_set_dynamic(B->sk, &dyn) != SK_OK) {
+                    fprintf(stderr, "bench-cache: skgl_set_dynamic: %s\n", skgl_error_log(B->sk));
+                    status = 1;
+                }
             }
             for (t = 0; t < NTECH; t++)
                 for (k = 0; k < NMODE; k++) {
@@ -972,6 +981,7 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
     fflush(csv);
     if (plot_scene(o->out_dir, o->gp, def->name, B->renderer, frames, B->wall) != 0) status = 1;
 out:
+    skgl_set_dynamic(B->sk, NULL);   /* the mover's callback points into this frame of the stack */
     free(base);
     free_lights(B, &L);
     tb_reference_destroy(ref);
@@ -988,7 +998,7 @@ static void usage(FILE *f, const char *argv0) {
             "          [--only SCENE[,SCENE..]] [--gp FILE]\n"
             "  --quick          procedural scenes only, 20 frames (make demo)\n"
             "  --frames N       frames of each walk (default 60, at most %d)\n"
-            "  --error-every K  score every K-th frame against the reference (default 5)\n"
+            "  --error-every K  score every K-th frame against the reference (default 6)\n"
             "  --scenes DIR     the shared scenes (default ../shared/scenes)\n"
             "  --out DIR        output folder (default out)\n"
             "  --only LIST      only these scenes (comma separated names)\n"
@@ -1012,7 +1022,7 @@ int main(int argc, char **argv) {
 
     memset(&o, 0, sizeof o);
     o.frames = 60;
-    o.every = 5;
+    o.every = 6;
     o.scenes_dir = "../shared/scenes";
     o.out_dir = "out";
     o.gp = "bench/cache.gp";
@@ -1123,14 +1133,14 @@ int main(int argc, char **argv) {
                  "# device %s; shadow time: %s\n"
                  "# %s run: %d frames a walk, %s; error every %d-th frame from frame 0, %dx%d, against the exact "
                  "reference\n"
-                 "# walks: static (the camera walks) and moving (plus a box caster from scene.draw_dynamic, with "
-                 "scene.dynamic_bounds)\n"
+                 "# walks: static (the camera walks) and moving (plus a box caster from skgl_set_dynamic, with "
+                 "its bounds)\n"
                  "# ratios cached/uncached over frames 1..%d: mean texels and passes a frame, median shadow time;\n"
                  "# goals: static walk texels <= %.1fx, time <= %.1fx; moving walk texels and time <= %.1fx\n"
                  "# error: mean shadow-area error (%% of the reference's shadow misclassified); differ: %% of the "
                  "covered pixels whose class the cached mask has otherwise than the uncached one\n"
                  "# passes: the stats' passes; (callbacks): the ratio of the draw callbacks the scene received, "
-                 "draw and draw_dynamic counted apart\n"
+                 "scene.draw and the dynamic callback counted apart\n"
                  "# directional maps 2048^2 (PSSM: a cascade), point light 512^2 a face\n\n",
             B.renderer,
             B.wall ? "CPU wall clock of each render between glFinish calls (CPU rasteriser: relative, this run only)"

@@ -32,7 +32,7 @@ set multiplot layout 2,1 title sprintf("shadowkit cached maps, scene %s: shadow 
 
 do for [wk = 0:1] {
     set title (wk == 0 ? "static walk: the camera moves, no caster does" \
-                       : "moving walk: the same path, one box caster (scene.draw_dynamic) crossing the view")
+                       : "moving walk: the same path, one box caster (skgl_set_dynamic) crossing the view")
     # series k: technique k / nmode, mode k % nmode (integer division)
     plot for [k = 0:ntech * nmode - 1] datafile index (wk * ntech * nmode + k) using 1:2 \
          with linespoints lw 1.6 pt (k % nmode == 0 ? 7 : 6) ps 0.6 dt 1 + k % nmode \
