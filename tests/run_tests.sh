@@ -41,8 +41,10 @@ run_one() {  # flavour binary logfile
              UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1) ;;
         gl) env=(LSAN_OPTIONS=suppressions=testbed/lsan.supp) ;;
     esac
+    local t0=$SECONDS
     env "${env[@]}" timeout -k 10 "$TIMEOUT" "${STDBUF[@]}" "./$2" > "$3" 2>&1 < /dev/null
     echo $? > "$3.rc"
+    echo $((SECONDS - t0)) > "$3.t"
 }
 
 # start every program, at most $JOBS at a time; report in a fixed order
@@ -71,6 +73,7 @@ total_fail=0
 for e in "${entries[@]+"${entries[@]}"}"; do
     IFS='|' read -r f b log <<< "$e"
     rc=$(cat "$log.rc" 2>/dev/null || echo 255)
+    secs=$(cat "$log.t" 2>/dev/null || echo "?")
     summary=$(grep -E ': [0-9]+ passed, [0-9]+ failed$' "$log" | tail -n 1)
     name=$(basename "$b")
     if [ -n "$summary" ]; then
@@ -81,7 +84,7 @@ for e in "${entries[@]+"${entries[@]}"}"; do
         if [ "$rc" -ne 0 ] && [ "$m" -eq 0 ]; then
             m=1; note="  (exit status $rc after its summary: counted as 1 failure)"
         fi
-        printf '%-9s %s: %s passed, %s failed%s\n' "$f" "$name" "$p" "$m" "$note"
+        printf '%-9s %s: %s passed, %s failed%s  [%ss]\n' "$f" "$name" "$p" "$m" "$note" "$secs"
     else
         p=0; m=1
         case "$rc" in
