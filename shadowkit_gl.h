@@ -841,8 +841,12 @@ typedef struct skgl_shadow_frame_stats {
                                              space of estimate_light (see skgl_shadow_analyze) */
     sk_mat4 estimate_light;               /* FERKO: the uncropped light frustum of that estimate */
     int pages_requested;                  /* RMSM: distinct pages the view asked for (finest levels) */
-    int pages_rendered;                   /* RMSM: pages in the pool this frame (the coarsest always) */
+    int pages_rendered;                   /* RMSM: pages drawn this frame (uncached: every page of the
+                                             frame, the coarsest always among them) */
     int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
+    int pages_reused;                     /* RMSM, .cache: pages of this frame kept from an earlier one */
+    int pages_evicted;                    /* RMSM, .cache: resident pages whose slot a new page took */
+    int pages_resident;                   /* RMSM: pages the pool holds (uncached: this frame's) */
     int layered;                          /* 1: the layers went in one pass (desc.layered honoured);
                                              2: so, through one geometry shader invocation per layer
                                              (GL_ARB_gpu_shader5) */
@@ -4206,17 +4210,35 @@ typedef struct skgl__ferko {
 /* RMSM's part (Romanick's VGP353 notes): the per-pixel samples (G-buffer
    size) and their framebuffer, the request atlas (R8) and the page table
    (RGBA8), atlas_w x atlas_h, the requests read back, the table as
-   uploaded and as built, the pages resident, the virtual map's light
-   frustum, the read-back ring */
+   uploaded and as built, the pages of this frame and the pool slot of
+   each, the virtual map's light frustum, the read-back ring; with
+   desc.cache, what each slot holds */
+typedef struct skgl__rmsm_slot {
+    int level, px, py;             /* the page it holds */
+    int valid;                     /* 1: its static casters' depth is that page's */
+    int dyn;                       /* 1: the dynamic casters were drawn over it */
+    unsigned last;                 /* the render that last used it (LRU) */
+} skgl__rmsm_slot;
+
 typedef struct skgl__rmsm {
     skgl__uint samples, samples_fbo, requests, requests_fbo, table;
     int atlas_w, atlas_h, pages0, levels, w, h;
     unsigned char *req_cpu, *table_cpu, *table_new;
     sk_page *pages;
+    int *slot_of;                  /* per page: its pool slot */
     int npages, analyzed;
     sk_mat4 lvp;
     skgl__ring ring;
     double origin[3];              /* the world point lvp is relative to */
+    sk_aabb world;                 /* the scene's bounds (world) at the last render */
+    /* desc.cache: the slots, the slot + 1 of each atlas texel (0: not
+       resident), the frame the slots were drawn for (key_lvp, key_origin),
+       the render count; the static copy of the pool is cache.tex */
+    skgl__rmsm_slot *slots;
+    int *resident;
+    sk_mat4 key_lvp;
+    double key_origin[3];
+    unsigned frame;
 } skgl__rmsm;
 
 /* the cache's part (CACHED MAPS, >>cache): the static casters' depth per
@@ -4419,9 +4441,8 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
     SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
     SKGL__RULE(d->cache == 0 || d->cache == 1, fn, "cache", d->cache, "0 or 1");
-    SKGL__RULE(!d->cache || (d->technique != SKGL_FERKO && d->technique != SKGL_RMSM), fn, "cache", d->cache,
-               "FERKO's crop and size follow the G-buffer every frame, and RMSM's pages have no cache: "
-               "STANDARD, PSSM, PSM, LiSPSM or LSPSM");
+    SKGL__RULE(!d->cache || d->technique != SKGL_FERKO, fn, "cache", d->cache,
+               "FERKO's crop and size follow the G-buffer every frame: STANDARD, PSSM, PSM, LiSPSM, LSPSM or RMSM");
     SKGL__RULE(!d->cache || !d->layered, fn, "cache", d->cache,
                "a cached light draws its static and dynamic casters a pass per layer: not with desc.layered");
     SKGL__RULE(d->cache_budget_kb >= 0, fn, "cache_budget_kb", d->cache_budget_kb, "0 (no limit) or more");
@@ -4487,7 +4508,7 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
         }
     }
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
-    if (r == SK_OK && d.cache) r = skgl__cache_create(ctx, &st, s);
+    if (r == SK_OK && d.cache && d.technique != SKGL_RMSM) r = skgl__cache_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
     if (r == SK_OK && gl->GetError() != 0) {
         skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
@@ -4518,6 +4539,9 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     SKGL_FREE(s->rmsm.table_cpu);
     SKGL_FREE(s->rmsm.table_new);
     SKGL_FREE(s->rmsm.pages);
+    SKGL_FREE(s->rmsm.slot_of);
+    SKGL_FREE(s->rmsm.slots);
+    SKGL_FREE(s->rmsm.resident);
     s->rmsm.req_cpu = NULL;
     s->rmsm.table_cpu = s->rmsm.table_new = NULL;
     s->rmsm.pages = NULL;
@@ -5080,8 +5104,20 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
     s->rmsm.table_cpu = (unsigned char *)SKGL_MALLOC(4 * bytes);
     s->rmsm.table_new = (unsigned char *)SKGL_MALLOC(4 * bytes);
     s->rmsm.pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
-    if (!s->rmsm.req_cpu || !s->rmsm.table_cpu || !s->rmsm.table_new || !s->rmsm.pages) return SK_ERR_CAPACITY;
+    s->rmsm.slot_of = (int *)SKGL_MALLOC(sizeof(int) * (size_t)cap);
+    if (!s->rmsm.req_cpu || !s->rmsm.table_cpu || !s->rmsm.table_new || !s->rmsm.pages || !s->rmsm.slot_of)
+        return SK_ERR_CAPACITY;
     memset(s->rmsm.table_cpu, 0, 4 * bytes);
+    if (s->desc.cache) {   /* the page cache: every slot empty, everything to draw */
+        s->rmsm.slots = (skgl__rmsm_slot *)SKGL_MALLOC(sizeof(skgl__rmsm_slot) * (size_t)cap);
+        s->rmsm.resident = (int *)SKGL_MALLOC(sizeof(int) * bytes);
+        if (!s->rmsm.slots || !s->rmsm.resident) return SK_ERR_CAPACITY;
+        memset(s->rmsm.slots, 0, sizeof(skgl__rmsm_slot) * (size_t)cap);
+        memset(s->rmsm.resident, 0, sizeof(int) * bytes);
+        s->cache.all = 1;
+        s->cache.layers = s->stats.cache_layers = 1;
+        s->stats.cache_verify_texels = -1;
+    }
     s->rmsm.requests = skgl__color_texture(ctx, st, SKGL__R8, s->rmsm.atlas_w, s->rmsm.atlas_h, 1, SKGL__RED,
                                            SKGL__UNSIGNED_BYTE, NULL);
     s->rmsm.table = skgl__color_texture(ctx, st, SKGL__RGBA8, s->rmsm.atlas_w, s->rmsm.atlas_h, 1, SKGL__RGBA,
@@ -5154,7 +5190,8 @@ static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
     s->stats.rmsm_min_level = min_level;
 }
 
-/* The page table of the resident pages (slot i at (i % pool, i / pool)),
+/* The page table of this frame's pages (page i in slot k = slot_of[i], at
+   (k % pool, k / pool) of the pool),
    and only its rows that differ from the table GL has uploaded: one
    glTexSubImage2D over the first to the last changed row, none when the
    pages are those of the last frame. Bound on unit 0 to upload. */
@@ -5166,8 +5203,8 @@ static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
     for (i = 0; i < s->rmsm.npages; i++) {
         unsigned char *e = s->rmsm.table_new + 4 * skgl__atlas_index(s, s->rmsm.pages[i].level, s->rmsm.pages[i].px,
                                                                     s->rmsm.pages[i].py);
-        e[0] = (unsigned char)(i % pool);
-        e[1] = (unsigned char)(i / pool);
+        e[0] = (unsigned char)(s->rmsm.slot_of[i] % pool);
+        e[1] = (unsigned char)(s->rmsm.slot_of[i] / pool);
         e[3] = 255;
     }
     for (y = 0; y < s->rmsm.atlas_h; y++)
@@ -5185,9 +5222,11 @@ static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 }
 
 /* RMSM analysis: per-pixel samples, page requests scattered on the GPU into
-   the request atlas, read back; the pages and the page table from the
-   requests of the last frame (ring) or, with sync_readback and on the
-   first analysis, of this one (a read-back that waits for the GPU) */
+   the request atlas, read back; the pages (the next render lays them out
+   in the pool and uploads the table) from the requests of the last frame
+   (ring) or, with sync_readback and on the first analysis, of this one (a
+   read-back that waits for the GPU). lvp is the virtual map's frustum
+   (skgl__rmsm_frame) relative to o. */
 static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
 {
@@ -5209,9 +5248,6 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
     /* last frame's requests, if they have landed */
     if (!sync && (slot = skgl__ring_poll(ctx, st, &s->rmsm.ring, s->rmsm.req_cpu)) >= 0) {
         skgl__rmsm_pages(s, s->rmsm.req_cpu);
-        s->rmsm.lvp = s->rmsm.ring.lvp[slot];
-        memcpy(s->rmsm.origin, s->rmsm.ring.origin[slot], sizeof s->rmsm.origin);
-        skgl__rmsm_table(ctx, st, s);
     }
     skgl__timer_begin(ctx, &s->t_analyze);
     skgl__st_screen_pass(ctx, st);
@@ -5251,9 +5287,6 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
         skgl__st_pack(ctx, st, 0, s->rmsm.atlas_h, s->rmsm.atlas_w);
         gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm.req_cpu);
         skgl__rmsm_pages(s, s->rmsm.req_cpu);
-        s->rmsm.lvp = *lvp;
-        memcpy(s->rmsm.origin, o, sizeof s->rmsm.origin);
-        skgl__rmsm_table(ctx, st, s);
     } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm.ring)) >= 0) {
         skgl__st_pack(ctx, st, s->rmsm.ring.buf[slot], s->rmsm.atlas_h, s->rmsm.atlas_w);
         gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
@@ -5267,70 +5300,28 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
     return SK_OK;
 }
 
-/* RMSM: every resident page into its pool slot, with a border of one
-   texel: level l's page (px, py) covers level texels [px P - 1, (px+1) P + 1)
-   of the virtual map at V / 2^l, crop of the virtual map's light frustum */
-static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir)
+/* RMSM's virtual map: the uncropped light frustum around the scene's
+   bounds (skgl__ferko_light), relative to the bounds' centre rounded to
+   SKGL_ORIGIN_CELL (o). It depends on the bounds and the light alone, not
+   on the camera: the pages' texel grid is fixed in light space, and a page
+   drawn in an earlier frame holds this frame's texels. */
+static sk_result skgl__rmsm_frame(const sk_aabb *world, sk_vec3 light_dir, sk_mat4 *lvp, double o[3])
 {
-    static const float one = 1.0f;
-    skgl__api *gl = &ctx->gl;
-    skgl__st st;
-    int i, P = s->desc.rmsm_page_size, slot = P + 2, pool = s->desc.rmsm_pool_pages;
-    sk_result r = SK_OK, rc;
-    skgl__st_begin(ctx, &st);
-    if (!s->rmsm.analyzed) {
-        /* no analysis: the coarsest page alone */
-        r = skgl__ferko_light(scene, light_dir, &s->rmsm.lvp);
-        if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
-        memcpy(s->rmsm.origin, s->origin, sizeof s->rmsm.origin);
-        s->rmsm.pages[0].level = s->rmsm.levels - 1;
-        s->rmsm.pages[0].px = s->rmsm.pages[0].py = 0;
-        s->rmsm.npages = 1;
-        s->stats.pages_requested = 0;
-        s->stats.rmsm_min_level = 0;
-        skgl__rmsm_table(ctx, &st, s);
+    const double cell = SKGL_ORIGIN_CELL;
+    double c[3];
+    skgl_scene rel;
+    int k;
+    c[0] = 0.5 * ((double)world->min.x + world->max.x);
+    c[1] = 0.5 * ((double)world->min.y + world->max.y);
+    c[2] = 0.5 * ((double)world->min.z + world->max.z);
+    for (k = 0; k < 3; k++) {
+        o[k] = cell > 0.0 ? SK_FLOOR(c[k] / cell + 0.5) * cell : 0.0;
+        if (!(SK_FABS(o[k]) < 1e30)) o[k] = 0.0;
     }
-    s->light_dir = sk__normalize(light_dir);
-    s->vp[0] = skgl__shift(&s->rmsm.lvp, s->rmsm.origin, s->origin);
-    s->maps = 1;
-    skgl__timer_begin(ctx, &s->t_render);
-    skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[0]);
-    skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
-    skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, s->origin);
-    s->stats.passes = 0;
-    s->stats.texels = 0.0;
-    for (i = 0; i < s->rmsm.npages; i++) {
-        const sk_page *pg = &s->rmsm.pages[i];
-        double lres = (double)(s->desc.resolution >> pg->level);
-        sk_rect rc_;
-        sk_mat4 vp;
-        skgl_draw_info info;
-        int x = (i % pool) * slot, y = (i / pool) * slot;
-        rc_.x0 = (float)(2.0 * (pg->px * P - 1) / lres - 1.0);
-        rc_.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
-        rc_.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
-        rc_.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
-        vp = sk_mat4_mul(sk_crop_matrix(rc_, -1.0f, 1.0f), s->vp[0]);
-        skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, x, y, slot, slot);
-        skgl__st_set4(ctx, &st, SKGL__S_SCISSOR_BOX, x, y, slot, slot);
-        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
-        memset(&info, 0, sizeof info);
-        info.kind = SKGL_PASS_DIRECTIONAL;
-        info.index = i;
-        rc = skgl__casters_draw(ctx, &st, scene, &vp, s->origin, &info);
-        if (rc != SK_OK) r = rc;
-        s->stats.passes++;
-        s->stats.texels += (double)slot * slot;
-    }
-    skgl__model_end(ctx);
-    skgl__timer_end(ctx, &s->t_render);
-    s->stats.shadow_ms = s->t_render.ms;
-    s->stats.maps = 1;
-    s->stats.resolution = s->desc.resolution;
-    s->stats.map_width = s->stats.map_height = s->tex_size;
-    s->stats.pages_rendered = s->rmsm.npages;
-    skgl__st_end(ctx, &st);
-    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
+    memset(&rel, 0, sizeof rel);
+    rel.bounds = *world;
+    rel = skgl__scene_rel(&rel, o);
+    return skgl__ferko_light(&rel, light_dir, lvp);
 }
 
 /* ---- 6.5 the cache: static casters kept from frame to frame ----------- */
@@ -5680,25 +5671,32 @@ static sk_result skgl__render_cached(skgl_context *ctx, skgl__st *st, skgl_shado
    both read back (a stall); SK_ERR_INVALID_ARG when more than 1e-5 of a
    layer's texels (the scrolled crops' float rounding, CACHED MAPS) differ
    by more than 1e-6 in depth */
+/* the scratch depth map of .verify_cache, size x size (made on first use) */
+static sk_result skgl__verify_target(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int size)
+{
+    skgl__api *gl = &ctx->gl;
+    if (s->cache.verify_tex) return SK_OK;
+    gl->GenTextures(1, &s->cache.verify_tex);
+    ctx->objects++;
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->cache.verify_tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
+    gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, size, size, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT,
+                   NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    s->cache.verify_fbo = skgl__framebuffer(ctx, st, 0, 0, s->cache.verify_tex, -1);
+    if (!s->cache.verify_fbo) return skgl__fail(ctx, SK_ERR_GL, "skgl_shadow_render: verify framebuffer incomplete");
+    return SK_OK;
+}
+
 static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs)
 {
     skgl__api *gl = &ctx->gl;
     int i, res = s->desc.resolution, worst = 0, worst_layer = 0;
     size_t k, n = (size_t)res * (size_t)res;
     float *a, *b;
-    sk_result r = SK_OK;
-    if (!s->cache.verify_tex) {
-        gl->GenTextures(1, &s->cache.verify_tex);
-        ctx->objects++;
-        skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D), (skgl__int)s->cache.verify_tex);
-        skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D));
-        gl->TexImage2D(SKGL__TEXTURE_2D, 0, SKGL__DEPTH_COMPONENT32F, res, res, 0, SKGL__DEPTH_COMPONENT, SKGL__FLOAT,
-                       NULL);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
-        gl->TexParameteri(SKGL__TEXTURE_2D, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
-        s->cache.verify_fbo = skgl__framebuffer(ctx, st, 0, 0, s->cache.verify_tex, -1);
-        if (!s->cache.verify_fbo) return skgl__fail(ctx, SK_ERR_GL, "skgl_shadow_render: verify framebuffer incomplete");
-    }
+    sk_result r = skgl__verify_target(ctx, st, s, res);
+    if (r != SK_OK) return r;
     a = (float *)SKGL_MALLOC(n * sizeof *a);
     b = (float *)SKGL_MALLOC(n * sizeof *b);
     if (!a || !b) { SKGL_FREE(a); SKGL_FREE(b); return SK_ERR_CAPACITY; }
@@ -5723,6 +5721,349 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
                        "differs from the uncached one in %d texels: a caster scene.draw draws changed without "
                        "skgl_shadow_invalidate (moving casters belong in skgl_set_dynamic)", worst_layer, worst);
     return r;
+}
+
+/* >>rmsm_cache  RMSM's page cache (desc.cache). The virtual map's texel
+   grid is fixed in light space (skgl__rmsm_frame), so a page keeps its
+   depth from frame to frame: a pool slot holds it while it is requested
+   and, after, until the slot is needed (least recently used first). Only
+   pages that came into the view, or that an invalidated box or a new
+   virtual frustum emptied, are drawn; the dynamic casters are drawn over
+   the static depth of the pages they touch, restored from a static copy
+   of the pool the next frame. */
+#define SKGL__PAGE_LEVELS 11          /* levels of a virtual map of up to 1024 pages a side */
+
+/* page (level, px, py) covers texels [px P - 1, (px+1) P + 1) of level l's
+   virtual map (V / 2^l texels a side): its slot of P + 2 with a border of
+   one texel each side. In NDC of the virtual map: */
+static sk_rect skgl__page_rect(const skgl_shadow *s, const sk_page *pg)
+{
+    double lres = (double)(s->desc.resolution >> pg->level);
+    int P = s->desc.rmsm_page_size;
+    sk_rect r;
+    r.x0 = (float)(2.0 * (pg->px * P - 1) / lres - 1.0);
+    r.x1 = (float)(2.0 * ((pg->px + 1) * P + 1) / lres - 1.0);
+    r.y0 = (float)(2.0 * (pg->py * P - 1) / lres - 1.0);
+    r.y1 = (float)(2.0 * ((pg->py + 1) * P + 1) / lres - 1.0);
+    return r;
+}
+
+/* the part (x, y, w, h in the pool) of page pg's slot at (sx, sy) that a
+   texel rectangle of its level (skgl__cache_box_rect) covers; 0: none */
+static int skgl__page_clip(const skgl_shadow *s, const sk_page *pg, const int *lrect, int sx, int sy, int out[4])
+{
+    int P = s->desc.rmsm_page_size, x0 = pg->px * P - 1, y0 = pg->py * P - 1;
+    int a0 = lrect[0] > x0 ? lrect[0] : x0, b0 = lrect[1] > y0 ? lrect[1] : y0;
+    int a1 = lrect[0] + lrect[2] < x0 + P + 2 ? lrect[0] + lrect[2] : x0 + P + 2;
+    int b1 = lrect[1] + lrect[3] < y0 + P + 2 ? lrect[1] + lrect[3] : y0 + P + 2;
+    if (a1 <= a0 || b1 <= b0) return 0;
+    out[0] = sx + a0 - x0; out[1] = sy + b0 - y0; out[2] = a1 - a0; out[3] = b1 - b0;
+    return 1;
+}
+
+/* each level's texel rectangle of a world box (0 in has[l]: it misses the level) */
+static void skgl__page_box_rects(const skgl_shadow *s, const double *w, const sk_aabb *box, int rect[][4], int *has)
+{
+    int l;
+    for (l = 0; l < s->rmsm.levels; l++) has[l] = skgl__cache_box_rect(w, box, s->desc.resolution >> l, rect[l]);
+}
+
+/* the slot's position in the pool */
+static void skgl__slot_xy(const skgl_shadow *s, int k, int *x, int *y)
+{
+    *x = (k % s->desc.rmsm_pool_pages) * (s->desc.rmsm_page_size + 2);
+    *y = (k / s->desc.rmsm_pool_pages) * (s->desc.rmsm_page_size + 2);
+}
+
+typedef struct skgl__lru {
+    unsigned last;                 /* 0: an empty slot, taken first */
+    int slot;
+} skgl__lru;
+static int skgl__lru_order(const void *a, const void *b)
+{
+    unsigned x = ((const skgl__lru *)a)->last, y = ((const skgl__lru *)b)->last;
+    return x < y ? -1 : x > y;
+}
+
+/* The page cache's bookkeeping before a render: a new virtual frustum or
+   skgl_shadow_invalidate(NULL) empties every slot; an invalidated box
+   empties the slots of the pages its shadow may touch (each level's texel
+   rectangle of the box, skgl__cache_box_rect). Then each page of this
+   frame keeps the slot it is resident in (pages_reused) or takes an empty
+   slot, else the least recently used one (pages_evicted); a slot taken
+   so is drawn (valid 0). There are always enough: a frame's pages fit in
+   the pool (skgl__rmsm_pages), and the slots this frame keeps are its own. */
+static sk_result skgl__rmsm_assign(skgl_shadow *s)
+{
+    skgl__rmsm *m = &s->rmsm;
+    skgl__cache *c = &s->cache;
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, i, k, n = 0, used = 0;
+    size_t bytes = (size_t)m->atlas_w * (size_t)m->atlas_h;
+    skgl__lru *lru;
+    if (c->all || memcmp(&m->key_lvp, &m->lvp, sizeof m->lvp) != 0 ||
+        memcmp(m->key_origin, m->origin, sizeof m->origin) != 0) {
+        for (k = 0; k < cap; k++) m->slots[k].valid = m->slots[k].dyn = 0;
+        memset(m->resident, 0, sizeof(int) * bytes);
+        m->key_lvp = m->lvp;
+        memcpy(m->key_origin, m->origin, sizeof m->origin);
+        s->stats.cache_full = 1;
+    } else if (c->ndirty > 0) {
+        double w[16];
+        int j, rect[SKGL__PAGE_LEVELS][4], has[SKGL__PAGE_LEVELS], clip[4];
+        skgl__world_matrix(&m->lvp, m->origin, w);
+        for (j = 0; j < c->ndirty; j++) {
+            skgl__page_box_rects(s, w, &c->dirty[j], rect, has);
+            for (k = 0; k < cap; k++) {
+                skgl__rmsm_slot *t = &m->slots[k];
+                sk_page pg;
+                if (!t->valid || !has[t->level]) continue;
+                pg.level = t->level; pg.px = t->px; pg.py = t->py;
+                if (!skgl__page_clip(s, &pg, rect[t->level], 0, 0, clip)) continue;
+                t->valid = t->dyn = 0;
+                m->resident[skgl__atlas_index(s, t->level, t->px, t->py)] = 0;
+                s->stats.cache_regions++;
+            }
+        }
+    } else s->stats.cache_reused = 1;
+    c->ndirty = 0;
+    c->all = 0;
+    m->frame++;
+    for (i = 0; i < m->npages; i++) {
+        k = m->resident[skgl__atlas_index(s, m->pages[i].level, m->pages[i].px, m->pages[i].py)] - 1;
+        m->slot_of[i] = k;
+        if (k >= 0) { m->slots[k].last = m->frame; s->stats.pages_reused++; used++; }
+    }
+    if (used == m->npages) return SK_OK;
+    lru = (skgl__lru *)SKGL_MALLOC(sizeof *lru * (size_t)cap);
+    if (!lru) return SK_ERR_CAPACITY;
+    for (k = 0; k < cap; k++)
+        if (m->slots[k].last != m->frame) {
+            lru[n].last = m->slots[k].valid ? m->slots[k].last + 1u : 0u;
+            lru[n++].slot = k;
+        }
+    qsort(lru, (size_t)n, sizeof *lru, skgl__lru_order);
+    for (i = 0, n = 0; i < m->npages; i++) {
+        skgl__rmsm_slot *t;
+        if (m->slot_of[i] >= 0) continue;
+        t = &m->slots[k = lru[n++].slot];
+        if (t->valid) {
+            m->resident[skgl__atlas_index(s, t->level, t->px, t->py)] = 0;
+            s->stats.pages_evicted++;
+        }
+        t->level = m->pages[i].level; t->px = m->pages[i].px; t->py = m->pages[i].py;
+        t->valid = t->dyn = 0;
+        t->last = m->frame;
+        m->resident[skgl__atlas_index(s, t->level, t->px, t->py)] = k + 1;
+        m->slot_of[i] = k;
+    }
+    SKGL_FREE(lru);
+    return SK_OK;
+}
+
+/* one caster pass of page i, into its slot: the casters of cls
+   (SKGL__DRAW_*), the whole slot cleared first (rect NULL) or over what is
+   there inside rect (pool texels), into framebuffer fb */
+static sk_result skgl__page_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *scene, int i,
+                                 skgl__uint fb, const int *rect, int cls)
+{
+    static const float one = 1.0f;
+    int x, y, slot = s->desc.rmsm_page_size + 2;
+    sk_mat4 vp = sk_mat4_mul(sk_crop_matrix(skgl__page_rect(s, &s->rmsm.pages[i]), -1.0f, 1.0f), s->rmsm.lvp);
+    skgl_draw_info info;
+    sk_result r;
+    skgl__slot_xy(s, s->rmsm.slot_of[i], &x, &y);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, x, y, slot, slot);
+    if (rect) skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
+    else skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, x, y, slot, slot);
+    if (!rect) ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_DIRECTIONAL;
+    info.index = i;
+    info.rect[0] = rect ? rect[0] : x; info.rect[1] = rect ? rect[1] : y;
+    info.rect[2] = rect ? rect[2] : slot; info.rect[3] = rect ? rect[3] : slot;
+    ctx->draw_class = cls;
+    r = skgl__casters_draw(ctx, st, scene, &vp, s->rmsm.origin, &info);
+    ctx->draw_class = SKGL__DRAW_ALL;
+    s->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && ctx->dyn.draw != NULL);
+    s->stats.texels += rect ? (double)rect[2] * rect[3] : (double)slot * slot;
+    return r;
+}
+
+/* page i's slot from the map to the static copy (to 0) or back (to 1) */
+static void skgl__page_copy(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int i, int back)
+{
+    int x, y, slot = s->desc.rmsm_page_size + 2;
+    skgl__slot_xy(s, s->rmsm.slot_of[i], &x, &y);
+    skgl__cache_copy(ctx, st, s, back ? s->cache.fbo[0] : s->fbo[0], back ? s->fbo[0] : s->cache.fbo[0], x, y, slot,
+                     slot, 0, 0);
+}
+
+/* the static copy of the pool (cache.tex), made when dynamic casters
+   first come, within cache_budget_kb; the map holds only static depth
+   then (every slot's dyn 0), copied whole. 0: no copy (over the budget),
+   the pages the dynamic casters touch are drawn whole each frame. */
+static int skgl__rmsm_copy_ready(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    double bytes = 4.0 * s->tex_size * s->tex_size;
+    if (s->cache.tex) return 1;
+    if (s->desc.cache_budget_kb > 0 && bytes > 1024.0 * s->desc.cache_budget_kb) return 0;
+    ctx->gl.GenTextures(1, &s->cache.tex);
+    ctx->objects++;
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->cache.tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
+    ctx->gl.TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, 1, 0,
+                       SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    ctx->gl.TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    ctx->gl.TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    s->cache.fbo[0] = skgl__framebuffer(ctx, st, 0, 0, s->cache.tex, 0);
+    if (!s->cache.fbo[0]) { skgl__delete_texture(ctx, &s->cache.tex); return 0; }
+    skgl__cache_copy(ctx, st, s, s->fbo[0], s->cache.fbo[0], 0, 0, s->tex_size, s->tex_size, 0, 0);
+    return 1;
+}
+
+/* The dynamic casters over the cached pages (skgl_set_dynamic): a page
+   they touch (each level's texel rectangle of dyn.bounds; every page
+   without bounds) gets its static depth back if they were drawn over it
+   last time, then theirs, scissored to the rectangle; a page they left
+   gets its static depth back. Without the static copy (budget) "back"
+   means drawn again. */
+static sk_result skgl__rmsm_dynamic(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *scene)
+{
+    skgl__rmsm *m = &s->rmsm;
+    int i, bounds = skgl__has_dynamic_bounds(&ctx->dyn.bounds), slot = s->desc.rmsm_page_size + 2;
+    int rect[SKGL__PAGE_LEVELS][4], has[SKGL__PAGE_LEVELS];
+    sk_result r = SK_OK, rc;
+    if (ctx->dyn.draw) (void)skgl__rmsm_copy_ready(ctx, st, s);
+    if (ctx->dyn.draw && bounds) {
+        double w[16];
+        skgl__world_matrix(&m->lvp, m->origin, w);
+        skgl__page_box_rects(s, w, &ctx->dyn.bounds, rect, has);
+    }
+    for (i = 0; i < m->npages; i++) {
+        skgl__rmsm_slot *t = &m->slots[m->slot_of[i]];
+        int x, y, clip[4], touch = ctx->dyn.draw != NULL;
+        skgl__slot_xy(s, m->slot_of[i], &x, &y);
+        clip[0] = x; clip[1] = y; clip[2] = clip[3] = slot;
+        if (touch && bounds) touch = has[t->level] && skgl__page_clip(s, &m->pages[i], rect[t->level], x, y, clip);
+        if (!touch && !t->dyn) continue;
+        if (t->dyn) {
+            if (s->cache.tex) skgl__page_copy(ctx, st, s, i, 1);
+            else if ((rc = skgl__page_pass(ctx, st, s, scene, i, s->fbo[0], NULL, SKGL__DRAW_STATIC)) != SK_OK) r = rc;
+            t->dyn = 0;
+        }
+        if (!touch) continue;
+        rc = skgl__page_pass(ctx, st, s, scene, i, s->fbo[0], clip, SKGL__DRAW_DYNAMIC);
+        if (rc != SK_OK) r = rc;
+        t->dyn = 1;
+    }
+    return r;
+}
+
+/* .verify_cache for RMSM: every page of this frame drawn uncached into
+   the same slot of a scratch pool, both slots read back (a stall);
+   SK_ERR_INVALID_ARG when more than 1e-5 of the frame's page texels
+   differ by more than 1e-6 in depth (none should: a page is drawn with
+   the same matrix cached or not) */
+static sk_result skgl__rmsm_verify(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *scene)
+{
+    skgl__api *gl = &ctx->gl;
+    int i, slot = s->desc.rmsm_page_size + 2, diff = 0;
+    size_t k, n = (size_t)slot * (size_t)slot;
+    float *a, *b;
+    sk_result r = skgl__verify_target(ctx, st, s, s->tex_size);
+    if (r != SK_OK) return r;
+    a = (float *)SKGL_MALLOC(n * sizeof *a);
+    b = (float *)SKGL_MALLOC(n * sizeof *b);
+    if (!a || !b) { SKGL_FREE(a); SKGL_FREE(b); return SK_ERR_CAPACITY; }
+    skgl__st_pack(ctx, st, 0, slot, 4 * slot);
+    for (i = 0; i < s->rmsm.npages && r == SK_OK; i++) {
+        int x, y;
+        skgl__slot_xy(s, s->rmsm.slot_of[i], &x, &y);
+        r = skgl__page_pass(ctx, st, s, scene, i, s->cache.verify_fbo, NULL, SKGL__DRAW_ALL);
+        s->stats.passes -= 1 + (ctx->dyn.draw != NULL);   /* not the cache's work */
+        s->stats.texels -= (double)n;
+        skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)s->cache.verify_fbo);
+        gl->ReadPixels(x, y, slot, slot, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, a);
+        skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)s->fbo[0]);
+        gl->ReadPixels(x, y, slot, slot, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, b);
+        for (k = 0; k < n; k++) diff += SK_FABS(a[k] - b[k]) > 1e-6f;
+    }
+    SKGL_FREE(a);
+    SKGL_FREE(b);
+    s->stats.cache_verify_texels = diff;
+    if (r == SK_OK && diff > (int)(1e-5 * (double)n * s->rmsm.npages))
+        r = skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_shadow_render: desc.verify_cache: the cached RMSM pages differ "
+                       "from the uncached ones in %d texels: a caster scene.draw draws changed without "
+                       "skgl_shadow_invalidate (moving casters belong in skgl_set_dynamic)", diff);
+    return r;
+}
+
+/* RMSM: this frame's pages into their pool slots (skgl__page_pass). With
+   desc.cache only the slots skgl__rmsm_assign emptied are drawn, with the
+   static casters, then the dynamic ones over them (skgl__rmsm_dynamic). */
+static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir)
+{
+    skgl__st st;
+    int i, cached = s->desc.cache;
+    sk_result r, rc;
+    r = skgl__rmsm_frame(&s->rmsm.world, light_dir, &s->rmsm.lvp, s->rmsm.origin);
+    if (r != SK_OK) return r;
+    if (!s->rmsm.analyzed) {   /* no analysis: the coarsest page alone */
+        s->rmsm.pages[0].level = s->rmsm.levels - 1;
+        s->rmsm.pages[0].px = s->rmsm.pages[0].py = 0;
+        s->rmsm.npages = 1;
+        s->stats.pages_requested = 0;
+        s->stats.rmsm_min_level = 0;
+    }
+    s->stats.passes = 0;
+    s->stats.texels = 0.0;
+    s->stats.pages_rendered = s->stats.pages_reused = s->stats.pages_evicted = 0;
+    s->stats.cache_full = s->stats.cache_scrolled = s->stats.cache_reused = s->stats.cache_regions = 0;
+    s->stats.cache_copied = 0.0;
+    if (cached) r = skgl__rmsm_assign(s);
+    else for (i = 0; i < s->rmsm.npages; i++) s->rmsm.slot_of[i] = i;
+    if (r != SK_OK) return r;
+    skgl__st_begin(ctx, &st);
+    skgl__rmsm_table(ctx, &st, s);
+    s->light_dir = sk__normalize(light_dir);
+    s->vp[0] = skgl__shift(&s->rmsm.lvp, s->rmsm.origin, s->origin);
+    s->maps = 1;
+    skgl__timer_begin(ctx, &s->t_render);
+    /* the pages are drawn relative to the virtual map's origin, not the
+       camera's: the same depth whatever the camera, so a cached page equals
+       the one an uncached render draws */
+    skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, s->rmsm.origin);
+    for (i = 0; i < s->rmsm.npages; i++) {
+        skgl__rmsm_slot *t = cached ? &s->rmsm.slots[s->rmsm.slot_of[i]] : NULL;
+        if (t && t->valid) continue;
+        rc = skgl__page_pass(ctx, &st, s, scene, i, s->fbo[0], NULL, cached ? SKGL__DRAW_STATIC : SKGL__DRAW_ALL);
+        if (rc != SK_OK) r = rc;
+        s->stats.pages_rendered++;
+        if (!t) continue;
+        t->valid = rc == SK_OK;
+        if (s->cache.tex) skgl__page_copy(ctx, &st, s, i, 0);
+    }
+    if (cached) {
+        rc = skgl__rmsm_dynamic(ctx, &st, s, scene);
+        if (r == SK_OK) r = rc;
+        if (r == SK_OK && s->desc.verify_cache) r = skgl__rmsm_verify(ctx, &st, s, scene);
+    }
+    skgl__model_end(ctx);
+    skgl__timer_end(ctx, &s->t_render);
+    s->stats.shadow_ms = s->t_render.ms;
+    s->stats.maps = 1;
+    s->stats.resolution = s->desc.resolution;
+    s->stats.map_width = s->stats.map_height = s->tex_size;
+    s->stats.pages_resident = s->rmsm.npages;
+    if (cached) {
+        int k, cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
+        for (k = 0, s->stats.pages_resident = 0; k < cap; k++) s->stats.pages_resident += s->rmsm.slots[k].valid;
+        s->stats.cache_bytes = s->cache.tex ? 4.0 * s->tex_size * s->tex_size : 0.0;
+    }
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
 
 /* ---- 6.6 analyze and render ------------------------------------------- */
@@ -5847,7 +6188,12 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     rs = skgl__scene_rel(scene, o);
     if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
     memcpy(ctx->cam_dmap, ci.dmap, sizeof ci.dmap);
-    r = skgl__ferko_light(&rs, light_dir, &lvp);
+    if (s->desc.technique == SKGL_RMSM) {   /* the page grid is fixed in the world (skgl__rmsm_frame) */
+        sk_mat4 vlvp;
+        double vo[3];
+        r = skgl__rmsm_frame(&scene->bounds, light_dir, &vlvp, vo);
+        lvp = skgl__shift(&vlvp, vo, o);
+    } else r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
     skgl__st_begin(ctx, &st);
     why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
@@ -5882,6 +6228,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     rs = skgl__scene_rel(scene, o);
     memcpy(was, s->origin, sizeof was);
     memcpy(s->origin, o, sizeof o);
+    s->rmsm.world = scene->bounds;
     r = skgl__fit_layers(s, &rcam, &rs, light_dir);
     if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
     skgl__clip_depth(ctx, 0);
