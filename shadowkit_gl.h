@@ -176,9 +176,19 @@
      cache stable maps. A point light's faces are kept while the light
      stays where it was at the same face side; its caster culling then
      keeps every static caster a face can see, whatever the view, and culls
-     only the dynamic ones by the view. Not cached: FERKO (its crop and
-     size follow the G-buffer), RMSM (no page cache), layered passes and
-     shared atlases (refused at create, naming desc.cache).
+     only the dynamic ones by the view. RMSM keeps pages: its virtual
+     map's texel grid is fixed in light space (the scene's bounds and the
+     light alone place it, not the camera), so a page keeps its depth from
+     frame to frame. A page stays in its pool slot while it is requested
+     and after, until a new page needs the slot (least recently used
+     first); only pages that came into view, or that an invalidated box or
+     a new light emptied, are drawn (stats pages_rendered, pages_reused,
+     pages_evicted, pages_resident; cache_regions counts the pages boxes
+     emptied). The dynamic casters are drawn over the static depth of the
+     pages their bounds touch, restored the next frame from a static copy
+     of the pool. Not cached: FERKO (its crop and size follow the
+     G-buffer), layered passes and shared atlases (refused at create,
+     naming desc.cache).
      A cached stable crop's depth range is the scene's bounds in light
      space (the sphere's would move with the camera): set tight bounds.
      The callbacks' info->rect is the texel rectangle a pass draws (an
@@ -187,7 +197,11 @@
      Memory: one depth texture the size of the light's maps (stats
      cache_bytes); .cache_budget_kb caps it: a directional light caches
      its nearest layers while they fit and draws the rest every frame, a
-     point light whose cache does not fit is drawn every frame. Misuse is
+     point light whose cache does not fit is drawn every frame. RMSM's
+     pages live in its pool (rmsm_pool_pages caps them); its cache takes
+     GPU memory only for the static copy of the pool, made when dynamic
+     casters first come: over the budget there is none, and the pages
+     they touch are drawn whole each frame instead. Misuse is
      caught with .verify_cache = 1 (desktop GL, a debugging aid: every
      cached layer is also drawn uncached and both read back, a stall): a
      render whose cached map differs from the uncached one in more than
@@ -624,10 +638,13 @@ typedef struct skgl_draw_info {
     /* 1: this call is the skgl_set_dynamic callback (the casters that move, CACHED
        MAPS); 0: scene.draw's */
     int dynamic;
-    /* w > 0: the pass draws only into this texel rectangle of its target
-       (x, y, w, h: a cached map's newly exposed strip or an invalidated
-       region), so a callback may skip casters whose shadow misses it;
-       all 0: the whole target */
+    /* w > 0: the pass draws only into this texel rectangle of its
+       viewport (x, y, w, h from the viewport's corner, where view_proj's
+       NDC [-1, 1] spans it: a cached map's newly exposed strip, an
+       invalidated region, the part of an RMSM page the dynamic casters
+       touch; the viewport is the whole layer or face, RMSM's the page's
+       slot of rmsm_page_size + 2 texels a side), so a callback may skip
+       casters whose shadow misses it; all 0: the whole viewport */
     int rect[4];
 } skgl_draw_info;
 typedef void (*skgl_draw_fn)(void *user, const skgl_draw_info *info);
@@ -760,10 +777,12 @@ typedef struct skgl_shadow_desc {
     int disable_pcf_kernel;       /* 1: one hardware 2x2 compare, no kernel [0] */
     int cache;                    /* 1: keep scene.draw's (static) casters' depth from frame
                                      to frame and redraw only what changed (CACHED MAPS):
-                                     STANDARD, PSSM, PSM, LiSPSM, LSPSM [0] */
+                                     STANDARD, PSSM, PSM, LiSPSM, LSPSM; RMSM keeps its
+                                     pages [0] */
     int cache_budget_kb;          /* .cache: the most GPU memory the cache may take, in KiB;
                                      the nearest layers are cached while they fit, the rest
-                                     drawn every frame [0: no limit] */
+                                     drawn every frame (RMSM: the static copy of the pool
+                                     under dynamic casters, or none) [0: no limit] */
     int verify_cache;             /* .cache, desktop GL: also render every cached layer
                                      uncached, read both back (a CPU-GPU stall: for
                                      debugging) and fail the render when they differ
@@ -854,7 +873,10 @@ typedef struct skgl_shadow_frame_stats {
        whole, scrolled (only the exposed strips drawn), reused as they
        were; regions redrawn for skgl_shadow_invalidate; texels copied
        between the cache and the map; the GPU memory the cache holds; the
-       layers it holds (the nearest, within cache_budget_kb) */
+       layers it holds (the nearest, within cache_budget_kb). RMSM:
+       cache_full 1 when every page was emptied (a new light, scene
+       bounds, skgl_shadow_invalidate(NULL)), cache_reused 1 when none
+       was, cache_regions the pages invalidated boxes emptied */
     int cache_full, cache_scrolled, cache_reused, cache_regions;
     double cache_copied;
     double cache_bytes;
@@ -3622,6 +3644,10 @@ static sk_result skgl__scene_draw(skgl_context *ctx, skgl__st *st, const skgl_sc
     return r;
 }
 
+/* the callbacks one pass of every caster makes (stats.passes): scene.draw,
+   and skgl_set_dynamic's when there is one */
+static int skgl__pass_callbacks(const skgl_context *ctx) { return 1 + (ctx->dyn.draw != NULL); }
+
 static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
                                     const double origin[3], skgl_draw_info *info)
 {
@@ -5704,7 +5730,7 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
     for (i = 0; i < s->maps && i < s->cache.layers && r == SK_OK; i++) {
         int diff = 0;
         r = skgl__cache_pass(ctx, st, s, rs, i, s->cache.verify_fbo, NULL, SKGL__DRAW_ALL, 1);
-        s->stats.passes -= 1 + (ctx->dyn.draw != NULL);   /* not the cache's work */
+        s->stats.passes -= skgl__pass_callbacks(ctx);   /* not the cache's work */
         s->stats.texels -= (double)res * res;
         skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)s->cache.verify_fbo);
         gl->ReadPixels(0, 0, res, res, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, a);
@@ -5881,8 +5907,7 @@ static sk_result skgl__page_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *s
     memset(&info, 0, sizeof info);
     info.kind = SKGL_PASS_DIRECTIONAL;
     info.index = i;
-    info.rect[0] = rect ? rect[0] : x; info.rect[1] = rect ? rect[1] : y;
-    info.rect[2] = rect ? rect[2] : slot; info.rect[3] = rect ? rect[3] : slot;
+    if (rect) { info.rect[0] = rect[0] - x; info.rect[1] = rect[1] - y; info.rect[2] = rect[2]; info.rect[3] = rect[3]; }
     ctx->draw_class = cls;
     r = skgl__casters_draw(ctx, st, scene, &vp, s->rmsm.origin, &info);
     ctx->draw_class = SKGL__DRAW_ALL;
@@ -5982,7 +6007,7 @@ static sk_result skgl__rmsm_verify(skgl_context *ctx, skgl__st *st, skgl_shadow 
         int x, y;
         skgl__slot_xy(s, s->rmsm.slot_of[i], &x, &y);
         r = skgl__page_pass(ctx, st, s, scene, i, s->cache.verify_fbo, NULL, SKGL__DRAW_ALL);
-        s->stats.passes -= 1 + (ctx->dyn.draw != NULL);   /* not the cache's work */
+        s->stats.passes -= skgl__pass_callbacks(ctx);   /* not the cache's work */
         s->stats.texels -= (double)n;
         skgl__st_set1(ctx, st, SKGL__S_READ_FB, (skgl__int)s->cache.verify_fbo);
         gl->ReadPixels(x, y, slot, slot, SKGL__DEPTH_COMPONENT, SKGL__FLOAT, a);
@@ -6108,7 +6133,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
             memset(&info, 0, sizeof info);
             info.kind = SKGL_PASS_DIRECTIONAL;
             r = skgl__casters_draw_layered(ctx, &st, rs, s->render_vp, of, s->maps, o, &info);
-            s->stats.passes = 1;
+            s->stats.passes = skgl__pass_callbacks(ctx);
             s->stats.texels = (double)s->maps * s->view_w * s->view_h;
             s->stats.layered = ctx->layered_state;
         }
@@ -6127,7 +6152,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         info.index = i;
         rc = skgl__casters_draw(ctx, &st, rs, &s->render_vp[i], o, &info);
         if (rc != SK_OK) r = rc;
-        s->stats.passes++;
+        s->stats.passes += skgl__pass_callbacks(ctx);
         s->stats.texels += (double)s->view_w * s->view_h;
     }
     skgl__model_end(ctx);
@@ -7218,7 +7243,7 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
             info.light_range = p->desc.range;
             info.point = p;
             r = skgl__casters_draw_layered(ctx, st, scene, vps, of, n, skgl__zero3, &info);
-            p->stats.passes = 1;
+            p->stats.passes = skgl__pass_callbacks(ctx);
             p->stats.faces_rendered = n;
             p->stats.texels += (double)n * m * m;
         }
@@ -7245,7 +7270,7 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
         face_vp = sk_mat4_mul(proj, sk_cube_face_view(f, p->light_pos));
         rc = skgl__casters_draw(ctx, st, scene, &face_vp, skgl__zero3, &info);
         if (rc != SK_OK) r = rc;
-        p->stats.passes++;
+        p->stats.passes += skgl__pass_callbacks(ctx);
         p->stats.faces_rendered++;
         p->stats.texels += (double)m * m;
     }
@@ -8497,7 +8522,7 @@ static sk_result skgl__soft_gbuffer(skgl_context *ctx, skgl__st *st, skgl_soft *
     memcpy(ctx->pass_eye, eye, sizeof eye);
     skgl__soft_info(&info, SKGL_PASS_CAMERA, 0);
     r = skgl__casters_draw(ctx, st, scene, &vp, skgl__zero3, &info);
-    s->stats.passes++;
+    s->stats.passes += skgl__pass_callbacks(ctx);
     skgl__ftimer_end(ctx, &s->timer);
     return r;
 }
@@ -8563,7 +8588,7 @@ static sk_result skgl__soft_pcss(skgl_context *ctx, skgl__st *st, skgl_soft *s, 
     skgl__soft_info(&info, SKGL_PASS_AREA, 0);
     r = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
     skgl__ftimer_end(ctx, &s->timer);
-    s->stats.passes++;
+    s->stats.passes += skgl__pass_callbacks(ctx);
     s->stats.texels += (double)res * res;
     s->stats.maps = 1;
     s->stats.resolution = res;
@@ -8608,7 +8633,7 @@ static sk_result skgl__soft_lowres_fine(skgl_context *ctx, skgl__st *st, skgl_so
     skgl__soft_info(&info, SKGL_PASS_AREA, 0);
     rc = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
     skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 0);
-    s->stats.passes++;
+    s->stats.passes += skgl__pass_callbacks(ctx);
     s->stats.texels += (double)fine * fine;
     skgl__st_screen_pass(ctx, st);
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_low);
@@ -8648,7 +8673,7 @@ static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s
         skgl__soft_info(&info, SKGL_PASS_AREA, 0);
         rc = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
         skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 0);
-        s->stats.passes++;
+        s->stats.passes += skgl__pass_callbacks(ctx);
         s->stats.texels += (double)r * r;
     }
     skgl__st_screen_pass(ctx, st);
@@ -8888,7 +8913,7 @@ static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_so
         r = skgl__casters_draw(ctx, st, scene, &vp, skgl__zero3, &info);
         skgl__st_forget_units(st);
         skgl__ftimer_end(ctx, &s->timer);
-        s->stats.passes++;
+        s->stats.passes += skgl__pass_callbacks(ctx);
         s->stats.texels += (double)t->res_x * t->res_y;
         if (t->res_x > s->stats.resolution) s->stats.resolution = t->res_x;
         if (t->res_y > s->stats.resolution) s->stats.resolution = t->res_y;

@@ -21,8 +21,12 @@
        point-cube       SKGL_POINT_CUBE, 512^2 a face, .cull_faces = 1; the
                         light inside the scene's bounds (see point_light_of),
                         its range reaching every corner of them
-       rmsm             not run: skgl_shadow_create refuses .cache with RMSM
-                        (no page cache); the refusal is checked and printed
+       rmsm             SKGL_RMSM, 8192^2 virtual, 128-texel pages, a pool of
+                        24 x 24; analysed every frame (skgl_shadow_analyze
+                        on the frame's G-buffer depth, the scene without the
+                        mover, with .sync_readback = 1 so that both lights
+                        see the same requests; the analysis is not timed:
+                        the same in both modes)
      Directional light: the bench's, travelling along (-0.45, -1, -0.35).
 
    The walk: the bench's "overview" view (bench/bench.c make_views: the
@@ -123,6 +127,7 @@
 #define FOVY 0.872665f             /* 50 degrees */
 #define MAX_FRAMES 240
 #define DIR_RES 2048
+#define RMSM_RES 8192
 #define POINT_RES 512
 #define MOVER_FRAC 0.05f           /* the mover's side / the scene's diagonal */
 #define STEP_SIDE 0.005f           /* camera step a frame, of the eye-target distance */
@@ -133,12 +138,13 @@
 #define CSV_HEADER                                                                                            \
     "scene,technique,walk,mode,frame,texels,passes,callbacks,shadow_ms,error,differ_pct,cache_full,"          \
     "cache_scrolled,cache_reused,cache_regions,cache_copied,cache_bytes,cache_layers,faces_reused,"            \
-    "faces_rendered,faces_culled,device"
+    "faces_rendered,faces_culled,pages_rendered,pages_reused,pages_evicted,device"
 
-enum { T_PSSM, T_STANDARD, T_POINT, NTECH };
+enum { T_PSSM, T_STANDARD, T_RMSM, T_POINT, NTECH };
+#define NDIR 3                     /* the directional techniques, first */
 enum { WALK_STATIC, WALK_MOVING, NWALK };
 enum { M_CACHED, M_UNCACHED, NMODE };
-static const char *const tech_name[NTECH] = {"pssm4-stable", "standard-stable", "point-cube"};
+static const char *const tech_name[NTECH] = {"pssm4-stable", "standard-stable", "rmsm", "point-cube"};
 static const char *const walk_name[NWALK] = {"static", "moving"};
 static const char *const mode_name[NMODE] = {"cached", "uncached"};
 
@@ -380,6 +386,7 @@ typedef struct world {
     const tb_gl_mesh *mesh, *mover_mesh;
     sk_vec3 mover_at;
     long callbacks;
+    int target_res;            /* side of the map the pass draws into (info->rect's frame) */
 } world;
 
 /* the frustum of the texel rectangle rect (x, y, w, h) of a res x res
@@ -405,7 +412,7 @@ static void draw_static(void *user, const skgl_draw_info *info) {
     unsigned i;
     w->callbacks++;
     if (info->rect[2] > 0 && info->rect[3] > 0)
-        f = rect_frustum(&info->view_proj, info->rect, info->kind == SKGL_PASS_CUBE_FACE ? POINT_RES : DIR_RES);
+        f = rect_frustum(&info->view_proj, info->rect, info->kind == SKGL_PASS_CUBE_FACE ? POINT_RES : w->target_res);
     for (i = 0; i < w->nstatic; i++) {
         const tb_object *o = &w->s->objects[i];
         sk_frustum box;
@@ -436,6 +443,7 @@ typedef struct frame_rec {
     int passes, callbacks, err_ok, differ_ok;
     int full, scrolled, reused, regions, layers;
     int faces_reused, faces_rendered, faces_culled;
+    int pages_rendered, pages_reused, pages_evicted;
 } frame_rec;
 
 static frame_rec g_rec[NTECH][NWALK][NMODE][MAX_FRAMES];
@@ -455,14 +463,14 @@ typedef struct bench {
 /* --------------------------------------------------------------- lights */
 /* the lights of one walk, made anew for it (the caches start empty) */
 typedef struct lights {
-    skgl_shadow *dir[2][NMODE];   /* [T_PSSM], [T_STANDARD] */
+    skgl_shadow *dir[NDIR][NMODE];   /* [T_PSSM], [T_STANDARD], [T_RMSM] */
     skgl_point *point[NMODE];
 } lights;
 
 static void free_lights(bench *B, lights *L) {
     int m, t;
     for (m = 0; m < NMODE; m++) {
-        for (t = 0; t < 2; t++) skgl_shadow_destroy(B->sk, L->dir[t][m]);
+        for (t = 0; t < NDIR; t++) skgl_shadow_destroy(B->sk, L->dir[t][m]);
         skgl_point_destroy(B->sk, L->point[m]);
     }
     memset(L, 0, sizeof *L);
@@ -475,13 +483,14 @@ static int make_lights(bench *B, lights *L, float point_range) {
     memset(L, 0, sizeof *L);
     for (m = 0; m < NMODE; m++) {
         skgl_point_desc pd;
-        for (t = 0; t < 2; t++) {
+        for (t = 0; t < NDIR; t++) {
             skgl_shadow_desc d;
             memset(&d, 0, sizeof d);
-            d.technique = t == T_PSSM ? SKGL_PSSM : SKGL_STANDARD;
+            d.technique = t == T_PSSM ? SKGL_PSSM : t == T_RMSM ? SKGL_RMSM : SKGL_STANDARD;
             d.cascades = t == T_PSSM ? 4 : 1;
-            d.stable = 1;
-            d.resolution = DIR_RES;
+            d.stable = t != T_RMSM;
+            d.resolution = t == T_RMSM ? RMSM_RES : DIR_RES;
+            d.sync_readback = t == T_RMSM;
             d.cache = m == M_CACHED;
             r = skgl_shadow_create(B->sk, &d, &L->dir[t][m]);
             if (r != SK_OK) {
@@ -516,6 +525,17 @@ static int render_one(bench *B, lights *L, int t, int m, const skgl_camera *cam,
     double t0;
     sk_result r;
     w->callbacks = 0;
+    /* info->rect's viewport: a face, a layer, an RMSM page's slot */
+    w->target_res = t == T_POINT ? POINT_RES : t == T_RMSM ? skgl_shadow_get_desc(L->dir[t][m]).rmsm_page_size + 2
+                                                           : DIR_RES;
+    if (t == T_RMSM) {   /* the requests of this frame's view (not timed) */
+        r = skgl_shadow_analyze(B->sk, L->dir[t][m], cam, sc, light_dir, B->gbuf.depth_tex);
+        if (r != SK_OK) {
+            fprintf(stderr, "bench-cache: rmsm %s analysis failed: %s (%s)\n", mode_name[m], sk_result_string(r),
+                    skgl_error_log(B->sk));
+            return -1;
+        }
+    }
     if (B->wall) B->gl.Finish();
     t0 = now_s();
     if (t == T_POINT) r = skgl_point_render(B->sk, L->point[m], cam, sc, light_pos);
@@ -551,6 +571,9 @@ static int render_one(bench *B, lights *L, int t, int m, const skgl_camera *cam,
         fr->copied = st->cache_copied;
         fr->bytes = st->cache_bytes;
         fr->layers = st->cache_layers;
+        fr->pages_rendered = st->pages_rendered;
+        fr->pages_reused = st->pages_reused;
+        fr->pages_evicted = st->pages_evicted;
     }
     fr->done = 1;
     return 0;
@@ -641,6 +664,7 @@ typedef struct summary {
     double texels[NMODE], passes[NMODE], callbacks[NMODE], ms[NMODE], err[NMODE], differ;
     int err_n[NMODE], differ_n, n;
     int full, scrolled, reused, regions, faces_reused, faces_rendered;
+    int pages_rendered, pages_reused, pages_evicted;
 } summary;
 
 /* frames 1.. for the ratios (frame 0 draws everything in both modes); the
@@ -669,6 +693,9 @@ static summary summarise(int t, int wk, int frames) {
                 s.regions += r->regions;
                 s.faces_reused += r->faces_reused;
                 s.faces_rendered += r->faces_rendered;
+                s.pages_rendered += r->pages_rendered;
+                s.pages_reused += r->pages_reused;
+                s.pages_evicted += r->pages_evicted;
             }
         }
         if (n > 0) {
@@ -726,6 +753,9 @@ static void write_summary(FILE *txt, int frames) {
             else snprintf(df, sizeof df, "-");
             if (t == T_POINT)
                 snprintf(ly, sizeof ly, "faces reused %d of %d drawn", s.faces_reused, s.faces_rendered);
+            else if (t == T_RMSM)
+                snprintf(ly, sizeof ly, "pages drawn %d reused %d evicted %d, emptied by boxes %d", s.pages_rendered,
+                         s.pages_reused, s.pages_evicted, s.regions);
             else
                 snprintf(ly, sizeof ly, "full %d scrolled %d reused %d, regions %d", s.full, s.scrolled, s.reused,
                          s.regions);
@@ -770,7 +800,7 @@ static int plot_scene(const char *out, const char *gp, const char *scene, const 
     fprintf(f, "\noutfile = ");
     gp_string(f, png);
     fprintf(f, "\ntechniques = ");
-    gp_string(f, "pssm4-stable standard-stable point-cube");
+    gp_string(f, "pssm4-stable standard-stable rmsm point-cube");
     fprintf(f, "\nntech = %d\nnmode = %d\nframes = %d\n", NTECH, NMODE, frames);
     fclose(f);
     snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", vars, gp);
@@ -797,10 +827,14 @@ static void write_rows(FILE *csv, const char *scene, int frames, const char *dev
                     fputc(',', csv);
                     if (m == M_CACHED && r->differ_ok) fprintf(csv, "%.5f", r->differ);
                     if (t == T_POINT)
-                        fprintf(csv, ",,,,%d,%.0f,%.0f,,%d,%d,%d,", r->regions, r->copied, r->bytes, r->faces_reused,
-                                r->faces_rendered, r->faces_culled);
+                        fprintf(csv, ",,,,%d,%.0f,%.0f,,%d,%d,%d,,,,", r->regions, r->copied, r->bytes,
+                                r->faces_reused, r->faces_rendered, r->faces_culled);
+                    else if (t == T_RMSM)
+                        fprintf(csv, ",%d,%d,%d,%d,%.0f,%.0f,%d,,,,%d,%d,%d,", r->full, r->scrolled, r->reused,
+                                r->regions, r->copied, r->bytes, r->layers, r->pages_rendered, r->pages_reused,
+                                r->pages_evicted);
                     else
-                        fprintf(csv, ",%d,%d,%d,%d,%.0f,%.0f,%d,,,,", r->full, r->scrolled, r->reused, r->regions,
+                        fprintf(csv, ",%d,%d,%d,%d,%.0f,%.0f,%d,,,,,,,", r->full, r->scrolled, r->reused, r->regions,
                                 r->copied, r->bytes, r->layers);
                     csv_field(csv, device);
                     fputc('\n', csv);
@@ -913,6 +947,8 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
                     status = 1;
                 }
             }
+            /* RMSM's analysis reads this frame's depth: the static scene's G-buffer */
+            if (tb_gl_gbuffer_render(&B->gl, &B->gb, &mesh, &B->gbuf, &vp) != 0) status = 1;
             for (t = 0; t < NTECH; t++)
                 for (k = 0; k < NMODE; k++) {
                     int m = f & 1 ? NMODE - 1 - k : k;   /* who goes first alternates */
@@ -963,12 +999,19 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
         }
         fprintf(stderr, "bench-cache: %s %s walk done (%.1f s so far)\n", def->name, walk_name[wk], now_s() - ts);
         if (wk == WALK_STATIC && L.dir[T_PSSM][M_CACHED])
-            fprintf(txt, "  cache memory: pssm4-stable %.1f MiB (%d layers), standard-stable %.1f MiB, point-cube "
-                         "%.1f MiB\n",
+            fprintf(txt, "  cache memory: pssm4-stable %.1f MiB (%d layers), standard-stable %.1f MiB, rmsm %.1f MiB "
+                         "(the static copy of its %dx%d pool, made when dynamic casters come: none on this walk; "
+                         "the pages are the pool's own), point-cube %.1f MiB\n",
                     skgl_shadow_stats(L.dir[T_PSSM][M_CACHED])->cache_bytes / 1048576.0,
                     skgl_shadow_stats(L.dir[T_PSSM][M_CACHED])->cache_layers,
                     skgl_shadow_stats(L.dir[T_STANDARD][M_CACHED])->cache_bytes / 1048576.0,
+                    skgl_shadow_stats(L.dir[T_RMSM][M_CACHED])->cache_bytes / 1048576.0,
+                    skgl_shadow_stats(L.dir[T_RMSM][M_CACHED])->map_width,
+                    skgl_shadow_stats(L.dir[T_RMSM][M_CACHED])->map_height,
                     skgl_point_stats(L.point[M_CACHED])->cache_bytes / 1048576.0);
+        if (wk == WALK_MOVING && L.dir[T_RMSM][M_CACHED])
+            fprintf(txt, "  cache memory, moving walk: rmsm %.1f MiB (the static copy of the pool)\n",
+                    skgl_shadow_stats(L.dir[T_RMSM][M_CACHED])->cache_bytes / 1048576.0);
         free_lights(B, &L);
     }
     fprintf(txt, "  reference at frame 0: %.1f%% of the covered pixels lit by the sun, %.1f%% by the point light\n",
@@ -1141,29 +1184,13 @@ int main(int argc, char **argv) {
                  "covered pixels whose class the cached mask has otherwise than the uncached one\n"
                  "# passes: the stats' passes; (callbacks): the ratio of the draw callbacks the scene received, "
                  "scene.draw and the dynamic callback counted apart\n"
-                 "# directional maps 2048^2 (PSSM: a cascade), point light 512^2 a face\n\n",
+                 "# directional maps 2048^2 (PSSM: a cascade), RMSM 8192^2 virtual (128-texel pages, a 24x24 "
+                 "pool; its analysis untimed), point light 512^2 a face\n\n",
             B.renderer,
             B.wall ? "CPU wall clock of each render between glFinish calls (CPU rasteriser: relative, this run only)"
                    : "GL timer queries (GPU ms)",
             o.quick ? "quick" : "full", o.frames, shared ? "shared and procedural scenes" : "procedural scenes only",
             o.every, CW, CH, o.frames - 1, GOAL_STATIC_TEXELS, GOAL_STATIC_TIME, GOAL_MOVING);
-    /* RMSM cannot be cached: the create says so */
-    {
-        skgl_shadow_desc d;
-        skgl_shadow *s = NULL;
-        sk_result r;
-        memset(&d, 0, sizeof d);
-        d.technique = SKGL_RMSM;
-        d.cache = 1;
-        r = skgl_shadow_create(B.sk, &d, &s);
-        fprintf(txt, "rmsm: not cached: no page cache (skgl_shadow_create with desc.cache: %s%s%s)\n\n",
-                sk_result_string(r), r != SK_OK ? ", " : "", r != SK_OK ? skgl_error_log(B.sk) : "");
-        if (r == SK_OK) {
-            fprintf(stderr, "bench-cache: RMSM accepted desc.cache, which CACHED MAPS says it refuses\n");
-            skgl_shadow_destroy(B.sk, s);
-            status = 1;
-        }
-    }
     for (i = 0; i < ndefs; i++) {
         fprintf(txt, "scene %s\n", defs[i].name);
         if (run_scene(&B, &o, &defs[i], csv, txt) != 0) status = 1;
