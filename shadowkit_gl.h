@@ -4246,6 +4246,11 @@ typedef struct skgl__rmsm_slot {
     unsigned last;                 /* the render that last used it (LRU) */
 } skgl__rmsm_slot;
 
+typedef struct skgl__lru {
+    unsigned last;                 /* 0: an empty slot, taken first */
+    int slot;
+} skgl__lru;
+
 typedef struct skgl__rmsm {
     skgl__uint samples, samples_fbo, requests, requests_fbo, table;
     int atlas_w, atlas_h, pages0, levels, w, h;
@@ -4261,6 +4266,7 @@ typedef struct skgl__rmsm {
        resident), the frame the slots were drawn for (key_lvp, key_origin),
        the render count; the static copy of the pool is cache.tex */
     skgl__rmsm_slot *slots;
+    skgl__lru *lru;                /* the slots a frame may take, oldest first (scratch) */
     int *resident;
     sk_mat4 key_lvp;
     double key_origin[3];
@@ -4568,6 +4574,7 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     SKGL_FREE(s->rmsm.slot_of);
     SKGL_FREE(s->rmsm.slots);
     SKGL_FREE(s->rmsm.resident);
+    SKGL_FREE(s->rmsm.lru);
     s->rmsm.req_cpu = NULL;
     s->rmsm.table_cpu = s->rmsm.table_new = NULL;
     s->rmsm.pages = NULL;
@@ -5137,7 +5144,8 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
     if (s->desc.cache) {   /* the page cache: every slot empty, everything to draw */
         s->rmsm.slots = (skgl__rmsm_slot *)SKGL_MALLOC(sizeof(skgl__rmsm_slot) * (size_t)cap);
         s->rmsm.resident = (int *)SKGL_MALLOC(sizeof(int) * bytes);
-        if (!s->rmsm.slots || !s->rmsm.resident) return SK_ERR_CAPACITY;
+        s->rmsm.lru = (skgl__lru *)SKGL_MALLOC(sizeof(skgl__lru) * (size_t)cap);
+        if (!s->rmsm.slots || !s->rmsm.resident || !s->rmsm.lru) return SK_ERR_CAPACITY;
         memset(s->rmsm.slots, 0, sizeof(skgl__rmsm_slot) * (size_t)cap);
         memset(s->rmsm.resident, 0, sizeof(int) * bytes);
         s->cache.all = 1;
@@ -5259,6 +5267,7 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
     skgl__api *gl = &ctx->gl;
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     int sync = s->desc.sync_readback || !s->rmsm.analyzed, slot;
+    (void)o;   /* lvp and inv are relative to it already; the render places the pages itself */
     if (s->rmsm.w != w || s->rmsm.h != h) {
         skgl__delete_texture(ctx, &s->rmsm.samples);
         skgl__delete_framebuffer(ctx, &s->rmsm.samples_fbo);
@@ -5316,8 +5325,6 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
     } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm.ring)) >= 0) {
         skgl__st_pack(ctx, st, s->rmsm.ring.buf[slot], s->rmsm.atlas_h, s->rmsm.atlas_w);
         gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
-        s->rmsm.ring.lvp[slot] = *lvp;
-        memcpy(s->rmsm.ring.origin[slot], o, sizeof s->rmsm.ring.origin[slot]);
         skgl__ring_fence(ctx, &s->rmsm.ring, slot);
     }
     s->rmsm.analyzed = 1;
@@ -5801,10 +5808,6 @@ static void skgl__slot_xy(const skgl_shadow *s, int k, int *x, int *y)
     *y = (k / s->desc.rmsm_pool_pages) * (s->desc.rmsm_page_size + 2);
 }
 
-typedef struct skgl__lru {
-    unsigned last;                 /* 0: an empty slot, taken first */
-    int slot;
-} skgl__lru;
 static int skgl__lru_order(const void *a, const void *b)
 {
     unsigned x = ((const skgl__lru *)a)->last, y = ((const skgl__lru *)b)->last;
@@ -5819,13 +5822,13 @@ static int skgl__lru_order(const void *a, const void *b)
    slot, else the least recently used one (pages_evicted); a slot taken
    so is drawn (valid 0). There are always enough: a frame's pages fit in
    the pool (skgl__rmsm_pages), and the slots this frame keeps are its own. */
-static sk_result skgl__rmsm_assign(skgl_shadow *s)
+static void skgl__rmsm_assign(skgl_shadow *s)
 {
     skgl__rmsm *m = &s->rmsm;
     skgl__cache *c = &s->cache;
     int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, i, k, n = 0, used = 0;
     size_t bytes = (size_t)m->atlas_w * (size_t)m->atlas_h;
-    skgl__lru *lru;
+    skgl__lru *lru = m->lru;
     if (c->all || memcmp(&m->key_lvp, &m->lvp, sizeof m->lvp) != 0 ||
         memcmp(m->key_origin, m->origin, sizeof m->origin) != 0) {
         for (k = 0; k < cap; k++) m->slots[k].valid = m->slots[k].dyn = 0;
@@ -5859,9 +5862,7 @@ static sk_result skgl__rmsm_assign(skgl_shadow *s)
         m->slot_of[i] = k;
         if (k >= 0) { m->slots[k].last = m->frame; s->stats.pages_reused++; used++; }
     }
-    if (used == m->npages) return SK_OK;
-    lru = (skgl__lru *)SKGL_MALLOC(sizeof *lru * (size_t)cap);
-    if (!lru) return SK_ERR_CAPACITY;
+    if (used == m->npages) return;
     for (k = 0; k < cap; k++)
         if (m->slots[k].last != m->frame) {
             lru[n].last = m->slots[k].valid ? m->slots[k].last + 1u : 0u;
@@ -5882,8 +5883,6 @@ static sk_result skgl__rmsm_assign(skgl_shadow *s)
         m->resident[skgl__atlas_index(s, t->level, t->px, t->py)] = k + 1;
         m->slot_of[i] = k;
     }
-    SKGL_FREE(lru);
-    return SK_OK;
 }
 
 /* one caster pass of page i, into its slot: the casters of cls
@@ -6047,9 +6046,8 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     s->stats.pages_rendered = s->stats.pages_reused = s->stats.pages_evicted = 0;
     s->stats.cache_full = s->stats.cache_scrolled = s->stats.cache_reused = s->stats.cache_regions = 0;
     s->stats.cache_copied = 0.0;
-    if (cached) r = skgl__rmsm_assign(s);
+    if (cached) skgl__rmsm_assign(s);
     else for (i = 0; i < s->rmsm.npages; i++) s->rmsm.slot_of[i] = i;
-    if (r != SK_OK) return r;
     skgl__st_begin(ctx, &st);
     skgl__rmsm_table(ctx, &st, s);
     s->light_dir = sk__normalize(light_dir);
