@@ -4630,6 +4630,40 @@ static int skgl__receiver_body(const sk_frustum *slice, const skgl_scene *scene,
     return n;
 }
 
+/* The casters that can shadow the receiver body, as the vertices of their
+   convex hull: each body point and where its ray toward the light leaves
+   the scene bounds (the light-space hull of the receivers and their
+   casters, Stamminger and Drettakis 2002, Sec. 4). A caster outside the
+   hull shadows nothing the view can see. Each vertex goes out as a box of
+   zero size, because PSM needs the hull itself, not a box around it: in
+   post-perspective space every hull point lies between its receiver and
+   the light, whereas a box's far corners can lie beyond the light, where
+   no perspective frustum from the light holds them (a low sun from the
+   side), and the whole scene box puts casters a kilometre behind the
+   camera (the virtual camera slid back that far: a uniform map). Returns
+   the box count, 2 n. */
+static int skgl__caster_hull(const sk_vec3 *body, int n, sk_vec3 light_dir, const sk_aabb *bounds, sk_aabb *out)
+{
+    const float lo[3] = {bounds->min.x, bounds->min.y, bounds->min.z};
+    const float hi[3] = {bounds->max.x, bounds->max.y, bounds->max.z};
+    const float dir[3] = {-light_dir.x, -light_dir.y, -light_dir.z};
+    int i, k;
+    for (i = 0; i < n; i++) {
+        const float p[3] = {body[i].x, body[i].y, body[i].z};
+        float q[3];
+        double t = 1e30;
+        for (k = 0; k < 3; k++) {
+            double e = dir[k] > 0.0f ? (hi[k] - p[k]) / dir[k] : dir[k] < 0.0f ? (lo[k] - p[k]) / dir[k] : 1e30;
+            if (e < t) t = e;
+        }
+        if (!(t > 0.0 && t < 1e30)) t = 0.0;
+        for (k = 0; k < 3; k++) q[k] = (float)(p[k] + t * dir[k]);
+        out[2 * i].min = out[2 * i].max = body[i];
+        out[2 * i + 1].min = out[2 * i + 1].max = sk__v3(q[0], q[1], q[2]);
+    }
+    return 2 * n;
+}
+
 /* Light-space perspective shadow map of one slice (Wimmer et al. 2004, the
    LiSPSM): the slice's receiver body, n_opt from the nearest
    receiver depth of the slice. */
@@ -4671,6 +4705,7 @@ static sk_result skgl__fit_psm(skgl_shadow *s, const skgl_camera *cam, const skg
     sk_frustum slice;
     sk_psm_desc pd;
     sk_psm_result pr;
+    sk_aabb casters[2 * SK_CLIP_MAX_POINTS];
     float dmin, dmax;
     sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
     if (r != SK_OK) return r;
@@ -4684,8 +4719,8 @@ static sk_result skgl__fit_psm(skgl_shadow *s, const skgl_camera *cam, const skg
     pd.zf = dmax < zf ? dmax * 1.001f : zf;
     if (!(pd.zf > pd.zn)) pd.zf = pd.zn * 1.001f;
     pd.light_dir = light_dir;
-    pd.casters = &scene->bounds;
-    pd.caster_count = 1;
+    pd.caster_count = skgl__caster_hull(body, pd.body_count, light_dir, &scene->bounds, casters);
+    pd.casters = casters;
     if (s->desc.psm_slide > 0.0f) pd.extra_slide = s->desc.psm_slide * (float)SK_SQRT((double)pd.zn * pd.zf);
     r = sk_psm_matrices(&pd, &pr);
     if (r != SK_OK) return r;

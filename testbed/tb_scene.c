@@ -368,6 +368,98 @@ int tb_scene_build_contact(tb_scene *s) {
     return 0;
 }
 
+/* xorshift32: the open world's fixed sequence (same on every platform) */
+static uint32_t tb_xorshift_(uint32_t *st) {
+    uint32_t x = *st;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    return *st = x;
+}
+
+static float tb_uniform_(uint32_t *st, float a, float b) {
+    return a + (b - a) * (float)((double)(tb_xorshift_(st) >> 8) / 16777216.0);
+}
+
+/* a point at a distance in [r0, r1] from the origin, uniform in angle and
+   in area */
+static void tb_annulus_point_(uint32_t *st, float r0, float r1, float *x, float *z) {
+    double a = tb_uniform_(st, 0.0f, 6.28318531f);
+    double r = sqrt(tb_uniform_(st, r0 * r0, r1 * r1));
+    *x = (float)(r * cos(a));
+    *z = (float)(r * sin(a));
+}
+
+int tb_scene_build_open_world(tb_scene *s) {
+    static const float near_box[6][5] = {
+        /* x, z, half x, half z, height */
+        {3.0f, -4.0f, 0.4f, 0.3f, 1.0f},   {-2.5f, -6.0f, 0.5f, 0.5f, 0.6f}, {5.0f, 5.0f, 0.3f, 0.6f, 1.2f},
+        {-6.0f, 3.0f, 0.6f, 0.3f, 0.8f},   {7.5f, -2.0f, 0.3f, 0.3f, 0.5f},  {-1.5f, 8.0f, 0.4f, 0.4f, 1.0f}};
+    char name[TB_NAME_MAX];
+    uint32_t st = 0x9E3779B9u;
+    int i;
+    if (tb_scene_add_ground(s, "ground", 0, 0, 1000, 1000, 0, 32, 32) < 0) return -1;
+    for (i = 0; i < 6; i++) {
+        const float *b = near_box[i];
+        snprintf(name, sizeof name, "near%d", i);
+        if (tb_scene_add_box(s, name, tb_v3_(b[0] - b[2], 0, b[1] - b[3]), tb_v3_(b[0] + b[2], b[4], b[1] + b[3])) < 0)
+            return -1;
+    }
+    for (i = 0; i < 300; i++) {
+        float x, z, hx = tb_uniform_(&st, 4, 15), hz = tb_uniform_(&st, 4, 15), h = tb_uniform_(&st, 6, 40);
+        tb_annulus_point_(&st, 40, 950, &x, &z);
+        snprintf(name, sizeof name, "bld%d", i);
+        if (tb_scene_add_box(s, name, tb_v3_(x - hx, 0, z - hz), tb_v3_(x + hx, h, z + hz)) < 0) return -1;
+    }
+    for (i = 0; i < 2000; i++) {
+        float x, z, h = tb_uniform_(&st, 5, 9);
+        /* a quarter of the poles within 100 m: the near and middle field */
+        if (i % 4 == 0) tb_annulus_point_(&st, 12, 100, &x, &z);
+        else tb_annulus_point_(&st, 12, 950, &x, &z);
+        snprintf(name, sizeof name, "pole%d", i);
+        if (tb_scene_add_pole(s, name, x, 0, z, 0.15f, h) < 0) return -1;
+    }
+    return 0;
+}
+
+int tb_open_world_view(int view, sk_vec3 *eye, sk_vec3 *target) {
+    /* positions (x, z) and headings (degrees from -z toward +x), a pitch of
+       a few degrees down: the near boxes, poles and buildings all in view */
+    static const float v[TB_OPEN_WORLD_VIEWS][4] = {
+        {0, 0, 0, 4},  {1, 1, 72, 3},  {-1, 0.5f, 144, 5},  {0.5f, -1, 216, 3},  {0, 0, 288, 4}};
+    double yaw, pitch;
+    if (view < 0 || view >= TB_OPEN_WORLD_VIEWS || !eye || !target) return -1;
+    yaw = v[view][2] * 3.14159265358979 / 180.0;
+    pitch = v[view][3] * 3.14159265358979 / 180.0;
+    *eye = tb_v3_(v[view][0], 1.8f, v[view][1]);
+    *target = tb_v3_((float)(v[view][0] + 10.0 * sin(yaw) * cos(pitch)), (float)(1.8 - 10.0 * sin(pitch)),
+                     (float)(v[view][1] - 10.0 * cos(yaw) * cos(pitch)));
+    return 0;
+}
+
+int tb_open_world_sun(int view, int sun, sk_vec3 *light_dir) {
+    static const float elevation[3] = {45, 20, 8};
+    double el, hx, hz, c;
+    if (view < 0 || view >= TB_OPEN_WORLD_VIEWS || sun < 0 || sun >= TB_OPEN_WORLD_SUNS || !light_dir) return -1;
+    {
+        sk_vec3 e, t;
+        tb_open_world_view(view, &e, &t);
+        hx = t.x - e.x;
+        hz = t.z - e.z;
+        c = sqrt(hx * hx + hz * hz);
+        hx /= c;
+        hz /= c;
+    }
+    if (sun & 1) {   /* across: from the view's right, travelling to its left */
+        double t = hx;
+        hx = hz;
+        hz = -t;
+    }
+    el = elevation[sun / 2] * 3.14159265358979 / 180.0;
+    *light_dir = tb_v3_((float)(hx * cos(el)), (float)(-sin(el)), (float)(hz * cos(el)));
+    return 0;
+}
+
 int tb_scene_build(tb_scene *s, const char *name) {
     if (!name) return -1;
     if (strcmp(name, "ground-boxes") == 0) return tb_scene_build_ground_boxes(s);
@@ -375,6 +467,7 @@ int tb_scene_build(tb_scene *s, const char *name) {
     if (strcmp(name, "terrace") == 0) return tb_scene_build_terrace(s);
     if (strcmp(name, "room") == 0) return tb_scene_build_room(s);
     if (strcmp(name, "contact") == 0) return tb_scene_build_contact(s);
+    if (strcmp(name, "open-world") == 0) return tb_scene_build_open_world(s);
     return -1;
 }
 

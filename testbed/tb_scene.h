@@ -131,8 +131,35 @@ int tb_scene_build_room(tb_scene *s);
    Bounds [-10,0,-10]..[10,1,10]; 2 + 12 = 14 triangles. */
 int tb_scene_build_contact(tb_scene *s);
 
+/* "open-world": the regime cascades, warps and virtual maps are made for
+   (kilometre views, a camera at head height). Deterministic (a fixed
+   xorshift sequence), built in code:
+     "ground"      2 km x 2 km (x,z in [-1000,1000], y = 0), 32 x 32 quads;
+     "near0".."near5"  small boxes 0.5-1.2 m high, 3-9 m from the origin
+                   (the near field: the camera views stand at the origin);
+     "bld0".."bld299"  buildings, footprints 8-30 m a side, 6-40 m high,
+                   centres 40-950 m from the origin (none within 40 m);
+     "pole0".."pole1999"  thin poles (street lights, trees): side 0.3 m,
+                   5-9 m high, 12-950 m from the origin.
+   Bounds [-1000,0,-1000]..[1000,<=40,1000]; 2048 + 2306 * 12 = 29720
+   triangles. tb_open_world_view() gives its camera views and suns. */
+int tb_scene_build_open_world(tb_scene *s);
+
+/* The open world's views: TB_OPEN_WORLD_VIEWS cameras at head height
+   (1.8 m) near the origin, each looking a few degrees below the horizon
+   in its own direction; the intended projection is 60 degrees vertical,
+   near 0.5 m, far 1000 m. TB_OPEN_WORLD_SUNS suns per view, relative to
+   its direction: sun elevations 45, 20 and 8 degrees, each once behind
+   the viewer (the light travels along the view's horizontal direction)
+   and once across it (from the view's right). Returns 0, or -1 for an
+   index out of range. light_dir is the light's unit travel direction. */
+#define TB_OPEN_WORLD_VIEWS 5
+#define TB_OPEN_WORLD_SUNS 6
+int tb_open_world_view(int view, sk_vec3 *eye, sk_vec3 *target);
+int tb_open_world_sun(int view, int sun, sk_vec3 *light_dir);
+
 /* builds one of the standard scenes by name: "ground-boxes", "fence",
-   "terrace", "room", "contact"; -1 for an unknown name */
+   "terrace", "room", "contact", "open-world"; -1 for an unknown name */
 int tb_scene_build(tb_scene *s, const char *name);
 
 #ifdef __cplusplus

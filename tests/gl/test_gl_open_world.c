@@ -1,0 +1,374 @@
+/* test_gl_open_world.c - the regime cascades, warps and virtual maps are
+   made for: the testbed's "open-world" (2 km of ground, 300 buildings,
+   2000 poles, a camera at head height, far plane 1000 m; tb_scene.h), its
+   5 views x 6 suns (45, 20 and 8 degrees, behind and across the viewer),
+   every directional technique against the exact Embree reference.
+
+   Scores: the shadow-area error (misclassified pixels over the
+   reference's shadowed ones, tb_metric_shadow's definition), pooled over
+   frames (the sums of wrong and of shadow pixels, so a frame with a large
+   shadow weighs more), and pooled by view-depth band: 0-10, 10-50, 50-200
+   and 200+ m, so near-camera aliasing and far-field loss both show.
+
+   test_open_world        the table (figures in its comment), the
+                          techniques against standard 2048^2 pooled and
+                          frame by frame, PSM's slide
+   test_lispsm_low_sun_wall  a 4 x 8 m wall from 15 m behind to 40 m
+                          ahead of the camera, the sun 20 and 8 degrees
+                          behind the viewer: the share of the wall's
+                          shadow each technique loses
+
+   SK_GL_TEST_SURVEY=1 also prints every frame and every wall row. */
+#define SHADOWKIT_IMPLEMENTATION
+#define SHADOWKIT_GL_IMPLEMENTATION
+#include "shadowkit_gl.h"
+#include "sk_test.h"
+#include "gl_test_util.h"
+
+#include <stdio.h>
+
+#define W 320
+#define H 180
+#define FOVY 1.0471976f   /* 60 degrees */
+#define ZN 0.5f
+#define ZF 1000.0f
+#define BANDS 4
+
+static const double band_edge[BANDS + 1] = {0, 10, 50, 200, 1e30};
+static const char *band_name[BANDS] = {"0-10", "10-50", "50-200", "200+"};
+
+/* pooled counts: wrong and reference-shadow pixels, overall and per band */
+typedef struct pool {
+    double wrong, shadow, false_light;
+    double band_wrong[BANDS], band_shadow[BANDS];
+    double texels;
+    int frames, failed;
+} pool;
+
+static double pool_pct(double wrong, double shadow) { return shadow > 0 ? 100.0 * wrong / shadow : 0.0; }
+
+static int band_of(double depth) {
+    int b;
+    for (b = 0; b < BANDS; b++)
+        if (depth < band_edge[b + 1]) return b;
+    return BANDS - 1;
+}
+
+static void pool_add(pool *p, const gt_env *e, const float *ref, const float *res) {
+    size_t i;
+    for (i = 0; i < e->n; i++) {
+        int rc = tb_visibility_class(ref[i]), wrong, b;
+        if (rc < 0) continue;
+        b = band_of(gt_view_depth(e, i));
+        wrong = !(res[i] >= 0.0f) || tb_visibility_class(res[i]) != rc;
+        if (rc == 0) {
+            p->shadow += 1;
+            p->band_shadow[b] += 1;
+            if (wrong) p->false_light += 1;
+        }
+        if (wrong) {
+            p->wrong += 1;
+            p->band_wrong[b] += 1;
+        }
+    }
+    p->frames++;
+}
+
+static skgl_camera ow_camera(int view) {
+    sk_vec3 eye, target;
+    tb_open_world_view(view, &eye, &target);
+    return gt_camera(eye, target, FOVY, ZN, ZF, W, H);
+}
+
+static sk_vec3 ow_sun(int view, int sun) {
+    sk_vec3 l;
+    tb_open_world_sun(view, sun, &l);
+    return l;
+}
+
+/* one technique of the survey */
+typedef struct method {
+    const char *name;
+    skgl_technique technique;
+    int resolution, cascades, stable, analyze;
+} method;
+
+static const method methods[] = {
+    {"standard 2048", SKGL_STANDARD, 2048, 1, 0, 0},
+    {"standard 4096", SKGL_STANDARD, 4096, 1, 0, 0},
+    {"pssm 4x1024", SKGL_PSSM, 1024, 4, 0, 0},
+    {"pssm-stable 4x1024", SKGL_PSSM, 1024, 4, 1, 0},
+    {"lispsm 2048", SKGL_LISPSM, 2048, 1, 0, 0},
+    {"psm 2048", SKGL_PSM, 2048, 1, 0, 0},
+    {"lspsm", SKGL_LSPSM, 2048, 0, 0, 0},
+    {"ferko max 4096", SKGL_FERKO, 4096, 1, 0, 1},
+    {"rmsm 16384", SKGL_RMSM, 16384, 1, 0, 1},
+};
+#define METHODS ((int)(sizeof methods / sizeof methods[0]))
+
+static skgl_shadow_desc method_desc(const method *m) {
+    skgl_shadow_desc d;
+    memset(&d, 0, sizeof d);
+    d.technique = m->technique;
+    d.resolution = m->resolution;
+    d.cascades = m->cascades;
+    d.stable = m->stable;
+    d.sync_readback = m->analyze;
+    return d;
+}
+
+/* render (analysis first where the technique has one) + mask; 0 ok */
+static int ow_frame(gt_env *e, skgl_shadow *s, const method *m, const skgl_camera *cam, sk_vec3 light, float *vis) {
+    skgl_scene sc = gt_scene(e);
+    if (m->analyze) {
+        sk_result r = skgl_shadow_analyze(e->sk, s, cam, &sc, light, e->gbuf.depth_tex);
+        if (r != SK_OK) {
+            printf("skgl_shadow_analyze: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
+            return -1;
+        }
+    }
+    return gt_mask(e, s, cam, light, vis);
+}
+
+static void print_pool(const char *name, const pool *p) {
+    int b;
+    printf("  %-20s %6.2f%%  (false light %6.2f%%)  bands", name, pool_pct(p->wrong, p->shadow),
+           pool_pct(p->false_light, p->shadow));
+    for (b = 0; b < BANDS; b++) printf("  %s %6.2f", band_name[b], pool_pct(p->band_wrong[b], p->band_shadow[b]));
+    printf("  texels %.1fM%s\n", p->texels / (double)(p->frames ? p->frames : 1) / 1e6, p->failed ? "  FAILED" : "");
+}
+
+/* method indices the checks name */
+enum { M_STD2048, M_STD4096, M_PSSM, M_PSSM_STABLE, M_LISPSM, M_PSM, M_LSPSM, M_FERKO, M_RMSM };
+#define FRAMES (TB_OPEN_WORLD_VIEWS * TB_OPEN_WORLD_SUNS)
+
+static int verbose(void) {
+    const char *v = getenv("SK_GL_TEST_SURVEY");
+    return v && *v && *v != '0';
+}
+
+/* Every technique over every view and sun. Measured (Mesa 22.3 llvmpipe,
+   320x180), pooled shadow-area error % and by band (0-10, 10-50, 50-200,
+   200+ m), texels per frame:
+     standard 2048      11.95   9.25 19.84 14.75  5.15   4.2M
+     standard 4096       6.98   5.28 11.80  9.75  3.18  16.8M
+     pssm 4x1024         1.51   1.21  1.93  4.60  5.48   4.2M
+     pssm-stable 4x1024  2.68   2.33  3.24  5.72 10.08   4.2M
+     lispsm 2048         1.52   0.79  3.06  5.91  8.00   4.2M
+     psm 2048            3.16   2.05  5.62  9.13  9.53   4.2M
+     lspsm               1.23   1.03  1.45  4.00  3.83  27.3M
+     ferko max 4096      3.63   2.81  6.12  3.54  2.41  16.8M
+     rmsm 16384          4.36   1.95  8.81 22.78 34.28   1.1M
+   PSM before its casters became the hull of what can shadow the view
+   (skgl__caster_hull; the whole scene box before): 10.22% pooled (0.86x
+   standard 2048's; 7.21 18.13 19.64 5.91 by band), the virtual camera
+   slid back 1005 to 1273 m in every frame, and two frames (view 0, suns
+   at 45 and 20 degrees across) lost every shadow (100%): the box's far
+   corners lay beyond the light in post-perspective space, the fit failed
+   and fell back to a uniform map. Now the slide is 13 to 296 m (the
+   height of the scene over the tangent of a low sun behind the viewer)
+   and those frames 3.09% and 2.17%. */
+static void test_open_world(void) {
+    gt_env e;
+    pool pools[METHODS];
+    skgl_shadow *sh[METHODS];
+    double frame_err[METHODS][FRAMES];
+    float *ref, *res, max_slide = 0.0f;
+    int v, s, k, f, ferko_below_cap = 0;
+    tb_scene sc;
+    tb_scene_init(&sc);
+    if (tb_scene_build_open_world(&sc) != 0 || gt_env_init(&e, &sc, W, H) != 0) {
+        SK_CHECK_MSG(0, "open world");
+        return;
+    }
+    memset(pools, 0, sizeof pools);
+    ref = gt_alloc(&e);
+    res = gt_alloc(&e);
+    for (k = 0; k < METHODS; k++) {
+        skgl_shadow_desc d = method_desc(&methods[k]);
+        sh[k] = gt_shadow(&e, &d);
+    }
+    for (v = 0; v < TB_OPEN_WORLD_VIEWS; v++) {
+        skgl_camera cam = ow_camera(v);
+        if (gt_gbuffer(&e, &cam) != 0) { SK_CHECK_MSG(0, "G-buffer"); break; }
+        for (s = 0; s < TB_OPEN_WORLD_SUNS; s++) {
+            sk_vec3 light = ow_sun(v, s);
+            f = v * TB_OPEN_WORLD_SUNS + s;
+            if (gt_reference(&e, light, ref) != 0) { SK_CHECK_MSG(0, "reference"); continue; }
+            for (k = 0; k < METHODS; k++) {
+                const skgl_shadow_frame_stats *st;
+                pool one;
+                memset(&one, 0, sizeof one);
+                frame_err[k][f] = -1.0;
+                if (!sh[k] || ow_frame(&e, sh[k], &methods[k], &cam, light, res) != 0) {
+                    pools[k].failed++;
+                    continue;
+                }
+                st = skgl_shadow_stats(sh[k]);
+                pool_add(&pools[k], &e, ref, res);
+                pool_add(&one, &e, ref, res);
+                pools[k].texels += st->texels;
+                frame_err[k][f] = pool_pct(one.wrong, one.shadow);
+                if (k == M_PSM && st->psm_slide > max_slide) max_slide = st->psm_slide;
+                if (k == M_FERKO) ferko_below_cap += st->map_width < methods[k].resolution;
+                if (verbose())
+                    printf("view %d sun %d %-20s %7.2f%% (shadow %6.0f px) slide %.1f n %.1f map %dx%d\n", v, s,
+                           methods[k].name, frame_err[k][f], one.shadow, st->psm_slide, st->warp_n[0],
+                           st->map_width, st->map_height);
+            }
+        }
+    }
+    printf("open world, %d views x %d suns, %dx%d, pooled shadow-area error %% and by view-depth band (m):\n",
+           TB_OPEN_WORLD_VIEWS, TB_OPEN_WORLD_SUNS, W, H);
+    for (k = 0; k < METHODS; k++) print_pool(methods[k].name, &pools[k]);
+    printf("PSM: largest slide %.1f m; FERKO: %d of %d frames below its cap\n", max_slide, ferko_below_cap, FRAMES);
+    for (k = 0; k < METHODS; k++) SK_CHECK_MSG(pools[k].failed == 0, "%s: %d frames failed", methods[k].name,
+                                               pools[k].failed);
+    {
+        double std = pool_pct(pools[M_STD2048].wrong, pools[M_STD2048].shadow);
+        double pssm = pool_pct(pools[M_PSSM].wrong, pools[M_PSSM].shadow);
+        double lis = pool_pct(pools[M_LISPSM].wrong, pools[M_LISPSM].shadow);
+        double psm = pool_pct(pools[M_PSM].wrong, pools[M_PSM].shadow);
+        /* the regime the papers were written for: at standard 2048^2's
+           texels, PSSM 0.13x its error (1.51 / 11.95), LiSPSM 0.13x
+           (1.52), PSM 0.26x (3.16; 0.86x with the scene box as casters).
+           Bounds: the issue's goals (LiSPSM at most 0.5x, PSM at most
+           0.7x) and PSSM at most 0.25x (1/9 in an independent check) */
+        SK_CHECK_MSG(pssm <= 0.25 * std, "PSSM pooled %.2f%% against standard 2048's %.2f%%", pssm, std);
+        SK_CHECK_MSG(lis <= 0.5 * std, "LiSPSM pooled %.2f%% against standard 2048's %.2f%%", lis, std);
+        SK_CHECK_MSG(psm <= 0.7 * std, "PSM pooled %.2f%% against standard 2048's %.2f%%", psm, std);
+        /* the slide from the casters that can shadow the view: at most the
+           scene's 40 m over tan 8 degrees (285 m) and the body's extent
+           behind the camera; measured 295.8 m (1273 m with the scene box) */
+        SK_CHECK_MSG(max_slide > 0.0f && max_slide <= 320.0f, "PSM slide %.1f m", max_slide);
+    }
+    for (f = 0; f < FRAMES; f++) {
+        /* LiSPSM never loses to the plain map in any frame: measured at
+           most 0.63x standard 2048's frame error (view 0, 8 degrees
+           behind the viewer: 2.45% against 3.92%; every frame is listed
+           with SK_GL_TEST_SURVEY=1) */
+        SK_CHECK_MSG(frame_err[M_LISPSM][f] <= frame_err[M_STD2048][f] + 0.5,
+                     "frame %d: LiSPSM %.2f%%, standard 2048 %.2f%%", f, frame_err[M_LISPSM][f],
+                     frame_err[M_STD2048][f]);
+        /* PSM never loses a whole frame's shadows: measured at most
+           64.4% (view 3, 8 degrees behind, where standard 2048 has
+           73.7%); with the scene box, 100% in two frames */
+        SK_CHECK_MSG(frame_err[M_PSM][f] < 90.0, "frame %d: PSM %.2f%%", f, frame_err[M_PSM][f]);
+    }
+    for (k = 0; k < METHODS; k++) skgl_shadow_destroy(e.sk, sh[k]);
+    free(ref);
+    free(res);
+    gt_env_free(&e);
+}
+
+/* ---- a single wall and a low sun behind the viewer ------------------- */
+/* The wall: 4 m wide (x in [2, 6]), 8 m high, 0.4 m thick, its centre d m
+   ahead of view 0's camera (which looks along -z from the origin). */
+#define WALL_X0 2.0f
+#define WALL_X1 6.0f
+#define WALL_H 8.0f
+
+static sk_aabb wall_box(float d) { return gt_box(WALL_X0, 0, -d - 0.2f, WALL_X1, WALL_H, -d + 0.2f); }
+
+/* 1 when the world point p is in the wall's shadow: the ray toward the
+   light (against light_dir) meets the wall's box (slab test) */
+static int in_wall_shadow(const double p[3], sk_vec3 light_dir, sk_aabb b) {
+    double o[3], dir[3], t0 = 1e-3, t1 = 1e30;
+    const double lo[3] = {b.min.x, b.min.y, b.min.z}, hi[3] = {b.max.x, b.max.y, b.max.z};
+    int k;
+    dir[0] = -light_dir.x; dir[1] = -light_dir.y; dir[2] = -light_dir.z;
+    for (k = 0; k < 3; k++) o[k] = p[k];
+    for (k = 0; k < 3; k++) {
+        double a, c;
+        if (fabs(dir[k]) < 1e-12) {
+            if (o[k] < lo[k] || o[k] > hi[k]) return 0;
+            continue;
+        }
+        a = (lo[k] - o[k]) / dir[k];
+        c = (hi[k] - o[k]) / dir[k];
+        if (a > c) { double t = a; a = c; c = t; }
+        if (a > t0) t0 = a;
+        if (c < t1) t1 = c;
+        if (t0 > t1) return 0;
+    }
+    return 1;
+}
+
+/* of the wall's shadow pixels the reference calls shadowed, the % the
+   result calls lit; *count: how many there are */
+static double wall_shadow_lost(const gt_env *e, const float *ref, const float *res, sk_vec3 light, sk_aabb b,
+                               int *count) {
+    size_t i;
+    int n = 0, lost = 0;
+    for (i = 0; i < e->n; i++) {
+        double p[3];
+        if (tb_visibility_class(ref[i]) != 0 || gt_world(e, i, p) != 0) continue;
+        if (p[1] > 0.05) continue;   /* on the ground */
+        if (!in_wall_shadow(p, light, b)) continue;
+        n++;
+        lost += tb_visibility_class(res[i]) != 0;
+    }
+    *count = n;
+    return n ? 100.0 * lost / n : 0.0;
+}
+
+static void test_lispsm_low_sun_wall(void) {
+    static const float dist[] = {-15, -5, 5, 15, 40};
+    static const int suns[] = {2, 4};   /* 20 and 8 degrees, behind the viewer */
+    static const method wm[] = {
+        {"standard 2048", SKGL_STANDARD, 2048, 1, 0, 0},
+        {"standard 4096", SKGL_STANDARD, 4096, 1, 0, 0},
+        {"lispsm 2048", SKGL_LISPSM, 2048, 1, 0, 0},
+        {"psm 2048", SKGL_PSM, 2048, 1, 0, 0},
+        {"pssm 4x1024", SKGL_PSSM, 1024, 4, 0, 0},
+    };
+    int di, si, k, walls = 0;
+    for (di = 0; di < (int)(sizeof dist / sizeof dist[0]); di++) {
+        gt_env e;
+        tb_scene sc;
+        skgl_camera cam = ow_camera(0);
+        sk_aabb b = wall_box(dist[di]);
+        float *ref, *res;
+        tb_scene_init(&sc);
+        if (tb_scene_build_open_world(&sc) != 0 || tb_scene_add_box(&sc, "wall", b.min, b.max) < 0 ||
+            gt_env_init(&e, &sc, W, H) != 0) {
+            SK_CHECK_MSG(0, "wall scene");
+            return;
+        }
+        ref = gt_alloc(&e);
+        res = gt_alloc(&e);
+        gt_gbuffer(&e, &cam);
+        for (si = 0; si < 2; si++) {
+            sk_vec3 light = ow_sun(0, suns[si]);
+            gt_reference(&e, light, ref);
+            for (k = 0; k < (int)(sizeof wm / sizeof wm[0]); k++) {
+                skgl_shadow_desc d = method_desc(&wm[k]);
+                skgl_shadow *s = gt_shadow(&e, &d);
+                int n = 0;
+                double lost;
+                if (!s || ow_frame(&e, s, &wm[k], &cam, light, res) != 0) { SK_CHECK_MSG(0, "render"); continue; }
+                lost = wall_shadow_lost(&e, ref, res, light, b, &n);
+                if (verbose() || k == 2)
+                    printf("wall %5.1f m, sun %s: %-14s lost %6.2f%% of its %d shadow px (n %.1f)\n", dist[di],
+                           si ? "8 deg" : "20 deg", wm[k].name, lost, n, skgl_shadow_stats(s)->warp_n[0]);
+                /* walls whose shadow the view shows (at least 20 px: up
+                   to 15 m ahead); measured: LiSPSM loses at most 0.00%
+                   of such a shadow, standard 4096 at most 0.11%, PSSM
+                   0.11% (at 15 m ahead, 31 px, LiSPSM 3.2%) */
+                if (n >= 20) {
+                    SK_CHECK_MSG(lost <= 8.0, "wall at %.0f m, sun %d: %s lost %.2f%% of %d px", dist[di], suns[si],
+                                 wm[k].name, lost, n);
+                    walls++;
+                }
+                skgl_shadow_destroy(e.sk, s);
+            }
+        }
+        free(ref);
+        free(res);
+        gt_env_free(&e);
+    }
+    /* 4 of the 5 distances x 2 suns x 5 techniques show a shadow */
+    SK_CHECK_MSG(walls == 40, "%d wall shadows measured", walls);
+}
+
+SK_TEST_MAIN(test_open_world, test_lispsm_low_sun_wall)
