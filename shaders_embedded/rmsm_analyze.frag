@@ -23,7 +23,8 @@ void main()
     vec2 st = c.xy / c.w * 0.5 + 0.5;
     /* derivatives first, in uniform control flow */
     vec2 dx = dFdx(st) * u_virtual_res, dy = dFdy(st) * u_virtual_res;
-    float lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));
+    float tr = dot(dx, dx) + dot(dy, dy), det = abs(dx.x * dy.y - dx.y * dy.x);
+    float lod = log2(max(det / max(sqrt(0.5 * (tr + sqrt(max(tr * tr - 4.0 * det * det, 0.0)))), 1e-30), 1e-30));
     bool ok = (u_depth_map.z == 0.0 ? d < 1.0 : d > 0.0) && all(greaterThanEqual(st, vec2(0.0))) && all(lessThan(st, vec2(1.0))) &&
               abs(c.z) <= c.w;
     o_sample = ok ? vec4(st, lod, 1.0) : vec4(0.0);

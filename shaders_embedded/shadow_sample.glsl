@@ -206,7 +206,8 @@ float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
         float vres = float(sk_rmsm_pages0 * sk_rmsm_page);
         vec2 st = c.xy / c.w * 0.5 + 0.5;
         vec2 dx = dFdx(st) * vres, dy = dFdy(st) * vres;
-        rmsm_lod = 0.5 * log2(max(abs(dx.x * dy.y - dx.y * dy.x), 1e-30));
+        float tr = dot(dx, dx) + dot(dy, dy), det = abs(dx.x * dy.y - dx.y * dy.x);
+        rmsm_lod = log2(max(det / max(sqrt(0.5 * (tr + sqrt(max(tr * tr - 4.0 * det * det, 0.0)))), 1e-30), 1e-30));
     }
     /* the receiver's plane: its normal, else the screen derivatives of the
        position (taken here, before any branch) */

@@ -18,7 +18,9 @@
                           behind the viewer: the share of the wall's
                           shadow each technique loses
 
-   SK_GL_TEST_SURVEY=1 also prints every frame and every wall row. */
+   SK_GL_TEST_SURVEY=1 also prints every frame and every wall row;
+   SK_GL_TEST_IMAGES=1 writes out/tests/open-world-v<view>-s<sun>-<method
+   index>.png and -error.png for every frame of the table. */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -103,6 +105,7 @@ static const method methods[] = {
     {"lspsm", SKGL_LSPSM, 2048, 0, 0, 0},
     {"ferko max 4096", SKGL_FERKO, 4096, 1, 0, 1},
     {"rmsm 16384", SKGL_RMSM, 16384, 1, 0, 1},
+    {"rmsm 65536", SKGL_RMSM, 65536, 1, 0, 1},
 };
 #define METHODS ((int)(sizeof methods / sizeof methods[0]))
 
@@ -139,7 +142,7 @@ static void print_pool(const char *name, const pool *p) {
 }
 
 /* method indices the checks name */
-enum { M_STD2048, M_STD4096, M_PSSM, M_PSSM_STABLE, M_LISPSM, M_PSM, M_LSPSM, M_FERKO, M_RMSM };
+enum { M_STD2048, M_STD4096, M_PSSM, M_PSSM_STABLE, M_LISPSM, M_PSM, M_LSPSM, M_FERKO, M_RMSM, M_RMSM64K };
 #define FRAMES (TB_OPEN_WORLD_VIEWS * TB_OPEN_WORLD_SUNS)
 
 static int verbose(void) {
@@ -158,7 +161,8 @@ static int verbose(void) {
      psm 2048            3.16   2.05  5.62  9.13  9.53   4.2M
      lspsm               1.23   1.03  1.45  4.00  3.83  27.3M
      ferko max 4096      3.63   2.81  6.12  3.54  2.41  16.8M
-     rmsm 16384          4.36   1.95  8.81 22.78 34.28   1.1M
+     rmsm 16384          2.65   1.94  4.02  7.90  9.97   2.3M
+     rmsm 65536          1.38   0.62  2.73  7.53  9.97   5.2M
    PSM before its casters became the hull of what can shadow the view
    (skgl__caster_hull; the whole scene box before): 10.22% pooled (0.86x
    standard 2048's; 7.21 18.13 19.64 5.91 by band), the virtual camera
@@ -167,7 +171,14 @@ static int verbose(void) {
    corners lay beyond the light in post-perspective space, the fit failed
    and fell back to a uniform map. Now the slide is 13 to 296 m (the
    height of the scene over the tangent of a low sun behind the viewer)
-   and those frames 3.09% and 2.17%. */
+   and those frames 3.09% and 2.17%.
+   RMSM before its pages' level came from the smallest singular value of
+   the footprint (the area's square root before, which is coarser than a
+   grazing receiver's narrow side needs): 4.36% pooled at 16384^2 (1.95
+   8.81 22.78 34.28 by band, 1.1M texels) and 3.50% at 65536^2 (0.79 8.72
+   22.77 34.28, 2.2M): the virtual size hardly mattered. What remains beyond 200 m is the same at both virtual
+   sizes: the page matches the pixel there (a 2-3 m texel at 500 m), and a
+   pole's 0.3 m shadow is a point sample inside one texel. */
 static void test_open_world(void) {
     gt_env e;
     pool pools[METHODS];
@@ -209,12 +220,18 @@ static void test_open_world(void) {
                 pool_add(&one, &e, ref, res);
                 pools[k].texels += st->texels;
                 frame_err[k][f] = pool_pct(one.wrong, one.shadow);
+                if (getenv("SK_GL_TEST_IMAGES")) {
+                    char nm[96];
+                    snprintf(nm, sizeof nm, "open-world-v%d-s%d-%d", v, s, k);
+                    gt_images(&e, nm, ref, res);
+                }
                 if (k == M_PSM && st->psm_slide > max_slide) max_slide = st->psm_slide;
                 if (k == M_FERKO) ferko_below_cap += st->map_width < methods[k].resolution;
                 if (verbose())
-                    printf("view %d sun %d %-20s %7.2f%% (shadow %6.0f px) slide %.1f n %.1f map %dx%d\n", v, s,
-                           methods[k].name, frame_err[k][f], one.shadow, st->psm_slide, st->warp_n[0],
-                           st->map_width, st->map_height);
+                    printf("view %d sun %d %-20s %7.2f%% (shadow %6.0f px) slide %.1f n %.1f map %dx%d pages %d/%d "
+                           "min level %d\n",
+                           v, s, methods[k].name, frame_err[k][f], one.shadow, st->psm_slide, st->warp_n[0],
+                           st->map_width, st->map_height, st->pages_rendered, st->pages_requested, st->rmsm_min_level);
             }
         }
     }
@@ -237,6 +254,16 @@ static void test_open_world(void) {
         SK_CHECK_MSG(pssm <= 0.25 * std, "PSSM pooled %.2f%% against standard 2048's %.2f%%", pssm, std);
         SK_CHECK_MSG(lis <= 0.5 * std, "LiSPSM pooled %.2f%% against standard 2048's %.2f%%", lis, std);
         SK_CHECK_MSG(psm <= 0.7 * std, "PSM pooled %.2f%% against standard 2048's %.2f%%", psm, std);
+        /* RMSM's pages matched to the narrow side of the pixel's
+           footprint: pooled 0.22x standard 2048's (0.36x with the area's
+           square root), 50-200 m 7.90% (22.78%), and the error falls as
+           the virtual map grows (65536^2: 1.38%) */
+        double rmsm = pool_pct(pools[M_RMSM].wrong, pools[M_RMSM].shadow);
+        double rmsm64 = pool_pct(pools[M_RMSM64K].wrong, pools[M_RMSM64K].shadow);
+        double rmsm_mid = pool_pct(pools[M_RMSM].band_wrong[2], pools[M_RMSM].band_shadow[2]);
+        SK_CHECK_MSG(rmsm <= 0.3 * std, "RMSM pooled %.2f%% against standard 2048's %.2f%%", rmsm, std);
+        SK_CHECK_MSG(rmsm_mid <= 11.0, "RMSM 50-200 m %.2f%%", rmsm_mid);
+        SK_CHECK_MSG(rmsm64 <= 0.7 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
         /* the slide from the casters that can shadow the view: at most the
            scene's 40 m over tan 8 degrees (285 m) and the body's extent
            behind the camera; measured 295.8 m (1273 m with the scene box) */
