@@ -108,8 +108,9 @@
      area lights' own G-buffer. SKGL_CASTER_PASS is 0, 1 or 2 in those, for
      hooks that differ (SKGL_LAYERED is defined in the layered passes). The
      hooks are GLSL 3.30 without #version or #extension lines; they may
-     declare anything (macros too) but main and the names starting with
-     skgl_ or SKGL_, which shadowkit's passes use for all of their own:
+     declare anything but main and the names starting with skgl_ or SKGL_,
+     which shadowkit's passes use for all of their own (a hook's #define
+     holds within that hook: shadowkit #undefs each after it):
      skgl_view_proj, skgl_model, skgl_texel, skgl_conservative, skgl_eye,
      skgl_layer_vp, skgl_layer_of, skgl_layer_count (uniforms),
      skgl_world, skgl_box, skgl_edge, skgl_caster_block, skgl_in, skgl_out
@@ -119,8 +120,9 @@
      SKGL_CASTER, SKGL_CASTER_PASS, SKGL_CASTER_FRAGMENT, SKGL_CASTER_VARYINGS,
      SKGL_LAYERED and SKGL_GS_INVOCATIONS.
      desc.varyings is a list of declarations `[qualifiers] type name;`,
-     qualifiers among flat, smooth, noperspective (not in GLSL ES),
-     centroid and a precision, one name each (no lists, no arrays), at most
+     qualifiers among flat, smooth, noperspective (not in GLSL ES: the
+     compiler refuses it there; #ifndef GL_ES keeps it out), centroid and
+     a precision, one name each (no lists, no arrays), at most
      16; line (//) and block comments, and #if, #ifdef, #ifndef, #elif, #else,
      #endif, #define and #undef lines between declarations are kept (each
      stage sees the same; a #define holds within desc.varyings only), any
@@ -3809,6 +3811,7 @@ struct skgl_caster {
                                               shader follows the vertex stage, or precedes the fragment) */
     const char *gs_blocks;                 /* the geometry shaders' input and output blocks */
     const char *forward;                   /* the geometry shaders' skgl_caster_varyings() */
+    char *undef_vertex, *undef_fragment;   /* #undef of each macro the hook defines, or NULL */
     skgl__caster_prog v[SKGL__CV_COUNT];
 };
 
@@ -3867,7 +3870,7 @@ static int skgl__varyings_uncomment(char *t)
 /* the declaration of tokens tok[0..n) (identifiers: qualifiers, type, name)
    into *it; SK_ERR_INVALID_ARG (logged, the line named) when it is not one */
 static sk_result skgl__varyings_decl(skgl_context *ctx, const char *const *tok, const size_t *len, int n, int line,
-                                     int es, skgl__vitem *it)
+                                     skgl__vitem *it)
 {
     static const char fn[] = "skgl_caster_create";
     static const char *const ints[] = {"int", "uint", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3", "uvec4"};
@@ -3910,9 +3913,6 @@ static sk_result skgl__varyings_decl(skgl_context *ctx, const char *const *tok, 
         skgl__is_word(it->type, it->type_len, "noperspective") || skgl__is_word(it->type, it->type_len, "centroid"))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\" has no type", fn, line,
                           (int)it->name_len, it->name);
-    if (es && it->interp == SKGL__VI_NOPERSPECTIVE)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\": GLSL ES (this context's "
-                          "dialect) has no noperspective", fn, line, (int)it->name_len, it->name);
     for (k = 0; k < (int)(sizeof ints / sizeof ints[0]); k++)
         if (skgl__is_word(it->type, it->type_len, ints[k]) && it->interp != SKGL__VI_FLAT)
             return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\": an integer varying "
@@ -3970,7 +3970,7 @@ static sk_result skgl__varyings_parse(skgl_context *ctx, char *t, skgl__vitem *i
     static const char fn[] = "skgl_caster_create";
     const char *tok[8];
     size_t len[8], i = 0;
-    int line = 1, line_start = 1, ntok = 0, tok_line = 1, decls = 0, es = strstr(ctx->glsl_version, " es") != NULL;
+    int line = 1, line_start = 1, ntok = 0, tok_line = 1, decls = 0;
     int open = skgl__varyings_uncomment(t);
     *n = 0;
     if (open)
@@ -4011,7 +4011,7 @@ static sk_result skgl__varyings_parse(skgl_context *ctx, char *t, skgl__vitem *i
             if (*n == cap) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: desc.varyings: too many lines", fn);
             /* a name declared twice is the compiler's to report (#if and #else
                may each declare it) */
-            SKGL__TRY(skgl__varyings_decl(ctx, tok, len, ntok, tok_line, es, &items[*n]));
+            SKGL__TRY(skgl__varyings_decl(ctx, tok, len, ntok, tok_line, &items[*n]));
             ++*n;
             ntok = 0;
             continue;
@@ -4178,6 +4178,49 @@ static sk_result skgl__caster_varyings(skgl_context *ctx, skgl_caster *c)
     return r;
 }
 
+/* "#undef NAME\n" for each `#define NAME` line of a hook (*out NULL when
+   there is none), so that the hook's macros end with it: shadowkit's code
+   after it (swizzles such as .w and .xy included) is not rewritten by them.
+   GL_, __ and SKGL_ names are left alone (GLSL's own; shadowkit's).
+   SK_ERR_CAPACITY without memory. */
+static sk_result skgl__hook_undefs(skgl_context *ctx, const char *hook, char **out)
+{
+    skgl__sb b;
+    int pass;
+    *out = NULL;
+    b.p = NULL;
+    for (pass = 0; pass < 2; pass++) {
+        const char *p = hook;
+        b.n = 0;
+        while (*p) {
+            const char *name, *e;
+            while (*p == ' ' || *p == '\t') p++;
+            if (*p == '#') {
+                for (p++; *p == ' ' || *p == '\t'; p++) continue;
+                if (strncmp(p, "define", 6) == 0 && (p[6] == ' ' || p[6] == '\t')) {
+                    for (name = p + 6; *name == ' ' || *name == '\t'; name++) continue;
+                    for (e = name; skgl__ident_char(*e); e++) continue;
+                    if (e > name && skgl__ident_start(*name) && strncmp(name, "GL_", 3) != 0 &&
+                        strncmp(name, "__", 2) != 0 && strncmp(name, "SKGL_", 5) != 0) {
+                        skgl__sb_str(&b, "#undef ");
+                        skgl__sb_put(&b, name, (size_t)(e - name));
+                        skgl__sb_str(&b, "\n");
+                    }
+                }
+            }
+            while (*p && *p != '\n') p++;
+            if (*p) p++;
+        }
+        if (b.n == 0) return SK_OK;
+        if (pass == 0) {
+            b.p = *out = (char *)SKGL_MALLOC(b.n + 1);
+            if (!b.p) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
+        }
+    }
+    b.p[b.n] = 0;
+    return SK_OK;
+}
+
 /* compiles n strings (after #version) into a shader of the given type;
    0 with the log naming the caster and the stage on failure */
 static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, skgl__enum type,
@@ -4224,7 +4267,9 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
     if (c->gen) src[n++] = gs ? c->block_out : c->decl_out;
     src[n++] = "#line 1 1\n";
     src[n++] = c->vertex;
-    src[n++] = "\n#line 10001 0\n";
+    src[n++] = "\n";
+    if (c->undef_vertex) src[n++] = c->undef_vertex;
+    src[n++] = "#line 10001 0\n";
     src[n++] = vs;
     sh[0] = skgl__caster_shader(ctx, c, SKGL__VERTEX_SHADER, src, n, fn);
     if (sh[0] && gs) {
@@ -4251,8 +4296,10 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
         if (c->fragment) {
             src[n++] = "#define SKGL_CASTER_FRAGMENT 1\n#line 1 2\n";
             src[n++] = c->fragment;
+            src[n++] = "\n";
+            if (c->undef_fragment) src[n++] = c->undef_fragment;
         }
-        src[n++] = "\n#line 10001 0\n";
+        src[n++] = "#line 10001 0\n";
         src[n++] = fs;
         sh[stages - 1] = skgl__caster_shader(ctx, c, SKGL__FRAGMENT_SHADER, src, n, fn);
     }
@@ -4292,6 +4339,8 @@ static void skgl__caster_free(skgl_context *ctx, skgl_caster *c)
             ctx->objects--;
         }
     SKGL_FREE(c->gen);
+    SKGL_FREE(c->undef_vertex);
+    SKGL_FREE(c->undef_fragment);
     SKGL_FREE(c->text);
     SKGL_FREE(c);
 }
@@ -4343,7 +4392,9 @@ SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *
     c->varyings = desc->varyings && desc->varyings[0] ? skgl__caster_copy(&p, desc->varyings) : NULL;
     c->label = skgl__caster_copy(&p, desc->label ? desc->label : "caster");
     for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) c->names[k] = skgl__caster_copy(&p, desc->uniforms[k]);
-    if (c->varyings && (r = skgl__caster_varyings(ctx, c)) != SK_OK) {
+    if ((c->varyings && (r = skgl__caster_varyings(ctx, c)) != SK_OK) ||
+        (r = skgl__hook_undefs(ctx, c->vertex, &c->undef_vertex)) != SK_OK ||
+        (c->fragment && (r = skgl__hook_undefs(ctx, c->fragment, &c->undef_fragment)) != SK_OK)) {
         skgl__caster_free(ctx, c);
         return r;
     }

@@ -33,7 +33,8 @@
    passes used before the skgl_ prefix (u_view_proj, u_model, u_texel,
    u_conservative, u_eye, u_layer_vp, u_layer_of, u_layer_count, v_world,
    g_box, g_edge, o_cons, o_true, o_cons_copy, o_normal) and macros named
-   as the locals after the fragment hook (p, n, inside): links in every pass,
+   as shadowkit's locals and swizzles after the hooks (w, xy, z, p, n,
+   inside; each hook's macros are #undef'd after it): links in every pass,
    its mask the control's. Then desc.varyings' contracts: lists,
    unterminated comments, unknown directives, in/out, integer without
    flat, reserved names, each refused naming its line; a type error and a
@@ -108,8 +109,9 @@ static const char fs_float[] = "void skgl_caster_fragment() { if (mod(v + 0.5, 2
 static const char fs_int[] = "void skgl_caster_fragment() { if ((v & 1) == 1) discard; }\n";
 
 /* every name shadowkit's passes declared before the skgl_ prefix, and
-   macros named as their locals after the hooks */
-static const char vs_collide[] = "layout(location = 0) in vec3 a_pos;\n"
+   macros named as their locals and swizzles (.w, .xy, .z) after the hooks */
+static const char vs_collide[] = "#define w 4.0\n"
+                                 "layout(location = 0) in vec3 a_pos;\n"
                                  "uniform vec4 u_view_proj;\n"
                                  "uniform vec4 u_model;\n"
                                  "uniform vec4 u_texel;\n"
@@ -125,7 +127,9 @@ static const char vs_collide[] = "layout(location = 0) in vec3 a_pos;\n"
                                  "    return vec4(a_pos + vec3(-5.25 + 1.5 * float(gl_InstanceID), 2.5, 0.0) +\n"
                                  "                0.0 * z.xyz, 1.0);\n"
                                  "}\n";
-static const char fs_collide[] = "#define p 1.0\n"
+static const char fs_collide[] = "#define xy 0.0\n"
+                                 "#define z 1.0\n"
+                                 "#define p 1.0\n"
                                  "#define n 2.0\n"
                                  "#define inside 3\n"
                                  "uniform vec4 u_eye;\n"
