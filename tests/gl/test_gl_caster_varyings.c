@@ -41,12 +41,18 @@
    name declared twice reported at line 20000 + its line; a link error's
    log intact.
 
-   Before the fix (the header of commit 4d91cf6), measured: STANDARD and
-   cube pass for the plain, smooth and flat casters; noperspective,
-   smooth-less centroid and preproc fail at skgl_caster_create; every
-   geometry-shader pass with `flat int v` fails ("unsized array index must
-   be constant"); the collide caster fails to compile; `float a, b;` is
-   accepted; the link error's log is the caster's prefix repeated. */
+   Can fail: against the header before these fixes (commit 4d91cf6) 40
+   checks fail: the smooth, noperspective and centroid casters at
+   skgl_caster_create ("0:4(1): error: storage qualifiers must come after
+   ...", inside shadowkit's preamble), preproc refused by the old parser,
+   `flat int v` in every geometry-shader pass ("unsized array index must
+   be constant"), the collide caster ("redeclaration of `u_view_proj' has
+   incorrect type"), `float a, b;` and the directives passed to the
+   compiler instead of refused, the link log "caster 'unlinked':
+   skgl_caster_create: caster 'unlinked': ..." (vsnprintf reading the log
+   it writes). With the hooks' #undef lines left out, the collide caster
+   fails under PVSM and PVSM+G (4 checks); with the varyings' left out,
+   preproc fails in every geometry-shader pass (8). */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
