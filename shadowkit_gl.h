@@ -106,12 +106,36 @@
      low-resolution pass (through its geometry shader, which carries the
      varyings to the grown triangle's corners, perspective-correct) and the
      area lights' own G-buffer. SKGL_CASTER_PASS is 0, 1 or 2 in those, for
-     hooks that differ. The hooks are GLSL 3.30 without #version or
-     #extension lines; they may declare anything but the names shadowkit's
-     passes use: main, u_view_proj, u_model, u_texel, u_conservative,
-     u_eye, v_world, g_box, g_edge, o_cons, o_true, o_normal and any name
-     starting with skgl_ or SKGL_. Varyings are written and read by name,
-     through an interface block, so they need no in/out of their own.
+     hooks that differ (SKGL_LAYERED is defined in the layered passes). The
+     hooks are GLSL 3.30 without #version or #extension lines; they may
+     declare anything but main and the names starting with skgl_ or SKGL_,
+     which shadowkit's passes use for all of their own (a hook's #define
+     holds within that hook: shadowkit #undefs each after it):
+     skgl_view_proj, skgl_model, skgl_texel, skgl_conservative, skgl_eye,
+     skgl_layer_vp, skgl_layer_of, skgl_layer_count (uniforms),
+     skgl_world, skgl_box, skgl_edge, skgl_caster_block, skgl_in, skgl_out
+     (between stages), skgl_cons, skgl_true, skgl_cons_copy, skgl_normal
+     (outputs), skgl_caster_varyings, skgl_layer, skgl_w, skgl_n, skgl_p,
+     skgl_inside (functions and locals after the hooks) and the macros
+     SKGL_CASTER, SKGL_CASTER_PASS, SKGL_CASTER_FRAGMENT, SKGL_CASTER_VARYINGS,
+     SKGL_LAYERED and SKGL_GS_INVOCATIONS.
+     desc.varyings is a list of declarations `[qualifiers] type name;`,
+     qualifiers among flat, smooth, noperspective (not in GLSL ES: the
+     compiler refuses it there; #ifndef GL_ES keeps it out), centroid and
+     a precision, one name each (no lists, no arrays), at most
+     16; line (//) and block comments, and #if, #ifdef, #ifndef, #elif, #else,
+     #endif, #define and #undef lines between declarations are kept (each
+     stage sees the same; a #define holds within desc.varyings only), any
+     other line is refused with its line named. shadowkit declares them in
+     each stage (an interface block where a geometry shader runs), so they
+     need no in/out of their own and are written and read by name; the
+     geometry shaders give every vertex they emit the values the original
+     triangle has there (perspective-correct, or linear in the window for
+     noperspective); a flat varying keeps each vertex's value in the
+     layered passes (the provoking vertex chooses as without them) and
+     takes the last vertex's, GL's default provoking vertex, on PVSM's
+     grown triangles. Errors in a declaration's type are reported at line
+     20000 + its line.
      Textures the fragment hook samples go on units 4 and up: shadowkit's
      passes bind their own samplers on units 0 to 3. Compile errors are
      returned by skgl_caster_create (or, for the two later programs, by the
@@ -908,8 +932,11 @@ typedef struct skgl_caster_desc {
                                      which may discard (an alpha test); samplers on units 4
                                      and up (shadowkit's passes leave those alone) */
     const char *varyings;         /* optional: what the vertex hook hands the fragment hook,
-                                     one  [flat] type name;  each ("vec2 uv; flat int id;"),
-                                     at most 16, no arrays: written and read by name */
+                                     one  [qualifiers] type name;  each ("vec2 uv; flat int
+                                     id;"), qualifiers flat, smooth, noperspective, centroid,
+                                     a precision; comments and #if/#ifdef/#else/#endif/
+                                     #define lines kept; at most 16, no arrays or lists:
+                                     written and read by name (CASTER PROGRAMS) */
     const char *uniforms[SKGL_CASTER_UNIFORMS];  /* the uniforms the callback sets, by name,
                                      in the order of the locations skgl_use_caster returns */
     const char *label;            /* names the caster in messages ["caster"] */
@@ -1788,9 +1815,9 @@ struct skgl_context {
     skgl__int depth_u_view_proj, depth_u_model;
     skgl__uint pass_prog;                  /* the current caster pass's program (depth_prog, or an area
                                               light's low-res or G-buffer program) */
-    skgl__int pass_vp_loc;                 /* its u_view_proj */
-    skgl__int pass_model_loc;              /* its u_model */
-    skgl__int model_loc;                   /* where skgl_set_model writes: the current program's u_model */
+    skgl__int pass_vp_loc;                 /* its skgl_view_proj */
+    skgl__int pass_model_loc;              /* its skgl_model */
+    skgl__int model_loc;                   /* where skgl_set_model writes: the current program's skgl_model */
     int model_dirty;                       /* skgl_set_model was called on the pass's program since
                                               the pass set its model */
     /* caster programs (skgl_use_caster): what a caster's program for this
@@ -1798,9 +1825,9 @@ struct skgl_context {
     int pass_variant;                      /* SKGL__CV_DEPTH, _CONS, _GBUF */
     unsigned pass_serial;                  /* counts callbacks: a caster program sent this one's matrix */
     float pass_vp[16];                     /* the pass's view-projection (relative to its origin) */
-    float pass_texel[2];                   /* SKGL__CV_CONS: u_texel */
-    int pass_conservative;                 /* SKGL__CV_CONS: u_conservative */
-    float pass_eye[3];                     /* SKGL__CV_GBUF: u_eye */
+    float pass_texel[2];                   /* SKGL__CV_CONS: skgl_texel */
+    int pass_conservative;                 /* SKGL__CV_CONS: skgl_conservative */
+    float pass_eye[3];                     /* SKGL__CV_GBUF: skgl_eye */
     struct skgl_caster *casters;           /* every caster made, freed with the context */
     struct skgl_caster *cur_caster;        /* bound by the callback now (NULL: the pass's program) */
     sk_result pass_error;                  /* a caster program that failed to link in this callback */
@@ -3075,8 +3102,8 @@ static void skgl__release(skgl_context *ctx)
 static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
 {
     skgl__api *gl = &ctx->gl;
-    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "u_view_proj");
-    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "u_model");
+    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "skgl_view_proj");
+    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "skgl_model");
     ctx->model_loc = -1;   /* no caster pass under way */
     skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW, "");
     ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
@@ -3670,6 +3697,7 @@ static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_
    implementation keeps the loop everywhere (a driver whose invocations are
    slow; the tests run both). */
 static const char skgl__gs_invocations[] = "#extension GL_ARB_gpu_shader5 : require\n#define SKGL_GS_INVOCATIONS 1\n";
+static const char skgl__gs5_extension[] = "#extension GL_ARB_gpu_shader5 : require\n";
 
 /* the layered depth program with the given start of its geometry shader */
 static skgl__uint skgl__layered_program(skgl_context *ctx, const char *gs_start)
@@ -3698,10 +3726,10 @@ static int skgl__layered_ready(skgl_context *ctx)
     }
     memcpy(ctx->log, keep, sizeof keep);
     if (ctx->layered_state < 0) return 0;
-    ctx->layered_u_model = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_model");
-    ctx->layered_u_vp = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_layer_vp");
-    ctx->layered_u_of = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_layer_of");
-    ctx->layered_u_count = ctx->gl.GetUniformLocation(ctx->layered_prog, "u_layer_count");
+    ctx->layered_u_model = ctx->gl.GetUniformLocation(ctx->layered_prog, "skgl_model");
+    ctx->layered_u_vp = ctx->gl.GetUniformLocation(ctx->layered_prog, "skgl_layer_vp");
+    ctx->layered_u_of = ctx->gl.GetUniformLocation(ctx->layered_prog, "skgl_layer_of");
+    ctx->layered_u_count = ctx->gl.GetUniformLocation(ctx->layered_prog, "skgl_layer_count");
     return 1;
 }
 
@@ -3777,8 +3805,13 @@ struct skgl_caster {
     char *text;                            /* one block: the hooks, varyings and names, copied */
     const char *vertex, *fragment, *varyings, *label;
     const char *names[SKGL_CASTER_UNIFORMS];
-    char *forward;                         /* soft_cons.geom's skgl_caster_varyings(), or NULL */
-    char *decl_out, *decl_in;              /* the varyings as plain outputs and inputs, or NULL */
+    char *gen;                             /* one block: the texts below (NULL without varyings) */
+    const char *decl_out, *decl_in;        /* the varyings as plain outputs and inputs */
+    const char *block_out, *block_in;      /* the same as an interface block's members (a geometry
+                                              shader follows the vertex stage, or precedes the fragment) */
+    const char *gs_blocks;                 /* the geometry shaders' input and output blocks */
+    const char *forward;                   /* the geometry shaders' skgl_caster_varyings() */
+    char *undef_vertex, *undef_fragment;   /* #undef of each macro the hook defines, or NULL */
     skgl__caster_prog v[SKGL__CV_COUNT];
 };
 
@@ -3787,102 +3820,404 @@ static skgl__uint skgl__caster_current(const skgl_context *ctx)
     return ctx->cur_caster ? ctx->cur_caster->v[ctx->pass_variant].prog : ctx->pass_prog;
 }
 
-/* one `[qualifiers] type name` of desc.varyings: the name's span; 0 when
-   the declaration is not of that shape */
-static int skgl__varying_name(const char *d, size_t n, size_t *at, size_t *len, int *flat)
+/* desc.varyings parsed (skgl__varyings_parse): each declaration
+   `[interpolation] [centroid] [precision] type name;` and each preprocessor
+   line between them, in order, comments removed. The texts each stage gets
+   are made from these (skgl__varyings_text), so that every stage sees the
+   same declarations in the order and the dialect it needs: plain outputs
+   and inputs, an interface block's members, the geometry shaders'
+   forwarding function, each declaration after a #line naming its line. */
+#define SKGL__VARYINGS_LINE0 20000     /* desc.varyings' line n is reported as 20000 + n */
+enum { SKGL__VI_NONE, SKGL__VI_FLAT, SKGL__VI_SMOOTH, SKGL__VI_NOPERSPECTIVE };
+typedef struct skgl__vitem {
+    int line;                          /* in desc.varyings, from 1 */
+    const char *pp;                    /* a preprocessor line (pp_len chars), or NULL: a declaration */
+    size_t pp_len;
+    const char *def;                   /* a #define's macro name (def_len chars), else NULL */
+    size_t def_len;
+    int interp, centroid;              /* SKGL__VI_*; 1: centroid */
+    const char *prec, *type, *name;    /* prec NULL: none */
+    size_t prec_len, type_len, name_len;
+} skgl__vitem;
+
+static int skgl__is_word(const char *s, size_t n, const char *w) { return strlen(w) == n && memcmp(s, w, n) == 0; }
+static int skgl__ident_start(char c) { return isalpha((unsigned char)c) || c == '_'; }
+static int skgl__ident_char(char c) { return isalnum((unsigned char)c) || c == '_'; }
+
+/* comments out of t (in place: blanks, newlines kept so that lines keep
+   their numbers); 0, or the line of a comment that does not end */
+static int skgl__varyings_uncomment(char *t)
 {
-    size_t i = n, e;
-    while (i > 0 && (d[i - 1] == ' ' || d[i - 1] == '\t' || d[i - 1] == '\n' || d[i - 1] == '\r')) i--;
-    e = i;
-    while (i > 0 && (isalnum((unsigned char)d[i - 1]) || d[i - 1] == '_')) i--;
-    if (i == e || isdigit((unsigned char)d[i]) || i == 0) return 0;
-    if (d[i - 1] != ' ' && d[i - 1] != '\t' && d[i - 1] != '\n' && d[i - 1] != '\r') return 0;
-    *at = i;
-    *len = e - i;
-    *flat = 0;
-    for (i = 0; i + 4 <= *at; i++)
-        if (memcmp(d + i, "flat", 4) == 0 && (i == 0 || !isalnum((unsigned char)d[i - 1])) &&
-            (d[i + 4] == ' ' || d[i + 4] == '\t' || d[i + 4] == '\n'))
-            *flat = 1;
-    return 1;
+    int line = 1, open_line = 0;
+    char *p;
+    for (p = t; *p; p++) {
+        if (open_line) {
+            if (p[0] == '*' && p[1] == '/') { p[0] = p[1] = ' '; p++; open_line = 0; }
+            else if (*p != '\n') *p = ' ';
+        } else if (p[0] == '/' && p[1] == '/') {
+            while (*p && *p != '\n') *p++ = ' ';
+            if (!*p) break;
+        } else if (p[0] == '/' && p[1] == '*') {
+            p[0] = p[1] = ' ';
+            p++;
+            open_line = line;
+        }
+        if (*p == '\n') line++;
+    }
+    return open_line;
 }
 
-/* the geometry shaders' skgl_caster_varyings(b) into *text: each varying
-   at barycentric weights b on the triangle's vertices (a flat one: the
-   vertex of largest weight's); SK_ERR_INVALID_ARG (logged) when
-   desc.varyings does not parse, SK_ERR_CAPACITY without memory */
-static sk_result skgl__caster_forward(skgl_context *ctx, const char *v, char **text)
+/* the declaration of tokens tok[0..n) (identifiers: qualifiers, type, name)
+   into *it; SK_ERR_INVALID_ARG (logged, the line named) when it is not one */
+static sk_result skgl__varyings_decl(skgl_context *ctx, const char *const *tok, const size_t *len, int n, int line,
+                                     skgl__vitem *it)
 {
-    size_t total = strlen(v), start = 0, end, at, len, need = 64, used = 0;
-    int flat, count = 0;
-    char *out;
-    *text = NULL;
-    for (end = 0; end <= total; end++)
-        if (v[end] == ';') need += 160 + 4 * (end - start), start = end + 1;
-    out = (char *)SKGL_MALLOC(need);
-    if (!out) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
-    used += (size_t)sprintf(out, "void skgl_caster_varyings(vec3 b)\n{\n");
-    for (start = 0, end = 0; end <= total; end++) {
-        if (end < total && v[end] != ';') continue;
-        {
-            size_t k = start;
-            while (k < end && isspace((unsigned char)v[k])) k++;
-            if (k == end) { start = end + 1; continue; }   /* an empty declaration */
+    static const char fn[] = "skgl_caster_create";
+    static const char *const ints[] = {"int", "uint", "ivec2", "ivec3", "ivec4", "uvec2", "uvec3", "uvec4"};
+    int i, interp = 0, k;
+    memset(it, 0, sizeof *it);
+    it->line = line;
+    if (n < 2)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "%s: desc.varyings line %d: \"%.*s;\" is not a declaration `[qualifiers] type name;`", fn,
+                          line, (int)len[0], tok[0]);
+    for (i = 0; i < n - 2; i++) {
+        const char *q = tok[i];
+        size_t m = len[i];
+        if (skgl__is_word(q, m, "flat") || skgl__is_word(q, m, "smooth") || skgl__is_word(q, m, "noperspective")) {
+            if (interp)
+                return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: two interpolation "
+                                  "qualifiers before \"%.*s\"", fn, line, (int)len[n - 1], tok[n - 1]);
+            interp = 1;
+            it->interp = q[0] == 'f' ? SKGL__VI_FLAT : q[0] == 's' ? SKGL__VI_SMOOTH : SKGL__VI_NOPERSPECTIVE;
+        } else if (skgl__is_word(q, m, "centroid") && !it->centroid) {
+            it->centroid = 1;
+        } else if ((skgl__is_word(q, m, "lowp") || skgl__is_word(q, m, "mediump") || skgl__is_word(q, m, "highp")) &&
+                   !it->prec) {
+            it->prec = q;
+            it->prec_len = m;
+        } else if (skgl__is_word(q, m, "in") || skgl__is_word(q, m, "out") || skgl__is_word(q, m, "varying")) {
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\": shadowkit declares "
+                              "each stage's in and out itself, leave them out", fn, line, (int)m, q);
+        } else {
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\" is not a qualifier of "
+                              "a varying (flat, smooth, noperspective, centroid, lowp, mediump, highp; once each)",
+                              fn, line, (int)m, q);
         }
-        if (end == total || !skgl__varying_name(v + start, end - start, &at, &len, &flat) ||
-            ++count > SKGL__CASTER_VARYINGS) {
-            SKGL_FREE(out);
-            return skgl__fail(ctx, SK_ERR_INVALID_ARG,
-                              "skgl_caster_create: desc.varyings must be at most %d declarations `[flat] type name;`, "
-                              "each ending in ';', no arrays or lists (at \"%.40s\")",
-                              SKGL__CASTER_VARYINGS, v + start);
-        }
-        at += start;
-        if (flat)
-            used += (size_t)sprintf(out + used, "    skgl_out.%.*s = skgl_in[b.x >= b.y && b.x >= b.z ? 0 : "
-                                                "(b.y >= b.z ? 1 : 2)].%.*s;\n",
-                                    (int)len, v + at, (int)len, v + at);
-        else
-            used += (size_t)sprintf(out + used, "    skgl_out.%.*s = b.x * skgl_in[0].%.*s + b.y * skgl_in[1].%.*s "
-                                                "+ b.z * skgl_in[2].%.*s;\n",
-                                    (int)len, v + at, (int)len, v + at, (int)len, v + at, (int)len, v + at);
-        start = end + 1;
     }
-    sprintf(out + used, "}\n");
-    *text = out;
+    it->type = tok[n - 2];
+    it->type_len = len[n - 2];
+    it->name = tok[n - 1];
+    it->name_len = len[n - 1];
+    if (skgl__is_word(it->type, it->type_len, "flat") || skgl__is_word(it->type, it->type_len, "smooth") ||
+        skgl__is_word(it->type, it->type_len, "noperspective") || skgl__is_word(it->type, it->type_len, "centroid"))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\" has no type", fn, line,
+                          (int)it->name_len, it->name);
+    for (k = 0; k < (int)(sizeof ints / sizeof ints[0]); k++)
+        if (skgl__is_word(it->type, it->type_len, ints[k]) && it->interp != SKGL__VI_FLAT)
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\": an integer varying "
+                              "must be flat", fn, line, (int)it->name_len, it->name);
+    if (skgl__is_word(it->name, it->name_len, "main") ||
+        (it->name_len >= 5 && (memcmp(it->name, "skgl_", 5) == 0 || memcmp(it->name, "SKGL_", 5) == 0)) ||
+        (it->name_len >= 3 && memcmp(it->name, "gl_", 3) == 0))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: \"%.*s\" is reserved (main, gl_*, "
+                          "skgl_*, SKGL_*)", fn, line, (int)it->name_len, it->name);
     return SK_OK;
 }
 
-/* the varyings as plain declarations with the storage qualifier `dir`
-   ("out " or "in "), after `flat` where there is one: the vertex and
-   fragment stages of a program without a geometry shader (GLSL ES 3.00
-   has no interface blocks between stages). desc.varyings parsed already
-   (skgl__caster_forward). */
-static sk_result skgl__caster_decls(skgl_context *ctx, const char *v, const char *dir, char **text)
+/* a preprocessor line, t[0] its '#', into *it; *end: where the line ends */
+static sk_result skgl__varyings_pp(skgl_context *ctx, const char *t, int line, skgl__vitem *it, size_t *end)
 {
-    size_t total = strlen(v), start, end, at, len, used = 0, i;
-    int flat;
-    char *out = (char *)SKGL_MALLOC(2 * total + 16 * (SKGL__CASTER_VARYINGS + 1) + 1);
-    *text = out;
-    if (!out) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
-    for (start = 0, end = 0; end < total; end++) {
-        if (v[end] != ';') continue;
-        if (skgl__varying_name(v + start, end - start, &at, &len, &flat)) {
-            used += (size_t)sprintf(out + used, "%s%s", flat ? "flat " : "", dir);
-            for (i = start; i < end; i++) {   /* the declaration less its `flat` */
-                if (flat && memcmp(v + i, "flat", 4) == 0 && (i == start || !isalnum((unsigned char)v[i - 1])) &&
-                    i + 4 < end && isspace((unsigned char)v[i + 4])) {
-                    i += 3;
-                    continue;
-                }
-                out[used++] = v[i];
-            }
-            out[used++] = ';';
-            out[used++] = '\n';
-        }
-        start = end + 1;
+    static const char *const ok[] = {"if", "ifdef", "ifndef", "elif", "else", "endif", "define", "undef"};
+    size_t e = 0, w, k;
+    int i;
+    memset(it, 0, sizeof *it);
+    it->line = line;
+    while (t[e] && t[e] != '\n') e++;
+    *end = e;
+    if (e > 0 && t[e - 1] == '\\')
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_caster_create: desc.varyings line %d: a directive continued "
+                          "on the next line (a trailing backslash) is not accepted", line);
+    for (k = 1; t[k] == ' ' || t[k] == '\t'; k++) continue;
+    for (w = k; skgl__ident_char(t[w]); w++) continue;
+    for (i = 0; i < (int)(sizeof ok / sizeof ok[0]); i++)
+        if (skgl__is_word(t + k, w - k, ok[i])) break;
+    if (i == (int)(sizeof ok / sizeof ok[0]))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_caster_create: desc.varyings line %d: \"#%.*s\" is not "
+                          "accepted (#if, #ifdef, #ifndef, #elif, #else, #endif, #define and #undef are)",
+                          line, (int)(w - k), t + k);
+    if (i == 6) {   /* #define: its name, undefined after the varyings */
+        for (k = w; t[k] == ' ' || t[k] == '\t'; k++) continue;
+        for (w = k; skgl__ident_char(t[w]); w++) continue;
+        if (w == k || !skgl__ident_start(t[k]))
+            return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_caster_create: desc.varyings line %d: #define without "
+                              "a name", line);
+        it->def = t + k;
+        it->def_len = w - k;
     }
-    out[used] = 0;
+    while (e > 0 && isspace((unsigned char)t[e - 1])) e--;
+    it->pp = t;
+    it->pp_len = e;
+    return SK_OK;
+}
+
+/* desc.varyings (t: a copy, uncommented in place) into items[0..*n), cap
+   of them at most; SK_ERR_INVALID_ARG (logged, naming the line) when it is
+   not a list of declarations `[qualifiers] type name;` and preprocessor
+   lines */
+static sk_result skgl__varyings_parse(skgl_context *ctx, char *t, skgl__vitem *items, int cap, int *n)
+{
+    static const char fn[] = "skgl_caster_create";
+    const char *tok[8];
+    size_t len[8], i = 0;
+    int line = 1, line_start = 1, ntok = 0, tok_line = 1, decls = 0;
+    int open = skgl__varyings_uncomment(t);
+    *n = 0;
+    if (open)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: a /* comment that does not end", fn,
+                          open);
+    while (t[i]) {
+        char c = t[i];
+        if (c == '\n') { line++; line_start = 1; i++; continue; }
+        if (isspace((unsigned char)c)) { i++; continue; }
+        if (c == '#') {
+            size_t end;
+            if (!line_start || ntok > 0)
+                return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: a directive must begin its "
+                                  "line, between declarations", fn, line);
+            if (*n == cap) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: desc.varyings: too many lines", fn);
+            SKGL__TRY(skgl__varyings_pp(ctx, t + i, line, &items[*n], &end));
+            ++*n;
+            i += end;
+            continue;
+        }
+        line_start = 0;
+        if (skgl__ident_start(c)) {
+            if (ntok == 8)
+                return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: a declaration of more than "
+                                  "8 words", fn, tok_line);
+            if (ntok == 0) tok_line = line;
+            tok[ntok] = t + i;
+            for (len[ntok] = 0; skgl__ident_char(t[i]); i++) len[ntok]++;
+            ntok++;
+            continue;
+        }
+        if (c == ';') {
+            i++;
+            if (ntok == 0) continue;   /* an empty declaration */
+            if (++decls > SKGL__CASTER_VARYINGS)
+                return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: more than %d varyings", fn,
+                                  tok_line, SKGL__CASTER_VARYINGS);
+            if (*n == cap) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: desc.varyings: too many lines", fn);
+            /* a name declared twice is the compiler's to report (#if and #else
+               may each declare it) */
+            SKGL__TRY(skgl__varyings_decl(ctx, tok, len, ntok, tok_line, &items[*n]));
+            ++*n;
+            ntok = 0;
+            continue;
+        }
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: %s", fn, line,
+                          c == ','   ? "one varying per declaration (not `float a, b;`: `float a; float b;`)"
+                          : c == '[' ? "arrays are not accepted"
+                          : c == '{' || c == '}' ? "blocks and structs are not accepted"
+                                     : "a character outside `[qualifiers] type name;`");
+    }
+    if (ntok > 0)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.varyings line %d: the declaration does not end in ';'",
+                          fn, tok_line);
+    return SK_OK;
+}
+
+/* appends to a text being measured (p NULL: n counts) or written */
+typedef struct skgl__sb {
+    char *p;
+    size_t n;
+} skgl__sb;
+
+static void skgl__sb_put(skgl__sb *b, const char *s, size_t n)
+{
+    if (b->p) memcpy(b->p + b->n, s, n);
+    b->n += n;
+}
+
+static void skgl__sb_str(skgl__sb *b, const char *s) { skgl__sb_put(b, s, strlen(s)); }
+
+/* skgl_in[0].name, in the forwarding function */
+static void skgl__sb_in(skgl__sb *b, const skgl__vitem *it, int vertex)
+{
+    char s[24];
+    sprintf(s, "skgl_in[%d].", vertex);
+    skgl__sb_str(b, s);
+    skgl__sb_put(b, it->name, it->name_len);
+}
+
+/* the varyings for one use, the preprocessor lines among them:
+   dir "out " / "in ": declarations with that storage qualifier (plain, or
+   an interface block's members); dir NULL: the statements of the
+   geometry shaders' skgl_caster_varyings(skgl_b, skgl_s, skgl_k) (the
+   weights of smooth and of noperspective varyings, the vertex of flat
+   ones; skgl_in[] indexed by constants only). The varyings' own macros
+   are undefined after them: they do not rewrite shadowkit's code, or the
+   hooks. */
+static void skgl__varyings_text(skgl__sb *b, const skgl__vitem *it, int n, const char *dir)
+{
+    static const char *const interp[4] = {"", "flat ", "smooth ", "noperspective "};
+    char line[40];
+    int i, v;
+    for (i = 0; i < n; i++, it++) {
+        if (it->pp) {
+            skgl__sb_put(b, it->pp, it->pp_len);
+            skgl__sb_str(b, "\n");
+            continue;
+        }
+        sprintf(line, "#line %d 3\n", SKGL__VARYINGS_LINE0 + it->line);
+        skgl__sb_str(b, line);
+        if (!dir) {
+            skgl__sb_str(b, "    skgl_out.");
+            skgl__sb_put(b, it->name, it->name_len);
+            if (it->interp == SKGL__VI_FLAT) {   /* the value of vertex skgl_k */
+                for (v = 0; v < 2; v++) {
+                    skgl__sb_str(b, v ? " : (skgl_k == 1 ? " : " = skgl_k == 0 ? ");
+                    skgl__sb_in(b, it, v);
+                }
+                skgl__sb_str(b, " : ");
+                skgl__sb_in(b, it, 2);
+                skgl__sb_str(b, ");\n");
+            } else {   /* noperspective: the window-space weights; smooth: the perspective-correct */
+                const char *w = it->interp == SKGL__VI_NOPERSPECTIVE ? "skgl_s" : "skgl_b";
+                for (v = 0; v < 3; v++) {
+                    sprintf(line, "%s%s.%c * ", v ? " + " : " = ", w, "xyz"[v]);
+                    skgl__sb_str(b, line);
+                    skgl__sb_in(b, it, v);
+                }
+                skgl__sb_str(b, ";\n");
+            }
+            continue;
+        }
+        skgl__sb_str(b, interp[it->interp]);
+        if (it->centroid) skgl__sb_str(b, "centroid ");
+        skgl__sb_str(b, dir);
+        if (it->prec) { skgl__sb_put(b, it->prec, it->prec_len); skgl__sb_str(b, " "); }
+        skgl__sb_put(b, it->type, it->type_len);
+        skgl__sb_str(b, " ");
+        skgl__sb_put(b, it->name, it->name_len);
+        skgl__sb_str(b, ";\n");
+    }
+    for (it -= n, i = 0; i < n; i++, it++)
+        if (it->def) {
+            skgl__sb_str(b, "#undef ");
+            skgl__sb_put(b, it->def, it->def_len);
+            skgl__sb_str(b, "\n");
+        }
+}
+
+/* every text of the varyings the caster's stages use, one after another
+   (b->p NULL: measured only); their starts into c when written */
+static void skgl__caster_texts(skgl__sb *b, skgl_caster *c, const skgl__vitem *it, int n)
+{
+    const char **at[6];
+    int k = 0;
+    at[0] = &c->decl_out; at[1] = &c->decl_in; at[2] = &c->block_out; at[3] = &c->block_in;
+    at[4] = &c->gs_blocks; at[5] = &c->forward;
+#define SKGL__TEXT_START() do { if (b->p) *at[k] = b->p + b->n; k++; } while (0)
+#define SKGL__TEXT_END() skgl__sb_put(b, "", 1)
+    SKGL__TEXT_START(); skgl__varyings_text(b, it, n, "out "); SKGL__TEXT_END();
+    SKGL__TEXT_START(); skgl__varyings_text(b, it, n, "in "); SKGL__TEXT_END();
+    SKGL__TEXT_START();
+    skgl__sb_str(b, "out skgl_caster_block {\n"); skgl__varyings_text(b, it, n, "out "); skgl__sb_str(b, "};\n");
+    SKGL__TEXT_END();
+    SKGL__TEXT_START();
+    skgl__sb_str(b, "in skgl_caster_block {\n"); skgl__varyings_text(b, it, n, "in "); skgl__sb_str(b, "};\n");
+    SKGL__TEXT_END();
+    SKGL__TEXT_START();
+    skgl__sb_str(b, "in skgl_caster_block {\n"); skgl__varyings_text(b, it, n, "in ");
+    skgl__sb_str(b, "} skgl_in[];\nout skgl_caster_block {\n"); skgl__varyings_text(b, it, n, "out ");
+    skgl__sb_str(b, "} skgl_out;\n");
+    SKGL__TEXT_END();
+    SKGL__TEXT_START();
+    skgl__sb_str(b, "\nvoid skgl_caster_varyings(vec3 skgl_b, vec3 skgl_s, int skgl_k)\n{\n");
+    skgl__varyings_text(b, it, n, NULL);
+    skgl__sb_str(b, "}\n");
+    SKGL__TEXT_END();
+#undef SKGL__TEXT_START
+#undef SKGL__TEXT_END
+}
+
+/* desc.varyings parsed into the caster's texts (c->gen); SK_ERR_INVALID_ARG
+   (logged) when it does not parse, SK_ERR_CAPACITY without memory */
+static sk_result skgl__caster_varyings(skgl_context *ctx, skgl_caster *c)
+{
+    size_t len = strlen(c->varyings), k;
+    int cap = 1, n = 0;
+    char *t;
+    skgl__vitem *items;
+    skgl__sb b;
+    sk_result r;
+    for (k = 0; k < len; k++) cap += c->varyings[k] == ';' || c->varyings[k] == '\n';
+    t = (char *)SKGL_MALLOC(len + 1);
+    items = (skgl__vitem *)SKGL_MALLOC(sizeof *items * (size_t)cap);
+    if (!t || !items) {
+        SKGL_FREE(t);
+        SKGL_FREE(items);
+        return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
+    }
+    memcpy(t, c->varyings, len + 1);
+    r = skgl__varyings_parse(ctx, t, items, cap, &n);
+    for (k = 0; k < (size_t)n && items[k].pp; k++) continue;
+    if (r == SK_OK && k < (size_t)n) {   /* no declaration: no texts */
+        b.p = NULL;
+        b.n = 0;
+        skgl__caster_texts(&b, c, items, n);
+        b.p = c->gen = (char *)SKGL_MALLOC(b.n);
+        b.n = 0;
+        if (b.p) skgl__caster_texts(&b, c, items, n);
+        else r = skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
+    }
+    SKGL_FREE(t);
+    SKGL_FREE(items);
+    return r;
+}
+
+/* "#undef NAME\n" for each `#define NAME` line of a hook (*out NULL when
+   there is none), so that the hook's macros end with it: shadowkit's code
+   after it (swizzles such as .w and .xy included) is not rewritten by them.
+   GL_, __ and SKGL_ names are left alone (GLSL's own; shadowkit's).
+   SK_ERR_CAPACITY without memory. */
+static sk_result skgl__hook_undefs(skgl_context *ctx, const char *hook, char **out)
+{
+    skgl__sb b;
+    int pass;
+    *out = NULL;
+    b.p = NULL;
+    for (pass = 0; pass < 2; pass++) {
+        const char *p = hook;
+        b.n = 0;
+        while (*p) {
+            const char *name, *e;
+            while (*p == ' ' || *p == '\t') p++;
+            if (*p == '#') {
+                for (p++; *p == ' ' || *p == '\t'; p++) continue;
+                if (strncmp(p, "define", 6) == 0 && (p[6] == ' ' || p[6] == '\t')) {
+                    for (name = p + 6; *name == ' ' || *name == '\t'; name++) continue;
+                    for (e = name; skgl__ident_char(*e); e++) continue;
+                    if (e > name && skgl__ident_start(*name) && strncmp(name, "GL_", 3) != 0 &&
+                        strncmp(name, "__", 2) != 0 && strncmp(name, "SKGL_", 5) != 0) {
+                        skgl__sb_str(&b, "#undef ");
+                        skgl__sb_put(&b, name, (size_t)(e - name));
+                        skgl__sb_str(&b, "\n");
+                    }
+                }
+            }
+            while (*p && *p != '\n') p++;
+            if (*p) p++;
+        }
+        if (b.n == 0) return SK_OK;
+        if (pass == 0) {
+            b.p = *out = (char *)SKGL_MALLOC(b.n + 1);
+            if (!b.p) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_caster_create: out of memory");
+        }
+    }
+    b.p[b.n] = 0;
     return SK_OK;
 }
 
@@ -3896,8 +4231,8 @@ static skgl__uint skgl__caster_shader(skgl_context *ctx, const skgl_caster *c, s
     if (!sh) {
         skgl__fail(ctx, SK_ERR_GL,
                    "%s: caster '%s': the %s does not compile (lines 1 to 10000 are the hook's own, from 10001 "
-                   "shadowkit's pass; drivers that keep #line's source number show 1 for the vertex hook, 2 for "
-                   "the fragment hook): %s",
+                   "shadowkit's pass, from 20001 desc.varyings' (20000 + its line); drivers that keep #line's "
+                   "source number show 1 for the vertex hook, 2 for the fragment hook, 3 for desc.varyings): %s",
                    fn, c->label,
                    type == SKGL__VERTEX_SHADER     ? "vertex shader"
                    : type == SKGL__GEOMETRY_SHADER ? "geometry shader"
@@ -3923,44 +4258,48 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
                                 : variant == SKGL__CV_CONS ? SKGL__GLSL_SOFT_CONS_FRAG
                                                            : SKGL__GLSL_DEPTH_FRAG);
     /* vertex: the varyings as an output block for a geometry shader (its
-       members named as declared), plain outputs for a fragment shader */
+       members named as declared), plain outputs for a fragment shader;
+       every stage defines the same SKGL_ macros before the varyings, so
+       that their #if lines choose alike */
     n = 0;
     src[n++] = "#define SKGL_CASTER 1\n";
     src[n++] = passes[variant];
-    if (c->varyings && gs) { src[n++] = "out SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
-    if (c->varyings && !gs) src[n++] = c->decl_out;
+    if (c->gen) src[n++] = gs ? c->block_out : c->decl_out;
     src[n++] = "#line 1 1\n";
     src[n++] = c->vertex;
-    src[n++] = "\n#line 10001 0\n";
+    src[n++] = "\n";
+    if (c->undef_vertex) src[n++] = c->undef_vertex;
+    src[n++] = "#line 10001 0\n";
     src[n++] = vs;
     sh[0] = skgl__caster_shader(ctx, c, SKGL__VERTEX_SHADER, src, n, fn);
     if (sh[0] && gs) {
+        /* the forwarding function after the shader's own source, where its
+           input layout has sized skgl_in[] (its prototype is there) */
+        int invocations = variant == SKGL__CV_LAYERED && ctx->layered_state == 2;
         n = 0;
-        if (variant == SKGL__CV_LAYERED && ctx->layered_state == 2) src[n++] = skgl__gs_invocations;
+        if (invocations) src[n++] = skgl__gs5_extension;
         src[n++] = "#define SKGL_CASTER 1\n";
-        if (c->varyings) {
-            src[n++] = "#define SKGL_CASTER_VARYINGS 1\nin SkglCasterVaryings {\n";
-            src[n++] = c->varyings;
-            src[n++] = "\n} skgl_in[];\nout SkglCasterVaryings {\n";
-            src[n++] = c->varyings;
-            src[n++] = "\n} skgl_out;\n";
-            src[n++] = c->forward;
-        }
+        src[n++] = passes[variant];
+        if (c->gen) src[n++] = c->gs_blocks;
+        if (c->gen) src[n++] = "#define SKGL_CASTER_VARYINGS 1\n";
+        if (invocations) src[n++] = "#define SKGL_GS_INVOCATIONS 1\n";
+        src[n++] = "#line 10001 0\n";
         src[n++] = skgl__glsl(variant == SKGL__CV_CONS ? SKGL__GLSL_SOFT_CONS_GEOM : SKGL__GLSL_LAYERED_GEOM);
+        if (c->gen) src[n++] = c->forward;
         sh[1] = skgl__caster_shader(ctx, c, SKGL__GEOMETRY_SHADER, src, n, fn);
     }
     if (sh[0] && (stages == 2 || sh[1])) {
         n = 0;
         src[n++] = "#define SKGL_CASTER 1\n";
         src[n++] = passes[variant];
-        if (c->varyings && gs) { src[n++] = "in SkglCasterVaryings {\n"; src[n++] = c->varyings; src[n++] = "\n};\n"; }
-        if (c->varyings && !gs) src[n++] = c->decl_in;
+        if (c->gen) src[n++] = gs ? c->block_in : c->decl_in;
         if (c->fragment) {
-            src[n++] = "#define SKGL_CASTER_FRAGMENT 1\n";
-            src[n++] = "#line 1 2\n";
+            src[n++] = "#define SKGL_CASTER_FRAGMENT 1\n#line 1 2\n";
             src[n++] = c->fragment;
-            src[n++] = "\n#line 10001 0\n";
+            src[n++] = "\n";
+            if (c->undef_fragment) src[n++] = c->undef_fragment;
         }
+        src[n++] = "#line 10001 0\n";
         src[n++] = fs;
         sh[stages - 1] = skgl__caster_shader(ctx, c, SKGL__FRAGMENT_SHADER, src, n, fn);
     }
@@ -3968,18 +4307,23 @@ static sk_result skgl__caster_link(skgl_context *ctx, skgl_caster *c, int varian
     v->prog = skgl__link(ctx, sh, stages);
     if (!v->prog) {
         v->failed = 1;
-        if (sh[0] && sh[stages - 1])   /* compiled, but the link failed: skgl__link's log, named */
-            skgl__fail(ctx, SK_ERR_GL, "%s: caster '%s': %.900s", fn, c->label, ctx->log);
+        if (sh[0] && sh[stages - 1]) {
+            /* compiled, but the link failed: skgl__link's log, named (a copy:
+               vsnprintf's source and destination must not overlap) */
+            char link_log[sizeof ctx->log];
+            memcpy(link_log, ctx->log, sizeof link_log);
+            skgl__fail(ctx, SK_ERR_GL, "%s: caster '%s': %.900s", fn, c->label, link_log);
+        }
         return SK_ERR_GL;
     }
-    v->vp = ctx->gl.GetUniformLocation(v->prog, "u_view_proj");
-    v->model = ctx->gl.GetUniformLocation(v->prog, "u_model");
-    v->texel = ctx->gl.GetUniformLocation(v->prog, "u_texel");
-    v->conservative = ctx->gl.GetUniformLocation(v->prog, "u_conservative");
-    v->eye = ctx->gl.GetUniformLocation(v->prog, "u_eye");
-    v->layer_vp = ctx->gl.GetUniformLocation(v->prog, "u_layer_vp");
-    v->layer_of = ctx->gl.GetUniformLocation(v->prog, "u_layer_of");
-    v->layer_count = ctx->gl.GetUniformLocation(v->prog, "u_layer_count");
+    v->vp = ctx->gl.GetUniformLocation(v->prog, "skgl_view_proj");
+    v->model = ctx->gl.GetUniformLocation(v->prog, "skgl_model");
+    v->texel = ctx->gl.GetUniformLocation(v->prog, "skgl_texel");
+    v->conservative = ctx->gl.GetUniformLocation(v->prog, "skgl_conservative");
+    v->eye = ctx->gl.GetUniformLocation(v->prog, "skgl_eye");
+    v->layer_vp = ctx->gl.GetUniformLocation(v->prog, "skgl_layer_vp");
+    v->layer_of = ctx->gl.GetUniformLocation(v->prog, "skgl_layer_of");
+    v->layer_count = ctx->gl.GetUniformLocation(v->prog, "skgl_layer_count");
     for (k = 0; k < SKGL_CASTER_UNIFORMS; k++)
         v->user[k] = c->names[k] ? ctx->gl.GetUniformLocation(v->prog, c->names[k]) : -1;
     v->serial = ctx->pass_serial - 1u;
@@ -3994,9 +4338,9 @@ static void skgl__caster_free(skgl_context *ctx, skgl_caster *c)
             ctx->gl.DeleteProgram(c->v[k].prog);
             ctx->objects--;
         }
-    SKGL_FREE(c->forward);
-    SKGL_FREE(c->decl_out);
-    SKGL_FREE(c->decl_in);
+    SKGL_FREE(c->gen);
+    SKGL_FREE(c->undef_vertex);
+    SKGL_FREE(c->undef_fragment);
     SKGL_FREE(c->text);
     SKGL_FREE(c);
 }
@@ -4048,9 +4392,9 @@ SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *
     c->varyings = desc->varyings && desc->varyings[0] ? skgl__caster_copy(&p, desc->varyings) : NULL;
     c->label = skgl__caster_copy(&p, desc->label ? desc->label : "caster");
     for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) c->names[k] = skgl__caster_copy(&p, desc->uniforms[k]);
-    if (c->varyings && ((r = skgl__caster_forward(ctx, c->varyings, &c->forward)) != SK_OK ||
-                        (r = skgl__caster_decls(ctx, c->varyings, "out ", &c->decl_out)) != SK_OK ||
-                        (r = skgl__caster_decls(ctx, c->varyings, "in ", &c->decl_in)) != SK_OK)) {
+    if ((c->varyings && (r = skgl__caster_varyings(ctx, c)) != SK_OK) ||
+        (r = skgl__hook_undefs(ctx, c->vertex, &c->undef_vertex)) != SK_OK ||
+        (c->fragment && (r = skgl__hook_undefs(ctx, c->fragment, &c->undef_fragment)) != SK_OK)) {
         skgl__caster_free(ctx, c);
         return r;
     }
@@ -4447,8 +4791,10 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
     /* LSPSM's layers are h_max * nw_max (the defaults set .cascades to it):
        that rule first, so that the message names the fields the caller set */
-    SKGL__RULE(!lspsm || d->lspsm.h_max * d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn, "lspsm.h_max * lspsm.nw_max",
-               d->lspsm.h_max * d->lspsm.nw_max, "at most SKGL_MAX_CASCADES");
+    /* (in double: two large ints' product would overflow) */
+    SKGL__RULE(!lspsm || (double)d->lspsm.h_max * (double)d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn,
+               "lspsm.h_max * lspsm.nw_max", (double)d->lspsm.h_max * (double)d->lspsm.nw_max,
+               "at most SKGL_MAX_CASCADES");
     SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
     SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
     SKGL__TRY(skgl__split_rules(ctx, fn, d));
@@ -8114,12 +8460,12 @@ static void skgl__soft_constants(skgl_context *ctx, skgl__st *st, skgl_soft *s)
         if (s->prog_cons) {
             p = s->prog_cons;
             skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-            s->cons_u_view_proj = gl->GetUniformLocation(p, "u_view_proj");
-            s->cons_u_model = gl->GetUniformLocation(p, "u_model");
+            s->cons_u_view_proj = gl->GetUniformLocation(p, "skgl_view_proj");
+            s->cons_u_model = gl->GetUniformLocation(p, "skgl_model");
             texel[0] = texel[1] = 2.0f / (float)d->lowres;
-            if (gl->GetUniformLocation(p, "u_texel") >= 0)
-                gl->Uniform2fv(gl->GetUniformLocation(p, "u_texel"), 1, texel);
-            skgl__u1i(gl, gl->GetUniformLocation(p, "u_conservative"), !d->disable_conservative);
+            if (gl->GetUniformLocation(p, "skgl_texel") >= 0)
+                gl->Uniform2fv(gl->GetUniformLocation(p, "skgl_texel"), 1, texel);
+            skgl__u1i(gl, gl->GetUniformLocation(p, "skgl_conservative"), !d->disable_conservative);
         } else {
             p = s->prog_dilate;
             skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
@@ -8145,9 +8491,9 @@ static void skgl__soft_constants(skgl_context *ctx, skgl__st *st, skgl_soft *s)
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_acc"), 1);
     }
-    s->gbuf_u_view_proj = gl->GetUniformLocation(s->prog_gbuf, "u_view_proj");
-    s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "u_model");
-    s->gbuf_u_eye = gl->GetUniformLocation(s->prog_gbuf, "u_eye");
+    s->gbuf_u_view_proj = gl->GetUniformLocation(s->prog_gbuf, "skgl_view_proj");
+    s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "skgl_model");
+    s->gbuf_u_eye = gl->GetUniformLocation(s->prog_gbuf, "skgl_eye");
     s->sent_has_normals = s->sent_hard = s->sent_width = -1;
 }
 
@@ -9113,7 +9459,7 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
 #endif
 /* SKGL_EMBEDDED_SHADERS_BEGIN */
 static const char skgl__src_depth_vert[] =
-    "/* Depth-only pass: shadow maps of every technique. u_model is set per\n"
+    "/* Depth-only pass: shadow maps of every technique. skgl_model is set per\n"
     "   object through skgl_set_model(). A caster program (skgl_caster_create)\n"
     "   defines SKGL_CASTER and its own skgl_caster_position(); without one,\n"
     "   attribute 0 is the position. SKGL_LAYERED (layered.geom follows): the\n"
@@ -9122,14 +9468,14 @@ static const char skgl__src_depth_vert[] =
     "layout(location = 0) in vec3 a_position;\n"
     "vec4 skgl_caster_position() { return vec4(a_position, 1.0); }\n"
     "#endif\n"
-    "uniform mat4 u_view_proj;\n"
-    "uniform mat4 u_model;\n"
+    "uniform mat4 skgl_view_proj;\n"
+    "uniform mat4 skgl_model;\n"
     "void main()\n"
     "{\n"
     "#ifdef SKGL_LAYERED\n"
-    "    gl_Position = u_model * skgl_caster_position();   /* layered.geom applies each layer's matrix */\n"
+    "    gl_Position = skgl_model * skgl_caster_position();   /* layered.geom applies each layer's matrix */\n"
     "#else\n"
-    "    gl_Position = u_view_proj * (u_model * skgl_caster_position());\n"
+    "    gl_Position = skgl_view_proj * (skgl_model * skgl_caster_position());\n"
     "#endif\n"
     "}\n"
     ;
@@ -10316,31 +10662,41 @@ static const char skgl__src_soft_cons_geom[] =
     "   own plane, extended; the fragment stage also gets the original edges,\n"
     "   so that it can tell the triangle's own texels from the grown border.\n"
     "   Triangles crossing the light's plane (w <= 0) are passed through\n"
-    "   unchanged. u_conservative = 0: plain rasterisation.\n"
+    "   unchanged. skgl_conservative = 0: plain rasterisation.\n"
     "   A caster program's varyings (SKGL_CASTER_VARYINGS) reach each emitted\n"
-    "   vertex through skgl_caster_varyings(b), b its barycentric weights on the\n"
-    "   original vertices: a grown corner's are extrapolated from its NDC\n"
-    "   position, weighted by 1/w so that the rasteriser's perspective-correct\n"
+    "   vertex through skgl_caster_varyings(b, s, k) (defined after this source,\n"
+    "   its inputs indexed by constants only): s the corner's barycentric weights\n"
+    "   on the original vertices, extrapolated from its NDC position (what a\n"
+    "   noperspective varying interpolates linearly in the window), b the same\n"
+    "   weighted by 1/w so that the rasteriser's perspective-correct\n"
     "   interpolation (the corner is emitted at w = 1 / sum(b / w)) gives the\n"
-    "   values the original triangle would have there. */\n"
+    "   values the original triangle would have there (smooth and centroid\n"
+    "   varyings); k the vertex whose value a flat varying takes: the grown\n"
+    "   triangle's three corners all take the last vertex's, GL's default\n"
+    "   provoking vertex (the only one in GLSL ES), a triangle passed through\n"
+    "   keeps each vertex's own. */\n"
     "layout(triangles) in;\n"
     "layout(triangle_strip, max_vertices = 3) out;\n"
-    "uniform vec2 u_texel;             /* 2 / resolution: one texel in NDC */\n"
-    "uniform int u_conservative;\n"
-    "flat out vec4 g_box;              /* window-space box of the fragments kept */\n"
-    "flat out vec3 g_edge[3];          /* the original edges in window space: inside when dot(xy, e) <= z */\n"
+    "uniform vec2 skgl_texel;          /* 2 / resolution: one texel in NDC */\n"
+    "uniform int skgl_conservative;\n"
+    "flat out vec4 skgl_box;           /* window-space box of the fragments kept */\n"
+    "flat out vec3 skgl_edge[3];       /* the original edges in window space: inside when dot(xy, e) <= z */\n"
+    "#ifdef SKGL_CASTER_VARYINGS\n"
+    "void skgl_caster_varyings(vec3 b, vec3 s, int k);\n"
+    "#endif\n"
     "void main()\n"
     "{\n"
     "    vec4 c0 = gl_in[0].gl_Position, c1 = gl_in[1].gl_Position, c2 = gl_in[2].gl_Position;\n"
     "    /* outputs are undefined after EmitVertex: every vertex sets them all */\n"
     "    vec4 box = vec4(-1e30, -1e30, 1e30, 1e30);\n"
     "    vec3 edge[3] = vec3[3](vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0));\n"
-    "    if (u_conservative == 0 || min(c0.w, min(c1.w, c2.w)) <= 1e-6) {\n"
+    "    if (skgl_conservative == 0 || min(c0.w, min(c1.w, c2.w)) <= 1e-6) {\n"
     "        for (int i = 0; i < 3; i++) {\n"
-    "            g_box = box;\n"
-    "            g_edge = edge;\n"
+    "            skgl_box = box;\n"
+    "            skgl_edge = edge;\n"
     "#ifdef SKGL_CASTER_VARYINGS\n"
-    "            skgl_caster_varyings(vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0));\n"
+    "            vec3 u = vec3(i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0);\n"
+    "            skgl_caster_varyings(u, u, i);\n"
     "#endif\n"
     "            gl_Position = gl_in[i].gl_Position;\n"
     "            EmitVertex();\n"
@@ -10353,14 +10709,14 @@ static const char skgl__src_soft_cons_geom[] =
     "    if (area == 0.0) return;\n"
     "    bool swapped = area < 0.0;\n"
     "    if (swapped) { vec3 t = p[1]; p[1] = p[2]; p[2] = t; area = -area; }\n"
-    "    vec2 h = 0.5 * u_texel;\n"
+    "    vec2 h = 0.5 * skgl_texel;\n"
     "    /* depth plane z = A x + B y + C through the three vertices */\n"
     "    vec2 e1 = p[1].xy - p[0].xy, e2 = p[2].xy - p[0].xy;\n"
     "    float dz1 = p[1].z - p[0].z, dz2 = p[2].z - p[0].z;\n"
     "    float A = (dz1 * e2.y - dz2 * e1.y) / area, B = (e1.x * dz2 - e2.x * dz1) / area;\n"
     "    /* offset edge lines n.x = d, n the outward normal of edge i -> i+1 */\n"
     "    vec2 n[3]; float dist[3];\n"
-    "    vec2 vp = 1.0 / u_texel;      /* NDC -> window: (x + 1) * res / 2 */\n"
+    "    vec2 vp = 1.0 / skgl_texel;   /* NDC -> window: (x + 1) * res / 2 */\n"
     "    for (int i = 0; i < 3; i++) {\n"
     "        vec2 e = p[(i + 1) % 3].xy - p[i].xy;\n"
     "        n[i] = vec2(e.y, -e.x);\n"
@@ -10379,8 +10735,8 @@ static const char skgl__src_soft_cons_geom[] =
     "                     : p[i].xy + normalize(n[i]) * length(h);\n"
     "        q = clamp(q, lo - 2.0 * (hi - lo), hi + 2.0 * (hi - lo));\n"
     "        float z = p[0].z + A * (q.x - p[0].x) + B * (q.y - p[0].y);\n"
-    "        g_box = box;\n"
-    "        g_edge = edge;\n"
+    "        skgl_box = box;\n"
+    "        skgl_edge = edge;\n"
     "#ifdef SKGL_CASTER_VARYINGS\n"
     "        vec2 d0 = q - p[0].xy, d1 = p[1].xy - p[0].xy, d2 = p[2].xy - p[0].xy;\n"
     "        vec3 b = vec3(0.0, (d0.x * d2.y - d0.y * d2.x) / area, (d1.x * d0.y - d1.y * d0.x) / area);\n"
@@ -10389,7 +10745,7 @@ static const char skgl__src_soft_cons_geom[] =
     "        vec3 bw = b / vec3(c0.w, c1.w, c2.w);\n"
     "        float s = bw.x + bw.y + bw.z;\n"
     "        float W = s > 1e-20 ? 1.0 / s : 1.0;\n"
-    "        skgl_caster_varyings(s > 1e-20 ? bw * W : b);\n"
+    "        skgl_caster_varyings(s > 1e-20 ? bw * W : b, b, 2);\n"
     "        gl_Position = vec4(q * W, z * W, W);\n"
     "#else\n"
     "        gl_Position = vec4(q, z, 1.0);\n"
@@ -10401,28 +10757,30 @@ static const char skgl__src_soft_cons_geom[] =
     ;
 static const char skgl__src_soft_cons_frag[] =
     "/* PVSM step 2: window depth into two R32F targets, both MIN-blended (no\n"
-    "   depth test): o_cons every texel the grown triangle touches (level 0 of\n"
-    "   the blocker-search pyramid), o_true only texels whose centre the\n"
+    "   depth test): skgl_cons every texel the grown triangle touches (level 0 of\n"
+    "   the blocker-search pyramid), skgl_true only texels whose centre the\n"
     "   original triangle covers (the plain map, for the average blocker\n"
     "   depth); overfill outside the grown bounding box discarded. A caster\n"
-    "   program's fragment hook may discard first (an alpha test). */\n"
-    "flat in vec4 g_box;\n"
-    "flat in vec3 g_edge[3];\n"
-    "layout(location = 0) out vec4 o_cons;\n"
-    "layout(location = 1) out vec4 o_true;\n"
-    "layout(location = 2) out vec4 o_cons_copy;   /* skgl_soft's low_copy[0], where it has one */\n"
+    "   program's fragment hook may discard first (an alpha test); every name\n"
+    "   declared here starts with skgl_, reserved in the hooks. */\n"
+    "flat in vec4 skgl_box;\n"
+    "flat in vec3 skgl_edge[3];\n"
+    "layout(location = 0) out vec4 skgl_cons;\n"
+    "layout(location = 1) out vec4 skgl_true;\n"
+    "layout(location = 2) out vec4 skgl_cons_copy;   /* skgl_soft's low_copy[0], where it has one */\n"
     "void main()\n"
     "{\n"
     "#ifdef SKGL_CASTER_FRAGMENT\n"
     "    skgl_caster_fragment();\n"
     "#endif\n"
-    "    vec2 p = gl_FragCoord.xy;\n"
-    "    if (any(lessThan(p, g_box.xy)) || any(greaterThan(p, g_box.zw))) discard;\n"
-    "    bool inside = dot(p, g_edge[0].xy) <= g_edge[0].z && dot(p, g_edge[1].xy) <= g_edge[1].z &&\n"
-    "                  dot(p, g_edge[2].xy) <= g_edge[2].z;\n"
-    "    o_cons = vec4(gl_FragCoord.z);\n"
-    "    o_true = vec4(inside ? gl_FragCoord.z : 1.0);\n"
-    "    o_cons_copy = o_cons;\n"
+    "    vec2 skgl_p = gl_FragCoord.xy;\n"
+    "    if (any(lessThan(skgl_p, skgl_box.xy)) || any(greaterThan(skgl_p, skgl_box.zw))) discard;\n"
+    "    bool skgl_inside = dot(skgl_p, skgl_edge[0].xy) <= skgl_edge[0].z &&\n"
+    "                       dot(skgl_p, skgl_edge[1].xy) <= skgl_edge[1].z &&\n"
+    "                       dot(skgl_p, skgl_edge[2].xy) <= skgl_edge[2].z;\n"
+    "    skgl_cons = vec4(gl_FragCoord.z);\n"
+    "    skgl_true = vec4(skgl_inside ? gl_FragCoord.z : 1.0);\n"
+    "    skgl_cons_copy = skgl_cons;\n"
     "}\n"
     ;
 static const char skgl__src_soft_gbuffer_vert[] =
@@ -10433,30 +10791,30 @@ static const char skgl__src_soft_gbuffer_vert[] =
     "layout(location = 0) in vec3 a_position;\n"
     "vec4 skgl_caster_position() { return vec4(a_position, 1.0); }\n"
     "#endif\n"
-    "uniform mat4 u_view_proj;\n"
-    "uniform mat4 u_model;\n"
-    "out vec3 v_world;\n"
+    "uniform mat4 skgl_view_proj;\n"
+    "uniform mat4 skgl_model;\n"
+    "out vec3 skgl_world;\n"
     "void main()\n"
     "{\n"
-    "    vec4 w = u_model * skgl_caster_position();\n"
-    "    v_world = w.xyz / w.w;\n"
-    "    gl_Position = u_view_proj * w;\n"
+    "    vec4 skgl_w = skgl_model * skgl_caster_position();\n"
+    "    skgl_world = skgl_w.xyz / skgl_w.w;\n"
+    "    gl_Position = skgl_view_proj * skgl_w;\n"
     "}\n"
     ;
 static const char skgl__src_soft_gbuffer_frag[] =
     "/* Flat world normals from the screen derivatives, turned to the camera. */\n"
-    "in vec3 v_world;\n"
-    "out vec4 o_normal;\n"
-    "uniform vec3 u_eye;\n"
+    "in vec3 skgl_world;\n"
+    "out vec4 skgl_normal;\n"
+    "uniform vec3 skgl_eye;\n"
     "void main()\n"
     "{\n"
     "#ifdef SKGL_CASTER_FRAGMENT\n"
     "    skgl_caster_fragment();\n"
     "#endif\n"
-    "    vec3 n = cross(dFdx(v_world), dFdy(v_world));\n"
-    "    n = dot(n, n) > 0.0 ? normalize(n) : vec3(0.0, 1.0, 0.0);\n"
-    "    if (dot(n, u_eye - v_world) < 0.0) n = -n;\n"
-    "    o_normal = vec4(n, 1.0);\n"
+    "    vec3 skgl_n = cross(dFdx(skgl_world), dFdy(skgl_world));\n"
+    "    skgl_n = dot(skgl_n, skgl_n) > 0.0 ? normalize(skgl_n) : vec3(0.0, 1.0, 0.0);\n"
+    "    if (dot(skgl_n, skgl_eye - skgl_world) < 0.0) skgl_n = -skgl_n;\n"
+    "    skgl_normal = vec4(skgl_n, 1.0);\n"
     "}\n"
     ;
 static const char skgl__src_pcss_mask_frag[] =
@@ -10520,14 +10878,16 @@ static const char skgl__src_pcss_mask_frag[] =
 static const char skgl__src_layered_geom[] =
     "/* Layered single-pass caster rendering: every triangle arrives in world\n"
     "   space (relative to the light's origin: depth.vert with SKGL_LAYERED) and\n"
-    "   goes to each of the u_layer_count layers through that layer's\n"
-    "   view-projection, into layer u_layer_of[i] of the layered depth target\n"
+    "   goes to each of the skgl_layer_count layers through that layer's\n"
+    "   view-projection, into layer skgl_layer_of[i] of the layered depth target\n"
     "   (gl_Layer: a cascade of the array texture, a face of the cube map). A\n"
     "   triangle wholly outside one of a layer's clip planes skips that layer.\n"
     "   With SKGL_GS_INVOCATIONS (GL_ARB_gpu_shader5) one invocation per layer;\n"
     "   otherwise one invocation loops over the layers. A caster program's\n"
-    "   varyings (SKGL_CASTER_VARYINGS) go through skgl_caster_varyings(b), b the\n"
-    "   vertex's unit weight. */\n"
+    "   varyings (SKGL_CASTER_VARYINGS) go through skgl_caster_varyings(b, s, k)\n"
+    "   (defined after this source, its inputs indexed by constants only), b = s\n"
+    "   the vertex's unit weight, k the vertex: each vertex keeps its own values,\n"
+    "   a flat one included (the provoking vertex is the same either way). */\n"
     "#ifdef SKGL_GS_INVOCATIONS\n"
     "layout(triangles, invocations = 8) in;\n"
     "layout(triangle_strip, max_vertices = 3) out;\n"
@@ -10535,23 +10895,27 @@ static const char skgl__src_layered_geom[] =
     "layout(triangles) in;\n"
     "layout(triangle_strip, max_vertices = 24) out;\n"
     "#endif\n"
-    "uniform mat4 u_layer_vp[8];\n"
-    "uniform int u_layer_of[8];\n"
-    "uniform int u_layer_count;\n"
+    "uniform mat4 skgl_layer_vp[8];\n"
+    "uniform int skgl_layer_of[8];\n"
+    "uniform int skgl_layer_count;\n"
+    "#ifdef SKGL_CASTER_VARYINGS\n"
+    "void skgl_caster_varyings(vec3 b, vec3 s, int k);\n"
+    "#endif\n"
     "\n"
     "void skgl_layer(int i)\n"
     "{\n"
     "    vec4 c[3];\n"
-    "    for (int k = 0; k < 3; k++) c[k] = u_layer_vp[i] * gl_in[k].gl_Position;\n"
+    "    for (int k = 0; k < 3; k++) c[k] = skgl_layer_vp[i] * gl_in[k].gl_Position;\n"
     "    for (int a = 0; a < 3; a++) {\n"
     "        if (c[0][a] < -c[0].w && c[1][a] < -c[1].w && c[2][a] < -c[2].w) return;\n"
     "        if (c[0][a] > c[0].w && c[1][a] > c[1].w && c[2][a] > c[2].w) return;\n"
     "    }\n"
     "    for (int k = 0; k < 3; k++) {\n"
     "#ifdef SKGL_CASTER_VARYINGS\n"
-    "        skgl_caster_varyings(vec3(k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0));\n"
+    "        vec3 u = vec3(k == 0 ? 1.0 : 0.0, k == 1 ? 1.0 : 0.0, k == 2 ? 1.0 : 0.0);\n"
+    "        skgl_caster_varyings(u, u, k);\n"
     "#endif\n"
-    "        gl_Layer = u_layer_of[i];\n"
+    "        gl_Layer = skgl_layer_of[i];\n"
     "        gl_Position = c[k];\n"
     "        EmitVertex();\n"
     "    }\n"
@@ -10561,9 +10925,9 @@ static const char skgl__src_layered_geom[] =
     "void main()\n"
     "{\n"
     "#ifdef SKGL_GS_INVOCATIONS\n"
-    "    if (gl_InvocationID < u_layer_count) skgl_layer(gl_InvocationID);\n"
+    "    if (gl_InvocationID < skgl_layer_count) skgl_layer(gl_InvocationID);\n"
     "#else\n"
-    "    for (int i = 0; i < u_layer_count; i++) skgl_layer(i);\n"
+    "    for (int i = 0; i < skgl_layer_count; i++) skgl_layer(i);\n"
     "#endif\n"
     "}\n"
     ;

@@ -5,12 +5,12 @@
 layout(location = 0) in vec3 a_position;
 vec4 skgl_caster_position() { return vec4(a_position, 1.0); }
 #endif
-uniform mat4 u_view_proj;
-uniform mat4 u_model;
-out vec3 v_world;
+uniform mat4 skgl_view_proj;
+uniform mat4 skgl_model;
+out vec3 skgl_world;
 void main()
 {
-    vec4 w = u_model * skgl_caster_position();
-    v_world = w.xyz / w.w;
-    gl_Position = u_view_proj * w;
+    vec4 skgl_w = skgl_model * skgl_caster_position();
+    skgl_world = skgl_w.xyz / skgl_w.w;
+    gl_Position = skgl_view_proj * skgl_w;
 }

@@ -25,6 +25,7 @@ static create_shader_fn g_create;
 static shader_source_fn g_source;
 static const char *g_dir, *g_dialect;
 static int g_count;
+static int g_quiet;   /* 1: a shader meant to fail, not written out */
 static unsigned g_type[65536];
 
 static unsigned w_create_shader(unsigned type)
@@ -40,6 +41,10 @@ static void w_shader_source(unsigned sh, int n, const char *const *src, const in
     unsigned type = sh < 65536 ? g_type[sh] : 0;
     FILE *f;
     int i;
+    if (g_quiet) {
+        g_source(sh, n, src, len);
+        return;
+    }
     snprintf(path, sizeof path, "%s/%s-%03d.%s", g_dir, g_dialect, g_count++,
              type == 0x8B31 ? "vert" : type == 0x8DD9 ? "geom" : "frag");
     f = fopen(path, "w");
@@ -65,13 +70,34 @@ static void *w_getproc(const char *name)
     return p;
 }
 
-/* a caster program of the kind engines write: its own attribute, a
-   varying (declared by shadowkit from desc.varyings), an alpha test */
+/* a caster program of the kind engines write: its own attribute,
+   varyings of every qualifier the dialect has (declared by shadowkit from
+   desc.varyings, comments and directives among them), an alpha test */
 static const char caster_vs[] =
     "layout(location = 0) in vec3 a_pos;\n"
-    "vec4 skgl_caster_position() { uv = a_pos.xz; return vec4(a_pos, 1.0); }\n";
+    "vec4 skgl_caster_position()\n"
+    "{\n"
+    "    uv = a_pos.xz; id = gl_VertexID; c = a_pos.y; sm = a_pos.x;\n"
+    "#ifndef GL_ES\n"
+    "    np = a_pos.z;\n"
+    "#endif\n"
+    "    return vec4(a_pos, 1.0);\n"
+    "}\n";
 static const char caster_fs[] =
-    "void skgl_caster_fragment() { if (fract(uv.x * 0.5) > 0.99) discard; }\n";
+    "void skgl_caster_fragment()\n"
+    "{\n"
+    "    float np_or_0 = 0.0;\n"
+    "#ifndef GL_ES\n"
+    "    np_or_0 = np;\n"
+    "#endif\n"
+    "    if (fract(uv.x * 0.5) > 0.99 || id < 0 || c + sm + np_or_0 > 1e9) discard;\n"
+    "}\n";
+static const char caster_varyings[] =
+    "vec2 uv;   // the alpha test's; a comment with ;\n"
+    "flat highp int id; /* ; */ centroid float c; smooth float sm;\n"
+    "#ifndef GL_ES\n"
+    "noperspective float np;\n"
+    "#endif\n";
 
 static skgl_caster *g_caster;
 static void caster_draw(void *user, const skgl_draw_info *info)
@@ -100,11 +126,27 @@ static int caster_passes(esx_run *r)
     memset(&cd, 0, sizeof cd);
     cd.vertex = caster_vs;
     cd.fragment = caster_fs;
-    cd.varyings = "vec2 uv;";
+    cd.varyings = caster_varyings;
     cd.label = "dump";
     if (skgl_caster_create(r->sk, &cd, &g_caster) != SK_OK) {
         fprintf(stderr, "glsl_dump %s: caster: %s\n", g_dialect, skgl_error_log(r->sk));
         return -1;
+    }
+    if (strncmp(g_dialect, "es", 2) == 0) {
+        /* GLSL ES has no noperspective: the compiler refuses it at create,
+           at desc.varyings' line 2 (20002) */
+        skgl_caster *np = NULL;
+        skgl_caster_desc nd = cd;
+        sk_result nr;
+        nd.varyings = "vec2 uv; flat int id; centroid float c; smooth float sm;\nnoperspective float np;";
+        g_quiet = 1;
+        nr = skgl_caster_create(r->sk, &nd, &np);
+        g_quiet = 0;
+        if (nr != SK_ERR_GL || !strstr(skgl_error_log(r->sk), "20002")) {
+            fprintf(stderr, "glsl_dump %s: noperspective not refused: %s\n", g_dialect, skgl_error_log(r->sk));
+            skgl_caster_destroy(r->sk, np);
+            bad = 1;
+        }
     }
     sc.draw = caster_draw;
     sc.user = r;

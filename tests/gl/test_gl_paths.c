@@ -1716,7 +1716,7 @@ static void test_set_model(void) {
     SK_CHECK(skgl_shadow_create(sk, &d, &s) == SK_OK);
     if (s) SK_CHECK(skgl_shadow_render(sk, s, &cam, &sc, light_dir()) == SK_OK);
     skgl_shadow_destroy(sk, s);
-    model_loc = depth_program ? e.gl.GetUniformLocation(depth_program, "u_model") : -1;
+    model_loc = depth_program ? e.gl.GetUniformLocation(depth_program, "skgl_model") : -1;
     SK_CHECK_MSG(model_loc >= 0, "u_model at %d", model_loc);
     {
         const char *vs[1], *fs[1];
