@@ -92,8 +92,10 @@
      added here (y = the model's lowest point, 3x its horizontal extent) so
      that its shadows have a receiver. When the folder is missing only the
      procedural scenes run, and stderr says so. Procedural (testbed):
-     ground-boxes, fence, terrace. One directional light per scene; and the
-     "room" with a point light for the omnidirectional methods (see
+     ground-boxes, fence, terrace, and open-world (2 km, a camera at
+     head height, far plane 1000 m: the regime of cascades, warps and
+     virtual maps; its own views, see make_open_world_views). One
+     directional light per scene; and the "room" with a point light for the omnidirectional methods (see
      point_bench: cube-naive, cube, vsdct).
 
    Views (3, derived from the bounds of the non-ground objects, so they work
@@ -480,6 +482,25 @@ static void finish_view(bench_view *v, const sk_aabb *all) {
     v->cam.view = sk_mat4_look_at(v->eye, v->target, v3(0, 1, 0));
     v->cam.proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, v->zn, v->zf);
     v->view_proj = sk_mat4_mul(v->cam.proj, v->cam.view);
+}
+
+/* The open world's first three head-height views (tb_open_world_view):
+   near 0.5 m, far 1000 m, the regime cascades, warps and virtual maps are
+   made for; its sun (the scene's light_dir) is 20 degrees up behind view
+   0, across view 1 and nearly against view 2. */
+static void make_open_world_views(bench_view *v) {
+    static const char *names[3] = {"head", "street", "square"};
+    int i;
+    memset(v, 0, 3 * sizeof *v);
+    for (i = 0; i < 3; i++) {
+        snprintf(v[i].name, sizeof v[i].name, "%s", names[i]);
+        tb_open_world_view(i, &v[i].eye, &v[i].target);
+        v[i].zn = 0.5f;
+        v[i].zf = 1000.0f;
+        v[i].cam.view = sk_mat4_look_at(v[i].eye, v[i].target, v3(0, 1, 0));
+        v[i].cam.proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, v[i].zn, v[i].zf);
+        v[i].view_proj = sk_mat4_mul(v[i].cam.proj, v[i].cam.view);
+    }
 }
 
 /* direction from azimuth (about +y, 0 = +z) and elevation, in radians */
@@ -1846,7 +1867,7 @@ int main(int argc, char **argv) {
         static const char *shared_names[3] = {"stanford-bunny", "sponza-ivy", "sponza-curtains"};
         static const char *shared_files[3] = {"stanford-bunny.obj", "sponza-ivy/sponza_ivy.gltf",
                                               "sponza-curtains/sponza_curtains.gltf"};
-        static const char *proc[3] = {"ground-boxes", "fence", "terrace"};
+        static const char *proc[4] = {"ground-boxes", "fence", "terrace", "open-world"};
         if (dir_exists(o.scenes_dir)) {
             shared = 1;
             for (i = 0; i < 3; i++) {
@@ -1868,11 +1889,12 @@ int main(int argc, char **argv) {
                     " --scenes DIR points elsewhere\n",
                     o.scenes_dir);
         }
-        for (i = 0; i < 3; i++) {
+        for (i = 0; i < 4; i++) {
             bench_scene_def *d = &defs[ndefs];
             memset(d, 0, sizeof *d);
             snprintf(d->name, sizeof d->name, "%s", proc[i]);
             d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
+            if (i == 3) tb_open_world_sun(0, 2, &d->light_dir);
             if (scene_selected(&o, d->name)) ndefs++;
         }
         if (o.soft_only) ndefs = 0;
@@ -2004,7 +2026,8 @@ int main(int argc, char **argv) {
             pg.total_units -= (long)o.views * g_ncfg * o.repeat;
             continue;
         }
-        make_views(&s, views);
+        if (strcmp(def->name, "open-world") == 0) make_open_world_views(views);
+        else make_views(&s, views);
         for (v = 0; v < o.views; v++) {
             vd[v].v = views[v];
             if (prepare_view(&B, &s, &mesh, ref, def->light_dir, NULL, &vd[v], depth, rgba, nrm) != 0) {

@@ -39,12 +39,17 @@
 static const double band_edge[BANDS + 1] = {0, 10, 50, 200, 1e30};
 static const char *band_name[BANDS] = {"0-10", "10-50", "50-200", "200+"};
 
+/* pixels one shadow texel covers, counted over the frames (see
+   footprint_add): shares above 1, 2 and 4 pixels */
+typedef struct footprint { double over[3], counted; } footprint;
+
 /* pooled counts: wrong and reference-shadow pixels, overall and per band */
 typedef struct pool {
     double wrong, shadow, false_light;
     double band_wrong[BANDS], band_shadow[BANDS];
     double texels;
     int frames, failed;
+    footprint fp;             /* single maps and cascades only (fp.counted 0 otherwise) */
 } pool;
 
 static double pool_pct(double wrong, double shadow) { return shadow > 0 ? 100.0 * wrong / shadow : 0.0; }
@@ -138,7 +143,74 @@ static void print_pool(const char *name, const pool *p) {
     printf("  %-20s %6.2f%%  (false light %6.2f%%)  bands", name, pool_pct(p->wrong, p->shadow),
            pool_pct(p->false_light, p->shadow));
     for (b = 0; b < BANDS; b++) printf("  %s %6.2f", band_name[b], pool_pct(p->band_wrong[b], p->band_shadow[b]));
-    printf("  texels %.1fM%s\n", p->texels / (double)(p->frames ? p->frames : 1) / 1e6, p->failed ? "  FAILED" : "");
+    printf("  texels %.1fM", p->texels / (double)(p->frames ? p->frames : 1) / 1e6);
+    if (p->fp.counted > 0)
+        printf("  texel > 1/2/4 px %5.1f%% %5.1f%% %5.1f%%", 100.0 * p->fp.over[0] / p->fp.counted,
+               100.0 * p->fp.over[1] / p->fp.counted, 100.0 * p->fp.over[2] / p->fp.counted);
+    printf("%s\n", p->failed ? "  FAILED" : "");
+}
+
+/* ---- the limit: how many pixels one shadow texel covers (Ferko 2013) --
+   Per covered pixel whose right and upper neighbours lie on the same
+   surface (normals within 1 degree, view depths within 2%): J, the change of
+   the map's texel coordinates from one pixel to the next, from the three
+   world points through the layer's matrix (the layer the mask would pick:
+   by view depth for cascades). A texel spans 1 / s pixels along the
+   direction where J's smallest singular value s is taken: more than 1 is
+   magnification, a staircase the view can see. Counted into shares of
+   more than 1, 2 and 4 pixels. Single maps and cascades only (LSPSM's
+   partitions and RMSM's pages choose per point on the GPU). */
+
+static int layer_of(const skgl_shadow_frame_stats *st, double depth) {
+    int i;
+    for (i = 0; i < st->maps; i++)
+        if (depth < st->splits[i + 1]) return i;
+    return st->maps - 1;
+}
+
+static void texel_x_y(const sk_mat4 *m, const double p[3], double sx, double sy, double *x, double *y) {
+    sk_vec4 h, c;
+    h.x = (float)p[0]; h.y = (float)p[1]; h.z = (float)p[2]; h.w = 1.0f;
+    c = sk_mat4_transform_vec4(*m, h);
+    *x = (c.x / c.w * 0.5 + 0.5) * sx;
+    *y = (c.y / c.w * 0.5 + 0.5) * sy;
+}
+
+static void footprint_add(footprint *fp, const gt_env *e, const skgl_shadow *s, const float *ref) {
+    const skgl_shadow_frame_stats *st = skgl_shadow_stats(s);
+    double sx = st->map_width > 0 ? st->map_width : st->resolution;
+    double sy = st->map_height > 0 ? st->map_height : st->resolution;
+    int x, y;
+    for (y = 0; y + 1 < e->h; y++)
+        for (x = 0; x + 1 < e->w; x++) {
+            size_t i = (size_t)y * e->w + x, ix = i + 1, iy = i + (size_t)e->w;
+            double p[3], px[3], py[3], d = gt_view_depth(e, i), tx, ty, ax, ay, bx, by;
+            double a, b, c, tr, det, smax, smin, over;
+            const float *n = e->normals;
+            sk_mat4 m;
+            int k;
+            if (ref[i] < 0 || gt_world(e, i, p) || gt_world(e, ix, px) || gt_world(e, iy, py)) continue;
+            if (fabs(gt_view_depth(e, ix) - d) > 0.02 * d || fabs(gt_view_depth(e, iy) - d) > 0.02 * d) continue;
+            if (n[3 * i] * n[3 * ix] + n[3 * i + 1] * n[3 * ix + 1] + n[3 * i + 2] * n[3 * ix + 2] < 0.99985 ||
+                n[3 * i] * n[3 * iy] + n[3 * i + 1] * n[3 * iy + 1] + n[3 * i + 2] * n[3 * iy + 2] < 0.99985)
+                continue;
+            m = skgl_shadow_matrix(s, layer_of(st, d));
+            texel_x_y(&m, p, sx, sy, &tx, &ty);
+            texel_x_y(&m, px, sx, sy, &ax, &ay);
+            texel_x_y(&m, py, sx, sy, &bx, &by);
+            ax -= tx; ay -= ty; bx -= tx; by -= ty;
+            /* singular values of [a b; c d]: smax smin = |det|, smax^2 + smin^2 = trace of J^T J */
+            a = ax * ax + ay * ay;
+            b = bx * bx + by * by;
+            c = ax * by - ay * bx;
+            tr = a + b;
+            det = fabs(c);
+            smax = sqrt(0.5 * (tr + sqrt(fmax(tr * tr - 4.0 * det * det, 0.0))));
+            smin = smax > 0.0 ? det / smax : 0.0;
+            over = smin > 0.0 ? 1.0 / smin : 1e30;
+            fp->counted += 1;
+            for (k = 0; k < 3; k++) fp->over[k] += over > (double)(1 << k);
+        }
 }
 
 /* method indices the checks name */
@@ -163,6 +235,10 @@ static int verbose(void) {
      ferko max 4096      3.63   2.81  6.12  3.54  2.41  16.8M
      rmsm 16384          2.65   1.94  4.02  7.90  9.97   2.3M
      rmsm 65536          1.38   0.62  2.73  7.53  9.97   5.2M
+   The limit, the share of pixels one texel spans more than 1 / 2 / 4
+   times: standard 2048 98.2 94.7 86.9%, 4096 94.7 86.9 70.1, PSSM 81.3
+   68.7 65.9, PSSM stable 89.0 72.2 67.7, LiSPSM 77.2 37.3 13.5, PSM 70.8
+   44.4 25.4, FERKO 84.8 73.8 66.9.
    PSM before its casters became the hull of what can shadow the view
    (skgl__caster_hull; the whole scene box before): 10.22% pooled (0.86x
    standard 2048's; 7.21 18.13 19.64 5.91 by band), the virtual camera
@@ -219,6 +295,7 @@ static void test_open_world(void) {
                 pool_add(&pools[k], &e, ref, res);
                 pool_add(&one, &e, ref, res);
                 pools[k].texels += st->texels;
+                if (k != M_LSPSM && k != M_RMSM && k != M_RMSM64K) footprint_add(&pools[k].fp, &e, sh[k], ref);
                 frame_err[k][f] = pool_pct(one.wrong, one.shadow);
                 if (getenv("SK_GL_TEST_IMAGES")) {
                     char nm[96];
@@ -264,6 +341,16 @@ static void test_open_world(void) {
         SK_CHECK_MSG(rmsm <= 0.3 * std, "RMSM pooled %.2f%% against standard 2048's %.2f%%", rmsm, std);
         SK_CHECK_MSG(rmsm_mid <= 11.0, "RMSM 50-200 m %.2f%%", rmsm_mid);
         SK_CHECK_MSG(rmsm64 <= 0.7 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
+        /* the warps and cascades spend texels where the view needs them:
+           a texel over 2 px on 68.7% (PSSM), 37.3% (LiSPSM) and 44.4%
+           (PSM) of the pixels, against 94.7% for standard 2048 */
+        for (k = M_PSSM; k <= M_PSM; k++) {
+            double share = pools[k].fp.counted > 0 ? pools[k].fp.over[1] / pools[k].fp.counted : 1.0;
+            double base = pools[M_STD2048].fp.over[1] / pools[M_STD2048].fp.counted;
+            if (k == M_PSSM_STABLE) continue;
+            SK_CHECK_MSG(share < 0.8 * base, "%s: texel over 2 px on %.1f%% of the pixels (standard 2048 %.1f%%)",
+                         methods[k].name, 100.0 * share, 100.0 * base);
+        }
         /* the slide from the casters that can shadow the view: at most the
            scene's 40 m over tan 8 degrees (285 m) and the body's extent
            behind the camera; measured 295.8 m (1273 m with the scene box) */
