@@ -156,7 +156,14 @@
           itself: each cached layer keeps the matrix it was drawn with and
           is drawn whole when the new one differs. A stable crop (.stable
           = 1) that follows the camera by whole texels is scrolled: the
-          overlap copied, only the strips it exposes drawn.
+          overlap copied, only the strips it exposes drawn. The
+          comparison is with the matrix the layer was drawn with, not
+          last frame's: a change too small to see in one frame (a sun
+          turning 5e-7 rad a frame, a camera creeping under a focused
+          crop) is allowed to add up to 1e-3 texel (1e-6 in depth), then
+          the layer is drawn again. A kept layer's strips, regions and
+          dynamic casters are drawn with its own matrix, so it stays one
+          map; the lookup uses this frame's.
 
          skgl_scene scene = {draw_static, me, bounds};
          skgl_dynamic movers = {draw_movers, me, movers_box};
@@ -179,7 +186,11 @@
      only the dynamic ones by the view. RMSM keeps pages: its virtual
      map's texel grid is fixed in light space (the scene's bounds and the
      light alone place it, not the camera), so a page keeps its depth from
-     frame to frame. A page stays in its pool slot while it is requested
+     frame to frame. Every page is drawn at the same place of a one-page
+     target and copied into its pool slot (the rasterizer's depth depends
+     in its last bits on the window position), so a page holds the same
+     depth in any slot: cached and uncached pages are equal bit for bit.
+     A page stays in its pool slot while it is requested
      and after, until a new page needs the slot (least recently used
      first); only pages that came into view, or that an invalidated box or
      a new light emptied, are drawn (stats pages_rendered, pages_reused,
@@ -202,13 +213,21 @@
      GPU memory only for the static copy of the pool, made when dynamic
      casters first come: over the budget there is none, and the pages
      they touch are drawn whole each frame instead. Misuse is
-     caught with .verify_cache = 1 (desktop GL, a debugging aid: every
-     cached layer is also drawn uncached and both read back, a stall): a
-     render whose cached map differs from the uncached one in more than
-     1e-5 of a layer's texels (a stable scroll's float rounding may move a
-     few) fails with SK_ERR_INVALID_ARG, the log naming the layer and the
-     likely cause (a caster scene.draw draws moved without an
-     invalidation); stats.cache_verify_texels counts them.
+     caught with .verify_cache = 1 (skgl_shadow_desc and skgl_point_desc;
+     desktop GL, a debugging aid: every cached layer, RMSM page or point
+     face the frame uses is also drawn uncached, with the matrix the cached
+     one stands for, and both read back, a stall). Texels whose depths
+     differ by up to 1e-5 are equal (a scrolled overlap's rounding, up to
+     2.8e-6 measured); a differing texel with no differing neighbour is an
+     edge a scroll's float rounding moved across a texel centre, accepted;
+     differing texels side by side are a change the cache was not told of:
+     more than 1e-5 of a layer's (face's, the pages') texels so fail the
+     render with SK_ERR_INVALID_ARG, the log naming the layer (face, page),
+     what the cache did with it this frame (drawn whole, scrolled by how
+     many texels, reused), how far the depths differ, the texels side by
+     side and alone, and the likely cause (a caster scene.draw draws moved
+     without an invalidation); stats.cache_verify_texels counts the texels
+     side by side.
 
    TECHNIQUES (skgl_shadow_desc.technique)
      SKGL_STANDARD  one focused map: the view frustum clipped to the scene
@@ -784,9 +803,9 @@ typedef struct skgl_shadow_desc {
                                      drawn every frame (RMSM: the static copy of the pool
                                      under dynamic casters, or none) [0: no limit] */
     int verify_cache;             /* .cache, desktop GL: also render every cached layer
-                                     uncached, read both back (a CPU-GPU stall: for
-                                     debugging) and fail the render when they differ
-                                     (CACHED MAPS) [0] */
+                                     (RMSM: page) uncached, read both back (a CPU-GPU stall:
+                                     for debugging) and fail the render when they differ
+                                     beyond float rounding (CACHED MAPS) [0] */
     float max_distance;           /* shadows end at this view depth [camera far] */
     sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
                                      the paper's zeta 0.25, sigma 0.5, h_max 4,
@@ -882,7 +901,8 @@ typedef struct skgl_shadow_frame_stats {
     double cache_bytes;
     int cache_layers;
     int cache_verify_texels;              /* .verify_cache: texels of the last render that differ
-                                             from the uncached map (-1: not verified) */
+                                             from the uncached map, side by side (beyond a scroll's
+                                             float rounding, CACHED MAPS; -1: not verified) */
 } skgl_shadow_frame_stats;
 
 
@@ -1114,6 +1134,10 @@ typedef struct skgl_point_desc {
     int cache_budget_kb;          /* .cache: the most GPU memory the cache may take, KiB; a
                                      light whose cache is larger is drawn every frame [0: no
                                      limit] */
+    int verify_cache;             /* .cache, desktop GL: also render every face the view needs
+                                     uncached, read both back (a CPU-GPU stall: for
+                                     debugging) and fail the render when they differ
+                                     (CACHED MAPS) [0] */
 } skgl_point_desc;
 
 /* What a point light's last frame did (skgl_point_stats). */
@@ -1136,6 +1160,9 @@ typedef struct skgl_point_frame_stats {
        no cache) */
     int faces_reused, cache_regions;
     double cache_copied, cache_bytes;
+    int cache_verify_texels;              /* .verify_cache: texels of the last render that differ
+                                             from the uncached faces, side by side (CACHED MAPS;
+                                             -1: not verified) */
 } skgl_point_frame_stats;
 
 typedef struct skgl_point skgl_point;
@@ -5750,17 +5777,20 @@ static sk_result skgl__render_cached(skgl_context *ctx, skgl__st *st, skgl_shado
 
 /* .verify_cache: a cached map (a layer, a page, a face) against the same
    map drawn uncached, both read back (a stall). A texel differs when the
-   depths differ by more than SKGL__VERIFY_DEPTH: 1e-6, 16 float ulps of
-   depth near 1, where the rasterizer's depth at another window position
-   (a scrolled overlap) differs by 1 to 3. Coverage can differ too: a
-   scroll's float rounding may move a vertex across one of the
-   rasterizer's subpixel steps (1/256 texel), which flips a texel here and
-   there along the edges it bounds, each alone; a caster that moved changes
-   every texel its outline swept or its depth changed, side by side. So a
-   differing texel none of whose 8 neighbours differs is rounding; the
-   others (runs) are a change the cache was not told of, and more than
-   1e-5 of the map's texels in runs fail the render. */
-#define SKGL__VERIFY_DEPTH 1e-6f
+   window depths differ by more than SKGL__VERIFY_DEPTH, 1e-5 (0.5 mm of a
+   50 m depth range): the rasterizer sets up its depth planes in window
+   coordinates, so a scrolled overlap, drawn at another window position,
+   holds depths a few ulps off where the plane is steep (up to 2.8e-6
+   measured along 300-frame walks, test_gl_cache_property); a caster that
+   moved differs by its move (0.12 for test_gl_cache's box). Coverage can
+   differ too: a scroll's float rounding may move a vertex across one of
+   the rasterizer's subpixel steps (1/256 texel), which flips the texel
+   whose centre lay on the edge, one here and there, each alone; a caster
+   that moved changes every texel its outline swept or its depth changed,
+   side by side. So a differing texel none of whose 8 neighbours differs
+   is rounding; the others (runs) are a change the cache was not told of,
+   and more than 1e-5 of the map's texels in runs fail the render. */
+#define SKGL__VERIFY_DEPTH 1e-5f
 #define SKGL__VERIFY_RUNS 1e-5
 
 typedef struct skgl__verify_count {
@@ -6582,10 +6612,12 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
 
 /* a point light's cache (>>point_cache): the faces' static depth, the
    light position and face side it holds, per face valid and equal to the
-   map's face; the boxes invalidated since the last render */
+   map's face; the boxes invalidated since the last render; the scratch
+   map of .verify_cache */
 typedef struct skgl__point_cache {
-    skgl__uint tex, fbo[6];
+    skgl__uint tex, fbo[6], verify_tex, verify_fbo;
     int fbo_level, m, all, ndirty;
+    unsigned fresh;                /* the faces drawn whole this frame (bit f) */
     sk_vec3 pos;
     int valid[6], same[6], dyn[6][4];
     sk_aabb dirty[SKGL_CACHE_REGIONS];
@@ -6798,6 +6830,10 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
     SKGL__RULE(!d->cache || !d->atlas, fn, "cache", d->cache,
                "a shared atlas's rectangles move with every pack: not with desc.atlas");
     SKGL__RULE(d->cache_budget_kb >= 0, fn, "cache_budget_kb", d->cache_budget_kb, "0 (no limit) or more");
+    SKGL__RULE(d->verify_cache == 0 || (d->verify_cache == 1 && d->cache), fn, "verify_cache", d->verify_cache,
+               "0, or 1 with desc.cache");
+    SKGL__NEED(!d->verify_cache || ctx->caps.api == SKGL_API_GL33, fn, "desc.verify_cache",
+               "depth read-backs (glReadPixels of GL_DEPTH_COMPONENT: desktop OpenGL)");
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -7149,6 +7185,7 @@ static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_
     int f, lv;
     c->all = 1;
     c->fbo_level = -1;
+    p->stats.cache_verify_texels = -1;
     p->stats.cache_bytes = skgl__point_cache_bytes(p);
     if (p->desc.cache_budget_kb > 0 && p->stats.cache_bytes > 1024.0 * p->desc.cache_budget_kb) {
         p->stats.cache_bytes = 0.0;   /* over the budget: drawn every frame */
@@ -7179,7 +7216,9 @@ static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p)
 {
     int f;
     skgl__delete_texture(ctx, &p->cache.tex);
+    skgl__delete_texture(ctx, &p->cache.verify_tex);
     for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->cache.fbo[f]);
+    skgl__delete_framebuffer(ctx, &p->cache.verify_fbo);
 }
 
 /* a cube cache's face framebuffers onto the level the light renders */
@@ -7262,6 +7301,7 @@ static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_
         for (f = 0; f < 6; f++) c->valid[f] = 0;
     p->stats.faces_reused = p->stats.cache_regions = 0;
     p->stats.cache_copied = 0.0;
+    c->fresh = 0;
     for (f = 0; f < 6; f++) {
         int x0 = vsdct ? p->layout.face_x[f] : 0, y0 = vsdct ? p->layout.face_y[f] : 0, rect[4], nr;
         int rects[SKGL_CACHE_REGIONS][4];
@@ -7284,6 +7324,7 @@ static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_
             rc = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, cached, rect, SKGL__DRAW_STATIC, 1);
             c->valid[f] = rc == SK_OK;
             c->same[f] = 0;
+            c->fresh |= 1u << f;
         } else {
             p->stats.faces_reused++;
             skgl__world_matrix(&face_vp, skgl__zero3, w);
@@ -7325,6 +7366,55 @@ static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_
     return r;
 }
 
+/* .verify_cache for a point light: every face the view needs drawn with
+   all its casters into a scratch map shaped like the light's (a face, or
+   the 3 x 2 atlas, each face at its own place: the rasterizer's depth
+   depends on the window position, skgl__page_pass), against the face the
+   render left; the tolerance of skgl__verify_compare, of the face's texels. */
+static sk_result skgl__point_verify(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                    unsigned faces, int m)
+{
+    skgl__point_cache *c = &p->cache;
+    sk_mat4 proj = sk_cube_face_proj(p->desc.near_plane, p->desc.range), face_vp;
+    int f, vsdct = p->desc.technique == SKGL_POINT_VSDCT, res = p->desc.resolution, bad = -1, runs = 0;
+    size_t n = (size_t)m * (size_t)m;
+    skgl__verify_count v[6];
+    float *a, *b;
+    sk_result r = skgl__verify_texture(ctx, st, &c->verify_tex, &c->verify_fbo, vsdct ? 3 * res : res,
+                                       vsdct ? 2 * res : res, "skgl_point_render");
+    if (r != SK_OK) return r;
+    a = (float *)SKGL_MALLOC(n * sizeof *a);
+    b = (float *)SKGL_MALLOC(n * sizeof *b);
+    if (!a || !b) { SKGL_FREE(a); SKGL_FREE(b); return SK_ERR_CAPACITY; }
+    memset(v, 0, sizeof v);
+    for (f = 0; f < 6 && r == SK_OK; f++) {
+        int rect[4];
+        if (!(faces & (1u << f))) continue;
+        rect[0] = vsdct ? p->layout.face_x[f] : 0;
+        rect[1] = vsdct ? p->layout.face_y[f] : 0;
+        rect[2] = rect[3] = m;
+        face_vp = sk_mat4_mul(proj, sk_cube_face_view(f, p->light_pos));
+        skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, rect[0], rect[1], m, m);
+        r = skgl__point_face_pass(ctx, st, p, scene, f, &face_vp, c->verify_fbo, rect, SKGL__DRAW_ALL, 1);
+        p->stats.passes -= skgl__pass_callbacks(ctx);   /* not the cache's work */
+        p->stats.texels -= (double)n;
+        skgl__verify_read(ctx, st, vsdct ? p->fbo[0] : p->fbo[f], rect[0], rect[1], m, m, a);
+        skgl__verify_read(ctx, st, c->verify_fbo, rect[0], rect[1], m, m, b);
+        skgl__verify_compare(a, b, m, m, &v[f]);
+        if (v[f].runs > runs) { runs = v[f].runs; bad = f; }
+    }
+    SKGL_FREE(a);
+    SKGL_FREE(b);
+    p->stats.cache_verify_texels = runs;
+    if (r == SK_OK && runs > (int)(SKGL__VERIFY_RUNS * (double)n))
+        r = skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_render: desc.verify_cache: face %d (%s this frame) "
+                       "differs from the uncached face in %d texels side by side, by up to %g in depth: a caster "
+                       "scene.draw draws changed without skgl_point_invalidate (moving casters belong in "
+                       "skgl_set_dynamic, inside its bounds); %d texels alone, float rounding, accepted",
+                       bad, c->fresh & (1u << bad) ? "drawn whole" : "kept", runs, (double)v[bad].worst, v[bad].alone);
+    return r;
+}
+
 /* the caster pass of each face in `faces` at side m (Eq. (5.4.6)'s window
    depth: 90 degrees, w = eye depth); every face is cleared, culled ones
    too: a filter tap near a visible face's edge may step into one, and must
@@ -7342,6 +7432,7 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
     else skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
     if (p->cache.tex) {
         r = skgl__point_faces_cached(ctx, st, p, scene, faces, m);
+        if (r == SK_OK && p->desc.verify_cache) r = skgl__point_verify(ctx, st, p, scene, faces, m);
         skgl__model_end(ctx);
         return r;
     }
