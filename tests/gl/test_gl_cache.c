@@ -513,6 +513,54 @@ static void test_verify(void) {
     skgl_shadow_destroy(w->e.sk, s);
 }
 
+/* verify_cache of a point light (cube, VSDCT): correct use passes, a
+   static caster moved without skgl_point_invalidate fails naming it */
+static void test_point_verify(void) {
+    world *w = &W_;
+    skgl_scene sc = scene_of(w);
+    skgl_camera cam = walk_camera(3);
+    sk_vec3 pos = gt_v3(1.5f, 4.5f, 1.0f);
+    int ti;
+    for (ti = 0; ti < 2; ti++) {
+        skgl_point_desc d;
+        skgl_point *p = NULL;
+        sk_result r;
+        memset(&d, 0, sizeof d);
+        d.technique = ti ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE;
+        d.resolution = 256;
+        d.range = 16;
+        d.verify_cache = 1;
+        SK_CHECK(skgl_point_create(w->e.sk, &d, &p) == SK_ERR_INVALID_ARG && p == NULL);   /* without .cache */
+        SK_CHECK(strstr(skgl_error_log(w->e.sk), "verify_cache") != NULL);
+        d.cache = 1;
+        r = skgl_point_create(w->e.sk, &d, &p);
+        SK_CHECK_MSG(r == SK_OK, "skgl_point_create: %s (%s)", sk_result_string(r), skgl_error_log(w->e.sk));
+        if (r != SK_OK) continue;
+        SK_CHECK(skgl_point_stats(p)->cache_verify_texels == -1);
+        SK_CHECK(skgl_point_render(w->e.sk, p, &cam, &sc, pos) == SK_OK);
+        SK_CHECK(skgl_point_stats(p)->cache_verify_texels == 0);
+        SK_CHECK(skgl_point_render(w->e.sk, p, &cam, &sc, pos) == SK_OK);   /* every face kept */
+        SK_CHECK(skgl_point_stats(p)->faces_reused > 0 && skgl_point_stats(p)->cache_verify_texels == 0);
+        w->box0_shift = gt_v3(1.5f, 0, 0);   /* no invalidation */
+        r = skgl_point_render(w->e.sk, p, &cam, &sc, pos);
+        printf("point verify_cache (%s), a static caster moved unannounced: %s, %d texels (%s)\n",
+               ti ? "vsdct" : "cube", sk_result_string(r), skgl_point_stats(p)->cache_verify_texels,
+               skgl_error_log(w->e.sk));
+        SK_CHECK(r == SK_ERR_INVALID_ARG);
+        SK_CHECK(skgl_point_stats(p)->cache_verify_texels > 100);
+        SK_CHECK(strstr(skgl_error_log(w->e.sk), "skgl_point_invalidate") != NULL);
+        {
+            sk_aabb b0 = w->e.scene.objects[w->box0].bounds, b1 = moved(b0, w->box0_shift);
+            SK_CHECK(skgl_point_invalidate(w->e.sk, p, &b0) == SK_OK);
+            SK_CHECK(skgl_point_invalidate(w->e.sk, p, &b1) == SK_OK);
+        }
+        SK_CHECK(skgl_point_render(w->e.sk, p, &cam, &sc, pos) == SK_OK);
+        SK_CHECK(skgl_point_stats(p)->cache_verify_texels == 0);
+        w->box0_shift = gt_v3(0, 0, 0);
+        skgl_point_destroy(w->e.sk, p);
+    }
+}
+
 static void test_contracts(void) {
     world *w = &W_;
     skgl_shadow_desc d;
@@ -591,6 +639,7 @@ static void test_cache(void) {
     test_cached_equals_uncached();
     test_point_cached_equals_uncached();
     test_verify();
+    test_point_verify();
     test_contracts();
     /* every light's cache, framebuffers and verify map freed */
     SK_CHECK_MSG(skgl_gl_object_count(w->e.sk) == objects, "%d GL objects, %d before",
