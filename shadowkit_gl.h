@@ -6415,11 +6415,13 @@ static sk_result skgl__page_draw(skgl_context *ctx, skgl__st *st, skgl_shadow *s
     skgl_draw_info info;
     sk_result r;
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm.page_fbo);
-    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, slot, slot);
+    /* a whole page needs no scissor (the target is one slot), and leaving
+       it off as the copy into the pool does saves two state changes per
+       page; part of a page is drawn under its rectangle */
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, rect != NULL);
     if (rect) skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
-    else skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, 0, 0, slot, slot);
-    if (!rect) ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    else ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
     memset(&info, 0, sizeof info);
     info.kind = SKGL_PASS_DIRECTIONAL;
     info.index = i;
