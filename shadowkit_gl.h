@@ -450,9 +450,54 @@
      with a framebuffer of its own made once (the screen-sized ones again
      when the mask's size changes): PCSS 68 calls a frame (36 in caller-
      owns mode), PVSM 167 with one tile (120). With desc.debug set, glGetError is checked after every pass
-     and a GL error is reported as SK_ERR_GL. skgl_gl_object_count() tells
+     and a GL error is reported as SK_ERR_GL (ERRORS AND MISUSE). skgl_gl_object_count() tells
      how many GL objects the context holds (0 after every shadow and the
      context are destroyed).
+
+   ERRORS AND MISUSE
+     Every call that can fail returns an sk_result; every one that takes
+     the context clears skgl_error_log on entry and, on failure, leaves one
+     message there naming the call, the argument or field, its value and
+     the rule ("skgl_shadow_create: desc.cascades = -2: in 1..8"). The same
+     messages go to skgl_desc.logger (func + user, sokol's sg_desc.logger;
+     zero: none) as they are written, which is how skgl_create, which has
+     no context to return when it fails, says why: a desc field, the
+     entry point desc.getproc did not return (by name), a GL version below
+     3.3 core / ES 3.0, or the driver's compile log of shadowkit's own
+     shaders. skgl_create(NULL, ..) has nobody to tell.
+     GL errors: an error the application left pending (a glGetString(
+     GL_EXTENSIONS) on a core context, as older GLEW does) is not
+     shadowkit's. The create calls always, and with desc.debug every call
+     that checks, clear it first and name it as a warning ("GL error
+     pending before skgl_shadow_render: GL_INVALID_ENUM", level
+     SKGL_LOG_WARNING, the log holding it while the call succeeds); it never
+     fails the call. Without desc.debug the per-frame calls do not read
+     glGetError, and an error left pending stays the application's. With
+     desc.debug, a GL error raised during a call is SK_ERR_GL naming the
+     error and where it came from: shadowkit's set-up of a caster pass,
+     the draw callback of that pass (its kind and layer or face), or the
+     call's mask pass or own state changes.
+     Refused (SK_ERR_INVALID_ARG, named in the log): zero, inverted,
+     non-finite or huge (beyond 1e18) scene bounds (SCENE ACCESS); a render,
+     analysis, mask or create from inside a draw callback (the outer pass's
+     program and model location would be lost); a mask or bind of a light
+     never rendered; a texture name that is not a texture, or a depth or
+     normal texture without storage (where GL can be asked its size);
+     skgl_remember_texture sizes above GL_MAX_TEXTURE_SIZE; and, with
+     desc.debug, a bind to a program that is not current, not a program, or
+     lacks the snippet under the prefix given (its map sampler is not an
+     active uniform: the snippet is missing, was pasted under another
+     prefix, or its shadow function is never called; without the check the
+     map lands on a unit another sampler type of the program may read, and
+     the draw raises GL_INVALID_OPERATION).
+     Not detected, as in stb and sokol: a light, caster or atlas used after
+     it was destroyed, destroyed twice, or passed to another context than
+     the one that made it; a context used after skgl_destroy or on another
+     thread; GL objects of the context deleted by the application; a draw
+     callback that breaks SCENE ACCESS without desc.debug (shadowkit then
+     binds its own program again before sending it anything, but the rest
+     of what the callback changed stays changed). These are undefined
+     behaviour.
 
    READ-BACKS
      What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
@@ -735,8 +780,11 @@ typedef struct skgl_logger {
 
 typedef struct skgl_desc {
     skgl_getproc_fn getproc;      /* required */
-    int debug;                    /* glGetError after each pass -> SK_ERR_GL; checks the draw
-                                     callback's program and the cached program locations */
+    int debug;                    /* glGetError after each pass -> SK_ERR_GL naming the error and
+                                     the pass (an application's pending error is cleared and
+                                     named as a warning first); checks the draw callback's
+                                     program, the cached program locations and the programs
+                                     the binds are given (ERRORS AND MISUSE) */
     int timing;                   /* GL timer queries into the stats, read two or three frames
                                      late; SKGL_TIMING_SYNC: each pass's own time, read at
                                      once (a stall per timed pass: for benchmarks) */
@@ -778,7 +826,8 @@ typedef enum skgl_bias {
 /* Zero-initialised fields take the default in brackets. */
 typedef struct skgl_shadow_desc {
     skgl_technique technique;     /* [SKGL_STANDARD] */
-    int resolution;               /* texels per side of each map [2048] */
+    int resolution;               /* texels per side of each map, 1 or more (2 or more with
+                                     .stable) [2048] */
     int cascades;                 /* PSSM, 1..SKGL_MAX_CASCADES [4] */
     float lambda;                 /* PSSM split scheme weight in (0, 1] [0.75] */
     int uniform_splits;           /* 1: lambda 0, the uniform split scheme [0] */
@@ -789,7 +838,7 @@ typedef struct skgl_shadow_desc {
                                      range (the camera's near plane to the end of the
                                      shadows): a boundary past it makes its cascades thin. */
     float blend_band;             /* PSSM: fraction of a cascade blended into the next [0: off] */
-    int stable;                   /* 1: texel-snapped crops (sphere fit) [0] */
+    int stable;                   /* 1: texel-snapped crops (sphere fit), 0 or 1 [0] */
     float slope_bias;             /* polygon offset factor, 0 or more [2.0] */
     float depth_bias;             /* polygon offset units, 0 or more [1.0] */
     int disable_polygon_offset;   /* 1: no polygon offset in the depth passes [0] */
@@ -976,7 +1025,7 @@ SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture);
    camera depth buffer): needed where GL cannot be asked (skgl_caps
    .texture_size 0: OpenGL ES 3.0, WebGL2), harmless elsewhere. Call it
    again after giving the texture new storage. SK_ERR_INVALID_ARG for texture
-   0 or a size outside 1..65536. */
+   0, a name that is not a texture, or a size outside 1..GL_MAX_TEXTURE_SIZE. */
 SKGLDEF sk_result skgl_remember_texture(skgl_context *ctx, unsigned texture, int width, int height);
 /* what skgl_create probed (zeros for NULL) */
 SKGLDEF skgl_caps skgl_get_caps(const skgl_context *ctx);
@@ -1043,6 +1092,8 @@ SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
 /* For a forward shader containing the snippet: program must be current;
    binds the map (and a comparison sampler) to texture unit `unit` and sets
    the snippet's uniforms. The binding is left in place for the draw.
+   SK_ERR_INVALID_ARG for a light never rendered and, with desc.debug, for
+   a program that is not current or lacks the snippet (ERRORS AND MISUSE).
    Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
    keep it free of samplers of another type in that program. */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
@@ -1062,7 +1113,9 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
    there, a comparison sampler among them, unbound; the textures stay), so
    a later texture on those units samples by its own parameters. */
 SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit);
-/* the info log of the last shader or framebuffer failure ("" if none) */
+/* the message of the last failure of the last call that took the context
+   ("" after a call that succeeded; a pending application GL error's
+   warning when one was cleared: ERRORS AND MISUSE) */
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
 /* light view-projection of one layer (world -> light clip) */
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
@@ -1127,7 +1180,8 @@ typedef struct skgl_point_desc {
     float resolution_c;           /* c of the selection [2, King & Newhall's] */
     int screen_w, screen_h;       /* S of the selection: pixels of the light's rectangle on a
                                      screen this size [0: the viewport bound at render time] */
-    int vsdct_grey_levels;        /* G of Eq. (5.4.7) for the indirection size (D = 8) [256] */
+    int vsdct_grey_levels;        /* G of Eq. (5.4.7) for the indirection size (D = 8), 2..65536
+                                     [256] */
     skgl_point_atlas *atlas;      /* SKGL_POINT_VSDCT only: the six faces live in this shared
                                      atlas, placed by skgl_point_atlas_pack [NULL: an atlas of
                                      the light's own, 3 x 2 faces of .resolution] */

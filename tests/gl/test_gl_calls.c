@@ -342,6 +342,7 @@ static const char *const stall_names[ST_KINDS] = {"ReadPixels", "GetBufferSubDat
     V(GetTexImage, (cg_enum target, cg_int level, cg_enum fmt, cg_enum type, void *data), \
       (target, level, fmt, type, data), CG_CALL, cg_pack_readback(ST_GETTEXIMAGE), (void)0) \
     R(cg_bool, IsProgram, (cg_uint p), (p), CG_QUERY, (void)0, (void)0) \
+    R(cg_bool, IsTexture, (cg_uint t), (t), CG_QUERY, (void)0, (void)0) \
     V(PolygonMode, (cg_enum face, cg_enum mode), (face, mode), CG_CALL, (void)0, (void)0) \
     V(ClearBufferfv, (cg_enum buffer, cg_int drawbuffer, const float *value), (buffer, drawbuffer, value), CG_CALL, \
       (void)0, (void)0) \
