@@ -1915,6 +1915,7 @@ struct skgl_context {
     int log_quiet;                         /* > 0: messages of a try that may fail are not logged */
     int failed;                            /* the log holds this call's error (not a warning) */
     const char *stage;                     /* desc.debug: the pass under way, for the GL error's message */
+    const char *call;                      /* the public call under way (skgl__enter) */
     int prog_unsure;                       /* a callback returned with debug off: the pass's
                                               program is bound again before its next uniform */
 };
@@ -2444,6 +2445,7 @@ static void skgl__enter(skgl_context *ctx, const char *fn, int always_drain)
 {
     skgl__log_clear(ctx);
     ctx->stage = NULL;
+    ctx->call = fn;
     if (ctx->debug || always_drain) skgl__pending_errors(ctx, fn);
 }
 
@@ -3014,7 +3016,9 @@ static sk_result skgl__snippet_present(skgl_context *ctx, const char *fn, const 
 SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program)
 {
     int i;
-    if (!ctx || !program) return;
+    if (!ctx) return;
+    skgl__log_clear(ctx);
+    if (!program) return;
     for (i = 0; i < SKGL__PROG_CACHE; i++)
         if (ctx->progs[i].program == program) memset(&ctx->progs[i], 0, sizeof ctx->progs[i]);
 }
@@ -3044,7 +3048,9 @@ static skgl__texent *skgl__texture(skgl_context *ctx, skgl__uint tex)
 SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
 {
     int i;
-    if (!ctx || !texture) return;
+    if (!ctx) return;
+    skgl__log_clear(ctx);
+    if (!texture) return;
     for (i = 0; i < SKGL__TEX_CACHE; i++)
         if (ctx->texs[i].tex == texture) memset(&ctx->texs[i], 0, sizeof ctx->texs[i]);
     if (ctx->mask_fbo_tex == texture) {
@@ -4012,7 +4018,8 @@ static sk_result skgl__pass_gl_check(skgl_context *ctx, const skgl_draw_info *in
     int n = 0;
     if (!ctx->debug || (e = ctx->gl.GetError()) == 0) return SK_OK;
     while (ctx->gl.GetError() != 0 && ++n < 8) {}
-    return skgl__fail(ctx, SK_ERR_GL, "%s raised %s of the caster pass of %s %d%s", skgl__gl_error_name(e), when,
+    return skgl__fail(ctx, SK_ERR_GL, "%s: %s raised %s of the caster pass of %s %d%s",
+                      ctx->call ? ctx->call : "shadowkit", skgl__gl_error_name(e), when,
                       (unsigned)info->kind < 4u ? kinds[info->kind] : "kind ?", info->index,
                       info->layers > 0 ? " (layered)" : "");
 }

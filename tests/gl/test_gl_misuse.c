@@ -196,7 +196,8 @@ static void test_pending_errors(void) {
     /* an error raised inside a pass: named, with the pass */
     bad.draw = draw_with_error;
     expect(sk, skgl_shadow_render(sk, s, &cam, &bad, sun()), SK_ERR_GL, "an error in the callback",
-           "GL_INVALID_ENUM raised in the draw callback (scene.draw) of the caster pass of directional layer 0");
+           "skgl_shadow_render: GL_INVALID_ENUM raised in the draw callback (scene.draw) of the caster pass of "
+           "directional layer 0");
     skgl_shadow_destroy(sk, s);
     skgl_destroy(sk);
 }
@@ -467,7 +468,12 @@ static void test_null_creates(skgl_context *sk) {
     fail_first(sk);
     expect(sk, skgl_remember_texture(sk, env.mask.color_tex, W, H), SK_OK, "remember_texture", NULL);
     SK_CHECK_MSG(skgl_error_log(sk)[0] == 0, "log after a good remember_texture: '%s'", skgl_error_log(sk));
+    fail_first(sk);
     skgl_forget_texture(sk, env.mask.color_tex);
+    SK_CHECK_MSG(skgl_error_log(sk)[0] == 0, "log after skgl_forget_texture: '%s'", skgl_error_log(sk));
+    fail_first(sk);
+    skgl_forget_program(sk, 0);
+    SK_CHECK_MSG(skgl_error_log(sk)[0] == 0, "log after skgl_forget_program: '%s'", skgl_error_log(sk));
 }
 
 /* ---- 16: names that are not textures, textures without storage ------------ */
