@@ -458,7 +458,8 @@
      Every call that can fail returns an sk_result; every one that takes
      the context clears skgl_error_log on entry and, on failure, leaves one
      message there naming the call, the argument or field, its value and
-     the rule ("skgl_shadow_create: desc.cascades = -2: in 1..8"). The same
+     the rule ("skgl_shadow_create: desc.cascades = -2: in
+     1..SKGL_MAX_CASCADES (8; 0: the default)"). The same
      messages go to skgl_desc.logger (func + user, sokol's sg_desc.logger;
      zero: none) as they are written, which is how skgl_create, which has
      no context to return when it fails, says why: a desc field, the
@@ -470,8 +471,8 @@
      shadowkit's. The create calls always, and with desc.debug every call
      that checks, clear it first and name it as a warning ("GL error
      pending before skgl_shadow_render: GL_INVALID_ENUM", level
-     SKGL_LOG_WARNING, the log holding it while the call succeeds); it never
-     fails the call. Without desc.debug the per-frame calls do not read
+     SKGL_LOG_WARNING, the log holding it while the call succeeds; after
+     skgl_create, only the logger); it never fails the call. Without desc.debug the per-frame calls do not read
      glGetError, and an error left pending stays the application's. With
      desc.debug, a GL error raised during a call is SK_ERR_GL naming the
      error and where it came from: shadowkit's set-up of a caster pass,
