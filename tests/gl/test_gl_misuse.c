@@ -30,7 +30,7 @@
        binds of lights never rendered: refused;
    18  sk_mat4_mul and sk_mat4_transform_point finite for finite input
        near +-3e38 and for w = 1e-45.
-   Run time: about 5 s on llvmpipe. */
+   Run time: 1.8 s on llvmpipe (5 s under the sanitizers). */
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
