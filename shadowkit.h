@@ -140,7 +140,10 @@ typedef enum sk_result { SK_OK = 0, SK_ERR_INVALID_ARG, SK_ERR_DEGENERATE,
 SKDEF const char *sk_result_string(sk_result r);
 
 SKDEF sk_mat4 sk_mat4_identity(void);
-SKDEF sk_mat4 sk_mat4_mul(sk_mat4 a, sk_mat4 b);                 /* a*b */
+/* a*b; an entry beyond the float range saturates to +-FLT_MAX (finite
+   input never gives NaN or an infinity; NaN or infinite input gives 0 in
+   the entries it would make NaN) */
+SKDEF sk_mat4 sk_mat4_mul(sk_mat4 a, sk_mat4 b);
 /* 1 and *out = inverse; 0 (out untouched) if singular, non-finite or out NULL */
 SKDEF int     sk_mat4_inverse(sk_mat4 m, sk_mat4 *out);
 /* gluPerspective. Fallback for fovy outside (0,pi), aspect <= 0, zn <= 0,
@@ -152,7 +155,10 @@ SKDEF sk_mat4 sk_mat4_ortho(float l, float r, float b, float t, float zn, float 
    world axis least aligned with it; eye == target, non-finite input or a
    translation too large for float (|eye| near FLT_MAX) gives the identity. */
 SKDEF sk_mat4 sk_mat4_look_at(sk_vec3 eye, sk_vec3 target, sk_vec3 up);
-SKDEF sk_vec3 sk_mat4_transform_point(sk_mat4 m, sk_vec3 p);      /* with w-divide (w == 0: no divide) */
+/* with w-divide (w == 0: no divide); a coordinate beyond the float range
+   (a sum near FLT_MAX, a w as small as 1e-45) saturates to +-FLT_MAX, NaN
+   to 0 */
+SKDEF sk_vec3 sk_mat4_transform_point(sk_mat4 m, sk_vec3 p);
 SKDEF sk_vec4 sk_mat4_transform_vec4(sk_mat4 m, sk_vec4 p);       /* no divide */
 /* corners[i] = unprojected NDC ((i&1)?1:-1, (i&2)?1:-1, (i&4)?1:-1); planes
    point inward (normalised), in the order left, right, bottom, top, near, far.
@@ -800,14 +806,32 @@ SKDEF sk_mat4 sk_mat4_identity(void)
     return r;
 }
 
+/* a double that a float cannot hold, as a float: NaN 0, beyond the float
+   range the largest float of its sign */
+static float sk__saturate(double v)
+{
+    if (v != v) return 0.0f;
+    if (v > 3.4028234663852886e38) return 3.4028234663852886e38f;
+    if (v < -3.4028234663852886e38) return -3.4028234663852886e38f;
+    return (float)v;
+}
+
 SKDEF sk_mat4 sk_mat4_mul(sk_mat4 a, sk_mat4 b)
 {
     sk_mat4 r;
     int c, row;
     for (c = 0; c < 4; c++)
-        for (row = 0; row < 4; row++)
-            r.m[c * 4 + row] = a.m[row] * b.m[c * 4] + a.m[4 + row] * b.m[c * 4 + 1] +
-                               a.m[8 + row] * b.m[c * 4 + 2] + a.m[12 + row] * b.m[c * 4 + 3];
+        for (row = 0; row < 4; row++) {
+            float v = a.m[row] * b.m[c * 4] + a.m[4 + row] * b.m[c * 4 + 1] + a.m[8 + row] * b.m[c * 4 + 2] +
+                      a.m[12 + row] * b.m[c * 4 + 3];
+            /* an entry that overflowed float (or met inf - inf) is formed
+               again in double, whose range holds any product of floats, and
+               saturated: finite input never gives NaN or an infinity */
+            if (!sk__finite(v))
+                v = sk__saturate((double)a.m[row] * b.m[c * 4] + (double)a.m[4 + row] * b.m[c * 4 + 1] +
+                                 (double)a.m[8 + row] * b.m[c * 4 + 2] + (double)a.m[12 + row] * b.m[c * 4 + 3]);
+            r.m[c * 4 + row] = v;
+        }
     return r;
 }
 
@@ -964,7 +988,17 @@ static void sk__xform_box(const sk_mat4 *m, const sk_aabb *b, sk_vec3 *out)
 
 SKDEF sk_vec3 sk_mat4_transform_point(sk_mat4 m, sk_vec3 p)
 {
-    return sk__xform_point(&m, p);
+    sk_vec3 r = sk__xform_point(&m, p);
+    double x, y, z, w;
+    if (sk__finite(r.x) && sk__finite(r.y) && sk__finite(r.z)) return r;
+    /* a sum beyond float, or a divide by a w so small (1e-45) that the
+       quotient is: again in double, saturated (no NaN, no infinity) */
+    x = (double)m.m[0] * p.x + (double)m.m[4] * p.y + (double)m.m[8] * p.z + m.m[12];
+    y = (double)m.m[1] * p.x + (double)m.m[5] * p.y + (double)m.m[9] * p.z + m.m[13];
+    z = (double)m.m[2] * p.x + (double)m.m[6] * p.y + (double)m.m[10] * p.z + m.m[14];
+    w = (double)m.m[3] * p.x + (double)m.m[7] * p.y + (double)m.m[11] * p.z + m.m[15];
+    if (w != 0.0 && w == w) { x /= w; y /= w; z /= w; }
+    return sk__v3(sk__saturate(x), sk__saturate(y), sk__saturate(z));
 }
 
 static sk_plane sk__plane_normalized(double a, double b, double c, double d)

@@ -32,8 +32,14 @@
        skgl_shadow_destroy(gl, sun); skgl_destroy(gl);   at shutdown
 
    SCENE ACCESS
-     shadowkit asks only for a draw callback and the scene's bounds (used to
-     pull the light's near plane back so off-screen casters still cast). For
+     shadowkit asks only for a draw callback and the scene's bounds: a box
+     around every caster and receiver. The bounds pull the light's near
+     plane back so that off-screen casters still cast, and they also clip
+     the fitted maps (a focused crop covers the view inside the bounds
+     only) and end the shadow range where the scene ends: what lies outside
+     them gets no shadow. Zero (a point), inverted or non-finite bounds,
+     or a coordinate beyond 1e18, are refused (SK_ERR_INVALID_ARG naming
+     scene->bounds) by every render and analysis. For
      each shadow pass it binds its depth program (attribute 0 = position,
      vec3) and calls draw(user, info): bind your VAOs and draw the casters;
      call skgl_set_model(gl, matrix) before an object whose model matrix is
@@ -487,9 +493,55 @@
      with a framebuffer of its own made once (the screen-sized ones again
      when the mask's size changes): PCSS 68 calls a frame (36 in caller-
      owns mode), PVSM 167 with one tile (120). With desc.debug set, glGetError is checked after every pass
-     and a GL error is reported as SK_ERR_GL. skgl_gl_object_count() tells
+     and a GL error is reported as SK_ERR_GL (ERRORS AND MISUSE). skgl_gl_object_count() tells
      how many GL objects the context holds (0 after every shadow and the
      context are destroyed).
+
+   ERRORS AND MISUSE
+     Every call that can fail returns an sk_result; every one that takes
+     the context clears skgl_error_log on entry and, on failure, leaves one
+     message there naming the call, the argument or field, its value and
+     the rule ("skgl_shadow_create: desc.cascades = -2: in
+     1..SKGL_MAX_CASCADES (8; 0: the default)"). The same
+     messages go to skgl_desc.logger (func + user, sokol's sg_desc.logger;
+     zero: none) as they are written, which is how skgl_create, which has
+     no context to return when it fails, says why: a desc field, the
+     entry point desc.getproc did not return (by name), a GL version below
+     3.3 core / ES 3.0, or the driver's compile log of shadowkit's own
+     shaders. skgl_create(NULL, ..) has nobody to tell.
+     GL errors: an error the application left pending (a glGetString(
+     GL_EXTENSIONS) on a core context, as older GLEW does) is not
+     shadowkit's. The create calls always, and with desc.debug every call
+     that checks, clear it first and name it as a warning ("GL error
+     pending before skgl_shadow_render: GL_INVALID_ENUM", level
+     SKGL_LOG_WARNING, the log holding it while the call succeeds; after
+     skgl_create, only the logger); it never fails the call. Without desc.debug the per-frame calls do not read
+     glGetError, and an error left pending stays the application's. With
+     desc.debug, a GL error raised during a call is SK_ERR_GL naming the
+     error and where it came from: shadowkit's set-up of a caster pass,
+     the draw callback of that pass (its kind and layer or face), or the
+     call's mask pass or own state changes.
+     Refused (SK_ERR_INVALID_ARG, named in the log): zero, inverted,
+     non-finite or huge (beyond 1e18) scene bounds (SCENE ACCESS); a render,
+     analysis, mask or create from inside a draw callback (the outer pass's
+     program and model location would be lost); a mask or bind of a light
+     never rendered; a texture name that is not a texture, or a depth or
+     normal texture without storage (where GL can be asked its size);
+     skgl_remember_texture sizes above GL_MAX_TEXTURE_SIZE; and, with
+     desc.debug, a bind to a program that is not current, not a program, or
+     lacks the snippet under the prefix given (its map sampler is not an
+     active uniform: the snippet is missing, was pasted under another
+     prefix, or its shadow function is never called; without the check the
+     map lands on a unit another sampler type of the program may read, and
+     the draw raises GL_INVALID_OPERATION).
+     Not detected, as in stb and sokol: a light, caster or atlas used after
+     it was destroyed, destroyed twice, or passed to another context than
+     the one that made it; a context used after skgl_destroy or on another
+     thread; GL objects of the context deleted by the application; a draw
+     callback that breaks SCENE ACCESS without desc.debug (shadowkit then
+     binds its own program again before sending it anything, but the rest
+     of what the callback changed stays changed). These are undefined
+     behaviour.
 
    READ-BACKS
      What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
@@ -752,10 +804,31 @@ typedef struct skgl_caps {
     int max_texture_size;         /* GL_MAX_TEXTURE_SIZE */
 } skgl_caps;
 
+/* skgl_desc.logger (sokol's sg_desc.logger is the model): every message
+   the context writes into skgl_error_log is also handed to func as it is
+   written, so a skgl_create that fails (and leaves no context to ask) can
+   still say why: the field, the missing entry point by name, the GL
+   version, the driver's compile log. level says whether the call fails
+   (SKGL_LOG_ERROR) or goes on (SKGL_LOG_WARNING: a GL error the
+   application left pending, cleared). message is valid during the call
+   only. A zero logger (func NULL) logs nothing. */
+typedef enum skgl_log_level {
+    SKGL_LOG_ERROR = 0,
+    SKGL_LOG_WARNING = 1
+} skgl_log_level;
+typedef void (*skgl_log_fn)(void *user, skgl_log_level level, const char *message);
+typedef struct skgl_logger {
+    skgl_log_fn func;             /* NULL: no logger */
+    void *user;                   /* handed back to func */
+} skgl_logger;
+
 typedef struct skgl_desc {
     skgl_getproc_fn getproc;      /* required */
-    int debug;                    /* glGetError after each pass -> SK_ERR_GL; checks the draw
-                                     callback's program and the cached program locations */
+    int debug;                    /* glGetError after each pass -> SK_ERR_GL naming the error and
+                                     the pass (an application's pending error is cleared and
+                                     named as a warning first); checks the draw callback's
+                                     program, the cached program locations and the programs
+                                     the binds are given (ERRORS AND MISUSE) */
     int timing;                   /* GL timer queries into the stats, read two or three frames
                                      late; SKGL_TIMING_SYNC: each pass's own time, read at
                                      once (a stall per timed pass: for benchmarks) */
@@ -769,6 +842,8 @@ typedef struct skgl_desc {
                                      needs and leaves what GL STATE lists [0] */
     skgl_api api;                 /* [SKGL_API_AUTO: read from GL_VERSION] */
     unsigned disable_caps;        /* SKGL_CAP_* bits treated as absent [0: use all there are] */
+    skgl_logger logger;           /* every message of skgl_error_log, as it is written, skgl_create's
+                                     own included [zero: none] */
 } skgl_desc;
 
 typedef enum skgl_technique {
@@ -795,7 +870,8 @@ typedef enum skgl_bias {
 /* Zero-initialised fields take the default in brackets. */
 typedef struct skgl_shadow_desc {
     skgl_technique technique;     /* [SKGL_STANDARD] */
-    int resolution;               /* texels per side of each map [2048] */
+    int resolution;               /* texels per side of each map, 1 or more (2 or more with
+                                     .stable) [2048] */
     int cascades;                 /* PSSM, 1..SKGL_MAX_CASCADES [4] */
     float lambda;                 /* PSSM split scheme weight in (0, 1] [0.75] */
     int uniform_splits;           /* 1: lambda 0, the uniform split scheme [0] */
@@ -806,7 +882,7 @@ typedef struct skgl_shadow_desc {
                                      range (the camera's near plane to the end of the
                                      shadows): a boundary past it makes its cascades thin. */
     float blend_band;             /* PSSM: fraction of a cascade blended into the next [0: off] */
-    int stable;                   /* 1: texel-snapped crops (sphere fit) [0] */
+    int stable;                   /* 1: texel-snapped crops (sphere fit), 0 or 1 [0] */
     float slope_bias;             /* polygon offset factor, 0 or more [2.0] */
     float depth_bias;             /* polygon offset units, 0 or more [1.0] */
     int disable_polygon_offset;   /* 1: no polygon offset in the depth passes [0] */
@@ -867,7 +943,8 @@ typedef struct skgl_camera {
 typedef struct skgl_scene {
     skgl_draw_fn draw;            /* required: the casters (the static ones, for a cache) */
     void *user;
-    sk_aabb bounds;               /* all casters and receivers */
+    sk_aabb bounds;               /* all casters and receivers: clips the maps and ends the shadow
+                                     range (SCENE ACCESS); a box of some size, finite */
 } skgl_scene;
 
 /* The casters that move or change (CACHED MAPS), given to
@@ -996,7 +1073,7 @@ SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture);
    camera depth buffer): needed where GL cannot be asked (skgl_caps
    .texture_size 0: OpenGL ES 3.0, WebGL2), harmless elsewhere. Call it
    again after giving the texture new storage. SK_ERR_INVALID_ARG for texture
-   0 or a size outside 1..65536. */
+   0, a name that is not a texture, or a size outside 1..GL_MAX_TEXTURE_SIZE. */
 SKGLDEF sk_result skgl_remember_texture(skgl_context *ctx, unsigned texture, int width, int height);
 /* what skgl_create probed (zeros for NULL) */
 SKGLDEF skgl_caps skgl_get_caps(const skgl_context *ctx);
@@ -1063,6 +1140,8 @@ SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
 /* For a forward shader containing the snippet: program must be current;
    binds the map (and a comparison sampler) to texture unit `unit` and sets
    the snippet's uniforms. The binding is left in place for the draw.
+   SK_ERR_INVALID_ARG for a light never rendered and, with desc.debug, for
+   a program that is not current or lacks the snippet (ERRORS AND MISUSE).
    Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
    keep it free of samplers of another type in that program. */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
@@ -1082,7 +1161,9 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
    there, a comparison sampler among them, unbound; the textures stay), so
    a later texture on those units samples by its own parameters. */
 SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit);
-/* the info log of the last shader or framebuffer failure ("" if none) */
+/* the message of the last failure of the last call that took the context
+   ("" after a call that succeeded; a pending application GL error's
+   warning when one was cleared: ERRORS AND MISUSE) */
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
 /* light view-projection of one layer (world -> light clip) */
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
@@ -1147,7 +1228,8 @@ typedef struct skgl_point_desc {
     float resolution_c;           /* c of the selection [2, King & Newhall's] */
     int screen_w, screen_h;       /* S of the selection: pixels of the light's rectangle on a
                                      screen this size [0: the viewport bound at render time] */
-    int vsdct_grey_levels;        /* G of Eq. (5.4.7) for the indirection size (D = 8) [256] */
+    int vsdct_grey_levels;        /* G of Eq. (5.4.7) for the indirection size (D = 8), 2..65536
+                                     [256] */
     skgl_point_atlas *atlas;      /* SKGL_POINT_VSDCT only: the six faces live in this shared
                                      atlas, placed by skgl_point_atlas_pack [NULL: an atlas of
                                      the light's own, 3 x 2 faces of .resolution] */
@@ -1632,8 +1714,6 @@ typedef unsigned long long skgl__u64;
     X(void, ColorMask, (skgl__bool r, skgl__bool g, skgl__bool b, skgl__bool a)) \
     X(void, DepthMask, (skgl__bool flag)) \
     X(void, DepthFunc, (skgl__enum func)) \
-    X(void, Clear, (skgl__uint mask)) \
-    X(void, CullFace, (skgl__enum mode)) \
     X(void, PolygonOffset, (float factor, float units)) \
     X(void, GenFramebuffers, (skgl__sizei n, skgl__uint *ids)) \
     X(void, DeleteFramebuffers, (skgl__sizei n, const skgl__uint *ids)) \
@@ -1656,7 +1736,6 @@ typedef unsigned long long skgl__u64;
     X(void, Uniform2i, (skgl__int loc, skgl__int a, skgl__int b)) \
     X(void, Uniform4fv, (skgl__int loc, skgl__sizei n, const float *v)) \
     X(void, Uniform2fv, (skgl__int loc, skgl__sizei n, const float *v)) \
-    X(void, ClearColor, (float r, float g, float b, float a)) \
     X(void, PixelStorei, (skgl__enum pname, skgl__int v)) \
     X(void, TexImage3D, (skgl__enum target, skgl__int level, skgl__int ifmt, skgl__sizei w, skgl__sizei h, skgl__sizei d, skgl__int border, skgl__enum fmt, skgl__enum type, const void *data)) \
     X(void, TexParameteri, (skgl__enum target, skgl__enum pname, skgl__int v)) \
@@ -1695,6 +1774,7 @@ typedef unsigned long long skgl__u64;
     X(void, BlendEquationSeparate, (skgl__enum rgb, skgl__enum alpha)) \
     X(void, BlendFuncSeparate, (skgl__enum src_rgb, skgl__enum dst_rgb, skgl__enum src_a, skgl__enum dst_a)) \
     X(skgl__bool, IsProgram, (skgl__uint p)) \
+    X(skgl__bool, IsTexture, (skgl__uint t)) \
     X(void, ClearBufferfv, (skgl__enum buffer, skgl__int drawbuffer, const float *value)) \
     X(void, BlitFramebuffer, (skgl__int sx0, skgl__int sy0, skgl__int sx1, skgl__int sy1, skgl__int dx0, skgl__int dy0, skgl__int dx1, skgl__int dy1, skgl__uint mask, skgl__enum filter)) \
     X(void, TexSubImage2D, (skgl__enum target, skgl__int level, skgl__int x, skgl__int y, skgl__sizei w, skgl__sizei h, skgl__enum fmt, skgl__enum type, const void *data)) \
@@ -1794,6 +1874,7 @@ typedef struct skgl__texent {
     unsigned tick;
     int w, h;                              /* level 0, as GL had it (0: not asked) */
     int fb_ok;                             /* 1: checked complete as a mask target */
+    int named;                             /* 1: glIsTexture said it is a texture */
 } skgl__texent;
 
 typedef struct skgl__timer {
@@ -1885,6 +1966,13 @@ struct skgl_context {
     unsigned tick;                         /* cache use counter */
     unsigned next_id;                      /* the id of the next light made (never 0) */
     char log[1024];
+    skgl_logger logger;                    /* desc.logger: each message of log as it is written */
+    int log_quiet;                         /* > 0: messages of a try that may fail are not logged */
+    int failed;                            /* the log holds this call's error (not a warning) */
+    const char *stage;                     /* desc.debug: the pass under way, for the GL error's message */
+    const char *call;                      /* the public call under way (skgl__enter) */
+    int prog_unsure;                       /* a callback returned with debug off: the pass's
+                                              program is bound again before its next uniform */
 };
 
 
@@ -2329,18 +2417,102 @@ static void skgl__st_unpack(skgl_context *ctx, skgl__st *st)
    "skgl_shadow_create: desc.lambda = 1.5: in (0, 1]". */
 static void skgl__log_clear(skgl_context *ctx)
 {
-    if (ctx) ctx->log[0] = 0;
+    if (ctx) { ctx->log[0] = 0; ctx->failed = 0; }
 }
 
-/* formats the message into the log; returns r */
+/* the message just written into the log, to desc.logger */
+static void skgl__log_emit(skgl_context *ctx, skgl_log_level level)
+{
+    if (ctx->logger.func && !ctx->log_quiet && ctx->log[0]) ctx->logger.func(ctx->logger.user, level, ctx->log);
+}
+
+/* formats the message into the log (and to the logger); returns r */
 static sk_result skgl__fail(skgl_context *ctx, sk_result r, const char *fmt, ...)
 {
     va_list ap;
+    char msg[sizeof ctx->log];
     if (!ctx) return r;
     va_start(ap, fmt);
-    vsnprintf(ctx->log, sizeof ctx->log, fmt, ap);
+    vsnprintf(msg, sizeof msg, fmt, ap);   /* the arguments may quote the log itself */
     va_end(ap);
+    memcpy(ctx->log, msg, sizeof msg);
+    ctx->failed = 1;
+    skgl__log_emit(ctx, SKGL_LOG_ERROR);
     return r;
+}
+
+/* every error return has a message: one that came back from deep inside a
+   call without its own gets the call's name and the result */
+static sk_result skgl__said(skgl_context *ctx, const char *fn, sk_result r, const char *hint)
+{
+    if (r == SK_OK || ctx->failed) return r;
+    return skgl__fail(ctx, r, "%s: %s%s%s", fn, sk_result_string(r), hint ? ": " : "", hint ? hint : "");
+}
+
+/* GL's error codes by name (glGetError) */
+static const char *skgl__gl_error_name(skgl__enum e)
+{
+    switch (e) {
+    case 0x0500: return "GL_INVALID_ENUM";
+    case 0x0501: return "GL_INVALID_VALUE";
+    case 0x0502: return "GL_INVALID_OPERATION";
+    case 0x0503: return "GL_STACK_OVERFLOW";
+    case 0x0504: return "GL_STACK_UNDERFLOW";
+    case 0x0505: return "GL_OUT_OF_MEMORY";
+    case 0x0506: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+    case 0x0507: return "GL_CONTEXT_LOST";
+    default: return "an unknown GL error";
+    }
+}
+
+/* GL errors the application left pending are not shadowkit's: cleared
+   (glGetError returns and clears one flag per call; a context may hold one
+   per kind), named in the log as a warning and to the logger; the call
+   goes on. Create calls do it always, so that their own check at the end
+   sees only their own errors; the per-frame calls with desc.debug. */
+static void skgl__pending_errors(skgl_context *ctx, const char *fn)
+{
+    skgl__enum e = ctx->gl.GetError(), first = e;
+    int n = 0;
+    while (e != 0 && ++n < 8) e = ctx->gl.GetError();
+    if (first == 0) return;
+    snprintf(ctx->log, sizeof ctx->log,
+             "GL error pending before %s: %s%s (left by the application, cleared; not shadowkit's)", fn,
+             skgl__gl_error_name(first), n > 1 ? " and more" : "");
+    skgl__log_emit(ctx, SKGL_LOG_WARNING);
+}
+
+/* a create call's own GL error (the application's were cleared on entry):
+   SK_ERR_GL naming it and what was being made; SK_OK without one */
+static sk_result skgl__create_check(skgl_context *ctx, const char *fn, const char *what)
+{
+    skgl__enum e = ctx->gl.GetError();
+    int n = 0;
+    if (e == 0) return SK_OK;
+    while (ctx->gl.GetError() != 0 && ++n < 8) {}
+    return skgl__fail(ctx, SK_ERR_GL, "%s: %s while making %s", fn, skgl__gl_error_name(e), what);
+}
+
+/* what every public call that takes the context does first: the log
+   cleared, and with desc.debug (create calls: always) the application's
+   pending GL errors taken out of the way */
+static void skgl__enter(skgl_context *ctx, const char *fn, int always_drain)
+{
+    skgl__log_clear(ctx);
+    ctx->stage = NULL;
+    ctx->call = fn;
+    if (ctx->debug || always_drain) skgl__pending_errors(ctx, fn);
+}
+
+/* a render (or another call that draws) from inside a draw callback would
+   rebind the outer pass's program and reset its model location: refused */
+static sk_result skgl__not_nested(skgl_context *ctx, const char *fn)
+{
+    if (ctx->model_loc < 0) return SK_OK;
+    return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                      "%s: called inside a draw callback of another pass (render every light before or after "
+                      "the others' passes, never from their callbacks)",
+                      fn);
 }
 
 /* one rule of a desc: when cond fails, the message names the field and its
@@ -2591,7 +2763,7 @@ SKGLDEF sk_result skgl_set_dynamic(skgl_context *ctx, const skgl_dynamic *dyn)
     const char *fn = "skgl_set_dynamic";
     const sk_aabb *b;
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_set_dynamic", 0);
     if (!dyn) { memset(&ctx->dyn, 0, sizeof ctx->dyn); return SK_OK; }
     b = &dyn->bounds;
     if (!dyn->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: dyn->draw is NULL (NULL dyn: no dynamic casters)", fn);
@@ -2604,15 +2776,30 @@ SKGLDEF sk_result skgl_set_dynamic(skgl_context *ctx, const skgl_dynamic *dyn)
     return SK_OK;
 }
 
+/* The scene's bounds fit the maps (SCENE ACCESS): a box of some size
+   (zero bounds, a point, would clip every map to nothing and end the
+   shadows where they begin), min below max, every coordinate within
+   SKGL__WORLD_MAX (squared distances then stay finite in float) */
+#define SKGL__WORLD_MAX 1e18f
 static sk_result skgl__arg_scene(skgl_context *ctx, const char *fn, const skgl_scene *scene, int needs_draw)
 {
+    const sk_aabb *b;
+    const char *why = NULL;
     SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
     if (needs_draw && !scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
-    if (!sk__aabb_valid(&scene->bounds))
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
-                          "%s: scene->bounds = (%g %g %g)..(%g %g %g): not finite, or min above max", fn,
-                          (double)scene->bounds.min.x, (double)scene->bounds.min.y, (double)scene->bounds.min.z,
-                          (double)scene->bounds.max.x, (double)scene->bounds.max.y, (double)scene->bounds.max.z);
+    b = &scene->bounds;
+    if (!sk__aabb_valid(b)) why = "not finite, or min above max";
+    else if (!(SK_FABS(b->min.x) <= SKGL__WORLD_MAX && SK_FABS(b->min.y) <= SKGL__WORLD_MAX &&
+               SK_FABS(b->min.z) <= SKGL__WORLD_MAX && SK_FABS(b->max.x) <= SKGL__WORLD_MAX &&
+               SK_FABS(b->max.y) <= SKGL__WORLD_MAX && SK_FABS(b->max.z) <= SKGL__WORLD_MAX))
+        why = "a coordinate beyond 1e18";
+    else if (b->max.x - b->min.x <= 0.0f && b->max.y - b->min.y <= 0.0f && b->max.z - b->min.z <= 0.0f)
+        why = "an empty box (all casters and receivers must be inside: the bounds clip the maps and end the "
+              "shadows)";
+    if (why)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->bounds = (%g %g %g)..(%g %g %g): %s", fn,
+                          (double)b->min.x, (double)b->min.y, (double)b->min.z, (double)b->max.x, (double)b->max.y,
+                          (double)b->max.z, why);
     return SK_OK;
 }
 
@@ -2636,6 +2823,12 @@ static sk_result skgl__arg_unit(skgl_context *ctx, const char *fn, int unit, int
 static void skgl__set_log(skgl_context *ctx, const char *what, const char *detail)
 {
     size_t n = strlen(what);
+    if (detail == ctx->log || what == ctx->log) {   /* quoting the log itself */
+        char keep[sizeof ctx->log];
+        memcpy(keep, ctx->log, sizeof keep);
+        skgl__set_log(ctx, what == ctx->log ? keep : what, detail == ctx->log ? keep : detail);
+        return;
+    }
     if (n >= sizeof ctx->log) n = sizeof ctx->log - 1;
     memcpy(ctx->log, what, n);
     ctx->log[n] = 0;
@@ -2646,6 +2839,8 @@ static void skgl__set_log(skgl_context *ctx, const char *what, const char *detai
         memcpy(ctx->log + n + 2, detail, m);
         ctx->log[n + 2 + m] = 0;
     }
+    ctx->failed = 1;
+    skgl__log_emit(ctx, SKGL_LOG_ERROR);
 }
 
 /* n sources (at most 11) after the dialect's #version (and precision) compiled into a shader
@@ -2844,10 +3039,41 @@ static skgl__progent *skgl__user_program(skgl_context *ctx, skgl__uint program, 
     return victim;
 }
 
+/* desc.debug: a program that is one (glIsProgram) and is current, as the
+   binds ask (a bind sets uniforms on the current program) */
+static sk_result skgl__arg_program(skgl_context *ctx, const char *fn, skgl__uint program)
+{
+    skgl__int cur = 0;
+    if (!ctx->debug) return SK_OK;
+    if (!ctx->gl.IsProgram(program))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: program = %u: not a linked GL program", fn, program);
+    ctx->gl.GetIntegerv(SKGL__CURRENT_PROGRAM, &cur);
+    if ((skgl__uint)cur != program)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: program = %u is not current (glUseProgram it first; %d is)",
+                          fn, program, (int)cur);
+    return SK_OK;
+}
+
+/* desc.debug: the program holds the snippet under this prefix (its map
+   sampler, `map`, is an active uniform). Without it the bind would put the
+   map's texture on a unit that another sampler of the program, of another
+   type, may read: the draw raises GL_INVALID_OPERATION. */
+static sk_result skgl__snippet_present(skgl_context *ctx, const char *fn, const skgl__progent *e, int map_loc,
+                                       skgl__uint program, const char *prefix, const char *map)
+{
+    if (!ctx->debug || e->loc[map_loc] >= 0) return SK_OK;
+    return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                      "%s: program = %u has no active uniform %s%s under prefix \"%s\": the snippet is missing, "
+                      "was pasted under another prefix, or its shadow function is never called",
+                      fn, program, prefix && prefix[0] ? prefix : "sk_", map + 3, prefix ? prefix : "");
+}
+
 SKGLDEF void skgl_forget_program(skgl_context *ctx, unsigned program)
 {
     int i;
-    if (!ctx || !program) return;
+    if (!ctx) return;
+    skgl__log_clear(ctx);
+    if (!program) return;
     for (i = 0; i < SKGL__PROG_CACHE; i++)
         if (ctx->progs[i].program == program) memset(&ctx->progs[i], 0, sizeof ctx->progs[i]);
 }
@@ -2877,7 +3103,9 @@ static skgl__texent *skgl__texture(skgl_context *ctx, skgl__uint tex)
 SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
 {
     int i;
-    if (!ctx || !texture) return;
+    if (!ctx) return;
+    skgl__log_clear(ctx);
+    if (!texture) return;
     for (i = 0; i < SKGL__TEX_CACHE; i++)
         if (ctx->texs[i].tex == texture) memset(&ctx->texs[i], 0, sizeof ctx->texs[i]);
     if (ctx->mask_fbo_tex == texture) {
@@ -2894,13 +3122,19 @@ SKGLDEF void skgl_forget_texture(skgl_context *ctx, unsigned texture)
 
 SKGLDEF sk_result skgl_remember_texture(skgl_context *ctx, unsigned texture, int width, int height)
 {
+    static const char fn[] = "skgl_remember_texture";
     skgl__texent *e;
+    int most;
     if (!ctx) return SK_ERR_INVALID_ARG;
-    if (!texture || width < 1 || height < 1 || width > 65536 || height > 65536) {
-        skgl__set_log(ctx, "skgl_remember_texture",
-                      !texture ? "texture is 0" : "width and height must be in 1..65536");
-        return SK_ERR_INVALID_ARG;
-    }
+    skgl__enter(ctx, fn, 0);
+    most = ctx->caps.max_texture_size > 0 ? ctx->caps.max_texture_size : 65536;
+    SKGL__TRY(skgl__arg_name(ctx, fn, texture, "texture"));
+    if (width < 1 || height < 1 || width > most || height > most)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: width x height = %d x %d: each in 1..%d (GL_MAX_TEXTURE_SIZE)",
+                          fn, width, height, most);
+    if (!ctx->gl.IsTexture(texture))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: texture = %u: not a texture (never made, never bound, or "
+                          "deleted)", fn, texture);
     skgl_forget_texture(ctx, texture);
     e = skgl__texture(ctx, texture);
     e->w = width;
@@ -2916,6 +3150,12 @@ SKGLDEF sk_result skgl_remember_texture(skgl_context *ctx, unsigned texture, int
 static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uint tex, int *w, int *h)
 {
     skgl__texent *e = skgl__texture(ctx, tex);
+    /* a name glGenTextures never gave, deleted, or never bound: binding it
+       would raise GL_INVALID_OPERATION (asked once per name) */
+    if (!e->named) {
+        if (!ctx->gl.IsTexture(tex)) return "not a texture (never made, never bound, or deleted)";
+        e->named = 1;
+    }
     if (!ctx->caps.texture_size) {
         if (e->w <= 0 || e->h <= 0)
             return "this GL cannot be asked a texture's size (OpenGL ES 3.0, WebGL2): give it with "
@@ -2926,7 +3166,8 @@ static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uin
         skgl__st_unit(ctx, st, SKGL__S_TEX(1, SKGL__T_2D));
         ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_WIDTH, &tw);
         ctx->gl.GetTexLevelParameteriv(SKGL__TEXTURE_2D, 0, SKGL__TEXTURE_HEIGHT, &th);
-        if (tw <= 0 || th <= 0 || tw > 65536 || th > 65536) return "the texture has no level 0";
+        if (tw <= 0 || th <= 0 || tw > 65536 || th > 65536)
+            return "the texture has no level 0 (no storage, or not a GL_TEXTURE_2D)";
         if (e->w > 0 && (e->w != tw || e->h != th))
             return "the texture's size changed since it was remembered: call skgl_forget_texture after giving "
                    "a texture new storage";
@@ -2936,6 +3177,26 @@ static const char *skgl__texture_size(skgl_context *ctx, skgl__st *st, skgl__uin
     *w = e->w;
     *h = e->h;
     return NULL;
+}
+
+/* a texture the call reads (a camera depth or normal texture; 0 passes:
+   the caller checks what is required): a texture, with storage where GL can
+   be asked its size; once per name (desc.debug: every call) */
+static sk_result skgl__arg_texture(skgl_context *ctx, skgl__st *st, const char *fn, skgl__uint tex, const char *what)
+{
+    skgl__texent *e;
+    const char *why = NULL;
+    int w = 0, h = 0;
+    if (!tex) return SK_OK;
+    e = skgl__texture(ctx, tex);
+    if (e->named && e->w > 0 && !ctx->debug) return SK_OK;
+    if (ctx->caps.texture_size) why = skgl__texture_size(ctx, st, tex, &w, &h);
+    else if (!e->named) {
+        if (!ctx->gl.IsTexture(tex)) why = "not a texture (never made, never bound, or deleted)";
+        else e->named = 1;
+    }
+    if (why) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s = %u: %s", fn, what, tex, why);
+    return SK_OK;
 }
 
 /* 4.4 GPU timers: a ring of queries read late -------------------------
@@ -3192,9 +3453,16 @@ static sk_result skgl__probe_caps(skgl_context *ctx, const skgl_desc *desc, int 
     const char *version = (const char *)ctx->gl.GetString(SKGL__VERSION);
     int es = version && strncmp(version, "OpenGL ES", 9) == 0, gl, off = (int)desc->disable_caps;
     void *p;
-    if (desc->api == SKGL_API_GL33 && es) return SK_ERR_GL;
-    if (desc->api == SKGL_API_GLES3 && !es) return SK_ERR_GL;
-    if (es ? major < 3 : major < 3 || (major == 3 && minor < 3)) return SK_ERR_GL;
+    static const char fn[] = "skgl_create";
+    if (desc->api == SKGL_API_GL33 && es)
+        return skgl__fail(ctx, SK_ERR_GL, "%s: desc.api = SKGL_API_GL33, but the context is \"%.200s\"", fn, version);
+    if (desc->api == SKGL_API_GLES3 && !es)
+        return skgl__fail(ctx, SK_ERR_GL, "%s: desc.api = SKGL_API_GLES3, but the context is \"%.200s\"", fn,
+                          version ? version : "(no GL_VERSION)");
+    if (es ? major < 3 : major < 3 || (major == 3 && minor < 3))
+        return skgl__fail(ctx, SK_ERR_GL, "%s: the context is OpenGL%s %d.%d (\"%.200s\"): shadowkit needs %s", fn,
+                          es ? " ES" : "", major, minor, version ? version : "(no GL_VERSION)",
+                          es ? "OpenGL ES 3.0 or later" : "OpenGL 3.3 core or later");
     gl = !es;
     memset(c, 0, sizeof *c);
     c->api = es ? SKGL_API_GLES3 : SKGL_API_GL33;
@@ -3229,7 +3497,9 @@ static sk_result skgl__probe_caps(skgl_context *ctx, const skgl_desc *desc, int 
     if (off & SKGL_CAP_MIP_RENDER_LEVEL) c->mip_render_level = 0;
     /* the entry points behind them (void* -> function pointer through memcpy) */
 #define SKGL__OPT(field, wanted, name) \
-    p = skgl__load_opt(desc, wanted, name); memcpy(&ctx->gl.field, &p, sizeof p); if ((wanted) && !p) return SK_ERR_GL;
+    p = skgl__load_opt(desc, wanted, name); memcpy(&ctx->gl.field, &p, sizeof p); \
+    if ((wanted) && !p) return skgl__fail(ctx, SK_ERR_GL, "%s: desc.getproc(\"%s\") returned NULL: the context " \
+                                          "offers it (%s), shadowkit needs it", fn, name, version ? version : "");
     SKGL__OPT(FramebufferTexture, c->geometry_shader, es ? "glFramebufferTextureEXT" : "glFramebufferTexture")
     SKGL__OPT(GetBufferSubData, c->buffer_read, "glGetBufferSubData")
     SKGL__OPT(MapBufferRange, !c->buffer_read, "glMapBufferRange")
@@ -3252,55 +3522,136 @@ SKGLDEF skgl_caps skgl_get_caps(const skgl_context *ctx)
     return c;
 }
 
+/* skgl_create's desc, field by field: the message to the desc's logger
+   (there is no context to keep it yet) */
+static sk_result skgl__create_fail(const skgl_desc *desc, sk_result r, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (desc && desc->logger.func) desc->logger.func(desc->logger.user, SKGL_LOG_ERROR, msg);
+    return r;
+}
+
+static sk_result skgl__create_desc(const skgl_desc *desc, skgl_context **out)
+{
+    static const char fn[] = "skgl_create";
+    if (!desc) return SK_ERR_INVALID_ARG;   /* no logger to tell */
+    if (!out) return skgl__create_fail(desc, SK_ERR_INVALID_ARG, "%s: out is NULL", fn);
+    if (!desc->getproc)
+        return skgl__create_fail(desc, SK_ERR_INVALID_ARG,
+                                 "%s: desc.getproc is NULL: a function that returns GL entry points by name "
+                                 "(glfwGetProcAddress, eglGetProcAddress, ...) is required", fn);
+    if (desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC)
+        return skgl__create_fail(desc, SK_ERR_INVALID_ARG, "%s: desc.timing = %d: 0, 1 or SKGL_TIMING_SYNC (2)", fn,
+                                 desc->timing);
+    if (desc->clip_zero_to_one != 0 && desc->clip_zero_to_one != 1)
+        return skgl__create_fail(desc, SK_ERR_INVALID_ARG, "%s: desc.clip_zero_to_one = %d: 0 or 1", fn,
+                                 desc->clip_zero_to_one);
+    if (desc->debug != 0 && desc->debug != 1)
+        return skgl__create_fail(desc, SK_ERR_INVALID_ARG, "%s: desc.debug = %d: 0 or 1", fn, desc->debug);
+    if (desc->caller_owns_state != 0 && desc->caller_owns_state != 1)
+        return skgl__create_fail(desc, SK_ERR_INVALID_ARG, "%s: desc.caller_owns_state = %d: 0 or 1", fn,
+                                 desc->caller_owns_state);
+    if ((int)desc->api < SKGL_API_AUTO || (int)desc->api > SKGL_API_GLES3)
+        return skgl__create_fail(desc, SK_ERR_INVALID_ARG, "%s: desc.api = %d: one of skgl_api", fn, (int)desc->api);
+    if (desc->disable_caps & ~0x07FFu)
+        return skgl__create_fail(desc, SK_ERR_INVALID_ARG, "%s: desc.disable_caps = 0x%x: SKGL_CAP_* bits only", fn,
+                                 desc->disable_caps);
+    return SK_OK;
+}
+
+/* the required entry points through desc.getproc; the first missing one named */
+static sk_result skgl__load(skgl_context *ctx, const skgl_desc *desc)
+{
+    /* void* -> function pointer through memcpy: ISO C has no direct cast */
+#define SKGL__X(ret, name, args) { void *p_ = desc->getproc("gl" #name); \
+        memcpy(&ctx->gl.name, &p_, sizeof p_); \
+        if (!p_) return skgl__fail(ctx, SK_ERR_GL, "skgl_create: desc.getproc(\"gl%s\") returned NULL: " \
+                                   "shadowkit needs it (an OpenGL 3.3 core or ES 3.0 context current?)", #name); }
+    SKGL__FUNCS(SKGL__X)
+#undef SKGL__X
+    return SK_OK;
+}
+
+/* shadowkit's own programs; the first that fails has the driver's message in the log */
+static sk_result skgl__create_programs(skgl_context *ctx)
+{
+    ctx->depth_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL);
+    if (ctx->depth_prog)
+        ctx->mask_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
+                                       skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL), skgl__glsl(SKGL__GLSL_SHADOW_MASK_FRAG));
+    if (ctx->mask_prog)
+        ctx->ferko_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
+                                        skgl__glsl(SKGL__GLSL_FERKO_ANALYZE_FRAG), NULL);
+    if (ctx->ferko_prog)
+        ctx->reduce_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 0\n",
+                                         skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
+    if (ctx->reduce_prog)
+        ctx->final_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 1\n",
+                                        skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
+    if (ctx->final_prog)
+        ctx->rmsm_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
+                                       skgl__glsl(SKGL__GLSL_RMSM_ANALYZE_FRAG), NULL);
+    if (ctx->rmsm_prog)
+        ctx->request_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_RMSM_REQUEST_VERT),
+                                          skgl__glsl(SKGL__GLSL_RMSM_REQUEST_FRAG), NULL);
+    if (ctx->request_prog) return SK_OK;
+    {
+        char driver[sizeof ctx->log];
+        memcpy(driver, ctx->log, sizeof driver);
+        return skgl__fail(ctx, SK_ERR_GL, "skgl_create: shadowkit's own shaders did not build on \"%.80s\": %.900s",
+                          (const char *)ctx->gl.GetString(SKGL__VERSION), driver);
+    }
+}
+
 SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
 {
     skgl_context *ctx;
     skgl__st st;
     skgl__int major = 0, minor = 0;
-    int missing = 0;
-    if (!desc || !desc->getproc || !out || desc->timing < 0 || desc->timing > SKGL_TIMING_SYNC ||
-        (desc->clip_zero_to_one != 0 && desc->clip_zero_to_one != 1) || (int)desc->api < SKGL_API_AUTO ||
-        (int)desc->api > SKGL_API_GLES3)
-        return SK_ERR_INVALID_ARG;
-    *out = NULL;
+    skgl__enum e;
+    sk_result r;
+    if (out) *out = NULL;
+    SKGL__TRY(skgl__create_desc(desc, out));
     ctx = (skgl_context *)SKGL_MALLOC(sizeof *ctx);
-    if (!ctx) return SK_ERR_CAPACITY;
+    if (!ctx) return skgl__create_fail(desc, SK_ERR_CAPACITY, "skgl_create: out of memory (%u bytes)",
+                                       (unsigned)sizeof *ctx);
     memset(ctx, 0, sizeof *ctx);
-    /* void* -> function pointer through memcpy: ISO C has no direct cast */
-#define SKGL__X(ret, name, args) { void *p_ = desc->getproc("gl" #name); \
-        memcpy(&ctx->gl.name, &p_, sizeof p_); if (!p_) missing = 1; }
-    SKGL__FUNCS(SKGL__X)
-#undef SKGL__X
-    if (missing) { SKGL_FREE(ctx); return SK_ERR_GL; }
+    ctx->logger = desc->logger;
+    ctx->model_loc = -1;   /* no caster pass under way */
+    r = skgl__load(ctx, desc);
+    if (r != SK_OK) { SKGL_FREE(ctx); return r; }
+    skgl__pending_errors(ctx, "skgl_create");
     ctx->gl.GetIntegerv(SKGL__MAJOR_VERSION, &major);
     ctx->gl.GetIntegerv(SKGL__MINOR_VERSION, &minor);
-    if (skgl__probe_caps(ctx, desc, major, minor) != SK_OK) { SKGL_FREE(ctx); return SK_ERR_GL; }
+    /* a context below 3.0 does not know GL_MAJOR_VERSION (GL_INVALID_ENUM, 0 read): the string says */
+    if (major == 0) (void)ctx->gl.GetError();
+    r = skgl__probe_caps(ctx, desc, major, minor);
+    if (r != SK_OK) { SKGL_FREE(ctx); return r; }
     ctx->debug = desc->debug;
     ctx->timing = ctx->caps.timer_query ? desc->timing : 0;
     ctx->caller_owns = desc->caller_owns_state != 0;
     ctx->clip_zero_to_one = desc->clip_zero_to_one;
     if (ctx->clip_zero_to_one) {   /* its passes draw under OpenGL's clip depth, then give zero-to-one back */
-        void *p_ = ctx->caps.clip_control ? desc->getproc(ctx->caps.api == SKGL_API_GLES3 ? "glClipControlEXT"
-                                                                                          : "glClipControl")
-                                          : NULL;
-        if (!p_) { SKGL_FREE(ctx); return SK_ERR_GL; }
+        const char *name = ctx->caps.api == SKGL_API_GLES3 ? "glClipControlEXT" : "glClipControl";
+        void *p_ = ctx->caps.clip_control ? desc->getproc(name) : NULL;
+        if (!p_) {
+            r = skgl__fail(ctx, SK_ERR_GL, "skgl_create: desc.clip_zero_to_one = 1 needs %s (OpenGL 4.5, "
+                           "GL_ARB_clip_control, GL_EXT_clip_control on ES), %s", name,
+                           ctx->caps.clip_control ? "which desc.getproc did not return" : "which this context lacks");
+            SKGL_FREE(ctx);
+            return r;
+        }
         memcpy(&ctx->ClipControl, &p_, sizeof p_);
     }
-    ctx->depth_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL);
-    ctx->mask_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL),
-                                   skgl__glsl(SKGL__GLSL_SHADOW_MASK_FRAG));
-    ctx->ferko_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_FERKO_ANALYZE_FRAG), NULL);
-    ctx->reduce_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 0\n",
-                                     skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
-    ctx->final_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 1\n",
-                                    skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
-    ctx->rmsm_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), skgl__glsl(SKGL__GLSL_RMSM_ANALYZE_FRAG), NULL);
-    ctx->request_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_RMSM_REQUEST_VERT), skgl__glsl(SKGL__GLSL_RMSM_REQUEST_FRAG), NULL);
-    if (!ctx->depth_prog || !ctx->mask_prog || !ctx->ferko_prog || !ctx->reduce_prog || !ctx->final_prog ||
-        !ctx->rmsm_prog || !ctx->request_prog) {
+    r = skgl__create_programs(ctx);
+    if (r != SK_OK) {
         skgl__release(ctx);
         SKGL_FREE(ctx);
-        return SK_ERR_GL;
+        return r;
     }
     skgl__st_begin(ctx, &st);
     skgl__own_programs(ctx, &st);
@@ -3309,12 +3660,16 @@ SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
     ctx->gl.GenFramebuffers(1, &ctx->mask_fbo); ctx->objects++;
     ctx->cmp_sampler = skgl__sampler(ctx, 1);
     ctx->point_sampler = skgl__sampler(ctx, 0);
-    if (ctx->gl.GetError() != 0) {
-        skgl__set_log(ctx, "GL error while creating the context objects", NULL);
+    e = ctx->gl.GetError();
+    if (e != 0) {
+        r = skgl__fail(ctx, SK_ERR_GL, "skgl_create: %s while creating the context's programs, samplers and "
+                       "framebuffer", skgl__gl_error_name(e));
+        while (ctx->gl.GetError() != 0 && ++major < 64) {}
         skgl__release(ctx);
         SKGL_FREE(ctx);
-        return SK_ERR_GL;
+        return r;
     }
+    skgl__log_clear(ctx);   /* a pending error's warning went to the logger; the log starts empty */
     *out = ctx;
     return SK_OK;
 }
@@ -3332,13 +3687,18 @@ SKGLDEF void skgl_destroy(skgl_context *ctx)
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx) { return ctx ? ctx->objects : 0; }
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx) { return ctx ? ctx->log : ""; }
 
+/* desc.debug: a GL error raised by the call (the application's were
+   cleared on entry, skgl__enter), named, with the pass it came from */
 static sk_result skgl__check(skgl_context *ctx, const char *what)
 {
-    if (ctx->debug && ctx->gl.GetError() != 0) {
-        skgl__set_log(ctx, what, "glGetError reported an error");
-        return SK_ERR_GL;
-    }
-    return SK_OK;
+    skgl__enum e;
+    int n = 0;
+    if (!ctx->debug) return SK_OK;
+    e = ctx->gl.GetError();
+    if (e == 0) return SK_OK;
+    while (ctx->gl.GetError() != 0 && ++n < 8) {}
+    return skgl__fail(ctx, SK_ERR_GL, "%s: %s raised in %s", what, skgl__gl_error_name(e),
+                      ctx->stage ? ctx->stage : "the call's own state changes");
 }
 
 
@@ -3517,12 +3877,22 @@ static skgl_scene skgl__scene_rel(const skgl_scene *scene, const double o[3])
     return r;
 }
 
+/* the pass's program current again before a uniform is sent to it, when
+   a callback may have left another (skgl__after_draw) */
+static void skgl__pass_program(skgl_context *ctx)
+{
+    if (!ctx->prog_unsure) return;
+    ctx->prog_unsure = 0;
+    if (!ctx->cur_caster) ctx->gl.UseProgram(ctx->pass_prog);
+}
+
 /* the current pass's model matrix (model_loc): T(-model_origin) * model, in double */
 static void skgl__model(skgl_context *ctx, const float model[16])
 {
     const double *o = ctx->model_origin;
     float r[16];
     int c, k;
+    skgl__pass_program(ctx);
     if (o[0] == 0.0 && o[1] == 0.0 && o[2] == 0.0) {
         ctx->gl.UniformMatrix4fv(ctx->model_loc, 1, 0, model);
         return;
@@ -3572,6 +3942,7 @@ static void skgl__model_begin(skgl_context *ctx, skgl__uint prog, skgl__int vp_l
     ctx->pass_model_loc = model_loc;
     ctx->pass_variant = variant;
     ctx->model_loc = model_loc;
+    ctx->prog_unsure = 0;   /* prog was just bound through the tracker */
     skgl__model(ctx, skgl__identity);
     ctx->model_dirty = 0;
 }
@@ -3581,6 +3952,7 @@ static void skgl__model_end(skgl_context *ctx)
 {
     memcpy(ctx->model_origin, skgl__zero3, sizeof ctx->model_origin);
     ctx->model_loc = -1;
+    ctx->prog_unsure = 0;   /* the tracker binds the next program itself (skgl__after_draw) */
 }
 
 /* What a draw callback must leave as it found it (SCENE ACCESS), checked
@@ -3635,6 +4007,15 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
         ctx->gl.UseProgram(ctx->pass_prog);
         ctx->cur_caster = NULL;
         ctx->model_loc = ctx->pass_model_loc;
+    } else if (!ctx->debug) {
+        /* unchecked, the callback may have left a program of its own
+           current (against SCENE ACCESS): the pass's program is bound
+           again before shadowkit sends it a uniform (skgl__pass_program),
+           and the tracker binds the next program it wants whatever it
+           thinks is current, so nothing of shadowkit's lands in a foreign
+           program */
+        ctx->prog_unsure = 1;
+        skgl__st_forget(st, SKGL__S_PROGRAM);
     }
     if (r == SK_OK) r = ctx->pass_error;
     ctx->pass_error = SK_OK;
@@ -3669,6 +4050,7 @@ static void skgl__casters_begin_with(skgl_context *ctx, skgl__st *st, skgl__uint
     skgl__st_depth_pass(ctx, st, slope_bias, depth_bias);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)prog);
     skgl__model_begin(ctx, prog, vp_loc, model_loc, variant, origin);
+    ctx->stage = "the caster passes";
 }
 /* with shadowkit's depth program */
 static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias,
@@ -3681,17 +4063,38 @@ static void skgl__casters_begin(skgl_context *ctx, skgl__st *st, float slope_bia
 /* the scene's callbacks that ctx->draw_class names, each followed by what
    a callback may have changed: draw (info->dynamic 0), then the dynamic casters
    (info->dynamic 1) when the scene has one */
+/* desc.debug: a GL error raised since the last check, named with the pass
+   (kind and index) and whether the callback or shadowkit's set-up of the
+   pass raised it */
+static sk_result skgl__pass_gl_check(skgl_context *ctx, const skgl_draw_info *info, const char *when)
+{
+    static const char *const kinds[4] = {"directional layer", "cube face", "area light map", "camera G-buffer"};
+    skgl__enum e;
+    int n = 0;
+    if (!ctx->debug || (e = ctx->gl.GetError()) == 0) return SK_OK;
+    while (ctx->gl.GetError() != 0 && ++n < 8) {}
+    return skgl__fail(ctx, SK_ERR_GL, "%s: %s raised %s of the caster pass of %s %d%s",
+                      ctx->call ? ctx->call : "shadowkit", skgl__gl_error_name(e), when,
+                      (unsigned)info->kind < 4u ? kinds[info->kind] : "kind ?", info->index,
+                      info->layers > 0 ? " (layered)" : "");
+}
+
 static sk_result skgl__scene_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, skgl_draw_info *info)
 {
-    sk_result r = SK_OK, rc;
+    sk_result r = skgl__pass_gl_check(ctx, info, "in shadowkit's set-up"), rc;
     if (ctx->draw_class != SKGL__DRAW_DYNAMIC) {
         info->dynamic = 0;
         scene->draw(scene->user, info);
-        r = skgl__after_draw(ctx, st);
+        rc = skgl__pass_gl_check(ctx, info, "in the draw callback (scene.draw)");
+        if (r == SK_OK) r = rc;
+        rc = skgl__after_draw(ctx, st);
+        if (r == SK_OK) r = rc;
     }
     if (ctx->dyn.draw && ctx->draw_class != SKGL__DRAW_STATIC) {
         info->dynamic = 1;
         ctx->dyn.draw(ctx->dyn.user, info);
+        rc = skgl__pass_gl_check(ctx, info, "in the dynamic casters' callback (skgl_set_dynamic)");
+        if (r == SK_OK) r = rc;
         rc = skgl__after_draw(ctx, st);
         if (r == SK_OK) r = rc;
     }
@@ -3705,6 +4108,7 @@ static int skgl__pass_callbacks(const skgl_context *ctx) { return 1 + (ctx->dyn.
 static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
                                     const double origin[3], skgl_draw_info *info)
 {
+    skgl__pass_program(ctx);
     ctx->gl.UniformMatrix4fv(ctx->pass_vp_loc, 1, 0, vp->m);
     memcpy(ctx->pass_vp, vp->m, sizeof ctx->pass_vp);
     ctx->pass_serial++;
@@ -3743,6 +4147,7 @@ static int skgl__layered_ready(skgl_context *ctx)
     char keep[sizeof ctx->log];
     if (ctx->layered_state != 0) return ctx->layered_state > 0;
     memcpy(keep, ctx->log, sizeof keep);   /* the first try may fail without GL_ARB_gpu_shader5 */
+    ctx->log_quiet++;
 #ifndef SKGL_LAYERED_LOOP
     ctx->layered_prog = skgl__layered_program(ctx, skgl__gs_invocations);
 #endif
@@ -3751,6 +4156,7 @@ static int skgl__layered_ready(skgl_context *ctx)
         ctx->layered_prog = skgl__layered_program(ctx, "");
         ctx->layered_state = ctx->layered_prog ? 1 : -1;
     }
+    ctx->log_quiet--;
     memcpy(ctx->log, keep, sizeof keep);
     if (ctx->layered_state < 0) return 0;
     ctx->layered_u_model = ctx->gl.GetUniformLocation(ctx->layered_prog, "skgl_model");
@@ -4394,6 +4800,7 @@ SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *
     sk_result r;
     if (out) *out = NULL;
     if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, fn, 1);
     if (!desc || !out) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s is NULL", fn, !desc ? "desc" : "out");
     if (!desc->vertex || !desc->vertex[0])
         return skgl__fail(ctx, SK_ERR_INVALID_ARG,
@@ -4548,6 +4955,7 @@ static sk_result skgl__mask_begin(skgl_context *ctx, skgl__st *st, unsigned mask
     }
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, *w, *h);
     skgl__st_screen_pass(ctx, st);
+    ctx->stage = "the mask pass";
     return SK_OK;
 }
 
@@ -4682,6 +5090,7 @@ struct skgl_shadow {
     double origin[3];              /* the world point vp and render_vp are relative to (they
                                       take p - origin; see skgl__origin) */
     sk_vec3 light_dir;             /* unit travel direction of the last render */
+    int rendered;                  /* 1 after a render that succeeded: the maps may be read */
     skgl__ferko ferko;             /* SKGL_FERKO only */
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl__cache cache;             /* desc.cache only */
@@ -4739,14 +5148,14 @@ static void skgl__apply_switches(float *slope_bias, float *depth_bias, int no_of
 static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
 {
     skgl_shadow_desc r = *d;
-    if (r.resolution <= 0) r.resolution = r.technique == SKGL_RMSM ? 16384 : 2048;
+    if (r.resolution == 0) r.resolution = r.technique == SKGL_RMSM ? 16384 : 2048;
     if (r.rmsm_page_size == 0) r.rmsm_page_size = 128;
     if (r.rmsm_pool_pages == 0) r.rmsm_pool_pages = 24;
     if (r.lspsm.zeta == 0.0f) r.lspsm.zeta = 0.25f;
     if (r.lspsm.sigma == 0.0f) r.lspsm.sigma = 0.5f;
     if (r.lspsm.h_max == 0) r.lspsm.h_max = 4;
     if (r.lspsm.nw_max == 0) r.lspsm.nw_max = 2;
-    if (r.cascades <= 0) r.cascades = r.technique == SKGL_LISPSM ? 1 : 4;
+    if (r.cascades == 0) r.cascades = r.technique == SKGL_LISPSM ? 1 : 4;
     /* LSPSM: one layer per possible partition; how many are used is per frame */
     if (r.technique == SKGL_LSPSM && r.lspsm.h_max > 0 && r.lspsm.nw_max > 0 &&
         r.lspsm.h_max <= SKGL_MAX_CASCADES && r.lspsm.nw_max <= SKGL_MAX_CASCADES)
@@ -4824,14 +5233,19 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     int lspsm = d->technique == SKGL_LSPSM, rmsm = d->technique == SKGL_RMSM;
     SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_RMSM, fn, "technique",
                d->technique, "one of skgl_technique");
+    SKGL__RULE(d->resolution >= 1, fn, "resolution", d->resolution, "1 or more (0: the default)");
     SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
+    /* a stable crop snaps to whole texels of a map of at least two */
+    SKGL__RULE(!d->stable || d->resolution >= 2, fn, "resolution", d->resolution, "2 or more with desc.stable");
+    SKGL__RULE(d->stable == 0 || d->stable == 1, fn, "stable", d->stable, "0 or 1");
     /* LSPSM's layers are h_max * nw_max (the defaults set .cascades to it):
        that rule first, so that the message names the fields the caller set */
     /* (in double: two large ints' product would overflow) */
     SKGL__RULE(!lspsm || (double)d->lspsm.h_max * (double)d->lspsm.nw_max <= SKGL_MAX_CASCADES, fn,
                "lspsm.h_max * lspsm.nw_max", (double)d->lspsm.h_max * (double)d->lspsm.nw_max,
                "at most SKGL_MAX_CASCADES");
-    SKGL__RULE(d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades, "at most SKGL_MAX_CASCADES (8)");
+    SKGL__RULE(d->cascades >= 1 && d->cascades <= SKGL_MAX_CASCADES, fn, "cascades", d->cascades,
+               "in 1..SKGL_MAX_CASCADES (8; 0: the default)");
     SKGL__RULE(d->lambda >= 0.0f && d->lambda <= 1.0f, fn, "lambda", d->lambda, "in (0, 1] (uniform_splits for 0)");
     SKGL__TRY(skgl__split_rules(ctx, fn, d));
     SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
@@ -4884,13 +5298,16 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     sk_result r;
     int i;
     if (out) *out = NULL;
-    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, "skgl_shadow_create", 1);
+    if (!desc || !out)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_shadow_create: %s is NULL", !desc ? "desc" : "out");
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_shadow_create"));
     d = skgl__defaults(desc);
     r = skgl__shadow_validate(ctx, &d);
     if (r != SK_OK) return r;
     s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
-    if (!s) return SK_ERR_CAPACITY;
+    if (!s) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_shadow_create: out of memory");
     memset(s, 0, sizeof *s);
     s->desc = d;
     s->id = ++ctx->next_id;
@@ -4924,13 +5341,12 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
     if (r == SK_OK && d.cache && d.technique != SKGL_RMSM) r = skgl__cache_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
-    if (r == SK_OK && gl->GetError() != 0) {
-        skgl__set_log(ctx, "could not allocate the shadow map texture", NULL);
-        r = SK_ERR_GL;
-    }
+    if (r == SK_OK)
+        r = skgl__create_check(ctx, "skgl_shadow_create", "the light's depth texture and framebuffers (out of GPU "
+                               "memory, or desc.resolution above GL_MAX_TEXTURE_SIZE?)");
     if (r != SK_OK) {
         skgl_shadow_destroy(ctx, s);
-        return r;
+        return skgl__said(ctx, "skgl_shadow_create", r, NULL);
     }
     s->stats.shadow_ms = s->stats.mask_ms = s->stats.analysis_ms = -1.0f;
     *out = s;
@@ -5986,7 +6402,7 @@ SKGLDEF sk_result skgl_shadow_invalidate(skgl_context *ctx, skgl_shadow *s, cons
 {
     const char *fn = "skgl_shadow_invalidate";
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_shadow_invalidate", 0);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__arg_box(ctx, fn, box));
     if (!s->desc.cache || s->cache.all) return SK_OK;
@@ -6747,7 +7163,8 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     const char *why;
     const char *fn = "skgl_shadow_analyze";
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_shadow_analyze", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_shadow_analyze"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     if (!skgl__technique_of(s)->analyze)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
@@ -6761,7 +7178,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     skgl__origin(&cam->view, o);
     rc = skgl__camera_rel(&ci.gl, o);
     rs = skgl__scene_rel(scene, o);
-    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, rc.view), &inv)) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular near this camera's origin", fn);
     memcpy(ctx->cam_dmap, ci.dmap, sizeof ci.dmap);
     if (s->desc.technique == SKGL_RMSM) {   /* the page grid is fixed in the world (skgl__rmsm_frame) */
         sk_mat4 vlvp;
@@ -6792,7 +7209,8 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     skgl_scene rs;
     const char *fn = "skgl_shadow_render";
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_shadow_render", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_shadow_render"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
     SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
@@ -6805,11 +7223,17 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     memcpy(s->origin, o, sizeof o);
     s->rmsm.world = scene->bounds;
     r = skgl__fit_layers(s, &rcam, &rs, light_dir);
-    if (r != SK_OK) { memcpy(s->origin, was, sizeof was); return r; }
+    if (r != SK_OK) {
+        memcpy(s->origin, was, sizeof was);
+        return skgl__said(ctx, fn, r, "the maps cannot be fitted to this camera and scene: cam->proj must be a "
+                          "perspective or orthographic projection with 0 < near < far and an invertible cam->view, "
+                          "and scene->bounds a box of finite extent");
+    }
     skgl__clip_depth(ctx, 0);
     r = skgl__technique_of(s)->render(ctx, s, &rs, light_dir);
     skgl__clip_depth(ctx, 1);
-    return r;
+    if (r == SK_OK) s->rendered = 1;
+    return skgl__said(ctx, fn, r, NULL);
 }
 
 /* ---- 6.7 bind: the snippet's uniforms in a forward shader ------------- */
@@ -6901,7 +7325,7 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
     skgl__progent *e;
     const char *fn = "skgl_shadow_bind";
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_shadow_bind_named", 0);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__arg_prefix(ctx, fn, prefix));
     SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
@@ -6909,7 +7333,12 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
     if (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: origin = (%g %g %g): finite, under 1e30", fn, origin[0],
                           origin[1], origin[2]);
+    if (!s->rendered)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s: the light has not been rendered yet (skgl_shadow_render "
+                          "first)", fn);
+    SKGL__TRY(skgl__arg_program(ctx, fn, program));
     e = skgl__user_program(ctx, program, SKGL__PK_SHADOW, prefix ? prefix : "");
+    SKGL__TRY(skgl__snippet_present(ctx, fn, e, SKGL__L_MAP, program, prefix, "sk_shadow_map"));
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
     last = SKGL__TEXTURE0 + unit;
@@ -6930,7 +7359,7 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
 SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit)
 {
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_unbind", 0);
     SKGL__TRY(skgl__arg_unit(ctx, "skgl_unbind", unit, 30));
     ctx->gl.BindSampler((skgl__uint)unit, 0);
     ctx->gl.BindSampler((skgl__uint)unit + 1, 0);
@@ -6951,19 +7380,27 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     sk_result r;
     const char *fn = "skgl_shadow_mask";
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_shadow_mask", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_shadow_mask"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__camera_in(ctx, fn, cam, NULL, &ci));
     SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
     SKGL__TRY(skgl__arg_name(ctx, fn, mask_tex, "mask_tex"));
+    if (!s->rendered)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s: the light has not been rendered yet (skgl_shadow_render "
+                          "first)", fn);
     /* positions reconstructed relative to this camera's origin, from depth
        in the caller's convention (cam->proj, ci.dmap) */
     skgl__origin(&cam->view, o);
     rc = skgl__camera_rel(cam, o);
-    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv)) return SK_ERR_INVALID_ARG;
+    if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular near this camera's "
+                          "origin", fn);
     skgl__st_begin(ctx, &st);
     skgl__timer_begin(ctx, &s->t_mask);
-    r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask: mask_tex");
+    r = skgl__arg_texture(ctx, &st, fn, depth_tex, "depth_tex");
+    if (r == SK_OK) r = skgl__arg_texture(ctx, &st, fn, normal_tex, "normal_tex");
+    if (r == SK_OK) r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask: mask_tex");
     if (r == SK_OK) {
         skgl__unitbind b[4];
         int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
@@ -7204,7 +7641,15 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
                "more than 0");
     SKGL__RULE(d->screen_w >= 0, fn, "screen_w", d->screen_w, "0 or more");
     SKGL__RULE(d->screen_h >= 0, fn, "screen_h", d->screen_h, "0 or more");
-    SKGL__RULE(d->vsdct_grey_levels >= 1, fn, "vsdct_grey_levels", d->vsdct_grey_levels, "1 or more");
+    /* G of King & Newhall's Eq. (5.4.7): a grey ramp needs two levels at
+       least, and the RG16 indirection holds 16 bits */
+    SKGL__RULE(d->vsdct_grey_levels >= 2 && d->vsdct_grey_levels <= 65536, fn, "vsdct_grey_levels",
+               d->vsdct_grey_levels, "in 2..65536 (0: the default)");
+    SKGL__RULE(d->cull_faces == 0 || d->cull_faces == 1, fn, "cull_faces", d->cull_faces, "0 or 1");
+    SKGL__RULE(d->cull_casters == 0 || d->cull_casters == 1, fn, "cull_casters", d->cull_casters, "0 or 1");
+    SKGL__RULE(d->scissor == 0 || d->scissor == 1, fn, "scissor", d->scissor, "0 or 1");
+    SKGL__RULE(d->select_resolution == 0 || d->select_resolution == 1, fn, "select_resolution",
+               d->select_resolution, "0 or 1");
     SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
     SKGL__NEED(!d->layered || ctx->caps.geometry_shader, fn, "desc.layered", SKGL__GEOMETRY);
     SKGL__RULE(d->cache == 0 || d->cache == 1, fn, "cache", d->cache, "0 or 1");
@@ -7236,8 +7681,11 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     int f, lv;
     sk_result r = SK_OK;
     if (out) *out = NULL;
-    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, "skgl_point_create", 1);
+    if (!desc || !out)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_create: %s is NULL", !desc ? "desc" : "out");
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_point_create"));
     d = skgl__point_defaults(desc);
     r = skgl__point_validate(ctx, &d);
     if (r != SK_OK) return r;
@@ -7251,7 +7699,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
                           d.technique == SKGL_POINT_CUBE ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
                                                          : "a third of GL_MAX_TEXTURE_SIZE, the 3 x 2 atlas");
     p = (skgl_point *)SKGL_MALLOC(sizeof *p);
-    if (!p) return SK_ERR_CAPACITY;
+    if (!p) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_point_create: out of memory");
     memset(p, 0, sizeof *p);
     p->desc = d;
     p->id = ++ctx->next_id;
@@ -7260,7 +7708,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     /* the mask program: the technique's define, the snippet, the pass */
     n = strlen(skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL)) + 96;
     fs = (char *)SKGL_MALLOC(n);
-    if (!fs) { SKGL_FREE(p); return SK_ERR_CAPACITY; }
+    if (!fs) { SKGL_FREE(p); return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_point_create: out of memory"); }
     strcpy(fs, d.technique == SKGL_POINT_VSDCT ? "#define SK_POINT_VSDCT 1\n" : "#define SK_POINT_VSDCT 0\n");
     if (!ctx->caps.norm16) strcat(fs, "#define SK_POINT_VSDCT_ANALYTIC 1\n");
     strcat(fs, skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL));
@@ -7353,11 +7801,8 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     p->layout = skgl__point_layout(p, d.resolution);
     if (r == SK_OK && d.cache) r = skgl__point_cache_create(ctx, &st, p);
     skgl__st_end(ctx, &st);
-    if (r == SK_OK && gl->GetError() != 0) {
-        skgl__set_log(ctx, "skgl_point_create: GL error while allocating the maps", NULL);
-        r = SK_ERR_GL;
-    }
-    if (r != SK_OK) { skgl__point_free(ctx, p); SKGL_FREE(p); return r; }
+    if (r == SK_OK) r = skgl__create_check(ctx, "skgl_point_create", "the light's maps");
+    if (r != SK_OK) { skgl__point_free(ctx, p); SKGL_FREE(p); return skgl__said(ctx, "skgl_point_create", r, NULL); }
     p->stats.shadow_ms = p->stats.mask_ms = -1.0f;
     *out = p;
     return SK_OK;
@@ -7631,7 +8076,7 @@ SKGLDEF sk_result skgl_point_invalidate(skgl_context *ctx, skgl_point *p, const 
 {
     const char *fn = "skgl_point_invalidate";
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_point_invalidate", 0);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
     SKGL__TRY(skgl__arg_box(ctx, fn, box));
     if (!p->cache.tex || p->cache.all) return SK_OK;
@@ -7899,13 +8344,10 @@ static sk_result skgl__point_render_body(skgl_context *ctx, skgl_point *p, const
     sk_result r;
     const char *fn = "skgl_point_render";
     skgl__cam ci;
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
     SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
     cam = &ci.gl;   /* OpenGL's convention from here on */
-    SKGL__TRY(skgl__arg_ptr(ctx, fn, scene, "scene"));
-    if (!scene->draw) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: scene->draw is NULL", fn);
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
     if (p->desc.atlas && !p->packed)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: a shared-atlas light needs skgl_point_atlas_pack first", fn);
@@ -7935,10 +8377,12 @@ SKGLDEF sk_result skgl_point_render(skgl_context *ctx, skgl_point *p, const skgl
 {
     sk_result r;
     if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, "skgl_point_render", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_point_render"));
     skgl__clip_depth(ctx, 0);   /* the passes under OpenGL's clip depth (CAMERA CONVENTIONS) */
     r = skgl__point_render_body(ctx, p, cam, scene, light_pos);
     skgl__clip_depth(ctx, 1);
-    return r;
+    return skgl__said(ctx, "skgl_point_render", r, NULL);
 }
 
 /* The point snippet's uniforms on the current program (entry e), as
@@ -7999,13 +8443,17 @@ SKGLDEF sk_result skgl_point_bind_named(skgl_context *ctx, const skgl_point *p, 
     skgl__progent *e;
     const char *fn = "skgl_point_bind";
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_point_bind_named", 0);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
     SKGL__TRY(skgl__arg_prefix(ctx, fn, prefix));
     SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
     SKGL__TRY(skgl__arg_unit(ctx, fn, unit, 30));
     if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
+    SKGL__TRY(skgl__arg_program(ctx, fn, program));
     e = skgl__user_program(ctx, program, SKGL__PK_POINT, prefix ? prefix : "");
+    if (p->desc.technique == SKGL_POINT_VSDCT)
+        SKGL__TRY(skgl__snippet_present(ctx, fn, e, SKGL__P_ATLAS, program, prefix, "sk_point_atlas"));
+    else SKGL__TRY(skgl__snippet_present(ctx, fn, e, SKGL__P_CUBE, program, prefix, "sk_point_cube"));
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
     last = SKGL__TEXTURE0 + unit;
@@ -8039,7 +8487,8 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     const char *fn = "skgl_point_mask";
     skgl__cam ci;
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_point_mask", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_point_mask"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
     SKGL__TRY(skgl__camera_in(ctx, fn, cam, NULL, &ci));
     SKGL__TRY(skgl__arg_name(ctx, fn, depth_tex, "depth_tex"));
@@ -8047,10 +8496,17 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     if (!p->rendered) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: the light has not been rendered yet", fn);
     /* depth read in the caller's convention (cam->proj, ci.dmap); the
        scissor from the camera in OpenGL's */
-    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv)) return SK_ERR_INVALID_ARG;
+    if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, cam->view), &inv))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular", fn);
     vp = sk_mat4_mul(ci.gl.proj, ci.gl.view);
     vsdct = p->desc.technique == SKGL_POINT_VSDCT;
     skgl__st_begin(ctx, &st);
+    r = skgl__arg_texture(ctx, &st, fn, depth_tex, "depth_tex");
+    if (r == SK_OK) r = skgl__arg_texture(ctx, &st, fn, normal_tex, "normal_tex");
+    if (r != SK_OK) {
+        skgl__st_end(ctx, &st);
+        return r;
+    }
     why = skgl__texture_size(ctx, &st, mask_tex, &w, &h);
     if (why) {
         skgl__st_end(ctx, &st);
@@ -8109,8 +8565,10 @@ SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int heig
     skgl__int max_size = 0;
     skgl_point_atlas *a;
     if (out) *out = NULL;
-    if (!ctx || !out) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, "skgl_point_atlas_create", 1);
+    if (!out) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: out is NULL");
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_point_atlas_create"));
     if (width < 1 || height < 1)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width x height = %d x %d: 1 or more each",
                           width, height);
@@ -8123,7 +8581,7 @@ SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int heig
         return skgl__fail(ctx, SK_ERR_INVALID_ARG,
                           "skgl_point_atlas_create: height = %d: at most GL_MAX_TEXTURE_SIZE %d", height, max_size);
     a = (skgl_point_atlas *)SKGL_MALLOC(sizeof *a);
-    if (!a) return SK_ERR_CAPACITY;
+    if (!a) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_point_atlas_create: out of memory");
     memset(a, 0, sizeof *a);
     a->w = width;
     a->h = height;
@@ -8132,8 +8590,8 @@ SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int heig
     skgl__atlas_alloc(ctx, &st, a->tex, width, height);
     a->fbo = skgl__framebuffer(ctx, &st, 0, 0, a->tex, -1);
     skgl__st_end(ctx, &st);
-    if (!a->fbo || gl->GetError() != 0) {
-        skgl__set_log(ctx, "skgl_point_atlas_create: GL error while allocating the atlas", NULL);
+    if (skgl__create_check(ctx, "skgl_point_atlas_create", "the atlas") != SK_OK || !a->fbo) {
+        if (!a->fbo) skgl__set_log(ctx, "skgl_point_atlas_create: the atlas's framebuffer is not complete", NULL);
         skgl_point_atlas_destroy(ctx, a);
         return SK_ERR_GL;
     }
@@ -8194,7 +8652,8 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
     const char *fn = "skgl_point_atlas_pack";
     skgl__cam ci;
     if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    skgl__enter(ctx, "skgl_point_atlas_pack", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_point_atlas_pack"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, a, "a"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, lights, "lights"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, light_pos, "light_pos"));
@@ -8206,7 +8665,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
             return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: lights[%d] is NULL, not in this atlas, or its light_pos "
                               "is not finite", fn, i);
     res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 14);
-    if (!res) return SK_ERR_CAPACITY;
+    if (!res) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
     order = res + n;
     x = order + n;
     y = x + 6 * n;
@@ -8814,12 +9273,15 @@ SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc
     skgl__st st;
     sk_result r;
     if (out) *out = NULL;
-    if (!ctx || !desc || !out) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, "skgl_soft_create", 1);
+    if (!desc || !out)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_soft_create: %s is NULL", !desc ? "desc" : "out");
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_soft_create"));
     d = skgl__soft_defaults(desc);
     SKGL__TRY(skgl__soft_validate(ctx, &d));
     s = (skgl_soft *)SKGL_MALLOC(sizeof *s);
-    if (!s) return SK_ERR_CAPACITY;
+    if (!s) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_soft_create: out of memory");
     memset(s, 0, sizeof *s);
     s->desc = d;
     r = skgl__soft_programs(ctx, s);
@@ -8827,12 +9289,11 @@ SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc
     if (r == SK_OK) r = skgl__soft_targets(ctx, &st, s);
     if (r == SK_OK) skgl__soft_constants(ctx, &st, s);
     skgl__st_end(ctx, &st);
-    if (r == SK_OK && ctx->gl.GetError() != 0)
-        r = skgl__fail(ctx, SK_ERR_GL, "skgl_soft_create: GL error while creating its objects");
+    if (r == SK_OK) r = skgl__create_check(ctx, "skgl_soft_create", "its textures and framebuffers");
     if (r != SK_OK) {
         skgl__soft_free(ctx, s);
         SKGL_FREE(s);
-        return r;
+        return skgl__said(ctx, "skgl_soft_create", r, NULL);
     }
     skgl__ftimer_clear(s->timer.ms);
     skgl__ftimer_clear(s->stats.step_ms);
@@ -9620,8 +10081,6 @@ static sk_result skgl__soft_render_body(skgl_context *ctx, skgl_soft *s, const s
     sk_mat4 inv;
     sk_result r;
     int w = 0, h = 0;
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__log_clear(ctx);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
     SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
@@ -9630,7 +10089,7 @@ static sk_result skgl__soft_render_body(skgl_context *ctx, skgl_soft *s, const s
     /* the caller's depth buffer is read in its convention; shadowkit's own
        G-buffer (depth_tex 0) is drawn in OpenGL's */
     if (!sk_mat4_inverse(sk_mat4_mul(depth_tex ? cam->proj : ci.gl.proj, cam->view), &inv))
-        return SK_ERR_INVALID_ARG;
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular", fn);
     memcpy(s->frame_dmap, depth_tex ? ci.dmap : skgl__dmap_gl, sizeof s->frame_dmap);
     cam = &ci.gl;
     r = skgl__soft_fit(s, cam, scene, light);
@@ -9640,6 +10099,12 @@ static sk_result skgl__soft_render_body(skgl_context *ctx, skgl_soft *s, const s
     if (why) {
         skgl__st_end(ctx, &st);
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: mask_tex = %u: %s", fn, mask_tex, why);
+    }
+    r = skgl__arg_texture(ctx, &st, fn, depth_tex, "depth_tex");
+    if (r == SK_OK) r = skgl__arg_texture(ctx, &st, fn, normal_tex, "normal_tex");
+    if (r != SK_OK) {
+        skgl__st_end(ctx, &st);
+        return r;
     }
     s->frame++;
     skgl__ftimer_frame(ctx, &s->timer);
@@ -9673,10 +10138,13 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
 {
     sk_result r;
     if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, "skgl_soft_render", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_soft_render"));
     skgl__clip_depth(ctx, 0);   /* the passes under OpenGL's clip depth (CAMERA CONVENTIONS) */
     r = skgl__soft_render_body(ctx, s, cam, scene, light, depth_tex, normal_tex, mask_tex);
     skgl__clip_depth(ctx, 1);
-    return r;
+    return skgl__said(ctx, "skgl_soft_render", r, r == SK_ERR_DEGENERATE ? "the whole scene is behind the light's "
+                      "plane (the mask is not written)" : NULL);
 }
 
 

@@ -1,6 +1,6 @@
 /* 01_hard_shadows.c - shadowkit tutorial 1: a sun and one focused shadow map.
 
-   Run (from the repository root, after `make examples`):
+   Run (from any directory, after `make examples`):
      build/examples/01_hard_shadows                  a window; Esc quits
      build/examples/01_hard_shadows --headless       writes out/01_hard_shadows.png
      build/examples/01_hard_shadows --scene FILE     any glTF/OBJ file instead

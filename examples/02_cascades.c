@@ -1,7 +1,7 @@
 /* 02_cascades.c - shadowkit tutorial 2: cascaded shadow maps (PSSM) for a
    view that reaches far away.
 
-   Run (from the repository root, after `make examples`):
+   Run (from any directory, after `make examples`):
      build/examples/02_cascades                      a window; Esc quits
      build/examples/02_cascades --headless           writes out/02_cascades.png
      build/examples/02_cascades --show-cascades      tints each pixel by its cascade

@@ -1,6 +1,6 @@
 /* 03_warping.c - shadowkit tutorial 3: perspective warping (PSM, LiSPSM).
 
-   Run (from the repository root, after `make examples`):
+   Run (from any directory, after `make examples`):
      build/examples/03_warping                       a window, LiSPSM; Esc quits
      build/examples/03_warping --technique psm       perspective shadow map
      build/examples/03_warping --technique standard  the unwarped map, to compare

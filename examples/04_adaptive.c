@@ -1,6 +1,6 @@
 /* 04_adaptive.c - shadowkit tutorial 4: maps that adapt to the view.
 
-   Run (from the repository root, after `make examples`):
+   Run (from any directory, after `make examples`):
      build/examples/04_adaptive                      a window, FERKO; Esc quits
      build/examples/04_adaptive --technique lspsm    light space partitions
      build/examples/04_adaptive --technique rmsm     a virtual map, page by page

@@ -2,7 +2,7 @@
    maps and VSDCT (King & Newhall 2004, "Efficient Omnidirectional Shadow
    Maps"), shadowed through a scissored deferred mask.
 
-   Run (from the repository root, after `make examples`):
+   Run (from any directory, after `make examples`):
      build/examples/05_point_light                    a window, cube map; Esc quits
      build/examples/05_point_light --technique vsdct  the virtual shadow depth cube texture
      build/examples/05_point_light --forward          the shadow looked up in the forward shader

@@ -2,7 +2,7 @@
    with predicted virtual soft shadow maps (Shen et al. 2011)
    and with PCSS on one map.
 
-   Run (from the repository root, after `make examples`):
+   Run (from any directory, after `make examples`):
      build/examples/06_soft_shadows                       a window, PVSM; Esc quits
      build/examples/06_soft_shadows --technique pcss      PCSS on one 4096^2 map
      build/examples/06_soft_shadows --technique tiles     PVSM, its tiles drawn over

@@ -4,10 +4,12 @@
    the same shadows under a PSSM sun and a point light as they show on the
    screen.
 
-   Run (from the repository root, after `make examples`):
+   Run (from any directory, after `make examples`):
      build/examples/07_engine_casters              a window; Esc quits
      build/examples/07_engine_casters --headless   writes out/07_engine_casters.png
-   Options: --frames N, --out FILE, --debug, --timing (as in tutorial 01).
+   Options: --frames N, --out FILE, --debug, --timing (as in tutorial 01);
+   --scene FILE puts the trees and ferns on the ground laid under your model
+   (scaled to it), the camera and the lamp with them.
 
    The foliage textures are Minetest Game's (examples/assets/minetest/,
    CC BY-SA 3.0, from Debian's minetest-data package; LICENSE.txt there):
@@ -208,6 +210,51 @@ static float scatter(unsigned *state) {
     return (float)(*state >> 8) / 16777216.0f;
 }
 
+/* Where the example's 28 m square of ground (its own, or the one
+   common.c lays under a --scene model) lies in the world: origin o (the
+   ground's centre, at its height) and scale k; the trees, ferns, camera and
+   lamp are laid out on the square and carried there. */
+typedef struct placement {
+    sk_vec3 o;
+    float k;
+} placement;
+static sk_vec3 place(const placement *pl, float x, float y, float z) {
+    return ex_v3(pl->o.x + pl->k * x, pl->o.y + pl->k * y, pl->o.z + pl->k * z);
+}
+
+/* --scene: the ground common.c laid under the model (centred below it,
+   1.2 times its larger side each way from the centre) */
+static placement user_ground(sk_aabb model) {
+    placement pl;
+    float hx = model.max.x - model.min.x, hz = model.max.z - model.min.z, h = hx > hz ? hx : hz;
+    pl.o = ex_v3(0.5f * (model.min.x + model.max.x), model.min.y, 0.5f * (model.min.z + model.max.z));
+    pl.k = h > 0.0f ? 1.2f * h / 14.0f : 1.0f;
+    return pl;
+}
+
+/* the trunks on the user's ground: the mesh uploaded again with them */
+static int add_trunks(world *w, const placement *pl) {
+    int i;
+    for (i = 0; i < TREES; i++) {
+        sk_vec3 b = place(pl, tree_xz[i][0], 0.0f, tree_xz[i][1]);
+        if (tb_scene_add_pole(&w->app.scene, "trunk", b.x, b.y, b.z, 0.22f * pl->k, (TRUNK_TOP + 0.5f) * pl->k) < 0)
+            return -1;
+    }
+    tb_gl_mesh_destroy(&w->app.gl, &w->app.mesh);
+    return tb_gl_mesh_create(&w->app.gl, &w->app.mesh, &w->app.scene);
+}
+
+/* the instances carried onto the placement (xyz; the phase stays) */
+static void place_all(const placement *pl, float *inst, int n) {
+    int i;
+    for (i = 0; i < n; i++) {
+        sk_vec3 p = place(pl, inst[4 * i], inst[4 * i + 1], inst[4 * i + 2]);
+        inst[4 * i] = p.x;
+        inst[4 * i + 1] = p.y;
+        inst[4 * i + 2] = p.z;
+    }
+}
+
 /* the instances: leaf cubes in a ball above each trunk, ferns on the ground */
 static int place_instances(float *leaves, float *ferns, int max_ferns) {
     unsigned seed = 7;
@@ -233,13 +280,16 @@ static int place_instances(float *leaves, float *ferns, int max_ferns) {
     return n;
 }
 
-static unsigned load_texture(world *w, const char *path, int unit) {
+static unsigned load_texture(world *w, const char *asset, int unit) {
     const tb_gl_funcs *gl = &w->app.gl;
     int tw, th, comp;
     unsigned tex = 0;
-    unsigned char *px = stbi_load(path, &tw, &th, &comp, 4);
+    unsigned char *px;
+    char path[1200];
+    (void)ex_asset_path(asset, path, sizeof path);   /* from any working directory */
+    px = stbi_load(path, &tw, &th, &comp, 4);
     if (!px) {
-        fprintf(stderr, "%s: %s (run from the repository root)\n", path, stbi_failure_reason());
+        fprintf(stderr, "%s: %s\n", path, stbi_failure_reason());
         return 0;
     }
     gl->GenTextures(1, &tex);
@@ -358,13 +408,20 @@ int main(int argc, char **argv) {
     sk_vec3 eye = {-13.0f, 8.5f, 12.0f}, target = {0.0f, 1.5f, 0.0f}, up = {0, 1, 0};
     sk_vec3 sun_dir = ex_normalize(ex_v3(-0.55f, -1.0f, -0.35f));
     sk_result r = SK_OK;
+    placement pl;
+    float top, zn, zf;
     int status = 1, n_leaves, rc = ex_parse_args(argc, argv, "out/07_engine_casters.png", 0, &opt);
     if (rc != 0) return rc == 1 ? 0 : 2;
     memset(&w, 0, sizeof w);
     if (ex_app_open(&w.app, &opt, "shadowkit 07: engine casters") != 0) return 1;
-    if (opt.scene_path) fprintf(stderr, "07: --scene is ignored (the foliage is the point here)\n");
-    w.app.opt.scene_path = NULL;
     if (ex_app_load_scene(&w.app, build_scene) != 0) goto done;
+    /* --scene: the trees and ferns on the ground laid under the user's model */
+    pl.o = ex_v3(0, 0, 0);
+    pl.k = 1.0f;
+    if (opt.scene_path) {
+        pl = user_ground(w.app.model_bounds);
+        if (add_trunks(&w, &pl) != 0) goto done;
+    }
     {
         /* object pointer to function pointer by copy (ISO C has no cast between them) */
         void *p[3];
@@ -379,11 +436,13 @@ int main(int argc, char **argv) {
 
     /* the foliage: textures on units 4 and 5 (shadowkit's passes keep to 0-3) */
     n_leaves = place_instances(leaves, ferns, 300);
+    place_all(&pl, leaves, n_leaves);
+    place_all(&pl, ferns, 300);
     /* leaf cubes 4 cm apart: no face of one lies in a neighbour's, where
        the two would fight for the pixel (differently from one rasteriser
        to the next) */
-    foliage_upload(&w, &w.kinds[0], leaf_vertices, 24, 36, leaves, n_leaves, 0.96f);
-    foliage_upload(&w, &w.kinds[1], fern_vertices, 8, 12, ferns, 300, 1.0f);
+    foliage_upload(&w, &w.kinds[0], leaf_vertices, 24, 36, leaves, n_leaves, 0.96f * pl.k);
+    foliage_upload(&w, &w.kinds[1], fern_vertices, 8, 12, ferns, 300, pl.k);
     w.kinds[0].unit = 4;
     w.kinds[0].sway = 0.06f;
     w.kinds[1].unit = 5;
@@ -399,7 +458,8 @@ int main(int argc, char **argv) {
     sdesc.technique = SKGL_PSSM;       /* 4 cascades of 2048^2 */
     if ((r = skgl_shadow_create(w.sk, &sdesc, &sun)) != SK_OK) goto done;
     memset(&pdesc, 0, sizeof pdesc);
-    pdesc.range = 9.0f;
+    pdesc.range = 9.0f * pl.k;
+    pdesc.near_plane = 0.05f * pl.k;
     pdesc.resolution = 1024;
     if ((r = skgl_point_create(w.sk, &pdesc, &lamp)) != SK_OK) goto done;
 
@@ -428,7 +488,13 @@ int main(int argc, char **argv) {
     scene.draw = draw_casters;
     scene.user = &w;
     scene.bounds = w.app.scene.bounds;
-    scene.bounds.max.y = TRUNK_TOP + 4.0f;   /* the leaves above the trunks, and their sway */
+    top = pl.o.y + pl.k * (TRUNK_TOP + 4.0f);   /* the leaves above the trunks, and their sway */
+    if (scene.bounds.max.y < top) scene.bounds.max.y = top;
+    eye = place(&pl, eye.x, eye.y, eye.z);
+    target = place(&pl, target.x, target.y, target.z);
+    zn = 0.3f * pl.k;
+    zf = 60.0f * pl.k;
+    if (opt.scene_path) ex_camera_from_bounds(scene.bounds, &eye, &target, &zn, &zf);   /* the model and the trees */
     printf("07: %d leaf cubes and 300 ferns, instanced and alpha-tested, under PSSM and a point light\n", n_leaves);
 
     while (ex_app_begin_frame(&w.app)) {
@@ -438,9 +504,9 @@ int main(int argc, char **argv) {
         unsigned sun_mask;
         int locs[3];
         float a = 0.4f * (float)w.app.time;
-        sk_vec3 lamp_pos = ex_v3(1.2f * cosf(a), 1.6f, 1.2f * sinf(a));
+        sk_vec3 lamp_pos = place(&pl, 1.2f * cosf(a), 1.6f, 1.2f * sinf(a));
         cam.view = sk_mat4_look_at(eye, target, up);
-        cam.proj = sk_mat4_perspective(0.9f, (float)w.app.width / (float)w.app.height, 0.3f, 60.0f);
+        cam.proj = sk_mat4_perspective(0.9f, (float)w.app.width / (float)w.app.height, zn, zf);
         vp = sk_mat4_mul(cam.proj, cam.view);
 
         /* 1. the maps: cascades and cube faces, foliage through the hook */

@@ -1,5 +1,8 @@
 /* examples/common.c - see common.h. Window/headless setup, scene loading,
    shaders, the G-buffer and mask textures, and the caster draw callback. */
+#if defined(__linux__) && !defined(_DEFAULT_SOURCE)
+#define _DEFAULT_SOURCE            /* readlink under -std=c99 */
+#endif
 #include "common.h"
 #include "tb_image.h"
 
@@ -10,6 +13,41 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __linux__
+#include <unistd.h>
+#endif
+
+/* ------------------------------------------------------------ files */
+static int ex_readable(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return 0;
+    fclose(f);
+    return 1;
+}
+
+int ex_asset_path(const char *rel, char *out, size_t cap) {
+#ifdef __linux__
+    /* the executable's directory, then its parents: build/examples/NAME
+       finds the repository's examples/assets two levels up */
+    static const char *const up[3] = {"", "../", "../../"};
+    char exe[1024];
+    ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+        char *slash;
+        int k;
+        exe[n] = 0;
+        slash = strrchr(exe, '/');
+        if (slash) slash[1] = 0;
+        for (k = 0; k < 3; k++) {
+            snprintf(out, cap, "%s%s%s", exe, up[k], rel);
+            if (ex_readable(out)) return 0;
+        }
+    }
+#endif
+    snprintf(out, cap, "%s", rel);   /* the current directory */
+    return ex_readable(out) ? 0 : -1;
+}
+
 
 sk_vec3 ex_v3(float x, float y, float z) {
     sk_vec3 r;

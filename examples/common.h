@@ -123,6 +123,12 @@ void ex_app_close(ex_app *app);
    its shadow has somewhere to fall), otherwise calls build(scene); then
    uploads the mesh. 0 ok, -1 (message on stderr). */
 int ex_app_load_scene(ex_app *app, int (*build)(tb_scene *s));
+/* An asset shipped with the examples (rel: "examples/assets/..."), found
+   from any working directory: next to the executable or up to two
+   directories above it (build/examples/NAME: the repository; Linux, through
+   /proc/self/exe), else in the current directory. Writes the path into out;
+   0 when the file is there, -1 when not (out then holds rel). */
+int ex_asset_path(const char *rel, char *out, size_t cap);
 
 /* A camera looking at the scene's bounds from above one corner, for scenes
    loaded from files: eye, target and near/far planes scaled to the bounds. */

@@ -71,6 +71,7 @@ typedef struct gx_env {
     gt_env e;
     tb_gl_fbo small_gbuf, small_mask;
     gt_forward fw;
+    unsigned point_prog[2];   /* the point snippet, cube and VSDCT (gx_point_bind; made on first use) */
     float *vis, *depth;
     skgl_camera cam, small_cam;
     sk_vec3 light;
@@ -79,6 +80,8 @@ typedef struct gx_env {
 static inline void gx_env_free(gx_env *x) {
     if (x->e.ctx) {
         gt_forward_destroy(&x->e, &x->fw);
+        if (x->point_prog[0]) x->e.gl.DeleteProgram(x->point_prog[0]);
+        if (x->point_prog[1]) x->e.gl.DeleteProgram(x->point_prog[1]);
         tb_gl_fbo_destroy(&x->e.gl, &x->small_gbuf);
         tb_gl_fbo_destroy(&x->e.gl, &x->small_mask);
     }
@@ -152,12 +155,15 @@ static inline void gx_point_desc(const gx_case *c, skgl_point_desc *d) {
     d->cull_faces = d->cull_casters = d->scissor = d->select_resolution = c->optimized;
 }
 
-/* the forward program current, a point light bound to units 6 and 7 (its
-   uniforms are not in that program: the binding itself is exercised) */
+/* a program with the point snippet current, a point light bound to units
+   6 and 7 (a bind to a program without the snippet is refused with
+   desc.debug) */
 static inline sk_result gx_point_bind(gx_env *x, skgl_context *sk, const skgl_point *p) {
     sk_result r;
-    x->e.gl.UseProgram(x->fw.program);
-    r = skgl_point_bind(sk, p, x->fw.program, 6);
+    int vsdct = skgl_point_get_desc(p).technique == SKGL_POINT_VSDCT;
+    if (!x->point_prog[vsdct]) x->point_prog[vsdct] = gt_point_program(&x->e.gl, vsdct);
+    x->e.gl.UseProgram(x->point_prog[vsdct]);
+    r = skgl_point_bind(sk, p, x->point_prog[vsdct], 6);
     x->e.gl.UseProgram(0);
     return r;
 }

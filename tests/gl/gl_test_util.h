@@ -395,6 +395,36 @@ static inline int gt_forward_create(gt_env *e, gt_forward *f) {
     return 0;
 }
 
+/* a program holding the point snippet (VSDCT's with vsdct), for
+   skgl_point_bind; 0 on failure (a failed check) */
+static inline unsigned gt_point_program(const tb_gl_funcs *gl, int vsdct) {
+    static const char vs[] = "#version 330 core\nlayout(location = 0) in vec3 a_position;\nout vec3 v_world;\n"
+                             "void main() { v_world = a_position; gl_Position = vec4(a_position, 1.0); }\n";
+    static const char body[] = "in vec3 v_world;\nout float o_visibility;\n"
+                               "void main() { o_visibility = sk_point_shadow(v_world, vec3(0.0, 1.0, 0.0)); }\n";
+    const char *v[1], *f[4];
+    unsigned sv, sf, prog;
+    int ok = 0;
+    v[0] = vs;
+    f[0] = "#version 330 core\n";
+    f[1] = vsdct ? "#define SK_POINT_VSDCT 1\n" : "";
+    f[2] = skgl_point_glsl_snippet();
+    f[3] = body;
+    sv = gt_compile(gl, 0x8B31 /* VERTEX_SHADER */, 1, v);
+    sf = gt_compile(gl, 0x8B30 /* FRAGMENT_SHADER */, 4, f);
+    if (!sv || !sf) { if (sv) gl->DeleteShader(sv); if (sf) gl->DeleteShader(sf); return 0; }
+    prog = gl->CreateProgram();
+    gl->AttachShader(prog, sv);
+    gl->AttachShader(prog, sf);
+    gl->LinkProgram(prog);
+    gl->DeleteShader(sv);
+    gl->DeleteShader(sf);
+    gl->GetProgramiv(prog, 0x8B82 /* LINK_STATUS */, &ok);
+    SK_CHECK_MSG(ok, "point program did not link");
+    if (!ok) { gl->DeleteProgram(prog); return 0; }
+    return prog;
+}
+
 static inline void gt_forward_destroy(gt_env *e, gt_forward *f) {
     if (f->program) e->gl.DeleteProgram(f->program);
     tb_gl_fbo_destroy(&e->gl, &f->fbo);

@@ -164,8 +164,18 @@ static void test_thin_casters(void)
 
 /* what a context lacks fails at create, naming it; the API choice; the
    texture sizes ES cannot be asked */
+static void draw_nothing(void *user, const skgl_draw_info *info)
+{
+    (void)user;
+    (void)info;
+}
+
 static void test_caps_contracts(void)
 {
+    void (*gen_textures)(int, unsigned *) = NULL;
+    void (*bind_texture)(unsigned, unsigned) = NULL;
+    void (*delete_textures)(int, const unsigned *) = NULL;
+    unsigned tex[2] = {0, 0};
     char err[256];
     tb_gl_context *c = tb_gl_context_create(TB_GL_AUTO, err, sizeof err);
     skgl_desc desc;
@@ -224,16 +234,36 @@ static void test_caps_contracts(void)
     sd.layered = 0;
     sd.resolution = 256;
     SK_CHECK(skgl_shadow_create(ctx, &sd, &s) == SK_OK);
+    /* two textures of the caller's (the masks refuse a name that is none, and
+       a light never rendered) */
     {
+        void *q;
+        tb_gl_getproc_fn gp = tb_gl_context_getproc(c);
+        q = gp("glGenTextures"); memcpy(&gen_textures, &q, sizeof q);
+        q = gp("glBindTexture"); memcpy(&bind_texture, &q, sizeof q);
+        q = gp("glDeleteTextures"); memcpy(&delete_textures, &q, sizeof q);
+        gen_textures(2, tex);
+        bind_texture(0x0DE1 /* GL_TEXTURE_2D */, tex[0]);
+        bind_texture(0x0DE1, tex[1]);
+        bind_texture(0x0DE1, 0);
+    }
+    if (s) {
         skgl_camera cam = esx_camera();
-        SK_CHECK(skgl_shadow_mask(ctx, s, &cam, 77, 0, 78) != SK_OK);
+        skgl_scene sc;
+        memset(&sc, 0, sizeof sc);
+        sc.draw = draw_nothing;
+        sc.bounds.min.x = sc.bounds.min.y = sc.bounds.min.z = -5.0f;
+        sc.bounds.max.x = sc.bounds.max.y = sc.bounds.max.z = 5.0f;
+        SK_CHECK(skgl_shadow_render(ctx, s, &cam, &sc, esx_v3(-0.3f, -1.0f, -0.2f)) == SK_OK);
+        SK_CHECK(skgl_shadow_mask(ctx, s, &cam, tex[0], 0, tex[1]) != SK_OK);
         SK_CHECK_MSG(strstr(skgl_error_log(ctx), "skgl_remember_texture") != NULL, "%s", skgl_error_log(ctx));
     }
     SK_CHECK(skgl_remember_texture(ctx, 0, 4, 4) == SK_ERR_INVALID_ARG);
-    SK_CHECK(skgl_remember_texture(ctx, 5, 0, 4) == SK_ERR_INVALID_ARG);
-    SK_CHECK(skgl_remember_texture(ctx, 5, 4, 70000) == SK_ERR_INVALID_ARG);
-    SK_CHECK(skgl_remember_texture(NULL, 5, 4, 4) == SK_ERR_INVALID_ARG);
-    SK_CHECK(skgl_remember_texture(ctx, 5, 4, 4) == SK_OK);
+    SK_CHECK(skgl_remember_texture(ctx, tex[0], 0, 4) == SK_ERR_INVALID_ARG);
+    SK_CHECK(skgl_remember_texture(ctx, tex[0], 4, 70000) == SK_ERR_INVALID_ARG);
+    SK_CHECK(skgl_remember_texture(NULL, tex[0], 4, 4) == SK_ERR_INVALID_ARG);
+    SK_CHECK(skgl_remember_texture(ctx, tex[0], 4, 4) == SK_OK);
+    delete_textures(2, tex);
     skgl_shadow_destroy(ctx, s);
     skgl_destroy(ctx);
     tb_gl_context_destroy(c);

@@ -154,7 +154,10 @@ static struct {
     int compile_fail;         /* the next compile status reads 0 */
     int link_fail;            /* the next link status reads 0 */
     int fb_skip, fb_fail;     /* after fb_skip more checks, fb_fail of them answer incomplete */
-    int gl_error;             /* glGetError answers GL_OUT_OF_MEMORY this many times */
+    int gl_error;             /* glGetError answers GL_OUT_OF_MEMORY this many times, from the
+                                 second call on (the first is the call's entry check for errors
+                                 the application left pending, which are not shadowkit's) */
+    int gl_error_entry;       /* 1: that first call has been answered */
     int wait_satisfied;       /* ALREADY_SIGNALED reported as CONDITION_SATISFIED */
     int no_fence;             /* glFenceSync gives NULL */
     int tex_w, tex_h;         /* glGetTexLevelParameteriv answers these when > 0 or < 0 (-1: 0) */
@@ -201,7 +204,11 @@ static unsigned w_check_fb(unsigned target) {
 }
 static unsigned w_get_error(void) {
     unsigned r = real_get_error();
-    if (r == 0 && F.gl_error > 0) { F.gl_error--; return 0x0505; /* OUT_OF_MEMORY */ }
+    if (r == 0 && F.gl_error > 0) {
+        if (!F.gl_error_entry) { F.gl_error_entry = 1; return 0; }
+        if (--F.gl_error == 0) F.gl_error_entry = 0;
+        return 0x0505; /* OUT_OF_MEMORY */
+    }
     return r;
 }
 static unsigned w_client_wait(void *sync, unsigned flags, unsigned long long timeout) {
@@ -718,7 +725,8 @@ static void test_faults(void) {
     skgl_point_atlas *a = NULL;
     skgl_scene sc;
     skgl_camera cam = view_a();
-    unsigned prog;
+    unsigned prog = 0, pprog = 0;
+    gt_forward fw;
     int base, n;
     if (env_init(&e) != 0) return;
     sk = fault_context(1, 0, 0);
@@ -754,7 +762,7 @@ static void test_faults(void) {
     F.gl_error = 1;
     d.technique = SKGL_STANDARD; d.resolution = RES;
     SK_CHECK(skgl_shadow_create(sk, &d, &s) == SK_ERR_GL && s == NULL);
-    CHECK_LOG(sk, "allocate");
+    CHECK_LOG(sk, "GL_OUT_OF_MEMORY");
     SK_CHECK(skgl_gl_object_count(sk) == base);
     faults_off();
     check_log_cleared(sk, "create faults");
@@ -801,7 +809,11 @@ static void test_faults(void) {
     F.gl_error = 1;
     SK_CHECK(skgl_shadow_analyze(sk, f, &cam, &sc, light_dir(), e.gbuf.depth_tex) == SK_ERR_GL);
     CHECK_LOG(sk, "skgl_shadow_analyze");
-    prog = e.gb.program;
+    /* programs that hold the snippets: desc.debug refuses a bind to one that
+       does not (ERRORS AND MISUSE) */
+    SK_CHECK(gt_forward_create(&e, &fw) == 0);
+    prog = fw.program;
+    pprog = gt_point_program(&e.gl, 0);
     e.gl.UseProgram(prog);
     F.gl_error = 1;
     SK_CHECK(skgl_shadow_bind(sk, s, prog, 0) == SK_ERR_GL);
@@ -846,9 +858,9 @@ static void test_faults(void) {
         F.gl_error = 1;
         SK_CHECK(skgl_point_mask(sk, p, &cam, e.gbuf.depth_tex, 0, e.mask.color_tex) == SK_ERR_GL);
         CHECK_LOG(sk, "skgl_point_mask");
-        e.gl.UseProgram(prog);
+        e.gl.UseProgram(pprog);
         F.gl_error = 1;
-        SK_CHECK(skgl_point_bind(sk, p, prog, 0) == SK_ERR_GL);
+        SK_CHECK(skgl_point_bind(sk, p, pprog, 0) == SK_ERR_GL);
         CHECK_LOG(sk, "skgl_point_bind");
         e.gl.UseProgram(0);
         faults_off();
@@ -856,6 +868,8 @@ static void test_faults(void) {
     }
 done:
     faults_off();
+    if (prog) gt_forward_destroy(&e, &fw);
+    if (pprog) e.gl.DeleteProgram(pprog);
     skgl_shadow_destroy(sk, s);
     skgl_shadow_destroy(sk, f);
     skgl_shadow_destroy(sk, rm);
@@ -968,7 +982,7 @@ static void test_textures(void) {
     /* a name with no level 0: refused (mask, point mask, analysis), then given storage */
     e.gl.GenTextures(1, &t);
     SK_CHECK(skgl_shadow_mask(sk, s, &cam, e.gbuf.depth_tex, 0, t) == SK_ERR_INVALID_ARG);
-    CHECK_LOG(sk, "level 0");
+    CHECK_LOG(sk, "not a texture");   /* never bound: glIsTexture says no */
     CHECK_LOG(sk, "mask_tex");
     SK_CHECK(skgl_point_mask(sk, p, &cam, e.gbuf.depth_tex, 0, t) == SK_ERR_INVALID_ARG);
     CHECK_LOG(sk, "mask_tex");
@@ -1254,7 +1268,10 @@ static void test_program_cache(void) {
     e.gl.UseProgram(dead);
     SK_CHECK(skgl_shadow_bind(sk, s, dead, 0) == SK_OK);
     SK_CHECK(skgl_shadow_bind(sk, s, dead, 0) == SK_OK);
-    SK_CHECK(skgl_shadow_bind(dbg, sd, dead, 0) == SK_OK && skgl_shadow_bind(dbg, sd, dead, 0) == SK_OK);
+    /* desc.debug refuses it: its map sampler is not active, as in a program
+       without the snippet (ERRORS AND MISUSE) */
+    SK_CHECK(skgl_shadow_bind(dbg, sd, dead, 0) == SK_ERR_INVALID_ARG);
+    CHECK_LOG(dbg, "no active uniform sk_shadow_map");
     SK_CHECK(e.gl.GetError() == 0);
     /* relinked with one more active uniform, same name: the default mode's count check */
     prog = link_program(&e, 0, skgl_glsl_snippet(), gt_forward_fs);
@@ -1274,7 +1291,7 @@ static void test_program_cache(void) {
     SK_CHECK(skgl_shadow_bind(dbg, sd, prog, 1) == SK_OK && uniform_i(&e, prog, "sk_shadow_map") == 1);
     SK_CHECK(link_program(&e, prog, skgl_glsl_snippet(), dead_fs) == prog);
     e.gl.UseProgram(prog);
-    SK_CHECK(skgl_shadow_bind(dbg, sd, prog, 1) == SK_OK);
+    SK_CHECK(skgl_shadow_bind(dbg, sd, prog, 1) == SK_ERR_INVALID_ARG);   /* no active sk_shadow_map */
     SK_CHECK(link_program(&e, prog, skgl_glsl_snippet(), gt_forward_fs) == prog);
     e.gl.UseProgram(prog);
     SK_CHECK(skgl_shadow_bind(dbg, sd, prog, 1) == SK_OK);
@@ -1853,7 +1870,7 @@ static void test_log_cleared(void) {
         for (k = 0; k < 7; k++) {
             sk_result r = SK_OK;
             SK_CHECK(skgl_shadow_mask(sk, s, &cam, e.gbuf.depth_tex, 0, bare) == SK_ERR_INVALID_ARG);
-            CHECK_LOG(sk, "level 0");
+            CHECK_LOG(sk, "skgl_shadow_mask");   /* never rendered (k 0), then mask_tex: not a texture */
             switch (k) {
             case 0: r = skgl_shadow_render(sk, s, &cam, &sc, light_dir()); break;
             case 1: r = skgl_shadow_mask(sk, s, &cam, e.gbuf.depth_tex, 0, e.mask.color_tex); break;
@@ -2117,7 +2134,7 @@ static void test_soft_paths(void) {
     SK_CHECK(skgl_gl_object_count(sk) == base);
     F.gl_error = 1;
     SK_CHECK(skgl_soft_create(sk, &d, &s) == SK_ERR_GL && !s);
-    CHECK_LOG(sk, "GL error");
+    CHECK_LOG(sk, "GL_OUT_OF_MEMORY");
     SK_CHECK(skgl_gl_object_count(sk) == base);
     faults_off();
     /* at render: PVSM's screen targets, the own G-buffer; desc.debug's GL error */

@@ -363,6 +363,7 @@ static void test_state_and_objects(void) {
     ext_funcs x;
     objs o;
     gt_forward fw;
+    unsigned point_prog[2];   /* the point snippet, cube and VSDCT: skgl_point_bind's programs */
     skgl_desc desc;
     skgl_context *sk = NULL;
     tb_gl_funcs *gl;
@@ -421,6 +422,8 @@ static void test_state_and_objects(void) {
     gl->BindTexture(E_TEXTURE_2D, 0);
     gl->BindTexture(E_TEXTURE_2D_ARRAY, 0);
     SK_CHECK(gt_forward_create(&e, &fw) == 0);
+    point_prog[0] = gt_point_program(gl, 0);
+    point_prog[1] = gt_point_program(gl, 1);
     mask = gt_alloc(&e);
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
     SK_CHECK(gl->GetError() == 0);
@@ -547,7 +550,11 @@ static void test_state_and_objects(void) {
 
             /* bind: the map on unit 6 (cube, or the 2D atlas), VSDCT's
                indirection cube on unit 7, their samplers; nothing else */
-            r = skgl_point_bind(sk, p, fw.program, 6);
+            /* with a program that holds the point snippet current (desc.debug
+               refuses one without), fw.program current again after it */
+            gl->UseProgram(point_prog[ind]);
+            r = skgl_point_bind(sk, p, point_prog[ind], 6);
+            gl->UseProgram(fw.program);
             SK_CHECK_MSG(r == SK_OK, "%s: bind: %s (%s)", tn, sk_result_string(r), skgl_error_log(sk));
             read_state(gl, &x, &after);
             snprintf(what, sizeof what, "%s set %c: skgl_point_bind", tn, "AB"[v]);
@@ -578,6 +585,8 @@ static void test_state_and_objects(void) {
     /* restore a sane state before tearing down */
     gl->BindFramebuffer(0x8D40, 0);
     gl->UseProgram(0);
+    gl->DeleteProgram(point_prog[0]);
+    gl->DeleteProgram(point_prog[1]);
     gl->BindVertexArray(0);
     SK_CHECK_MSG(skgl_gl_object_count(sk) == live_objects(0), "count %d, tracked %d", skgl_gl_object_count(sk),
                  live_objects(0));
