@@ -274,7 +274,12 @@
                     uniform texels. A light behind the viewer reverses the
                     depth order: the map's z is negated, so nothing changes
                     for you (stats.depth_reversed says it happened).
-                    Casters behind the camera slide the virtual camera back.
+                    Casters behind the camera slide the virtual camera back;
+                    the casters are those that can shadow what the view
+                    sees (each receiver point and where its ray toward the
+                    light leaves scene.bounds), not the whole scene, so a
+                    kilometre of scene behind the camera does not make the
+                    map uniform (stats.psm_slide says how far it slid).
      SKGL_LISPSM    light-space perspective shadow map (Wimmer et al.) with
                     n_opt; fades into the focused map as the light turns
                     parallel to the view (stats.warped, stats.warp_n).
@@ -292,7 +297,10 @@
                     the crop; .sync_readback = 1 uses this frame's.
      SKGL_RMSM      a virtual map (.resolution, 16384 by default) of pages
                     (.rmsm_page_size) rendered only where the view needs them,
-                    at the level of detail it needs (Romanick's VGP353 notes): call
+                    at the level of detail it needs (Romanick's VGP353 notes;
+                    a page's texel matches the narrow side of the pixel's
+                    footprint in the map, so grazing receivers far away
+                    get pages as fine as their shadow edges need): call
                     skgl_shadow_analyze() first; pages live in a pool of
                     .rmsm_pool_pages^2 slots, found through a page table
                     (texture unit `unit` + 1 in skgl_shadow_bind). The page
