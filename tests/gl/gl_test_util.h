@@ -60,6 +60,18 @@ static inline sk_aabb gt_box(float x0, float y0, float z0, float x1, float y1, f
     return b;
 }
 
+/* a directional light's desc: the technique and its map layout, every
+   other field its default */
+static inline skgl_shadow_desc gt_shadow_desc(skgl_technique technique, int resolution, int cascades, int stable) {
+    skgl_shadow_desc d;
+    memset(&d, 0, sizeof d);
+    d.technique = technique;
+    d.resolution = resolution;
+    d.cascades = cascades;
+    d.stable = stable;
+    return d;
+}
+
 /* a perspective camera for a w x h image; up = +y */
 static inline skgl_camera gt_camera(sk_vec3 eye, sk_vec3 target, float fovy, float zn, float zf, int w, int h) {
     skgl_camera c;

@@ -30,9 +30,12 @@
    runs the same scenarios (its light: every page drawn, by itself), budget
    being the dynamic one with cache_budget_kb = 1 (no static copy of the
    pool: the pages the mover touches are drawn whole each frame), and
-     pool     a 6 x 6 pool, fewer slots than the ~45 pages a frame asks
+     pool     a 10 x 10 pool, fewer slots than the pages a frame asks
               for, the camera walking out and back: slots are taken back
-              (least recently used) and evicted pages asked for again.
+              (least recently used) and evicted pages asked for again
+              (196 evictions; with pages matched to the footprint's
+              narrow side a 6 x 6 or 8 x 8 pool raises the finest level
+              until every frame fits, and nothing is evicted).
    Point lights (cube and VSDCT, 256 a face, range 16, face and caster
    culling on, the light at (1.5, 4.5, 1)): walk (the camera every other
    frame of the walk: faces culled and back), dynamic, static, light (the
@@ -222,13 +225,13 @@ static tally run(world *w, skgl_technique tech, scenario sc_kind) {
     if (tech == SKGL_RMSM) {
         /* 4096 virtual, 128-texel pages: 32 a side at the finest level;
            budget: no room for the static copy under the dynamic casters;
-           pool: 6 x 6 slots, fewer than the ~45 pages
-           a frame asks for (the finest level rises to 1 or 2), so the
-           pages change as the walk goes and slots are taken back */
+           pool: 10 x 10 slots, fewer than the pages a frame asks for
+           (the finest level rises), so the pages change as the walk
+           goes and slots are taken back */
         d.resolution = 4 * RES;
         d.sync_readback = 1;
         d.cache_budget_kb = sc_kind == BUDGET ? 1 : 0;
-        if (sc_kind == POOL) d.rmsm_pool_pages = 6;
+        if (sc_kind == POOL) d.rmsm_pool_pages = 10;
     }
     cached = gt_shadow(&w->e, &d);
     twin = gt_shadow(&w->e, &d);

@@ -279,12 +279,7 @@ static const lw_tech techs[] = {
 #define NTECH ((int)(sizeof techs / sizeof techs[0]))
 
 static skgl_shadow *lw_shadow(lw_env *w, const lw_tech *t) {
-    skgl_shadow_desc d;
-    memset(&d, 0, sizeof d);
-    d.technique = t->technique;
-    d.resolution = t->resolution;
-    d.cascades = t->cascades;
-    d.stable = t->stable;
+    skgl_shadow_desc d = gt_shadow_desc(t->technique, t->resolution, t->cascades, t->stable);
     if (t->stable) d.max_distance = MAX_DISTANCE;
     return gt_shadow(&w->e, &d);
 }

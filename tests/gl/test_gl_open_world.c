@@ -115,12 +115,7 @@ static const method methods[] = {
 #define METHODS ((int)(sizeof methods / sizeof methods[0]))
 
 static skgl_shadow_desc method_desc(const method *m) {
-    skgl_shadow_desc d;
-    memset(&d, 0, sizeof d);
-    d.technique = m->technique;
-    d.resolution = m->resolution;
-    d.cascades = m->cascades;
-    d.stable = m->stable;
+    skgl_shadow_desc d = gt_shadow_desc(m->technique, m->resolution, m->cascades, m->stable);
     d.sync_readback = m->analyze;
     return d;
 }
