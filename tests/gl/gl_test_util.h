@@ -407,6 +407,40 @@ static inline int gt_forward_create(gt_env *e, gt_forward *f) {
     return 0;
 }
 
+/* the program of vertex sources vs[0, nv) and fragment sources fs[0, nf),
+   its shaders deleted, *linked its LINK_STATUS; 0 when a shader did not
+   compile (gt_compile's failed check) */
+static inline unsigned gt_program(const tb_gl_funcs *gl, int nv, const char *const *vs, int nf,
+                                  const char *const *fs, int *linked) {
+    unsigned sh[2], prog = 0;
+    int i;
+    sh[0] = gt_compile(gl, 0x8B31 /* VERTEX_SHADER */, nv, vs);
+    sh[1] = gt_compile(gl, 0x8B30 /* FRAGMENT_SHADER */, nf, fs);
+    *linked = 0;
+    if (sh[0] && sh[1]) {
+        prog = gl->CreateProgram();
+        for (i = 0; i < 2; i++) gl->AttachShader(prog, sh[i]);
+        gl->LinkProgram(prog);
+        gl->GetProgramiv(prog, 0x8B82 /* LINK_STATUS */, linked);
+    }
+    for (i = 0; i < 2; i++) if (sh[i]) gl->DeleteShader(sh[i]);
+    return prog;
+}
+
+/* the program of vertex shader vs and fragment body `body` under the point
+   snippet (VSDCT's with vsdct), *linked its LINK_STATUS; 0 when a shader
+   did not compile */
+static inline unsigned gt_point_program_of(const tb_gl_funcs *gl, int vsdct, const char *vs, const char *body,
+                                           int *linked) {
+    const char *v[1], *f[4];
+    v[0] = vs;
+    f[0] = "#version 330 core\n";
+    f[1] = vsdct ? "#define SK_POINT_VSDCT 1\n" : "";
+    f[2] = skgl_point_glsl_snippet();
+    f[3] = body;
+    return gt_program(gl, 1, v, 4, f, linked);
+}
+
 /* a program holding the point snippet (VSDCT's with vsdct), for
    skgl_point_bind; 0 on failure (a failed check) */
 static inline unsigned gt_point_program(const tb_gl_funcs *gl, int vsdct) {
@@ -414,24 +448,9 @@ static inline unsigned gt_point_program(const tb_gl_funcs *gl, int vsdct) {
                              "void main() { v_world = a_position; gl_Position = vec4(a_position, 1.0); }\n";
     static const char body[] = "in vec3 v_world;\nout float o_visibility;\n"
                                "void main() { o_visibility = sk_point_shadow(v_world, vec3(0.0, 1.0, 0.0)); }\n";
-    const char *v[1], *f[4];
-    unsigned sv, sf, prog;
     int ok = 0;
-    v[0] = vs;
-    f[0] = "#version 330 core\n";
-    f[1] = vsdct ? "#define SK_POINT_VSDCT 1\n" : "";
-    f[2] = skgl_point_glsl_snippet();
-    f[3] = body;
-    sv = gt_compile(gl, 0x8B31 /* VERTEX_SHADER */, 1, v);
-    sf = gt_compile(gl, 0x8B30 /* FRAGMENT_SHADER */, 4, f);
-    if (!sv || !sf) { if (sv) gl->DeleteShader(sv); if (sf) gl->DeleteShader(sf); return 0; }
-    prog = gl->CreateProgram();
-    gl->AttachShader(prog, sv);
-    gl->AttachShader(prog, sf);
-    gl->LinkProgram(prog);
-    gl->DeleteShader(sv);
-    gl->DeleteShader(sf);
-    gl->GetProgramiv(prog, 0x8B82 /* LINK_STATUS */, &ok);
+    unsigned prog = gt_point_program_of(gl, vsdct, vs, body, &ok);
+    if (!prog) return 0;
     SK_CHECK_MSG(ok, "point program did not link");
     if (!ok) { gl->DeleteProgram(prog); return 0; }
     return prog;
@@ -668,6 +687,124 @@ static inline skgl_soft *gt_soft(gt_env *e, skgl_soft_technique t, int resolutio
         return NULL;
     }
     return s;
+}
+
+/* The cache tests' world (test_gl_cache*.c): "ground-boxes" plus a 0.8 m
+   "mover" box. gt_movers_draw_static (scene.draw) draws every object but
+   the mover, box0 shifted by box0_shift and box3 left out while
+   box3_hidden; gt_movers_draw_dynamic (the dynamic casters) draws the
+   mover at mover_at. */
+typedef struct gt_movers {
+    gt_env e;
+    int mover, box0, box3;            /* object indices */
+    sk_vec3 mover_at, box0_shift;
+    int box3_hidden;
+} gt_movers;
+
+static inline void gt_translation(float m[16], sk_vec3 t) {
+    memset(m, 0, sizeof(float) * 16);
+    m[0] = m[5] = m[10] = m[15] = 1;
+    m[12] = t.x; m[13] = t.y; m[14] = t.z;
+}
+
+static inline sk_aabb gt_moved(sk_aabb b, sk_vec3 t) {
+    b.min.x += t.x; b.min.y += t.y; b.min.z += t.z;
+    b.max.x += t.x; b.max.y += t.y; b.max.z += t.z;
+    return b;
+}
+
+static inline void gt_movers_draw_object(gt_movers *w, int obj) {
+    const tb_object *o = &w->e.scene.objects[obj];
+    tb_gl_mesh_draw(&w->e.gl, &w->e.mesh, o->first_index, o->index_count);
+}
+
+static inline void gt_movers_draw_static(void *user, const skgl_draw_info *info) {
+    gt_movers *w = (gt_movers *)user;
+    uint32_t i;
+    float m[16];
+    (void)info;
+    for (i = 0; i < w->e.scene.object_count; i++) {
+        if ((int)i == w->mover || ((int)i == w->box3 && w->box3_hidden)) continue;
+        if ((int)i == w->box0) {
+            gt_translation(m, w->box0_shift);
+            skgl_set_model(w->e.sk, m);
+            gt_movers_draw_object(w, (int)i);
+            gt_translation(m, gt_v3(0, 0, 0));
+            skgl_set_model(w->e.sk, m);
+            continue;
+        }
+        gt_movers_draw_object(w, (int)i);
+    }
+}
+
+static inline void gt_movers_draw_dynamic(void *user, const skgl_draw_info *info) {
+    gt_movers *w = (gt_movers *)user;
+    float m[16];
+    (void)info;
+    gt_translation(m, w->mover_at);
+    skgl_set_model(w->e.sk, m);
+    gt_movers_draw_object(w, w->mover);
+}
+
+/* the static scene (gt_movers_draw_static, the scene's bounds), the
+   dynamic casters cleared */
+static inline skgl_scene gt_movers_scene(gt_movers *w) {
+    skgl_scene sc;
+    sc.draw = gt_movers_draw_static;
+    sc.user = w;
+    sc.bounds = w->e.scene.bounds;
+    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
+    return sc;
+}
+
+/* clears *w and builds its scene and GL environment at w x h; 0, or -1
+   (a failed check) */
+static inline int gt_movers_init(gt_movers *w, int width, int height) {
+    tb_scene s;
+    memset(w, 0, sizeof *w);
+    tb_scene_init(&s);
+    if (tb_scene_build(&s, "ground-boxes") != 0 ||
+        tb_scene_add_box(&s, "mover", gt_v3(-0.4f, 0, -0.4f), gt_v3(0.4f, 1.6f, 0.4f)) < 0) {
+        SK_CHECK_MSG(0, "scene");
+        tb_scene_free(&s);
+        return -1;
+    }
+    if (gt_env_init(&w->e, &s, width, height) != 0) { gt_env_free(&w->e); return -1; }
+    w->mover = tb_scene_find_object(&w->e.scene, "mover");
+    w->box0 = tb_scene_find_object(&w->e.scene, "box0");
+    w->box3 = tb_scene_find_object(&w->e.scene, "box3");
+    SK_CHECK(w->mover >= 0 && w->box0 >= 0 && w->box3 >= 0);
+    return 0;
+}
+
+/* The caster tests' lights (test_gl_casters.c, test_gl_caster_varyings.c):
+   a sun, a point light of range 40 at GT_CASTER_LAMP, and a 0.6 m square
+   area light there facing down. */
+#define GT_CASTER_SUN gt_v3(-0.45f, -1.0f, -0.3f)
+#define GT_CASTER_LAMP gt_v3(2.0f, 9.0f, 3.0f)
+
+static inline skgl_area_light gt_caster_area(void) {
+    skgl_area_light l;
+    memset(&l, 0, sizeof l);
+    l.position = GT_CASTER_LAMP;
+    l.direction = gt_v3(0, -1, 0);
+    l.up = gt_v3(0, 0, 1);
+    l.half_width = l.half_height = 0.3f;
+    return l;
+}
+
+/* the three lights' references over e's G-buffer (the area light with 16
+   strata), each a check */
+static inline void gt_caster_references(gt_env *e, float *sun, float *point, float *area) {
+    tb_light pl;
+    skgl_area_light al = gt_caster_area();
+    SK_CHECK(gt_reference(e, GT_CASTER_SUN, sun) == 0);
+    memset(&pl, 0, sizeof pl);
+    pl.type = TB_LIGHT_POINT;
+    pl.position = GT_CASTER_LAMP;
+    pl.range = 40.0f;
+    SK_CHECK(gt_reference_exact(e, &pl, point, NULL) == 0);
+    SK_CHECK(gt_area_reference(e, &al, 16, area) == 0);
 }
 
 #endif /* GL_TEST_UTIL_H */

@@ -93,84 +93,23 @@
 #define ALLOW_PCT 0.001   /* the allowance; measured 0 */
 #define WALK_TEXELS_MAX 0.35
 
-typedef struct world {
-    gt_env e;
-    int mover, box0, box3;            /* object indices */
-    sk_vec3 mover_at, box0_shift;
-    int box3_hidden;
-    int no_invalidate;
-} world;
+typedef gt_movers world;
 
 static world W_;
+static int no_invalidate;   /* SK_GL_TEST_NO_INVALIDATE set */
 
-static void draw_object(world *w, int obj) {
-    const tb_object *o = &w->e.scene.objects[obj];
-    tb_gl_mesh_draw(&w->e.gl, &w->e.mesh, o->first_index, o->index_count);
-}
-
-static void translate(float m[16], sk_vec3 t) {
-    memset(m, 0, sizeof(float) * 16);
-    m[0] = m[5] = m[10] = m[15] = 1;
-    m[12] = t.x; m[13] = t.y; m[14] = t.z;
-}
-
-/* scene.draw: every object but the mover; box0 moved, box3 perhaps hidden */
-static void draw_static(void *user, const skgl_draw_info *info) {
-    world *w = (world *)user;
-    uint32_t i;
-    float m[16];
-    (void)info;
-    for (i = 0; i < w->e.scene.object_count; i++) {
-        if ((int)i == w->mover || ((int)i == w->box3 && w->box3_hidden)) continue;
-        if ((int)i == w->box0) {
-            translate(m, w->box0_shift);
-            skgl_set_model(w->e.sk, m);
-            draw_object(w, (int)i);
-            translate(m, gt_v3(0, 0, 0));
-            skgl_set_model(w->e.sk, m);
-            continue;
-        }
-        draw_object(w, (int)i);
-    }
-}
-
-/* the dynamic casters (skgl_set_dynamic): the mover at mover_at */
-static void draw_dynamic(void *user, const skgl_draw_info *info) {
-    world *w = (world *)user;
-    float m[16];
-    (void)info;
-    translate(m, w->mover_at);
-    skgl_set_model(w->e.sk, m);
-    draw_object(w, w->mover);
-}
-
-static sk_aabb moved(sk_aabb b, sk_vec3 t) {
-    b.min.x += t.x; b.min.y += t.y; b.min.z += t.z;
-    b.max.x += t.x; b.max.y += t.y; b.max.z += t.z;
-    return b;
-}
-
-/* the static scene, no dynamic casters; set_mover: the mover as the dynamic
-   casters, its box their bounds when `bounded` */
-static skgl_scene scene_of(world *w) {
-    skgl_scene sc;
-    sc.draw = draw_static;
-    sc.user = w;
-    sc.bounds = w->e.scene.bounds;
-    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
-    return sc;
-}
+/* the mover as the dynamic casters, its box their bounds when `bounded` */
 static void set_mover(world *w, int bounded) {
     skgl_dynamic dy;
     memset(&dy, 0, sizeof dy);
-    dy.draw = draw_dynamic;
+    dy.draw = gt_movers_draw_dynamic;
     dy.user = w;
-    if (bounded) dy.bounds = moved(w->e.scene.objects[w->mover].bounds, w->mover_at);
+    if (bounded) dy.bounds = gt_moved(w->e.scene.objects[w->mover].bounds, w->mover_at);
     SK_CHECK(skgl_set_dynamic(w->e.sk, &dy) == SK_OK);
 }
 
 static void invalidate(world *w, skgl_shadow *s, const sk_aabb *b) {
-    if (w->no_invalidate) return;
+    if (no_invalidate) return;
     SK_CHECK(skgl_shadow_invalidate(w->e.sk, s, b) == SK_OK);
 }
 
@@ -211,7 +150,7 @@ static tally run(world *w, skgl_technique tech, scenario sc_kind) {
     int walk = sc_kind == WALK || sc_kind == POOL || (sc_kind == BUDGET && tech != SKGL_RMSM);
     int moving = sc_kind == DYNAMIC || sc_kind == DYNWHOLE || (sc_kind == BUDGET && tech == SKGL_RMSM);
     int f, frames = walk ? 20 : 8;
-    skgl_scene sc = scene_of(w);
+    skgl_scene sc = gt_movers_scene(w);
     const sk_aabb box0 = w->e.scene.objects[w->box0].bounds, box3 = w->e.scene.objects[w->box3].bounds;
     memset(&t, 0, sizeof t);
     memset(&d, 0, sizeof d);
@@ -256,7 +195,7 @@ static tally run(world *w, skgl_technique tech, scenario sc_kind) {
         if (moving) set_mover(w, sc_kind != DYNWHOLE);
         if (f > 0 && sc_kind == STATIC) {
             sk_vec3 was = w->box0_shift, now = gt_v3(0.35f * (float)f, 0, 0.2f * (float)f);
-            sk_aabb ob = moved(box0, was), nb = moved(box0, now);
+            sk_aabb ob = gt_moved(box0, was), nb = gt_moved(box0, now);
             invalidate(w, cached, &ob);
             invalidate(w, cached, &nb);
             w->box0_shift = now;
@@ -342,7 +281,7 @@ static void test_cached_equals_uncached(void) {
                 if (k == WALK || k == STATIC || k == APPEAR || k == DYNAMIC || k == BUDGET)
                     SK_CHECK_MSG(t.texels_cached < WALK_TEXELS_MAX * t.texels_twin, "rmsm %s: %.0f texels, "
                                  "uncached %.0f", scenario_name[k], t.texels_cached, t.texels_twin);
-                if (k == STATIC || k == APPEAR) SK_CHECK(w->no_invalidate || t.regions > 0);
+                if (k == STATIC || k == APPEAR) SK_CHECK(no_invalidate || t.regions > 0);
                 continue;
             }
             /* the cache did its work: a stable walk scrolls, a still camera reuses */
@@ -358,7 +297,7 @@ static void test_cached_equals_uncached(void) {
             if (k == DYNAMIC && techs[ti] != SKGL_LISPSM)
                 SK_CHECK_MSG(t.texels_cached < 0.1 * t.texels_twin, "%s dynamic: %.0f texels, uncached %.0f",
                              names[ti], t.texels_cached, t.texels_twin);
-            if (k == STATIC || k == APPEAR) SK_CHECK(w->no_invalidate || t.regions > 0);
+            if (k == STATIC || k == APPEAR) SK_CHECK(no_invalidate || t.regions > 0);
             if (k == LIGHT) SK_CHECK(t.reused == 0);
         }
 }
@@ -400,7 +339,7 @@ static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
     float *a = gt_alloc(&w->e), *b = gt_alloc(&w->e), *c = gt_alloc(&w->e);
     tally t;
     int f, frames = sc_kind == WALK ? 12 : 8;
-    skgl_scene sc = scene_of(w);
+    skgl_scene sc = gt_movers_scene(w);
     const sk_aabb box0 = w->e.scene.objects[w->box0].bounds, box3 = w->e.scene.objects[w->box3].bounds;
     memset(&t, 0, sizeof t);
     if (!cached || !twin || !plain || !a || !b || !c) goto done;
@@ -414,8 +353,8 @@ static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
         if (sc_kind == DYNAMIC || sc_kind == DYNWHOLE) set_mover(w, sc_kind == DYNAMIC);
         if (f > 0 && sc_kind == STATIC) {
             sk_vec3 now = gt_v3(0.35f * (float)f, 0, 0.2f * (float)f);
-            sk_aabb ob = moved(box0, w->box0_shift), nb = moved(box0, now);
-            if (!w->no_invalidate) {
+            sk_aabb ob = gt_moved(box0, w->box0_shift), nb = gt_moved(box0, now);
+            if (!no_invalidate) {
                 SK_CHECK(skgl_point_invalidate(w->e.sk, cached, &ob) == SK_OK);
                 SK_CHECK(skgl_point_invalidate(w->e.sk, cached, &nb) == SK_OK);
             }
@@ -423,7 +362,7 @@ static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
         }
         if (sc_kind == APPEAR && (f == 2 || f == 5)) {
             w->box3_hidden = f == 2;
-            if (!w->no_invalidate) SK_CHECK(skgl_point_invalidate(w->e.sk, cached, &box3) == SK_OK);
+            if (!no_invalidate) SK_CHECK(skgl_point_invalidate(w->e.sk, cached, &box3) == SK_OK);
         }
         SK_CHECK(gt_gbuffer(&w->e, &cam) == 0);
         SK_CHECK(skgl_point_invalidate(w->e.sk, twin, NULL) == SK_OK);
@@ -480,15 +419,58 @@ static void test_point_cached_equals_uncached(void) {
         }
 }
 
+/* a cached light under verify_cache: a shadow (s, lit from direction
+   `light`) or a point light (p, at `light`) */
+typedef struct verified {
+    skgl_shadow *s;
+    skgl_point *p;
+    sk_vec3 light;
+} verified;
+
+static sk_result verified_render(world *w, const verified *v, const skgl_camera *cam, const skgl_scene *sc) {
+    return v->s ? skgl_shadow_render(w->e.sk, v->s, cam, sc, v->light)
+                : skgl_point_render(w->e.sk, v->p, cam, sc, v->light);
+}
+static int verified_texels(const verified *v) {
+    return v->s ? skgl_shadow_stats(v->s)->cache_verify_texels : skgl_point_stats(v->p)->cache_verify_texels;
+}
+static sk_result verified_invalidate(world *w, const verified *v, const sk_aabb *b) {
+    return v->s ? skgl_shadow_invalidate(w->e.sk, v->s, b) : skgl_point_invalidate(w->e.sk, v->p, b);
+}
+
+/* box0 moved without an invalidation: the render fails naming the
+   invalidate call, over 100 texels differing; with box0's old and new
+   boxes invalidated it passes again. box0 is put back. */
+static void check_unannounced_move(world *w, const verified *v, const skgl_camera *cam, const skgl_scene *sc,
+                                   const char *label) {
+    sk_result r;
+    w->box0_shift = gt_v3(1.5f, 0, 0);   /* no invalidation */
+    r = verified_render(w, v, cam, sc);
+    printf("%s, a static caster moved unannounced: %s, %d texels differ (%s)\n", label, sk_result_string(r),
+           verified_texels(v), skgl_error_log(w->e.sk));
+    SK_CHECK(r == SK_ERR_INVALID_ARG);
+    SK_CHECK(verified_texels(v) > 100);
+    SK_CHECK(strstr(skgl_error_log(w->e.sk), v->s ? "skgl_shadow_invalidate" : "skgl_point_invalidate") != NULL);
+    {
+        sk_aabb b0 = w->e.scene.objects[w->box0].bounds, b1 = gt_moved(b0, w->box0_shift);
+        SK_CHECK(verified_invalidate(w, v, &b0) == SK_OK);
+        SK_CHECK(verified_invalidate(w, v, &b1) == SK_OK);
+    }
+    SK_CHECK(verified_render(w, v, cam, sc) == SK_OK);
+    SK_CHECK(verified_texels(v) == 0);
+    w->box0_shift = gt_v3(0, 0, 0);
+}
+
 /* verify_cache catches a static caster moved without an invalidation */
 static void test_verify(void) {
     world *w = &W_;
     skgl_shadow_desc d;
     skgl_shadow *s;
-    skgl_scene sc = scene_of(w);
+    skgl_scene sc = gt_movers_scene(w);
     skgl_camera cam = walk_camera(3);
     sk_vec3 light = gt_v3(-0.5f, -1, -0.35f);
-    sk_result r;
+    verified v;
+    memset(&v, 0, sizeof v);
     memset(&d, 0, sizeof d);
     d.resolution = 512;
     d.stable = 1;
@@ -498,21 +480,9 @@ static void test_verify(void) {
     if (!s) return;
     SK_CHECK(skgl_shadow_render(w->e.sk, s, &cam, &sc, light) == SK_OK);
     SK_CHECK(skgl_shadow_stats(s)->cache_verify_texels == 0);
-    w->box0_shift = gt_v3(1.5f, 0, 0);   /* no invalidation */
-    r = skgl_shadow_render(w->e.sk, s, &cam, &sc, light);
-    printf("verify_cache, a static caster moved unannounced: %s, %d texels differ (%s)\n", sk_result_string(r),
-           skgl_shadow_stats(s)->cache_verify_texels, skgl_error_log(w->e.sk));
-    SK_CHECK(r == SK_ERR_INVALID_ARG);
-    SK_CHECK(skgl_shadow_stats(s)->cache_verify_texels > 100);
-    SK_CHECK(strstr(skgl_error_log(w->e.sk), "skgl_shadow_invalidate") != NULL);
-    {
-        sk_aabb b0 = w->e.scene.objects[w->box0].bounds, b1 = moved(b0, w->box0_shift);
-        SK_CHECK(skgl_shadow_invalidate(w->e.sk, s, &b0) == SK_OK);
-        SK_CHECK(skgl_shadow_invalidate(w->e.sk, s, &b1) == SK_OK);
-    }
-    SK_CHECK(skgl_shadow_render(w->e.sk, s, &cam, &sc, light) == SK_OK);
-    SK_CHECK(skgl_shadow_stats(s)->cache_verify_texels == 0);
-    w->box0_shift = gt_v3(0, 0, 0);
+    v.s = s;
+    v.light = light;
+    check_unannounced_move(w, &v, &cam, &sc, "verify_cache");
     skgl_shadow_destroy(w->e.sk, s);
 }
 
@@ -520,7 +490,7 @@ static void test_verify(void) {
    static caster moved without skgl_point_invalidate fails naming it */
 static void test_point_verify(void) {
     world *w = &W_;
-    skgl_scene sc = scene_of(w);
+    skgl_scene sc = gt_movers_scene(w);
     skgl_camera cam = walk_camera(3);
     sk_vec3 pos = gt_v3(1.5f, 4.5f, 1.0f);
     int ti;
@@ -528,6 +498,7 @@ static void test_point_verify(void) {
         skgl_point_desc d;
         skgl_point *p = NULL;
         sk_result r;
+        verified v;
         memset(&d, 0, sizeof d);
         d.technique = ti ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE;
         d.resolution = 256;
@@ -544,22 +515,10 @@ static void test_point_verify(void) {
         SK_CHECK(skgl_point_stats(p)->cache_verify_texels == 0);
         SK_CHECK(skgl_point_render(w->e.sk, p, &cam, &sc, pos) == SK_OK);   /* every face kept */
         SK_CHECK(skgl_point_stats(p)->faces_reused > 0 && skgl_point_stats(p)->cache_verify_texels == 0);
-        w->box0_shift = gt_v3(1.5f, 0, 0);   /* no invalidation */
-        r = skgl_point_render(w->e.sk, p, &cam, &sc, pos);
-        printf("point verify_cache (%s), a static caster moved unannounced: %s, %d texels (%s)\n",
-               ti ? "vsdct" : "cube", sk_result_string(r), skgl_point_stats(p)->cache_verify_texels,
-               skgl_error_log(w->e.sk));
-        SK_CHECK(r == SK_ERR_INVALID_ARG);
-        SK_CHECK(skgl_point_stats(p)->cache_verify_texels > 100);
-        SK_CHECK(strstr(skgl_error_log(w->e.sk), "skgl_point_invalidate") != NULL);
-        {
-            sk_aabb b0 = w->e.scene.objects[w->box0].bounds, b1 = moved(b0, w->box0_shift);
-            SK_CHECK(skgl_point_invalidate(w->e.sk, p, &b0) == SK_OK);
-            SK_CHECK(skgl_point_invalidate(w->e.sk, p, &b1) == SK_OK);
-        }
-        SK_CHECK(skgl_point_render(w->e.sk, p, &cam, &sc, pos) == SK_OK);
-        SK_CHECK(skgl_point_stats(p)->cache_verify_texels == 0);
-        w->box0_shift = gt_v3(0, 0, 0);
+        memset(&v, 0, sizeof v);
+        v.p = p;
+        v.light = pos;
+        check_unannounced_move(w, &v, &cam, &sc, ti ? "point verify_cache (vsdct)" : "point verify_cache (cube)");
         skgl_point_destroy(w->e.sk, p);
     }
 }
@@ -587,7 +546,7 @@ static void test_contracts(void) {
         memset(&dy, 0, sizeof dy);
         SK_CHECK(skgl_set_dynamic(w->e.sk, &dy) == SK_ERR_INVALID_ARG);
         SK_CHECK(strstr(skgl_error_log(w->e.sk), "dyn->draw") != NULL);
-        dy.draw = draw_dynamic;
+        dy.draw = gt_movers_draw_dynamic;
         dy.bounds = bad;
         SK_CHECK(skgl_set_dynamic(w->e.sk, &dy) == SK_ERR_INVALID_ARG);
         SK_CHECK(strstr(skgl_error_log(w->e.sk), "dyn->bounds") != NULL);
@@ -619,23 +578,10 @@ static void test_contracts(void) {
 
 static void test_cache(void) {
     world *w = &W_;
-    tb_scene s;
     const char *ni = getenv("SK_GL_TEST_NO_INVALIDATE");
     int objects;
-    memset(w, 0, sizeof *w);
-    w->no_invalidate = ni && *ni && *ni != '0';
-    tb_scene_init(&s);
-    if (tb_scene_build(&s, "ground-boxes") != 0 ||
-        tb_scene_add_box(&s, "mover", gt_v3(-0.4f, 0, -0.4f), gt_v3(0.4f, 1.6f, 0.4f)) < 0) {
-        SK_CHECK_MSG(0, "scene");
-        tb_scene_free(&s);
-        return;
-    }
-    if (gt_env_init(&w->e, &s, W, H) != 0) { gt_env_free(&w->e); return; }
-    w->mover = tb_scene_find_object(&w->e.scene, "mover");
-    w->box0 = tb_scene_find_object(&w->e.scene, "box0");
-    w->box3 = tb_scene_find_object(&w->e.scene, "box3");
-    SK_CHECK(w->mover >= 0 && w->box0 >= 0 && w->box3 >= 0);
+    no_invalidate = ni && *ni && *ni != '0';
+    if (gt_movers_init(w, W, H) != 0) return;
     /* the mover's room: the scene's bounds hold its whole path */
     w->e.scene.bounds = gt_box(-10, 0, -10, 10, 6, 10);
     objects = skgl_gl_object_count(w->e.sk);

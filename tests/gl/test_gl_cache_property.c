@@ -65,60 +65,9 @@
 #define FRAMES 80
 #define SEEDS 3
 
-typedef struct world {
-    gt_env e;
-    int mover, box0, box3;
-    sk_vec3 mover_at, box0_shift;
-    int box3_hidden;
-} world;
+typedef gt_movers world;
 
 static world W_;
-
-static void translate(float m[16], sk_vec3 t) {
-    memset(m, 0, sizeof(float) * 16);
-    m[0] = m[5] = m[10] = m[15] = 1;
-    m[12] = t.x; m[13] = t.y; m[14] = t.z;
-}
-
-static void draw_object(world *w, int obj) {
-    const tb_object *o = &w->e.scene.objects[obj];
-    tb_gl_mesh_draw(&w->e.gl, &w->e.mesh, o->first_index, o->index_count);
-}
-
-/* scene.draw: every object but the mover; box0 moved, box3 perhaps hidden */
-static void draw_static(void *user, const skgl_draw_info *info) {
-    world *w = (world *)user;
-    uint32_t i;
-    float m[16];
-    (void)info;
-    for (i = 0; i < w->e.scene.object_count; i++) {
-        if ((int)i == w->mover || ((int)i == w->box3 && w->box3_hidden)) continue;
-        if ((int)i == w->box0) {
-            translate(m, w->box0_shift);
-            skgl_set_model(w->e.sk, m);
-            draw_object(w, (int)i);
-            translate(m, gt_v3(0, 0, 0));
-            skgl_set_model(w->e.sk, m);
-            continue;
-        }
-        draw_object(w, (int)i);
-    }
-}
-
-static void draw_dynamic(void *user, const skgl_draw_info *info) {
-    world *w = (world *)user;
-    float m[16];
-    (void)info;
-    translate(m, w->mover_at);
-    skgl_set_model(w->e.sk, m);
-    draw_object(w, w->mover);
-}
-
-static sk_aabb moved(sk_aabb b, sk_vec3 t) {
-    b.min.x += t.x; b.min.y += t.y; b.min.z += t.z;
-    b.max.x += t.x; b.max.y += t.y; b.max.z += t.z;
-    return b;
-}
 
 /* xorshift32: the same frames for a seed on every machine */
 static unsigned rnd_state;
@@ -299,7 +248,7 @@ static tally run_random(world *w, light_kind k, unsigned seed) {
     skgl_scene sc;
     memset(&t, 0, sizeof t);
     rnd_state = seed * 2654435761u + 12345u;
-    sc.draw = draw_static;
+    sc.draw = gt_movers_draw_static;
     sc.user = w;
     sc.bounds = w->e.scene.bounds;
     if (!a || !b || pair_create(w, k, res, &pr) != 0) goto done;
@@ -330,7 +279,7 @@ static tally run_random(world *w, light_kind k, unsigned seed) {
             }
             if (rnd() < 0.1f) {   /* box0 moves, both boxes invalidated */
                 sk_vec3 now = gt_v3(rnd_in(-1.5f, 1.5f), 0, rnd_in(-1.5f, 1.5f));
-                sk_aabb ob = moved(box0, w->box0_shift), nb = moved(box0, now);
+                sk_aabb ob = gt_moved(box0, w->box0_shift), nb = gt_moved(box0, now);
                 pair_invalidate(w, &pr, &ob);
                 pair_invalidate(w, &pr, &nb);
                 w->box0_shift = now;
@@ -345,9 +294,9 @@ static tally run_random(world *w, light_kind k, unsigned seed) {
         if (mover) {
             skgl_dynamic dy;
             memset(&dy, 0, sizeof dy);
-            dy.draw = draw_dynamic;
+            dy.draw = gt_movers_draw_dynamic;
             dy.user = w;
-            if (mover == 1) dy.bounds = moved(w->e.scene.objects[w->mover].bounds, w->mover_at);
+            if (mover == 1) dy.bounds = gt_moved(w->e.scene.objects[w->mover].bounds, w->mover_at);
             SK_CHECK(skgl_set_dynamic(w->e.sk, &dy) == SK_OK);
         } else SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
         dir = gt_v3(cosf(az) * cosf(el), -sinf(el), sinf(az) * cosf(el));
@@ -460,12 +409,8 @@ static void test_drift(void) {
     static const light_kind kinds[3] = {L_STANDARD, L_PSSM, L_FOCUSED};
     world *w = &W_;
     float *a = gt_alloc(&w->e), *b = gt_alloc(&w->e);
-    skgl_scene sc;
+    skgl_scene sc = gt_movers_scene(w);
     int ki;
-    sc.draw = draw_static;
-    sc.user = w;
-    sc.bounds = w->e.scene.bounds;
-    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
     for (ki = 0; ki < 3 && a && b; ki++) {
         pair pr;
         tally t;
@@ -536,12 +481,8 @@ static void test_drift(void) {
 static void test_walk_verify(void) {
     static const light_kind kinds[2] = {L_STANDARD, L_PSSM};
     world *w = &W_;
-    skgl_scene sc;
+    skgl_scene sc = gt_movers_scene(w);
     int ki;
-    sc.draw = draw_static;
-    sc.user = w;
-    sc.bounds = w->e.scene.bounds;
-    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
     for (ki = 0; ki < 2; ki++) {
         pair pr;
         int f, failed = 0, scrolled = 0;
@@ -563,21 +504,8 @@ static void test_walk_verify(void) {
 
 static void test_cache_property(void) {
     world *w = &W_;
-    tb_scene s;
     int objects;
-    memset(w, 0, sizeof *w);
-    tb_scene_init(&s);
-    if (tb_scene_build(&s, "ground-boxes") != 0 ||
-        tb_scene_add_box(&s, "mover", gt_v3(-0.4f, 0, -0.4f), gt_v3(0.4f, 1.6f, 0.4f)) < 0) {
-        SK_CHECK_MSG(0, "scene");
-        tb_scene_free(&s);
-        return;
-    }
-    if (gt_env_init(&w->e, &s, W, H) != 0) { gt_env_free(&w->e); return; }
-    w->mover = tb_scene_find_object(&w->e.scene, "mover");
-    w->box0 = tb_scene_find_object(&w->e.scene, "box0");
-    w->box3 = tb_scene_find_object(&w->e.scene, "box3");
-    SK_CHECK(w->mover >= 0 && w->box0 >= 0 && w->box3 >= 0);
+    if (gt_movers_init(w, W, H) != 0) return;
     w->e.scene.bounds = gt_box(-12, 0, -12, 12, 7, 12);   /* the mover's and box0's room */
     w->mover_at = gt_v3(-6, 0, -6);
     objects = skgl_gl_object_count(w->e.sk);

@@ -728,26 +728,9 @@ static const char point_fs[] =
     "}\n";
 
 static unsigned cg_point_program(cg_env *x, int vsdct) {
-    const tb_gl_funcs *gl = &x->e.gl;
-    const char *vs[1], *fs[4];
-    unsigned v, g, prog;
     int ok = 0;
-    vs[0] = gt_forward_vs;
-    fs[0] = "#version 330 core\n";
-    fs[1] = vsdct ? "#define SK_POINT_VSDCT 1\n" : "";
-    fs[2] = skgl_point_glsl_snippet();
-    fs[3] = point_fs;
-    v = gt_compile(gl, 0x8B31 /* VERTEX_SHADER */, 1, vs);
-    g = gt_compile(gl, 0x8B30 /* FRAGMENT_SHADER */, 4, fs);
-    if (!v || !g) { if (v) gl->DeleteShader(v); if (g) gl->DeleteShader(g); return 0; }
-    prog = gl->CreateProgram();
-    gl->AttachShader(prog, v);
-    gl->AttachShader(prog, g);
-    gl->LinkProgram(prog);
-    gl->DeleteShader(v);
-    gl->DeleteShader(g);
-    gl->GetProgramiv(prog, 0x8B82 /* LINK_STATUS */, &ok);
-    if (!ok) { gl->DeleteProgram(prog); SK_CHECK_MSG(0, "point forward program"); return 0; }
+    unsigned prog = gt_point_program_of(&x->e.gl, vsdct, gt_forward_vs, point_fs, &ok);
+    if (prog && !ok) { x->e.gl.DeleteProgram(prog); SK_CHECK_MSG(0, "point forward program"); return 0; }
     return prog;
 }
 

@@ -226,18 +226,8 @@ static void world_free(world *w) {
 enum { T_STANDARD, T_PSSM_LAYERED, T_CUBE, T_CUBE_LAYERED, T_PVSM, T_PVSM_GBUF, T_COUNT };
 static const char *const tech_name[T_COUNT] = {"STANDARD", "PSSM-L", "cube", "cube-L", "PVSM", "PVSM+G"};
 
-#define SUN_DIR gt_v3(-0.45f, -1.0f, -0.3f)
-#define POINT_POS gt_v3(2.0f, 9.0f, 3.0f)
-
-static skgl_area_light area_light(void) {
-    skgl_area_light l;
-    memset(&l, 0, sizeof l);
-    l.position = POINT_POS;
-    l.direction = gt_v3(0, -1, 0);
-    l.up = gt_v3(0, 0, 1);
-    l.half_width = l.half_height = 0.3f;
-    return l;
-}
+#define SUN_DIR GT_CASTER_SUN
+#define POINT_POS GT_CASTER_LAMP
 
 /* renders pass kind t with w->caster into res (background -1); SK_OK or
    the render's error (checked, named) */
@@ -282,7 +272,7 @@ static sk_result render(world *w, const skgl_camera *cam, int t, const char *wha
         skgl_point_destroy(e->sk, p);
     } else {
         skgl_soft *s = gt_soft(e, SKGL_SOFT_PVSM, 1024);
-        skgl_area_light l = area_light();
+        skgl_area_light l = gt_caster_area();
         if (!s) return SK_ERR_GL;
         r = skgl_soft_render(e->sk, s, cam, &sc, &l, t == T_PVSM_GBUF ? 0 : e->gbuf.depth_tex,
                              t == T_PVSM_GBUF ? 0 : e->gbuf.color_tex, e->mask.color_tex);
@@ -353,20 +343,12 @@ static void test_qualifier_matrix(void) {
     float *ref[3], *res, *plain, *control;
     double err[Q_COUNT][T_COUNT], err_off[T_COUNT];
     skgl_caster *casters[Q_COUNT], *bare;
-    tb_light pl;
-    skgl_area_light al = area_light();
     int q, t, i;
     if (world_init(&w) != 0) { world_free(&w); return; }
     for (i = 0; i < 3; i++) ref[i] = gt_alloc(&w.e);
     res = gt_alloc(&w.e); plain = gt_alloc(&w.e); control = gt_alloc(&w.e);
     SK_CHECK(gt_gbuffer(&w.e, &cam) == 0);
-    SK_CHECK(gt_reference(&w.e, SUN_DIR, ref[0]) == 0);
-    memset(&pl, 0, sizeof pl);
-    pl.type = TB_LIGHT_POINT;
-    pl.position = POINT_POS;
-    pl.range = 40.0f;
-    SK_CHECK(gt_reference_exact(&w.e, &pl, ref[1], NULL) == 0);
-    SK_CHECK(gt_area_reference(&w.e, &al, 16, ref[2]) == 0);
+    gt_caster_references(&w.e, ref[0], ref[1], ref[2]);
     for (q = 0; q < Q_COUNT; q++) casters[q] = make_caster(&w, q, 1);
     bare = make_caster(&w, Q_PLAIN, 0);
     for (t = 0; t < T_COUNT; t++) {

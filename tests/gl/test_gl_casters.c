@@ -471,18 +471,8 @@ enum { T_STANDARD, T_PSSM, T_PSM, T_LISPSM, T_LSPSM, T_FERKO, T_RMSM, T_CUBE, T_
 static const char *const tech_name[T_COUNT] = {"STANDARD", "PSSM", "PSM",  "LiSPSM", "LSPSM", "FERKO",
                                                "RMSM",     "cube", "VSDCT", "PCSS",  "PVSM",  "PVSM+G"};
 
-#define SUN_DIR gt_v3(-0.45f, -1.0f, -0.3f)
-#define POINT_POS gt_v3(2.0f, 9.0f, 3.0f)
-
-static skgl_area_light area_light(void) {
-    skgl_area_light l;
-    memset(&l, 0, sizeof l);
-    l.position = POINT_POS;
-    l.direction = gt_v3(0, -1, 0);
-    l.up = gt_v3(0, 0, 1);
-    l.half_width = l.half_height = 0.3f;
-    return l;
-}
+#define SUN_DIR GT_CASTER_SUN
+#define POINT_POS GT_CASTER_LAMP
 
 /* the error of technique t (directional, point: tb_metric_shadow's area %;
    area: penumbra + umbra mean |difference|); < 0 on failure */
@@ -527,7 +517,7 @@ static double run_tech(world *w, const skgl_camera *cam, int t, const float *ref
         skgl_point_destroy(e->sk, p);
     } else {
         skgl_soft *s = gt_soft(e, t == T_PCSS ? SKGL_SOFT_PCSS : SKGL_SOFT_PVSM, 1024);
-        skgl_area_light l = area_light();
+        skgl_area_light l = gt_caster_area();
         if (!s) return -1;
         r = skgl_soft_render(e->sk, s, cam, &sc, &l, t == T_PVSM_GBUF ? 0 : e->gbuf.depth_tex,
                              t == T_PVSM_GBUF ? 0 : e->gbuf.color_tex, e->mask.color_tex);
@@ -561,19 +551,11 @@ static void run_kind(int kind) {
     world w;
     skgl_camera cam = gt_camera(gt_v3(-10, 9, 13), gt_v3(0, 0.5f, 0), 0.9f, 0.5f, 60, W, H);
     float *ref_sun, *ref_point, *ref_area, *res;
-    tb_light pl;
-    skgl_area_light al = area_light();
     int t;
     if (world_init(&w, kind) != 0) { world_free(&w); return; }
     ref_sun = gt_alloc(&w.e); ref_point = gt_alloc(&w.e); ref_area = gt_alloc(&w.e); res = gt_alloc(&w.e);
     SK_CHECK(gt_gbuffer(&w.e, &cam) == 0);
-    SK_CHECK(gt_reference(&w.e, SUN_DIR, ref_sun) == 0);
-    memset(&pl, 0, sizeof pl);
-    pl.type = TB_LIGHT_POINT;
-    pl.position = POINT_POS;
-    pl.range = 40.0f;
-    SK_CHECK(gt_reference_exact(&w.e, &pl, ref_point, NULL) == 0);
-    SK_CHECK(gt_area_reference(&w.e, &al, 16, ref_area) == 0);
+    gt_caster_references(&w.e, ref_sun, ref_point, ref_area);
     for (t = 0; t < T_COUNT; t++) {
         const float *ref = t <= T_RMSM ? ref_sun : t <= T_VSDCT ? ref_point : ref_area;
         int hook = w.hook;
@@ -657,20 +639,12 @@ static void test_two_programs(void) {
     world w;
     skgl_camera cam = gt_camera(gt_v3(-8, 11, 15), gt_v3(4, 0.5f, 0), 0.9f, 0.5f, 60, W, H);
     float *ref[3], *res;
-    tb_light pl;
-    skgl_area_light al = area_light();
     int i;
     if (world_init_twice(&w, K_BENT, 1) != 0) { world_free(&w); return; }
     for (i = 0; i < 3; i++) ref[i] = gt_alloc(&w.e);
     res = gt_alloc(&w.e);
     SK_CHECK(gt_gbuffer(&w.e, &cam) == 0);
-    SK_CHECK(gt_reference(&w.e, SUN_DIR, ref[0]) == 0);
-    memset(&pl, 0, sizeof pl);
-    pl.type = TB_LIGHT_POINT;
-    pl.position = POINT_POS;
-    pl.range = 40.0f;
-    SK_CHECK(gt_reference_exact(&w.e, &pl, ref[1], NULL) == 0);
-    SK_CHECK(gt_area_reference(&w.e, &al, 16, ref[2]) == 0);
+    gt_caster_references(&w.e, ref[0], ref[1], ref[2]);
     for (i = 0; i < 3; i++) {
         int hook = w.hook;
         double on = run_tech(&w, &cam, techs[i], ref[i], res), off, bound;
@@ -762,7 +736,7 @@ static void test_contracts(void) {
     {
         /* the flat varying through PVSM's geometry shader: linked on first use */
         skgl_soft *s = gt_soft(&w.e, SKGL_SOFT_PVSM, 512);
-        skgl_area_light l = area_light();
+        skgl_area_light l = gt_caster_area();
         skgl_camera cam = gt_camera(gt_v3(-10, 9, 13), gt_v3(0, 0.5f, 0), 0.9f, 0.5f, 60, W, H);
         contract_user u;
         skgl_scene sc;
@@ -784,7 +758,7 @@ static void test_contracts(void) {
            the render that first needs it returns SK_ERR_GL naming the
            caster, and so does the next (not linked again) */
         skgl_soft *s = gt_soft(&w.e, SKGL_SOFT_PVSM, 512);
-        skgl_area_light l = area_light();
+        skgl_area_light l = gt_caster_area();
         skgl_camera cam = gt_camera(gt_v3(-10, 9, 13), gt_v3(0, 0.5f, 0), 0.9f, 0.5f, 60, W, H);
         contract_user u;
         skgl_scene sc;

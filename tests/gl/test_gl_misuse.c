@@ -268,11 +268,36 @@ static void test_create_messages(void) {
     expect_create(&d, NULL, SK_ERR_GL, "no glClipControl", "glClipControl");
 }
 
-/* ---- 10, 15, 17: bounds, cameras and descs ------------------------------ */
-static void test_bounds(skgl_context *sk) {
+/* lights with default descs but the resolution: STANDARD (*s) at res,
+   FERKO (*f, when f) at res, a point light (*p) at point_res, a soft
+   shadow (*a, when a) at res */
+static void lights_create(skgl_context *sk, int res, int point_res, skgl_shadow **s, skgl_shadow **f, skgl_point **p,
+                          skgl_soft **a) {
     skgl_shadow_desc sd;
     skgl_point_desc pd;
     skgl_soft_desc fd;
+    memset(&sd, 0, sizeof sd);
+    sd.resolution = res;
+    SK_CHECK(skgl_shadow_create(sk, &sd, s) == SK_OK);
+    sd.technique = SKGL_FERKO;
+    if (f) SK_CHECK(skgl_shadow_create(sk, &sd, f) == SK_OK);
+    memset(&pd, 0, sizeof pd);
+    pd.resolution = point_res;
+    SK_CHECK(skgl_point_create(sk, &pd, p) == SK_OK);
+    memset(&fd, 0, sizeof fd);
+    fd.resolution = res;
+    if (a) SK_CHECK(skgl_soft_create(sk, &fd, a) == SK_OK);
+}
+
+static void lights_destroy(skgl_context *sk, skgl_shadow *s, skgl_shadow *f, skgl_point *p, skgl_soft *a) {
+    skgl_shadow_destroy(sk, s);
+    skgl_shadow_destroy(sk, f);
+    skgl_point_destroy(sk, p);
+    skgl_soft_destroy(sk, a);
+}
+
+/* ---- 10, 15, 17: bounds, cameras and descs ------------------------------ */
+static void test_bounds(skgl_context *sk) {
     skgl_shadow *s = NULL, *f = NULL;
     skgl_point *p = NULL;
     skgl_soft *a = NULL;
@@ -289,17 +314,7 @@ static void test_bounds(skgl_context *sk) {
     boxes[3] = gt_box(-5, 0, -5, 5, NAN, 5);
     boxes[4] = gt_box(-huge, -huge, -huge, huge, huge, huge);
     boxes[5] = gt_box(-5, 0, -5, INFINITY, 3, 5);
-    memset(&sd, 0, sizeof sd);
-    sd.resolution = 256;
-    SK_CHECK(skgl_shadow_create(sk, &sd, &s) == SK_OK);
-    sd.technique = SKGL_FERKO;
-    SK_CHECK(skgl_shadow_create(sk, &sd, &f) == SK_OK);
-    memset(&pd, 0, sizeof pd);
-    pd.resolution = 64;
-    SK_CHECK(skgl_point_create(sk, &pd, &p) == SK_OK);
-    memset(&fd, 0, sizeof fd);
-    fd.resolution = 256;
-    SK_CHECK(skgl_soft_create(sk, &fd, &a) == SK_OK);
+    lights_create(sk, 256, 64, &s, &f, &p, &a);
     if (!s || !f || !p || !a) goto done;
     for (i = 0; i < 6; i++) {
         char what[96];
@@ -316,10 +331,7 @@ static void test_bounds(skgl_context *sk) {
                SK_ERR_INVALID_ARG, what, "scene->bounds");
     }
 done:
-    skgl_shadow_destroy(sk, s);
-    skgl_shadow_destroy(sk, f);
-    skgl_point_destroy(sk, p);
-    skgl_soft_destroy(sk, a);
+    lights_destroy(sk, s, f, p, a);
 }
 
 /* odd projections: a result, with a message when it is an error */
@@ -476,30 +488,56 @@ static void test_null_creates(skgl_context *sk) {
     SK_CHECK_MSG(skgl_error_log(sk)[0] == 0, "log after skgl_forget_program: '%s'", skgl_error_log(sk));
 }
 
+/* calls given one bad texture among (depth, normal, target) in turn:
+   bogus (not a texture) or bare (no storage), each refused naming it */
+enum { BAD_MASK, BAD_POINT_MASK, BAD_SOFT };
+static const struct bad_textures {
+    int call;
+    const char *name;
+    unsigned bogus, bare;   /* the slots tried so, a bit each */
+    unsigned named;         /* the bogus slots whose message names "<slot>_tex = <name>" */
+} bad_textures[3] = {{BAD_MASK, "mask", 7, 3, 3}, {BAD_POINT_MASK, "point mask", 7, 2, 0}, {BAD_SOFT, "soft", 7, 0, 0}};
+
+/* bad_textures[k] through s, p or a; bare: a texture without storage */
+static void expect_bad_textures(skgl_context *sk, int k, skgl_shadow *s, skgl_point *p, skgl_soft *a, unsigned bare) {
+    static const char *const slot_name[3] = {"depth", "normal", "target"};
+    const struct bad_textures *b = &bad_textures[k];
+    skgl_camera cam = camera();
+    skgl_scene sc = gt_scene(&env);
+    skgl_area_light l = area();
+    int is_bare, slot;
+    for (is_bare = 0; is_bare < 2; is_bare++)
+        for (slot = 0; slot < 3; slot++) {
+            unsigned t[3];
+            char what[64], needle[64];
+            sk_result r;
+            if (!((is_bare ? b->bare : b->bogus) >> slot & 1)) continue;
+            t[0] = env.gbuf.depth_tex;
+            t[1] = env.gbuf.color_tex;
+            t[2] = env.mask.color_tex;
+            t[slot] = is_bare ? bare : BOGUS_NAME;
+            if (b->call == BAD_MASK) r = skgl_shadow_mask(sk, s, &cam, t[0], t[1], t[2]);
+            else if (b->call == BAD_POINT_MASK) r = skgl_point_mask(sk, p, &cam, t[0], t[1], t[2]);
+            else r = skgl_soft_render(sk, a, &cam, &sc, &l, t[0], t[1], t[2]);
+            snprintf(what, sizeof what, "%s %s %s", b->name, slot_name[slot], is_bare ? "bare" : "bogus");
+            if (is_bare) snprintf(needle, sizeof needle, "no level 0");
+            else if (b->named >> slot & 1)
+                snprintf(needle, sizeof needle, "%s_tex = %u: not a texture", slot_name[slot], BOGUS_NAME);
+            else snprintf(needle, sizeof needle, "not a texture");
+            expect(sk, r, SK_ERR_INVALID_ARG, what, needle);
+        }
+}
+
 /* ---- 16: names that are not textures, textures without storage ------------ */
 static void test_textures(skgl_context *sk) {
-    skgl_shadow_desc sd;
-    skgl_point_desc pd;
-    skgl_soft_desc fd;
     skgl_shadow *s = NULL, *f = NULL;
     skgl_point *p = NULL;
     skgl_soft *a = NULL;
     skgl_camera cam = camera();
     skgl_scene sc = gt_scene(&env);
-    skgl_area_light l = area();
     skgl_caps caps = skgl_get_caps(sk);
     unsigned bare = 0, dt = env.gbuf.depth_tex, nt = env.gbuf.color_tex, mt = env.mask.color_tex;
-    memset(&sd, 0, sizeof sd);
-    sd.resolution = 256;
-    SK_CHECK(skgl_shadow_create(sk, &sd, &s) == SK_OK);
-    sd.technique = SKGL_FERKO;
-    SK_CHECK(skgl_shadow_create(sk, &sd, &f) == SK_OK);
-    memset(&pd, 0, sizeof pd);
-    pd.resolution = 64;
-    SK_CHECK(skgl_point_create(sk, &pd, &p) == SK_OK);
-    memset(&fd, 0, sizeof fd);
-    fd.resolution = 256;
-    SK_CHECK(skgl_soft_create(sk, &fd, &a) == SK_OK);
+    lights_create(sk, 256, 64, &s, &f, &p, &a);
     env.gl.GenTextures(1, &bare);
     env.gl.BindTexture(E_TEXTURE_2D, bare);       /* a texture, no storage */
     env.gl.BindTexture(E_TEXTURE_2D, 0);
@@ -510,31 +548,12 @@ static void test_textures(skgl_context *sk) {
     expect(sk, skgl_shadow_bind(sk, s, 1, 0), SK_ERR_INVALID_ARG, "bind before render", "has not been rendered");
     SK_CHECK(skgl_shadow_render(sk, s, &cam, &sc, sun()) == SK_OK);
     SK_CHECK(skgl_point_render(sk, p, &cam, &sc, gt_v3(1, 3, 1)) == SK_OK);
-    expect(sk, skgl_shadow_mask(sk, s, &cam, BOGUS_NAME, nt, mt), SK_ERR_INVALID_ARG, "mask depth bogus",
-           "depth_tex = 987654: not a texture");
-    expect(sk, skgl_shadow_mask(sk, s, &cam, dt, BOGUS_NAME, mt), SK_ERR_INVALID_ARG, "mask normal bogus",
-           "normal_tex = 987654: not a texture");
-    expect(sk, skgl_shadow_mask(sk, s, &cam, dt, nt, BOGUS_NAME), SK_ERR_INVALID_ARG, "mask target bogus",
-           "not a texture");
-    expect(sk, skgl_shadow_mask(sk, s, &cam, bare, nt, mt), SK_ERR_INVALID_ARG, "mask depth bare", "no level 0");
-    expect(sk, skgl_shadow_mask(sk, s, &cam, dt, bare, mt), SK_ERR_INVALID_ARG, "mask normal bare", "no level 0");
-    expect(sk, skgl_point_mask(sk, p, &cam, BOGUS_NAME, nt, mt), SK_ERR_INVALID_ARG, "point mask depth bogus",
-           "not a texture");
-    expect(sk, skgl_point_mask(sk, p, &cam, dt, BOGUS_NAME, mt), SK_ERR_INVALID_ARG, "point mask normal bogus",
-           "not a texture");
-    expect(sk, skgl_point_mask(sk, p, &cam, dt, nt, BOGUS_NAME), SK_ERR_INVALID_ARG, "point mask target bogus",
-           "not a texture");
-    expect(sk, skgl_point_mask(sk, p, &cam, dt, bare, mt), SK_ERR_INVALID_ARG, "point mask normal bare",
-           "no level 0");
+    expect_bad_textures(sk, BAD_MASK, s, p, a, bare);
+    expect_bad_textures(sk, BAD_POINT_MASK, s, p, a, bare);
     expect(sk, skgl_shadow_analyze(sk, f, &cam, &sc, sun(), BOGUS_NAME), SK_ERR_INVALID_ARG, "analyze bogus",
            "not a texture");
     expect(sk, skgl_shadow_analyze(sk, f, &cam, &sc, sun(), bare), SK_ERR_INVALID_ARG, "analyze bare", "no level 0");
-    expect(sk, skgl_soft_render(sk, a, &cam, &sc, &l, BOGUS_NAME, nt, mt), SK_ERR_INVALID_ARG, "soft depth bogus",
-           "not a texture");
-    expect(sk, skgl_soft_render(sk, a, &cam, &sc, &l, dt, BOGUS_NAME, mt), SK_ERR_INVALID_ARG, "soft normal bogus",
-           "not a texture");
-    expect(sk, skgl_soft_render(sk, a, &cam, &sc, &l, dt, nt, BOGUS_NAME), SK_ERR_INVALID_ARG, "soft target bogus",
-           "not a texture");
+    expect_bad_textures(sk, BAD_SOFT, s, p, a, bare);
     expect(sk, skgl_remember_texture(sk, BOGUS_NAME, 64, 64), SK_ERR_INVALID_ARG, "remember bogus", "not a texture");
     expect(sk, skgl_remember_texture(sk, mt, caps.max_texture_size + 1, 16), SK_ERR_INVALID_ARG, "remember huge",
            "GL_MAX_TEXTURE_SIZE");
@@ -544,10 +563,7 @@ static void test_textures(skgl_context *sk) {
     expect(sk, skgl_point_mask(sk, p, &cam, dt, nt, mt), SK_OK, "point mask", NULL);
 done:
     env.gl.DeleteTextures(1, &bare);
-    skgl_shadow_destroy(sk, s);
-    skgl_shadow_destroy(sk, f);
-    skgl_point_destroy(sk, p);
-    skgl_soft_destroy(sk, a);
+    lights_destroy(sk, s, f, p, a);
 }
 
 /* ---- 11: binds to programs without the snippet ------------------------- */
@@ -555,24 +571,14 @@ static unsigned link_program(const char *fs_body) {
     static const char vs[] = "#version 330 core\nlayout(location = 0) in vec3 a;\n"
                              "void main() { gl_Position = vec4(a, 1.0); }\n";
     const char *v[1], *f[2];
-    unsigned sv, sf, prog;
+    int linked;
     v[0] = vs;
     f[0] = "#version 330 core\n";
     f[1] = fs_body;
-    sv = gt_compile(&env.gl, 0x8B31, 1, v);
-    sf = gt_compile(&env.gl, 0x8B30, 2, f);
-    prog = env.gl.CreateProgram();
-    env.gl.AttachShader(prog, sv);
-    env.gl.AttachShader(prog, sf);
-    env.gl.LinkProgram(prog);
-    env.gl.DeleteShader(sv);
-    env.gl.DeleteShader(sf);
-    return prog;
+    return gt_program(&env.gl, 1, v, 2, f, &linked);
 }
 
 static void test_binds(skgl_context *sk) {
-    skgl_shadow_desc sd;
-    skgl_point_desc pd;
     skgl_shadow *s = NULL;
     skgl_point *p = NULL;
     skgl_camera cam = camera();
@@ -580,12 +586,7 @@ static void test_binds(skgl_context *sk) {
     gt_forward fw;
     unsigned plain = link_program("uniform sampler2D u_albedo;\nout vec4 o;\n"
                                   "void main() { o = texture(u_albedo, vec2(0.5)); }\n");
-    memset(&sd, 0, sizeof sd);
-    sd.resolution = 256;
-    memset(&pd, 0, sizeof pd);
-    pd.resolution = 64;
-    SK_CHECK(skgl_shadow_create(sk, &sd, &s) == SK_OK);
-    SK_CHECK(skgl_point_create(sk, &pd, &p) == SK_OK);
+    lights_create(sk, 256, 64, &s, NULL, &p, NULL);
     SK_CHECK(gt_forward_create(&env, &fw) == 0);
     if (!s || !p || !fw.program) goto done;
     SK_CHECK(skgl_shadow_render(sk, s, &cam, &sc, sun()) == SK_OK);
@@ -742,8 +743,6 @@ static void test_foreign_program(void) {
 
 /* ---- the campaign: NULL, zero, negative, huge, NaN, Inf -------------------- */
 static void test_campaign(skgl_context *sk) {
-    skgl_shadow_desc sd;
-    skgl_point_desc pd;
     skgl_shadow *s = NULL;
     skgl_point *p = NULL;
     skgl_point_atlas *atlas = NULL;
@@ -757,12 +756,7 @@ static void test_campaign(skgl_context *sk) {
     memset(&zero_cam, 0, sizeof zero_cam);
     nan_cam.proj.m[0] = NAN;
     inf_cam.view.m[12] = INFINITY;
-    memset(&sd, 0, sizeof sd);
-    sd.resolution = 128;
-    memset(&pd, 0, sizeof pd);
-    pd.resolution = 32;
-    SK_CHECK(skgl_shadow_create(sk, &sd, &s) == SK_OK);
-    SK_CHECK(skgl_point_create(sk, &pd, &p) == SK_OK);
+    lights_create(sk, 128, 32, &s, NULL, &p, NULL);
     if (!s || !p) goto done;
     expect(sk, skgl_shadow_render(sk, s, NULL, &sc, sun()), SK_ERR_INVALID_ARG, "render NULL cam", "cam is NULL");
     expect(sk, skgl_shadow_render(sk, s, &cam, NULL, sun()), SK_ERR_INVALID_ARG, "render NULL scene", "scene");
