@@ -72,6 +72,20 @@ static inline skgl_shadow_desc gt_shadow_desc(skgl_technique technique, int reso
     return d;
 }
 
+/* one row of a printed table: a label, then n names or n values */
+static inline void gt_print_names(const char *label, const char *const *names, int n) {
+    int i;
+    printf("%-14s", label);
+    for (i = 0; i < n; i++) printf(" %9s", names[i]);
+    printf("\n");
+}
+static inline void gt_print_values(const char *label, const double *v, int n) {
+    int i;
+    printf("%-14s", label);
+    for (i = 0; i < n; i++) printf(" %9.4f", v[i]);
+    printf("\n");
+}
+
 /* a perspective camera for a w x h image; up = +y */
 static inline skgl_camera gt_camera(sk_vec3 eye, sk_vec3 target, float fovy, float zn, float zf, int w, int h) {
     skgl_camera c;

@@ -375,17 +375,9 @@ static void test_qualifier_matrix(void) {
                          tech_name[t], diff);
         }
     }
-    printf("%-14s", "varying");
-    for (t = 0; t < T_COUNT; t++) printf(" %9s", tech_name[t]);
-    printf("\n");
-    for (q = 0; q < Q_COUNT; q++) {
-        printf("%-14s", q_name[q]);
-        for (t = 0; t < T_COUNT; t++) printf(" %9.4f", err[q][t]);
-        printf("\n");
-    }
-    printf("%-14s", "no discard");
-    for (t = 0; t < T_COUNT; t++) printf(" %9.4f", err_off[t]);
-    printf("\n");
+    gt_print_names("varying", tech_name, T_COUNT);
+    for (q = 0; q < Q_COUNT; q++) gt_print_values(q_name[q], err[q], T_COUNT);
+    gt_print_values("no discard", err_off, T_COUNT);
     for (q = 0; q < Q_COUNT; q++) skgl_caster_destroy(w.e.sk, casters[q]);
     skgl_caster_destroy(w.e.sk, bare);
     for (i = 0; i < 3; i++) free(ref[i]);

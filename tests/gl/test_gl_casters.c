@@ -616,15 +616,10 @@ static void test_caster_kinds(void) {
             SK_CHECK_MSG(err_off[k][t] >= 2.0 * err[k][t], "%s under %s: without the hook %.4f, with %.4f",
                          kind_name[k], tech_name[t], err_off[k][t], err[k][t]);
         }
-    printf("%-10s", "kind");
-    for (t = 0; t < T_COUNT; t++) printf(" %9s", tech_name[t]);
-    printf("\n");
+    gt_print_names("kind", tech_name, T_COUNT);
     for (k = 0; k < K_COUNT; k++) {
-        printf("%-10s", kind_name[k]);
-        for (t = 0; t < T_COUNT; t++) printf(" %9.4f", err[k][t]);
-        printf("\n%-10s", "  no hook");
-        for (t = 0; t < T_COUNT; t++) printf(" %9.4f", err_off[k][t]);
-        printf("\n");
+        gt_print_values(kind_name[k], err[k], T_COUNT);
+        gt_print_values("  no hook", err_off[k], T_COUNT);
     }
 }
 
