@@ -54,9 +54,10 @@ run_one() {  # flavour binary logfile
              UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1) ;;
         gl) env=(LSAN_OPTIONS=suppressions=testbed/lsan.supp) ;;
     esac
-    local t0=$SECONDS
+    local t0=$SECONDS prog=$2
+    case "$prog" in /*) ;; *) prog=./$prog ;; esac   # BUILD may be an absolute path
     rm -f "$3.cpu"
-    env "${env[@]}" ${TIME[@]+"${TIME[@]}" "$3.cpu"} timeout -k 10 "$TIMEOUT" "${STDBUF[@]}" "./$2" \
+    env "${env[@]}" ${TIME[@]+"${TIME[@]}" "$3.cpu"} timeout -k 10 "$TIMEOUT" "${STDBUF[@]}" "$prog" \
         > "$3" 2>&1 < /dev/null
     echo $? > "$3.rc"
     echo $((SECONDS - t0)) > "$3.t"
