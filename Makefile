@@ -3,6 +3,9 @@
 #                   (C99, C++11, each plain -O2 and under ASan+UBSan) and the
 #                   tests/compile checks, run them all; ends "N passed, M failed"
 #   make check      static checks (compile checks now; embedded shaders later)
+#   make check-quick  for iteration (about 1 minute on 2 cores once the
+#                   testbed is built): the C99 CPU tests, the compile
+#                   checks, the shader checks and one GL test
 #   make bench-cpu  CPU benchmark table (bench/bench_cpu.c)
 #   make demo       install the demo packages, then build and run $(DEMO_TARGETS)
 #   make clean      remove build/ and out/
@@ -38,24 +41,50 @@ MKDIR     = @mkdir -p $(@D) $(BUILD)/dep $(BUILD)/obj
 DEPFLAGS  = -MMD -MP -MF $(BUILD)/dep/$(subst /,_,$@).d
 
 # ---------------------------------------------------------------- unit tests
-# every tests/test_*.c is a whole program; new ones are picked up by the wildcard
+# every tests/test_*.c is a whole program; new ones are picked up by the wildcard.
+# Each flavour compiles shadowkit.h's implementation once, tests/shared_impl.c
+# into build/obj/<flavour>/shared_impl.o, and the programs link it: they are
+# compiled with -include tests/shared_impl.h, which skips the implementation
+# their own #define SHADOWKIT_IMPLEMENTATION asks for. A program that
+# configures the implementation (an SK* macro defined before its first
+# #include "...", see tests/own_impl.awk) compiles its own copy as before.
 TEST_NAMES := $(sort $(basename $(notdir $(wildcard tests/test_*.c))))
 FLAVOURS   := c99 cpp asan-c99 asan-cpp
 TEST_BINS  := $(foreach f,$(FLAVOURS),$(addprefix $(BUILD)/$(f)/,$(TEST_NAMES)))
-TEST_DEPS  := shadowkit.h tests/sk_test.h
+TEST_DEPS  := shadowkit.h tests/sk_test.h tests/shared_impl.h
 
-$(BUILD)/c99/%: tests/%.c $(TEST_DEPS) | deps-test
+# sk_own_impl: the basenames of the programs among $(1) with their own implementation
+sk_own_impl = $(basename $(notdir $(shell awk -f tests/own_impl.awk $(1) /dev/null)))
+CPU_OWN_IMPL := $(call sk_own_impl,$(wildcard tests/test_*.c))
+# the arguments that make test program $(1) of flavour $(2) use the shared object
+# (-x none: the C++ flavours' -x c++ must not apply to the object)
+cpu_impl = $(if $(filter $(1),$(CPU_OWN_IMPL)),,-include tests/shared_impl.h $< -x none $(BUILD)/obj/$(2)/shared_impl.o)
+
+$(BUILD)/obj/c99/shared_impl.o: tests/shared_impl.c shadowkit.h | deps-test
 	$(MKDIR)
-	$(C99) $(OPT) $(DEPFLAGS) $< -o $@ $(LDLIBS)
-$(BUILD)/cpp/%: tests/%.c $(TEST_DEPS) | deps-test
+	$(C99) $(OPT) $(DEPFLAGS) -c $< -o $@
+$(BUILD)/obj/cpp/shared_impl.o: tests/shared_impl.c shadowkit.h | deps-test
 	$(MKDIR)
-	$(CXX11) $(OPT) $(DEPFLAGS) $< -o $@ $(LDLIBS)
-$(BUILD)/asan-c99/%: tests/%.c $(TEST_DEPS) | deps-test
+	$(CXX11) $(OPT) $(DEPFLAGS) -c $< -o $@
+$(BUILD)/obj/asan-c99/shared_impl.o: tests/shared_impl.c shadowkit.h | deps-test
 	$(MKDIR)
-	$(C99) $(SANITIZE) $(DEPFLAGS) $< -o $@ $(LDLIBS)
-$(BUILD)/asan-cpp/%: tests/%.c $(TEST_DEPS) | deps-test
+	$(C99) $(SANITIZE) $(DEPFLAGS) -c $< -o $@
+$(BUILD)/obj/asan-cpp/shared_impl.o: tests/shared_impl.c shadowkit.h | deps-test
 	$(MKDIR)
-	$(CXX11) $(SANITIZE) $(DEPFLAGS) $< -o $@ $(LDLIBS)
+	$(CXX11) $(SANITIZE) $(DEPFLAGS) -c $< -o $@
+
+$(BUILD)/c99/%: tests/%.c $(TEST_DEPS) $(BUILD)/obj/c99/shared_impl.o | deps-test
+	$(MKDIR)
+	$(C99) $(OPT) $(DEPFLAGS) $(or $(call cpu_impl,$*,c99),$<) -o $@ $(LDLIBS)
+$(BUILD)/cpp/%: tests/%.c $(TEST_DEPS) $(BUILD)/obj/cpp/shared_impl.o | deps-test
+	$(MKDIR)
+	$(CXX11) $(OPT) $(DEPFLAGS) $(or $(call cpu_impl,$*,cpp),$<) -o $@ $(LDLIBS)
+$(BUILD)/asan-c99/%: tests/%.c $(TEST_DEPS) $(BUILD)/obj/asan-c99/shared_impl.o | deps-test
+	$(MKDIR)
+	$(C99) $(SANITIZE) $(DEPFLAGS) $(or $(call cpu_impl,$*,asan-c99),$<) -o $@ $(LDLIBS)
+$(BUILD)/asan-cpp/%: tests/%.c $(TEST_DEPS) $(BUILD)/obj/asan-cpp/shared_impl.o | deps-test
+	$(MKDIR)
+	$(CXX11) $(SANITIZE) $(DEPFLAGS) $(or $(call cpu_impl,$*,asan-cpp),$<) -o $@ $(LDLIBS)
 
 # ---------------------------------------------------- compile checks (tests/compile)
 # static-*: two SHADOWKIT_STATIC copies of the implementation in one program.
@@ -95,7 +124,7 @@ $(BUILD)/compile/mixed-cppimpl: $(CD)/extern_impl.c $(CD)/extern_use.c $(COMPILE
 	$(CXX) $(BUILD)/obj/mixed-cppimpl-impl.o $(BUILD)/obj/mixed-cppimpl-use.o -o $@ $(LDLIBS)
 
 # ---------------------------------------------------------------- targets
-.PHONY: test check check-compile bench-cpu demo clean deps-test deps-demo
+.PHONY: test check check-quick check-compile bench-cpu demo clean deps-test deps-demo
 
 test: $(TEST_BINS) $(COMPILE_BINS)
 	@bash tests/run_tests.sh
@@ -106,6 +135,13 @@ check: $(CHECKS)
 
 check-compile: $(COMPILE_BINS)
 	@bash tests/run_tests.sh compile
+
+# for iteration: the CPU tests (C99 only), the compile checks, the shader
+# checks and one GL smoke test (QUICK_GL); the shader checks and the GL
+# test's build are added by mk/shaders.mk, mk/web.mk and mk/testbed.mk
+QUICK_GL := test_gl_offscreen
+check-quick: $(addprefix $(BUILD)/c99/,$(TEST_NAMES)) $(COMPILE_BINS)
+	@bash tests/run_tests.sh c99 compile gl/$(QUICK_GL)
 
 $(BUILD)/bench_cpu: bench/bench_cpu.c shadowkit.h | deps-test
 	$(MKDIR)

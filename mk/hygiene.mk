@@ -7,7 +7,10 @@
 #                          leak in shadowkit_gl.h (or the testbed or a test)
 #                          fails the run. Linked with
 #                          tests/hygiene/sanitizer_options.c (the sanitizer
-#                          defaults, leak detection on). The testbed library
+#                          defaults, leak detection on) and with the
+#                          implementation compiled once under the same
+#                          sanitizers (build/obj/hygiene/shared_impl_gl.o;
+#                          see tests/shared_impl.h). The testbed library
 #                          itself stays uninstrumented (its allocations are
 #                          still tracked: the runtime replaces malloc).
 # OSMesa keeps 480 bytes per context; testbed/tb_gl_osmesa.c exempts exactly
@@ -25,10 +28,16 @@ HYG_GL_TESTS := $(filter-out tests/gl/test_gl_calls.c,$(sort $(wildcard tests/gl
 HYG_GL_BINS  := $(patsubst tests/gl/%.c,$(HYG_DIR)/%,$(HYG_GL_TESTS))
 HYG_OPTIONS  := tests/hygiene/sanitizer_options.c
 
-$(HYG_GL_BINS): $(HYG_DIR)/%: tests/gl/%.c $(HYG_OPTIONS) $$(GL_TEST_DEPS) $$(TESTBED_LIB) | deps-gl
+# the implementation compiled once under the sanitizers (gl_impl: mk/testbed.mk)
+$(BUILD)/obj/hygiene/shared_impl_gl.o: tests/gl/shared_impl_gl.c shadowkit.h shadowkit_gl.h | deps-gl
 	$(MKDIR)
-	$(CC) -std=c99 $(SANITIZE) $(WARN) $(TESTBED_CFLAGS) -Itests $(DEPFLAGS) $< $(HYG_OPTIONS) -o $@ \
-	    $(TESTBED_LIB) $(TESTBED_LIBS)
+	$(CC) -std=c99 $(SANITIZE) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) -c $< -o $@
+
+$(HYG_GL_BINS): $(HYG_DIR)/%: tests/gl/%.c $(HYG_OPTIONS) $$(GL_TEST_DEPS) $$(TESTBED_LIB) \
+                $(BUILD)/obj/hygiene/shared_impl_gl.o | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(SANITIZE) $(WARN) $(TESTBED_CFLAGS) -Itests $(DEPFLAGS) $(call gl_impl,$*,hygiene) \
+	    $(HYG_OPTIONS) -o $@ $(TESTBED_LIB) $(TESTBED_LIBS)
 
 # the packaging test (tests/packaging/run.sh: CMake package, pkg-config file,
 # add_subdirectory), run from here as build/hygiene/test_packaging

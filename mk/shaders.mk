@@ -44,3 +44,4 @@ $(BUILD)/compile/gl-header-cpp17: tests/compile/gl_header.c shadowkit.h shadowki
 	$(CXX17) $(OPT) $< -o $@ $(LDLIBS)
 test: $(GL_HEADER_BINS)
 check-compile: $(GL_HEADER_BINS)
+check-quick: check-shaders $(GL_HEADER_BINS)

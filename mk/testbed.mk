@@ -38,13 +38,27 @@ $(BUILD)/testbed/selftest: testbed/selftest.c $(TESTBED_LIB) $(TESTBED_HDRS) | d
 # ---------------------------------------------------------------- GL tests
 # Every tests/gl/test_gl_*.c is a whole program (tests/sk_test.h) that
 # includes shadowkit_gl.h with its implementation and links the testbed.
+# The implementation is compiled once (tests/gl/shared_impl_gl.c into
+# build/obj/gl/shared_impl_gl.o) and linked by every program compiled with
+# -include tests/shared_impl.h (see there: the program's own
+# #define SHADOWKIT_[GL_]IMPLEMENTATION then adds nothing). The programs that
+# configure the implementation (tests/own_impl.awk: an SK* macro defined
+# before the first #include "...") compile their own, as before.
 GL_TESTS     := $(sort $(wildcard tests/gl/test_gl_*.c))
 GL_TEST_BINS := $(patsubst tests/gl/%.c,$(BUILD)/gl/%,$(GL_TESTS))
-GL_TEST_DEPS := shadowkit.h shadowkit_gl.h tests/sk_test.h $(wildcard tests/gl/*.h)
+GL_TEST_DEPS := shadowkit.h shadowkit_gl.h tests/sk_test.h tests/shared_impl.h $(wildcard tests/gl/*.h)
+GL_OWN_IMPL  := $(call sk_own_impl,$(GL_TESTS))
+# the source and objects that make GL test $(1) of flavour $(2) (gl, hygiene) use the shared object
+gl_impl = $(if $(filter $(1),$(GL_OWN_IMPL)),$<,-include tests/shared_impl.h -DSK_TEST_SHARED_IMPL_GL $< \
+              $(BUILD)/obj/$(2)/shared_impl_gl.o)
 
-$(BUILD)/gl/%: tests/gl/%.c $(GL_TEST_DEPS) $(TESTBED_LIB) | deps-gl
+$(BUILD)/obj/gl/shared_impl_gl.o: tests/gl/shared_impl_gl.c shadowkit.h shadowkit_gl.h | deps-gl
 	$(MKDIR)
-	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) -Itests $(DEPFLAGS) $< -o $@ \
+	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) -c $< -o $@
+
+$(BUILD)/gl/%: tests/gl/%.c $(GL_TEST_DEPS) $(TESTBED_LIB) $(BUILD)/obj/gl/shared_impl_gl.o | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) -Itests $(DEPFLAGS) $(call gl_impl,$*,gl) -o $@ \
 	    $(TESTBED_LIB) $(TESTBED_LIBS)
 
 .PHONY: deps-gl testbed testbed-selftest test-gl
@@ -62,3 +76,4 @@ test-gl: $(GL_TEST_BINS)
 	@bash tests/run_tests.sh gl
 
 test: $(GL_TEST_BINS)
+check-quick: $(BUILD)/gl/$(QUICK_GL)

@@ -36,6 +36,7 @@ check-glsl: $(BUILD)/tools/glsl_dump | deps-web
 
 check: check-glsl
 test: check-glsl
+check-quick: check-glsl
 
 # ---- the browser test: the desktop masks, then the page that compares with them
 $(WEB_DIR)/es_dump: tests/es/es_dump.c $(ES_HDRS) $$(TESTBED_LIB) | deps-gl

@@ -67,6 +67,8 @@
    bands of self-shadowing where the light depth of a receiver rounded
    past its caster's; this header gave 0.1680, 0.0715, 0.0848, 0.0266%
    there (both measured with the previous reference and bias). */
+/* reads the implementation's SKGL_ORIGIN_CELL: its own copy of it (tests/shared_impl.h) */
+#define SK_TEST_OWN_IMPLEMENTATION 1
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"

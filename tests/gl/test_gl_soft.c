@@ -63,6 +63,8 @@
    frustum was snapped and tile sides rounded, PVSM measured 0.0130%.
 
    test_state: bad input, objects freed, GL state restored. */
+/* reads skgl_soft's fields (light_view, desc, p00): its own copy of the implementation (tests/shared_impl.h) */
+#define SK_TEST_OWN_IMPLEMENTATION 1
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
