@@ -54,6 +54,8 @@
    not yet differ after 3000 frames at 256: 6000 frames at 1024 gave 85
    pixels by value for PSSM-4, too slow to keep.) Point lights had no
    .verify_cache (the test did not compile). */
+/* reads a light's cache internals (the kept layer's matrix): its own copy of the implementation */
+#define SK_TEST_OWN_IMPLEMENTATION 1
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
