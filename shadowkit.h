@@ -816,6 +816,20 @@ static float sk__saturate(double v)
     return (float)v;
 }
 
+/* the plain float product: an entry beyond float is an infinity (or NaN
+   from inf - inf), which the fits below test for (sk__mat_finite) to
+   report SK_ERR_DEGENERATE; the public sk_mat4_mul saturates instead */
+static sk_mat4 sk__mat_mul(sk_mat4 a, sk_mat4 b)
+{
+    sk_mat4 r;
+    int c, row;
+    for (c = 0; c < 4; c++)
+        for (row = 0; row < 4; row++)
+            r.m[c * 4 + row] = a.m[row] * b.m[c * 4] + a.m[4 + row] * b.m[c * 4 + 1] +
+                               a.m[8 + row] * b.m[c * 4 + 2] + a.m[12 + row] * b.m[c * 4 + 3];
+    return r;
+}
+
 SKDEF sk_mat4 sk_mat4_mul(sk_mat4 a, sk_mat4 b)
 {
     sk_mat4 r;
@@ -1623,7 +1637,7 @@ static int sk__fit_perspective(sk_vec3 eye, sk_vec3 dir, const sk_vec3 *pts, int
     p.m[10] = (float)(-(zf + zn) / (zf - zn));
     p.m[14] = (float)(-2.0 * zf * zn / (zf - zn));
     p.m[11] = -1.0f;
-    *out = sk_mat4_mul(p, view);
+    *out = sk__mat_mul(p, view);
     return sk__mat_finite(out);
 }
 
@@ -1667,7 +1681,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
     vview.m[14] -= slide;
     zf = d->zf + slide;
     vproj = sk_mat4_perspective(d->fovy, d->aspect, d->zn + d->extra_slide, zf);
-    ppv = sk_mat4_mul(vproj, vview);
+    ppv = sk__mat_mul(vproj, vview);
     if (!sk__mat_finite(&ppv)) return SK_ERR_DEGENERATE;
     /* the casters' corners in post-perspective space, once for all fits below */
     if (d->caster_count <= SK__PSM_CORNERS / 8) {
@@ -1721,7 +1735,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
             lp.m[10] = (float)(2.0 / (zb - za));
             lp.m[14] = (float)(-1.0 - 2.0 * za / (zb - za));
         }
-        lvp = sk_mat4_mul(lp, lv);
+        lvp = sk__mat_mul(lp, lv);
         out->light_pp = dir;
     } else {
         /* finite point on z = (f+n)/(f-n); w < 0: the light is behind the
@@ -1734,7 +1748,7 @@ SKDEF sk_result sk_psm_matrices(const sk_psm_desc *d, sk_psm_result *out)
             return SK_ERR_DEGENERATE;
         out->light_pp = lp;
     }
-    out->light_view_proj = sk_mat4_mul(lvp, ppv);
+    out->light_view_proj = sk__mat_mul(lvp, ppv);
     if (!sk__mat_finite(&out->light_view_proj)) return SK_ERR_DEGENERATE;
     out->virtual_cam_view_proj = ppv;
     out->inverted = inverted;
@@ -1808,7 +1822,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         /* uniform focused map: the limit of the warp as n -> infinity */
         sk_mat4 box;
         if (!sk__ortho_box_fit(lo[0], hi[0], lo[1], hi[1], lo[2], hi[2], mag, &box)) return SK_ERR_DEGENERATE;
-        out->light_view_proj = sk_mat4_mul(box, lv);
+        out->light_view_proj = sk__mat_mul(box, lv);
         out->n = SK__INF;
         out->warped = 0;
         return sk__mat_finite(&out->light_view_proj) ? SK_OK : SK_ERR_DEGENERATE;
@@ -1827,7 +1841,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
         w.m[13] = (float)b;
         w.m[10] = 1.0f;
         w.m[7] = 1.0f;
-        w = sk_mat4_mul(w, t);
+        w = sk__mat_mul(w, t);
         /* the light-space body kept above, or (a longer one) transformed again */
         const sk_vec3 *kept = d->body_count <= SK_CLIP_MAX_POINTS ? lbody : NULL;
         for (i = 0; i < d->body_count; i++) {
@@ -1867,7 +1881,7 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
                 }
         }
         if (!sk__ortho_box_fit(wlo[0], whi[0], wlo[1], whi[1], wlo[2], whi[2], 0.0, &crop)) return SK_ERR_DEGENERATE;
-        out->light_view_proj = sk_mat4_mul(sk_mat4_mul(crop, w), lv);
+        out->light_view_proj = sk__mat_mul(sk__mat_mul(crop, w), lv);
         out->n = (float)n;
         out->warped = 1;
     }
@@ -1911,7 +1925,7 @@ static int sk__lspsm_put(const sk__lspsm_sink *s, int write, int i, double x0, d
         return 0;
     if (s->region && s->vps) {
         if (!sk__ortho_box_fit(r.x0, r.x1, r.y0, r.y1, s->region->zmin, s->region->zmax, 0.0, &vp)) return 0;
-        vp = sk_mat4_mul(vp, s->region->light_view);
+        vp = sk__mat_mul(vp, s->region->light_view);
         if (!sk__mat_finite(&vp)) return 0;
         if (write) s->vps[i] = vp;
     }
