@@ -1206,7 +1206,7 @@ static void write_shaded(const char *path, const float *vis, const float *nrm, s
 }
 
 /* ------------------------------------------------------- point lights */
-/* The room scene with a point light (seed 004): the native cube map and
+/* The room scene with a point light (King and Newhall 2004): the native cube map and
    VSDCT, each of the seed's optimizations alone and all together, against
    the naive cube map (six faces, every caster, full resolution, the whole
    screen). Views: "inside" (the light in the view, all faces visible),
@@ -1402,7 +1402,7 @@ static int load_scene(const bench_scene_def *def, tb_scene *s) {
     return tb_scene_build(s, def->name);
 }
 
-/* The walk-through of seed 003's Table 1: the camera moves in `frames`
+/* The walk-through of Tang et al. 2017's Table 1: the camera moves in `frames`
    steps from the "low" view to the "overview" one; at each step LSPSM and
    PSSM with 8 cascades at the same per-map resolution (1024) render and are
    scored. Rows go to bench-walk.csv (the bench.csv columns, view walkNN);

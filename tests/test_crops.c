@@ -4,7 +4,7 @@
    sk_frustum_bounding_sphere, sk_light_view_directional, sk_fit_ortho,
    sk_stable_crop).
 
-   Expected values come from seed 002's formulas evaluated here in double
+   Expected values come from the formulas of Romanick's VGP353 notes, evaluated here in double
    (d = ds (rs/ri) (N.V / N.L); l = log2 sqrt|dX x dY|; the practical split
    scheme C_i = lambda C_i^log + (1-lambda) C_i^uni), from the glOrtho-style
    crop definition, from camera geometry computed in double, or from hand

@@ -1,4 +1,4 @@
-/* test_lspsm.c - Light Space Partitioned Shadow Maps (seed 003, Tang et al. 2017).
+/* test_lspsm.c - Light Space Partitioned Shadow Maps (Tang et al. 2017).
 
    Tests sk_lspsm_default_params, sk_lspsm_partition, sk_lspsm_region_extract and
    sk_lspsm_crops. Every expected value is derived here independently, in double:

@@ -1,5 +1,5 @@
 /* tests/test_omni.c - section 6 of shadowkit.h, omnidirectional lights
-   (seed 004, King & Newhall, "Efficient Omnidirectional Shadow Maps"):
+   (King & Newhall 2004, "Efficient Omnidirectional Shadow Maps"):
    cube faces, frustum-frustum culling (HalfIntersection), caster culling,
    scissor, cube resolution N*M^2 >= c*S, and the Virtual Shadow Depth Cube
    Texture (Eqs. 5.4.6 and 5.4.7, indirection cube map).

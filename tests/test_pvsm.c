@@ -1,4 +1,4 @@
-/* tests/test_pvsm.c - Predicted Virtual Soft Shadow Maps (seed 001, Shen Li
+/* tests/test_pvsm.c - Predicted Virtual Soft Shadow Maps (Shen Li
    et al. 2011): perceptual rho(n), the appendix's parallelogram convolution,
    smooth texel-as-quad coverage (Sec. 4.1), resolution prediction
    (Eqs. 4-5), the V*A/A merge (Sec. 5.2), the SMTG min-pyramid and the

@@ -1,4 +1,4 @@
-/* tests/test_rmsm.c - RMSM level of detail and page requests (seed 002,
+/* tests/test_rmsm.c - RMSM level of detail and page requests (Romanick's VGP353 notes,
    "Resolution Matched Shadow Maps", after Lefohn et al. 2007).
 
    Expected values come from the slide's formulas evaluated here in double:

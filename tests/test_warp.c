@@ -1,4 +1,4 @@
-/* test_warp.c - perspective warping: PSM (Stamminger & Drettakis 2002, seed 002)
+/* test_warp.c - perspective warping: PSM (Stamminger & Drettakis 2002)
    and LiSPSM (Wimmer, Scherzer & Purgathofer 2004).
 
    Tests sk_psm_matrices and sk_lispsm_matrices. The oracle is geometric and
@@ -8,7 +8,7 @@
      volume (w > 0, |x|,|y|,|z| <= w);
    - two points on one light ray land on the same texel, and their depth order
      matches the reported compare (PSM) or the standard LESS test (LiSPSM);
-   - the PSM cases of the slides (seed 002): light in front, light behind the
+   - the PSM cases of Romanick's VGP353 slides: light in front, light behind the
      viewer (inverted, GREATER), perpendicular light (orthographic), casters
      behind the camera (virtual camera slid back);
    - LiSPSM's n_opt = (zn + sqrt(zn*zf'))/sin(gamma), zf' = zn + d*sin(gamma),
@@ -252,7 +252,7 @@ static void psm_case_r(const char *name, const cam *c, dv3 light, int expect_inv
         SK_CHECK_MSG(r.orthographic == expect_ortho, "%s: orthographic %d, expected %d", name, r.orthographic, expect_ortho);
     /* light_pp: the post-perspective light. Rays of the directional light become
        lines through it (or, orthographic, parallel to it); without a slide it lies
-       on the plane z = (f+n)/(f-n) (seed 002) */
+       on the plane z = (f+n)/(f-n) (Stamminger and Drettakis 2002) */
     {
         int i2, bad = 0, tested = 0;
         dv3 lp = tod(r.light_pp), dir = dnorm(light);

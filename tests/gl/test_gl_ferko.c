@@ -1,4 +1,4 @@
-/* test_gl_ferko.c - resolution estimation on the GPU (Ferko 2013, seed 000)
+/* test_gl_ferko.c - resolution estimation on the GPU (Ferko 2013)
    through skgl_shadow_analyze + SKGL_FERKO: against the CPU oracle
    sk_estimate_resolution on the same depth buffer, against the Embree
    reference, and at its failure configurations. 400 x 225.

@@ -1,5 +1,5 @@
 /* test_gl_multi.c - several point lights in one frame sharing one VSDCT
-   atlas (seed 004's virtual shadow depth cube texture, skgl_point_atlas_*):
+   atlas (King and Newhall 2004's virtual shadow depth cube texture, skgl_point_atlas_*):
    the room scene (tb_scene_build_room) with a 0.4 m box beside and below
    each of three lights, seen from one overview at 320 x 240, range 10, PCF
    radius 1, face and caster culling on. Each light is rendered and masked

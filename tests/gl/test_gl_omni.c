@@ -1,4 +1,4 @@
-/* test_gl_omni.c - point lights (King & Newhall, seed 004) through
+/* test_gl_omni.c - point lights (King & Newhall 2004) through
    skgl_point_*: the native depth cube map and VSDCT against the Embree
    point-light reference, seams, culling against rendering everything, and
    the scissor. Room scene (tb_scene_build_room) with a 0.4 m box one metre

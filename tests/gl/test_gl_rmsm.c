@@ -1,4 +1,4 @@
-/* test_gl_rmsm.c - RMSM-style virtual shadow maps (seed 002, after Lefohn
+/* test_gl_rmsm.c - RMSM-style virtual shadow maps (Romanick's VGP353 notes, after Lefohn
    et al. 2007) through skgl_shadow_analyze + SKGL_RMSM: the pages reduced
    on the GPU against sk_rmsm_page_requests over the same samples, accuracy
    against the Embree reference, and the configurations where it degrades.

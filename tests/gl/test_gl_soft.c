@@ -1,4 +1,4 @@
-/* test_gl_soft.c - area-light soft shadows (skgl_soft_*, seed 001): PVSM
+/* test_gl_soft.c - area-light soft shadows (skgl_soft_*, Shen et al. 2011): PVSM
    and its PCSS baselines against the exact Embree area-light reference
    (tb_reference_trace_exact: traced primary hits, 24 x 24 stratified
    samples per pixel; receivers facing away from the whole light left out),
