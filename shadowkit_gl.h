@@ -861,7 +861,9 @@ typedef enum skgl_technique {
     SKGL_LISPSM = 3,              /* light-space perspective map; cascades > 1: one per PSSM slice */
     SKGL_LSPSM = 4,               /* light space partitioned maps (Tang et al. 2017) */
     SKGL_FERKO = 5,               /* crop and resolution estimated from the G-buffer (Ferko 2013) */
-    SKGL_RMSM = 6                 /* virtual map rendered page by page at the requested levels (Romanick's VGP353 notes) */
+    SKGL_RMSM = 6,                /* virtual map rendered page by page at the requested levels (Romanick's VGP353 notes) */
+    SKGL_AUTO = 7                 /* the library chooses: one focused map or up to .cascades cascades, per
+                                     frame, from the view's depth range and the scene (CHOOSING FOR YOU) */
 } skgl_technique;
 
 /* How a receiver is kept out of its own shadow (BIAS AND FILTERING) */
@@ -939,6 +941,17 @@ typedef struct skgl_shadow_desc {
                                      cascades) draws them all in one pass through a
                                      geometry shader: one callback instead of one per
                                      layer (LAYERED PASSES); 0: a pass per layer [0] */
+    int fit_to_depth;             /* 1: STANDARD, PSSM, LiSPSM: the shadow range, and the
+                                     splits over it, is the view depths the depth buffer
+                                     holds (sample distribution shadow maps, Lauritzen,
+                                     Salvi and Lefohn 2011): call skgl_shadow_analyze each
+                                     frame (an earlier frame's range through the read-back
+                                     ring, no stall; .sync_readback: this frame's). Not with
+                                     .stable or .cache. SKGL_AUTO always does this [0] */
+    float auto_texel_px;          /* SKGL_AUTO: the texel-to-pixel ratio wanted: the fewest maps
+                                     whose worst texel spans at most this many pixels of the
+                                     depth buffer analysed; when none does, the count whose
+                                     texels are smallest. More than 0 [1.0] */
 } skgl_shadow_desc;
 
 typedef struct skgl_camera {
@@ -1012,6 +1025,13 @@ typedef struct skgl_shadow_frame_stats {
     int cache_verify_texels;              /* .verify_cache: texels of the last render that differ
                                              from the uncached map, side by side (beyond a scroll's
                                              float rounding, CACHED MAPS; -1: not verified) */
+    /* .fit_to_depth and SKGL_AUTO (CHOOSING FOR YOU) */
+    float depth_lo, depth_hi;             /* the view depths the analysis found, widened by the
+                                             margin the fit used (0 0: no analysis yet) */
+    skgl_technique auto_technique;        /* AUTO: SKGL_STANDARD (one map) or SKGL_PSSM */
+    float auto_texel_px[SKGL_MAX_CASCADES];  /* AUTO: with k + 1 maps, the predicted texel size in
+                                             pixels at the near end of the worst map (0: not tried) */
+    char auto_reason[128];                /* AUTO: the choice in words */
 } skgl_shadow_frame_stats;
 
 
@@ -1965,7 +1985,9 @@ struct skgl_context {
     skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
     float mask_dmap[4], ferko_dmap[4], rmsm_dmap[4];
     float cam_dmap[4];                     /* the convention of the depth buffer the call under way reads */
-    skgl__int ferko_u_ndc_to_light, ferko_u_world_w, reduce_u_src_size, final_u_src_size;
+    float cam_view_z[4];                   /* row 2 of its inverse projection (view depths, >>ferko) */
+    float ferko_view_z[4];                 /* the one ferko_prog holds */
+    skgl__int ferko_u_ndc_to_light, ferko_u_world_w, ferko_u_view_z, reduce_u_src_size, final_u_src_size;
     skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
     int reduce_src[2], final_src[2], request_pages0, request_levels;
     float rmsm_vres;
@@ -3411,6 +3433,8 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->mask_ent.has_normals = -1;
     ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
     ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
+    ctx->ferko_u_view_z = gl->GetUniformLocation(ctx->ferko_prog, "u_view_z");
+    ctx->ferko_view_z[0] = ctx->ferko_view_z[1] = ctx->ferko_view_z[2] = ctx->ferko_view_z[3] = 0.0f;   /* GL's own */
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
     ctx->ferko_u_depth_map = skgl__depth_map_init(gl, ctx->ferko_prog, ctx->ferko_dmap);
@@ -5018,6 +5042,7 @@ typedef struct skgl__ferko {
     sk_mat4 lvp;                   /* the uncropped light frustum of the estimate */
     sk_res_estimate est;
     double origin[3];              /* the world point lvp is relative to */
+    float depth_lo, depth_hi;      /* the view depths of the estimate's samples (0 0: none) */
 } skgl__ferko;
 
 /* RMSM's part (Romanick's VGP353 notes): the per-pixel samples (G-buffer
@@ -5099,7 +5124,8 @@ struct skgl_shadow {
                                       take p - origin; see skgl__origin) */
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     int rendered;                  /* 1 after a render that succeeded: the maps may be read */
-    skgl__ferko ferko;             /* SKGL_FERKO only */
+    skgl__ferko ferko;             /* SKGL_FERKO, SKGL_AUTO and .fit_to_depth */
+    int auto_maps;                 /* SKGL_AUTO: the map count in use (0 before the first fit) */
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl__cache cache;             /* desc.cache only */
     skgl_shadow_frame_stats stats;
@@ -5115,6 +5141,7 @@ typedef struct skgl__fit_in {
     sk_mat4 lview;                 /* sk_light_view_directional(light_dir) */
     sk_frustum view;
     float zn, cam_zf, zf;
+    float shadow_zn;               /* where the shadows start (zn, or later with .fit_to_depth) */
 } skgl__fit_in;
 
 /* >>techniques  What differs from technique to technique, one row each in
@@ -5180,6 +5207,7 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
     if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
     if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
+    if (r.auto_texel_px == 0.0f) r.auto_texel_px = 1.0f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
     if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
     skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias,
@@ -5239,7 +5267,7 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
 {
     const char *fn = "skgl_shadow_create";
     int lspsm = d->technique == SKGL_LSPSM, rmsm = d->technique == SKGL_RMSM;
-    SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_RMSM, fn, "technique",
+    SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_AUTO, fn, "technique",
                d->technique, "one of skgl_technique");
     SKGL__RULE(d->resolution >= 1, fn, "resolution", d->resolution, "1 or more (0: the default)");
     SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
@@ -5267,6 +5295,9 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__NEED(ctx->caps.float_render || (d->technique != SKGL_FERKO && d->technique != SKGL_RMSM), fn,
                d->technique == SKGL_FERKO ? "SKGL_FERKO's analysis" : "SKGL_RMSM's page requests",
                SKGL__FLOAT_RENDER);
+    SKGL__NEED(ctx->caps.float_render || (d->technique != SKGL_AUTO && !d->fit_to_depth), fn,
+               d->technique == SKGL_AUTO ? "SKGL_AUTO's analysis" : "desc.fit_to_depth's analysis",
+               SKGL__FLOAT_RENDER);
     SKGL__NEED(ctx->caps.float_blend || d->technique != SKGL_RMSM, fn, "SKGL_RMSM's page requests",
                SKGL__FLOAT_BLEND);
     SKGL__RULE(d->lspsm.zeta > 0.0f && d->lspsm.zeta < 0.5f, fn, "lspsm.zeta", d->lspsm.zeta, "in (0, 0.5)");
@@ -5277,6 +5308,17 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
     SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
     SKGL__RULE(d->cache == 0 || d->cache == 1, fn, "cache", d->cache, "0 or 1");
+    SKGL__RULE(d->fit_to_depth == 0 || d->fit_to_depth == 1, fn, "fit_to_depth", d->fit_to_depth, "0 or 1");
+    SKGL__RULE(d->auto_texel_px > 0.0f && d->auto_texel_px <= 1e6f, fn, "auto_texel_px", d->auto_texel_px,
+               "in (0, 1e6] (0: the default 1)");
+    SKGL__RULE(!d->fit_to_depth || d->technique == SKGL_STANDARD || d->technique == SKGL_PSSM ||
+                   d->technique == SKGL_LISPSM || d->technique == SKGL_AUTO,
+               fn, "fit_to_depth", d->fit_to_depth, "STANDARD, PSSM or LiSPSM (AUTO always fits)");
+    /* a range that follows the depth buffer moves the splits every frame */
+    SKGL__RULE(!d->stable || (!d->fit_to_depth && d->technique != SKGL_AUTO), fn, "stable", d->stable,
+               "0 with desc.fit_to_depth and SKGL_AUTO (their splits follow the depth buffer)");
+    SKGL__RULE(!d->cache || (!d->fit_to_depth && d->technique != SKGL_AUTO), fn, "cache", d->cache,
+               "0 with desc.fit_to_depth and SKGL_AUTO (their splits follow the depth buffer)");
     SKGL__RULE(!d->cache || d->technique != SKGL_FERKO, fn, "cache", d->cache,
                "FERKO's crop and size follow the G-buffer every frame: STANDARD, PSSM, PSM, LiSPSM, LSPSM or RMSM");
     SKGL__RULE(!d->cache || !d->layered, fn, "cache", d->cache,
@@ -5589,6 +5631,27 @@ static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const s
     return SK_OK;
 }
 
+/* .fit_to_depth, SKGL_AUTO: the shadow range [*zn, *zf] narrowed to the
+   view depths the analysis found (sample distribution shadow maps,
+   Lauritzen, Salvi and Lefohn 2011), widened by a margin: float rounding
+   for this frame's range (.sync_readback), 10% for an earlier frame's,
+   which a camera moving at a tenth of the nearest depth per frame still
+   stays inside. Nothing changes before the first analysis. */
+static void skgl__depth_fit(skgl_shadow *s, float *zn, float *zf)
+{
+    float m = s->desc.sync_readback ? 1e-3f : 0.1f, lo, hi;
+    s->stats.depth_lo = s->stats.depth_hi = 0.0f;
+    if (!(s->desc.fit_to_depth || s->desc.technique == SKGL_AUTO) || s->ferko.state == 0 ||
+        !(s->ferko.depth_hi > 0.0f))
+        return;
+    lo = s->ferko.depth_lo * (1.0f - m);
+    hi = s->ferko.depth_hi * (1.0f + m);
+    if (lo > *zn && lo < *zf) *zn = lo;
+    if (hi < *zf && hi > *zn * 1.001f) *zf = hi;
+    s->stats.depth_lo = *zn;
+    s->stats.depth_hi = *zf;
+}
+
 /* Crops of every layer: the PSSM practical split scheme (Romanick's VGP353 notes) over
    the part of the view that can hold receivers; per layer a focused crop of
    the slice clipped to the scene, or a texel-snapped stable crop. */
@@ -5597,7 +5660,7 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     const skgl_shadow_desc *d = &s->desc;
     sk_mat4 cam_vp = sk_mat4_mul(cam->proj, cam->view);
     skgl__fit_in in;
-    float zn, cam_zf, zf, far_scene = 0.0f;
+    float zn, cam_zf, zf, far_scene = 0.0f, shadow_zn;
     int i;
     in.cam = cam;
     in.scene = scene;
@@ -5617,7 +5680,9 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
         if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
     }
     if (d->max_distance > zn && d->max_distance < zf) zf = d->max_distance;
-    if (skgl__splits(d, s->layers, zn, zf, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
+    shadow_zn = zn;
+    skgl__depth_fit(s, &shadow_zn, &zf);
+    if (skgl__splits(d, s->layers, shadow_zn, zf, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
     s->stats.depth_reversed = 0;
     s->stats.psm_slide = 0.0f;
     s->maps = s->layers;
@@ -5627,6 +5692,7 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     in.zn = zn;
     in.cam_zf = cam_zf;
     in.zf = zf;
+    in.shadow_zn = shadow_zn;
     return skgl__technique_of(s)->fit(s, &in);
 }
 
@@ -5669,7 +5735,7 @@ static sk_result skgl__fit_slices(skgl_shadow *s, const skgl__fit_in *in, int wa
 {
     const skgl_shadow_desc *d = &s->desc;
     int i;
-    for (i = 0; i < s->layers; i++) {
+    for (i = 0; i < s->maps; i++) {
         sk_frustum slice;
         sk_mat4 proj;
         float z0;
@@ -5731,6 +5797,113 @@ static sk_result skgl__fit_ferko_layer(skgl_shadow *s, const skgl__fit_in *in)
 {
     if (s->ferko.state == 0) return skgl__fit_ortho_layers(s, in);
     skgl__fit_ferko(s, in->cam_zf > in->zf ? in->cam_zf : in->zf);
+    return SK_OK;
+}
+
+/* ---- 6.5 AUTO: the library chooses (CHOOSING FOR YOU) ---------------- */
+// >>auto
+/* The light-space width of a focused crop (its larger side), from its
+   orthographic projection */
+static float skgl__crop_side(const sk_mat4 *proj)
+{
+    float w = 2.0f / SK_FABSF(proj->m[0]), h = 2.0f / SK_FABSF(proj->m[5]);
+    return w > h ? w : h;
+}
+
+/* The side of each of n maps that share .resolution^2 texels */
+static int skgl__auto_side(int res, int n)
+{
+    int side = (int)SK_FLOOR((double)res / SK_SQRT((double)n));
+    return side < 16 ? 16 : side;
+}
+
+/* With n cascades over [in->shadow_zn, in->zf] (the light's split scheme),
+   the largest ratio over the cascades of a texel (the crop's larger side
+   over the map's side) to a pixel's footprint at the cascade's near end
+   (2 d tan(fovy / 2) / the view's height in pixels): the texel-to-pixel
+   ratio the worst place of the view gets. 0 when a crop does not fit. */
+static float skgl__auto_score(const skgl_shadow *s, const skgl__fit_in *in, int n, float px_h)
+{
+    const sk_mat4 *pr = &in->cam->proj;
+    float sp[SKGL_MAX_CASCADES + 1], worst = 0.0f;
+    int i, side = skgl__auto_side(s->desc.resolution, n);
+    int persp = pr->m[11] != 0.0f;
+    if (skgl__splits(&s->desc, n, in->shadow_zn, in->zf, sp) != SK_OK) return 0.0f;
+    for (i = 0; i < n; i++) {
+        sk_frustum slice;
+        sk_vec3 pts[SK_CLIP_MAX_POINTS];
+        sk_mat4 proj;
+        int k;
+        float pixel, ratio;
+        if (sk_frustum_slice(&in->view, in->zn, in->cam_zf, sp[i], sp[i + 1], &slice) != SK_OK) return 0.0f;
+        k = sk_clip_frustum_aabb(&slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
+        if ((k > 0 ? sk_fit_ortho(pts, k, in->lview, &in->scene->bounds, &proj)
+                   : sk_fit_ortho(slice.corners, 8, in->lview, &in->scene->bounds, &proj)) != SK_OK)
+            return 0.0f;
+        /* pixel footprint: perspective 2 d / (P[1][1] H), orthographic 2 / (P[1][1] H) */
+        pixel = (persp ? 2.0f * sp[i] : 2.0f) / (SK_FABSF(pr->m[5]) * px_h);
+        ratio = skgl__crop_side(&proj) / (float)side / pixel;
+        if (!(ratio < 1e30f)) return 0.0f;
+        if (ratio > worst) worst = ratio;
+    }
+    return worst;
+}
+
+/* AUTO's rule: of 1 to .cascades maps sharing .resolution^2 texels, the
+   fewest whose worst texel-to-pixel ratio (skgl__auto_score) is at most
+   .auto_texel_px, else the count whose ratio is smallest. Hysteresis, so
+   that two counts that score alike do not alternate: the count in use is
+   kept unless the new one's ratio is 15% smaller, or it has fewer maps and
+   meets 0.85 of the target, or the one in use misses the target by more
+   than 15% and the new one meets it. One map is SKGL_STANDARD's focused
+   crop, more are SKGL_PSSM's cascades; the maps share the texels, so each
+   is drawn into the lower-left side x side texels of its layer. */
+static int skgl__auto_count(const float *score, int counts, int cur, float target)
+{
+    int n, pick = 0, low = 0;
+    for (n = 1; n <= counts; n++) {
+        if (!(score[n - 1] > 0.0f)) continue;
+        if (!pick && score[n - 1] <= target) pick = n;
+        if (!low || score[n - 1] < score[low - 1]) low = n;
+    }
+    if (!pick) pick = low;
+    if (!pick) return counts;   /* no crop fitted: the fit reports it */
+    if (cur < 1 || cur > counts || !(score[cur - 1] > 0.0f)) return pick;
+    if (score[pick - 1] < 0.85f * score[cur - 1] || (pick < cur && score[pick - 1] <= 0.85f * target) ||
+        (pick > cur && score[cur - 1] > 1.15f * target && score[pick - 1] <= target))
+        return pick;
+    return cur;
+}
+
+static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
+{
+    float score[SKGL_MAX_CASCADES], px_h = s->ferko.h > 0 ? (float)s->ferko.h : (float)s->desc.resolution;
+    float target = s->desc.auto_texel_px;
+    int n, cur = s->auto_maps, side, i;
+    sk_result r;
+    for (n = 1; n <= SKGL_MAX_CASCADES; n++)
+        score[n - 1] = s->stats.auto_texel_px[n - 1] = n <= s->layers ? skgl__auto_score(s, in, n, px_h) : 0.0f;
+    n = skgl__auto_count(score, s->layers, cur, target);
+    s->auto_maps = n;
+    s->maps = n;
+    s->stats.auto_technique = n == 1 ? SKGL_STANDARD : SKGL_PSSM;
+    snprintf(s->stats.auto_reason, sizeof s->stats.auto_reason,
+             "%d map%s: a texel spans %.2f px at worst, target %.2f%s; depths %.3g..%.3g%s", n, n > 1 ? "s" : "",
+             (double)score[n - 1], (double)target, n == cur ? " (kept)" : "", (double)in->shadow_zn, (double)in->zf,
+             s->stats.depth_hi > 0.0f ? "" : " (no analysis yet)");
+    if (skgl__splits(&s->desc, n, in->shadow_zn, in->zf, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
+    r = skgl__fit_slices(s, in, 0);
+    if (r != SK_OK) return r;
+    side = skgl__auto_side(s->desc.resolution, n);
+    s->view_w = s->view_h = side < s->desc.resolution ? side : s->desc.resolution;
+    for (i = 0; i < n && s->view_w < s->desc.resolution; i++) {
+        sk_mat4 t = sk_mat4_identity();
+        float f = (float)s->view_w / (float)s->desc.resolution;
+        t.m[0] = t.m[5] = f;
+        t.m[12] = t.m[13] = f - 1.0f;
+        s->render_vp[i] = s->vp[i];
+        s->vp[i] = sk_mat4_mul(t, s->vp[i]);
+    }
     return SK_OK;
 }
 
@@ -5807,9 +5980,13 @@ static int skgl__ferko_targets(skgl_context *ctx, skgl__st *st, skgl_shadow *s, 
 /* level k's texture and framebuffer */
 static int skgl__ferko_slot(int k) { return k < 3 ? k : 1 + (k - 1) % 2; }
 
+/* "nothing there" in a reduced channel (the shaders' SK_BIG, 3e38) */
+#define SKGL__REDUCED_NONE 1e38f
+
 /* The reduced texel pair, (min x, min y, -max x, -max y) and (min patch
-   width, min patch height, any sample, any patch), to the estimate, with the
-   same rules as sk_estimate_resolution (samples: 1 when any, the GPU counts none). */
+   width, min patch height, min view depth, -max view depth), to the
+   estimate, with the same rules as sk_estimate_resolution (samples: 1 when
+   any, the GPU counts none). */
 static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate *e)
 {
     double bw, bh, rw, rh;
@@ -5817,11 +5994,11 @@ static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate 
     memset(e, 0, sizeof *e);
     e->bounds.x0 = -1.0f; e->bounds.y0 = -1.0f; e->bounds.x1 = 1.0f; e->bounds.y1 = 1.0f;
     e->crop = sk_mat4_identity();
-    if (!(v[6] < 0.0f) || !sk__finite(v[0]) || !sk__finite(v[1]) || !sk__finite(v[2]) || !sk__finite(v[3])) return;
+    if (!(v[6] < SKGL__REDUCED_NONE) || !sk__finite(v[0]) || !sk__finite(v[1]) || !sk__finite(v[2]) || !sk__finite(v[3])) return;
     e->bounds.x0 = v[0]; e->bounds.y0 = v[1]; e->bounds.x1 = -v[2]; e->bounds.y1 = -v[3];
     bw = (double)e->bounds.x1 - e->bounds.x0;
     bh = (double)e->bounds.y1 - e->bounds.y0;
-    if (!(v[7] < 0.0f)) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
+    if (!(v[4] < SKGL__REDUCED_NONE)) { tw = (float)(bw / max_res); th = (float)(bh / max_res); }
     rw = tw > 0.0f ? bw / tw : (double)max_res;
     rh = th > 0.0f ? bh / th : (double)max_res;
     e->width = !(rw < max_res) ? max_res : rw < 1.0 ? 1 : (int)SK_CEIL(rw);
@@ -5831,6 +6008,21 @@ static void skgl__ferko_estimate(const float v[8], int max_res, sk_res_estimate 
     e->samples = 1;
     e->crop = sk_crop_matrix(e->bounds, -1.0f, 1.0f);
 }
+/* an analysis read back: its estimate, its depth range, the light
+   frustum and origin it was made in */
+static void skgl__ferko_land(skgl_shadow *s, const float v[8], const sk_mat4 *lvp, const double o[3])
+{
+    skgl__ferko_estimate(v, s->desc.resolution, &s->ferko.est);
+    s->ferko.depth_lo = s->ferko.depth_hi = 0.0f;
+    if (v[6] < SKGL__REDUCED_NONE && v[7] < SKGL__REDUCED_NONE && v[6] > 0.0f && -v[7] >= v[6]) {
+        s->ferko.depth_lo = v[6];
+        s->ferko.depth_hi = -v[7];
+    }
+    s->ferko.lvp = *lvp;
+    memcpy(s->ferko.origin, o, sizeof s->ferko.origin);
+    s->ferko.state = 1;
+}
+
 /* the map of the estimate: its crop widened by a margin of texels (the
    normal offset and the PCF footprint of a sample at the crop's edge stay in
    the rendered region), rendered into the texture's lower-left w x h texels;
@@ -5896,12 +6088,8 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
         return SK_ERR_GL;
     }
     /* an earlier frame's estimate, if it has landed (the last one kept if not) */
-    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko.ring, v)) >= 0) {
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko.est);
-        s->ferko.lvp = s->ferko.ring.lvp[slot];
-        memcpy(s->ferko.origin, s->ferko.ring.origin[slot], sizeof s->ferko.origin);
-        s->ferko.state = 1;
-    }
+    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko.ring, v)) >= 0)
+        skgl__ferko_land(s, v, &s->ferko.ring.lvp[slot], s->ferko.ring.origin[slot]);
     skgl__timer_begin(ctx, &s->t_analyze);
     skgl__st_screen_pass(ctx, st);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
@@ -5915,6 +6103,10 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     world_w[0] = inv->m[3]; world_w[1] = inv->m[7]; world_w[2] = inv->m[11]; world_w[3] = inv->m[15];
     gl->UniformMatrix4fv(ctx->ferko_u_ndc_to_light, 1, 0, ndc_to_light.m);
     gl->Uniform4fv(ctx->ferko_u_world_w, 1, world_w);
+    if (memcmp(ctx->ferko_view_z, ctx->cam_view_z, sizeof ctx->ferko_view_z) != 0) {   /* a new projection */
+        memcpy(ctx->ferko_view_z, ctx->cam_view_z, sizeof ctx->ferko_view_z);
+        gl->Uniform4fv(ctx->ferko_u_view_z, 1, ctx->cam_view_z);
+    }
     gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
     /* 16x16 MIN reductions (the source level on unit 1's 2D-array target),
        then the final pass over what is left into the 2x1 texels */
@@ -5942,10 +6134,7 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
         /* this frame's estimate: the read-back waits for the GPU */
         skgl__st_pack(ctx, st, 0, 1, 32);
         gl->ReadPixels(0, 0, 2, 1, SKGL__RGBA, SKGL__FLOAT, v);
-        skgl__ferko_estimate(v, s->desc.resolution, &s->ferko.est);
-        s->ferko.lvp = *lvp;
-        memcpy(s->ferko.origin, o, sizeof s->ferko.origin);
-        s->ferko.state = 1;
+        skgl__ferko_land(s, v, lvp, o);
     } else if ((slot = skgl__ring_slot(ctx, st, &s->ferko.ring)) >= 0) {
         /* with a pixel pack buffer bound, glReadPixels' pointer is an
            offset into it, and the call returns without waiting */
@@ -7077,14 +7266,15 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     sk_result r = SK_OK, rc;
     int i, res;
     const double *o = s->origin;
-    if (s->desc.technique != SKGL_FERKO || s->ferko.state == 0)
+    /* a map smaller than its texture (FERKO, AUTO): the fit set both matrices */
+    if (s->view_w == s->desc.resolution && s->view_h == s->desc.resolution)
         for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
     s->light_dir = sk__normalize(light_dir);
     res = s->desc.resolution;
     skgl__st_begin(ctx, &st);
     skgl__timer_begin(ctx, &s->t_render);
     skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
-    /* a map smaller than its texture (FERKO): clear and draw only its
+    /* a map smaller than its texture (FERKO, AUTO): clear and draw only its
        region, plus one texel for the filter's footprint at the edge */
     if (s->view_w < res || s->view_h < res) {
         skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 1);
@@ -7140,15 +7330,30 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
 /* >>techniques, the table (declared in 6) */
+/* .fit_to_depth: FERKO's analysis targets and ring, for the depth range */
+static sk_result skgl__depth_fit_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    return s->desc.fit_to_depth ? skgl__ferko_create(ctx, st, s) : SK_OK;
+}
+
+/* whether skgl_shadow_analyze has anything to do for s */
+static int skgl__analyzes(const skgl_shadow *s)
+{
+    return skgl__technique_of(s)->analyze &&
+           (s->desc.fit_to_depth || s->desc.technique == SKGL_FERKO || s->desc.technique == SKGL_RMSM ||
+            s->desc.technique == SKGL_AUTO);
+}
+
 static const skgl__technique skgl__techniques[] = {
-    {"STANDARD", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
-    {"PSSM", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
+    {"STANDARD", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
+    {"PSSM", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
     {"PSM", NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers},
-    {"LISPSM", NULL, NULL, NULL, skgl__fit_lispsm_layers, skgl__render_layers},
+    {"LISPSM", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_lispsm_layers, skgl__render_layers},
     {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
     {"FERKO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ferko_layer,
      skgl__render_layers},
     {"RMSM", skgl__rmsm_create, skgl__rmsm_free, skgl__analyze_rmsm, skgl__fit_rmsm, skgl__render_rmsm},
+    {"AUTO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_auto, skgl__render_layers},
 };
 
 /* the row of s's technique (validated at create: always in the table) */
@@ -7174,8 +7379,9 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     skgl__enter(ctx, "skgl_shadow_analyze", 0);
     SKGL__TRY(skgl__not_nested(ctx, "skgl_shadow_analyze"));
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
-    if (!skgl__technique_of(s)->analyze)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO and SKGL_RMSM analyse",
+    if (!skgl__analyzes(s))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: s->desc.technique = %d: only SKGL_FERKO, SKGL_RMSM, "
+                          "SKGL_AUTO and lights with desc.fit_to_depth analyse",
                           fn, (int)s->desc.technique);
     SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
     SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 0));
@@ -7188,6 +7394,14 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
     rs = skgl__scene_rel(scene, o);
     if (!sk_mat4_inverse(sk_mat4_mul(cam->proj, rc.view), &inv)) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular near this camera's origin", fn);
     memcpy(ctx->cam_dmap, ci.dmap, sizeof ci.dmap);
+    {
+        /* view depth = -(row 2 of P^-1 . ndc) / (row 3 of P^-1 . ndc); the
+           view matrix is rigid, so row 3 of (P V)^-1 is P^-1's */
+        sk_mat4 pinv;
+        int k;
+        if (!sk_mat4_inverse(cam->proj, &pinv)) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj is singular", fn);
+        for (k = 0; k < 4; k++) ctx->cam_view_z[k] = pinv.m[k * 4 + 2];
+    }
     if (s->desc.technique == SKGL_RMSM) {   /* the page grid is fixed in the world (skgl__rmsm_frame) */
         sk_mat4 vlvp;
         double vo[3];
@@ -7285,10 +7499,10 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
         e->min_level = s->stats.rmsm_min_level;
         skgl__u1i(gl, L[SKGL__L_MIN_LEVEL], e->min_level);
     }
-    /* FERKO draws into the lower-left view_w x view_h texels: beyond them
-       lie older maps' texels, not this frame's */
-    ext[0] = s->desc.technique == SKGL_FERKO ? (float)s->view_w / (float)s->desc.resolution : 1.0f;
-    ext[1] = s->desc.technique == SKGL_FERKO ? (float)s->view_h / (float)s->desc.resolution : 1.0f;
+    /* FERKO and AUTO draw into the lower-left view_w x view_h texels:
+       beyond them lie older maps' texels, not this frame's */
+    ext[0] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_w / (float)s->desc.resolution;
+    ext[1] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_h / (float)s->desc.resolution;
     if (ext[0] != e->extent[0] || ext[1] != e->extent[1]) {
         e->extent[0] = ext[0];
         e->extent[1] = ext[1];
@@ -10496,13 +10710,17 @@ static const char skgl__src_ferko_analyze_frag[] =
     "   each corner (Sec. 3.2), gives the smallest texel the view needs; the\n"
     "   corners are taken relative to the pixel centre for float precision.\n"
     "   The same definition as sk_estimate_resolution on the CPU.\n"
+    "   Per kept pixel also its view depth, so that the same reduction gives\n"
+    "   the depth range the view holds (what sample distribution shadow maps\n"
+    "   split, Lauritzen, Salvi and Lefohn 2011).\n"
     "   Out: o_bounds = (min x, min y, -max x, -max y) and\n"
-    "        o_patch  = (min patch width, min patch height, -1 if any sample,\n"
-    "                    -1 if any patch); \"none\" is +SK_BIG. A 4x4 MIN\n"
-    "   reduction (ferko_reduce.frag) takes both to one texel. */\n"
+    "        o_patch  = (min patch width, min patch height, min view depth,\n"
+    "                    -max view depth); \"none\" is +SK_BIG in every channel. A\n"
+    "   MIN reduction (ferko_reduce.frag) takes both to one texel. */\n"
     "uniform sampler2D u_depth;           /* window depth, row 0 at the bottom */\n"
     "uniform mat4 u_ndc_to_light;         /* light view-projection * inverse camera view-projection */\n"
     "uniform vec4 u_world_w;              /* row 3 of the inverse camera view-projection */\n"
+    "uniform vec4 u_view_z;               /* row 2 of the inverse camera projection: view z = dot(u_view_z, ndc) / dot(u_world_w, ndc) */\n"
     "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
     "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
     "                                      on every pixel's ray (0.5 when the far plane is at infinity) */\n"
@@ -10536,7 +10754,7 @@ static const char skgl__src_ferko_analyze_frag[] =
     "    vec2 to_ndc = 2.0 / vec2(size);\n"
     "    float d[36];                     /* pixels base-1 .. base+4, 6 x 6 */\n"
     "    float cz[25];                    /* corners base .. base+4, 5 x 5: NDC z of the averaged depth, or 2 (none) */\n"
-    "    vec4 b = vec4(SK_BIG), pt = vec4(SK_BIG, SK_BIG, 0.0, 0.0);\n"
+    "    vec4 b = vec4(SK_BIG), pt = vec4(SK_BIG);\n"
     "    int x, y, k;\n"
     "    for (y = 0; y < 6; y++)\n"
     "        for (x = 0; x < 6; x++) d[y * 6 + x] = sk_depth_at(base + ivec2(x - 1, y - 1), size);\n"
@@ -10560,7 +10778,8 @@ static const char skgl__src_ferko_analyze_frag[] =
     "            if (!(l.w > 0.0) || any(greaterThan(abs(l.xyz), vec3(l.w)))) continue;\n"
     "            vec2 p = l.xy / l.w;\n"
     "            b = min(b, vec4(p, -p));\n"
-    "            pt.z = -1.0;\n"
+    "            float depth = -dot(u_view_z, vec4(c, 1.0)) / ww;\n"
+    "            pt.zw = min(pt.zw, vec2(depth, -depth));\n"
     "            /* the patch: its four corners relative to the pixel centre,\n"
     "               (C.xy P.w - P.xy C.w) / (C.w P.w) with C = P + M delta, so the\n"
     "               extent comes from small differences, not from subtracting\n"
@@ -10580,10 +10799,7 @@ static const char skgl__src_ferko_analyze_frag[] =
     "                lo = min(lo, q);\n"
     "                hi = max(hi, q);\n"
     "            }\n"
-    "            if (ok) {\n"
-    "                pt.xy = min(pt.xy, hi - lo);\n"
-    "                pt.w = -1.0;\n"
-    "            }\n"
+    "            if (ok) pt.xy = min(pt.xy, hi - lo);\n"
     "        }\n"
     "    o_bounds = b;\n"
     "    o_patch = pt;\n"
@@ -10616,7 +10832,7 @@ static const char skgl__src_ferko_reduce_frag[] =
     "    const int n = 16;\n"
     "    ivec2 base = ivec2(gl_FragCoord.xy) * 16;\n"
     "#endif\n"
-    "    vec4 b = vec4(3.0e38), p = vec4(3.0e38, 3.0e38, 0.0, 0.0);\n"
+    "    vec4 b = vec4(3.0e38), p = vec4(3.0e38);\n"
     "    for (int y = 0; y < n; y++)\n"
     "        for (int x = 0; x < n; x++) {\n"
     "            ivec2 q = base + ivec2(x, y);\n"

@@ -7,13 +7,17 @@
    each corner (Sec. 3.2), gives the smallest texel the view needs; the
    corners are taken relative to the pixel centre for float precision.
    The same definition as sk_estimate_resolution on the CPU.
+   Per kept pixel also its view depth, so that the same reduction gives
+   the depth range the view holds (what sample distribution shadow maps
+   split, Lauritzen, Salvi and Lefohn 2011).
    Out: o_bounds = (min x, min y, -max x, -max y) and
-        o_patch  = (min patch width, min patch height, -1 if any sample,
-                    -1 if any patch); "none" is +SK_BIG. A 4x4 MIN
-   reduction (ferko_reduce.frag) takes both to one texel. */
+        o_patch  = (min patch width, min patch height, min view depth,
+                    -max view depth); "none" is +SK_BIG in every channel. A
+   MIN reduction (ferko_reduce.frag) takes both to one texel. */
 uniform sampler2D u_depth;           /* window depth, row 0 at the bottom */
 uniform mat4 u_ndc_to_light;         /* light view-projection * inverse camera view-projection */
 uniform vec4 u_world_w;              /* row 3 of the inverse camera view-projection */
+uniform vec4 u_view_z;               /* row 2 of the inverse camera projection: view z = dot(u_view_z, ndc) / dot(u_world_w, ndc) */
 uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;
                                       z: the near plane's depth (1 with reverse-Z), w: a far depth
                                       on every pixel's ray (0.5 when the far plane is at infinity) */
@@ -47,7 +51,7 @@ void main()
     vec2 to_ndc = 2.0 / vec2(size);
     float d[36];                     /* pixels base-1 .. base+4, 6 x 6 */
     float cz[25];                    /* corners base .. base+4, 5 x 5: NDC z of the averaged depth, or 2 (none) */
-    vec4 b = vec4(SK_BIG), pt = vec4(SK_BIG, SK_BIG, 0.0, 0.0);
+    vec4 b = vec4(SK_BIG), pt = vec4(SK_BIG);
     int x, y, k;
     for (y = 0; y < 6; y++)
         for (x = 0; x < 6; x++) d[y * 6 + x] = sk_depth_at(base + ivec2(x - 1, y - 1), size);
@@ -71,7 +75,8 @@ void main()
             if (!(l.w > 0.0) || any(greaterThan(abs(l.xyz), vec3(l.w)))) continue;
             vec2 p = l.xy / l.w;
             b = min(b, vec4(p, -p));
-            pt.z = -1.0;
+            float depth = -dot(u_view_z, vec4(c, 1.0)) / ww;
+            pt.zw = min(pt.zw, vec2(depth, -depth));
             /* the patch: its four corners relative to the pixel centre,
                (C.xy P.w - P.xy C.w) / (C.w P.w) with C = P + M delta, so the
                extent comes from small differences, not from subtracting
@@ -91,10 +96,7 @@ void main()
                 lo = min(lo, q);
                 hi = max(hi, q);
             }
-            if (ok) {
-                pt.xy = min(pt.xy, hi - lo);
-                pt.w = -1.0;
-            }
+            if (ok) pt.xy = min(pt.xy, hi - lo);
         }
     o_bounds = b;
     o_patch = pt;

@@ -24,7 +24,7 @@ void main()
     const int n = 16;
     ivec2 base = ivec2(gl_FragCoord.xy) * 16;
 #endif
-    vec4 b = vec4(3.0e38), p = vec4(3.0e38, 3.0e38, 0.0, 0.0);
+    vec4 b = vec4(3.0e38), p = vec4(3.0e38);
     for (int y = 0; y < n; y++)
         for (int x = 0; x < n; x++) {
             ivec2 q = base + ivec2(x, y);

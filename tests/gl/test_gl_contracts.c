@@ -228,7 +228,7 @@ static void test_arguments(gt_env *e) {
     expect_log(e->sk, skgl_shadow_render(e->sk, s, &cam, &nobounds, light_dir()), "render bounds", "scene->bounds = (");
     expect_log(e->sk, skgl_shadow_render(e->sk, s, &cam, &sc, zero), "render dir", "light_dir = (0 0 0): finite and nonzero");
     expect_log(e->sk, skgl_shadow_analyze(e->sk, s, &cam, &sc, light_dir(), 1), "analyze STANDARD",
-               "s->desc.technique = 0: only SKGL_FERKO and SKGL_RMSM analyse");
+               "s->desc.technique = 0: only SKGL_FERKO, SKGL_RMSM, SKGL_AUTO and lights with desc.fit_to_depth analyse");
     expect_log(e->sk, skgl_shadow_analyze(e->sk, f, &cam, &sc, light_dir(), 0), "analyze depth", "depth_tex = 0");
     expect_log(e->sk, skgl_shadow_mask(e->sk, s, &cam, e->gbuf.depth_tex, 0, 0), "mask target", "mask_tex = 0");
     expect_log(e->sk, skgl_shadow_bind(e->sk, s, 5, 40), "bind unit", "unit = 40: in 0..31");
