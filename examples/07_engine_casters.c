@@ -116,6 +116,7 @@ static const char fs_foliage_main[] =
     "    vec3 albedo = 1.6 * texture(u_albedo, v_uv).rgb;   /* the textures are dark */\n"
     "    o_color = vec4(shade(albedo, v_world, normalize(v_normal)), 1.0);\n"
     "}\n";
+/* the ground and the trunks: ex_world_vs (common.c), fs_shade, then this */
 static const char fs_scene_main[] =
     "in vec3 v_world;\n"
     "in vec3 v_normal;\n"

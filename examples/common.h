@@ -12,9 +12,10 @@
      the two);
    - the scene: a procedural one built by the example, or any glTF/OBJ file
      through the testbed's assimp loader, uploaded as one mesh;
-   - shader compiling and linking (ex_compile_shader, ex_link_program), and
-     the forward shader: lambert lighting times sk_shadow() from the GLSL
-     snippet of shadowkit_gl.h, with an optional colour per cascade;
+   - shader compiling and linking (ex_compile_shader, ex_link_program), the
+     forward shader: lambert lighting times sk_shadow() from the GLSL
+     snippet of shadowkit_gl.h, with an optional colour per cascade, and
+     the vertex shader of the examples' own lighting passes (ex_world_vs);
    - the camera's G-buffer (depth and normals) and a visibility-mask texture
      for the deferred examples;
    - the draw callback shadowkit calls for each shadow pass.
