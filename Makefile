@@ -1,8 +1,13 @@
 # shadowkit - GNU make. Everything generated goes to build/ and out/.
 #   make test       install what is missing, build tests/test_*.c four ways
 #                   (C99, C++11, each plain -O2 and under ASan+UBSan) and the
-#                   tests/compile checks, run them all; ends "N passed, M failed"
-#   make check      static checks (compile checks now; embedded shaders later)
+#                   tests/compile checks, and through mk/*.mk the GL tests
+#                   (plain and sanitized), the integration, packaging and
+#                   fuzz-replay tests; run them all; ends "N passed, M failed"
+#   make check      static checks: the compile checks, the embedded shaders
+#                   (mk/shaders.mk), every shader composition through
+#                   glslangValidator (mk/web.mk) and the documentation's
+#                   links (mk/docs.mk)
 #   make check-quick  for iteration (about 1 minute on 2 cores once the
 #                   testbed is built): the C99 CPU tests, the compile
 #                   checks, the shader checks and one GL test
@@ -152,7 +157,7 @@ bench-cpu: $(BUILD)/bench_cpu
 	./$(BUILD)/bench_cpu | tee $(OUT)/bench-cpu.txt
 	@echo "bench-cpu: table saved to $(OUT)/bench-cpu.txt"
 
-# later GL work appends its examples here: DEMO_TARGETS += examples-...
+# mk/examples.mk and mk/bench.mk append theirs: DEMO_TARGETS += examples-demo ...
 DEMO_TARGETS := bench-cpu
 demo: deps-demo
 	@echo "demo: building and running: $(DEMO_TARGETS); output goes to $(OUT)/"

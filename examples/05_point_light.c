@@ -73,18 +73,6 @@ static void draw_casters(void *user, const skgl_draw_info *info) {
 /* Our lighting: lambert from the point light with a quadratic fall-off to
    zero at its range, times the light's visibility, which each path defines
    as light_visibility() (see make_program). */
-static const char vs_src[] =
-    "#version 330 core\n"
-    "layout(location = 0) in vec3 a_position;\n"
-    "layout(location = 1) in vec3 a_normal;\n"
-    "uniform mat4 u_view_proj;\n"
-    "out vec3 v_world;\n"
-    "out vec3 v_normal;\n"
-    "void main() {\n"
-    "    v_world = a_position;\n"
-    "    v_normal = a_normal;\n"
-    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
-    "}\n";
 static const char fs_lighting[] =
     "in vec3 v_world;\n"
     "in vec3 v_normal;\n"
@@ -113,14 +101,14 @@ static const char fs_forward[] =
 /* "#version"; forward: the technique's define and shadowkit's snippet;
    the path's light_visibility(); our lighting */
 static unsigned make_program(const ex_app *app, int forward, int vsdct) {
-    const char *vs = vs_src, *fs[5];
+    const char *vs = ex_world_vs, *fs[5];
     fs[0] = "#version 330 core\n";
     fs[1] = forward && vsdct ? "#define SK_POINT_VSDCT 1\n" : "";
     fs[2] = forward ? skgl_point_glsl_snippet() : "";
     fs[3] = forward ? fs_forward : fs_deferred;
     fs[4] = fs_lighting;
-    return ex_link_program(app, ex_compile_shader(app, EX_GL_VERTEX_SHADER, 1, &vs, "05 lighting"),
-                           ex_compile_shader(app, EX_GL_FRAGMENT_SHADER, 5, fs, "05 lighting"), "05 lighting");
+    return ex_link_program(app, ex_compile_shader(app, GL_VERTEX_SHADER, 1, &vs, "05 lighting"),
+                           ex_compile_shader(app, GL_FRAGMENT_SHADER, 5, fs, "05 lighting"), "05 lighting");
 }
 
 int main(int argc, char **argv) {
@@ -220,8 +208,8 @@ int main(int argc, char **argv) {
             if ((r = skgl_point_bind(sk, lamp, prog, 0)) != SK_OK) break;
             /* the cube map filters across its faces with seamless
                filtering; VSDCT's indirection must not */
-            if (pdesc.technique == SKGL_POINT_CUBE) app.gl.Enable(EX_GL_TEXTURE_CUBE_MAP_SEAMLESS);
-            else app.gl.Disable(EX_GL_TEXTURE_CUBE_MAP_SEAMLESS);
+            if (pdesc.technique == SKGL_POINT_CUBE) app.gl.Enable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+            else app.gl.Disable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
         } else {
             ex_bind_texture(&app, prog, "u_mask", 0, mask);
         }

@@ -44,18 +44,6 @@ static int build_scene(tb_scene *s) {
 
 /* our lighting: lambert from the light's centre times the mask's visibility;
    with u_tiles > 0 each pixel is tinted by the PVSM tile it lies in */
-static const char vs_src[] =
-    "#version 330 core\n"
-    "layout(location = 0) in vec3 a_position;\n"
-    "layout(location = 1) in vec3 a_normal;\n"
-    "uniform mat4 u_view_proj;\n"
-    "out vec3 v_world;\n"
-    "out vec3 v_normal;\n"
-    "void main() {\n"
-    "    v_world = a_position;\n"
-    "    v_normal = a_normal;\n"
-    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
-    "}\n";
 static const char fs_src[] =
     "#version 330 core\n"
     "in vec3 v_world;\n"
@@ -97,7 +85,7 @@ int main(int argc, char **argv) {
     sk_vec3 eye, target, up = {0, 1, 0}, c;
     float zn = 0.1f, zf = 80.0f, size;
     unsigned prog = 0;
-    const char *vs = vs_src, *fs = fs_src;
+    const char *vs = ex_world_vs, *fs = fs_src;
     sk_result r = SK_OK;
     int status = 1, show_tiles = 0;
     int rc = ex_parse_args(argc, argv, "out/06_soft_shadows.png", 0, &opt);
@@ -121,8 +109,8 @@ int main(int argc, char **argv) {
     desc.timing = opt.timing;
     if ((r = skgl_create(&desc, &sk)) != SK_OK) goto done;
     if ((r = skgl_soft_create(sk, &sdesc, &soft)) != SK_OK) goto done;
-    if (!(prog = ex_link_program(&app, ex_compile_shader(&app, EX_GL_VERTEX_SHADER, 1, &vs, "06 lighting"),
-                                 ex_compile_shader(&app, EX_GL_FRAGMENT_SHADER, 1, &fs, "06 lighting"),
+    if (!(prog = ex_link_program(&app, ex_compile_shader(&app, GL_VERTEX_SHADER, 1, &vs, "06 lighting"),
+                                 ex_compile_shader(&app, GL_FRAGMENT_SHADER, 1, &fs, "06 lighting"),
                                  "06 lighting")))
         goto done;
 
@@ -182,7 +170,7 @@ int main(int argc, char **argv) {
         if (nt > 0) app.glx.Uniform1fv(app.gl.GetUniformLocation(prog, "u_rects"), 4 * nt, rects);
         ex_bind_texture(&app, prog, "u_mask", 0, mask);
         ex_draw_scene(&app, prog, &cam);
-        app.gl.BindTexture(EX_GL_TEXTURE_2D, 0);
+        app.gl.BindTexture(GL_TEXTURE_2D, 0);
         app.gl.UseProgram(0);
         if (ex_app_end_frame(&app) != 0) goto done;
     }

@@ -116,18 +116,7 @@ static const char fs_foliage_main[] =
     "    vec3 albedo = 1.6 * texture(u_albedo, v_uv).rgb;   /* the textures are dark */\n"
     "    o_color = vec4(shade(albedo, v_world, normalize(v_normal)), 1.0);\n"
     "}\n";
-static const char vs_scene[] =
-    "#version 330 core\n"
-    "layout(location = 0) in vec3 a_position;\n"
-    "layout(location = 1) in vec3 a_normal;\n"
-    "uniform mat4 u_view_proj;\n"
-    "out vec3 v_world;\n"
-    "out vec3 v_normal;\n"
-    "void main() {\n"
-    "    v_world = a_position;\n"
-    "    v_normal = a_normal;\n"
-    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
-    "}\n";
+/* the ground and the trunks: ex_world_vs (common.c), fs_shade, then this */
 static const char fs_scene_main[] =
     "in vec3 v_world;\n"
     "in vec3 v_normal;\n"
@@ -190,19 +179,6 @@ typedef struct world {
     void (TB_GLAPI *DrawElementsInstanced)(unsigned, int, unsigned, const void *, int);
     void (TB_GLAPI *Uniform1f)(int, float);
 } world;
-
-#define GL_ARRAY_BUFFER 0x8892
-#define GL_ELEMENT_ARRAY_BUFFER 0x8893
-#define GL_STATIC_DRAW 0x88E4
-#define GL_FLOAT 0x1406
-#define GL_UNSIGNED_SHORT 0x1403
-#define GL_TRIANGLES 0x0004
-#define GL_RGBA8 0x8058
-#define GL_RGBA 0x1908
-#define GL_UNSIGNED_BYTE 0x1401
-#define GL_NEAREST 0x2600
-#define GL_TEXTURE_MIN_FILTER 0x2801
-#define GL_TEXTURE_MAG_FILTER 0x2800
 
 /* a deterministic scatter (the same picture every run) */
 static float scatter(unsigned *state) {
@@ -293,23 +269,23 @@ static unsigned load_texture(world *w, const char *asset, int unit) {
         return 0;
     }
     gl->GenTextures(1, &tex);
-    gl->ActiveTexture(EX_GL_TEXTURE0 + (unsigned)unit);
-    gl->BindTexture(EX_GL_TEXTURE_2D, tex);
+    gl->ActiveTexture(GL_TEXTURE0 + (unsigned)unit);
+    gl->BindTexture(GL_TEXTURE_2D, tex);
     /* stb gives the top row first; uv (0, 0) is the bottom left here, as in GL */
-    gl->PixelStorei(0x0CF5 /* GL_UNPACK_ALIGNMENT */, 1);
+    gl->PixelStorei(GL_UNPACK_ALIGNMENT, 1);
     {
         int row;
         unsigned char *flip = (unsigned char *)malloc((size_t)tw * (size_t)th * 4);
         if (flip) {
             for (row = 0; row < th; row++)
                 memcpy(flip + (size_t)row * tw * 4, px + (size_t)(th - 1 - row) * tw * 4, (size_t)tw * 4);
-            gl->TexImage2D(EX_GL_TEXTURE_2D, 0, GL_RGBA8, tw, th, 0, GL_RGBA, GL_UNSIGNED_BYTE, flip);
+            gl->TexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, tw, th, 0, GL_RGBA, GL_UNSIGNED_BYTE, flip);
             free(flip);
         }
     }
-    gl->TexParameteri(EX_GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);   /* pixel art */
-    gl->TexParameteri(EX_GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    gl->ActiveTexture(EX_GL_TEXTURE0);
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);   /* pixel art */
+    gl->TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    gl->ActiveTexture(GL_TEXTURE0);
     stbi_image_free(px);
     return tex;
 }
@@ -381,8 +357,8 @@ static void draw_casters(void *user, const skgl_draw_info *info) {
 static unsigned foliage_program(world *w, const char *fs_main, const char *fs_extra, const char *what) {
     const char *vs[4] = {"#version 330 core\n", "out vec2 v_uv;\n", foliage_vertex, vs_foliage_main};
     const char *fs[5] = {"#version 330 core\n", "in vec2 v_uv;\n", foliage_fragment, fs_extra, fs_main};
-    return ex_link_program(&w->app, ex_compile_shader(&w->app, EX_GL_VERTEX_SHADER, 4, vs, what),
-                           ex_compile_shader(&w->app, EX_GL_FRAGMENT_SHADER, 5, fs, what), what);
+    return ex_link_program(&w->app, ex_compile_shader(&w->app, GL_VERTEX_SHADER, 4, vs, what),
+                           ex_compile_shader(&w->app, GL_FRAGMENT_SHADER, 5, fs, what), what);
 }
 
 static void set_shading(world *w, unsigned prog, sk_vec3 sun, sk_vec3 lamp, float range, unsigned sun_mask) {
@@ -478,9 +454,9 @@ int main(int argc, char **argv) {
     w.gbuf_prog = foliage_program(&w, fs_gbuffer_main, "", "07 foliage G-buffer");
     w.foliage_prog = foliage_program(&w, fs_foliage_main, fs_shade, "07 foliage lighting");
     {
-        const char *vs = vs_scene, *fs[3] = {"#version 330 core\n", fs_shade, fs_scene_main};
-        w.scene_prog = ex_link_program(&w.app, ex_compile_shader(&w.app, EX_GL_VERTEX_SHADER, 1, &vs, "07 scene"),
-                                       ex_compile_shader(&w.app, EX_GL_FRAGMENT_SHADER, 3, fs, "07 scene"),
+        const char *vs = ex_world_vs, *fs[3] = {"#version 330 core\n", fs_shade, fs_scene_main};
+        w.scene_prog = ex_link_program(&w.app, ex_compile_shader(&w.app, GL_VERTEX_SHADER, 1, &vs, "07 scene"),
+                                       ex_compile_shader(&w.app, GL_FRAGMENT_SHADER, 3, fs, "07 scene"),
                                        "07 scene");
     }
     if (!w.gbuf_prog || !w.foliage_prog || !w.scene_prog) goto done;

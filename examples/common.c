@@ -254,7 +254,7 @@ void ex_camera_from_bounds(sk_aabb b, sk_vec3 *eye, sk_vec3 *target, float *zn, 
    headless render target; sets the viewport to its size */
 static void ex_bind_target(ex_app *app) {
     if (app->window) {
-        app->gl.BindFramebuffer(EX_GL_FRAMEBUFFER, 0);
+        app->gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
         app->gl.Viewport(0, 0, app->width, app->height);
     } else {
         tb_gl_fbo_bind(&app->gl, &app->target);
@@ -279,7 +279,7 @@ int ex_app_begin_frame(ex_app *app) {
     app->frame++;
     app->gl.ClearColor(0.55f, 0.68f, 0.85f, 1.0f);   /* sky */
     app->gl.ClearDepth(1.0);
-    app->gl.Clear(EX_GL_COLOR_BUFFER_BIT | EX_GL_DEPTH_BUFFER_BIT);
+    app->gl.Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     return 1;
 }
 
@@ -289,7 +289,7 @@ static int ex_save_frame(ex_app *app) {
     int w = app->width, h = app->height, r;
     unsigned char *rgb = (unsigned char *)malloc((size_t)w * (size_t)h * 3);
     if (!rgb) return -1;
-    if (app->window) app->gl.ReadBuffer(EX_GL_BACK);   /* the frame before the swap shows it */
+    if (app->window) app->gl.ReadBuffer(GL_BACK);   /* the frame before the swap shows it */
     r = tb_gl_read_rgb8(&app->gl, app->window ? 0 : app->target.fbo, w, h, rgb);
     if (r == 0) r = tb_image_write_rgb8(app->opt.out_path, w, h, rgb);
     free(rgb);
@@ -322,6 +322,19 @@ static const char *ex_vs =
     "    v_world_pos = a_position;\n"
     "    v_world_normal = a_normal;\n"
     "    v_view_depth = -(u_view * vec4(a_position, 1.0)).z;\n"
+    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
+    "}\n";
+
+const char ex_world_vs[] =
+    "#version 330 core\n"
+    "layout(location = 0) in vec3 a_position;\n"
+    "layout(location = 1) in vec3 a_normal;\n"
+    "uniform mat4 u_view_proj;\n"
+    "out vec3 v_world;\n"
+    "out vec3 v_normal;\n"
+    "void main() {\n"
+    "    v_world = a_position;\n"
+    "    v_normal = a_normal;\n"
     "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
     "}\n";
 
@@ -362,12 +375,12 @@ unsigned ex_compile_shader(const ex_app *app, unsigned type, int count, const ch
     int ok = 0;
     gl->ShaderSource(sh, count, src, NULL);
     gl->CompileShader(sh);
-    gl->GetShaderiv(sh, EX_GL_COMPILE_STATUS, &ok);
+    gl->GetShaderiv(sh, GL_COMPILE_STATUS, &ok);
     if (!ok) {
         char log[4096] = "";
         gl->GetShaderInfoLog(sh, (int)sizeof log, NULL, log);
         fprintf(stderr, "%s: the %s shader does not compile:\n%s\n", what,
-                type == EX_GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+                type == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
         gl->DeleteShader(sh);
         return 0;
     }
@@ -389,7 +402,7 @@ unsigned ex_link_program(const ex_app *app, unsigned vs, unsigned fs, const char
     gl->LinkProgram(p);
     gl->DeleteShader(vs);      /* freed with the program */
     gl->DeleteShader(fs);
-    gl->GetProgramiv(p, EX_GL_LINK_STATUS, &ok);
+    gl->GetProgramiv(p, GL_LINK_STATUS, &ok);
     if (!ok) {
         char log[4096] = "";
         gl->GetProgramInfoLog(p, (int)sizeof log, NULL, log);
@@ -405,8 +418,8 @@ int ex_forward_create(ex_app *app, const char *shadow_snippet) {
     fs_src[0] = "#version 330 core\n";
     fs_src[1] = shadow_snippet;
     fs_src[2] = ex_fs_body;
-    app->program = ex_link_program(app, ex_compile_shader(app, EX_GL_VERTEX_SHADER, 1, &ex_vs, "forward"),
-                                   ex_compile_shader(app, EX_GL_FRAGMENT_SHADER, 3, fs_src, "forward"),
+    app->program = ex_link_program(app, ex_compile_shader(app, GL_VERTEX_SHADER, 1, &ex_vs, "forward"),
+                                   ex_compile_shader(app, GL_FRAGMENT_SHADER, 3, fs_src, "forward"),
                                    "forward");
     if (!app->program) return -1;
 #define EX_U(field, name) app->field = app->gl.GetUniformLocation(app->program, name)
@@ -446,10 +459,10 @@ void ex_forward_draw(ex_app *app, const skgl_camera *cam, sk_vec3 light_dir,
     if (cascades < 0) cascades = 0;
     if (cascades > 8) cascades = 8;
     if (splits && cascades > 0) memcpy(sp, splits, sizeof(float) * (size_t)(cascades + 1));
-    gl->Enable(EX_GL_DEPTH_TEST);
-    gl->DepthFunc(EX_GL_LESS);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
     gl->DepthMask(1);
-    gl->Disable(EX_GL_CULL_FACE);      /* single-sided ground and foliage */
+    gl->Disable(GL_CULL_FACE);      /* single-sided ground and foliage */
     gl->UniformMatrix4fv(app->u_view_proj, 1, 0, vp.m);
     gl->UniformMatrix4fv(app->u_view, 1, 0, cam->view.m);
     gl->Uniform3f(app->u_light_dir, light_dir.x, light_dir.y, light_dir.z);
@@ -467,18 +480,18 @@ void ex_forward_draw(ex_app *app, const skgl_camera *cam, sk_vec3 light_dir,
 void ex_draw_scene(ex_app *app, unsigned program, const skgl_camera *cam) {
     const tb_gl_funcs *gl = &app->gl;
     sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
-    gl->Enable(EX_GL_DEPTH_TEST);
-    gl->DepthFunc(EX_GL_LESS);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
     gl->DepthMask(1);
-    gl->Disable(EX_GL_CULL_FACE);      /* single-sided ground, room and foliage */
+    gl->Disable(GL_CULL_FACE);      /* single-sided ground, room and foliage */
     gl->UniformMatrix4fv(gl->GetUniformLocation(program, "u_view_proj"), 1, 0, vp.m);
     tb_gl_mesh_draw(gl, &app->mesh, 0, 0);
 }
 
 void ex_bind_texture(ex_app *app, unsigned program, const char *name, int unit, unsigned tex) {
     app->glx.Uniform1i(app->gl.GetUniformLocation(program, name), unit);
-    app->gl.ActiveTexture(EX_GL_TEXTURE0 + (unsigned)unit);
-    app->gl.BindTexture(EX_GL_TEXTURE_2D, tex);
+    app->gl.ActiveTexture(GL_TEXTURE0 + (unsigned)unit);
+    app->gl.BindTexture(GL_TEXTURE_2D, tex);
 }
 
 /* ------------------------------------------------- G-buffer and mask */
@@ -519,13 +532,13 @@ int ex_gbuffer_render(ex_app *app, skgl_context *sk, const skgl_camera *cam) {
        turned toward the camera, alpha 1 where covered); the pass is ours,
        as an engine's would be: no state read back, no glGetError */
     tb_gl_fbo_bind(gl, &app->gbuffer);
-    gl->Enable(EX_GL_DEPTH_TEST);
-    gl->DepthFunc(EX_GL_LESS);
+    gl->Enable(GL_DEPTH_TEST);
+    gl->DepthFunc(GL_LESS);
     gl->DepthMask(1);
-    gl->Disable(EX_GL_CULL_FACE);
+    gl->Disable(GL_CULL_FACE);
     gl->ClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     gl->ClearDepth(1.0);
-    gl->Clear(EX_GL_COLOR_BUFFER_BIT | EX_GL_DEPTH_BUFFER_BIT);
+    gl->Clear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     gl->UseProgram(app->gpass.program);
     gl->UniformMatrix4fv(app->gpass.u_view_proj, 1, 0, vp.m);
     tb_gl_mesh_draw(gl, &app->mesh, 0, 0);
@@ -539,7 +552,7 @@ unsigned ex_mask_texture(ex_app *app, skgl_context *sk, float clear) {
     if (clear >= 0.0f) {
         tb_gl_fbo_bind(&app->gl, &app->mask);
         app->gl.ClearColor(clear, clear, clear, clear);
-        app->gl.Clear(EX_GL_COLOR_BUFFER_BIT);
+        app->gl.Clear(GL_COLOR_BUFFER_BIT);
         ex_bind_target(app);
     }
     return app->mask.color_tex;

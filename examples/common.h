@@ -12,9 +12,10 @@
      the two);
    - the scene: a procedural one built by the example, or any glTF/OBJ file
      through the testbed's assimp loader, uploaded as one mesh;
-   - shader compiling and linking (ex_compile_shader, ex_link_program), and
-     the forward shader: lambert lighting times sk_shadow() from the GLSL
-     snippet of shadowkit_gl.h, with an optional colour per cascade;
+   - shader compiling and linking (ex_compile_shader, ex_link_program), the
+     forward shader: lambert lighting times sk_shadow() from the GLSL
+     snippet of shadowkit_gl.h, with an optional colour per cascade, and
+     the vertex shader of the examples' own lighting passes (ex_world_vs);
    - the camera's G-buffer (depth and normals) and a visibility-mask texture
      for the deferred examples;
    - the draw callback shadowkit calls for each shadow pass.
@@ -31,26 +32,14 @@
 #include "tb_gl_scene.h"
 #include "tb_scene.h"
 
+/* The GL enums by their GL names, from Khronos's core-profile header (in
+   Debian's libgl-dev, which libglfw3-dev pulls in). It declares no GL
+   function without GL_GLEXT_PROTOTYPES, so GL is still called only through
+   the tables loaded by the same getproc shadowkit gets. */
+#include <GL/glcorearb.h>
+
 #define EX_WIDTH 1280    /* headless image and initial window size */
 #define EX_HEIGHT 720
-
-/* The GL enums the examples use, by their GL names. The testbed loads GL
-   through a table of its own and includes no GL header, so they are
-   spelt out here (values from the GL 3.3 core specification). */
-#define EX_GL_DEPTH_BUFFER_BIT 0x0100
-#define EX_GL_COLOR_BUFFER_BIT 0x4000
-#define EX_GL_LESS 0x0201
-#define EX_GL_BACK 0x0405
-#define EX_GL_CULL_FACE 0x0B44
-#define EX_GL_DEPTH_TEST 0x0B71
-#define EX_GL_TEXTURE_2D 0x0DE1
-#define EX_GL_TEXTURE0 0x84C0
-#define EX_GL_TEXTURE_CUBE_MAP_SEAMLESS 0x884F
-#define EX_GL_FRAGMENT_SHADER 0x8B30
-#define EX_GL_VERTEX_SHADER 0x8B31
-#define EX_GL_COMPILE_STATUS 0x8B81
-#define EX_GL_LINK_STATUS 0x8B82
-#define EX_GL_FRAMEBUFFER 0x8D40
 
 /* options an example may accept besides the common ones (ex_parse_args) */
 #define EX_ARG_CASCADES 1        /* --show-cascades */
@@ -148,7 +137,7 @@ void ex_bind_frame(ex_app *app);
 
 /* Shader objects and programs. ex_compile_shader joins count source
    strings (e.g. "#version", a shadowkit snippet, your code) into one
-   shader of `type` (EX_GL_VERTEX_SHADER, EX_GL_FRAGMENT_SHADER); on failure
+   shader of `type` (GL_VERTEX_SHADER, GL_FRAGMENT_SHADER); on failure
    it prints the info log under `what` and returns 0. ex_link_program links
    the two into a program and deletes them (they are no longer needed once
    linked); it returns 0, after printing the log, when either is 0 or the
@@ -186,6 +175,11 @@ void ex_print_ms(const char *what, float ms);
    of "#version 330 core", shadowkit's GLSL snippet (it declares
    sk_shadow()), and our lighting code that calls sk_shadow(). 0 or -1. */
 int ex_forward_create(ex_app *app, const char *shadow_snippet);
+
+/* The vertex shader of the examples' own lighting passes (05, 06, 07):
+   the testbed's world-space a_position and a_normal (locations 0 and 1)
+   passed on as v_world and v_normal, u_view_proj to clip space. */
+extern const char ex_world_vs[];
 
 /* Draws the whole scene with the forward program, which must be current
    (the example binds it and calls skgl_shadow_bind first). light_dir is the

@@ -96,7 +96,7 @@ web: web-page
 	@echo "web: serving http://127.0.0.1:$(WEB_PORT)/ (Ctrl-C stops)"
 	python3 -m http.server --bind 127.0.0.1 $(WEB_PORT) --directory $(WEB_OUT)
 
-# the README's picture of the page, taken by headless Chromium (SwiftShader)
+# docs/gles-webgl.md's picture of the page, taken by headless Chromium (SwiftShader)
 web-shot: web-page | deps-web
 	timeout 120 chromium --headless=new --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader \
 	    --use-gl=angle --window-size=1040,680 --virtual-time-budget=15000 \

@@ -13,42 +13,18 @@
 #define SHADOWKIT_IMPLEMENTATION
 #include "shadowkit.h"
 #include "tests/sk_test.h"
+#include "tests/sk_ref.h"
 #include <float.h>
 #include <limits.h>
 
-#define T_PI 3.14159265358979323846
-
 /* ---------------------------------------------------------------- helpers */
-typedef struct dv3 { double x, y, z; } dv3;
-static dv3 dv(double x, double y, double z) { dv3 r; r.x = x; r.y = y; r.z = z; return r; }
-static dv3 dadd(dv3 a, dv3 b) { return dv(a.x + b.x, a.y + b.y, a.z + b.z); }
-static dv3 dsub(dv3 a, dv3 b) { return dv(a.x - b.x, a.y - b.y, a.z - b.z); }
-static dv3 dscale(dv3 a, double s) { return dv(a.x * s, a.y * s, a.z * s); }
-static double ddot(dv3 a, dv3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static dv3 dcross(dv3 a, dv3 b) { return dv(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x); }
-static double dlen(dv3 a) { return sqrt(ddot(a, a)); }
-static dv3 dnorm(dv3 a) { double l = dlen(a); return dscale(a, 1.0 / l); }
-static sk_vec3 v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
-static sk_vec3 tof(dv3 a) { return v3((float)a.x, (float)a.y, (float)a.z); }
-static dv3 tod(sk_vec3 a) { return dv(a.x, a.y, a.z); }
-static sk_aabb box(float x0, float y0, float z0, float x1, float y1, float z1) {
-    sk_aabb b; b.min = v3(x0, y0, z0); b.max = v3(x1, y1, z1); return b;
-}
-static int finite_d(double x) { return x == x && x - x == 0.0; }
 static int finite_rect(sk_rect r) { return finite_d(r.x0) && finite_d(r.y0) && finite_d(r.x1) && finite_d(r.y1); }
 static int nan_rect(sk_rect r) { return r.x0 != r.x0 || r.y0 != r.y0 || r.x1 != r.x1 || r.y1 != r.y1; }
-static int finite_mat(const sk_mat4 *m) { int i; for (i = 0; i < 16; i++) if (!finite_d(m->m[i])) return 0; return 1; }
 
 static sk_lspsm_params mkparams(float zeta, float sigma, int h_max, int nw_max) {
     sk_lspsm_params p; p.zeta = zeta; p.sigma = sigma; p.h_max = h_max; p.nw_max = nw_max; return p;
 }
 
-/* M * (p,1) in double with a float matrix; out[4] = clip x, y, z, w */
-static void xform(const sk_mat4 *m, dv3 p, double out[4]) {
-    int r;
-    for (r = 0; r < 4; r++)
-        out[r] = (double)m->m[r] * p.x + (double)m->m[4 + r] * p.y + (double)m->m[8 + r] * p.z + (double)m->m[12 + r];
-}
 static dv3 mat_row(const sk_mat4 *m, int r) { return dv(m->m[r], m->m[4 + r], m->m[8 + r]); }
 /* inverse of an affine (rigid) view: world point whose view coords are q */
 static dv3 view_unproject(const sk_mat4 *m, dv3 q) {
@@ -457,39 +433,9 @@ static void test_partition_bad_input(void) {
 }
 
 /* ------------------------------------------------------ region: the oracle */
-typedef struct dplane { dv3 n; double d; } dplane;   /* n.p + d >= 0 inside */
-typedef struct cam {
-    dv3 eye, fwd, up, right;
-    double fovy, aspect, zn, zf;
-    sk_frustum f;      /* built with sk_mat4_perspective / look_at / sk_frustum_from_matrix */
-    dv3 corners[8];    /* this file's own corners, in double */
-    dplane planes[6];
-} cam;
-
-static dplane plane3(dv3 a, dv3 b, dv3 c, dv3 inside) {
-    dplane p;
-    p.n = dnorm(dcross(dsub(b, a), dsub(c, a)));
-    p.d = -ddot(p.n, a);
-    if (ddot(p.n, inside) + p.d < 0) { p.n = dscale(p.n, -1.0); p.d = -p.d; }
-    return p;
-}
-
 static cam make_cam(dv3 eye, dv3 target, dv3 up_hint, double fovy, double aspect, double zn, double zf) {
-    cam c;
+    cam c = cam_frame(eye, target, up_hint, fovy, aspect, zn, zf);
     int i;
-    dv3 centre;
-    static const int face[6][3] = { {0, 2, 4}, {1, 3, 5}, {0, 1, 4}, {2, 3, 6}, {0, 1, 2}, {4, 5, 6} };
-    c.eye = eye; c.fovy = fovy; c.aspect = aspect; c.zn = zn; c.zf = zf;
-    c.fwd = dnorm(dsub(target, eye));
-    c.right = dnorm(dcross(c.fwd, up_hint));
-    c.up = dcross(c.right, c.fwd);
-    for (i = 0; i < 8; i++) {
-        double d = (i & 4) ? zf : zn, h = d * tan(fovy / 2), w = h * aspect;
-        c.corners[i] = dadd(dadd(dadd(eye, dscale(c.fwd, d)), dscale(c.right, (i & 1) ? w : -w)),
-                            dscale(c.up, (i & 2) ? h : -h));
-    }
-    centre = dadd(eye, dscale(c.fwd, (zn + zf) / 2));
-    for (i = 0; i < 6; i++) c.planes[i] = plane3(c.corners[face[i][0]], c.corners[face[i][1]], c.corners[face[i][2]], centre);
     {
         sk_mat4 proj = sk_mat4_perspective((float)fovy, (float)aspect, (float)zn, (float)zf);
         sk_mat4 view = sk_mat4_look_at(tof(eye), tof(target), tof(up_hint));
@@ -512,38 +458,6 @@ static cam make_cam(dv3 eye, dv3 target, dv3 up_hint, double fovy, double aspect
         SK_CHECK_MSG(worst < 1e-4, "sk_frustum_from_matrix corners differ from the camera's (rel %g): core math", worst);
     }
     return c;
-}
-
-static int box_planes(sk_aabb b, dplane *out) {
-    out[0].n = dv(1, 0, 0);  out[0].d = -(double)b.min.x;
-    out[1].n = dv(-1, 0, 0); out[1].d = b.max.x;
-    out[2].n = dv(0, 1, 0);  out[2].d = -(double)b.min.y;
-    out[3].n = dv(0, -1, 0); out[3].d = b.max.y;
-    out[4].n = dv(0, 0, 1);  out[4].d = -(double)b.min.z;
-    out[5].n = dv(0, 0, -1); out[5].d = b.max.z;
-    return 6;
-}
-
-/* vertices of (frustum ∩ box), by enumerating plane triples */
-static int clip_body(const cam *c, sk_aabb b, dv3 *out, int cap) {
-    dplane pl[12];
-    int np = 6, i, j, k, m, count = 0;
-    for (i = 0; i < 6; i++) pl[i] = c->planes[i];
-    np += box_planes(b, pl + 6);
-    for (i = 0; i < np; i++)
-        for (j = i + 1; j < np; j++)
-            for (k = j + 1; k < np; k++) {
-                dv3 jk = dcross(pl[j].n, pl[k].n), ki = dcross(pl[k].n, pl[i].n), ij = dcross(pl[i].n, pl[j].n);
-                double det = ddot(pl[i].n, jk), sc;
-                dv3 p;
-                int ok = 1;
-                if (fabs(det) < 1e-9) continue;
-                p = dscale(dadd(dadd(dscale(jk, -pl[i].d), dscale(ki, -pl[j].d)), dscale(ij, -pl[k].d)), 1.0 / det);
-                sc = 1.0 + dlen(p);
-                for (m = 0; m < np && ok; m++) ok = ddot(pl[m].n, p) + pl[m].d >= -1e-9 * sc;
-                if (ok && count < cap) out[count++] = p;
-            }
-    return count;
 }
 
 /* Minimum area L*(n + L*t) of an isosceles trapezoid with axis along y that

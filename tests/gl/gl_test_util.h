@@ -31,6 +31,8 @@
 #include "tb_reference.h"
 #include "tb_scene.h"
 
+#include "gl_forward_vs.h"
+
 typedef struct gt_env {
     tb_gl_context *ctx;
     tb_gl_funcs gl;
@@ -340,21 +342,7 @@ typedef struct gt_forward {
     tb_gl_fbo fbo;         /* R16F visibility + depth, the env's size */
 } gt_forward;
 
-static const char gt_forward_vs[] =
-    "#version 330 core\n"
-    "layout(location = 0) in vec3 a_position;\n"
-    "layout(location = 1) in vec3 a_normal;\n"
-    "uniform mat4 u_view_proj;\n"
-    "uniform mat4 u_view;\n"
-    "out vec3 v_world;\n"
-    "out vec3 v_normal;\n"
-    "out float v_view_depth;\n"
-    "void main() {\n"
-    "    v_world = a_position;\n"
-    "    v_normal = a_normal;\n"
-    "    v_view_depth = -(u_view * vec4(a_position, 1.0)).z;\n"
-    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
-    "}\n";
+static const char gt_forward_vs[] = GT_FORWARD_VS;   /* gl_forward_vs.h */
 /* the snippet goes between the #version line and this */
 static const char gt_forward_fs[] =
     "in vec3 v_world;\n"

@@ -298,21 +298,6 @@ static void leave_default_state(app *a) {
 }
 
 /* ---- set-up ---- */
-static const char fwd_vs[] =
-    "#version 330 core\n"
-    "layout(location = 0) in vec3 a_position;\n"
-    "layout(location = 1) in vec3 a_normal;\n"
-    "uniform mat4 u_view_proj;\n"
-    "uniform mat4 u_view;\n"
-    "out vec3 v_world;\n"
-    "out vec3 v_normal;\n"
-    "out float v_view_depth;\n"
-    "void main() {\n"
-    "    v_world = a_position;\n"
-    "    v_normal = a_normal;\n"
-    "    v_view_depth = -(u_view * vec4(a_position, 1.0)).z;\n"
-    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
-    "}\n";
 static const char fwd_fs[] =
     "in vec3 v_world;\n"
     "in vec3 v_normal;\n"
@@ -368,7 +353,7 @@ static int app_open(app *a) {
     fs[0] = "#version 330 core\n";
     fs[1] = skgl_glsl_snippet();
     fs[2] = fwd_fs;
-    a->fwd_program = link_program(a, fwd_vs, 3, fs);
+    a->fwd_program = link_program(a, gt_forward_vs, 3, fs);
     if (!a->ui_program || !a->fwd_program) return -1;
     a->u_vp = gl->GetUniformLocation(a->fwd_program, "u_view_proj");
     a->u_view = gl->GetUniformLocation(a->fwd_program, "u_view");

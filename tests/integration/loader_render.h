@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "tb_scene.h"
+#include "gl_forward_vs.h"
 
 #define LR_W 640
 #define LR_H 360
@@ -58,21 +59,7 @@
 #define LR_GL_LINK_STATUS 0x8B82
 #define LR_GL_PACK_ALIGNMENT 0x0D05
 
-static const char lr_vs[] =
-    "#version 330 core\n"
-    "layout(location = 0) in vec3 a_position;\n"
-    "layout(location = 1) in vec3 a_normal;\n"
-    "uniform mat4 u_view_proj;\n"
-    "uniform mat4 u_view;\n"
-    "out vec3 v_world;\n"
-    "out vec3 v_normal;\n"
-    "out float v_view_depth;\n"
-    "void main() {\n"
-    "    v_world = a_position;\n"
-    "    v_normal = a_normal;\n"
-    "    v_view_depth = -(u_view * vec4(a_position, 1.0)).z;\n"
-    "    gl_Position = u_view_proj * vec4(a_position, 1.0);\n"
-    "}\n";
+static const char lr_vs[] = GT_FORWARD_VS;   /* tests/gl/gl_forward_vs.h */
 /* after "#version 330 core" and skgl_glsl_snippet() */
 static const char lr_fs[] =
     "in vec3 v_world;\n"

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tests/packaging/run.sh - the CMake package and the pkg-config file work as
-# the README's "Integrating" section says (part of `make test`, as
+# docs/integrating.md's "Integrating" section says (part of `make test`, as
 # build/hygiene/test_packaging). In a temporary directory: configure this
 # repository with CMake, install it into a prefix, check the files
 # installed, then build and run tests/packaging/consumer three ways: through
