@@ -13,7 +13,9 @@
       double ray a + t (b - a)/|b - a| is intersected with it, so the hit
       point does not carry Embree's float t. The normal is the triangle's
       geometric normal (double cross product), turned to face the camera.
-      No hit: TB_VIS_BACKGROUND.
+      No hit: TB_VIS_BACKGROUND. Alpha-tested triangles (below) stop the
+      ray everywhere unless tb_reference_alpha_primary lets it through
+      their holes.
 
    2. Raster consistency (raster_depth given, the window depth the technique
       used). A pixel whose rasterised surface and traced surface differ is

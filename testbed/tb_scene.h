@@ -199,7 +199,7 @@ int tb_forest_tree(tb_scene *tree, float **uv);
 /* The alpha atlas, TB_FOREST_ALPHA_SIZE^2 bytes, row 0 first (as
    glTexImage2D takes it; v = 0 is row 0): rows 0-31 leaves (an ellipse of
    4 x 4-texel clusters, 62% of them kept, with single texels knocked out:
-   about 45% of the card opaque), rows 32-63 bark (all 255). The leaves'
+   40.2% of the leaf half opaque), rows 32-63 bark (all 255). The leaves'
    cutoff is 0.5. */
 void tb_forest_alpha(unsigned char *alpha);
 /* The trees' placements, TB_FOREST_INSTANCE_FLOATS floats each for
