@@ -80,6 +80,9 @@ extern "C" {
     X(void, VertexAttribPointer, (unsigned index, int size, unsigned type, unsigned char norm, \
                                   int stride, const void *offset)) \
     X(void, EnableVertexAttribArray, (unsigned index)) \
+    X(void, Uniform1i, (int loc, int v)) \
+    X(void, VertexAttribDivisor, (unsigned index, unsigned divisor)) \
+    X(void, DrawElementsInstanced, (unsigned mode, int count, unsigned type, const void *offset, int instances)) \
     X(void, DrawElements, (unsigned mode, int count, unsigned type, const void *offset))
 
 #define TB_GL_DECLARE_(ret, name, params) ret (TB_GLAPI *name) params;

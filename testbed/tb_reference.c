@@ -34,6 +34,7 @@ struct tb_reference {
     unsigned char *alpha;
     int alpha_w, alpha_h;
     float cutoff;
+    int alpha_primary;       /* tb_reference_alpha_primary */
 };
 
 static void tb_embree_error_(void *user, enum RTCError code, const char *msg) {
@@ -429,6 +430,29 @@ typedef struct tb_xctx_ {
     double tol;                       /* the ulp bound e at the receiver */
 } tb_xctx_;
 
+/* 1 when lane i of an Embree RTCHitN (N wide) on triangle prim lies in a
+   hole of the alpha texture (tb_reference_set_alpha) */
+static int tb_alpha_hole_(const tb_reference *r, unsigned prim, const struct RTCHitN *hitn, unsigned N, unsigned i) {
+    /* u, v: the hit's barycentric weights of vertices 1 and 2 */
+    const float *hit = (const float *)(const void *)hitn;
+    double bu, bv, t[2];
+    const float *uv0, *uv1, *uv2;
+    long tx, ty;
+    int k;
+    if (!r->alpha || prim - r->alpha_first >= r->alpha_count) return 0;
+    bu = hit[3 * N + i];
+    bv = hit[4 * N + i];
+    uv0 = r->uv + 2 * r->idx[3 * prim];
+    uv1 = r->uv + 2 * r->idx[3 * prim + 1];
+    uv2 = r->uv + 2 * r->idx[3 * prim + 2];
+    for (k = 0; k < 2; k++) t[k] = (1.0 - bu - bv) * uv0[k] + bu * uv1[k] + bv * uv2[k];
+    tx = (long)floor(t[0] * r->alpha_w) % r->alpha_w;
+    ty = (long)floor(t[1] * r->alpha_h) % r->alpha_h;
+    if (tx < 0) tx += r->alpha_w;
+    if (ty < 0) ty += r->alpha_h;
+    return r->alpha[ty * r->alpha_w + tx] < r->cutoff * 255.0f;
+}
+
 /* Embree 3 context filter (rtcOccluded1 / rtcOccluded16): rejects hits on
    the receiver's triangle and on any triangle lying in the receiver's plane
    (all three vertices within the ulp bound of it, at the larger of the
@@ -455,21 +479,26 @@ static void tb_receiver_filter_(const struct RTCFilterFunctionNArguments *args) 
             if (fabs(tb_dot_(x->n, v) - x->d) > tol) in_plane = 0;
         }
         if (in_plane) { args->valid[i] = 0; continue; }
-        if (x->ref->alpha && prim - x->ref->alpha_first < x->ref->alpha_count) {
-            /* u, v: the hit's barycentric weights of vertices 1 and 2 */
-            const float *hit = (const float *)(const void *)args->hit;
-            double bu = hit[3 * args->N + i], bv = hit[4 * args->N + i], t[2];
-            const float *uv0 = x->ref->uv + 2 * x->ref->idx[3 * prim], *uv1 = x->ref->uv + 2 * x->ref->idx[3 * prim + 1];
-            const float *uv2 = x->ref->uv + 2 * x->ref->idx[3 * prim + 2];
-            long tx, ty;
-            for (k = 0; k < 2; k++) t[k] = (1.0 - bu - bv) * uv0[k] + bu * uv1[k] + bv * uv2[k];
-            tx = (long)floor(t[0] * x->ref->alpha_w) % x->ref->alpha_w;
-            ty = (long)floor(t[1] * x->ref->alpha_h) % x->ref->alpha_h;
-            if (tx < 0) tx += x->ref->alpha_w;
-            if (ty < 0) ty += x->ref->alpha_h;
-            if (x->ref->alpha[ty * x->ref->alpha_w + tx] < x->ref->cutoff * 255.0f) args->valid[i] = 0;
-        }
+        if (tb_alpha_hole_(x->ref, prim, args->hit, args->N, i)) args->valid[i] = 0;
     }
+}
+
+/* Embree 3 context filter of the exact method's primary rays
+   (tb_reference_alpha_primary): rejects hits in an alpha hole */
+static void tb_primary_alpha_filter_(const struct RTCFilterFunctionNArguments *args) {
+    const tb_xctx_ *x = (const tb_xctx_ *)(const void *)args->context;
+    unsigned i;
+    for (i = 0; i < args->N; i++) {
+        if (args->valid[i] != -1) continue;
+        if (tb_alpha_hole_(x->ref, ((const unsigned *)(const void *)args->hit)[5 * args->N + i], args->hit, args->N, i))
+            args->valid[i] = 0;
+    }
+}
+
+int tb_reference_alpha_primary(tb_reference *r, int on) {
+    if (!r || !r->alpha) return -1;
+    r->alpha_primary = on != 0;
+    return 0;
 }
 
 int tb_reference_set_alpha(tb_reference *r, const float *uv, unsigned first_tri, unsigned tri_count,
@@ -619,7 +648,7 @@ static double tb_window_depth_(const double vp[16], const double p[3]) {
 static float tb_exact_pixel_(const tb_job_ *j, int x, int y, size_t i) {
     const tb_view *v = j->view;
     double a[3], b[3], d[3], len, n[3], v0[3], p[3], den, t;
-    struct RTCIntersectContext ctx;
+    tb_xctx_ pc;
     struct RTCRayHit rh;
     int raster_hit = 0, traced_hit = 0;
     unsigned prim = 0;
@@ -633,12 +662,16 @@ static float tb_exact_pixel_(const tb_job_ *j, int x, int y, size_t i) {
         d[0] = b[0] - a[0]; d[1] = b[1] - a[1]; d[2] = b[2] - a[2];
         len = sqrt(tb_dot_(d, d));
         if (tb_normalize_(d)) {
-            rtcInitIntersectContext(&ctx);
+            rtcInitIntersectContext(&pc.ctx);
+            if (j->ref->alpha_primary) {
+                pc.ctx.filter = tb_primary_alpha_filter_;
+                pc.ref = j->ref;
+            }
             tb_ray_fill_(&rh.ray, a, d, 0.0, len);
             rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
             rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
             rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-            rtcIntersect1(j->ref->scene, &ctx, &rh);
+            rtcIntersect1(j->ref->scene, &pc.ctx, &rh);
             if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID && rh.hit.primID < j->ref->tri_count &&
                 tb_tri_normal_(j->ref, rh.hit.primID, n)) {
                 /* the double ray against the hit triangle's plane */

@@ -13,7 +13,9 @@
       double ray a + t (b - a)/|b - a| is intersected with it, so the hit
       point does not carry Embree's float t. The normal is the triangle's
       geometric normal (double cross product), turned to face the camera.
-      No hit: TB_VIS_BACKGROUND.
+      No hit: TB_VIS_BACKGROUND. Alpha-tested triangles (below) stop the
+      ray everywhere unless tb_reference_alpha_primary lets it through
+      their holes.
 
    2. Raster consistency (raster_depth given, the window depth the technique
       used). A pixel whose rasterised surface and traced surface differ is
@@ -223,9 +225,15 @@ int tb_reference_trace_exact(const tb_reference *ref, const tb_view *view, const
    (in double); the texel is the nearest one under GL_REPEAT
    (floor(u * w) mod w, row floor(v * h) mod h, row 0 first, as glTexImage2D
    takes it). alpha: w x h bytes. The arrays are copied. Primary rays do
-   not alpha-test. 0 ok, -1 bad arguments. */
+   not alpha-test (unless tb_reference_alpha_primary). 0 ok, -1 bad
+   arguments. */
 int tb_reference_set_alpha(tb_reference *ref, const float *uv, unsigned first_tri, unsigned tri_count,
                            const unsigned char *alpha, int w, int h, float cutoff);
+/* on = 1: the exact method's primary rays pass through the same holes (an
+   Embree context filter on rtcIntersect1), for a camera pass that
+   discards as the shadow pass does; 0: they hit the whole triangle (the
+   default). -1 without tb_reference_set_alpha first, or ref NULL. */
+int tb_reference_alpha_primary(tb_reference *ref, int on);
 
 /* The same for arbitrary world points (3 doubles each) and optional normals
    (3 doubles each, NULL = none); the jitter seed uses the point index. */

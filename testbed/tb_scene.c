@@ -460,6 +460,359 @@ int tb_open_world_sun(int view, int sun, sk_vec3 *light_dir) {
     return 0;
 }
 
+/* ---- the forest ---- */
+
+/* The heightfield's analytic height: a valley (flat within 80 m of the
+   origin, its sides rising as the square of the distance beyond, 35 m at
+   300 m: far hillsides the head-height views see above the near ground)
+   plus four sines, 0.25 to 2.5 m, wavelengths of 20 m to 300 m (slopes up
+   to about 0.3); only sampled at the grid vertices, the ground between
+   them is the mesh's */
+static double tb_forest_hf_(double x, double z) {
+    double r = sqrt(x * x + z * z), v = (r - 80.0) / 220.0;
+    if (v < 0) v = 0;
+    if (v > 1) v = 1;
+    return 35.0 * v * v + 2.5 * sin(0.021 * x + 0.4) * cos(0.017 * z - 0.3) +
+           1.2 * sin(0.047 * x + 0.061 * z + 1.1) + 0.5 * sin(0.13 * x - 0.11 * z + 2.0) + 0.25 * sin(0.29 * x + 0.23 * z);
+}
+
+#define TB_FOREST_CELL (2.0 * TB_FOREST_HALF / TB_FOREST_GRID)
+
+/* the mesh's height at grid vertex (i, j), rounded to float as stored */
+static float tb_forest_vertex_height_(int i, int j) {
+    return (float)tb_forest_hf_(-TB_FOREST_HALF + TB_FOREST_CELL * i, -TB_FOREST_HALF + TB_FOREST_CELL * j);
+}
+
+float tb_forest_ground_height(float x, float z) {
+    double gx = ((double)x + TB_FOREST_HALF) / TB_FOREST_CELL, gz = ((double)z + TB_FOREST_HALF) / TB_FOREST_CELL;
+    double fx, fz, ha, hb, hc, hd;
+    int i, j;
+    if (gx < 0) gx = 0;
+    if (gz < 0) gz = 0;
+    if (gx > TB_FOREST_GRID) gx = TB_FOREST_GRID;
+    if (gz > TB_FOREST_GRID) gz = TB_FOREST_GRID;
+    i = (int)floor(gx);
+    j = (int)floor(gz);
+    if (i > TB_FOREST_GRID - 1) i = TB_FOREST_GRID - 1;
+    if (j > TB_FOREST_GRID - 1) j = TB_FOREST_GRID - 1;
+    fx = gx - i;
+    fz = gz - j;
+    ha = tb_forest_vertex_height_(i, j);
+    hb = tb_forest_vertex_height_(i + 1, j);
+    hc = tb_forest_vertex_height_(i, j + 1);
+    hd = tb_forest_vertex_height_(i + 1, j + 1);
+    /* the quad's diagonal runs from (i+1, j) to (i, j+1) (tb_forest_build_ground) */
+    if (fx + fz <= 1.0) return (float)(ha + fx * (hb - ha) + fz * (hc - ha));
+    return (float)(hd + (1.0 - fx) * (hc - hd) + (1.0 - fz) * (hb - hd));
+}
+
+int tb_forest_build_ground(tb_scene *s) {
+    const uint32_t n = TB_FOREST_GRID, row = n + 1;
+    float *pos = (float *)malloc(sizeof(float) * 3 * row * row);
+    uint32_t *idx = (uint32_t *)malloc(sizeof(uint32_t) * 6 * n * n);
+    uint32_t i, j, k = 0;
+    int r;
+    if (!pos || !idx) {
+        free(pos);
+        free(idx);
+        return -1;
+    }
+    for (j = 0; j <= n; j++)
+        for (i = 0; i <= n; i++) {
+            float *p = pos + 3 * (j * row + i);
+            p[0] = (float)(-TB_FOREST_HALF + TB_FOREST_CELL * i);
+            p[1] = tb_forest_vertex_height_((int)i, (int)j);
+            p[2] = (float)(-TB_FOREST_HALF + TB_FOREST_CELL * j);
+        }
+    for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++) {
+            uint32_t a = j * row + i, b = a + 1, c = a + row, d = c + 1;
+            /* (a, c, b) and (b, c, d): counter-clockwise seen from +y */
+            idx[k++] = a; idx[k++] = c; idx[k++] = b;
+            idx[k++] = b; idx[k++] = c; idx[k++] = d;
+        }
+    r = tb_scene_add_mesh(s, "ground", pos, row * row, idx, 6 * n * n);
+    free(pos);
+    free(idx);
+    return r < 0 ? -1 : 0;
+}
+
+/* The tree in its own frame (base at the origin, +y up, 10.5 m at scale 1):
+   a hexagonal trunk, radius 0.25 m tapering to 0.15 m, from 0.5 m below
+   the base (it stands on slopes) to 6 m; a crown of leaf cards: three
+   vertical cards 6 m wide through the axis (y 3.5 to 10.5 m, 60 degrees
+   apart) and four near-horizontal ones (tilted 12 degrees) of 5.5, 4.5,
+   3.5 and 2.5 m at y = 4.5, 6.0, 7.5 and 9.0 m, each turned 50 degrees
+   from the one below. Each card maps the atlas's leaf half (v in [0, 0.5));
+   the cards' u starts differ so that they show different leaves; the
+   trunk maps one texel of the bark half. */
+#define TB_TREE_SIDES 6
+#define TB_TREE_VCARDS 3
+#define TB_TREE_HCARDS 4
+#define TB_TREE_VERTS (4 * TB_TREE_SIDES + 4 * (TB_TREE_VCARDS + TB_TREE_HCARDS))
+#define TB_TREE_INDICES (6 * TB_TREE_SIDES + 6 * (TB_TREE_VCARDS + TB_TREE_HCARDS))
+
+static void tb_set3_(float *p, double x, double y, double z) {
+    p[0] = (float)x; p[1] = (float)y; p[2] = (float)z;
+}
+
+/* one card: centre c, half axes a (along u) and b (along v), uv u0 + [0,1]
+   by [0, 0.5); appends 4 vertices and 2 triangles */
+static void tb_tree_card_(float *pos, float *uv, uint32_t *idx, uint32_t *nv, uint32_t *ni, const double c[3],
+                          const double a[3], const double b[3], double u0) {
+    static const double corner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    uint32_t base = *nv;
+    int k;
+    for (k = 0; k < 4; k++) {
+        double sa = corner[k][0], sb = corner[k][1];
+        tb_set3_(pos + 3 * (base + k), c[0] + sa * a[0] + sb * b[0], c[1] + sa * a[1] + sb * b[1],
+                 c[2] + sa * a[2] + sb * b[2]);
+        uv[2 * (base + k)] = (float)(u0 + 0.5 * (sa + 1.0));
+        /* v up to 0.499, not 0.5: the top row stays in the leaf half (a
+           vertex exactly on the boundary would sample the bark row) */
+        uv[2 * (base + k) + 1] = (float)(0.2495 * (sb + 1.0));
+    }
+    idx[(*ni)++] = base; idx[(*ni)++] = base + 1; idx[(*ni)++] = base + 2;
+    idx[(*ni)++] = base; idx[(*ni)++] = base + 2; idx[(*ni)++] = base + 3;
+    *nv += 4;
+}
+
+int tb_forest_tree(tb_scene *tree, float **uv_out) {
+    float pos[3 * TB_TREE_VERTS], uv[2 * TB_TREE_VERTS];
+    uint32_t idx[TB_TREE_INDICES], nv = 0, ni = 0, trunk_ni;
+    const double pi = 3.14159265358979323846;
+    int k;
+    if (!tree || !uv_out) return -1;
+    *uv_out = NULL;
+    for (k = 0; k < TB_TREE_SIDES; k++) {
+        double a0 = 2.0 * pi * k / TB_TREE_SIDES, a1 = 2.0 * pi * (k + 1) / TB_TREE_SIDES;
+        uint32_t b = nv;
+        int c;
+        tb_set3_(pos + 3 * b, 0.25 * cos(a0), -0.5, -0.25 * sin(a0));
+        tb_set3_(pos + 3 * (b + 1), 0.25 * cos(a1), -0.5, -0.25 * sin(a1));
+        tb_set3_(pos + 3 * (b + 2), 0.15 * cos(a1), 6.0, -0.15 * sin(a1));
+        tb_set3_(pos + 3 * (b + 3), 0.15 * cos(a0), 6.0, -0.15 * sin(a0));
+        for (c = 0; c < 4; c++) {   /* the middle of a bark texel */
+            uv[2 * (b + c)] = (float)(8.5 / TB_FOREST_ALPHA_SIZE);
+            uv[2 * (b + c) + 1] = (float)(48.5 / TB_FOREST_ALPHA_SIZE);
+        }
+        /* counter-clockwise seen from outside: angle grows toward -z */
+        idx[ni++] = b; idx[ni++] = b + 1; idx[ni++] = b + 2;
+        idx[ni++] = b; idx[ni++] = b + 2; idx[ni++] = b + 3;
+        nv += 4;
+    }
+    trunk_ni = ni;
+    for (k = 0; k < TB_TREE_VCARDS; k++) {
+        double t = pi * k / TB_TREE_VCARDS, c[3] = {0, 7.0, 0}, a[3], b[3] = {0, 3.5, 0};
+        a[0] = 3.0 * cos(t); a[1] = 0; a[2] = 3.0 * sin(t);
+        tb_tree_card_(pos, uv, idx, &nv, &ni, c, a, b, 0.31 * k);
+    }
+    for (k = 0; k < TB_TREE_HCARDS; k++) {
+        double half = 0.5 * (5.5 - 1.0 * k), t = (50.0 * k) * pi / 180.0, tilt = 12.0 * pi / 180.0;
+        double c[3] = {0, 4.5 + 1.5 * k, 0}, a[3], b[3];
+        a[0] = half * cos(t); a[1] = 0; a[2] = half * sin(t);
+        /* b: perpendicular in the horizontal plane, tilted up */
+        b[0] = -half * sin(t) * cos(tilt); b[1] = half * sin(tilt); b[2] = half * cos(t) * cos(tilt);
+        tb_tree_card_(pos, uv, idx, &nv, &ni, c, a, b, 0.17 + 0.23 * k);
+    }
+    if (tb_scene_add_mesh(tree, "trunk", pos, 4 * TB_TREE_SIDES, idx, trunk_ni) < 0) return -1;
+    {
+        uint32_t crown[TB_TREE_INDICES], i;
+        for (i = trunk_ni; i < ni; i++) crown[i - trunk_ni] = idx[i] - 4 * TB_TREE_SIDES;
+        if (tb_scene_add_mesh(tree, "crown", pos + 3 * 4 * TB_TREE_SIDES, nv - 4 * TB_TREE_SIDES, crown,
+                              ni - trunk_ni) < 0)
+            return -1;
+    }
+    *uv_out = (float *)malloc(sizeof uv);
+    if (!*uv_out) return -1;
+    memcpy(*uv_out, uv, sizeof uv);
+    return 0;
+}
+
+/* xorshift32 of a 32-bit key: the alpha atlas's per-texel and per-cell
+   hashes */
+static uint32_t tb_hash_(uint32_t k) {
+    uint32_t st = k * 0x9E3779B1u + 0x7F4A7C15u;
+    tb_xorshift_(&st);
+    tb_xorshift_(&st);
+    return tb_xorshift_(&st);
+}
+
+void tb_forest_alpha(unsigned char *alpha) {
+    const int n = TB_FOREST_ALPHA_SIZE;
+    int x, y;
+    for (y = 0; y < n; y++)
+        for (x = 0; x < n; x++) {
+            unsigned char a = 255;
+            if (y < n / 2) {
+                /* the crown's outline: an ellipse over the card, then
+                   clusters of 4 x 4 texels (62% kept) with single texels
+                   knocked out (15%) */
+                double ex = (x + 0.5 - 0.5 * n) / (0.5 * n), ey = (y + 0.5 - 0.25 * n) / (0.25 * n);
+                uint32_t cell = tb_hash_((uint32_t)((y / 4) * 1024 + x / 4)), texel = tb_hash_((uint32_t)(y * n + x) + 65536u);
+                a = (ex * ex + ey * ey <= 1.0 && cell % 100u < 62u && texel % 100u >= 15u) ? 255 : 0;
+            }
+            alpha[y * n + x] = a;
+        }
+}
+
+/* the walking views: eye (x, z), heading (degrees from -z toward +x) and
+   pitch (degrees down) */
+static const float tb_forest_views_[TB_FOREST_VIEWS][4] = {
+    {0, 0, 10, 4}, {9, -12, 95, 6}, {-14, 6, 200, 3}, {18, 14, 300, 5}, {-6, -24, 160, 4}};
+
+static void tb_forest_heading_(int view, double *hx, double *hz) {
+    double yaw = tb_forest_views_[view][2] * 3.14159265358979 / 180.0;
+    *hx = sin(yaw);
+    *hz = -cos(yaw);
+}
+
+/* instance transform of a tree (see tb_forest_instances): scaled rotation
+   about y then the offset, in float as the vertex hook computes it */
+static void tb_forest_apply_(const float *t, const float *p, float *out) {
+    out[0] = t[4] * p[0] - t[5] * p[2] + t[0];
+    out[1] = t[3] * p[1] + t[1];
+    out[2] = t[5] * p[0] + t[4] * p[2] + t[2];
+}
+
+void tb_forest_instance_point(const float instance[TB_FOREST_INSTANCE_FLOATS], const float p[3], float out[3]) {
+    tb_forest_apply_(instance, p, out);
+}
+
+void tb_forest_instances(float *inst) {
+    uint32_t st = 0x2545F491u;
+    int n = 0;
+    while (n < TB_FOREST_TREES) {
+        float x, z, scale, yaw;
+        int k, ok = 1;
+        /* a sixth within 60 m of the origin (where the views walk), a sixth
+           from 60 to 150 m, the rest on the valley's sides, 150 to 285 m
+           (seen above the near ground and along the trails) */
+        if (n % 6 == 0) tb_annulus_point_(&st, 0, 60, &x, &z);
+        else if (n % 6 == 1) tb_annulus_point_(&st, 60, 150, &x, &z);
+        else tb_annulus_point_(&st, 150, 285, &x, &z);
+        scale = tb_uniform_(&st, 0.7f, 1.3f);
+        yaw = tb_uniform_(&st, 0.0f, 6.28318531f);
+        /* the trails: no trunk within 3.5 m of a view's eye nor of the
+           250 m ahead of it; none within 3 m of another trunk */
+        for (k = 0; k < TB_FOREST_VIEWS && ok; k++) {
+            double hx, hz, dx = x - tb_forest_views_[k][0], dz = z - tb_forest_views_[k][1], along, across;
+            tb_forest_heading_(k, &hx, &hz);
+            along = dx * hx + dz * hz;
+            across = fabs(dz * hx - dx * hz);
+            if (along > 250.0) along -= 250.0;
+            else if (along > 0.0) along = 0.0;
+            if (along * along + across * across < 3.5 * 3.5) ok = 0;
+        }
+        for (k = 0; k < n && ok; k++) {
+            float dx = x - inst[TB_FOREST_INSTANCE_FLOATS * k], dz = z - inst[TB_FOREST_INSTANCE_FLOATS * k + 2];
+            if (dx * dx + dz * dz < 3.0f * 3.0f) ok = 0;
+        }
+        if (!ok) continue;
+        {
+            float *t = inst + TB_FOREST_INSTANCE_FLOATS * n;
+            t[0] = x;
+            t[1] = tb_forest_ground_height(x, z);
+            t[2] = z;
+            t[3] = scale;
+            t[4] = (float)(scale * cos(yaw));
+            t[5] = (float)(scale * sin(yaw));
+        }
+        n++;
+    }
+}
+
+int tb_scene_build_forest(tb_scene *s) {
+    tb_scene tree;
+    float *uv = NULL, *inst, *pos;
+    uint32_t nv, k, i;
+    char name[TB_NAME_MAX];
+    int r = 0;
+    if (tb_forest_build_ground(s) != 0) return -1;
+    tb_scene_init(&tree);
+    inst = (float *)malloc(sizeof(float) * TB_FOREST_INSTANCE_FLOATS * TB_FOREST_TREES);
+    if (!inst || tb_forest_tree(&tree, &uv) != 0) {
+        free(inst);
+        tb_scene_free(&tree);
+        return -1;
+    }
+    tb_forest_instances(inst);
+    nv = tree.vertex_count;
+    pos = (float *)malloc(sizeof(float) * 3 * nv);
+    for (k = 0; pos && k < TB_FOREST_TREES && r == 0; k++) {
+        for (i = 0; i < nv; i++) tb_forest_apply_(inst + TB_FOREST_INSTANCE_FLOATS * k, tree.positions + 3 * i, pos + 3 * i);
+        snprintf(name, sizeof name, "tree%u", (unsigned)k);
+        if (tb_scene_add_mesh(s, name, pos, nv, tree.indices, tree.index_count) < 0) r = -1;
+    }
+    if (!pos) r = -1;
+    free(pos);
+    free(inst);
+    free(uv);
+    tb_scene_free(&tree);
+    return r;
+}
+
+int tb_forest_uv(const tb_scene *s, float **uv_out, unsigned *first_tri, unsigned *tri_count) {
+    tb_scene tree;
+    float *tuv = NULL, *uv;
+    uint32_t ground_nv = (TB_FOREST_GRID + 1) * (TB_FOREST_GRID + 1), i;
+    if (!s || !uv_out || !first_tri || !tri_count) return -1;
+    *uv_out = NULL;
+    tb_scene_init(&tree);
+    if (tb_forest_tree(&tree, &tuv) != 0) {
+        tb_scene_free(&tree);
+        return -1;
+    }
+    /* the layout tb_scene_build_forest makes: the ground, then every tree */
+    if (s->object_count != 1 + TB_FOREST_TREES || s->vertex_count != ground_nv + TB_FOREST_TREES * tree.vertex_count ||
+        s->index_count != s->objects[0].index_count + TB_FOREST_TREES * tree.index_count) {
+        free(tuv);
+        tb_scene_free(&tree);
+        return -1;
+    }
+    uv = (float *)calloc(2 * (size_t)s->vertex_count, sizeof(float));
+    if (uv)
+        for (i = 0; i < TB_FOREST_TREES * tree.vertex_count; i++) {
+            uv[2 * (ground_nv + i)] = tuv[2 * (i % tree.vertex_count)];
+            uv[2 * (ground_nv + i) + 1] = tuv[2 * (i % tree.vertex_count) + 1];
+        }
+    *first_tri = s->objects[0].index_count / 3;
+    *tri_count = TB_FOREST_TREES * tree.index_count / 3;
+    free(tuv);
+    tb_scene_free(&tree);
+    *uv_out = uv;
+    return uv ? 0 : -1;
+}
+
+int tb_forest_view(int view, sk_vec3 *eye, sk_vec3 *target) {
+    double hx, hz, pitch;
+    float x, z, y;
+    if (view < 0 || view >= TB_FOREST_VIEWS || !eye || !target) return -1;
+    x = tb_forest_views_[view][0];
+    z = tb_forest_views_[view][1];
+    y = tb_forest_ground_height(x, z) + 1.7f;
+    pitch = tb_forest_views_[view][3] * 3.14159265358979 / 180.0;
+    tb_forest_heading_(view, &hx, &hz);
+    *eye = tb_v3_(x, y, z);
+    *target = tb_v3_((float)(x + 10.0 * hx * cos(pitch)), (float)(y - 10.0 * sin(pitch)),
+                     (float)(z + 10.0 * hz * cos(pitch)));
+    return 0;
+}
+
+int tb_forest_sun(int view, int sun, sk_vec3 *light_dir) {
+    static const float elevation[3] = {45, 20, 8};
+    double el, hx, hz;
+    if (view < 0 || view >= TB_FOREST_VIEWS || sun < 0 || sun >= TB_FOREST_SUNS || !light_dir) return -1;
+    tb_forest_heading_(view, &hx, &hz);
+    if (sun & 1) {   /* ahead of the viewer: the light travels toward the camera */
+        hx = -hx;
+        hz = -hz;
+    }
+    el = elevation[sun / 2] * 3.14159265358979 / 180.0;
+    *light_dir = tb_v3_((float)(hx * cos(el)), (float)(-sin(el)), (float)(hz * cos(el)));
+    return 0;
+}
+
 int tb_scene_build(tb_scene *s, const char *name) {
     if (!name) return -1;
     if (strcmp(name, "ground-boxes") == 0) return tb_scene_build_ground_boxes(s);
@@ -468,6 +821,7 @@ int tb_scene_build(tb_scene *s, const char *name) {
     if (strcmp(name, "room") == 0) return tb_scene_build_room(s);
     if (strcmp(name, "contact") == 0) return tb_scene_build_contact(s);
     if (strcmp(name, "open-world") == 0) return tb_scene_build_open_world(s);
+    if (strcmp(name, "forest") == 0) return tb_scene_build_forest(s);
     return -1;
 }
 

@@ -158,8 +158,82 @@ int tb_scene_build_open_world(tb_scene *s);
 int tb_open_world_view(int view, sk_vec3 *eye, sk_vec3 *target);
 int tb_open_world_sun(int view, int sun, sk_vec3 *light_dir);
 
+/* "forest": instanced, alpha-tested trees over uneven ground, a camera
+   walking through (the regime of foliage: shadows full of holes, near and
+   far). Deterministic (fixed xorshift sequences and integer hashes), built
+   in code:
+     "ground"   a heightfield 600 m x 600 m (x,z in [-300,300]), 150 x 150
+                quads of 4 m (45000 triangles): a valley, flat within 80 m
+                of the origin, its sides rising to 35 m at 300 m, plus
+                bumps of up to 4.5 m (tb_forest_ground_height: the mesh's
+                own height, between vertices too);
+     "tree0".."tree599"  one tree (tb_forest_tree, 26 triangles) placed by
+                tb_forest_instances: 100 within 60 m of the origin, 100 from
+                60 to 150 m, 400 on the valley's sides (150 to 285 m); none
+                on the views' trails (3.5 m either side of each eye and of
+                the 250 m ahead of it) nor within 3 m of another; scale
+                0.7-1.3 (7-14 m high), any yaw.
+   Bounds [-300,-4.0,-300]..[300,45.4,300]; 45000 + 600 * 26 = 60600
+   triangles. The leaf cards are alpha-tested casters: tb_forest_alpha is
+   their texture, tb_forest_uv their uv in this scene (for
+   tb_reference_set_alpha); a GL renderer draws the trees instanced from
+   tb_forest_tree and tb_forest_instances (tb_gl_scene.h:
+   tb_gl_instanced). tb_forest_view / tb_forest_sun give its views. */
+#define TB_FOREST_HALF 300.0      /* the ground's half side, m */
+#define TB_FOREST_GRID 150        /* quads per side */
+#define TB_FOREST_TREES 600
+#define TB_FOREST_ALPHA_SIZE 64   /* the alpha atlas is 64 x 64 texels */
+#define TB_FOREST_INSTANCE_FLOATS 6
+int tb_scene_build_forest(tb_scene *s);
+/* appends the forest's ground alone (object "ground") */
+int tb_forest_build_ground(tb_scene *s);
+/* height of the ground mesh at (x, z) (clamped to the ground's square) */
+float tb_forest_ground_height(float x, float z);
+/* The tree in its own frame, appended to *tree: object "trunk" (a
+   hexagonal prism from y = -0.5 to 6 m, 12 triangles) then "crown" (seven
+   leaf cards, 14 triangles: three vertical 6 x 7 m through the axis and
+   four near-horizontal); *uv gets 2 floats per vertex of those two objects
+   (malloc'd; free it): the cards cover the atlas's leaf half, the trunk one
+   bark texel. 0 ok, -1 on allocation failure. */
+int tb_forest_tree(tb_scene *tree, float **uv);
+/* The alpha atlas, TB_FOREST_ALPHA_SIZE^2 bytes, row 0 first (as
+   glTexImage2D takes it; v = 0 is row 0): rows 0-31 leaves (an ellipse of
+   4 x 4-texel clusters, 62% of them kept, with single texels knocked out:
+   40.2% of the leaf half opaque), rows 32-63 bark (all 255). The leaves'
+   cutoff is 0.5. */
+void tb_forest_alpha(unsigned char *alpha);
+/* The trees' placements, TB_FOREST_INSTANCE_FLOATS floats each for
+   TB_FOREST_TREES trees: offset x, y, z (the ground's height there), then
+   s, s cos(yaw), s sin(yaw) for scale s. A tree point p goes to
+       (c p.x - n p.z + x,  s p.y + y,  n p.x + c p.z + z),  c = s cos, n = s sin
+   (tb_forest_instance_point; the GLSL of tb_gl_scene.h's hook is the same
+   expression in float). */
+void tb_forest_instances(float *instances);
+void tb_forest_instance_point(const float instance[TB_FOREST_INSTANCE_FLOATS], const float p[3], float out[3]);
+/* For a scene made by tb_scene_build_forest alone: the uv of every vertex
+   (malloc'd, 2 floats a vertex, 0 on the ground) and the alpha-tested
+   triangle range (every tree's; the trunks sample opaque bark), the
+   arguments tb_reference_set_alpha takes. 0 ok, -1 for another scene's
+   layout or on allocation failure. */
+int tb_forest_uv(const tb_scene *s, float **uv, unsigned *first_tri, unsigned *tri_count);
+/* The forest's views: TB_FOREST_VIEWS eyes at head height (1.7 m above
+   the ground mesh) within 30 m of the origin, among the trees, each
+   looking along its trail 3-6 degrees below the horizon;
+   the intended projection is 60 degrees vertical, near 0.3 m, far
+   TB_FOREST_FAR. TB_FOREST_SUNS suns per view, relative to its heading:
+   elevations 45, 20 and 8 degrees, each once behind the viewer (the light
+   travels along the view's horizontal direction) and once ahead of it
+   (against it: the light travels toward the camera). 0, or -1 for an index
+   out of range. light_dir is the light's unit travel direction. */
+#define TB_FOREST_VIEWS 5
+#define TB_FOREST_SUNS 6
+#define TB_FOREST_FAR 400.0f
+int tb_forest_view(int view, sk_vec3 *eye, sk_vec3 *target);
+int tb_forest_sun(int view, int sun, sk_vec3 *light_dir);
+
 /* builds one of the standard scenes by name: "ground-boxes", "fence",
-   "terrace", "room", "contact", "open-world"; -1 for an unknown name */
+   "terrace", "room", "contact", "open-world", "forest"; -1 for an unknown
+   name */
 int tb_scene_build(tb_scene *s, const char *name);
 
 #ifdef __cplusplus

@@ -26,6 +26,7 @@
 #include "shadowkit_gl.h"
 #include "sk_test.h"
 #include "gl_test_util.h"
+#include "gt_bands.h"
 
 #include <stdio.h>
 
@@ -34,52 +35,17 @@
 #define FOVY 1.0471976f   /* 60 degrees */
 #define ZN 0.5f
 #define ZF 1000.0f
-#define BANDS 4
-
-static const double band_edge[BANDS + 1] = {0, 10, 50, 200, 1e30};
-static const char *band_name[BANDS] = {"0-10", "10-50", "50-200", "200+"};
-
 /* pixels one shadow texel covers, counted over the frames (see
    footprint_add): shares above 1, 2 and 4 pixels */
 typedef struct footprint { double over[3], counted; } footprint;
 
-/* pooled counts: wrong and reference-shadow pixels, overall and per band */
+/* the pooled counts (gt_bands.h), the texels, the failed frames */
 typedef struct pool {
-    double wrong, shadow, false_light;
-    double band_wrong[BANDS], band_shadow[BANDS];
+    gt_band_pool b;
     double texels;
-    int frames, failed;
+    int failed;
     footprint fp;             /* single maps and cascades only (fp.counted 0 otherwise) */
 } pool;
-
-static double pool_pct(double wrong, double shadow) { return shadow > 0 ? 100.0 * wrong / shadow : 0.0; }
-
-static int band_of(double depth) {
-    int b;
-    for (b = 0; b < BANDS; b++)
-        if (depth < band_edge[b + 1]) return b;
-    return BANDS - 1;
-}
-
-static void pool_add(pool *p, const gt_env *e, const float *ref, const float *res) {
-    size_t i;
-    for (i = 0; i < e->n; i++) {
-        int rc = tb_visibility_class(ref[i]), wrong, b;
-        if (rc < 0) continue;
-        b = band_of(gt_view_depth(e, i));
-        wrong = !(res[i] >= 0.0f) || tb_visibility_class(res[i]) != rc;
-        if (rc == 0) {
-            p->shadow += 1;
-            p->band_shadow[b] += 1;
-            if (wrong) p->false_light += 1;
-        }
-        if (wrong) {
-            p->wrong += 1;
-            p->band_wrong[b] += 1;
-        }
-    }
-    p->frames++;
-}
 
 static skgl_camera ow_camera(int view) {
     sk_vec3 eye, target;
@@ -134,11 +100,8 @@ static int ow_frame(gt_env *e, skgl_shadow *s, const method *m, const skgl_camer
 }
 
 static void print_pool(const char *name, const pool *p) {
-    int b;
-    printf("  %-20s %6.2f%%  (false light %6.2f%%)  bands", name, pool_pct(p->wrong, p->shadow),
-           pool_pct(p->false_light, p->shadow));
-    for (b = 0; b < BANDS; b++) printf("  %s %6.2f", band_name[b], pool_pct(p->band_wrong[b], p->band_shadow[b]));
-    printf("  texels %.1fM", p->texels / (double)(p->frames ? p->frames : 1) / 1e6);
+    gt_band_pool_print(name, &p->b);
+    printf("  texels %.1fM", p->texels / (double)(p->b.frames ? p->b.frames : 1) / 1e6);
     if (p->fp.counted > 0)
         printf("  texel > 1/2/4 px %5.1f%% %5.1f%% %5.1f%%", 100.0 * p->fp.over[0] / p->fp.counted,
                100.0 * p->fp.over[1] / p->fp.counted, 100.0 * p->fp.over[2] / p->fp.counted);
@@ -287,11 +250,11 @@ static void test_open_world(void) {
                     continue;
                 }
                 st = skgl_shadow_stats(sh[k]);
-                pool_add(&pools[k], &e, ref, res);
-                pool_add(&one, &e, ref, res);
+                gt_band_pool_add(&pools[k].b, &e, ref, res);
+                gt_band_pool_add(&one.b, &e, ref, res);
                 pools[k].texels += st->texels;
                 if (k != M_LSPSM && k != M_RMSM && k != M_RMSM64K) footprint_add(&pools[k].fp, &e, sh[k], ref);
-                frame_err[k][f] = pool_pct(one.wrong, one.shadow);
+                frame_err[k][f] = gt_pool_pct(one.b.wrong, one.b.shadow);
                 if (getenv("SK_GL_TEST_IMAGES")) {
                     char nm[96];
                     snprintf(nm, sizeof nm, "open-world-v%d-s%d-%d", v, s, k);
@@ -302,7 +265,7 @@ static void test_open_world(void) {
                 if (verbose())
                     printf("view %d sun %d %-20s %7.2f%% (shadow %6.0f px) slide %.1f n %.1f map %dx%d pages %d/%d "
                            "min level %d\n",
-                           v, s, methods[k].name, frame_err[k][f], one.shadow, st->psm_slide, st->warp_n[0],
+                           v, s, methods[k].name, frame_err[k][f], one.b.shadow, st->psm_slide, st->warp_n[0],
                            st->map_width, st->map_height, st->pages_rendered, st->pages_requested, st->rmsm_min_level);
             }
         }
@@ -314,10 +277,10 @@ static void test_open_world(void) {
     for (k = 0; k < METHODS; k++) SK_CHECK_MSG(pools[k].failed == 0, "%s: %d frames failed", methods[k].name,
                                                pools[k].failed);
     {
-        double std = pool_pct(pools[M_STD2048].wrong, pools[M_STD2048].shadow);
-        double pssm = pool_pct(pools[M_PSSM].wrong, pools[M_PSSM].shadow);
-        double lis = pool_pct(pools[M_LISPSM].wrong, pools[M_LISPSM].shadow);
-        double psm = pool_pct(pools[M_PSM].wrong, pools[M_PSM].shadow);
+        double std = gt_pool_pct(pools[M_STD2048].b.wrong, pools[M_STD2048].b.shadow);
+        double pssm = gt_pool_pct(pools[M_PSSM].b.wrong, pools[M_PSSM].b.shadow);
+        double lis = gt_pool_pct(pools[M_LISPSM].b.wrong, pools[M_LISPSM].b.shadow);
+        double psm = gt_pool_pct(pools[M_PSM].b.wrong, pools[M_PSM].b.shadow);
         /* the regime the papers were written for: at standard 2048^2's
            texels, PSSM 0.13x its error (1.51 / 11.95), LiSPSM 0.13x
            (1.52), PSM 0.26x (3.16; 0.86x with the scene box as casters).
@@ -330,9 +293,9 @@ static void test_open_world(void) {
            footprint: pooled 0.22x standard 2048's (0.36x with the area's
            square root), 50-200 m 7.90% (22.78%), and the error falls as
            the virtual map grows (65536^2: 1.38%) */
-        double rmsm = pool_pct(pools[M_RMSM].wrong, pools[M_RMSM].shadow);
-        double rmsm64 = pool_pct(pools[M_RMSM64K].wrong, pools[M_RMSM64K].shadow);
-        double rmsm_mid = pool_pct(pools[M_RMSM].band_wrong[2], pools[M_RMSM].band_shadow[2]);
+        double rmsm = gt_pool_pct(pools[M_RMSM].b.wrong, pools[M_RMSM].b.shadow);
+        double rmsm64 = gt_pool_pct(pools[M_RMSM64K].b.wrong, pools[M_RMSM64K].b.shadow);
+        double rmsm_mid = gt_pool_pct(pools[M_RMSM].b.band_wrong[2], pools[M_RMSM].b.band_shadow[2]);
         SK_CHECK_MSG(rmsm <= 0.3 * std, "RMSM pooled %.2f%% against standard 2048's %.2f%%", rmsm, std);
         SK_CHECK_MSG(rmsm_mid <= 11.0, "RMSM 50-200 m %.2f%%", rmsm_mid);
         SK_CHECK_MSG(rmsm64 <= 0.7 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
