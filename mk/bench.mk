@@ -21,10 +21,22 @@
 
 BENCH_BIN  := $(BUILD)/bench/bench
 BENCH_ARGS ?=
+# Both benches are built from objects: their own, the shared code
+# (bench/bench_common.c: scenes, views, GL context, reference, output
+# helpers; bench/bench_texel.c: the texel-to-pixel figure) and shadowkit's
+# implementation compiled once (the GL tests' build/obj/gl/shared_impl_gl.o,
+# mk/testbed.mk).
+BENCH_OBJ    := $(BUILD)/bench/obj
+BENCH_HDRS   := shadowkit.h shadowkit_gl.h bench/bench_common.h bench/bench_texel.h
+BENCH_SHARED := $(BENCH_OBJ)/bench_common.o $(BENCH_OBJ)/bench_texel.o $(BUILD)/obj/gl/shared_impl_gl.o
 
-$(BENCH_BIN): bench/bench.c shadowkit.h shadowkit_gl.h $$(TESTBED_LIB) | deps-gl
+$(BENCH_OBJ)/%.o: bench/%.c $(BENCH_HDRS) | deps-gl
 	$(MKDIR)
-	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) $< -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
+	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) -Ibench $(DEPFLAGS) -c $< -o $@
+
+$(BENCH_BIN): $(BENCH_OBJ)/bench.o $(BENCH_SHARED) $$(TESTBED_LIB) | deps-gl
+	$(MKDIR)
+	$(CC) $(BENCH_OBJ)/bench.o $(BENCH_SHARED) -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
 
 .PHONY: bench bench-demo bench-plot
 # deps-demo brings gnuplot (scripts/deps.sh demo)
@@ -60,9 +72,9 @@ DEMO_TARGETS += bench-demo
 BENCH_CACHE_BIN  := $(BUILD)/bench/bench_cache
 BENCH_CACHE_ARGS ?=
 
-$(BENCH_CACHE_BIN): bench/bench_cache.c shadowkit.h shadowkit_gl.h $$(TESTBED_LIB) | deps-gl
+$(BENCH_CACHE_BIN): $(BENCH_OBJ)/bench_cache.o $(BENCH_SHARED) $$(TESTBED_LIB) | deps-gl
 	$(MKDIR)
-	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) $< -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
+	$(CC) $(BENCH_OBJ)/bench_cache.o $(BENCH_SHARED) -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
 
 .PHONY: bench-cache bench-cache-demo
 bench-cache: $(BENCH_CACHE_BIN) | deps-demo
