@@ -16,6 +16,11 @@
      errors against the reference's shadow: the lit majority of a frame
      dilutes the covered %, so the charts plot the shadow-area error.
      Area-light rows: tb_metric_soft() (`error`) and tb_metric_penumbra().
+     Directional rows also get the texel-to-pixel figure (bench_texel.h:
+     Ferko 2013's measure, how many pixels one texel of the map each pixel
+     samples spans) and the shadow-area error by view-depth band; each
+     view of a scene also gets a floor row, the error of an over-resolved
+     map (floor_runs), drawn on its chart as the limit.
 
    Output (everything under --out, default out/)
      bench.csv                  one row per run, the columns (the first 14
@@ -24,10 +29,13 @@
        method,params,scene,view,width,height,error_kind,error,texels,passes,
        shadow_ms,analysis_ms,total_ms,device,shadow_area_pct,false_shadow_pct,
        false_light_pct,edge_mean_px,edge_p95_px,covered_pct,penumbra_mae,
-       penumbra_max,umbra_mae,lit_mae,excluded_px
+       penumbra_max,umbra_mae,lit_mae,excluded_px,texel_over1_pct,
+       texel_over2_pct,texel_over4_pct,texel_median_px,area_0_10_pct,
+       area_10_50_pct,area_50_200_pct,area_200_pct
        method     standard | standard-stable | pssm | psm | lispsm |
                   lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
-                  cube-naive | cube | vsdct (point lights, "room")
+                  cube-naive | cube | vsdct (point lights, "room") |
+                  floor (the limit: params say which over-resolved map)
                   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
        error_kind hard_pct (directional and point lights, the walk) or
@@ -69,6 +77,17 @@
        every row:
        excluded_px       reference pixels marked back-facing (-3) or
                          silhouette (-4): left out of every denominator
+       directional rows only (empty on point and area-light rows):
+       texel_over1_pct,  % of the shaded pixels (covered by the reference,
+       texel_over2_pct,  looking up a map) whose shadow texel spans more
+       texel_over4_pct   than 1, 2, 4 pixels (tb_texel_footprint: the
+                         bounding box of the pixel's patch in the map it
+                         samples, Ferko 2013 Sec. 3.2)
+       texel_median_px   the median of that footprint, pixels
+       area_0_10_pct ..  the shadow-area error within 0-10, 10-50, 50-200
+       area_200_pct      and 200+ scene units (metres in the open world) of
+                         view depth (tb_metric_shadow_bands); empty where
+                         the band holds no reference shadow
      bench-data/<scene>.*.dat   the chart data: per configuration the mean
                                 shadow_area_pct (soft: penumbra_mae) over the
                                 views where it is defined and the mean
@@ -81,6 +100,15 @@
                                 in both time and error) drawn as a staircase
                                 through circled points
      bench-data/sweep.txt       repeat count, sweep, views, runs, device, timing
+     bench-limit.txt            per chart: the floor, then every configuration
+                                in order of time with its error, its
+                                distance from the floor and its texel
+                                figures (means over the views); the
+                                companion table of the charts
+     bench-bands.txt            per scene and configuration: the shadow-area
+                                error by view-depth band, pooled over the
+                                views (sums of wrong and of shadow pixels),
+                                the floor's included
      bench/<scene>-<view>-*.png with --images: a shaded picture of the
                                 reference and the error image of the first
                                 configuration (tb_image_write_error colours)
@@ -94,7 +122,8 @@
      procedural scenes run, and stderr says so. Procedural (testbed):
      ground-boxes, fence, terrace, and open-world (2 km, a camera at
      head height, far plane 1000 m: the regime of cascades, warps and
-     virtual maps; its own views, see make_open_world_views). One
+     virtual maps; its own views, see make_open_world_views). The scenes
+     are bench_common.c's bench_scene_table, one entry a scene. One
      directional light per scene; and the "room" with a point light for the omnidirectional methods (see
      point_bench: cube-naive, cube, vsdct).
 
@@ -127,7 +156,10 @@
      build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
                        [--only SCENE[,SCENE..]] [--views N] [--images]
                        [--views-only] [--gp FILE] [--plot-only] [--dry-run]
+                       [--methods M[,M..]] [--no-floor]
      --quick      the small sweep of `make demo` (also SK_BENCH_QUICK=1)
+     --methods    only these methods of the directional sweep (bench_methods)
+     --no-floor   no floor rows (two over-resolved maps a view)
      --plot-only  redraw the charts from an existing OUT/bench.csv
      --dry-run    print the sweep (configurations, runs) and exit
      --help       all options
@@ -560,9 +592,9 @@ static int plot_read(const char *csv, plot_data *d) {
     memset(d, 0, sizeof *d);
     if (!f) { fprintf(stderr, "bench: cannot read %s: %s\n", csv, strerror(errno)); return -1; }
     if (!fgets(line, sizeof line, f) || strncmp(line, BENCH_CSV_HEADER, strlen(BENCH_CSV_HEADER)) != 0) {
-        fprintf(stderr, "bench: %s does not start with the bench header (%s); one without shadow_area_pct and "
-                        "the columns after it comes from an older bench: run the bench again\n", csv,
-                BENCH_CSV_HEADER);
+        fprintf(stderr, "bench: %s does not start with the bench header (%s); one without the last columns "
+                        "(texel_over1_pct .. area_200_pct, or shadow_area_pct .. in an older one) comes from an older "
+                        "bench: run the bench again\n", csv, BENCH_CSV_HEADER);
         fclose(f);
         return -1;
     }
@@ -764,7 +796,8 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
     fprintf(g, "\nnviews = %d\nrepeat = %d\nlogy = %d\nwidth = %d\nheight = %d\n", maxn, repeat, logy, BENCH_W, BENCH_H);
     fprintf(g, "soft = %d\n", soft);
     fprintf(g, "tmin = %g\ntmax = %g\nemin = %g\nemax = %g\n", tmin, tmax, emin, emax);
-    fprintf(g, "floor = %g\n", floor);
+    fprintf(g, "floor = %g\nfloor_texel = %g\n", floor,
+            d->floor_texel_n[si] ? d->floor_texel[si] / d->floor_texel_n[si] : -1.0);
     fclose(g);
     snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->gp);
     if (system(cmd) != 0) {
@@ -1759,7 +1792,7 @@ static void bands_line(FILE *t, const char *method, const char *params, const ru
         n++;
     }
     if (n == 0) return;
-    fprintf(t, "  %-12s %-52s %8.3f", method, params, ts ? 100.0 * (double)tw / (double)ts : 0.0);
+    fprintf(t, "  %-15s %-52s %8.3f", method, params, ts ? 100.0 * (double)tw / (double)ts : 0.0);
     for (b = 0; b < BENCH_BANDS; b++)
         if (sh[b]) fprintf(t, " %8.3f", 100.0 * (double)wr[b] / (double)sh[b]);
         else fprintf(t, " %8s", "-");
@@ -1903,7 +1936,7 @@ int main(int argc, char **argv) {
                        "camera (scene units: metres in the open world), pooled over the views: the sums of wrong and "
                        "of shadow pixels; \"-\": no reference shadow in that band; floor: the over-resolved map "
                        "(bench-limit.txt)\n# device %s\n", B.renderer);
-        fprintf(bands, "  %-12s %-52s %8s", "method", "params", "all");
+        fprintf(bands, "  %-15s %-52s %8s", "method", "params", "all");
         for (v = 0; v < BENCH_BANDS; v++) fprintf(bands, " %8s", band_name[v]);
         fputc('\n', bands);
     }

@@ -144,7 +144,7 @@ const int bench_scene_count = (int)(sizeof bench_scene_table / sizeof bench_scen
 int bench_scenes(const char *prog, unsigned in, const char *scenes_dir, const char *only, bench_scene_def *defs,
                  int cap, int *shared) {
     int i, n = 0, have_dir = scenes_dir && dir_exists(scenes_dir);
-    *shared = 0;
+    *shared = have_dir;
     if (!have_dir && scenes_dir)
         fprintf(stderr, "%s: %s not found: PROCEDURAL SCENES ONLY; --scenes DIR points elsewhere\n", prog,
                 scenes_dir);
@@ -163,7 +163,6 @@ int bench_scenes(const char *prog, unsigned in, const char *scenes_dir, const ch
             fprintf(stderr, "%s: %s is missing: scene %s skipped\n", prog, d->path, d->name);
             continue;
         }
-        if (e->file) *shared = 1;
         n++;
     }
     return n;

@@ -81,8 +81,8 @@ typedef struct bench_scene_def {
 } bench_scene_def;
 
 /* The table's scenes with flag `in` selected by `only`, in table order,
-   into defs (at most cap): the shared ones when scenes_dir exists
-   (*shared = 1; a missing file is said on stderr and skipped), else
+   into defs (at most cap): the shared ones when the folder scenes_dir
+   exists (*shared = 1; a missing file is said on stderr and skipped), else
    procedural scenes only (said on stderr unless scenes_dir is NULL: the
    procedural ones asked for). Returns the count. */
 int bench_scenes(const char *prog, unsigned in, const char *scenes_dir, const char *only, bench_scene_def *defs,

@@ -1,17 +1,22 @@
 # mk/bench.mk - the speed-vs-accuracy bench (bench/bench.c; included by the Makefile).
 #   make bench        full sweep of every shadowkit_gl.h method (184 configurations,
-#                     6 scenes, 3 views, plus the LSPSM walk; about 20 minutes on
+#                     7 scenes, 3 views, plus the LSPSM walk and the floor; about 20 minutes on
 #                     2 cores under llvmpipe): out/bench.csv, out/bench-walk.{csv,txt}
 #                     and out/pareto-<scene>.png (gnuplot, bench/pareto.gp)
 #   make bench-demo   the quick sweep (33 configurations; about 3 minutes) for `make demo`
 #   make bench-plot   redraw the charts from an existing out/bench.csv (one written
-#                     by this bench: an older CSV without shadow_area_pct is refused)
+#                     by this bench: an older CSV without the texel and band columns
+#                     is refused)
 # Both sweeps write the same files: the last one run is what out/ holds.
 # bench.csv: DESIGN.md's 14 columns, then (appended) the hard-shadow scores
 # shadow_area_pct,false_shadow_pct,false_light_pct,edge_mean_px,edge_p95_px,
-# covered_pct, the soft ones penumbra_mae,penumbra_max,umbra_mae,lit_mae and
-# excluded_px; the header comment of bench/bench.c defines each. The charts
-# plot shadow_area_pct (soft charts: penumbra_mae) against shadow time.
+# covered_pct, the soft ones penumbra_mae,penumbra_max,umbra_mae,lit_mae,
+# excluded_px, the texel-to-pixel figure texel_over{1,2,4}_pct,texel_median_px
+# and the shadow-area error by view-depth band area_{0_10,10_50,50_200,200}_pct;
+# the header comment of bench/bench.c defines each. The charts plot
+# shadow_area_pct (soft charts: penumbra_mae) against shadow time, and the
+# floor (method "floor": an over-resolved map per view) as a line;
+# out/bench-limit.txt and out/bench-bands.txt are their companion tables.
 # Extra arguments: make bench BENCH_ARGS="--only fence,terrace --repeat 5"
 # The shared scenes are read from ../shared/scenes when it exists (else
 # procedural scenes only, said on stderr). SK_GL=osmesa|egl picks the GL backend.
