@@ -128,7 +128,7 @@
      point_bench: cube-naive, cube, vsdct).
 
    Views (3, derived from the bounds of the non-ground objects, so they work
-   for any scene; see make_views): "overview" (the whole content from 35
+   for any scene; see bench_common.h make_views): "overview" (the whole content from 35
    degrees up), "low" (eye low beyond one end of the longest horizontal
    axis, looking along it: perspective aliasing), "close" (a close-up of
    the centre from 50 degrees up). 50 degree vertical field of view; near

@@ -29,7 +29,7 @@
                         the same in both modes)
      Directional light: the bench's, travelling along (-0.45, -1, -0.35).
 
-   The walk: the bench's "overview" view (bench/bench.c make_views: the
+   The walk: the bench's "overview" view (bench_common.c make_views: the
    content from 35 degrees up along its long axis, framed) moving each frame
    0.5% of the eye-target distance d sideways and 0.3% of d forward
    (horizontal), the target with it: several texels of the 2048^2 stable
@@ -87,10 +87,11 @@
                    the static walk above, the moving walk below
      bench-cache-data/<scene>.dat, .vars.gp   that chart's data
 
-   Scenes: as bench/bench.c: stanford-bunny, sponza-ivy and sponza-curtains
-   from ../shared/scenes (--scenes DIR) when it exists, each on a ground
-   plane 3x its horizontal extent, then the procedural ground-boxes, fence
-   and terrace.
+   Scenes: those of bench_common.c's bench_scene_table marked
+   BENCH_IN_CACHE: stanford-bunny, sponza-ivy and sponza-curtains from
+   ../shared/scenes (--scenes DIR) when it exists, each on a ground plane
+   3x its horizontal extent, then the procedural ground-boxes, fence and
+   terrace.
 
    Usage (from the repository root; `make bench-cache`, `make bench-cache-demo`):
      build/bench/bench_cache [--quick] [--frames N] [--error-every K]
@@ -148,7 +149,7 @@ static float farthest(sk_vec3 p, const sk_aabb *b) {
     return m;
 }
 
-/* The walk of a scene: bench.c's overview (eye0, target0) and the step a
+/* The walk of a scene: the benches' overview (eye0, target0) and the step a
    frame; proj fixed for the walk. The mover crosses the content along
    `side`, standing on its lowest point. */
 typedef struct walk_path {
