@@ -5,7 +5,9 @@
      standard, PSM, LiSPSM, FERKO   layer 0 (warped maps: the warped
                                     matrix; FERKO: its rendered extent)
      PSSM, LiSPSM per cascade       the layer of the pixel's view depth
-                                    against the split depths
+                                    against the split depths (inside a
+                                    blend band, the nearer of the two
+                                    layers the mask mixes)
      LSPSM                          the first partition whose rect (less its
                                     margin, skgl_shadow_select_extent) holds
                                     the point
