@@ -448,7 +448,8 @@ static void draw_casters(void *user, const skgl_draw_info *info) {
 /* ------------------------------------------------------------- options */
 typedef struct bench_opts {
     int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor;
-    const char *scenes_dir, *out_dir, *gp, *only, *methods;
+    bench_paths p;             /* --scenes, --out, --only, --gp */
+    const char *methods;
 } bench_opts;
 
 static void usage(FILE *f, const char *argv0) {
@@ -741,7 +742,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
             best = sel[k]->err;
             nfront++;
         }
-    snprintf(base, sizeof base, "%s/bench-data/%s", o->out_dir, d->scenes[si]);
+    snprintf(base, sizeof base, "%s/bench-data/%s", o->p.out_dir, d->scenes[si]);
     for (m = 0; m < nm; m++) {
         snprintf(path, sizeof path, "%s.%s.dat", base, methods[m]);
         if (!(g = fopen(path, "w"))) { rc = -1; continue; }
@@ -779,7 +780,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
     } else rc = -1;
     snprintf(path, sizeof path, "%s.vars.gp", base);
     if (!(g = fopen(path, "w"))) { free(sel); return -1; }
-    fprintf(g, "# written by bench/bench.c; draw with: gnuplot %s %s\nscene = ", path, o->gp);
+    fprintf(g, "# written by bench/bench.c; draw with: gnuplot %s %s\nscene = ", path, o->p.gp);
     gp_string(g, d->scenes[si]);
     fprintf(g, "\ndevice = ");
     gp_string(g, d->device);
@@ -789,7 +790,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
     fprintf(g, "\ndatabase = ");
     gp_string(g, base);
     fprintf(g, "\noutfile = ");
-    snprintf(base, sizeof base, "%s/pareto-%s.png", o->out_dir, d->scenes[si]);
+    snprintf(base, sizeof base, "%s/pareto-%s.png", o->p.out_dir, d->scenes[si]);
     gp_string(g, base);
     fprintf(g, "\nmethods = ");
     gp_string(g, list);
@@ -799,7 +800,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
     fprintf(g, "floor = %g\nfloor_texel = %g\n", floor,
             d->floor_texel_n[si] ? d->floor_texel[si] / d->floor_texel_n[si] : -1.0);
     fclose(g);
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->gp);
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->p.gp);
     if (system(cmd) != 0) {
         fprintf(stderr, "bench: gnuplot failed for %s: %s\n", d->scenes[si], cmd);
         rc = -1;
@@ -830,12 +831,12 @@ static int plot_all(const bench_opts *o, int repeat) {
     char csv[1100], dir[1100];
     int i, rc = 0;
     FILE *limit;
-    if (!gnuplot_ready("bench", o->gp)) return -1;
-    snprintf(csv, sizeof csv, "%s/bench.csv", o->out_dir);
+    if (!gnuplot_ready("bench", o->p.gp)) return -1;
+    snprintf(csv, sizeof csv, "%s/bench.csv", o->p.out_dir);
     if (plot_read(csv, &d) != 0) return -1;
-    snprintf(dir, sizeof dir, "%s/bench-data", o->out_dir);
+    snprintf(dir, sizeof dir, "%s/bench-data", o->p.out_dir);
     mkdir_p(dir);
-    limit = open_limit_table(o->out_dir, d.device);
+    limit = open_limit_table(o->p.out_dir, d.device);
     for (i = 0; i < d.nscenes; i++)
         if (plot_scene(o, &d, i, repeat, limit) != 0) rc = -1;
     if (limit) fclose(limit);
@@ -1423,7 +1424,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
     char path[1200];
     FILE *txt;
     int sc_i, reps = o->quick ? 1 : (o->repeat < 3 ? o->repeat : 3);
-    snprintf(path, sizeof path, "%.900s/bench-soft.txt", o->out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-soft.txt", o->p.out_dir);
     txt = fopen(path, "w");
     if (txt)
         fprintf(txt, "# area-light soft shadows, %dx%d, error = mean absolute visibility error against %d "
@@ -1444,12 +1445,12 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
         skgl_scene sc;
         int v, z, c, nviews = o->quick ? 1 : 2;
         double ts = now_s();
-        if (!scene_selected(o->only, names[sc_i])) continue;
+        if (!scene_selected(o->p.only, names[sc_i])) continue;
         if (o->quick && files[sc_i][0]) continue;            /* the demo: the fence only */
         memset(&def, 0, sizeof def);
         snprintf(def.name, sizeof def.name, "%s", names[sc_i]);
         if (files[sc_i][0]) {
-            snprintf(def.path, sizeof def.path, "%.900s/%s", o->scenes_dir, files[sc_i]);
+            snprintf(def.path, sizeof def.path, "%.900s/%s", o->p.scenes_dir, files[sc_i]);
             if (!file_exists(def.path)) continue;
         }
         memset(&mesh, 0, sizeof mesh);
@@ -1813,11 +1814,9 @@ int main(int argc, char **argv) {
     double t_start = now_s();
 
     memset(&o, 0, sizeof o);
+    bench_paths_init(&o.p, "bench/pareto.gp");
     o.repeat = 5;
     o.views = 0;
-    o.scenes_dir = "../shared/scenes";
-    o.out_dir = "out";
-    o.gp = "bench/pareto.gp";
     env = getenv("SK_BENCH_QUICK");
     if (env && *env && strcmp(env, "0") != 0) o.quick = 1;
     for (i = 1; i < argc; i++) {
@@ -1827,10 +1826,7 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--full") == 0) o.quick = 0;
         else if (strcmp(a, "--repeat") == 0 && more) { o.repeat = atoi(argv[++i]); o.repeat_given = 1; }
         else if (strcmp(a, "--views") == 0 && more) o.views = atoi(argv[++i]);
-        else if (strcmp(a, "--scenes") == 0 && more) o.scenes_dir = argv[++i];
-        else if (strcmp(a, "--out") == 0 && more) o.out_dir = argv[++i];
-        else if (strcmp(a, "--only") == 0 && more) o.only = argv[++i];
-        else if (strcmp(a, "--gp") == 0 && more) o.gp = argv[++i];
+        else if (bench_path_option(&o.p, argc, argv, &i)) continue;
         else if (strcmp(a, "--images") == 0) o.images = 1;
         else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
         else if (strcmp(a, "--methods") == 0 && more) o.methods = argv[++i];
@@ -1855,7 +1851,7 @@ int main(int argc, char **argv) {
     if (o.plot_only) {
         /* the repeat count of the sweep that wrote the CSV, for the chart titles */
         FILE *m;
-        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
+        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.p.out_dir);
         if (!o.repeat_given && (m = fopen(path, "r"))) {
             if (fscanf(m, "repeat %d", &o.repeat) != 1) o.repeat = 5;
             fclose(m);
@@ -1865,10 +1861,10 @@ int main(int argc, char **argv) {
 
     /* ---- scenes */
     {
-        ndefs = bench_scenes("bench", BENCH_IN_SWEEP, o.scenes_dir, o.only, defs, BENCH_MAX_SCENES, &shared);
+        ndefs = bench_scenes("bench", BENCH_IN_SWEEP, o.p.scenes_dir, o.p.only, defs, BENCH_MAX_SCENES, &shared);
         if (o.soft_only) ndefs = 0;
-        if (ndefs == 0 && !scene_selected(o.only, "room") && !o.soft_only) {
-            fprintf(stderr, "bench: no scene selected (--only %s)\n", o.only ? o.only : "");
+        if (ndefs == 0 && !scene_selected(o.p.only, "room") && !o.soft_only) {
+            fprintf(stderr, "bench: no scene selected (--only %s)\n", o.p.only ? o.p.only : "");
             return 2;
         }
     }
@@ -1914,22 +1910,22 @@ int main(int argc, char **argv) {
         goto done;
     }
 
-    mkdir_p(o.out_dir);
+    mkdir_p(o.p.out_dir);
     /* charts of an earlier sweep would no longer match bench.csv */
     for (i = 0; i <= bench_scene_count; i++) {
-        snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.out_dir,
+        snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.p.out_dir,
                  i < bench_scene_count ? bench_scene_table[i].name : "room");
         remove(path);
     }
-    snprintf(path, sizeof path, "%s/bench.csv", o.out_dir);
+    snprintf(path, sizeof path, "%s/bench.csv", o.p.out_dir);
     csv = fopen(path, "w");
-    snprintf(path, sizeof path, "%.900s/bench-walk.csv", o.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-walk.csv", o.p.out_dir);
     walk = fopen(path, "w");
     if (walk) fprintf(walk, "%s\n", BENCH_CSV_HEADER);
-    snprintf(path, sizeof path, "%.900s/bench-walk.txt", o.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-walk.txt", o.p.out_dir);
     walk_txt = fopen(path, "w");
     if (walk_txt) fprintf(walk_txt, "# device %s, times %s\n", B.renderer, timing_label(B.renderer));
-    snprintf(path, sizeof path, "%.900s/bench-bands.txt", o.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-bands.txt", o.p.out_dir);
     bands = fopen(path, "w");
     if (bands) {
         fprintf(bands, "# shadow-area error (%% of the reference's shadow pixels misclassified) by view depth from the "
@@ -1943,7 +1939,7 @@ int main(int argc, char **argv) {
     if (!csv) { fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno)); status = 1; goto done; }
     fprintf(csv, "%s\n", BENCH_CSV_HEADER);
     fflush(csv);
-    if (!shared) fprintf(stderr, "bench: (reminder) procedural scenes only: %s is missing\n", o.scenes_dir);
+    if (!shared) fprintf(stderr, "bench: (reminder) procedural scenes only: %s is missing\n", o.p.scenes_dir);
 
     pg.t0 = now_s();
     for (i = 0; i < ndefs; i++) {
@@ -1987,7 +1983,7 @@ int main(int argc, char **argv) {
                 goto scene_done;
             }
             if (o.images) {
-                snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-reference.png", o.out_dir, def->name,
+                snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-reference.png", o.p.out_dir, def->name,
                          views[v].name);
                 write_shaded(path, vd[v].ref, nrm, def->light_dir);
             }
@@ -2065,7 +2061,7 @@ int main(int argc, char **argv) {
                                 rr->hard.area_pct, rr->hard.edge_p95_px, (double)median(tmp, rr->n),
                                 (double)rr->mask_ms);
                         if (o.images && c == 0) {
-                            snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.out_dir,
+                            snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.p.out_dir,
                                      def->name, vd[v].v.name, cfg->method);
                             tb_image_write_error(path, BENCH_W, BENCH_H, vd[v].ref, mask_px);
                         }
@@ -2121,7 +2117,7 @@ int main(int argc, char **argv) {
         tb_gl_mesh_destroy(&B.gl, &mesh);
         tb_scene_free(&s);
     }
-    if (scene_selected(o.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
+    if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
     soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
@@ -2132,13 +2128,13 @@ int main(int argc, char **argv) {
     {
         char a[32];
         fmt_duration(now_s() - t_start, a, sizeof a);
-        fprintf(stderr, "bench: %d runs in %s; wrote %s/bench.csv\n", pg.done, a, o.out_dir);
+        fprintf(stderr, "bench: %d runs in %s; wrote %s/bench.csv\n", pg.done, a, o.p.out_dir);
     }
     {
         FILE *m;
-        snprintf(path, sizeof path, "%.900s/bench-data", o.out_dir);
+        snprintf(path, sizeof path, "%.900s/bench-data", o.p.out_dir);
         mkdir_p(path);
-        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
+        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.p.out_dir);
         if ((m = fopen(path, "w"))) {
             fprintf(m, "repeat %d\nsweep %s\nviews %d\nruns %d\ndevice %s\ntiming %s\nbias %s\n", o.repeat,
                     o.quick ? "quick" : "full", o.views, pg.done, B.renderer, timing_label(B.renderer),

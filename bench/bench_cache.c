@@ -681,7 +681,7 @@ static void write_rows(FILE *csv, const char *scene, int frames, const char *dev
 /* ------------------------------------------------------------- a scene */
 typedef struct opts {
     int quick, frames, every;
-    const char *scenes_dir, *out_dir, *gp, *only;
+    bench_paths p;             /* --scenes, --out, --only, --gp */
 } opts;
 
 /* both walks of one scene; rows to csv, the table to txt; 0 ok */
@@ -845,7 +845,7 @@ static int run_scene(bench *B, const opts *o, const bench_scene_def *def, FILE *
     fflush(txt);
     write_rows(csv, def->name, frames, B->g.renderer);
     fflush(csv);
-    if (plot_scene(o->out_dir, o->gp, def->name, B->g.renderer, frames, B->wall) != 0) status = 1;
+    if (plot_scene(o->p.out_dir, o->p.gp, def->name, B->g.renderer, frames, B->wall) != 0) status = 1;
 out:
     skgl_set_dynamic(B->g.sk, NULL);   /* the mover's callback points into this frame of the stack */
     free(base);
@@ -883,21 +883,16 @@ int main(int argc, char **argv) {
     double t_start = now_s();
 
     memset(&o, 0, sizeof o);
+    bench_paths_init(&o.p, "bench/cache.gp");
     o.frames = 60;
     o.every = 6;
-    o.scenes_dir = "../shared/scenes";
-    o.out_dir = "out";
-    o.gp = "bench/cache.gp";
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
         int more = i + 1 < argc;
         if (strcmp(a, "--quick") == 0) o.quick = 1;
         else if (strcmp(a, "--frames") == 0 && more) { o.frames = atoi(argv[++i]); frames_given = 1; }
         else if (strcmp(a, "--error-every") == 0 && more) o.every = atoi(argv[++i]);
-        else if (strcmp(a, "--scenes") == 0 && more) o.scenes_dir = argv[++i];
-        else if (strcmp(a, "--out") == 0 && more) o.out_dir = argv[++i];
-        else if (strcmp(a, "--only") == 0 && more) o.only = argv[++i];
-        else if (strcmp(a, "--gp") == 0 && more) o.gp = argv[++i];
+        else if (bench_path_option(&o.p, argc, argv, &i)) continue;
         else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(stdout, argv[0]); return 0; }
         else { fprintf(stderr, "bench-cache: unknown or incomplete option %s\n", a); usage(stderr, argv[0]); return 2; }
     }
@@ -907,10 +902,10 @@ int main(int argc, char **argv) {
         return 2;
     }
     /* the quick run: the procedural scenes only */
-    ndefs = bench_scenes("bench-cache", BENCH_IN_CACHE, o.quick ? NULL : o.scenes_dir, o.only, defs,
+    ndefs = bench_scenes("bench-cache", BENCH_IN_CACHE, o.quick ? NULL : o.p.scenes_dir, o.p.only, defs,
                          (int)(sizeof defs / sizeof defs[0]), &shared);
-    if (ndefs == 0) { fprintf(stderr, "bench-cache: no scene selected (--only %s)\n", o.only ? o.only : ""); return 2; }
-    if (!gnuplot_ready("bench-cache", o.gp)) return 1;
+    if (ndefs == 0) { fprintf(stderr, "bench-cache: no scene selected (--only %s)\n", o.p.only ? o.p.only : ""); return 2; }
+    if (!gnuplot_ready("bench-cache", o.p.gp)) return 1;
 
     /* ---- GL: no timer queries where the wall clock times */
     memset(&B, 0, sizeof B);
@@ -938,13 +933,13 @@ int main(int argc, char **argv) {
         goto done;
     }
 
-    mkdir_p(o.out_dir);
-    snprintf(path, sizeof path, "%.900s/bench-cache.csv", o.out_dir);
+    mkdir_p(o.p.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-cache.csv", o.p.out_dir);
     csv = fopen(path, "w");
-    snprintf(path, sizeof path, "%.900s/bench-cache.txt", o.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-cache.txt", o.p.out_dir);
     txt = fopen(path, "w");
     if (!csv || !txt) {
-        fprintf(stderr, "bench-cache: cannot write under %s: %s\n", o.out_dir, strerror(errno));
+        fprintf(stderr, "bench-cache: cannot write under %s: %s\n", o.p.out_dir, strerror(errno));
         status = 1;
         goto done;
     }
@@ -976,7 +971,7 @@ int main(int argc, char **argv) {
         double el = now_s() - t_start;
         fprintf(txt, "total run time %dm%02ds\n", (int)(el / 60), (int)el % 60);
         fprintf(stderr, "bench-cache: done in %dm%02ds: %s/bench-cache.{csv,txt}, %s/bench-cache-<scene>.png\n",
-                (int)(el / 60), (int)el % 60, o.out_dir, o.out_dir);
+                (int)(el / 60), (int)el % 60, o.p.out_dir, o.p.out_dir);
     }
 
 done:

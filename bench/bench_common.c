@@ -112,6 +112,30 @@ int gnuplot_ready(const char *prog, const char *gp) {
     return 1;
 }
 
+void bench_paths_init(bench_paths *p, const char *gp) {
+    p->scenes_dir = BENCH_SCENES_DIR;
+    p->out_dir = BENCH_OUT_DIR;
+    p->only = NULL;
+    p->gp = gp;
+}
+
+int bench_path_option(bench_paths *p, int argc, char **argv, int *i) {
+    static const char *const names[4] = {"--scenes", "--out", "--only", "--gp"};
+    const char **dst[4];
+    int k;
+    dst[0] = &p->scenes_dir;
+    dst[1] = &p->out_dir;
+    dst[2] = &p->only;
+    dst[3] = &p->gp;
+    if (*i + 1 >= argc) return 0;
+    for (k = 0; k < 4; k++)
+        if (strcmp(argv[*i], names[k]) == 0) {
+            *dst[k] = argv[++*i];
+            return 1;
+        }
+    return 0;
+}
+
 int scene_selected(const char *only, const char *name) {
     const char *p = only;
     size_t n = strlen(name);

@@ -56,6 +56,18 @@ void gp_string(FILE *f, const char *s);   /* a gnuplot single-quoted string: ' d
    stderr prefixed by prog, and 0 */
 int gnuplot_ready(const char *prog, const char *gp);
 
+/* The options both benches take: --scenes DIR (default BENCH_SCENES_DIR),
+   --out DIR (BENCH_OUT_DIR), --only LIST, --gp FILE. When argv[*i] is one
+   of them and has its value: stores the value, steps *i past it, returns
+   1; else 0. */
+#define BENCH_SCENES_DIR "../shared/scenes"
+#define BENCH_OUT_DIR "out"
+typedef struct bench_paths {
+    const char *scenes_dir, *out_dir, *only, *gp;
+} bench_paths;
+int bench_path_option(bench_paths *p, int argc, char **argv, int *i);
+void bench_paths_init(bench_paths *p, const char *gp);   /* the defaults; only NULL */
+
 /* 1 when name is in the comma-separated list only (NULL or "": every name) */
 int scene_selected(const char *only, const char *name);
 
