@@ -1195,6 +1195,10 @@ SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit);
 SKGLDEF const char *skgl_error_log(const skgl_context *ctx);
 /* light view-projection of one layer (world -> light clip) */
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
+/* LSPSM: the mask samples the first layer whose light clip holds the point
+   within |x|, |y| <= this times w (the partition's rect, less its margin);
+   1 for the other techniques and before the first render */
+SKGLDEF float skgl_shadow_select_extent(const skgl_shadow *s);
 SKGLDEF const skgl_shadow_frame_stats *skgl_shadow_stats(const skgl_shadow *s);
 /* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
    sorted by (level, py, px); writes at most cap, returns how many there are */
@@ -5434,6 +5438,7 @@ SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
     if (!s || layer < 0 || layer >= s->layers) return sk_mat4_identity();
     return skgl__shift(&s->vp[layer], s->origin, skgl__zero3);
 }
+SKGLDEF float skgl_shadow_select_extent(const skgl_shadow *s) { return s ? s->select_extent : 1.0f; }
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s) { return s ? s->tex : 0; }
 SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s) { return s ? s->rmsm.samples : 0; }
 SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap)

@@ -16,6 +16,11 @@
      errors against the reference's shadow: the lit majority of a frame
      dilutes the covered %, so the charts plot the shadow-area error.
      Area-light rows: tb_metric_soft() (`error`) and tb_metric_penumbra().
+     Directional rows also get the texel-to-pixel figure (bench_texel.h:
+     Ferko 2013's measure, how many pixels one texel of the map each pixel
+     samples spans) and the shadow-area error by view-depth band; each
+     view of a scene also gets a floor row, the error of an over-resolved
+     map (floor_runs), drawn on its chart as the limit.
 
    Output (everything under --out, default out/)
      bench.csv                  one row per run, the columns (the first 14
@@ -24,10 +29,13 @@
        method,params,scene,view,width,height,error_kind,error,texels,passes,
        shadow_ms,analysis_ms,total_ms,device,shadow_area_pct,false_shadow_pct,
        false_light_pct,edge_mean_px,edge_p95_px,covered_pct,penumbra_mae,
-       penumbra_max,umbra_mae,lit_mae,excluded_px
+       penumbra_max,umbra_mae,lit_mae,excluded_px,texel_over1_pct,
+       texel_over2_pct,texel_over4_pct,texel_median_px,area_0_10_pct,
+       area_10_50_pct,area_50_200_pct,area_200_pct
        method     standard | standard-stable | pssm | psm | lispsm |
                   lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
-                  cube-naive | cube | vsdct (point lights, "room")
+                  cube-naive | cube | vsdct (point lights, "room") |
+                  floor (the limit: params say which over-resolved map)
                   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
        error_kind hard_pct (directional and point lights, the walk) or
@@ -69,6 +77,17 @@
        every row:
        excluded_px       reference pixels marked back-facing (-3) or
                          silhouette (-4): left out of every denominator
+       directional rows only (empty on point and area-light rows):
+       texel_over1_pct,  % of the shaded pixels (covered by the reference,
+       texel_over2_pct,  looking up a map) whose shadow texel spans more
+       texel_over4_pct   than 1, 2, 4 pixels (tb_texel_footprint: the
+                         bounding box of the pixel's patch in the map it
+                         samples, Ferko 2013 Sec. 3.2)
+       texel_median_px   the median of that footprint, pixels
+       area_0_10_pct ..  the shadow-area error within 0-10, 10-50, 50-200
+       area_200_pct      and 200+ scene units (metres in the open world) of
+                         view depth (tb_metric_shadow_bands); empty where
+                         the band holds no reference shadow
      bench-data/<scene>.*.dat   the chart data: per configuration the mean
                                 shadow_area_pct (soft: penumbra_mae) over the
                                 views where it is defined and the mean
@@ -81,6 +100,15 @@
                                 in both time and error) drawn as a staircase
                                 through circled points
      bench-data/sweep.txt       repeat count, sweep, views, runs, device, timing
+     bench-limit.txt            per chart: the floor, then every configuration
+                                in order of time with its error, its
+                                distance from the floor and its texel
+                                figures (means over the views); the
+                                companion table of the charts
+     bench-bands.txt            per scene and configuration: the shadow-area
+                                error by view-depth band, pooled over the
+                                views (sums of wrong and of shadow pixels),
+                                the floor's included
      bench/<scene>-<view>-*.png with --images: a shaded picture of the
                                 reference and the error image of the first
                                 configuration (tb_image_write_error colours)
@@ -94,12 +122,13 @@
      procedural scenes run, and stderr says so. Procedural (testbed):
      ground-boxes, fence, terrace, and open-world (2 km, a camera at
      head height, far plane 1000 m: the regime of cascades, warps and
-     virtual maps; its own views, see make_open_world_views). One
+     virtual maps; its own views, see make_open_world_views). The scenes
+     are bench_common.c's bench_scene_table, one entry a scene. One
      directional light per scene; and the "room" with a point light for the omnidirectional methods (see
      point_bench: cube-naive, cube, vsdct).
 
    Views (3, derived from the bounds of the non-ground objects, so they work
-   for any scene; see make_views): "overview" (the whole content from 35
+   for any scene; see bench_common.h make_views): "overview" (the whole content from 35
    degrees up), "low" (eye low beyond one end of the longest horizontal
    axis, looking along it: perspective aliasing), "close" (a close-up of
    the centre from 50 degrees up). 50 degree vertical field of view; near
@@ -127,7 +156,10 @@
      build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
                        [--only SCENE[,SCENE..]] [--views N] [--images]
                        [--views-only] [--gp FILE] [--plot-only] [--dry-run]
+                       [--methods M[,M..]] [--no-floor]
      --quick      the small sweep of `make demo` (also SK_BENCH_QUICK=1)
+     --methods    only these methods of the directional sweep (bench_methods)
+     --no-floor   no floor rows (two over-resolved maps a view)
      --plot-only  redraw the charts from an existing OUT/bench.csv
      --dry-run    print the sweep (configurations, runs) and exit
      --help       all options
@@ -139,121 +171,43 @@
    sweep asks for radius 0 (one hardware 2x2 comparison) with
    disable_pcf_kernel. */
 #define _POSIX_C_SOURCE 200809L
-#define SHADOWKIT_IMPLEMENTATION
-#define SHADOWKIT_GL_IMPLEMENTATION
-#include "shadowkit_gl.h"
+#include "bench_common.h"
+#include "bench_texel.h"
 
-#include "tb_gl_context.h"
-#include "tb_gl_fbo.h"
-#include "tb_gl_funcs.h"
-#include "tb_gl_scene.h"
 #include "tb_image.h"
 #include "tb_metrics.h"
-#include "tb_reference.h"
-#include "tb_scene.h"
 
 #include <errno.h>
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
 
-#define BENCH_W 1280
-#define BENCH_H 720
-#define BENCH_FOVY 0.872665f             /* 50 degrees */
 #define BENCH_MAX_CFG 512
 #define BENCH_MAX_SCENES 16
-#define BENCH_MAX_VIEWS 3
+#define BENCH_MAX_VIEWS BENCH_VIEWS
 #define BENCH_MAX_REPEAT 31
 /* the first 14 columns are DESIGN.md's; the others are appended after them */
 #define BENCH_CSV_HEADER \
     "method,params,scene,view,width,height,error_kind,error,texels,passes,shadow_ms,analysis_ms,total_ms,device," \
     "shadow_area_pct,false_shadow_pct,false_light_pct,edge_mean_px,edge_p95_px,covered_pct," \
-    "penumbra_mae,penumbra_max,umbra_mae,lit_mae,excluded_px"
-#define BENCH_CSV_COLS 25
+    "penumbra_mae,penumbra_max,umbra_mae,lit_mae,excluded_px," \
+    "texel_over1_pct,texel_over2_pct,texel_over4_pct,texel_median_px," \
+    "area_0_10_pct,area_10_50_pct,area_50_200_pct,area_200_pct"
+#define BENCH_CSV_COLS 33
 #define BENCH_COL_SHADOW_AREA 14   /* 0-based: the hard charts' y */
 #define BENCH_COL_PENUMBRA_MAE 20  /* the soft charts' y */
+#define BENCH_COL_TEXEL 25         /* texel_over1_pct, then over2, over4, median */
 #define BENCH_PENUMBRA_GROW 2      /* px, DESIGN.md "Measuring" */
+/* view-depth bands of the band columns (scene units: metres in the open world) */
+#define BENCH_BANDS 4
+static const double band_edge[BENCH_BANDS + 1] = {0.0, 10.0, 50.0, 200.0, 1e30};
+static const char *const band_name[BENCH_BANDS] = {"0-10", "10-50", "50-200", "200+"};
+/* the floor's method name in bench.csv (see floor_runs) */
+#define BENCH_FLOOR "floor"
 /* the reference's marks for pixels it leaves out (tb_reference.h), besides
    background and out of range */
-#ifdef TB_VIS_BACKFACING
 #define BENCH_VIS_BACKFACING TB_VIS_BACKFACING
-#else
-#define BENCH_VIS_BACKFACING (-3.0f)
-#endif
-#ifdef TB_VIS_SILHOUETTE
 #define BENCH_VIS_SILHOUETTE TB_VIS_SILHOUETTE
-#else
-#define BENCH_VIS_SILHOUETTE (-4.0f)
-#endif
-
-/* ------------------------------------------------------------------ utils */
-/* 1 when the GL renderer rasterises on the CPU (Mesa's llvmpipe or
-   softpipe): its timer-query times depend on the machine's cores and load,
-   so they compare configurations within one run only. Any other renderer
-   (a GPU, Mesa's hardware drivers included) gives absolute GPU times. */
-static int software_renderer(const char *renderer) {
-    return renderer && (strstr(renderer, "llvmpipe") != NULL || strstr(renderer, "softpipe") != NULL);
-}
-/* how every output of this run labels its times */
-static const char *timing_label(const char *renderer) {
-    return software_renderer(renderer) ? "relative (CPU rasteriser: compare within this run only, not absolute ms)"
-                                       : "absolute (GPU ms, GL timer queries)";
-}
-
-static double now_s(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static sk_vec3 v3(float x, float y, float z) {
-    sk_vec3 r;
-    r.x = x; r.y = y; r.z = z;
-    return r;
-}
-static sk_vec3 v3_add(sk_vec3 a, sk_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static sk_vec3 v3_scale(sk_vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
-static float v3_len(sk_vec3 a) { return sqrtf(a.x * a.x + a.y * a.y + a.z * a.z); }
-static sk_vec3 v3_norm(sk_vec3 a) {
-    float l = v3_len(a);
-    return l > 0.0f ? v3_scale(a, 1.0f / l) : a;
-}
-
-static int cmp_float(const void *a, const void *b) {
-    float x = *(const float *)a, y = *(const float *)b;
-    return x < y ? -1 : x > y;
-}
-static float median(float *v, int n) {
-    if (n <= 0) return -1.0f;
-    qsort(v, (size_t)n, sizeof *v, cmp_float);
-    return n & 1 ? v[n / 2] : 0.5f * (v[n / 2 - 1] + v[n / 2]);
-}
-
-static void fmt_duration(double s, char *buf, size_t n) {
-    if (s < 0) s = 0;
-    if (s < 60) snprintf(buf, n, "%.0fs", s);
-    else if (s < 3600) snprintf(buf, n, "%dm%02ds", (int)(s / 60), (int)s % 60);
-    else snprintf(buf, n, "%dh%02dm", (int)(s / 3600), ((int)s % 3600) / 60);
-}
-
-static int file_exists(const char *p) {
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
-}
-static int dir_exists(const char *p) {
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
-}
-/* mkdir -p dir (through the testbed's helper, which makes a path's parents) */
-static int mkdir_p(const char *dir) {
-    char buf[1100];
-    snprintf(buf, sizeof buf, "%s/x", dir);
-    return tb_image_make_parent_dirs(buf);
-}
-
 
 /* -------------------------------------------------------- configurations */
 typedef struct bench_cfg {
@@ -357,22 +311,35 @@ static void add_rmsm(int vres) {
     c->desc.sync_readback = 1;   /* this view's pages (see add_ferko) */
 }
 
-static void build_sweep(int quick) {
-    static const int std_res[] = {512, 1024, 2048, 4096};
-    static const float lambdas[] = {0.5f, 0.75f, 0.9f};
-    static const int pssm_res[] = {512, 1024, 2048};
-    static const float blends[] = {0.0f, 0.1f};
-    int stable, r, p, c, l, b;
-    g_ncfg = 0;
+/* The sweep, one entry a method: its configurations in the quick sweep
+   (`make demo`) and the full one. A new method is an add_<method> above
+   and one entry here (its chart series and front labels follow from the
+   method name; short_label may give it a shorter label). */
+static const int std_res[] = {512, 1024, 2048, 4096};
+static const int pssm_res[] = {512, 1024, 2048};
+
+static void sweep_standard(int quick) {
+    int stable, r, p;
     if (quick) {
-        /* the demo sweep: the resolution ladder of the standard map with
-           both filters at two sizes, the stable map, PSSM over its cascade
-           count at two resolutions, lambda at both ends, one blend band */
+        /* the resolution ladder with both filters at two sizes, the stable map */
         for (r = 0; r < 4; r++) add_standard(0, std_res[r], 1);
         add_standard(0, 1024, 0);
         add_standard(0, 2048, 0);
         add_standard(1, 1024, 1);
         add_standard(1, 2048, 1);
+        return;
+    }
+    for (stable = 0; stable <= 1; stable++)
+        for (r = 0; r < 4; r++)
+            for (p = 0; p <= 1; p++) add_standard(stable, std_res[r], p);
+}
+
+static void sweep_pssm(int quick) {
+    static const float lambdas[] = {0.5f, 0.75f, 0.9f};
+    static const float blends[] = {0.0f, 0.1f};
+    int c, l, r, b;
+    if (quick) {
+        /* the cascade count at two resolutions, lambda at both ends, one blend band */
         for (c = 1; c <= 8; c *= 2) {
             add_pssm(c, 0.75f, 512, 0.0f, 1);
             add_pssm(c, 0.75f, 1024, 0.0f, 1);
@@ -380,23 +347,8 @@ static void build_sweep(int quick) {
         add_pssm(4, 0.5f, 1024, 0.0f, 1);
         add_pssm(4, 0.9f, 1024, 0.0f, 1);
         add_pssm(4, 0.75f, 1024, 0.1f, 1);
-        for (r = 0; r < 3; r++) {
-            add_psm(std_res[r], 0.5f);
-            add_lispsm(1, std_res[r]);
-        }
-        add_psm(1024, -1.0f);
-        add_lispsm(4, 512);
-        add_lispsm(4, 1024);
-        add_lspsm(512);
-        add_lspsm(1024);
-        add_ferko(2048);
-        add_ferko(4096);
-        add_rmsm(16384);
         return;
     }
-    for (stable = 0; stable <= 1; stable++)
-        for (r = 0; r < 4; r++)
-            for (p = 0; p <= 1; p++) add_standard(stable, std_res[r], p);
     for (c = 1; c <= SKGL_MAX_CASCADES; c++)
         for (l = 0; l < 3; l++)
             for (r = 0; r < 3; r++)
@@ -405,189 +357,71 @@ static void build_sweep(int quick) {
                     if (c == 1 && (l != 1 || b != 0)) continue;
                     add_pssm(c, lambdas[l], pssm_res[r], blends[b], 1);
                 }
-    for (r = 0; r < 4; r++) {
-        static const float slides[] = {-1.0f, 0.25f, 0.5f, 1.0f};
+}
+
+static void sweep_psm(int quick) {
+    static const float slides[] = {-1.0f, 0.25f, 0.5f, 1.0f};
+    int r, p;
+    if (quick) {
+        for (r = 0; r < 3; r++) add_psm(std_res[r], 0.5f);
+        add_psm(1024, -1.0f);
+        return;
+    }
+    for (r = 0; r < 4; r++)
         for (p = 0; p < 4; p++) add_psm(std_res[r], slides[p]);
-        add_lispsm(1, std_res[r]);
+}
+
+static void sweep_lispsm(int quick) {
+    int r, c;
+    for (r = 0; r < (quick ? 3 : 4); r++) add_lispsm(1, std_res[r]);
+    if (quick) {
+        add_lispsm(4, 512);
+        add_lispsm(4, 1024);
+        return;
     }
     for (c = 2; c <= 8; c *= 2)
         for (r = 0; r < 3; r++) add_lispsm(c, pssm_res[r]);
-    for (r = 0; r < 3; r++) add_lspsm(pssm_res[r]);
+}
+
+static void sweep_lspsm(int quick) {
+    int r;
+    for (r = 0; r < (quick ? 2 : 3); r++) add_lspsm(pssm_res[r]);
+}
+
+static void sweep_ferko(int quick) {
+    int r;
+    if (quick) {
+        add_ferko(2048);
+        add_ferko(4096);
+        return;
+    }
     for (r = 1; r < 4; r++) add_ferko(std_res[r]);
     add_ferko(8192);
-    add_rmsm(8192);
+}
+
+static void sweep_rmsm(int quick) {
+    if (!quick) add_rmsm(8192);
     add_rmsm(16384);
-    add_rmsm(32768);
+    if (!quick) add_rmsm(32768);
 }
 
-/* ---------------------------------------------------------------- scenes */
-typedef struct bench_scene_def {
-    char name[64];
-    char path[1024];          /* "" for procedural */
-    sk_vec3 light_dir;        /* travel direction */
-} bench_scene_def;
+typedef struct bench_method {
+    const char *name;              /* --methods picks by it; the rows' method starts with it */
+    void (*sweep)(int quick);
+} bench_method;
 
-typedef struct bench_view {
-    char name[16];
-    sk_vec3 eye, target;
-    float zn, zf;
-    skgl_camera cam;
-    sk_mat4 view_proj;
-} bench_view;
+static const bench_method bench_methods[] = {
+    {"standard", sweep_standard}, {"pssm", sweep_pssm},   {"psm", sweep_psm},   {"lispsm", sweep_lispsm},
+    {"lspsm", sweep_lspsm},       {"ferko", sweep_ferko}, {"rmsm", sweep_rmsm},
+};
 
-/* the ground plane under a loaded model: 3x its horizontal extent */
-static int add_ground_under(tb_scene *s) {
-    sk_aabb b = s->bounds;
-    float cx = 0.5f * (b.min.x + b.max.x), cz = 0.5f * (b.min.z + b.max.z);
-    float hx = 0.5f * (b.max.x - b.min.x), hz = 0.5f * (b.max.z - b.min.z);
-    float h = 3.0f * (hx > hz ? hx : hz);
-    return tb_scene_add_ground(s, "ground", cx, cz, h, h, b.min.y, 8, 8) < 0 ? -1 : 0;
-}
-
-/* union of the bounds of the objects that are not the ground */
-static sk_aabb content_bounds(const tb_scene *s) {
-    sk_aabb r;
-    unsigned i;
-    int any = 0;
-    r = s->bounds;
-    for (i = 0; i < s->object_count; i++) {
-        const tb_object *o = &s->objects[i];
-        if (strstr(o->name, "ground")) continue;
-        if (!any) r = o->bounds;
-        else {
-            if (o->bounds.min.x < r.min.x) r.min.x = o->bounds.min.x;
-            if (o->bounds.min.y < r.min.y) r.min.y = o->bounds.min.y;
-            if (o->bounds.min.z < r.min.z) r.min.z = o->bounds.min.z;
-            if (o->bounds.max.x > r.max.x) r.max.x = o->bounds.max.x;
-            if (o->bounds.max.y > r.max.y) r.max.y = o->bounds.max.y;
-            if (o->bounds.max.z > r.max.z) r.max.z = o->bounds.max.z;
-        }
-        any = 1;
-    }
-    return any ? r : s->bounds;
-}
-
-static void finish_view(bench_view *v, const sk_aabb *all) {
-    float zf = 0.0f, d = v3_len(v3_add(v->target, v3_scale(v->eye, -1.0f)));
-    int i;
-    for (i = 0; i < 8; i++) {
-        sk_vec3 c = v3(i & 1 ? all->max.x : all->min.x, i & 2 ? all->max.y : all->min.y,
-                       i & 4 ? all->max.z : all->min.z);
-        float l = v3_len(v3_add(c, v3_scale(v->eye, -1.0f)));
-        if (l > zf) zf = l;
-    }
-    v->zf = zf * 1.01f;
-    v->zn = 0.002f * d;
-    if (v->zn < v->zf * 1e-5f) v->zn = v->zf * 1e-5f;
-    v->cam.view = sk_mat4_look_at(v->eye, v->target, v3(0, 1, 0));
-    v->cam.proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, v->zn, v->zf);
-    v->view_proj = sk_mat4_mul(v->cam.proj, v->cam.view);
-}
-
-/* The open world's first three head-height views (tb_open_world_view):
-   near 0.5 m, far 1000 m, the regime cascades, warps and virtual maps are
-   made for; its sun (the scene's light_dir) is 20 degrees up behind view
-   0, across view 1 and nearly against view 2. */
-static void make_open_world_views(bench_view *v) {
-    static const char *names[3] = {"head", "street", "square"};
-    int i;
-    memset(v, 0, 3 * sizeof *v);
-    for (i = 0; i < 3; i++) {
-        snprintf(v[i].name, sizeof v[i].name, "%s", names[i]);
-        tb_open_world_view(i, &v[i].eye, &v[i].target);
-        v[i].zn = 0.5f;
-        v[i].zf = 1000.0f;
-        v[i].cam.view = sk_mat4_look_at(v[i].eye, v[i].target, v3(0, 1, 0));
-        v[i].cam.proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, v[i].zn, v[i].zf);
-        v[i].view_proj = sk_mat4_mul(v[i].cam.proj, v[i].cam.view);
-    }
-}
-
-/* direction from azimuth (about +y, 0 = +z) and elevation, in radians */
-static sk_vec3 dir_az_el(float az, float el) {
-    return v3(cosf(el) * sinf(az), sinf(el), cosf(el) * cosf(az));
-}
-static float azimuth_of(sk_vec3 h) { return atan2f(h.x, h.z); }
-
-/* the distance along u (unit, target -> eye) at which every corner of box
-   lies in front of the camera and within +-lim of the frame in NDC (lim > 1:
-   the box overflows the frame, a close-up) */
-static float fit_distance(sk_vec3 target, sk_vec3 u, const sk_aabb *box, float lim) {
-    float lo = 0.0f, hi, rad;
-    sk_mat4 proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, 1e-3f, 1e6f);
-    int it, k;
-    rad = v3_len(v3(box->max.x - box->min.x, box->max.y - box->min.y, box->max.z - box->min.z));
-    hi = 100.0f * (rad > 0.0f ? rad : 1.0f);
-    for (it = 0; it < 48; it++) {
-        float d = 0.5f * (lo + hi);
-        sk_mat4 vp = sk_mat4_mul(proj, sk_mat4_look_at(v3_add(target, v3_scale(u, d)), target, v3(0, 1, 0)));
-        int ok = 1;
-        for (k = 0; k < 8 && ok; k++) {
-            sk_vec4 p, c;
-            p.x = k & 1 ? box->max.x : box->min.x;
-            p.y = k & 2 ? box->max.y : box->min.y;
-            p.z = k & 4 ? box->max.z : box->min.z;
-            p.w = 1.0f;
-            c = sk_mat4_transform_vec4(vp, p);
-            if (!(c.w > 0.0f) || fabsf(c.x) > lim * c.w || fabsf(c.y) > lim * c.w) ok = 0;
-        }
-        if (ok) hi = d; else lo = d;
-    }
-    return hi;
-}
-
-/* Three views from the content bounds (the objects but the ground):
-   overview: the whole content from 35 degrees up, seen along its long
-     horizontal axis (20 degrees off it), its bounding box framed;
-   low: eye low beyond one end of the long axis, looking along it to a point
-     a quarter of the way in, near the ground (grazing, perspective
-     aliasing); the nearer half of the content box is framed;
-   close: the middle of the content (a box as wide as the content is high or
-     deep) from 50 degrees up, framed so that it overflows the image. */
-static int make_views(const tb_scene *s, bench_view *v) {
-    sk_aabb cb = content_bounds(s), all = s->bounds, local;
-    sk_vec3 c = v3(0.5f * (cb.min.x + cb.max.x), 0.5f * (cb.min.y + cb.max.y), 0.5f * (cb.min.z + cb.max.z));
-    sk_vec3 ex = v3(0.5f * (cb.max.x - cb.min.x), 0.5f * (cb.max.y - cb.min.y), 0.5f * (cb.max.z - cb.min.z));
-    float H = 2.0f * ex.y, L, S, m, az0, el, d;
-    sk_vec3 axis, side, u;
-    if (ex.x >= ex.z) { axis = v3(1, 0, 0); side = v3(0, 0, 1); L = ex.x; S = ex.z; }
-    else { axis = v3(0, 0, 1); side = v3(1, 0, 0); L = ex.z; S = ex.x; }
-    if (H < 0.02f * L) H = 0.02f * L;
-    memset(v, 0, 3 * sizeof *v);
-
-    snprintf(v[0].name, sizeof v[0].name, "overview");
-    az0 = azimuth_of(v3_add(v3_scale(axis, 0.94f), v3_scale(side, 0.34f)));   /* 20 degrees off the axis */
-    u = dir_az_el(az0, 0.61f);
-    v[0].target = c;
-    v[0].eye = v3_add(c, v3_scale(u, fit_distance(c, u, &cb, 1.0f)));
-    finish_view(&v[0], &all);
-
-    snprintf(v[1].name, sizeof v[1].name, "low");
-    v[1].target = v3_add(c, v3_scale(axis, -0.25f * L));
-    v[1].target.y = cb.min.y + 0.15f * H;
-    el = atan2f(0.6f * H, L);
-    if (el < 0.05f) el = 0.05f;
-    if (el > 0.35f) el = 0.35f;
-    m = 0.5f * S / L;   /* off the axis by about the content's half width */
-    if (m < 0.05f) m = 0.05f;
-    if (m > 0.3f) m = 0.3f;
-    u = dir_az_el(azimuth_of(v3_add(axis, v3_scale(side, m))), el);
-    local = cb;   /* the half of the content nearer the eye must be in the frame */
-    if (axis.x > 0.0f) local.min.x = c.x; else local.min.z = c.z;
-    v[1].eye = v3_add(v[1].target, v3_scale(u, fit_distance(v[1].target, u, &local, 1.0f)));
-    finish_view(&v[1], &all);
-
-    snprintf(v[2].name, sizeof v[2].name, "close");
-    m = S > H ? S : H;
-    local = cb;
-    if (ex.x > m) { local.min.x = c.x - m; local.max.x = c.x + m; }
-    if (ex.z > m) { local.min.z = c.z - m; local.max.z = c.z + m; }
-    u = dir_az_el(az0 - 1.9f, 0.87f);
-    v[2].target = v3(c.x, cb.min.y + 0.3f * H, c.z);
-    d = fit_distance(v[2].target, u, &local, 1.5f);
-    v[2].eye = v3_add(v[2].target, v3_scale(u, d));
-    finish_view(&v[2], &all);
-    return 3;
+/* the configurations of the methods selected by `methods` (a comma list of
+   bench_methods names; NULL or "": all) */
+static void build_sweep(int quick, const char *methods) {
+    int m;
+    g_ncfg = 0;
+    for (m = 0; m < (int)(sizeof bench_methods / sizeof bench_methods[0]); m++)
+        if (scene_selected(methods, bench_methods[m].name)) bench_methods[m].sweep(quick);
 }
 
 /* ---------------------------------------------------- the draw callback */
@@ -613,34 +447,24 @@ static void draw_casters(void *user, const skgl_draw_info *info) {
 
 /* ------------------------------------------------------------- options */
 typedef struct bench_opts {
-    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only;
-    const char *scenes_dir, *out_dir, *gp, *only;
+    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor;
+    bench_paths p;             /* --scenes, --out, --only, --gp */
+    const char *methods;
 } bench_opts;
-
-static int scene_selected(const bench_opts *o, const char *name) {
-    const char *p = o->only;
-    size_t n = strlen(name);
-    if (!p || !*p) return 1;
-    while (*p) {
-        const char *e = strchr(p, ',');
-        size_t len = e ? (size_t)(e - p) : strlen(p);
-        if (len == n && strncmp(p, name, n) == 0) return 1;
-        if (!e) break;
-        p = e + 1;
-    }
-    return 0;
-}
 
 static void usage(FILE *f, const char *argv0) {
     fprintf(f,
             "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
             "          [--views N] [--images] [--views-only] [--soft-only] [--bias B] [--gp FILE] [--plot-only]\n"
-            "          [--dry-run]\n"
+            "          [--methods M[,M..]] [--no-floor] [--dry-run]\n"
             "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
             "  --repeat N     timing passes, the median is reported (default 5)\n"
             "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
             "  --out DIR      output folder (default out)\n"
             "  --only LIST    only these scenes (comma separated names)\n"
+            "  --methods LIST only these methods of the directional sweep (standard, pssm, psm,\n"
+            "                 lispsm, lspsm, ferko, rmsm; default all)\n"
+            "  --no-floor     no floor runs (the over-resolved maps of each view)\n"
             "  --views N      first N of the views overview,low,close (default 3)\n"
             "  --images       write reference and error PNGs per view to OUT/bench/\n"
             "  --views-only   only the reference PNGs of each view (no sweep, no CSV rows)\n"
@@ -667,6 +491,8 @@ typedef struct plot_pt {
     int err_n;                /* views with a y value */
     double err, ms;           /* means */
     int front;
+    double texel_sum[4];      /* texel_over1/2/4_pct, texel_median_px: summed over the views */
+    int texel_n;              /* views with texel figures */
 } plot_pt;
 
 typedef struct plot_data {
@@ -674,6 +500,10 @@ typedef struct plot_data {
     int npts, cap;
     char scenes[BENCH_MAX_SCENES * 4][64];
     int nscenes;
+    /* per scene: the floor rows' shadow_area_pct summed over the views
+       where defined, their count, and their texel_over1_pct */
+    double floor_sum[BENCH_MAX_SCENES * 4], floor_texel[BENCH_MAX_SCENES * 4];
+    int floor_n[BENCH_MAX_SCENES * 4], floor_texel_n[BENCH_MAX_SCENES * 4];
     char device[512];
 } plot_data;
 
@@ -726,30 +556,6 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
         snprintf(buf, n, "%s%d pcf%d", strstr(p->method, "stable") ? "stable " : "", res, pcf);
 }
 
-/* a gnuplot single-quoted string: ' doubled */
-static void gp_string(FILE *f, const char *s) {
-    fputc('\'', f);
-    for (; *s; s++) {
-        if (*s == '\'') fputc('\'', f);
-        fputc(*s, f);
-    }
-    fputc('\'', f);
-}
-
-/* writes a CSV field, quoted when it holds a comma, quote or newline */
-static void csv_field(FILE *f, const char *s) {
-    if (!strpbrk(s, ",\"\n\r")) {
-        fputs(s, f);
-        return;
-    }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"') fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-
 /* splits one line of bench.csv into its BENCH_CSV_COLS fields (any may be
    quoted); returns the count, BENCH_CSV_COLS + 1 when there are more */
 static int csv_split(char *line, char **f) {
@@ -787,9 +593,9 @@ static int plot_read(const char *csv, plot_data *d) {
     memset(d, 0, sizeof *d);
     if (!f) { fprintf(stderr, "bench: cannot read %s: %s\n", csv, strerror(errno)); return -1; }
     if (!fgets(line, sizeof line, f) || strncmp(line, BENCH_CSV_HEADER, strlen(BENCH_CSV_HEADER)) != 0) {
-        fprintf(stderr, "bench: %s does not start with the bench header (%s); one without shadow_area_pct and "
-                        "the columns after it comes from an older bench: run the bench again\n", csv,
-                BENCH_CSV_HEADER);
+        fprintf(stderr, "bench: %s does not start with the bench header (%s); one without the last columns "
+                        "(texel_over1_pct .. area_200_pct, or shadow_area_pct .. in an older one) comes from an older "
+                        "bench: run the bench again\n", csv, BENCH_CSV_HEADER);
         fclose(f);
         return -1;
     }
@@ -812,6 +618,17 @@ static int plot_read(const char *csv, plot_data *d) {
             snprintf(d->scenes[d->nscenes++], sizeof d->scenes[0], "%s", key);
         }
         snprintf(d->device, sizeof d->device, "%s", fld[13]);
+        if (strcmp(fld[0], BENCH_FLOOR) == 0) {   /* the limit: a line on the chart, not a series */
+            if (*fld[BENCH_COL_SHADOW_AREA]) {
+                d->floor_sum[si] += atof(fld[BENCH_COL_SHADOW_AREA]);
+                d->floor_n[si]++;
+            }
+            if (*fld[BENCH_COL_TEXEL]) {
+                d->floor_texel[si] += atof(fld[BENCH_COL_TEXEL]);
+                d->floor_texel_n[si]++;
+            }
+            continue;
+        }
         for (k = 0; k < d->npts; k++)
             if (d->pts[k].scene == si && strcmp(d->pts[k].method, fld[0]) == 0 &&
                 strcmp(d->pts[k].params, fld[1]) == 0) {
@@ -841,17 +658,49 @@ static int plot_read(const char *csv, plot_data *d) {
         }
         p->ms_sum += soft ? atof(fld[12]) : atof(fld[10]) + atof(fld[11]);   /* depth passes + analysis (FERKO) */
         p->n++;
+        if (*fld[BENCH_COL_TEXEL]) {
+            for (k = 0; k < 4; k++) p->texel_sum[k] += atof(fld[BENCH_COL_TEXEL + k]);
+            p->texel_n++;
+        }
     }
     fclose(f);
     return 0;
 }
 
 /* the data files and variables of one scene's chart, then gnuplot */
-static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
+/* the mean of a point's texel column k over its views, -1 without one */
+static double pt_texel(const plot_pt *p, int k) { return p->texel_n ? p->texel_sum[k] / p->texel_n : -1.0; }
+
+/* The companion table of a chart (bench-limit.txt): every configuration in
+   order of time, its error, how far it is from the scene's floor, and its
+   texel-to-pixel figures, all means over the views. */
+static void write_limit_table(FILE *t, const plot_data *d, int si, plot_pt *const *sel, int nsel, double floor) {
+    int k;
+    fprintf(t, "scene %s: floor %s", d->scenes[si], floor >= 0 ? "" : "- (no floor rows)");
+    if (floor >= 0)
+        fprintf(t, "%.3f%% (the finer of RMSM 65536^2 and a standard 16384^2 map per view), its texels over 1 px "
+                   "%.1f%%", floor, d->floor_texel_n[si] ? d->floor_texel[si] / d->floor_texel_n[si] : -1.0);
+    fprintf(t, "\n  %-16s %-52s %10s %9s %9s %8s %8s %8s %8s %s\n", "method", "params", "shadow_ms", "error%",
+            "-floor", "texel>1", ">2px", ">4px", "median", "front");
+    for (k = 0; k < nsel; k++) {
+        const plot_pt *p = sel[k];
+        char gap[16] = "-";
+        if (floor >= 0) snprintf(gap, sizeof gap, "%+.3f", p->err - floor);
+        fprintf(t, "  %-16s %-52s %10.3f %9.3f %9s", p->method, p->params, p->ms, p->err, gap);
+        if (p->texel_n)
+            fprintf(t, " %7.1f%% %7.1f%% %7.1f%% %8.3f", pt_texel(p, 0), pt_texel(p, 1), pt_texel(p, 2), pt_texel(p, 3));
+        else
+            fprintf(t, " %8s %8s %8s %8s", "-", "-", "-", "-");
+        fprintf(t, " %s\n", p->front ? "*" : "");
+    }
+    fputc('\n', t);
+}
+
+static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FILE *limit) {
     plot_pt **sel = (plot_pt **)malloc(sizeof *sel * (size_t)(d->npts > 0 ? d->npts : 1));
     char methods[16][32], path[1400], base[1200], list[600] = "", cmd[3000];
     int nsel = 0, nm = 0, m, k, maxn = 0, logy = 1, nfront = 0, rc = 0;
-    double best = 1e300, emin = 1e300, emax = 0, tmin = 1e300, tmax = 0;
+    double best = 1e300, emin = 1e300, emax = 0, tmin = 1e300, tmax = 0, floor;
     const int soft = strstr(d->scenes[si], "-soft") != NULL;
     const char *ykind = soft ? "penumbra_mae" : "shadow_area_pct";
     FILE *g;
@@ -877,6 +726,12 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
         if (m == nm && nm < 16) snprintf(methods[nm++], sizeof methods[0], "%s", p->method);
     }
     if (nsel == 0) { free(sel); return 0; }
+    /* the limit: the floor's error, a horizontal line inside the range */
+    floor = !soft && d->floor_n[si] ? d->floor_sum[si] / d->floor_n[si] : -1.0;
+    if (floor >= 0.0) {
+        if (!(floor > 0.0)) logy = 0;
+        else if (floor < emin) emin = floor;
+    }
     if (logy && emax < 4.0 * emin) logy = 0;   /* a narrow range reads better linear */
     /* Pareto front: in order of time, a point is on it when its error is
        below that of every point at least as fast */
@@ -887,7 +742,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
             best = sel[k]->err;
             nfront++;
         }
-    snprintf(base, sizeof base, "%s/bench-data/%s", o->out_dir, d->scenes[si]);
+    snprintf(base, sizeof base, "%s/bench-data/%s", o->p.out_dir, d->scenes[si]);
     for (m = 0; m < nm; m++) {
         snprintf(path, sizeof path, "%s.%s.dat", base, methods[m]);
         if (!(g = fopen(path, "w"))) { rc = -1; continue; }
@@ -913,6 +768,10 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
                 double u = ut > 0.0 ? log(sel[k]->ms / tmin) / ut : 0.0;
                 double w = ue > 0.0 ? (logy ? log(sel[k]->err / emin) : sel[k]->err) / ue : 0.0;
                 short_label(sel[k], lab, sizeof lab);
+                if (sel[k]->texel_n) {   /* the texel figure: pixels whose texel spans over 1 px */
+                    size_t used = strlen(lab);
+                    snprintf(lab + used, sizeof lab - used, " [%.0f%%]", pt_texel(sel[k], 0));
+                }
                 if (lu >= 0.0 && fabs(u - lu) < 0.12 && fabs(w - lv) < 0.07) lab[0] = 0;
                 else { lu = u; lv = w; }
                 fprintf(g, "%.4f %.4f \"%s\" %s %s\n", sel[k]->ms, sel[k]->err, lab, sel[k]->method, sel[k]->params);
@@ -921,7 +780,7 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
     } else rc = -1;
     snprintf(path, sizeof path, "%s.vars.gp", base);
     if (!(g = fopen(path, "w"))) { free(sel); return -1; }
-    fprintf(g, "# written by bench/bench.c; draw with: gnuplot %s %s\nscene = ", path, o->gp);
+    fprintf(g, "# written by bench/bench.c; draw with: gnuplot %s %s\nscene = ", path, o->p.gp);
     gp_string(g, d->scenes[si]);
     fprintf(g, "\ndevice = ");
     gp_string(g, d->device);
@@ -931,63 +790,69 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat) {
     fprintf(g, "\ndatabase = ");
     gp_string(g, base);
     fprintf(g, "\noutfile = ");
-    snprintf(base, sizeof base, "%s/pareto-%s.png", o->out_dir, d->scenes[si]);
+    snprintf(base, sizeof base, "%s/pareto-%s.png", o->p.out_dir, d->scenes[si]);
     gp_string(g, base);
     fprintf(g, "\nmethods = ");
     gp_string(g, list);
     fprintf(g, "\nnviews = %d\nrepeat = %d\nlogy = %d\nwidth = %d\nheight = %d\n", maxn, repeat, logy, BENCH_W, BENCH_H);
     fprintf(g, "soft = %d\n", soft);
     fprintf(g, "tmin = %g\ntmax = %g\nemin = %g\nemax = %g\n", tmin, tmax, emin, emax);
+    fprintf(g, "floor = %g\nfloor_texel = %g\n", floor,
+            d->floor_texel_n[si] ? d->floor_texel[si] / d->floor_texel_n[si] : -1.0);
     fclose(g);
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->gp);
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->p.gp);
     if (system(cmd) != 0) {
         fprintf(stderr, "bench: gnuplot failed for %s: %s\n", d->scenes[si], cmd);
         rc = -1;
     } else {
         fprintf(stderr, "bench: chart %s (%d configurations, %d on the Pareto front)\n", base, nsel, nfront);
     }
+    if (limit && !soft) write_limit_table(limit, d, si, sel, nsel, floor);
     free(sel);
     return rc;
+}
+
+/* OUT/bench-limit.txt with its header; NULL when it cannot be written */
+static FILE *open_limit_table(const char *out_dir, const char *device) {
+    static const char *const head =
+        "# how far each configuration is from the limit, per chart (means over the views): error = "
+        "shadow_area_pct; -floor = error minus the floor's (an over-resolved map's) error; texel>1, >2px, >4px = "
+        "% of the shaded pixels whose shadow texel spans more than 1, 2, 4 pixels (Ferko 2013's measure), "
+        "median = the median texel footprint in pixels; * = on the Pareto front";
+    char path[1100];
+    FILE *f;
+    snprintf(path, sizeof path, "%.900s/bench-limit.txt", out_dir);
+    if ((f = fopen(path, "w")) != NULL) fprintf(f, "%s\n# device %s\n\n", head, device);
+    return f;
 }
 
 static int plot_all(const bench_opts *o, int repeat) {
     plot_data d;
     char csv[1100], dir[1100];
     int i, rc = 0;
-    if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-        fprintf(stderr, "bench: gnuplot not found (Debian: gnuplot-nox; `make deps-demo` installs it): no charts\n");
-        return -1;
-    }
-    if (!file_exists(o->gp)) {
-        fprintf(stderr, "bench: gnuplot script %s not found (run from the repository root or pass --gp)\n", o->gp);
-        return -1;
-    }
-    snprintf(csv, sizeof csv, "%s/bench.csv", o->out_dir);
+    FILE *limit;
+    if (!gnuplot_ready("bench", o->p.gp)) return -1;
+    snprintf(csv, sizeof csv, "%s/bench.csv", o->p.out_dir);
     if (plot_read(csv, &d) != 0) return -1;
-    snprintf(dir, sizeof dir, "%s/bench-data", o->out_dir);
+    snprintf(dir, sizeof dir, "%s/bench-data", o->p.out_dir);
     mkdir_p(dir);
+    limit = open_limit_table(o->p.out_dir, d.device);
     for (i = 0; i < d.nscenes; i++)
-        if (plot_scene(o, &d, i, repeat) != 0) rc = -1;
+        if (plot_scene(o, &d, i, repeat, limit) != 0) rc = -1;
+    if (limit) fclose(limit);
     if (d.nscenes == 0) fprintf(stderr, "bench: %s has no rows: no charts\n", csv);
     free(d.pts);
     return rc;
 }
 
 /* ------------------------------------------------------------- the sweep */
-typedef struct bench_gl {
-    tb_gl_context *ctx;
-    tb_gl_funcs gl;
-    tb_gl_gbuffer gb;
-    tb_gl_fbo mask;            /* R16F, 1280x720 */
-    skgl_context *sk;
-    const char *renderer;
-} bench_gl;
-
 typedef struct view_data {
     bench_view v;
     tb_gl_fbo gbuf;            /* depth + normals, kept on the GPU for the mask pass */
     float *ref;                /* reference visibility */
     long covered;
+    bench_receivers rc;        /* world positions and view depths (directional sweep only) */
+    int *band;                 /* each pixel's view-depth band (band_edge), -1 background */
 } view_data;
 
 /* progress: runs scored, and timed renders done (the ETA unit) */
@@ -1017,7 +882,13 @@ typedef struct run_rec {
     tb_shadow_error hard;             /* hard rows: against the reference's shadow */
     tb_penumbra_error pen;            /* soft rows: penumbra, umbra, lit */
     uint64_t excluded;                /* reference pixels marked back-facing or silhouette */
+    tb_footprint_stats texel;         /* directional rows: the texel-to-pixel figure (count 0: none) */
+    int has_bands;                    /* directional rows: the band counts below are set */
+    uint64_t band_shadow[BENCH_BANDS], band_wrong[BENCH_BANDS];
 } run_rec;
+
+/* scratch of the texel-to-pixel figure (bench_texel_stats), one frame's worth */
+static bench_texel_scratch g_texel;
 
 /* pixels the reference left out for what they are (back-facing,
    silhouette), not for having no receiver */
@@ -1057,6 +928,10 @@ static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px
     rr->texels = st->texels;
     rr->passes = st->passes;
     score_hard(vd->ref, mask_px, rr);
+    if (vd->rc.world) rr->texel = bench_texel_stats(sh, &vd->rc, vd->ref, &g_texel);
+    if (vd->band)
+        rr->has_bands = tb_metric_shadow_bands(vd->ref, mask_px, vd->band, (size_t)BENCH_W * BENCH_H, BENCH_BANDS,
+                                               rr->band_shadow, rr->band_wrong) == 0;
     return 0;
 }
 
@@ -1064,6 +939,7 @@ static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px
 static void write_row(FILE *csv, const char *method, const char *params, const char *scene, const char *view,
                       const run_rec *rr, float sms, const char *renderer) {
     float tmp[BENCH_MAX_REPEAT], ams;
+    int b;
     memcpy(tmp, rr->analysis, sizeof tmp);
     ams = rr->n > 0 ? median(tmp, rr->n) : 0.0f;
     csv_field(csv, method);
@@ -1104,7 +980,20 @@ static void write_row(FILE *csv, const char *method, const char *params, const c
     } else {
         fputs(",,,,", csv);
     }
-    fprintf(csv, ",%llu\n", (unsigned long long)rr->excluded);
+    fprintf(csv, ",%llu", (unsigned long long)rr->excluded);
+    /* the texel-to-pixel figure, the shadow-area error by view-depth band
+       (empty where a band has no reference shadow) */
+    if (rr->texel.count > 0)
+        fprintf(csv, ",%.3f,%.3f,%.3f,%.4f", rr->texel.over1_pct, rr->texel.over2_pct, rr->texel.over4_pct,
+                rr->texel.median);
+    else
+        fputs(",,,,", csv);
+    for (b = 0; b < BENCH_BANDS; b++)
+        if (rr->has_bands && rr->band_shadow[b] > 0)
+            fprintf(csv, ",%.4f", 100.0 * (double)rr->band_wrong[b] / (double)rr->band_shadow[b]);
+        else
+            fputc(',', csv);
+    fputc('\n', csv);
 }
 
 /* On a CPU rasteriser the directional passes are timed by the wall clock
@@ -1149,12 +1038,24 @@ static sk_result render_frame(bench_gl *B, skgl_shadow *sh, const view_data *vd,
     return r;
 }
 
-/* G-buffer and reference of one view. 0 ok. */
-static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, const tb_reference *ref,
-                        sk_vec3 light_dir, const tb_light *area, view_data *vd, float *depth, float *rgba,
-                        float *nrm) {
-    double vp[16], ivp[16];
-    tb_view tv;
+/* each pixel's view-depth band (band_edge), -1 for the background */
+static int *depth_bands(const bench_receivers *rc) {
+    size_t i, n = (size_t)rc->w * (size_t)rc->h;
+    int *band = (int *)malloc(sizeof(int) * n), k;
+    if (!band) return NULL;
+    for (i = 0; i < n; i++) {
+        band[i] = -1;
+        for (k = 0; k < BENCH_BANDS && rc->view_depth[i] >= 0.0f; k++)
+            if (rc->view_depth[i] < band_edge[k + 1]) { band[i] = k; break; }
+    }
+    return band;
+}
+
+/* G-buffer and reference of one view; for a directional light (area NULL)
+   also its receivers (the texel-to-pixel figure) and view-depth bands.
+   0 ok; free with free_view either way. */
+static int prepare_view(bench_gl *B, const tb_gl_mesh *mesh, const tb_reference *ref, sk_vec3 light_dir,
+                        const tb_light *area, view_data *vd, float *depth, float *rgba, float *nrm) {
     tb_light L;
     size_t i, n = (size_t)BENCH_W * BENCH_H;
     int k;
@@ -1164,25 +1065,26 @@ static int prepare_view(bench_gl *B, const tb_scene *s, const tb_gl_mesh *mesh, 
     if (tb_gl_read_rgba_float(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) return -1;
     for (i = 0; i < n; i++)
         for (k = 0; k < 3; k++) nrm[3 * i + k] = rgba[4 * i + k];
-    /* the exact inverse (double) of the float matrix the G-buffer used */
-    for (k = 0; k < 16; k++) vp[k] = vd->v.view_proj.m[k];
-    if (!tb_mat4_inverse_d(vp, ivp)) return -1;
-    memset(&tv, 0, sizeof tv);
-    for (k = 0; k < 16; k++) tv.inv_view_proj.m[k] = (float)ivp[k];
-    tv.width = BENCH_W;
-    tv.height = BENCH_H;
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_DIRECTIONAL;
     L.direction = light_dir;
     if (area) L = *area;
     vd->ref = (float *)malloc(sizeof(float) * n);
-    if (!vd->ref) return -1;
-    if (tb_reference_trace_exact(ref, &tv, depth, &L, NULL, vd->ref, NULL) != 0) return -1;
+    if (!vd->ref || bench_trace(ref, &vd->v.view_proj, depth, &L, vd->ref) != 0) return -1;
     vd->covered = 0;
     for (i = 0; i < n; i++)
         if (vd->ref[i] >= 0.0f) vd->covered++;
-    (void)s;
-    return 0;
+    if (area) return 0;
+    if (bench_receivers_init(&vd->rc, BENCH_W, BENCH_H, &vd->v.view_proj, &vd->v.cam.view, depth) != 0) return -1;
+    return (vd->band = depth_bands(&vd->rc)) != NULL ? 0 : -1;
+}
+
+static void free_view(bench_gl *B, view_data *vd) {
+    if (vd->gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &vd->gbuf);
+    free(vd->ref);
+    free(vd->band);
+    bench_receivers_free(&vd->rc);
+    memset(vd, 0, sizeof *vd);
 }
 
 /* a shaded picture of the reference: grey * (ambient + direct * visibility), sky blue background */
@@ -1393,15 +1295,6 @@ out:
     tb_scene_free(&s);
 }
 
-static int load_scene(const bench_scene_def *def, tb_scene *s) {
-    tb_scene_init(s);
-    if (def->path[0]) {
-        if (tb_scene_load(s, def->path) != 0 || s->index_count == 0) return -1;
-        return add_ground_under(s);
-    }
-    return tb_scene_build(s, def->name);
-}
-
 /* The walk-through of Tang et al. 2017's Table 1: the camera moves in `frames`
    steps from the "low" view to the "overview" one; at each step LSPSM and
    PSSM with 8 cascades at the same per-map resolution (1024) render and are
@@ -1531,7 +1424,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
     char path[1200];
     FILE *txt;
     int sc_i, reps = o->quick ? 1 : (o->repeat < 3 ? o->repeat : 3);
-    snprintf(path, sizeof path, "%.900s/bench-soft.txt", o->out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-soft.txt", o->p.out_dir);
     txt = fopen(path, "w");
     if (txt)
         fprintf(txt, "# area-light soft shadows, %dx%d, error = mean absolute visibility error against %d "
@@ -1552,12 +1445,12 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
         skgl_scene sc;
         int v, z, c, nviews = o->quick ? 1 : 2;
         double ts = now_s();
-        if (!scene_selected(o, names[sc_i])) continue;
+        if (!scene_selected(o->p.only, names[sc_i])) continue;
         if (o->quick && files[sc_i][0]) continue;            /* the demo: the fence only */
         memset(&def, 0, sizeof def);
         snprintf(def.name, sizeof def.name, "%s", names[sc_i]);
         if (files[sc_i][0]) {
-            snprintf(def.path, sizeof def.path, "%.900s/%s", o->scenes_dir, files[sc_i]);
+            snprintf(def.path, sizeof def.path, "%.900s/%s", o->p.scenes_dir, files[sc_i]);
             if (!file_exists(def.path)) continue;
         }
         memset(&mesh, 0, sizeof mesh);
@@ -1583,10 +1476,9 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                 double t0 = now_s(), e4 = -1, p4 = -1, t4 = -1;
                 memset(&vd, 0, sizeof vd);
                 vd.v = views[vi];
-                if (prepare_view(B, &s, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
+                if (prepare_view(B, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
                     fprintf(stderr, "bench: soft shadows: %s %s: G-buffer / reference failed\n", def.name, vd.v.name);
-                    if (vd.gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
-                    free(vd.ref);
+                    free_view(B, &vd);
                     continue;
                 }
                 fprintf(stderr, "bench: soft %s %s %s light (half %.3g): reference in %.1f s\n", def.name,
@@ -1648,8 +1540,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                 }
                 fflush(csv);
                 if (txt) fflush(txt);
-                tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
-                free(vd.ref);
+                free_view(B, &vd);
             }
         }
         /* temporal: the overview's eye moving 0.05% of its distance a frame, sideways */
@@ -1677,7 +1568,11 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                 finish_view(&bv, &s.bounds);
                 memset(&vd, 0, sizeof vd);
                 vd.v = bv;
-                if (prepare_view(B, &s, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) { ok = 0; break; }
+                if (prepare_view(B, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
+                    free_view(B, &vd);
+                    ok = 0;
+                    break;
+                }
                 for (c = 0; c < SOFT_CFGS && ok; c++) {
                     run_rec rr;
                     skgl_soft_frame_stats st;
@@ -1691,8 +1586,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                     }
                 memcpy(prev_ref, vd.ref, sizeof(float) * n);
                 for (c = 0; c < SOFT_CFGS; c++) memcpy(prev[c], cur[c], sizeof(float) * n);
-                tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
-                free(vd.ref);
+                free_view(B, &vd);
             }
             if (ok && pairs > 0) {
                 fprintf(stderr, "bench: soft %s temporal (medium light, %d frames, %zu pixel pairs): flip rate",
@@ -1753,7 +1647,7 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
         vd.v.target = v3_add(v3_scale(views[1].target, 1.0f - t), v3_scale(views[0].target, t));
         snprintf(vd.v.name, sizeof vd.v.name, "walk%02d", k);
         finish_view(&vd.v, &s->bounds);
-        if (prepare_view(B, s, mesh, ref, def->light_dir, NULL, &vd, depth, rgba, nrm) == 0) {
+        if (prepare_view(B, mesh, ref, def->light_dir, NULL, &vd, depth, rgba, nrm) == 0) {
             for (m = 0; m < 2; m++) {
                 run_rec rr;
                 const char *why = "";
@@ -1780,8 +1674,7 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
             }
             nf++;
         }
-        if (vd.gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &vd.gbuf);
-        free(vd.ref);
+        free_view(B, &vd);
     }
     fflush(csv);
     if (nf > 0) {
@@ -1800,25 +1693,130 @@ done:
     for (m = 0; m < 2; m++) skgl_shadow_destroy(B->sk, sh[m]);
 }
 
+/* ------------------------------------------------------------ the limit */
+/* The floor of a view: the error of an over-resolved map, the limit the
+   charts measure every method against. Two candidates, each rendered
+   once and scored like a sweep run: RMSM with a 65536^2 virtual map (a
+   48 x 48 page pool, so that the pool does not run short and coarsen the
+   pages) and a standard focused map of 16384^2 (or GL_MAX_TEXTURE_SIZE,
+   when smaller); the floor is the finer of the two on that view: the one
+   with fewer shaded pixels whose texel spans more than a pixel (then the
+   smaller median footprint). Its row in bench.csv is method "floor",
+   params naming the source. */
+#define FLOOR_RMSM_RES 65536
+#define FLOOR_RMSM_POOL 48
+#define FLOOR_STD_RES 16384
+
+static int floor_finer(const run_rec *a, const run_rec *b) {
+    if (a->texel.count == 0) return 0;
+    if (b->texel.count == 0) return 1;
+    if (a->texel.over1_pct != b->texel.over1_pct) return a->texel.over1_pct < b->texel.over1_pct;
+    return a->texel.median <= b->texel.median;
+}
+
+/* one floor candidate on one view, scored into rr; 0 ok */
+static int floor_run(bench_gl *B, const skgl_shadow_desc *d, view_data *vd, const skgl_scene *sc, sk_vec3 light_dir,
+                     float *mask_px, run_rec *rr) {
+    skgl_shadow *sh = NULL;
+    const char *why = "";
+    float analysis = 0.0f;
+    int rc = -1;
+    memset(rr, 0, sizeof *rr);
+    if (skgl_shadow_create(B->sk, d, &sh) == SK_OK && render_frame(B, sh, vd, sc, light_dir, &analysis) == SK_OK) {
+        rr->shadow[0] = render_ms(sh);
+        rr->analysis[0] = analysis;
+        rr->n = 1;
+        rc = score_run(B, sh, vd, mask_px, rr, &why);
+    }
+    if (rc != 0)
+        fprintf(stderr, "bench: floor %s on %s failed %s: %s\n", d->technique == SKGL_RMSM ? "rmsm" : "standard",
+                vd->v.name, why, skgl_error_log(B->sk));
+    skgl_shadow_destroy(B->sk, sh);
+    return rc;
+}
+
+/* the floor of every view of a scene: rows to csv, into floors[v]
+   (state 1 where one was measured) */
+static void floor_runs(bench_gl *B, const bench_scene_def *def, view_data *vd, int nviews, const skgl_scene *sc,
+                       float *mask_px, FILE *csv, run_rec *floors) {
+    skgl_shadow_desc rd, sd;
+    int v, max_res = skgl_get_caps(B->sk).max_texture_size;
+    char rp[160], sp[160];
+    memset(&rd, 0, sizeof rd);
+    rd.technique = SKGL_RMSM;
+    rd.resolution = FLOOR_RMSM_RES;
+    rd.rmsm_pool_pages = FLOOR_RMSM_POOL;
+    rd.sync_readback = 1;
+    rd.bias = g_bias;
+    memset(&sd, 0, sizeof sd);
+    sd.technique = SKGL_STANDARD;
+    sd.resolution = max_res > 0 && max_res < FLOOR_STD_RES ? max_res : FLOOR_STD_RES;
+    sd.bias = g_bias;
+    snprintf(rp, sizeof rp, "source=rmsm;virtual_resolution=%d;page=128;pool=%d;pcf=0", rd.resolution,
+             rd.rmsm_pool_pages);
+    snprintf(sp, sizeof sp, "source=standard;resolution=%d;pcf=1", sd.resolution);
+    for (v = 0; v < nviews; v++) {
+        run_rec a, b;
+        int ok_a = floor_run(B, &rd, &vd[v], sc, def->light_dir, mask_px, &a) == 0;
+        int ok_b = floor_run(B, &sd, &vd[v], sc, def->light_dir, mask_px, &b) == 0;
+        int pick_a = ok_a && (!ok_b || floor_finer(&a, &b));
+        memset(&floors[v], 0, sizeof floors[v]);
+        if (!ok_a && !ok_b) continue;
+        floors[v] = pick_a ? a : b;
+        floors[v].state = 1;
+        write_row(csv, BENCH_FLOOR, pick_a ? rp : sp, def->name, vd[v].v.name, &floors[v], floors[v].shadow[0],
+                  B->renderer);
+        fprintf(stderr, "bench: floor %-15s %-8s rmsm %d: shadow area %.3f%%, texel > 1 px %.1f%% (median %.3f) | "
+                        "standard %d: %.3f%%, %.1f%% (%.3f) -> %s\n", def->name, vd[v].v.name, rd.resolution,
+                ok_a ? a.hard.area_pct : -1.0, a.texel.over1_pct, a.texel.median, sd.resolution,
+                ok_b ? b.hard.area_pct : -1.0, b.texel.over1_pct, b.texel.median, pick_a ? "rmsm" : "standard");
+    }
+    fflush(csv);
+}
+
+/* The shadow-area error by view-depth band, pooled over the views (the
+   sums of wrong and of shadow pixels), one line a configuration and one
+   for the floor: bench-bands.txt. */
+static void bands_line(FILE *t, const char *method, const char *params, const run_rec *rr, int nviews) {
+    uint64_t sh[BENCH_BANDS], wr[BENCH_BANDS], ts = 0, tw = 0;
+    int v, b, n = 0;
+    memset(sh, 0, sizeof sh);
+    memset(wr, 0, sizeof wr);
+    for (v = 0; v < nviews; v++) {
+        if (rr[v].state != 1 || !rr[v].has_bands) continue;
+        for (b = 0; b < BENCH_BANDS; b++) {
+            sh[b] += rr[v].band_shadow[b];
+            wr[b] += rr[v].band_wrong[b];
+            ts += rr[v].band_shadow[b];
+            tw += rr[v].band_wrong[b];
+        }
+        n++;
+    }
+    if (n == 0) return;
+    fprintf(t, "  %-15s %-52s %8.3f", method, params, ts ? 100.0 * (double)tw / (double)ts : 0.0);
+    for (b = 0; b < BENCH_BANDS; b++)
+        if (sh[b]) fprintf(t, " %8.3f", 100.0 * (double)wr[b] / (double)sh[b]);
+        else fprintf(t, " %8s", "-");
+    fprintf(t, "   (%d view%s)\n", n, n == 1 ? "" : "s");
+}
+
 int main(int argc, char **argv) {
     bench_opts o;
     bench_scene_def defs[BENCH_MAX_SCENES];
     int ndefs = 0, i, c, v, status = 0, shared = 0;
     const char *env;
     bench_gl B;
-    FILE *csv = NULL, *walk = NULL, *walk_txt = NULL;
-    char path[1200], err[1024];
+    FILE *csv = NULL, *walk = NULL, *walk_txt = NULL, *bands = NULL;
+    char path[1200];
     progress pg;
     float *depth = NULL, *rgba = NULL, *nrm = NULL, *mask_px = NULL;
     size_t npx = (size_t)BENCH_W * BENCH_H;
     double t_start = now_s();
 
     memset(&o, 0, sizeof o);
+    bench_paths_init(&o.p, "bench/pareto.gp");
     o.repeat = 5;
     o.views = 0;
-    o.scenes_dir = "../shared/scenes";
-    o.out_dir = "out";
-    o.gp = "bench/pareto.gp";
     env = getenv("SK_BENCH_QUICK");
     if (env && *env && strcmp(env, "0") != 0) o.quick = 1;
     for (i = 1; i < argc; i++) {
@@ -1828,12 +1826,11 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--full") == 0) o.quick = 0;
         else if (strcmp(a, "--repeat") == 0 && more) { o.repeat = atoi(argv[++i]); o.repeat_given = 1; }
         else if (strcmp(a, "--views") == 0 && more) o.views = atoi(argv[++i]);
-        else if (strcmp(a, "--scenes") == 0 && more) o.scenes_dir = argv[++i];
-        else if (strcmp(a, "--out") == 0 && more) o.out_dir = argv[++i];
-        else if (strcmp(a, "--only") == 0 && more) o.only = argv[++i];
-        else if (strcmp(a, "--gp") == 0 && more) o.gp = argv[++i];
+        else if (bench_path_option(&o.p, argc, argv, &i)) continue;
         else if (strcmp(a, "--images") == 0) o.images = 1;
         else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
+        else if (strcmp(a, "--methods") == 0 && more) o.methods = argv[++i];
+        else if (strcmp(a, "--no-floor") == 0) o.no_floor = 1;
         else if (strcmp(a, "--bias") == 0 && more) {
             const char *b = argv[++i];
             if (strcmp(b, "plane") == 0) g_bias = SKGL_BIAS_RECEIVER_PLANE;
@@ -1854,7 +1851,7 @@ int main(int argc, char **argv) {
     if (o.plot_only) {
         /* the repeat count of the sweep that wrote the CSV, for the chart titles */
         FILE *m;
-        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
+        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.p.out_dir);
         if (!o.repeat_given && (m = fopen(path, "r"))) {
             if (fscanf(m, "repeat %d", &o.repeat) != 1) o.repeat = 5;
             fclose(m);
@@ -1864,46 +1861,14 @@ int main(int argc, char **argv) {
 
     /* ---- scenes */
     {
-        static const char *shared_names[3] = {"stanford-bunny", "sponza-ivy", "sponza-curtains"};
-        static const char *shared_files[3] = {"stanford-bunny.obj", "sponza-ivy/sponza_ivy.gltf",
-                                              "sponza-curtains/sponza_curtains.gltf"};
-        static const char *proc[4] = {"ground-boxes", "fence", "terrace", "open-world"};
-        if (dir_exists(o.scenes_dir)) {
-            shared = 1;
-            for (i = 0; i < 3; i++) {
-                bench_scene_def *d = &defs[ndefs];
-                memset(d, 0, sizeof *d);
-                snprintf(d->name, sizeof d->name, "%s", shared_names[i]);
-                snprintf(d->path, sizeof d->path, "%s/%s", o.scenes_dir, shared_files[i]);
-                d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
-                if (!scene_selected(&o, d->name)) continue;
-                if (!file_exists(d->path)) {
-                    fprintf(stderr, "bench: %s is missing: scene %s skipped\n", d->path, d->name);
-                    continue;
-                }
-                ndefs++;
-            }
-        } else {
-            fprintf(stderr,
-                    "bench: %s not found: PROCEDURAL SCENES ONLY (no stanford-bunny, sponza-ivy, sponza-curtains);"
-                    " --scenes DIR points elsewhere\n",
-                    o.scenes_dir);
-        }
-        for (i = 0; i < 4; i++) {
-            bench_scene_def *d = &defs[ndefs];
-            memset(d, 0, sizeof *d);
-            snprintf(d->name, sizeof d->name, "%s", proc[i]);
-            d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
-            if (i == 3) tb_open_world_sun(0, 2, &d->light_dir);
-            if (scene_selected(&o, d->name)) ndefs++;
-        }
+        ndefs = bench_scenes("bench", BENCH_IN_SWEEP, o.p.scenes_dir, o.p.only, defs, BENCH_MAX_SCENES, &shared);
         if (o.soft_only) ndefs = 0;
-        if (ndefs == 0 && !scene_selected(&o, "room") && !o.soft_only) {
-            fprintf(stderr, "bench: no scene selected (--only %s)\n", o.only ? o.only : "");
+        if (ndefs == 0 && !scene_selected(o.p.only, "room") && !o.soft_only) {
+            fprintf(stderr, "bench: no scene selected (--only %s)\n", o.p.only ? o.p.only : "");
             return 2;
         }
     }
-    build_sweep(o.quick);
+    build_sweep(o.quick, o.methods);
     for (i = 0; i < g_ncfg; i++) g_cfg[i].desc.bias = g_bias;
     memset(&pg, 0, sizeof pg);
     pg.total = ndefs * o.views * g_ncfg;
@@ -1928,70 +1893,53 @@ int main(int argc, char **argv) {
     }
 
     /* ---- GL */
-    memset(&B, 0, sizeof B);
-    B.ctx = tb_gl_context_create(TB_GL_AUTO, err, sizeof err);
-    if (!B.ctx) { fprintf(stderr, "bench: no GL context: %s\n", err); return 1; }
-    if (tb_gl_funcs_load(&B.gl, tb_gl_context_getproc(B.ctx)) != 0) {
-        fprintf(stderr, "bench: GL entry points missing\n");
-        tb_gl_context_destroy(B.ctx);
-        return 1;
-    }
-    B.renderer = tb_gl_context_renderer(B.ctx);
-    fprintf(stderr, "bench: GL %s on %s (%s)\n", tb_gl_context_version(B.ctx), B.renderer,
-            tb_gl_context_backend_name(B.ctx));
+    if (bench_gl_open(&B, "bench", SKGL_TIMING_SYNC) != 0) return 1;   /* each run's own times (a stall per pass) */
     g_wall_timing = software_renderer(B.renderer);
     if (software_renderer(B.renderer))
         fprintf(stderr, "bench: NOTE: %s renders on the CPU: its times are comparable only within this run "
                         "(same machine, same load); compare ratios, not absolute ms\n", B.renderer);
     else
         fprintf(stderr, "bench: times are absolute GPU milliseconds on %s (GL timer queries)\n", B.renderer);
-    {
-        skgl_desc sd;
-        sk_result r;
-        memset(&sd, 0, sizeof sd);
-        sd.getproc = tb_gl_context_getproc(B.ctx);
-        sd.timing = SKGL_TIMING_SYNC;   /* each run's own times (a stall per pass: measuring) */
-        r = skgl_create(&sd, &B.sk);
-        if (r != SK_OK) {
-            fprintf(stderr, "bench: skgl_create: %s %s\n", sk_result_string(r), B.sk ? skgl_error_log(B.sk) : "");
-            tb_gl_context_destroy(B.ctx);
-            return 1;
-        }
-    }
-    if (tb_gl_gbuffer_create(&B.gl, &B.gb, err, sizeof err) != 0 ||
-        tb_gl_fbo_create(&B.gl, &B.mask, BENCH_W, BENCH_H, TB_GL_COLOR_R16F) != 0) {
-        fprintf(stderr, "bench: G-buffer / mask target: %s\n", err);
-        status = 1;
-        goto done;
-    }
     depth = (float *)malloc(sizeof(float) * npx);
     rgba = (float *)malloc(sizeof(float) * 4 * npx);
     nrm = (float *)malloc(sizeof(float) * 3 * npx);
     mask_px = (float *)malloc(sizeof(float) * npx);
-    if (!depth || !rgba || !nrm || !mask_px) { fprintf(stderr, "bench: out of memory\n"); status = 1; goto done; }
-
-    mkdir_p(o.out_dir);
-    /* charts of an earlier sweep would no longer match bench.csv */
-    {
-        static const char *known[] = {"stanford-bunny", "sponza-ivy", "sponza-curtains", "ground-boxes", "fence",
-                                      "terrace", "room"};
-        for (i = 0; i < (int)(sizeof known / sizeof known[0]); i++) {
-            snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.out_dir, known[i]);
-            remove(path);
-        }
+    if (!depth || !rgba || !nrm || !mask_px || bench_texel_scratch_init(&g_texel, BENCH_W, BENCH_H) != 0) {
+        fprintf(stderr, "bench: out of memory\n");
+        status = 1;
+        goto done;
     }
-    snprintf(path, sizeof path, "%s/bench.csv", o.out_dir);
+
+    mkdir_p(o.p.out_dir);
+    /* charts of an earlier sweep would no longer match bench.csv */
+    for (i = 0; i <= bench_scene_count; i++) {
+        snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.p.out_dir,
+                 i < bench_scene_count ? bench_scene_table[i].name : "room");
+        remove(path);
+    }
+    snprintf(path, sizeof path, "%s/bench.csv", o.p.out_dir);
     csv = fopen(path, "w");
-    snprintf(path, sizeof path, "%.900s/bench-walk.csv", o.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-walk.csv", o.p.out_dir);
     walk = fopen(path, "w");
     if (walk) fprintf(walk, "%s\n", BENCH_CSV_HEADER);
-    snprintf(path, sizeof path, "%.900s/bench-walk.txt", o.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-walk.txt", o.p.out_dir);
     walk_txt = fopen(path, "w");
     if (walk_txt) fprintf(walk_txt, "# device %s, times %s\n", B.renderer, timing_label(B.renderer));
+    snprintf(path, sizeof path, "%.900s/bench-bands.txt", o.p.out_dir);
+    bands = fopen(path, "w");
+    if (bands) {
+        fprintf(bands, "# shadow-area error (%% of the reference's shadow pixels misclassified) by view depth from the "
+                       "camera (scene units: metres in the open world), pooled over the views: the sums of wrong and "
+                       "of shadow pixels; \"-\": no reference shadow in that band; floor: the over-resolved map "
+                       "(bench-limit.txt)\n# device %s\n", B.renderer);
+        fprintf(bands, "  %-15s %-52s %8s", "method", "params", "all");
+        for (v = 0; v < BENCH_BANDS; v++) fprintf(bands, " %8s", band_name[v]);
+        fputc('\n', bands);
+    }
     if (!csv) { fprintf(stderr, "bench: cannot write %s: %s\n", path, strerror(errno)); status = 1; goto done; }
     fprintf(csv, "%s\n", BENCH_CSV_HEADER);
     fflush(csv);
-    if (!shared) fprintf(stderr, "bench: (reminder) procedural scenes only: %s is missing\n", o.scenes_dir);
+    if (!shared) fprintf(stderr, "bench: (reminder) procedural scenes only: %s is missing\n", o.p.scenes_dir);
 
     pg.t0 = now_s();
     for (i = 0; i < ndefs; i++) {
@@ -2004,7 +1952,7 @@ int main(int argc, char **argv) {
         draw_user du;
         skgl_scene sc;
         double ts = now_s();
-        run_rec *recs = NULL;
+        run_rec *recs = NULL, floors[BENCH_MAX_VIEWS];
         int pass;
         double last_note = now_s();
         memset(vd, 0, sizeof vd);
@@ -2026,17 +1974,16 @@ int main(int argc, char **argv) {
             pg.total_units -= (long)o.views * g_ncfg * o.repeat;
             continue;
         }
-        if (strcmp(def->name, "open-world") == 0) make_open_world_views(views);
-        else make_views(&s, views);
+        scene_views(def, &s, views);
         for (v = 0; v < o.views; v++) {
             vd[v].v = views[v];
-            if (prepare_view(&B, &s, &mesh, ref, def->light_dir, NULL, &vd[v], depth, rgba, nrm) != 0) {
+            if (prepare_view(&B, &mesh, ref, def->light_dir, NULL, &vd[v], depth, rgba, nrm) != 0) {
                 fprintf(stderr, "bench: G-buffer / reference failed for %s view %s\n", def->name, views[v].name);
                 status = 1;
                 goto scene_done;
             }
             if (o.images) {
-                snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-reference.png", o.out_dir, def->name,
+                snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-reference.png", o.p.out_dir, def->name,
                          views[v].name);
                 write_shaded(path, vd[v].ref, nrm, def->light_dir);
             }
@@ -2114,7 +2061,7 @@ int main(int argc, char **argv) {
                                 rr->hard.area_pct, rr->hard.edge_p95_px, (double)median(tmp, rr->n),
                                 (double)rr->mask_ms);
                         if (o.images && c == 0) {
-                            snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.out_dir,
+                            snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.p.out_dir,
                                      def->name, vd[v].v.name, cfg->method);
                             tb_image_write_error(path, BENCH_W, BENCH_H, vd[v].ref, mask_px);
                         }
@@ -2148,6 +2095,15 @@ int main(int argc, char **argv) {
                 write_row(csv, cfg->method, cfg->params, def->name, vd[v].v.name, rr, sms, B.renderer);
             }
         fflush(csv);
+        if (!o.no_floor) floor_runs(&B, def, vd, o.views, &sc, mask_px, csv, floors);
+        if (bands) {
+            fprintf(bands, "scene %s\n", def->name);
+            for (c = 0; c < g_ncfg; c++)
+                bands_line(bands, g_cfg[c].method, g_cfg[c].params, recs + (size_t)c * (size_t)o.views, o.views);
+            if (!o.no_floor) bands_line(bands, BENCH_FLOOR, "the finer of rmsm 65536 and standard 16384 per view",
+                                        floors, o.views);
+            fflush(bands);
+        }
         if (walk) walk_scene(&B, def, &s, &mesh, ref, views, &sc, o.quick ? 6 : 12, o.repeat, depth, rgba, nrm,
                              mask_px, walk, walk_txt);
         fprintf(stderr, "bench: scene %s done in %.1f s\n", def->name, now_s() - ts);
@@ -2155,30 +2111,30 @@ int main(int argc, char **argv) {
         free(recs);
         recs = NULL;
         for (v = 0; v < BENCH_MAX_VIEWS; v++) {
-            if (vd[v].gbuf.fbo) tb_gl_fbo_destroy(&B.gl, &vd[v].gbuf);
-            free(vd[v].ref);
+            free_view(&B, &vd[v]);
         }
         tb_reference_destroy(ref);
         tb_gl_mesh_destroy(&B.gl, &mesh);
         tb_scene_free(&s);
     }
-    if (scene_selected(&o, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
+    if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
     soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
     if (walk) fclose(walk);
     if (walk_txt) fclose(walk_txt);
-    walk = walk_txt = NULL;
+    if (bands) fclose(bands);
+    walk = walk_txt = bands = NULL;
     {
         char a[32];
         fmt_duration(now_s() - t_start, a, sizeof a);
-        fprintf(stderr, "bench: %d runs in %s; wrote %s/bench.csv\n", pg.done, a, o.out_dir);
+        fprintf(stderr, "bench: %d runs in %s; wrote %s/bench.csv\n", pg.done, a, o.p.out_dir);
     }
     {
         FILE *m;
-        snprintf(path, sizeof path, "%.900s/bench-data", o.out_dir);
+        snprintf(path, sizeof path, "%.900s/bench-data", o.p.out_dir);
         mkdir_p(path);
-        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.out_dir);
+        snprintf(path, sizeof path, "%.900s/bench-data/sweep.txt", o.p.out_dir);
         if ((m = fopen(path, "w"))) {
             fprintf(m, "repeat %d\nsweep %s\nviews %d\nruns %d\ndevice %s\ntiming %s\nbias %s\n", o.repeat,
                     o.quick ? "quick" : "full", o.views, pg.done, B.renderer, timing_label(B.renderer),
@@ -2195,9 +2151,7 @@ done:
     free(rgba);
     free(nrm);
     free(mask_px);
-    if (B.mask.fbo) tb_gl_fbo_destroy(&B.gl, &B.mask);
-    if (B.gb.program) tb_gl_gbuffer_destroy(&B.gl, &B.gb);
-    skgl_destroy(B.sk);
-    tb_gl_context_destroy(B.ctx);
+    bench_texel_scratch_free(&g_texel);
+    bench_gl_close(&B);
     return status;
 }

@@ -29,7 +29,7 @@
                         the same in both modes)
      Directional light: the bench's, travelling along (-0.45, -1, -0.35).
 
-   The walk: the bench's "overview" view (bench/bench.c make_views: the
+   The walk: the bench's "overview" view (bench_common.c make_views: the
    content from 35 degrees up along its long axis, framed) moving each frame
    0.5% of the eye-target distance d sideways and 0.3% of d forward
    (horizontal), the target with it: several texels of the 2048^2 stable
@@ -87,10 +87,11 @@
                    the static walk above, the moving walk below
      bench-cache-data/<scene>.dat, .vars.gp   that chart's data
 
-   Scenes: as bench/bench.c: stanford-bunny, sponza-ivy and sponza-curtains
-   from ../shared/scenes (--scenes DIR) when it exists, each on a ground
-   plane 3x its horizontal extent, then the procedural ground-boxes, fence
-   and terrace.
+   Scenes: those of bench_common.c's bench_scene_table marked
+   BENCH_IN_CACHE: stanford-bunny, sponza-ivy and sponza-curtains from
+   ../shared/scenes (--scenes DIR) when it exists, each on a ground plane
+   3x its horizontal extent, then the procedural ground-boxes, fence and
+   terrace.
 
    Usage (from the repository root; `make bench-cache`, `make bench-cache-demo`):
      build/bench/bench_cache [--quick] [--frames N] [--error-every K]
@@ -101,30 +102,17 @@
    with --quick.
    Exit status 0; 1 on a setup or render failure; 2 on a usage error. */
 #define _POSIX_C_SOURCE 200809L
-#define SHADOWKIT_IMPLEMENTATION
-#define SHADOWKIT_GL_IMPLEMENTATION
-#include "shadowkit_gl.h"
+#include "bench_common.h"
 
-#include "tb_gl_context.h"
-#include "tb_gl_fbo.h"
-#include "tb_gl_funcs.h"
-#include "tb_gl_scene.h"
-#include "tb_image.h"
 #include "tb_metrics.h"
-#include "tb_reference.h"
-#include "tb_scene.h"
 
 #include <errno.h>
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <time.h>
 
-#define CW 1280                    /* the camera's image (aspect, scoring) */
-#define CH 720
-#define FOVY 0.872665f             /* 50 degrees */
+#define CW BENCH_W                 /* the camera's image (aspect, scoring) */
+#define CH BENCH_H
 #define MAX_FRAMES 240
 #define DIR_RES 2048
 #define RMSM_RES 8192
@@ -148,142 +136,7 @@ static const char *const tech_name[NTECH] = {"pssm4-stable", "standard-stable", 
 static const char *const walk_name[NWALK] = {"static", "moving"};
 static const char *const mode_name[NMODE] = {"cached", "uncached"};
 
-/* ------------------------------------------------------------------ utils */
-static double now_s(void) {
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-static sk_vec3 v3(float x, float y, float z) {
-    sk_vec3 r;
-    r.x = x; r.y = y; r.z = z;
-    return r;
-}
-static sk_vec3 v3_add(sk_vec3 a, sk_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static sk_vec3 v3_sub(sk_vec3 a, sk_vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-static sk_vec3 v3_scale(sk_vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
-static float v3_len(sk_vec3 a) { return sqrtf(a.x * a.x + a.y * a.y + a.z * a.z); }
-static sk_vec3 v3_norm(sk_vec3 a) {
-    float l = v3_len(a);
-    return l > 0.0f ? v3_scale(a, 1.0f / l) : a;
-}
-static sk_aabb aabb_union(sk_aabb a, sk_aabb b) {
-    sk_aabb r;
-    r.min = v3(a.min.x < b.min.x ? a.min.x : b.min.x, a.min.y < b.min.y ? a.min.y : b.min.y,
-               a.min.z < b.min.z ? a.min.z : b.min.z);
-    r.max = v3(a.max.x > b.max.x ? a.max.x : b.max.x, a.max.y > b.max.y ? a.max.y : b.max.y,
-               a.max.z > b.max.z ? a.max.z : b.max.z);
-    return r;
-}
-static int cmp_double(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-static double median(double *v, int n) {
-    if (n <= 0) return -1.0;
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n & 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-static int file_exists(const char *p) {
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISREG(st.st_mode);
-}
-static int dir_exists(const char *p) {
-    struct stat st;
-    return stat(p, &st) == 0 && S_ISDIR(st.st_mode);
-}
-static int mkdir_p(const char *dir) {
-    char buf[1100];
-    snprintf(buf, sizeof buf, "%.1000s/x", dir);
-    return tb_image_make_parent_dirs(buf);
-}
-static int software_renderer(const char *r) {
-    return r && (strstr(r, "llvmpipe") != NULL || strstr(r, "softpipe") != NULL);
-}
-static void csv_field(FILE *f, const char *s) {
-    if (!strpbrk(s, ",\"\n\r")) { fputs(s, f); return; }
-    fputc('"', f);
-    for (; *s; s++) {
-        if (*s == '"') fputc('"', f);
-        fputc(*s, f);
-    }
-    fputc('"', f);
-}
-static void gp_string(FILE *f, const char *s) {
-    fputc('\'', f);
-    for (; *s; s++) {
-        if (*s == '\'') fputc('\'', f);
-        fputc(*s, f);
-    }
-    fputc('\'', f);
-}
-
-/* ------------------------------------------- scenes and the walk (bench.c) */
-typedef struct scene_def {
-    char name[64];
-    char path[1024];   /* "" for procedural */
-} scene_def;
-
-/* the ground plane under a loaded model: 3x its horizontal extent (bench.c) */
-static int add_ground_under(tb_scene *s) {
-    sk_aabb b = s->bounds;
-    float cx = 0.5f * (b.min.x + b.max.x), cz = 0.5f * (b.min.z + b.max.z);
-    float hx = 0.5f * (b.max.x - b.min.x), hz = 0.5f * (b.max.z - b.min.z);
-    float h = 3.0f * (hx > hz ? hx : hz);
-    return tb_scene_add_ground(s, "ground", cx, cz, h, h, b.min.y, 8, 8) < 0 ? -1 : 0;
-}
-static int load_scene(const scene_def *def, tb_scene *s) {
-    tb_scene_init(s);
-    if (def->path[0]) {
-        if (tb_scene_load(s, def->path) != 0 || s->index_count == 0) return -1;
-        return add_ground_under(s);
-    }
-    return tb_scene_build(s, def->name);
-}
-
-/* union of the bounds of the objects that are not the ground (bench.c) */
-static sk_aabb content_bounds(const tb_scene *s) {
-    sk_aabb r = s->bounds;
-    unsigned i;
-    int any = 0;
-    for (i = 0; i < s->object_count; i++) {
-        const tb_object *o = &s->objects[i];
-        if (strstr(o->name, "ground")) continue;
-        r = any ? aabb_union(r, o->bounds) : o->bounds;
-        any = 1;
-    }
-    return any ? r : s->bounds;
-}
-
-static sk_vec3 dir_az_el(float az, float el) { return v3(cosf(el) * sinf(az), sinf(el), cosf(el) * cosf(az)); }
-static float azimuth_of(sk_vec3 h) { return atan2f(h.x, h.z); }
-
-/* bench.c's fit_distance: the distance along u (unit, target -> eye) at
-   which every corner of box is in front of the camera and inside the frame */
-static float fit_distance(sk_vec3 target, sk_vec3 u, const sk_aabb *box) {
-    float lo = 0.0f, hi, rad;
-    sk_mat4 proj = sk_mat4_perspective(FOVY, (float)CW / (float)CH, 1e-3f, 1e6f);
-    int it, k;
-    rad = v3_len(v3_sub(box->max, box->min));
-    hi = 100.0f * (rad > 0.0f ? rad : 1.0f);
-    for (it = 0; it < 48; it++) {
-        float d = 0.5f * (lo + hi);
-        sk_mat4 vp = sk_mat4_mul(proj, sk_mat4_look_at(v3_add(target, v3_scale(u, d)), target, v3(0, 1, 0)));
-        int ok = 1;
-        for (k = 0; k < 8 && ok; k++) {
-            sk_vec4 p, c;
-            p.x = k & 1 ? box->max.x : box->min.x;
-            p.y = k & 2 ? box->max.y : box->min.y;
-            p.z = k & 4 ? box->max.z : box->min.z;
-            p.w = 1.0f;
-            c = sk_mat4_transform_vec4(vp, p);
-            if (!(c.w > 0.0f) || fabsf(c.x) > c.w || fabsf(c.y) > c.w) ok = 0;
-        }
-        if (ok) hi = d; else lo = d;
-    }
-    return hi;
-}
-
+/* ---------------------------------------------------------- the walk */
 /* farthest corner of b from p */
 static float farthest(sk_vec3 p, const sk_aabb *b) {
     float m = 0.0f;
@@ -296,7 +149,7 @@ static float farthest(sk_vec3 p, const sk_aabb *b) {
     return m;
 }
 
-/* The walk of a scene: bench.c's overview (eye0, target0) and the step a
+/* The walk of a scene: the benches' overview (eye0, target0) and the step a
    frame; proj fixed for the walk. The mover crosses the content along
    `side`, standing on its lowest point. */
 typedef struct walk_path {
@@ -343,15 +196,13 @@ static void point_light_of(const tb_scene *s, walk_path *w) {
 static void make_walk(const tb_scene *s, int frames, walk_path *w) {
     sk_aabb cb = content_bounds(s), all = s->bounds, path;
     sk_vec3 c = v3_scale(v3_add(cb.min, cb.max), 0.5f), ex = v3_scale(v3_sub(cb.max, cb.min), 0.5f);
-    sk_vec3 axis, side, u, fwd, eye1;
+    sk_vec3 fwd, eye1;
+    bench_view views[BENCH_VIEWS];
     float half, diag;
     memset(w, 0, sizeof *w);
-    /* bench.c's overview: along the long horizontal axis, 20 degrees off it, 35 degrees up */
-    if (ex.x >= ex.z) { axis = v3(1, 0, 0); side = v3(0, 0, 1); }
-    else { axis = v3(0, 0, 1); side = v3(1, 0, 0); }
-    u = dir_az_el(azimuth_of(v3_add(v3_scale(axis, 0.94f), v3_scale(side, 0.34f))), 0.61f);
-    w->target0 = c;
-    w->eye0 = v3_add(c, v3_scale(u, fit_distance(c, u, &cb)));
+    make_views(s, views);   /* the walk starts at the overview */
+    w->target0 = views[0].target;
+    w->eye0 = views[0].eye;
     w->d = v3_len(v3_sub(w->target0, w->eye0));
     fwd = v3_sub(w->target0, w->eye0);
     fwd.y = 0.0f;
@@ -373,7 +224,7 @@ static void make_walk(const tb_scene *s, int frames, walk_path *w) {
                                                                                   : farthest(eye1, &w->bounds));
     w->zn = 0.002f * w->d;
     if (w->zn < w->zf * 1e-5f) w->zn = w->zf * 1e-5f;
-    w->proj = sk_mat4_perspective(FOVY, (float)CW / (float)CH, w->zn, w->zf);
+    w->proj = sk_mat4_perspective(BENCH_FOVY, (float)CW / (float)CH, w->zn, w->zf);
     point_light_of(s, w);
 }
 
@@ -449,12 +300,8 @@ typedef struct frame_rec {
 static frame_rec g_rec[NTECH][NWALK][NMODE][MAX_FRAMES];
 
 typedef struct bench {
-    tb_gl_context *ctx;
-    tb_gl_funcs gl;
-    tb_gl_gbuffer gb;
-    tb_gl_fbo gbuf, mask;
-    skgl_context *sk;
-    const char *renderer;
+    bench_gl g;                /* context, G-buffer program, mask target, shadowkit */
+    tb_gl_fbo gbuf;
     int wall;                  /* 1: time by the wall clock between glFinish calls */
     float *depth, *ref_dir, *ref_point, *mask_px[NTECH][NMODE];
 } bench;
@@ -470,8 +317,8 @@ typedef struct lights {
 static void free_lights(bench *B, lights *L) {
     int m, t;
     for (m = 0; m < NMODE; m++) {
-        for (t = 0; t < NDIR; t++) skgl_shadow_destroy(B->sk, L->dir[t][m]);
-        skgl_point_destroy(B->sk, L->point[m]);
+        for (t = 0; t < NDIR; t++) skgl_shadow_destroy(B->g.sk, L->dir[t][m]);
+        skgl_point_destroy(B->g.sk, L->point[m]);
     }
     memset(L, 0, sizeof *L);
 }
@@ -492,10 +339,10 @@ static int make_lights(bench *B, lights *L, float point_range) {
             d.resolution = t == T_RMSM ? RMSM_RES : DIR_RES;
             d.sync_readback = t == T_RMSM;
             d.cache = m == M_CACHED;
-            r = skgl_shadow_create(B->sk, &d, &L->dir[t][m]);
+            r = skgl_shadow_create(B->g.sk, &d, &L->dir[t][m]);
             if (r != SK_OK) {
                 fprintf(stderr, "bench-cache: skgl_shadow_create %s %s: %s (%s)\n", tech_name[t], mode_name[m],
-                        sk_result_string(r), skgl_error_log(B->sk));
+                        sk_result_string(r), skgl_error_log(B->g.sk));
                 free_lights(B, L);
                 return -1;
             }
@@ -506,10 +353,10 @@ static int make_lights(bench *B, lights *L, float point_range) {
         pd.range = point_range;
         pd.cull_faces = 1;
         pd.cache = m == M_CACHED;
-        r = skgl_point_create(B->sk, &pd, &L->point[m]);
+        r = skgl_point_create(B->g.sk, &pd, &L->point[m]);
         if (r != SK_OK) {
             fprintf(stderr, "bench-cache: skgl_point_create %s: %s (%s)\n", mode_name[m], sk_result_string(r),
-                    skgl_error_log(B->sk));
+                    skgl_error_log(B->g.sk));
             free_lights(B, L);
             return -1;
         }
@@ -529,22 +376,22 @@ static int render_one(bench *B, lights *L, int t, int m, const skgl_camera *cam,
     w->target_res = t == T_POINT ? POINT_RES : t == T_RMSM ? skgl_shadow_get_desc(L->dir[t][m]).rmsm_page_size + 2
                                                            : DIR_RES;
     if (t == T_RMSM) {   /* the requests of this frame's view (not timed) */
-        r = skgl_shadow_analyze(B->sk, L->dir[t][m], cam, sc, light_dir, B->gbuf.depth_tex);
+        r = skgl_shadow_analyze(B->g.sk, L->dir[t][m], cam, sc, light_dir, B->gbuf.depth_tex);
         if (r != SK_OK) {
             fprintf(stderr, "bench-cache: rmsm %s analysis failed: %s (%s)\n", mode_name[m], sk_result_string(r),
-                    skgl_error_log(B->sk));
+                    skgl_error_log(B->g.sk));
             return -1;
         }
     }
-    if (B->wall) B->gl.Finish();
+    if (B->wall) B->g.gl.Finish();
     t0 = now_s();
-    if (t == T_POINT) r = skgl_point_render(B->sk, L->point[m], cam, sc, light_pos);
-    else r = skgl_shadow_render(B->sk, L->dir[t][m], cam, sc, light_dir);
-    if (B->wall) B->gl.Finish();
+    if (t == T_POINT) r = skgl_point_render(B->g.sk, L->point[m], cam, sc, light_pos);
+    else r = skgl_shadow_render(B->g.sk, L->dir[t][m], cam, sc, light_dir);
+    if (B->wall) B->g.gl.Finish();
     fr->ms = (now_s() - t0) * 1e3;
     if (r != SK_OK) {
         fprintf(stderr, "bench-cache: %s %s render failed: %s (%s)\n", tech_name[t], mode_name[m],
-                sk_result_string(r), skgl_error_log(B->sk));
+                sk_result_string(r), skgl_error_log(B->g.sk));
         return -1;
     }
     fr->callbacks = (int)w->callbacks;
@@ -583,28 +430,18 @@ static int render_one(bench *B, lights *L, int t, int m, const skgl_camera *cam,
    references of both lights; 0 ok */
 static int prepare_frame(bench *B, const tb_gl_mesh *mesh, const tb_reference *ref, const sk_mat4 *vp,
                          sk_vec3 light_dir, const walk_path *wp) {
-    double d[16], inv[16];
-    tb_view tv;
     tb_light L;
-    int k;
-    if (tb_gl_gbuffer_render(&B->gl, &B->gb, mesh, &B->gbuf, vp) != 0) return -1;
-    if (tb_gl_read_depth(&B->gl, B->gbuf.fbo, CW, CH, B->depth) != 0) return -1;
-    /* the exact inverse (double) of the float matrix the G-buffer used */
-    for (k = 0; k < 16; k++) d[k] = vp->m[k];
-    if (!tb_mat4_inverse_d(d, inv)) return -1;
-    memset(&tv, 0, sizeof tv);
-    for (k = 0; k < 16; k++) tv.inv_view_proj.m[k] = (float)inv[k];
-    tv.width = CW;
-    tv.height = CH;
+    if (tb_gl_gbuffer_render(&B->g.gl, &B->g.gb, mesh, &B->gbuf, vp) != 0) return -1;
+    if (tb_gl_read_depth(&B->g.gl, B->gbuf.fbo, CW, CH, B->depth) != 0) return -1;
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_DIRECTIONAL;
     L.direction = light_dir;
-    if (tb_reference_trace_exact(ref, &tv, B->depth, &L, NULL, B->ref_dir, NULL) != 0) return -1;
+    if (bench_trace(ref, vp, B->depth, &L, B->ref_dir) != 0) return -1;
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_POINT;
     L.position = wp->point_pos;
     L.range = wp->point_range;
-    return tb_reference_trace_exact(ref, &tv, B->depth, &L, NULL, B->ref_point, NULL) != 0 ? -1 : 0;
+    return bench_trace(ref, vp, B->depth, &L, B->ref_point);
 }
 
 /* light (t, m)'s mask of this frame into B->mask_px[t][m]; 0 ok */
@@ -612,20 +449,20 @@ static int mask_of(bench *B, lights *L, int t, int m, const skgl_camera *cam) {
     sk_result r;
     if (t == T_POINT) {
         /* the mask starts lit: a scissored pass leaves the rest as it is */
-        tb_gl_fbo_bind(&B->gl, &B->mask);
-        B->gl.ClearColor(1, 1, 1, 1);
-        B->gl.Clear(0x00004000u);
-        tb_gl_fbo_bind(&B->gl, NULL);
-        r = skgl_point_mask(B->sk, L->point[m], cam, B->gbuf.depth_tex, B->gbuf.color_tex, B->mask.color_tex);
+        tb_gl_fbo_bind(&B->g.gl, &B->g.mask);
+        B->g.gl.ClearColor(1, 1, 1, 1);
+        B->g.gl.Clear(0x00004000u);
+        tb_gl_fbo_bind(&B->g.gl, NULL);
+        r = skgl_point_mask(B->g.sk, L->point[m], cam, B->gbuf.depth_tex, B->gbuf.color_tex, B->g.mask.color_tex);
     } else {
-        r = skgl_shadow_mask(B->sk, L->dir[t][m], cam, B->gbuf.depth_tex, B->gbuf.color_tex, B->mask.color_tex);
+        r = skgl_shadow_mask(B->g.sk, L->dir[t][m], cam, B->gbuf.depth_tex, B->gbuf.color_tex, B->g.mask.color_tex);
     }
     if (r != SK_OK) {
         fprintf(stderr, "bench-cache: %s %s mask failed: %s (%s)\n", tech_name[t], mode_name[m], sk_result_string(r),
-                skgl_error_log(B->sk));
+                skgl_error_log(B->g.sk));
         return -1;
     }
-    return tb_gl_read_red(&B->gl, B->mask.fbo, CW, CH, B->mask_px[t][m]);
+    return tb_gl_read_red(&B->g.gl, B->g.mask.fbo, CW, CH, B->mask_px[t][m]);
 }
 
 /* the scores of technique t this frame: each mode's shadow-area error, and
@@ -703,7 +540,7 @@ static summary summarise(int t, int wk, int frames) {
             s.passes[m] /= n;
             s.callbacks[m] /= n;
         }
-        s.ms[m] = median(tmp, n);
+        s.ms[m] = median_d(tmp, n);
         if (s.err_n[m]) s.err[m] /= s.err_n[m];
         if (m == M_CACHED) s.n = n;
     }
@@ -844,25 +681,11 @@ static void write_rows(FILE *csv, const char *scene, int frames, const char *dev
 /* ------------------------------------------------------------- a scene */
 typedef struct opts {
     int quick, frames, every;
-    const char *scenes_dir, *out_dir, *gp, *only;
+    bench_paths p;             /* --scenes, --out, --only, --gp */
 } opts;
 
-static int scene_selected(const opts *o, const char *name) {
-    const char *p = o->only;
-    size_t n = strlen(name);
-    if (!p || !*p) return 1;
-    while (*p) {
-        const char *e = strchr(p, ',');
-        size_t len = e ? (size_t)(e - p) : strlen(p);
-        if (len == n && strncmp(p, name, n) == 0) return 1;
-        if (!e) break;
-        p = e + 1;
-    }
-    return 0;
-}
-
 /* both walks of one scene; rows to csv, the table to txt; 0 ok */
-static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, FILE *txt) {
+static int run_scene(bench *B, const opts *o, const bench_scene_def *def, FILE *csv, FILE *txt) {
     const sk_vec3 light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
     const int frames = o->frames;
     tb_scene s, ms;
@@ -879,7 +702,7 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
     memset(&mover_mesh, 0, sizeof mover_mesh);
     memset(&L, 0, sizeof L);
     tb_scene_init(&ms);
-    if (load_scene(def, &s) != 0 || tb_gl_mesh_create(&B->gl, &mesh, &s) != 0 || !(ref = tb_reference_create(&s))) {
+    if (load_scene(def, &s) != 0 || tb_gl_mesh_create(&B->g.gl, &mesh, &s) != 0 || !(ref = tb_reference_create(&s))) {
         fprintf(stderr, "bench-cache: scene %s %s: load, upload or reference failed: skipped\n", def->name, def->path);
         status = 1;
         goto out;
@@ -890,15 +713,15 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
     {
         float h = 0.5f * wp.mover_size;
         if (tb_scene_add_box(&ms, "mover", v3(-h, 0, -h), v3(h, wp.mover_size, h)) < 0 ||
-            tb_gl_mesh_create(&B->gl, &mover_mesh, &ms) != 0) {
+            tb_gl_mesh_create(&B->g.gl, &mover_mesh, &ms) != 0) {
             fprintf(stderr, "bench-cache: %s: the mover failed\n", def->name);
             status = 1;
             goto out;
         }
     }
     memset(&w, 0, sizeof w);
-    w.gl = &B->gl;
-    w.sk = B->sk;
+    w.gl = &B->g.gl;
+    w.sk = B->g.sk;
     w.s = &s;
     w.nstatic = nobj;
     w.mesh = &mesh;
@@ -928,7 +751,7 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
             memcpy(base, s.positions + 3 * v0, sizeof(float) * 3 * (s.vertex_count - (uint32_t)v0));
             mover_v0 = v0;
         }
-        skgl_set_dynamic(B->sk, NULL);   /* the static walk: none; the moving one sets it each frame */
+        skgl_set_dynamic(B->g.sk, NULL);   /* the static walk: none; the moving one sets it each frame */
         if (make_lights(B, &L, wp.point_range) != 0) { status = 1; break; }
         for (f = 0; f < frames; f++) {
             skgl_camera cam;
@@ -942,13 +765,13 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
                 dyn.draw = draw_dynamic;
                 dyn.user = &w;
                 dyn.bounds = mover_box(&wp, w.mover_at);
-                if (skgl_set_dynamic(B->sk, &dyn) != SK_OK) {
-                    fprintf(stderr, "bench-cache: skgl_set_dynamic: %s\n", skgl_error_log(B->sk));
+                if (skgl_set_dynamic(B->g.sk, &dyn) != SK_OK) {
+                    fprintf(stderr, "bench-cache: skgl_set_dynamic: %s\n", skgl_error_log(B->g.sk));
                     status = 1;
                 }
             }
             /* RMSM's analysis reads this frame's depth: the static scene's G-buffer */
-            if (tb_gl_gbuffer_render(&B->gl, &B->gb, &mesh, &B->gbuf, &vp) != 0) status = 1;
+            if (tb_gl_gbuffer_render(&B->g.gl, &B->g.gb, &mesh, &B->gbuf, &vp) != 0) status = 1;
             for (t = 0; t < NTECH; t++)
                 for (k = 0; k < NMODE; k++) {
                     int m = f & 1 ? NMODE - 1 - k : k;   /* who goes first alternates */
@@ -972,7 +795,7 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
                     }
                     tb_reference_destroy(ref);
                     ref = tb_reference_create(&s);
-                    ok = ref != NULL && tb_gl_mesh_create(&B->gl, &now_mesh, &s) == 0;
+                    ok = ref != NULL && tb_gl_mesh_create(&B->g.gl, &now_mesh, &s) == 0;
                     gm = &now_mesh;
                 }
                 if (!ok || prepare_frame(B, gm, ref, &vp, light_dir, &wp) != 0) {
@@ -992,7 +815,7 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
                         score(B, t, &g_rec[t][wk][M_CACHED][f], &g_rec[t][wk][M_UNCACHED][f]);
                     }
                 }
-                if (now_mesh.vao) tb_gl_mesh_destroy(&B->gl, &now_mesh);
+                if (now_mesh.vao) tb_gl_mesh_destroy(&B->g.gl, &now_mesh);
                 t_ref += now_s() - t0;
                 scored++;
             }
@@ -1020,16 +843,16 @@ static int run_scene(bench *B, const opts *o, const scene_def *def, FILE *csv, F
     fprintf(txt, "  (%s: %.1f s, of which %.1f s for %d scored frames: G-buffers, references, masks)\n\n", def->name,
             now_s() - ts, t_ref, scored);
     fflush(txt);
-    write_rows(csv, def->name, frames, B->renderer);
+    write_rows(csv, def->name, frames, B->g.renderer);
     fflush(csv);
-    if (plot_scene(o->out_dir, o->gp, def->name, B->renderer, frames, B->wall) != 0) status = 1;
+    if (plot_scene(o->p.out_dir, o->p.gp, def->name, B->g.renderer, frames, B->wall) != 0) status = 1;
 out:
-    skgl_set_dynamic(B->sk, NULL);   /* the mover's callback points into this frame of the stack */
+    skgl_set_dynamic(B->g.sk, NULL);   /* the mover's callback points into this frame of the stack */
     free(base);
     free_lights(B, &L);
     tb_reference_destroy(ref);
-    if (mesh.vao) tb_gl_mesh_destroy(&B->gl, &mesh);
-    if (mover_mesh.vao) tb_gl_mesh_destroy(&B->gl, &mover_mesh);
+    if (mesh.vao) tb_gl_mesh_destroy(&B->g.gl, &mesh);
+    if (mover_mesh.vao) tb_gl_mesh_destroy(&B->g.gl, &mover_mesh);
     tb_scene_free(&ms);
     tb_scene_free(&s);
     return status;
@@ -1052,33 +875,24 @@ static void usage(FILE *f, const char *argv0) {
 
 int main(int argc, char **argv) {
     opts o;
-    scene_def defs[8];
+    bench_scene_def defs[16];
     bench B;
     FILE *csv = NULL, *txt = NULL;
-    char path[1200], err[1024];
+    char path[1200];
     int ndefs = 0, i, t, m, status = 0, shared, frames_given = 0;
     double t_start = now_s();
-    static const char *shared_names[3] = {"stanford-bunny", "sponza-ivy", "sponza-curtains"};
-    static const char *shared_files[3] = {"stanford-bunny.obj", "sponza-ivy/sponza_ivy.gltf",
-                                          "sponza-curtains/sponza_curtains.gltf"};
-    static const char *proc[3] = {"ground-boxes", "fence", "terrace"};
 
     memset(&o, 0, sizeof o);
+    bench_paths_init(&o.p, "bench/cache.gp");
     o.frames = 60;
     o.every = 6;
-    o.scenes_dir = "../shared/scenes";
-    o.out_dir = "out";
-    o.gp = "bench/cache.gp";
     for (i = 1; i < argc; i++) {
         const char *a = argv[i];
         int more = i + 1 < argc;
         if (strcmp(a, "--quick") == 0) o.quick = 1;
         else if (strcmp(a, "--frames") == 0 && more) { o.frames = atoi(argv[++i]); frames_given = 1; }
         else if (strcmp(a, "--error-every") == 0 && more) o.every = atoi(argv[++i]);
-        else if (strcmp(a, "--scenes") == 0 && more) o.scenes_dir = argv[++i];
-        else if (strcmp(a, "--out") == 0 && more) o.out_dir = argv[++i];
-        else if (strcmp(a, "--only") == 0 && more) o.only = argv[++i];
-        else if (strcmp(a, "--gp") == 0 && more) o.gp = argv[++i];
+        else if (bench_path_option(&o.p, argc, argv, &i)) continue;
         else if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(stdout, argv[0]); return 0; }
         else { fprintf(stderr, "bench-cache: unknown or incomplete option %s\n", a); usage(stderr, argv[0]); return 2; }
     }
@@ -1087,63 +901,21 @@ int main(int argc, char **argv) {
         fprintf(stderr, "bench-cache: --frames takes 2..%d, --error-every 1 or more\n", MAX_FRAMES);
         return 2;
     }
-    shared = !o.quick && dir_exists(o.scenes_dir);
-    if (shared)
-        for (i = 0; i < 3; i++) {
-            scene_def *d = &defs[ndefs];
-            memset(d, 0, sizeof *d);
-            snprintf(d->name, sizeof d->name, "%s", shared_names[i]);
-            snprintf(d->path, sizeof d->path, "%.900s/%s", o.scenes_dir, shared_files[i]);
-            if (!scene_selected(&o, d->name)) continue;
-            if (!file_exists(d->path)) { fprintf(stderr, "bench-cache: %s is missing: skipped\n", d->path); continue; }
-            ndefs++;
-        }
-    else if (!o.quick)
-        fprintf(stderr, "bench-cache: %s not found: PROCEDURAL SCENES ONLY\n", o.scenes_dir);
-    for (i = 0; i < 3; i++) {
-        scene_def *d = &defs[ndefs];
-        memset(d, 0, sizeof *d);
-        snprintf(d->name, sizeof d->name, "%s", proc[i]);
-        if (scene_selected(&o, d->name)) ndefs++;
-    }
-    if (ndefs == 0) { fprintf(stderr, "bench-cache: no scene selected (--only %s)\n", o.only ? o.only : ""); return 2; }
-    if (system("command -v gnuplot >/dev/null 2>&1") != 0 || !file_exists(o.gp)) {
-        fprintf(stderr, "bench-cache: gnuplot or %s missing (`make deps-demo` installs gnuplot)\n", o.gp);
-        return 1;
-    }
+    /* the quick run: the procedural scenes only */
+    ndefs = bench_scenes("bench-cache", BENCH_IN_CACHE, o.quick ? NULL : o.p.scenes_dir, o.p.only, defs,
+                         (int)(sizeof defs / sizeof defs[0]), &shared);
+    if (ndefs == 0) { fprintf(stderr, "bench-cache: no scene selected (--only %s)\n", o.p.only ? o.p.only : ""); return 2; }
+    if (!gnuplot_ready("bench-cache", o.p.gp)) return 1;
 
-    /* ---- GL */
+    /* ---- GL: no timer queries where the wall clock times */
     memset(&B, 0, sizeof B);
-    B.ctx = tb_gl_context_create(TB_GL_AUTO, err, sizeof err);
-    if (!B.ctx) { fprintf(stderr, "bench-cache: no GL context: %s\n", err); return 1; }
-    if (tb_gl_funcs_load(&B.gl, tb_gl_context_getproc(B.ctx)) != 0) {
-        fprintf(stderr, "bench-cache: GL entry points missing\n");
-        tb_gl_context_destroy(B.ctx);
-        return 1;
-    }
-    B.renderer = tb_gl_context_renderer(B.ctx);
-    B.wall = software_renderer(B.renderer);
-    fprintf(stderr, "bench-cache: GL %s on %s (%s); shadow time: %s\n", tb_gl_context_version(B.ctx), B.renderer,
-            tb_gl_context_backend_name(B.ctx),
+    if (bench_gl_open(&B.g, "bench-cache", BENCH_TIMING_GPU_ONLY) != 0) return 1;
+    B.wall = software_renderer(B.g.renderer);
+    fprintf(stderr, "bench-cache: shadow time: %s\n",
             B.wall ? "wall clock between glFinish calls (CPU rasteriser: compare within this run only)"
                    : "GL timer queries");
-    {
-        skgl_desc sd;
-        sk_result r;
-        memset(&sd, 0, sizeof sd);
-        sd.getproc = tb_gl_context_getproc(B.ctx);
-        sd.timing = B.wall ? 0 : SKGL_TIMING_SYNC;   /* no queries where the wall clock times */
-        r = skgl_create(&sd, &B.sk);
-        if (r != SK_OK) {
-            fprintf(stderr, "bench-cache: skgl_create: %s\n", sk_result_string(r));
-            tb_gl_context_destroy(B.ctx);
-            return 1;
-        }
-    }
-    if (tb_gl_gbuffer_create(&B.gl, &B.gb, err, sizeof err) != 0 ||
-        tb_gl_fbo_create(&B.gl, &B.gbuf, CW, CH, TB_GL_COLOR_RGBA16F) != 0 ||
-        tb_gl_fbo_create(&B.gl, &B.mask, CW, CH, TB_GL_COLOR_R16F) != 0) {
-        fprintf(stderr, "bench-cache: G-buffer / mask target: %s\n", err);
+    if (tb_gl_fbo_create(&B.g.gl, &B.gbuf, CW, CH, TB_GL_COLOR_RGBA16F) != 0) {
+        fprintf(stderr, "bench-cache: G-buffer target failed\n");
         status = 1;
         goto done;
     }
@@ -1161,13 +933,13 @@ int main(int argc, char **argv) {
         goto done;
     }
 
-    mkdir_p(o.out_dir);
-    snprintf(path, sizeof path, "%.900s/bench-cache.csv", o.out_dir);
+    mkdir_p(o.p.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-cache.csv", o.p.out_dir);
     csv = fopen(path, "w");
-    snprintf(path, sizeof path, "%.900s/bench-cache.txt", o.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-cache.txt", o.p.out_dir);
     txt = fopen(path, "w");
     if (!csv || !txt) {
-        fprintf(stderr, "bench-cache: cannot write under %s: %s\n", o.out_dir, strerror(errno));
+        fprintf(stderr, "bench-cache: cannot write under %s: %s\n", o.p.out_dir, strerror(errno));
         status = 1;
         goto done;
     }
@@ -1186,7 +958,7 @@ int main(int argc, char **argv) {
                  "scene.draw and the dynamic callback counted apart\n"
                  "# directional maps 2048^2 (PSSM: a cascade), RMSM 8192^2 virtual (128-texel pages, a 24x24 "
                  "pool; its analysis untimed), point light 512^2 a face\n\n",
-            B.renderer,
+            B.g.renderer,
             B.wall ? "CPU wall clock of each render between glFinish calls (CPU rasteriser: relative, this run only)"
                    : "GL timer queries (GPU ms)",
             o.quick ? "quick" : "full", o.frames, shared ? "shared and procedural scenes" : "procedural scenes only",
@@ -1199,7 +971,7 @@ int main(int argc, char **argv) {
         double el = now_s() - t_start;
         fprintf(txt, "total run time %dm%02ds\n", (int)(el / 60), (int)el % 60);
         fprintf(stderr, "bench-cache: done in %dm%02ds: %s/bench-cache.{csv,txt}, %s/bench-cache-<scene>.png\n",
-                (int)(el / 60), (int)el % 60, o.out_dir, o.out_dir);
+                (int)(el / 60), (int)el % 60, o.p.out_dir, o.p.out_dir);
     }
 
 done:
@@ -1210,10 +982,7 @@ done:
     free(B.ref_point);
     for (t = 0; t < NTECH; t++)
         for (m = 0; m < NMODE; m++) free(B.mask_px[t][m]);
-    if (B.mask.fbo) tb_gl_fbo_destroy(&B.gl, &B.mask);
-    if (B.gbuf.fbo) tb_gl_fbo_destroy(&B.gl, &B.gbuf);
-    if (B.gb.program) tb_gl_gbuffer_destroy(&B.gl, &B.gb);
-    skgl_destroy(B.sk);
-    tb_gl_context_destroy(B.ctx);
+    if (B.gbuf.fbo) tb_gl_fbo_destroy(&B.g.gl, &B.gbuf);
+    bench_gl_close(&B.g);
     return status;
 }

@@ -7,12 +7,19 @@
 # Variables: scene, device, timing (how to read the times: relative on a
 # CPU rasteriser, absolute on a GPU), database (path prefix of the .dat files),
 # outfile, methods (space-separated), nviews, repeat, logy, width, height,
-# tmin, tmax, emin, emax, soft (1: area-light rows).
+# tmin, tmax, emin, emax, soft (1: area-light rows), floor (the mean
+# error of the floor rows, an over-resolved map per view; -1: none),
+# floor_texel (their mean share of texels over 1 px).
 # The error (y) is bench.csv's shadow_area_pct on hard-shadow charts: wrong
 # pixels as a % of the reference's shadow pixels, which the lit majority of
 # the frame does not dilute (it can exceed 100); on soft charts
 # (soft = 1) its penumbra_mae: the mean absolute visibility error inside the
 # reference's penumbra grown by 2 px, against the whole frame's shadow time.
+# The floor is drawn as a horizontal line: the error that remains with a
+# map finer than the view needs, the limit every method is measured
+# against. A front label's [n%] is the share of shaded pixels whose shadow
+# texel spans more than one pixel (Ferko 2013's measure; bench-limit.txt
+# has every configuration's).
 
 set terminal pngcairo size 1280,940 noenhanced font 'DejaVu Sans,12'
 set output outfile
@@ -54,10 +61,24 @@ array colours[12] = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c
                      '#e377c2', '#7f7f7f', '#bcbd22', '#17becf', '#393b79', '#ad494a']
 array shapes[12] = [7, 5, 9, 11, 13, 15, 7, 5, 9, 11, 13, 15]
 nm = words(methods)
+if (!exists("floor")) { floor = -1 }
+set label 92 "Pareto front: no other run is both faster and more accurate" \
+    at graph 0.99, graph 0.97 right font 'DejaVu Sans,10' tc rgb '#333333' front
+if (!soft) {
+    set label 91 "front labels [n%]: shaded pixels whose shadow texel spans more than 1 pixel" \
+        at graph 0.99, graph 0.93 right font 'DejaVu Sans,10' tc rgb '#333333' front
+}
+if (floor >= 0) {
+    set arrow 90 from graph 0, first floor to graph 1, first floor nohead lw 2 dt 4 lc rgb '#b00000' front
+    if (!exists("floor_texel")) { floor_texel = -1 }
+    set label 90 sprintf("floor %.3g%%: the finer of RMSM 65536^2 and a 16384^2 map per view (texel > 1 px on %.0f%%)", \
+                         floor, floor_texel) \
+        at graph 0.01, first floor offset 0,0.7 left font 'DejaVu Sans,10' tc rgb '#b00000' front
+}
 
 frontfile = database . '.front.dat'
 plot for [i = 1:nm] sprintf('%s.%s.dat', database, word(methods, i)) using 1:2 \
          with points pt shapes[(i - 1) % 12 + 1] ps 1.4 lc rgb colours[(i - 1) % 12 + 1] title word(methods, i), \
-     frontfile using 1:2 with steps lw 2 lc rgb '#333333' dt 2 title 'Pareto front (no other run is both faster and more accurate)', \
+     frontfile using 1:2 with steps lw 2 lc rgb '#333333' dt 2 title 'Pareto front', \
      frontfile using 1:2 with points pt 6 ps 2.6 lw 1.5 lc rgb '#333333' notitle, \
      frontfile using 1:2:3 with labels right offset -1.3,-0.9 font 'DejaVu Sans,9' tc rgb '#333333' notitle

@@ -1,17 +1,22 @@
 # mk/bench.mk - the speed-vs-accuracy bench (bench/bench.c; included by the Makefile).
 #   make bench        full sweep of every shadowkit_gl.h method (184 configurations,
-#                     6 scenes, 3 views, plus the LSPSM walk; about 20 minutes on
+#                     7 scenes, 3 views, plus the LSPSM walk and the floor; about 20 minutes on
 #                     2 cores under llvmpipe): out/bench.csv, out/bench-walk.{csv,txt}
 #                     and out/pareto-<scene>.png (gnuplot, bench/pareto.gp)
 #   make bench-demo   the quick sweep (33 configurations; about 3 minutes) for `make demo`
 #   make bench-plot   redraw the charts from an existing out/bench.csv (one written
-#                     by this bench: an older CSV without shadow_area_pct is refused)
+#                     by this bench: an older CSV without the texel and band columns
+#                     is refused)
 # Both sweeps write the same files: the last one run is what out/ holds.
 # bench.csv: DESIGN.md's 14 columns, then (appended) the hard-shadow scores
 # shadow_area_pct,false_shadow_pct,false_light_pct,edge_mean_px,edge_p95_px,
-# covered_pct, the soft ones penumbra_mae,penumbra_max,umbra_mae,lit_mae and
-# excluded_px; the header comment of bench/bench.c defines each. The charts
-# plot shadow_area_pct (soft charts: penumbra_mae) against shadow time.
+# covered_pct, the soft ones penumbra_mae,penumbra_max,umbra_mae,lit_mae,
+# excluded_px, the texel-to-pixel figure texel_over{1,2,4}_pct,texel_median_px
+# and the shadow-area error by view-depth band area_{0_10,10_50,50_200,200}_pct;
+# the header comment of bench/bench.c defines each. The charts plot
+# shadow_area_pct (soft charts: penumbra_mae) against shadow time, and the
+# floor (method "floor": an over-resolved map per view) as a line;
+# out/bench-limit.txt and out/bench-bands.txt are their companion tables.
 # Extra arguments: make bench BENCH_ARGS="--only fence,terrace --repeat 5"
 # The shared scenes are read from ../shared/scenes when it exists (else
 # procedural scenes only, said on stderr). SK_GL=osmesa|egl picks the GL backend.
@@ -21,10 +26,22 @@
 
 BENCH_BIN  := $(BUILD)/bench/bench
 BENCH_ARGS ?=
+# Both benches are built from objects: their own, the shared code
+# (bench/bench_common.c: scenes, views, GL context, reference, output
+# helpers; bench/bench_texel.c: the texel-to-pixel figure) and shadowkit's
+# implementation compiled once (the GL tests' build/obj/gl/shared_impl_gl.o,
+# mk/testbed.mk).
+BENCH_OBJ    := $(BUILD)/bench/obj
+BENCH_HDRS   := shadowkit.h shadowkit_gl.h bench/bench_common.h bench/bench_texel.h
+BENCH_SHARED := $(BENCH_OBJ)/bench_common.o $(BENCH_OBJ)/bench_texel.o $(BUILD)/obj/gl/shared_impl_gl.o
 
-$(BENCH_BIN): bench/bench.c shadowkit.h shadowkit_gl.h $$(TESTBED_LIB) | deps-gl
+$(BENCH_OBJ)/%.o: bench/%.c $(BENCH_HDRS) | deps-gl
 	$(MKDIR)
-	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) $< -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
+	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) -Ibench $(DEPFLAGS) -c $< -o $@
+
+$(BENCH_BIN): $(BENCH_OBJ)/bench.o $(BENCH_SHARED) $$(TESTBED_LIB) | deps-gl
+	$(MKDIR)
+	$(CC) $(BENCH_OBJ)/bench.o $(BENCH_SHARED) -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
 
 .PHONY: bench bench-demo bench-plot
 # deps-demo brings gnuplot (scripts/deps.sh demo)
@@ -60,9 +77,9 @@ DEMO_TARGETS += bench-demo
 BENCH_CACHE_BIN  := $(BUILD)/bench/bench_cache
 BENCH_CACHE_ARGS ?=
 
-$(BENCH_CACHE_BIN): bench/bench_cache.c shadowkit.h shadowkit_gl.h $$(TESTBED_LIB) | deps-gl
+$(BENCH_CACHE_BIN): $(BENCH_OBJ)/bench_cache.o $(BENCH_SHARED) $$(TESTBED_LIB) | deps-gl
 	$(MKDIR)
-	$(CC) -std=c99 $(OPT) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) $< -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
+	$(CC) $(BENCH_OBJ)/bench_cache.o $(BENCH_SHARED) -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(LDLIBS)
 
 .PHONY: bench-cache bench-cache-demo
 bench-cache: $(BENCH_CACHE_BIN) | deps-demo

@@ -1,6 +1,7 @@
 /* tb_metrics.c - see tb_metrics.h */
 #include "tb_metrics.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -88,6 +89,17 @@ double tb_quantile_sorted(const float *x, size_t n, double p) {
     return x[k] + (h - fl) * ((double)x[k + 1] - (double)x[k]);
 }
 
+/* % of the n ascending values above t */
+static double tb_share_above_(const float *sorted, size_t n, float t) {
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (sorted[mid] > t) hi = mid;
+        else lo = mid + 1;
+    }
+    return 100.0 * (double)(n - lo) / (double)n;
+}
+
 tb_footprint_stats tb_metric_footprint(const float *fp, size_t n) {
     tb_footprint_stats s;
     float *c;
@@ -110,9 +122,83 @@ tb_footprint_stats tb_metric_footprint(const float *fp, size_t n) {
         s.mean = sum / (double)m;
         s.median = tb_quantile_sorted(c, m, 0.5);
         s.p95 = tb_quantile_sorted(c, m, 0.95);
+        s.over1_pct = tb_share_above_(c, m, 1.0f);
+        s.over2_pct = tb_share_above_(c, m, 2.0f);
+        s.over4_pct = tb_share_above_(c, m, 4.0f);
     }
     free(c);
     return s;
+}
+
+/* the change of pixel i's texel coordinates to its neighbour j (j - i
+   steps of +1 along the axis when sign is 1, -1 when it is -1) into d;
+   0 when j samples another map */
+static int tb_texel_step_(const double *texel, const int *key, size_t i, size_t j, double sign, double d[2]) {
+    if (key[j] != key[i] || !isfinite(texel[2 * j]) || !isfinite(texel[2 * j + 1])) return 0;
+    d[0] = sign * (texel[2 * j] - texel[2 * i]);
+    d[1] = sign * (texel[2 * j + 1] - texel[2 * i + 1]);
+    return 1;
+}
+
+/* the shorter of the changes to the neighbours before (i - stride, if
+   has_lo) and after (i + stride, if has_hi); 0 when neither samples the
+   same map */
+static int tb_texel_axis_(const double *texel, const int *key, size_t i, size_t stride, int has_lo, int has_hi,
+                          double d[2]) {
+    double lo[2], hi[2];
+    int a = has_lo && tb_texel_step_(texel, key, i, i - stride, -1.0, lo);
+    int b = has_hi && tb_texel_step_(texel, key, i, i + stride, 1.0, hi);
+    if (!a && !b) return 0;
+    if (a && (!b || lo[0] * lo[0] + lo[1] * lo[1] < hi[0] * hi[0] + hi[1] * hi[1])) { d[0] = lo[0]; d[1] = lo[1]; }
+    else { d[0] = hi[0]; d[1] = hi[1]; }
+    return 1;
+}
+
+int tb_texel_footprint(const double *texel, const int *key, int w, int h, float *footprint, float *deriv) {
+    int x, y;
+    if (!texel || !key || !footprint || w <= 0 || h <= 0) return -1;
+    for (y = 0; y < h; y++)
+        for (x = 0; x < w; x++) {
+            size_t i = (size_t)y * (size_t)w + (size_t)x;
+            double dx[2], dy[2], ex, ey, f;
+            int ok = key[i] >= 0 && isfinite(texel[2 * i]) && isfinite(texel[2 * i + 1]) &&
+                     tb_texel_axis_(texel, key, i, 1, x > 0, x + 1 < w, dx) &&
+                     tb_texel_axis_(texel, key, i, (size_t)w, y > 0, y + 1 < h, dy);
+            if (!ok) {
+                footprint[i] = -1.0f;
+                if (deriv) deriv[4 * i] = deriv[4 * i + 1] = deriv[4 * i + 2] = deriv[4 * i + 3] = (float)NAN;
+                continue;
+            }
+            /* the patch's bounding box in the map: ex by ey texels; a texel
+               spans 1/ex pixels along the map's x, 1/ey along its y */
+            ex = fabs(dx[0]) + fabs(dy[0]);
+            ey = fabs(dx[1]) + fabs(dy[1]);
+            f = 1.0 / (ex < ey ? ex : ey);
+            footprint[i] = f < (double)FLT_MAX ? (float)f : FLT_MAX;
+            if (deriv) {
+                deriv[4 * i] = (float)dx[0];
+                deriv[4 * i + 1] = (float)dx[1];
+                deriv[4 * i + 2] = (float)dy[0];
+                deriv[4 * i + 3] = (float)dy[1];
+            }
+        }
+    return 0;
+}
+
+int tb_metric_shadow_bands(const float *ref, const float *res, const int *band, size_t n, int nbands,
+                           uint64_t *shadow, uint64_t *wrong) {
+    size_t i;
+    int b;
+    if (!ref || !res || !band || !shadow || !wrong || nbands <= 0) return -1;
+    for (b = 0; b < nbands; b++) shadow[b] = wrong[b] = 0;
+    for (i = 0; i < n; i++) {
+        int rc = tb_visibility_class(ref[i]);
+        b = band[i];
+        if (rc < 0 || !tb_finite_(ref[i]) || b < 0 || b >= nbands) continue;
+        shadow[b] += rc == 0;
+        wrong[b] += !tb_finite_(res[i]) || tb_visibility_class(res[i]) != rc;
+    }
+    return 0;
 }
 
 /* ---------------------------------------------- exact distance transform */

@@ -50,6 +50,8 @@ typedef struct tb_footprint_stats {
                                  q(p) = x[floor(h)] + frac(h) (x[floor(h)+1] - x[floor(h)]),
                                  h = (count - 1) p, x sorted ascending */
     double min, max, mean;
+    double over1_pct, over2_pct, over4_pct;  /* % of the counted values above 1, 2 and 4
+                                 (texel footprints: a texel spanning more than that many pixels) */
     uint64_t count;           /* values that were finite and >= 0 */
 } tb_footprint_stats;
 
@@ -111,6 +113,38 @@ tb_flip_rate tb_metric_flip(const float *ref0, const float *ref1, const float *r
    non-finite values (background) are skipped. Sorts a copy (qsort).
    count 0 (all zero stats) when nothing qualifies or out of memory. */
 tb_footprint_stats tb_metric_footprint(const float *footprint, size_t n);
+/* Ferko's texel-to-pixel measure (Ferko 2013, Sec. 3.2: a pixel's patch,
+   projected into the light's clip space, should span at least one texel
+   along each axis). texel: 2 doubles per pixel of a w x h frame (row 0 at
+   the bottom, index y * w + x): the texel coordinates of the map at which
+   the pixel's centre samples it (texel j spanning [j, j+1)); key: per
+   pixel, which map it samples (a layer, an RMSM page level, ...), < 0
+   where it samples none. Per pixel and screen axis, the change of the
+   texel coordinates to a neighbour on that axis that samples the same map
+   (equal key): of the two neighbours the one with the shorter change (a
+   neighbour across a depth discontinuity lands far off in the map, the
+   other does not), one-sided at the frame's border. The patch's bounding
+   rectangle in the map is then ex = |du/dx| + |du/dy| by
+   ey = |dv/dx| + |dv/dy| texels, and one texel spans 1/ex pixels along
+   the map's x and 1/ey along its y: footprint = the larger of the two, in
+   pixels (FLT_MAX for a zero extent). Above 1, one texel covers several
+   pixels: magnification, the staircase the view can see. footprint: w*h
+   floats, -1 where key < 0 or a screen axis has no neighbour with the
+   same key. deriv (may be NULL): 4 floats per pixel, (du/dx, dv/dx,
+   du/dy, dv/dy), NaN where footprint is -1. A non-finite texel coordinate
+   counts as key < 0. 0 ok; -1 NULL texel/key/footprint, w or h <= 0. */
+int tb_texel_footprint(const double *texel, const int *key, int w, int h, float *footprint, float *deriv);
+
+/* The shadow-area error (tb_metric_shadow's classes) split into bands, e.g.
+   of view depth: band[i] is pixel i's band, in 0..nbands-1 (any other
+   value: in no band). Per band b: shadow[b] = covered pixels whose
+   reference is shadowed, wrong[b] = covered pixels misclassified (false
+   shadow, false light or a non-finite result); the band's error is
+   100 wrong / shadow, pooled over frames by adding the counts. 0 ok; -1
+   NULL pointers or nbands <= 0. */
+int tb_metric_shadow_bands(const float *ref, const float *res, const int *band, size_t n, int nbands,
+                           uint64_t *shadow, uint64_t *wrong);
+
 /* quantile p in [0,1] of an ascending sorted array, as defined above */
 double tb_quantile_sorted(const float *sorted, size_t n, double p);
 
