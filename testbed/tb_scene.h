@@ -168,8 +168,9 @@ int tb_interior_view(int view, sk_vec3 *eye, sk_vec3 *target);
 
 /* The interior's point lights: TB_INTERIOR_LIGHTS, light i in room i
    (tb_interior_region(pos) == i), 2.0-2.6 m high, some 0.3-0.4 m from a
-   wall; *radius is the light's range (7-9 m: each reaches through the
-   doors into rooms whose views see it). Returns 0, or -1 for an index out
+   wall; *radius is the light's range (7-9 m: each reaches through its
+   doors into the corridor or other rooms, where views from elsewhere see
+   it). Returns 0, or -1 for an index out
    of range or a NULL. */
 #define TB_INTERIOR_LIGHTS 6
 int tb_interior_light(int light, sk_vec3 *pos, float *radius);

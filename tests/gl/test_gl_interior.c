@@ -336,6 +336,7 @@ typedef struct frames {
     float *ref[NV][NL];
     int *region[NV];
     float dist[NV][NL];
+    int lit_elsewhere[NL];   /* pixels it lights outside its room, in views from other regions */
 } frames;
 
 static int frames_init(gt_env *e, frames *f) {
@@ -358,6 +359,9 @@ static int frames_init(gt_env *e, frames *f) {
                                   (eye.z - tl.position.z) * (eye.z - tl.position.z));
             f->ref[v][l] = gt_alloc(e);
             if (!f->ref[v][l] || gt_reference_exact(e, &tl, f->ref[v][l], NULL) != 0) return -1;
+            if (tb_interior_region(eye) != l)
+                for (i = 0; i < e->n; i++)
+                    f->lit_elsewhere[l] += f->ref[v][l][i] == 1.0f && f->region[v][i] >= 0 && f->region[v][i] != l;
         }
     }
     return 0;
@@ -491,6 +495,14 @@ static void test_interior(void) {
             for (l = 0; l < NL; l++) ok &= (naive[t][v][l] = gt_alloc(&e)) != NULL;
     ok &= res != NULL && frames_init(&e, &f) == 0;
     SK_CHECK_MSG(ok, "frames");
+    /* each light reaches through the doors into rooms other views see:
+       measured 5594, 5905, 67, 23054, 5113 and 2559 pixels lit outside
+       the light's room in the views from other regions (light 2, in the
+       corner room r2, through its door onto the corridor in view 0) */
+    printf("pixels each light lights outside its room, seen from the other regions' views:");
+    for (l = 0; l < NL; l++) printf(" %d", f.lit_elsewhere[l]);
+    printf("\n");
+    for (l = 0; l < NL; l++) SK_CHECK_MSG(f.lit_elsewhere[l] >= 40, "light %d: %d", l, f.lit_elsewhere[l]);
     memset(&dc, 0, sizeof dc);
     dc.e = &e;
     dc.wrong_cull = wc && atoi(wc) == 1;
