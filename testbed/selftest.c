@@ -530,6 +530,52 @@ static void test_reference_point(void) {
     tb_scene_free(&s);
 }
 
+/* The interior: its size, its views inside the building, each light in
+   its own room, and walls and doors as the reference sees them. */
+static void test_interior(void) {
+    tb_scene s;
+    tb_reference *ref;
+    tb_light lamp;
+    /* floor under light 1 (r1), floor in r2 behind the solid partition,
+       floor in r4 through r1's and r4's facing doors, the ground outside
+       through r1's window, the ground beyond the light's range */
+    double pts[15] = {0.5, 0, -3.0, 4.0, 0, -5.0, 0.3, 0, 3.0, 0, 0, -12, 0, 0, -19};
+    double nrm[15] = {0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0};
+    float v[5], r;
+    sk_vec3 e, t;
+    int i;
+    tb_scene_init(&s);
+    CHECK(tb_scene_build(&s, "interior") == 0);
+    CHECK_MSG(tb_scene_triangle_count(&s) == 1652 && s.object_count == 60, "%u triangles, %u objects",
+              tb_scene_triangle_count(&s), s.object_count);
+    CHECK(box_eq(s.bounds, -20, -0.2f, -20, 20, 3.2f, 20));
+    check_scene_consistency(&s, "interior");
+    for (i = 0; i < TB_INTERIOR_VIEWS; i++) {
+        CHECK(tb_interior_view(i, &e, &t) == 0);
+        CHECK_MSG(tb_interior_region(e) >= 0 && e.y == 1.7f, "view %d eye region %d", i, tb_interior_region(e));
+    }
+    for (i = 0; i < TB_INTERIOR_LIGHTS; i++) {
+        CHECK(tb_interior_light(i, &e, &r) == 0);
+        CHECK_MSG(tb_interior_region(e) == i && r >= 7.0f && r <= 9.0f, "light %d region %d range %g", i,
+                  tb_interior_region(e), r);
+    }
+    CHECK(tb_interior_view(TB_INTERIOR_VIEWS, &e, &t) == -1 && tb_interior_light(-1, &e, &r) == -1);
+    CHECK(tb_interior_light(0, NULL, &r) == -1 && tb_interior_region(v3(0, 1, -12)) == -1);
+    CHECK(tb_interior_region(v3(0, 1, 0)) == 6 && tb_interior_region(v3(5, 1, 4)) == 5);
+    ref = tb_reference_create(&s);
+    CHECK(ref != NULL);
+    if (ref) {
+        memset(&lamp, 0, sizeof lamp);
+        lamp.type = TB_LIGHT_POINT;
+        tb_interior_light(1, &lamp.position, &lamp.range);
+        CHECK(tb_reference_trace_points(ref, pts, nrm, 5, &lamp, NULL, v) == 0);
+        CHECK_MSG(v[0] == 1.0f && v[1] == 0.0f && v[2] == 1.0f && v[3] == 1.0f && v[4] == TB_VIS_OUT_OF_RANGE,
+                  "light 1: %g %g %g %g %g", v[0], v[1], v[2], v[3], v[4]);
+        tb_reference_destroy(ref);
+    }
+    tb_scene_free(&s);
+}
+
 /* perspective: tb_unproject_pixel inverts a double-precision view-projection */
 static void mat4_mul(const double a[16], const double b[16], double o[16]) {
     int r, c, k;
@@ -1250,6 +1296,7 @@ int main(void) {
     test_reference_hard();
     test_reference_area();
     test_reference_point();
+    test_interior();
     test_metrics();
     test_metric_frames();
     test_image();

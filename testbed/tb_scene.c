@@ -362,6 +362,244 @@ int tb_scene_build_room(tb_scene *s) {
     return 0;
 }
 
+/* ---- "interior": a multi-room building (see tb_scene.h) ---- */
+
+#define TB_INT_T 0.2f    /* wall thickness, centred on the wall's line */
+#define TB_INT_H 3.0f    /* floor (y = 0) to ceiling */
+
+/* an opening in a wall: centre along the wall, width, bottom and top */
+typedef struct tb_int_opening { float c, w, y0, y1; } tb_int_opening;
+
+/* the closed box spanning [u0, u1] along the wall and [y0, y1] in height
+   of a wall on the line w = c (axis 0: the wall runs along x at z = c;
+   axis 2: along z at x = c) */
+static int tb_int_wall_box_(tb_scene *s, int axis, float c, float u0, float u1, float y0, float y1) {
+    float h = 0.5f * TB_INT_T;
+    if (!(u1 > u0) || !(y1 > y0)) return 0;
+    if (axis == 0) return tb_add_box_faces_(s, tb_v3_(u0, y0, c - h), tb_v3_(u1, y1, c + h));
+    return tb_add_box_faces_(s, tb_v3_(c - h, y0, u0), tb_v3_(c + h, y1, u1));
+}
+
+/* one wall segment [u0, u1] on the line c as one object: full-height boxes
+   between its openings (sorted along the wall), a sill box below each
+   opening that does not reach the floor and a lintel box above it */
+static int tb_int_wall_(tb_scene *s, const char *name, int axis, float c, float u0, float u1,
+                        const tb_int_opening *op, int n) {
+    uint32_t vc = s->vertex_count;
+    float at = u0;
+    int obj = tb_begin_object_(s, name), i, bad = 0;
+    if (obj < 0) return -1;
+    for (i = 0; i < n && !bad; i++) {
+        float a = op[i].c - 0.5f * op[i].w, b = op[i].c + 0.5f * op[i].w;
+        bad |= tb_int_wall_box_(s, axis, c, at, a, 0, TB_INT_H);
+        bad |= tb_int_wall_box_(s, axis, c, a, b, 0, op[i].y0);
+        bad |= tb_int_wall_box_(s, axis, c, a, b, op[i].y1, TB_INT_H);
+        at = b;
+    }
+    if (!bad) bad |= tb_int_wall_box_(s, axis, c, at, u1, 0, TB_INT_H);
+    if (bad) { tb_abort_object_(s, obj, vc); return -1; }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+/* a table: a top [x0, x1] x [z0, z1] of thickness 0.04 at height h on
+   four square legs of side 0.05 set 0.05 in from its corners, one object */
+static int tb_int_table_(tb_scene *s, const char *name, float x0, float z0, float x1, float z1, float h) {
+    uint32_t vc = s->vertex_count;
+    int obj = tb_begin_object_(s, name), k, bad;
+    if (obj < 0) return -1;
+    bad = tb_add_box_faces_(s, tb_v3_(x0, h - 0.04f, z0), tb_v3_(x1, h, z1));
+    for (k = 0; k < 4 && !bad; k++) {
+        float x = (k & 1) ? x1 - 0.075f : x0 + 0.075f, z = (k & 2) ? z1 - 0.075f : z0 + 0.075f;
+        bad = tb_add_box_faces_(s, tb_v3_(x - 0.025f, 0, z - 0.025f), tb_v3_(x + 0.025f, h - 0.04f, z + 0.025f));
+    }
+    if (bad) { tb_abort_object_(s, obj, vc); return -1; }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+/* a floor lamp: a pole of side 0.04 and height h at (x, z) under a shade
+   0.3 x 0.25 x 0.3, one object */
+static int tb_int_floor_lamp_(tb_scene *s, const char *name, float x, float z, float h) {
+    uint32_t vc = s->vertex_count;
+    int obj = tb_begin_object_(s, name);
+    if (obj < 0) return -1;
+    if (tb_add_box_faces_(s, tb_v3_(x - 0.02f, 0, z - 0.02f), tb_v3_(x + 0.02f, h, z + 0.02f)) ||
+        tb_add_box_faces_(s, tb_v3_(x - 0.15f, h, z - 0.15f), tb_v3_(x + 0.15f, h + 0.25f, z + 0.15f))) {
+        tb_abort_object_(s, obj, vc);
+        return -1;
+    }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+/* a bookshelf against the wall x = xw (depth 0.4 into the room, toward
+   -x when side < 0), [z0, z1] wide, 2 m high: two uprights and five
+   planks 2 cm thick, one object */
+static int tb_int_shelf_(tb_scene *s, const char *name, float xw, int side, float z0, float z1) {
+    uint32_t vc = s->vertex_count;
+    float xa = side < 0 ? xw - 0.4f : xw, xb = side < 0 ? xw : xw + 0.4f;
+    int obj = tb_begin_object_(s, name), k, bad;
+    if (obj < 0) return -1;
+    bad = tb_add_box_faces_(s, tb_v3_(xa, 0, z0), tb_v3_(xb, 2.0f, z0 + 0.02f)) ||
+          tb_add_box_faces_(s, tb_v3_(xa, 0, z1 - 0.02f), tb_v3_(xb, 2.0f, z1));
+    for (k = 0; k < 5 && !bad; k++) {
+        float y = 0.4f * (float)k + (k == 0 ? 0.1f : 0.0f);
+        bad = tb_add_box_faces_(s, tb_v3_(xa, y, z0 + 0.02f), tb_v3_(xb, y + 0.02f, z1 - 0.02f));
+    }
+    if (bad) { tb_abort_object_(s, obj, vc); return -1; }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+/* the outside ground y = 0 around the building's footprint out to
+   +-20 m: four rectangles, one object */
+static int tb_int_ground_(tb_scene *s) {
+    static const double r[4][4] = {   /* x0, z0, x1, z1 */
+        {-20, -20, 20, -7.1}, {-20, 7.1, 20, 20}, {-20, -7.1, -7.6, 7.1}, {7.6, -7.1, 20, 7.1}};
+    static const double up[3] = {0, 1, 0};
+    uint32_t vc = s->vertex_count;
+    int obj = tb_begin_object_(s, "ground"), k;
+    if (obj < 0) return -1;
+    for (k = 0; k < 4; k++) {
+        double o[3], u[3] = {0, 0, 0}, v[3] = {0, 0, 0};
+        o[0] = r[k][0]; o[1] = 0; o[2] = r[k][1];
+        u[0] = r[k][2] - r[k][0];
+        v[2] = r[k][3] - r[k][1];
+        if (tb_add_rect_(s, o, u, v, 2, 2, up)) { tb_abort_object_(s, obj, vc); return -1; }
+    }
+    tb_end_object_(s, obj);
+    return obj;
+}
+
+int tb_scene_build_interior(tb_scene *s) {
+    /* windows: 1.4 m wide, sill 0.9, top 2.1; doors: 2.1 high */
+    static const float cols[4] = {-7.6f, -2.5f, 2.5f, 7.6f};   /* the rooms' x spans (exterior walls' outer faces) */
+    static const float win_s[3] = {-5.0f, 0.0f, 5.0f}, win_n[3] = {-5.0f, 0.5f, 5.0f};
+    static const float door_a[3] = {-4.5f, 0.3f, 4.0f}, door_b[3] = {-5.0f, 0.3f, 5.5f};
+    static const float furniture[][6] = {
+        /* r0 */ {-7.4f, 0, -6.9f, -5.4f, 0.55f, -4.8f}, {-3.4f, 0, -6.9f, -2.6f, 2.2f, -6.3f},
+                 {-5.3f, 0, -6.9f, -4.8f, 0.5f, -6.45f},
+        /* r2 */ {3.0f, 0, -6.9f, 5.0f, 0.8f, -6.0f}, {4.5f, 0, -3.0f, 5.1f, 0.6f, -2.4f},
+        /* r3 */ {-3.6f, 0, 6.3f, -2.6f, 1.2f, 6.9f}, {-5.0f, 0, 5.6f, -4.4f, 0.5f, 6.2f},
+                 {-4.9f, 0.5f, 5.7f, -4.5f, 0.85f, 6.1f},
+        /* r4 */ {1.3f, 0, 2.8f, 1.7f, 3.0f, 3.2f},
+        /* r5 */ {3.5f, 0, 6.3f, 7.4f, 0.9f, 6.9f}, {2.6f, 0, 5.9f, 3.3f, 1.9f, 6.9f},
+                 {4.8f, 0.65f, 5.3f, 5.2f, 0.7f, 5.7f}, {4.97f, 0, 5.47f, 5.03f, 0.65f, 5.53f},
+        /* corridor */ {-3.5f, 0, 0.5f, -1.8f, 0.45f, 0.9f}, {6.2f, 0, -0.9f, 6.7f, 0.9f, -0.4f}};
+    static const char *const furniture_name[] = {"bed0", "wardrobe0", "nightstand0", "sofa2", "crate2",
+                                                 "cabinet3", "boxes3", "boxes3_top", "pillar4", "counter5",
+                                                 "fridge5", "stool5_seat", "stool5_leg", "bench_c", "plant_c"};
+    char name[TB_NAME_MAX];
+    tb_int_opening op[2];
+    int c, k;
+    /* floors (top y = 0) and ceilings (bottom y = 3), per room and the corridor */
+    for (k = 0; k < 7; k++) {
+        float x0 = k < 6 ? cols[k % 3] : cols[0], x1 = k < 6 ? cols[k % 3 + 1] : cols[3];
+        float z0 = k < 3 ? -7.1f : k < 6 ? 1.0f : -1.0f, z1 = k < 3 ? -1.0f : k < 6 ? 7.1f : 1.0f;
+        if (k < 6) snprintf(name, sizeof name, "floor%d", k);
+        else snprintf(name, sizeof name, "floor_c");
+        if (tb_scene_add_box(s, name, tb_v3_(x0, -0.2f, z0), tb_v3_(x1, 0, z1)) < 0) return -1;
+        if (k < 6) snprintf(name, sizeof name, "ceiling%d", k);
+        else snprintf(name, sizeof name, "ceiling_c");
+        if (tb_scene_add_box(s, name, tb_v3_(x0, TB_INT_H, z0), tb_v3_(x1, TB_INT_H + 0.2f, z1)) < 0) return -1;
+    }
+    /* exterior walls along x (south z = -7, north z = 7), a window per room */
+    for (c = 0; c < 3; c++) {
+        op[0].w = 1.4f; op[0].y0 = 0.9f; op[0].y1 = 2.1f;
+        op[0].c = win_s[c];
+        snprintf(name, sizeof name, "wall_s%d", c);
+        if (tb_int_wall_(s, name, 0, -7.0f, cols[c], cols[c + 1], op, 1) < 0) return -1;
+        op[0].c = win_n[c];
+        snprintf(name, sizeof name, "wall_n%d", c);
+        if (tb_int_wall_(s, name, 0, 7.0f, cols[c], cols[c + 1], op, 1) < 0) return -1;
+    }
+    /* exterior walls along z (west x = -7.5, east x = 7.5): a window in each
+       end room, a tall one at each end of the corridor */
+    for (k = 0; k < 6; k++) {
+        static const float span[4] = {-6.9f, -1.0f, 1.0f, 6.9f}, wc[3] = {-4.0f, 0.0f, 4.0f};
+        int part = k % 3;
+        op[0].c = wc[part];
+        op[0].w = part == 1 ? 1.0f : 1.4f;
+        op[0].y0 = part == 1 ? 0.6f : 0.9f;
+        op[0].y1 = part == 1 ? 2.4f : 2.1f;
+        snprintf(name, sizeof name, "wall_%c%d", k < 3 ? 'w' : 'e', part);
+        if (tb_int_wall_(s, name, 2, k < 3 ? -7.5f : 7.5f, span[part], span[part + 1], op, 1) < 0) return -1;
+    }
+    /* the corridor's walls (z = -1 and z = 1), a door into each room */
+    for (c = 0; c < 3; c++) {
+        float u0 = c == 0 ? -7.4f : cols[c], u1 = c == 2 ? 7.4f : cols[c + 1];
+        op[0].w = 1.0f; op[0].y0 = 0.0f; op[0].y1 = 2.1f;
+        op[0].c = door_a[c];
+        snprintf(name, sizeof name, "wall_ca%d", c);
+        if (tb_int_wall_(s, name, 0, -1.0f, u0, u1, op, 1) < 0) return -1;
+        op[0].c = door_b[c];
+        snprintf(name, sizeof name, "wall_cb%d", c);
+        if (tb_int_wall_(s, name, 0, 1.0f, u0, u1, op, 1) < 0) return -1;
+    }
+    /* partitions x = -2.5 and x = 2.5: doors r0-r1 and r4-r5, the others solid */
+    for (k = 0; k < 4; k++) {
+        float x = (k & 1) ? 2.5f : -2.5f, z0 = k < 2 ? -6.9f : 1.1f, z1 = k < 2 ? -1.1f : 6.9f;
+        int door = k == 0 || k == 3;
+        op[0].c = k == 0 ? -4.0f : 4.0f;
+        op[0].w = 0.9f; op[0].y0 = 0.0f; op[0].y1 = 2.1f;
+        snprintf(name, sizeof name, "wall_p%d", k);
+        if (tb_int_wall_(s, name, 2, x, z0, z1, op, door) < 0) return -1;
+    }
+    /* furniture: boxes on the floor, most against a wall (contact) */
+    for (k = 0; k < (int)(sizeof furniture / sizeof furniture[0]); k++) {
+        const float *b = furniture[k];
+        if (tb_scene_add_box(s, furniture_name[k], tb_v3_(b[0], b[1], b[2]), tb_v3_(b[3], b[4], b[5])) < 0)
+            return -1;
+    }
+    /* thin objects: table legs, lamp poles, shelf planks, a coat stand */
+    if (tb_int_table_(s, "table1", -1.2f, -4.8f, 0.4f, -3.8f, 0.76f) < 0) return -1;
+    if (tb_int_table_(s, "chair1", -0.6f, -5.4f, -0.2f, -5.0f, 0.46f) < 0) return -1;
+    if (tb_int_table_(s, "desk3", -7.4f, 3.0f, -6.6f, 4.6f, 0.78f) < 0) return -1;
+    if (tb_int_table_(s, "table4", -1.6f, 3.8f, -0.4f, 5.0f, 0.76f) < 0) return -1;
+    if (tb_int_floor_lamp_(s, "lamp1", 1.9f, -6.4f, 1.6f) < 0) return -1;
+    if (tb_int_floor_lamp_(s, "lamp4", -2.0f, 6.4f, 1.7f) < 0) return -1;
+    if (tb_int_shelf_(s, "shelf2", 7.4f, -1, -6.4f, -5.2f) < 0) return -1;
+    if (tb_scene_add_pole(s, "coat_stand_c", 3.5f, 0, -0.6f, 0.025f, 1.8f) < 0) return -1;
+    return tb_int_ground_(s) < 0 ? -1 : 0;
+}
+
+int tb_interior_view(int view, sk_vec3 *eye, sk_vec3 *target) {
+    /* eye x, z and target x, y, z; the eye at head height */
+    static const float v[TB_INTERIOR_VIEWS][5] = {
+        {-7.0f, 0.0f, 7.0f, 1.2f, 0.3f},      /* the corridor from its west end, eastward */
+        {0.5f, 6.6f, 0.3f, 0.9f, -5.0f},      /* r4 southward through both doors into r1 */
+        {-7.1f, -3.3f, 2.0f, 1.0f, -4.6f},    /* r0 eastward through its door into r1 */
+        {7.1f, 6.6f, -2.0f, 0.7f, 3.0f},      /* r5's corner westward through its door into r4 */
+        {6.6f, -6.6f, 2.5f, 1.0f, 2.5f}};     /* r2's corner north-west through its door, across the corridor */
+    if (view < 0 || view >= TB_INTERIOR_VIEWS || !eye || !target) return -1;
+    *eye = tb_v3_(v[view][0], 1.7f, v[view][1]);
+    *target = tb_v3_(v[view][2], v[view][3], v[view][4]);
+    return 0;
+}
+
+int tb_interior_light(int light, sk_vec3 *pos, float *radius) {
+    static const float l[TB_INTERIOR_LIGHTS][4] = {
+        {-5.0f, 2.4f, -3.5f, 8.0f},   /* r0, mid-room */
+        {0.8f, 2.5f, -4.5f, 9.0f},    /* r1 */
+        {7.1f, 2.2f, -4.0f, 7.0f},    /* r2, 0.3 m from the east wall */
+        {-4.5f, 2.0f, 1.5f, 8.0f},    /* r3, 0.4 m from the corridor wall */
+        {0.0f, 2.6f, 4.0f, 9.0f},     /* r4 */
+        {5.0f, 2.3f, 6.5f, 7.0f}};    /* r5, 0.4 m from the north wall, over the counter */
+    if (light < 0 || light >= TB_INTERIOR_LIGHTS || !pos || !radius) return -1;
+    *pos = tb_v3_(l[light][0], l[light][1], l[light][2]);
+    *radius = l[light][3];
+    return 0;
+}
+
+int tb_interior_region(sk_vec3 p) {
+    int col;
+    if (!(p.x >= -7.5f && p.x <= 7.5f && p.z >= -7.0f && p.z <= 7.0f)) return -1;
+    if (p.z > -1.0f && p.z < 1.0f) return 6;
+    col = p.x < -2.5f ? 0 : p.x < 2.5f ? 1 : 2;
+    return p.z <= -1.0f ? col : 3 + col;
+}
+
 int tb_scene_build_contact(tb_scene *s) {
     if (tb_scene_add_ground(s, "ground", 0, 0, 10, 10, 0, 1, 1) < 0) return -1;
     if (tb_scene_add_box(s, "box", tb_v3_(-1, 0, -1), tb_v3_(1, 1, 1)) < 0) return -1;
@@ -819,6 +1057,7 @@ int tb_scene_build(tb_scene *s, const char *name) {
     if (strcmp(name, "fence") == 0) return tb_scene_build_fence(s);
     if (strcmp(name, "terrace") == 0) return tb_scene_build_terrace(s);
     if (strcmp(name, "room") == 0) return tb_scene_build_room(s);
+    if (strcmp(name, "interior") == 0) return tb_scene_build_interior(s);
     if (strcmp(name, "contact") == 0) return tb_scene_build_contact(s);
     if (strcmp(name, "open-world") == 0) return tb_scene_build_open_world(s);
     if (strcmp(name, "forest") == 0) return tb_scene_build_forest(s);

@@ -125,6 +125,60 @@ int tb_scene_build_terrace(tb_scene *s);
    at (0, 2, 0) with range >= 8 is the intended setup. */
 int tb_scene_build_room(tb_scene *s);
 
+/* "interior": a building of several point lights (King and Newhall's
+   regime: each light's range spans rooms, walls hide most of it).
+   Deterministic, built in code. Footprint x in [-7.5, 7.5], z in [-7, 7]
+   (wall lines; walls 0.2 m thick centred on them), floor y = 0, ceiling
+   y = 3. Six rooms of 5 x 6 m in two rows, r0 r1 r2 (x < -2.5, middle,
+   x > 2.5) at z in [-7, -1] and r3 r4 r5 at z in [1, 7], either side of a
+   corridor z in [-1, 1] (tb_interior_region numbers them 0..5 and 6).
+     "floor<r>", "ceiling<r>", "floor_c", "ceiling_c"  0.2 m slabs per room
+                   and the corridor (top of the floor y = 0, bottom of
+                   the ceiling y = 3);
+     "wall_s<c>", "wall_n<c>", "wall_w<p>", "wall_e<p>"  exterior walls
+                   per room or corridor span, each with a window 1.4 m wide
+                   from 0.9 to 2.1 m (the corridor's ends: 1.0 m wide, 0.6
+                   to 2.4 m);
+     "wall_ca<c>", "wall_cb<c>"  the corridor's walls (z = -1, z = 1) per
+                   room, each with a door 1.0 x 2.1 m; r1's and r4's doors
+                   face each other (x = 0.3);
+     "wall_p0".."wall_p3"  partitions x = -2.5 and 2.5 per row; doors
+                   0.9 x 2.1 m between r0 and r1 (z = -4) and r4 and r5
+                   (z = 4), the other two solid;
+     furniture: boxes standing on the floor, most against a wall or in a
+                   corner (contact): "bed0", "wardrobe0", "nightstand0",
+                   "sofa2", "crate2", "cabinet3", "boxes3", "boxes3_top",
+                   "pillar4" (floor to ceiling), "counter5", "fridge5",
+                   "stool5_seat", "stool5_leg", "bench_c", "plant_c";
+     thin objects: tables on legs 5 cm square "table1", "chair1", "desk3",
+                   "table4"; floor lamps (4 cm poles) "lamp1", "lamp4"; a
+                   bookshelf of 2 cm planks "shelf2"; a 5 cm pole
+                   "coat_stand_c";
+     "ground"      outside, y = 0 around the footprint out to +-20 m.
+   Bounds [-20,-0.2,-20]..[20,3.2,20]; 1652 triangles, 60 objects.
+   tb_interior_view and tb_interior_light give its views and lights. */
+int tb_scene_build_interior(tb_scene *s);
+
+/* The interior's views: TB_INTERIOR_VIEWS cameras at head height (1.7 m),
+   each looking through a doorway into another room or along the corridor;
+   the intended projection is 70 degrees vertical (1.2 rad), near 0.05 m,
+   far 30 m. Returns 0, or -1 for an index out of range or a NULL. */
+#define TB_INTERIOR_VIEWS 5
+int tb_interior_view(int view, sk_vec3 *eye, sk_vec3 *target);
+
+/* The interior's point lights: TB_INTERIOR_LIGHTS, light i in room i
+   (tb_interior_region(pos) == i), 2.0-2.6 m high, some 0.3-0.4 m from a
+   wall; *radius is the light's range (7-9 m: each reaches through its
+   doors into the corridor or other rooms, where views from elsewhere see
+   it). Returns 0, or -1 for an index out
+   of range or a NULL. */
+#define TB_INTERIOR_LIGHTS 6
+int tb_interior_light(int light, sk_vec3 *pos, float *radius);
+
+/* The interior's region holding the point p (x and z; walls split along
+   their lines): the rooms 0..5, 6 for the corridor, -1 outside. */
+int tb_interior_region(sk_vec3 p);
+
 /* "contact": contact shadows. Ground 20 x 20 ("ground", x,z in [-10,10],
    one quad, 2 triangles) and a box "box" [-1,0,-1]..[1,1,1] resting exactly
    on the ground (its bottom face lies in y = 0).
@@ -232,7 +286,8 @@ int tb_forest_view(int view, sk_vec3 *eye, sk_vec3 *target);
 int tb_forest_sun(int view, int sun, sk_vec3 *light_dir);
 
 /* builds one of the standard scenes by name: "ground-boxes", "fence",
-   "terrace", "room", "contact", "open-world", "forest"; -1 for an unknown
+   "terrace", "room", "interior", "contact", "open-world", "forest"; -1 for
+   an unknown
    name */
 int tb_scene_build(tb_scene *s, const char *name);
 
