@@ -309,12 +309,56 @@
                     default; .sync_readback = 1: this frame's); where a
                     page is missing the lookup falls back
                     to a coarser resident one.
+     SKGL_AUTO      the library chooses (CHOOSING FOR YOU): one focused map
+                    (STANDARD) or 2 to .cascades cascades (PSSM), per frame,
+                    from the view's depth range and the scene; call
+                    skgl_shadow_analyze() first, as for FERKO.
      Focused crops end the shadow range where the scene ends and fit the view
-     clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
-     sphere that depends only on the camera's projection and the split
-     distances, over the range [near, max_distance or far]: the texel size
-     never changes as the camera moves, at the price of covering more than
-     the scene (set max_distance).
+     clipped to the scene. .fit_to_depth (STANDARD, PSSM, LiSPSM) also starts
+     and ends it at the view depths the depth buffer holds (sample
+     distribution shadow maps, Lauritzen, Salvi and Lefohn 2011), through
+     skgl_shadow_analyze and its read-back ring: the splits follow what is
+     visible instead of the near plane.
+
+   STABLE CROPS (.stable = 1)
+     Each crop's width and height step on a fixed ladder, 2^(k/8) world units
+     (9% steps), at least the focused crop's, and its corner snaps to whole
+     texels of a grid fixed in world light space; the shadow range ends at a
+     ladder step at or past the scene's far side. As the camera moves a
+     little nothing changes size and the crop moves by whole texels: no
+     shimmer. A size changes only when the view's need crosses a step; it
+     shrinks only when the need falls six steps (a factor 1.68) below it,
+     so a wavering need does not resize back and forth. Measured: a camera
+     turning 120 degrees resizes a layer in 11 of 119 frames, walking 30 m in
+     9; the error is 0.84 to 1.11x the focused crop's (0.93x in the open
+     world). .stable_sphere = 1 bounds each cascade by a sphere that depends
+     only on the camera's projection and the split distances, over [near,
+     max_distance or far]: the texel size never changes however the camera
+     turns, at the price of covering more than the view needs (1.77x the
+     focused error in the open world, up to 3.6x on small scenes; set
+     max_distance).
+
+   CHOOSING FOR YOU (SKGL_AUTO)
+     You give a texel budget, .resolution^2 texels a frame [2048^2], and a
+     target, .auto_texel_px: how many pixels one shadow texel may span [1].
+     Each frame, for 1 to .cascades [4] maps sharing the budget (side
+     .resolution / sqrt(n)), AUTO fits the crops over the view depths the
+     analysis found (as .fit_to_depth) and predicts the texel-to-pixel
+     ratio at the near end of each map (the crop's larger side over the
+     map's side, against a pixel's footprint there, 2 d tan(fovy/2) / the
+     analysed depth buffer's height). It takes the fewest maps whose worst
+     ratio meets the target, else the count with the smallest ratio. The
+     count in use is kept unless the new one is 15% better, has fewer maps
+     and meets 0.85 of the target, or the old misses the target by 15% and
+     the new one meets it (hysteresis: a camera bobbing about the height
+     where the count changes keeps it). stats.maps, stats.auto_technique
+     (SKGL_STANDARD or SKGL_PSSM), stats.auto_texel_px (the prediction for
+     each count) and stats.auto_reason (in words) say what it chose and
+     why. Not with .stable or .cache (the splits follow the depth buffer).
+     Why not the warps or virtual maps: at equal texels PSSM matched or
+     beat LiSPSM, PSM and LSPSM in the open world and has none of their
+     failure cases (a light along the view, casters behind the camera); a
+     small scene seen whole is best served by one focused map.
 
    POINT LIGHTS (skgl_point_*, King & Newhall 2004; the flow is in the declarations)
      SKGL_POINT_CUBE   a GL depth cube map, samplerCubeShadow.
@@ -892,7 +936,11 @@ typedef struct skgl_shadow_desc {
                                      range (the camera's near plane to the end of the
                                      shadows): a boundary past it makes its cascades thin. */
     float blend_band;             /* PSSM: fraction of a cascade blended into the next [0: off] */
-    int stable;                   /* 1: texel-snapped crops (sphere fit), 0 or 1 [0] */
+    int stable;                   /* 1: texel-snapped crops whose size steps on a fixed ladder
+                                     (STABLE CROPS), 0 or 1 [0] */
+    int stable_sphere;            /* 1 with .stable: each crop bounds its cascade's sphere, the
+                                     same size at every camera position and orientation, at
+                                     the price of covering more than the view needs [0] */
     float slope_bias;             /* polygon offset factor, 0 or more [2.0] */
     float depth_bias;             /* polygon offset units, 0 or more [1.0] */
     int disable_polygon_offset;   /* 1: no polygon offset in the depth passes [0] */
@@ -5130,6 +5178,9 @@ struct skgl_shadow {
     int rendered;                  /* 1 after a render that succeeded: the maps may be read */
     skgl__ferko ferko;             /* SKGL_FERKO, SKGL_AUTO and .fit_to_depth */
     int auto_maps;                 /* SKGL_AUTO: the map count in use (0 before the first fit) */
+    int step[SKGL_MAX_CASCADES][2];   /* .stable: each crop's width and height, steps of the ladder
+                                      2^(k/8) (skgl__ladder_step; SKGL__NO_STEP before the first) */
+    int far_step;                  /* .stable: the shadow range's end, likewise */
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl__cache cache;             /* desc.cache only */
     skgl_shadow_frame_stats stats;
@@ -5182,6 +5233,29 @@ static void skgl__apply_switches(float *slope_bias, float *depth_bias, int no_of
     if (no_offset) *slope_bias = *depth_bias = 0.0f;
     if (no_plane) *plane_bias = 0.0f;
     if (no_kernel) *pcf_radius = 0;
+}
+
+/* The ladder a stable crop's size and the stable shadow range's end step
+   on: 2^(k/8), k an integer (9% steps, fixed in world units, so the same
+   need gives the same size everywhere). The step for `need` (> 0): the
+   smallest whose size holds it; `prev` (SKGL__NO_STEP: none) is kept while
+   need fits it and is at most six steps (a factor 1.68) smaller, so that
+   a need wavering about a step does not resize the crop back and forth. */
+#define SKGL__NO_STEP (-100000)
+static double skgl__ladder(int k)
+{
+    static const double frac[8] = {1.0, 1.090507732665258, 1.189207115002721, 1.296839554651010,
+                                   1.414213562373095, 1.542210825407941, 1.681792830507429, 1.834008086409342};
+    return SK_LDEXP(frac[k & 7], k >> 3);   /* k >> 3 floors for negative k too (two's complement) */
+}
+static int skgl__ladder_step(double need, int prev)
+{
+    int e, k;
+    if (!(need > 0.0) || !(need < 1e30)) return prev;
+    SK_FREXP(need, &e);
+    for (k = 8 * (e - 1); skgl__ladder(k) < need; k++) {}
+    if (prev != SKGL__NO_STEP && k <= prev && k >= prev - 6) return prev;
+    return k;
 }
 
 static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
@@ -5278,6 +5352,8 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     /* a stable crop snaps to whole texels of a map of at least two */
     SKGL__RULE(!d->stable || d->resolution >= 2, fn, "resolution", d->resolution, "2 or more with desc.stable");
     SKGL__RULE(d->stable == 0 || d->stable == 1, fn, "stable", d->stable, "0 or 1");
+    SKGL__RULE(d->stable_sphere == 0 || (d->stable_sphere == 1 && d->stable), fn, "stable_sphere", d->stable_sphere,
+               "0, or 1 with desc.stable");
     /* LSPSM's layers are h_max * nw_max (the defaults set .cascades to it):
        that rule first, so that the message names the fields the caller set */
     /* (in double: two large ints' product would overflow) */
@@ -5370,6 +5446,8 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     s->maps = s->layers;
     s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
     s->select_extent = 1.0f;
+    for (i = 0; i < SKGL_MAX_CASCADES; i++) s->step[i][0] = s->step[i][1] = SKGL__NO_STEP;
+    s->far_step = SKGL__NO_STEP;
     gl = &ctx->gl;
     skgl__st_begin(ctx, &st);
     skgl__timer_init(ctx, &s->t_render);
@@ -5677,10 +5755,16 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
        ends: stable mode needs a range that does not depend on where the
        camera is, or the cascade spheres and their texels would change size */
     zf = cam_zf;
-    if (!d->stable) {
+    if (!d->stable || !d->stable_sphere) {
         for (i = 0; i < 8; i++) {
             float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
             if (depth > far_scene) far_scene = depth;
+        }
+        /* stable: the end steps on the ladder, so the splits stay put while
+           the camera moves a little (STABLE CROPS) */
+        if (d->stable) {
+            s->far_step = skgl__ladder_step(far_scene, s->far_step);
+            if (s->far_step != SKGL__NO_STEP) far_scene = (float)skgl__ladder(s->far_step);
         }
         if (far_scene < zf) zf = far_scene > zn * 1.001f ? far_scene : zn * 1.001f;
     }
@@ -5732,6 +5816,48 @@ static void skgl__scene_depth_range(sk_mat4 *proj, const sk_mat4 *lview, const s
     proj->m[14] = (float)(-(f + n) / (f - n));
 }
 
+/* A stable crop (.stable without .stable_sphere): the focused crop's
+   light-space box of the slice clipped to the scene, its width and its
+   height each widened to a ladder step (skgl__ladder_step, per layer and
+   axis), its corner snapped to whole texels of a grid fixed in world light
+   space. The texel size changes only when the view's need crosses a step
+   (a camera turning or rising far enough), never as it moves a little: no
+   shimmer. */
+static sk_result skgl__stepped_crop(skgl_shadow *s, const skgl__fit_in *in, int i, const sk_vec3 *pts, int n,
+                                    sk_mat4 *proj)
+{
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, tx, ty, x0, y0, ox = 0.0, oy = 0.0;
+    const float *m = in->lview.m;
+    int res = s->desc.resolution, j, k;
+    float b[6];
+    for (j = 0; j < n; j++) {
+        sk_vec3 p = sk__xform_affine(&in->lview, pts[j]);
+        for (k = 0; k < 3; k++) {
+            if ((&p.x)[k] < lo[k]) lo[k] = (&p.x)[k];
+            if ((&p.x)[k] > hi[k]) hi[k] = (&p.x)[k];
+        }
+    }
+    hi[2] = sk__casters_zmax(&in->lview, &in->scene->bounds, hi[2]);
+    for (k = 0; k < 2; k++) {
+        s->step[i][k] = skgl__ladder_step(hi[k] - lo[k], s->step[i][k]);
+        if (s->step[i][k] == SKGL__NO_STEP) return SK_ERR_DEGENERATE;
+    }
+    tx = skgl__ladder(s->step[i][0]) / (res - 1);
+    ty = skgl__ladder(s->step[i][1]) / (res - 1);
+    /* the origin's place in light-view space (rotation only), so that the
+       grid is fixed in the world, not at the light's origin */
+    ox = (double)m[0] * s->origin[0] + (double)m[4] * s->origin[1] + (double)m[8] * s->origin[2];
+    oy = (double)m[1] * s->origin[0] + (double)m[5] * s->origin[1] + (double)m[9] * s->origin[2];
+    x0 = SK_FLOOR((0.5 * (lo[0] + hi[0]) - 0.5 * tx * (res - 1) + ox) / tx) * tx - ox;
+    y0 = SK_FLOOR((0.5 * (lo[1] + hi[1]) - 0.5 * ty * (res - 1) + oy) / ty) * ty - oy;
+    b[0] = (float)x0; b[1] = (float)(x0 + tx * res); b[2] = (float)y0; b[3] = (float)(y0 + ty * res);
+    b[4] = (float)-hi[2]; b[5] = (float)-lo[2];
+    for (k = 0; k < 6; k++) if (!sk__finite(b[k])) return SK_ERR_DEGENERATE;
+    if (!(b[1] > b[0]) || !(b[3] > b[2]) || !(b[5] > b[4])) return SK_ERR_DEGENERATE;
+    *proj = sk_mat4_ortho(b[0], b[1], b[2], b[3], b[4], b[5]);
+    return SK_OK;
+}
+
 /* per layer: STANDARD, PSSM a focused crop of the slice clipped to the
    scene, or (.stable) the crop of a sphere that depends only on the
    camera's projection and the splits; LiSPSM (warp = 1) a warp of the
@@ -5751,7 +5877,12 @@ static sk_result skgl__fit_slices(skgl_shadow *s, const skgl__fit_in *in, int wa
             if (r != SK_OK) return r;
             continue;
         }
-        if (d->stable) {
+        if (d->stable && !d->stable_sphere) {
+            sk_vec3 pts[SK_CLIP_MAX_POINTS];
+            int n = sk_clip_frustum_aabb(&slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
+            r = n > 0 ? skgl__stepped_crop(s, in, i, pts, n, &proj) : skgl__stepped_crop(s, in, i, slice.corners, 8, &proj);
+            if (r == SK_OK && d->cache) skgl__scene_depth_range(&proj, &in->lview, &in->scene->bounds);
+        } else if (d->stable) {
             /* radius from the camera's parameters only: bitwise the same
                wherever the camera goes (fovy and aspect of a GL perspective) */
             const sk_mat4 *pr = &in->cam->proj;

@@ -169,4 +169,64 @@ static void test_stable_crops(void) {
     gt_env_free(&e);
 }
 
-SK_TEST_MAIN(test_stable_crops)
+/* layer i's texel size in world units (the lookup matrix's x scale) */
+static double layer_texel(const skgl_shadow *s, int i) {
+    sk_mat4 m = skgl_shadow_matrix(s, i);
+    double sx = sqrt((double)m.m[0] * m.m[0] + (double)m.m[4] * m.m[4] + (double)m.m[8] * m.m[8]);
+    return sx > 0 ? 2.0 / (sx * (double)skgl_shadow_get_desc(s).resolution) : 0;
+}
+
+/* A camera turning in place (1 degree a frame, 120 frames) and a camera
+   walking 30 m, both over ground-boxes, PSSM 4x1024: in how many frames a
+   layer's texel changed size. A stepped stable crop (the default) changes
+   only when the view's need crosses a ladder step; the sphere fit never;
+   an unstable crop nearly every frame. */
+static void test_stable_turning(void) {
+    gt_env e;
+    int mode, f, i;
+    int resized[3][2];
+    static const char *names[3] = {"stable (stepped)", "stable_sphere", "unstable"};
+    sk_vec3 light = gt_v3(-0.5f, -1, -0.35f);
+    if (gt_env_init_named(&e, "ground-boxes", W, H) != 0) { gt_env_free(&e); return; }
+    memset(resized, 0, sizeof resized);
+    for (mode = 0; mode < 3; mode++) {
+        int path;
+        for (path = 0; path < 2; path++) {
+            skgl_shadow_desc d;
+            skgl_shadow *s;
+            skgl_scene sc = gt_scene(&e);
+            double prev[SKGL_MAX_CASCADES];
+            memset(&d, 0, sizeof d);
+            d.technique = SKGL_PSSM;
+            d.resolution = 1024;
+            d.stable = mode < 2;
+            d.stable_sphere = mode == 1;
+            s = gt_shadow(&e, &d);
+            if (!s) continue;
+            for (f = 0; f < 120; f++) {
+                float a = 0.0174533f * (float)f, t = 0.25f * (float)f;
+                sk_vec3 eye = path ? gt_v3(-12.0f + t, 1.7f, 8.0f) : gt_v3(-9, 4, 12);
+                sk_vec3 target = path ? gt_v3(-12.0f + t + 10.0f, 1.2f, 0.0f)
+                                      : gt_v3(-9.0f + 12.0f * sinf(a), 2.0f, 12.0f - 12.0f * cosf(a));
+                skgl_camera cam = gt_camera(eye, target, 0.9f, 0.5f, 100, W, H);
+                int changed = 0;
+                SK_CHECK(skgl_shadow_render(e.sk, s, &cam, &sc, light) == SK_OK);
+                for (i = 0; i < 4; i++) {
+                    double tx = layer_texel(s, i);
+                    if (f > 0 && fabs(tx - prev[i]) > 1e-6 * prev[i]) changed = 1;
+                    prev[i] = tx;
+                }
+                resized[mode][path] += changed;
+            }
+            skgl_shadow_destroy(e.sk, s);
+        }
+        printf("%-17s frames with a resized layer, of 119: turning %d, walking %d\n", names[mode], resized[mode][0],
+               resized[mode][1]);
+    }
+    SK_CHECK_MSG(resized[1][0] == 0 && resized[1][1] == 0, "sphere fit resized %d, %d", resized[1][0], resized[1][1]);
+    SK_CHECK_MSG(resized[2][0] > 100 && resized[2][1] > 100, "unstable resized %d, %d", resized[2][0], resized[2][1]);
+    SK_CHECK_MSG(resized[0][0] <= 12 && resized[0][1] <= 12, "stepped resized %d, %d", resized[0][0], resized[0][1]);
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_stable_crops, test_stable_turning)
