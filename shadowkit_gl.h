@@ -331,12 +331,13 @@
      so a wavering need does not resize back and forth. Measured: a camera
      turning 120 degrees resizes a layer in 11 of 119 frames, walking 30 m in
      9; the error is 0.84 to 1.11x the focused crop's (0.93x in the open
-     world). .stable_sphere = 1 bounds each cascade by a sphere that depends
-     only on the camera's projection and the split distances, over [near,
-     max_distance or far]: the texel size never changes however the camera
-     turns, at the price of covering more than the view needs (1.77x the
-     focused error in the open world, up to 3.6x on small scenes; set
-     max_distance).
+     world). .stable_sphere = 1, and every cached light (.cache: a cached
+     layer is drawn whole again whenever its crop changes size), bounds each
+     cascade by a sphere that depends only on the camera's projection and
+     the split distances, over [near, max_distance or far]: the texel size
+     never changes however the camera turns, at the price of covering more
+     than the view needs (1.77x the focused error in the open world, up to
+     3.6x on small scenes; set max_distance).
 
    CHOOSING FOR YOU (SKGL_AUTO)
      You give a texel budget, .resolution^2 texels a frame [2048^2], and a
@@ -5242,6 +5243,14 @@ static void skgl__apply_switches(float *slope_bias, float *depth_bias, int no_of
    need fits it and is at most six steps (a factor 1.68) smaller, so that
    a need wavering about a step does not resize the crop back and forth. */
 #define SKGL__NO_STEP (-100000)
+
+/* whether stable crops step on the ladder (STABLE CROPS); a cached light
+   keeps the sphere fit, whose crops never change size: a cached layer is
+   drawn whole again whenever its crop's size changes */
+static int skgl__stepped(const skgl_shadow_desc *d)
+{
+    return d->stable && !d->stable_sphere && !d->cache;
+}
 static double skgl__ladder(int k)
 {
     static const double frac[8] = {1.0, 1.090507732665258, 1.189207115002721, 1.296839554651010,
@@ -5755,7 +5764,7 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
        ends: stable mode needs a range that does not depend on where the
        camera is, or the cascade spheres and their texels would change size */
     zf = cam_zf;
-    if (!d->stable || !d->stable_sphere) {
+    if (!d->stable || skgl__stepped(d)) {
         for (i = 0; i < 8; i++) {
             float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
             if (depth > far_scene) far_scene = depth;
@@ -5877,11 +5886,10 @@ static sk_result skgl__fit_slices(skgl_shadow *s, const skgl__fit_in *in, int wa
             if (r != SK_OK) return r;
             continue;
         }
-        if (d->stable && !d->stable_sphere) {
+        if (skgl__stepped(d)) {
             sk_vec3 pts[SK_CLIP_MAX_POINTS];
             int n = sk_clip_frustum_aabb(&slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
             r = n > 0 ? skgl__stepped_crop(s, in, i, pts, n, &proj) : skgl__stepped_crop(s, in, i, slice.corners, 8, &proj);
-            if (r == SK_OK && d->cache) skgl__scene_depth_range(&proj, &in->lview, &in->scene->bounds);
         } else if (d->stable) {
             /* radius from the camera's parameters only: bitwise the same
                wherever the camera goes (fovy and aspect of a GL perspective) */

@@ -156,6 +156,7 @@ static void test_matches_cpu(void) {
    4096^2 map, texels rendered and error */
 static void test_against_4096(void) {
     size_t c;
+    int below = 0;
     for (c = 0; c < sizeof views / sizeof views[0]; c++) {
         const view_case *k = &views[c];
         gt_env e;
@@ -202,12 +203,19 @@ static void test_against_4096(void) {
         SK_CHECK_MSG(sef.wrong <= ses.wrong + NO_WORSE_PX, "%s: ferko %llu pixels wrong (%.4f%%), the 4096 map %llu (%.4f%%)",
                      k->label, (unsigned long long)sef.wrong, ef, (unsigned long long)ses.wrong, es);
         SK_CHECK(tf <= ts);
+        below += ts > 0 && tf < 0.5 * ts;
         SK_CHECK(e.gl.GetError() == 0);
         skgl_shadow_destroy(e.sk, sf);
         skgl_shadow_destroy(e.sk, ss);
         free(ref); free(mf); free(ms);
         gt_env_free(&e);
     }
+    /* the estimate is respected below the cap where the view needs less:
+       measured boxes 2361x2198 (0.31 of the 4096^2 map's texels, 9 wrong
+       pixels against its 8) and terrace 1309x4096 (0.32, 27 against 35);
+       the close-up and the fence need the cap. (In the open world it needs
+       more than 4096: test_gl_open_world counts its frames at the cap.) */
+    SK_CHECK_MSG(below >= 2, "FERKO took under half the texels of the 4096^2 map in %d views", below);
 }
 
 /* where it fails: an empty G-buffer, every sample outside the light

@@ -50,8 +50,8 @@
    pass); every other technique rises by at most 0.007 point.
    Asserted: error within ERR_MARGIN_PP (0.033, about 1.5x that rise)
    percentage point of the origin's for every technique, both paths
-   (previously 0.2); flips within FLIP_FACTOR (1.4x) of the origin's (the
-   largest ratio measured is 1.00; previously 2x); shimmer within that of
+   (previously 0.2); flips within FLIP_FACTOR (2x) of the origin's (the
+   largest ratio measured is 1.79, see FLIP_FACTOR); shimmer within that of
    the origin's (0) plus 0.001% (13 pixel pairs).
    Previously (old reference, normal-offset bias) the origin's errors were
    0.1647, 0.4143, 0.0715, 0.1730, 0.1198, 0.1464, 0.0815, 0.0349,
@@ -426,9 +426,16 @@ static lw_result run_distance(double dist) {
    flip rate within FLIP_FACTOR of it; fixed points shimmering at most
    FLIP_FACTOR times the origin's plus SHIMMER_SLACK_PCT (13 of the 1.32 M
    pixel pairs; the origin's is 0). Measured: a rise of at most 0.0225
-   point, flips at most 1.00x the origin's (figures at the top). */
+   point, flips at most 1.00x the origin's (figures at the top) with the
+   sphere-fitted stable crops. The stepped stable crops (the default
+   since) flip 0.0215% at the origin and 0.0384% / 0.0382% at 1e4 / 1e5
+   with every layer on the same ladder step at every distance (checked:
+   widths and heights 2^(20/8) ... 2^(41/8) m alike): where the scene sits
+   on the world-fixed texel grid moves which edge pixels cross a texel
+   boundary, not precision. FLIP_FACTOR 2 allows that (1.79x) and still
+   fails the header before the origin work (4.6x and 17.9x). */
 #define ERR_MARGIN_PP 0.033
-#define FLIP_FACTOR 1.4
+#define FLIP_FACTOR 2.0
 #define SHIMMER_SLACK_PCT 0.001
 
 static void compare(double dist) {
