@@ -417,7 +417,7 @@ typedef struct rule_case {
 
 static void rule_apply(skgl_shadow_desc *d, int which) {
     switch (which) {
-    case 0: d->technique = (skgl_technique)7; break;
+    case 0: d->technique = (skgl_technique)(SKGL_AUTO + 1); break;
     case 1: d->technique = (skgl_technique)-1; break;
     case 2: d->resolution = 16385; break;
     case 3: d->cascades = SKGL_MAX_CASCADES + 1; break;
