@@ -433,7 +433,7 @@
          float view_depth) (view_depth: the distance along the camera's
          view direction, positive in front), and the uniforms
          sk_shadow_map (sampler2DArrayShadow, on `unit`), sk_light_vp[8],
-         sk_splits[9], sk_layers, sk_blend_band, sk_bias_mode,
+         sk_splits[10], sk_layers, sk_blend_band, sk_bias_mode,
          sk_normal_bias, sk_plane_bias, sk_pcf_radius, sk_light_dir,
          sk_select_by_map, sk_select_extent, sk_map_extent, sk_rmsm,
          sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
@@ -966,6 +966,12 @@ typedef struct skgl_shadow_desc {
                                      for debugging) and fail the render when they differ
                                      beyond float rounding (CACHED MAPS) [0] */
     float max_distance;           /* shadows end at this view depth [camera far] */
+    float fade_band;              /* where the scene goes on past the end of the shadows
+                                     (max_distance, the camera's far plane), they fade to
+                                     lit over this fraction of the last layer's depth range
+                                     before it, instead of ending at a hard line; in (0, 1]
+                                     [0.1; not RMSM, whose pages cover the scene] */
+    int disable_fade;             /* 1: shadows end at a hard line [0] */
     sk_lspsm_params lspsm;        /* LSPSM: Eq. (1) parameters; zero fields take
                                      the paper's zeta 0.25, sigma 0.5, h_max 4,
                                      nw_max 2 (h_max * nw_max <= SKGL_MAX_CASCADES) */
@@ -5182,6 +5188,7 @@ struct skgl_shadow {
     int step[SKGL_MAX_CASCADES][2];   /* .stable: each crop's width and height, steps of the ladder
                                       2^(k/8) (skgl__ladder_step; SKGL__NO_STEP before the first) */
     int far_step;                  /* .stable: the shadow range's end, likewise */
+    float fade_start;              /* the view depth where the distance fade starts (+INF: none) */
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl__cache cache;             /* desc.cache only */
     skgl_shadow_frame_stats stats;
@@ -5295,6 +5302,8 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
     if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
     if (r.auto_texel_px == 0.0f) r.auto_texel_px = 1.0f;
+    if (r.fade_band == 0.0f) r.fade_band = 0.1f;
+    if (r.disable_fade) r.fade_band = 0.0f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
     if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
     skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias,
@@ -5377,6 +5386,9 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__TRY(skgl__bias_rules(ctx, fn, d->slope_bias, d->depth_bias, d->normal_bias, d->bias, d->plane_bias,
                                d->pcf_radius));
     SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
+    SKGL__RULE(d->disable_fade == 0 || d->disable_fade == 1, fn, "disable_fade", d->disable_fade, "0 or 1");
+    SKGL__RULE(d->disable_fade || (d->fade_band > 0.0f && d->fade_band <= 1.0f), fn, "fade_band", d->fade_band,
+               "in (0, 1] (disable_fade for none)");
     SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
                "in [0, 1000] (disable_psm_slide for none)");
     SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
@@ -5457,6 +5469,7 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     s->select_extent = 1.0f;
     for (i = 0; i < SKGL_MAX_CASCADES; i++) s->step[i][0] = s->step[i][1] = SKGL__NO_STEP;
     s->far_step = SKGL__NO_STEP;
+    s->fade_start = SK__INF;
     gl = &ctx->gl;
     skgl__st_begin(ctx, &st);
     skgl__timer_init(ctx, &s->t_render);
@@ -5744,6 +5757,28 @@ static void skgl__depth_fit(skgl_shadow *s, float *zn, float *zf)
     s->stats.depth_hi = *zf;
 }
 
+/* The distance fade (desc.fade_band): where the scene goes on past the
+   end of the shadows, they fade over the last part of the last layer's
+   depth range; stored after the splits (skgl__shadow_uniforms). The end
+   is splits[1] for LSPSM (one range, partitions by map), else
+   splits[maps]. */
+static void skgl__fade(skgl_shadow *s, float far_scene, const skgl_camera *cam, const skgl_scene *scene)
+{
+    float *sp = s->stats.splits, end, first;
+    int i, last = s->desc.technique == SKGL_LSPSM ? 1 : s->maps;
+    s->fade_start = SK__INF;
+    if (s->desc.technique == SKGL_RMSM || s->desc.fade_band <= 0.0f || last < 1) return;
+    if (!(far_scene > 0.0f))
+        for (i = 0; i < 8; i++) {
+            float depth = -sk__xform_affine(&cam->view, sk__aabb_corner(&scene->bounds, i)).z;
+            if (depth > far_scene) far_scene = depth;
+        }
+    end = sp[last];
+    first = sp[last - 1];
+    if (!(end < far_scene * 0.999f)) return;   /* the scene ends first: no line to hide */
+    s->fade_start = end - s->desc.fade_band * (end - first);
+}
+
 /* Crops of every layer: the PSSM practical split scheme (Romanick's VGP353 notes) over
    the part of the view that can hold receivers; per layer a focused crop of
    the slice clipped to the scene, or a texel-snapped stable crop. */
@@ -5754,6 +5789,7 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     skgl__fit_in in;
     float zn, cam_zf, zf, far_scene = 0.0f, shadow_zn;
     int i;
+    sk_result r;
     in.cam = cam;
     in.scene = scene;
     in.light_dir = light_dir;
@@ -5791,7 +5827,9 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
     in.cam_zf = cam_zf;
     in.zf = zf;
     in.shadow_zn = shadow_zn;
-    return skgl__technique_of(s)->fit(s, &in);
+    r = skgl__technique_of(s)->fit(s, &in);
+    skgl__fade(s, far_scene, cam, scene);
+    return r;
 }
 
 /* layer i's slice of the view, from its split (less the blend band of
@@ -7659,7 +7697,12 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
     /* per frame: the matrices, the split depths, the light's direction */
     for (i = 0; i < s->maps && i < SKGL_MAX_CASCADES; i++) vp[i] = skgl__shift(&s->vp[i], s->origin, origin);
     if (L[SKGL__L_LIGHT_VP] >= 0) gl->UniformMatrix4fv(L[SKGL__L_LIGHT_VP], s->maps, 0, vp[0].m);
-    if (L[SKGL__L_SPLITS] >= 0) gl->Uniform1fv(L[SKGL__L_SPLITS], s->maps + 1, s->stats.splits);
+    if (L[SKGL__L_SPLITS] >= 0) {
+        float sp[SKGL_MAX_CASCADES + 2];
+        memcpy(sp, s->stats.splits, sizeof(float) * (size_t)(s->maps + 1));
+        sp[s->maps + 1] = s->fade_start < SK__INF ? s->fade_start : 3e38f;
+        gl->Uniform1fv(L[SKGL__L_SPLITS], s->maps + 2, sp);
+    }
     if (L[SKGL__L_LIGHT_DIR] >= 0) gl->Uniform3fv(L[SKGL__L_LIGHT_DIR], 1, &s->light_dir.x);
 }
 
@@ -10604,7 +10647,8 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   in its own shadow: 0, whatever the map says near its silhouette. */\n"
     "uniform highp sampler2DArrayShadow sk_shadow_map;\n"
     "uniform mat4 sk_light_vp[8];\n"
-    "uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */\n"
+    "uniform float sk_splits[10];       /* view depths: layer i covers [splits[i], splits[i+1]); after the\n"
+    "                                      end of the last, where shadows start to fade (>= the end: no fade) */\n"
     "uniform int sk_layers;\n"
     "uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */\n"
     "uniform int sk_bias_mode;          /* 0 receiver plane, 1 normal offset */\n"
@@ -10765,6 +10809,15 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    return 1.0;\n"
     "}\n"
     "\n"
+    "/* the distance fade: v toward lit over [start, end) of the view depth,\n"
+    "   start stored after the last split (none when it is not before the end) */\n"
+    "float sk_fade(float v, float view_depth, float end)\n"
+    "{\n"
+    "    float start = sk_splits[sk_layers + 1];\n"
+    "    if (!(start < end)) return v;\n"
+    "    return mix(v, 1.0, clamp((view_depth - start) / (end - start), 0.0, 1.0));\n"
+    "}\n"
+    "\n"
     "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
     "{\n"
     "    float rmsm_lod = 0.0;\n"
@@ -10788,7 +10841,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "        for (int i = 0; i < sk_layers; i++) {\n"
     "            vec4 c = sk_light_vp[i] * vec4(world_pos, 1.0);\n"
     "            if (all(lessThanEqual(abs(c.xy), vec2(sk_select_extent * c.w))))\n"
-    "                return sk_shadow_layer(world_pos, world_normal, pn, i);\n"
+    "                return sk_fade(sk_shadow_layer(world_pos, world_normal, pn, i), view_depth, sk_splits[1]);\n"
     "        }\n"
     "        return 1.0;\n"
     "    }\n"
@@ -10804,7 +10857,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "        if (t > 0.0)\n"
     "            v = mix(v, sk_shadow_layer(world_pos, world_normal, pn, layer + 1), t);\n"
     "    }\n"
-    "    return v;\n"
+    "    return sk_fade(v, view_depth, sk_splits[sk_layers]);\n"
     "}\n"
     ;
 static const char skgl__src_shadow_mask_frag[] =

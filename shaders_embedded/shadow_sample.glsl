@@ -36,7 +36,8 @@
    in its own shadow: 0, whatever the map says near its silhouette. */
 uniform highp sampler2DArrayShadow sk_shadow_map;
 uniform mat4 sk_light_vp[8];
-uniform float sk_splits[9];        /* view depths: layer i covers [splits[i], splits[i+1]) */
+uniform float sk_splits[10];       /* view depths: layer i covers [splits[i], splits[i+1]); after the
+                                      end of the last, where shadows start to fade (>= the end: no fade) */
 uniform int sk_layers;
 uniform float sk_blend_band;       /* fraction of a layer's depth range blended into the next */
 uniform int sk_bias_mode;          /* 0 receiver plane, 1 normal offset */
@@ -197,6 +198,15 @@ float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, vec3 plane_normal, float
     return 1.0;
 }
 
+/* the distance fade: v toward lit over [start, end) of the view depth,
+   start stored after the last split (none when it is not before the end) */
+float sk_fade(float v, float view_depth, float end)
+{
+    float start = sk_splits[sk_layers + 1];
+    if (!(start < end)) return v;
+    return mix(v, 1.0, clamp((view_depth - start) / (end - start), 0.0, 1.0));
+}
+
 float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
 {
     float rmsm_lod = 0.0;
@@ -220,7 +230,7 @@ float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
         for (int i = 0; i < sk_layers; i++) {
             vec4 c = sk_light_vp[i] * vec4(world_pos, 1.0);
             if (all(lessThanEqual(abs(c.xy), vec2(sk_select_extent * c.w))))
-                return sk_shadow_layer(world_pos, world_normal, pn, i);
+                return sk_fade(sk_shadow_layer(world_pos, world_normal, pn, i), view_depth, sk_splits[1]);
         }
         return 1.0;
     }
@@ -236,5 +246,5 @@ float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
         if (t > 0.0)
             v = mix(v, sk_shadow_layer(world_pos, world_normal, pn, layer + 1), t);
     }
-    return v;
+    return sk_fade(v, view_depth, sk_splits[sk_layers]);
 }
