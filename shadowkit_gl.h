@@ -14,6 +14,29 @@
      (glfwGetProcAddress, eglGetProcAddress, OSMesaGetProcAddress...), so it
      coexists with glad, GLEW or anything else.
 
+   CONFIGURATION (define before the #include that has the implementation)
+     shadowkit.h's own (SK_ASSERT, the math functions, SKDEF,
+     SHADOWKIT_STATIC: its USAGE), and:
+         SHADOWKIT_GL_IMPLEMENTATION  the implementation in this file (with
+                                SHADOWKIT_IMPLEMENTATION in the same file)
+         SKGLDEF                default SKDEF: extern, or static with
+                                SHADOWKIT_STATIC
+         SKGL_MALLOC(n), SKGL_FREE(p)   default malloc and free; define
+                                both or neither (one alone is an #error)
+         SKGL_ORIGIN_CELL       default 256.0: the grid the directional
+                                passes' origin snaps to (LARGE WORLDS);
+                                <= 0 keeps the world origin
+         SKGL_LAYERED_LOOP      defined: the layered passes always use the
+                                GL 3.3 core geometry shader that loops over
+                                the layers, never the instanced one of
+                                GL_ARB_gpu_shader5 (what a driver without
+                                the extension runs; LAYERED PASSES)
+         SKGL__APIENTRY         the calling convention of the loaded GL
+                                entry points; default __stdcall on _WIN32,
+                                nothing elsewhere
+     Nothing else is read from the preprocessor: the rest is chosen at run
+     time through the descs.
+
    THE FLOW (one directional light, every frame)
 
        skgl_context *gl;                 once: skgl_create(&desc, &gl)
@@ -551,6 +574,34 @@
      of what the callback changed stays changed). These are undefined
      behaviour.
 
+   DOES NOT DO
+     - Spot lights: there is no skgl_spot. A point light (skgl_point) can
+       stand in for one, its map spread over the six faces of its cube.
+     - Threads: no call locks anything. A context and everything made from
+       it are used from one thread at a time, with the GL context they were
+       made in current there. Two skgl contexts, each over its own GL
+       context, share nothing and may be used at once.
+     - Context sharing: one skgl_context per GL context. Its GL objects are
+       used only in the GL context current at their create; share lists do
+       not make a light usable from another skgl_context (and GL never
+       shares framebuffers or vertex arrays).
+     - Detecting the misuse listed under "Not detected" above (use after
+       destroy, double destroy, another context's objects, another thread,
+       GL objects deleted behind its back, SCENE ACCESS broken without
+       desc.debug).
+
+   DEBUGGING (for tests and debugging views; not needed to draw shadows)
+     The declarations end with these, grouped under DEBUGGING:
+     skgl_gl_object_count (GL objects the context holds: 0 after everything
+     is destroyed), skgl_shadow_texture (the depth array), skgl_shadow_pages
+     and skgl_shadow_analysis_texture (RMSM's pages and last analysis),
+     skgl_soft_tiles and skgl_soft_pyramid (PVSM's tiles and SMTG pyramid).
+     And in the descs: skgl_desc.disable_caps (run a phone's or browser's
+     path on a desktop: OPENGL ES 3.0 AND WEBGL2), .verify_cache of
+     skgl_shadow_desc and skgl_point_desc (every cached map checked against
+     an uncached one, a CPU-GPU stall: CACHED MAPS; its result in
+     stats.cache_verify_texels), and skgl_desc.debug (ERRORS AND MISUSE).
+
    READ-BACKS
      What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
      page requests, a byte per page of every level: 32 KB for 16384 /
@@ -849,7 +900,7 @@ typedef struct skgl_desc {
                                      state is read or put back, each call sets what it
                                      needs and leaves what GL STATE lists [0] */
     skgl_api api;                 /* [SKGL_API_AUTO: read from GL_VERSION] */
-    unsigned disable_caps;        /* SKGL_CAP_* bits treated as absent [0: use all there are] */
+    unsigned disable_caps;        /* DEBUGGING: SKGL_CAP_* bits treated as absent [0: use all there are] */
     skgl_logger logger;           /* every message of skgl_error_log, as it is written, skgl_create's
                                      own included [zero: none] */
 } skgl_desc;
@@ -912,7 +963,7 @@ typedef struct skgl_shadow_desc {
                                      the nearest layers are cached while they fit, the rest
                                      drawn every frame (RMSM: the static copy of the pool
                                      under dynamic casters, or none) [0: no limit] */
-    int verify_cache;             /* .cache, desktop GL: also render every cached layer
+    int verify_cache;             /* DEBUGGING. .cache, desktop GL: also render every cached layer
                                      (RMSM: page) uncached, read both back (a CPU-GPU stall:
                                      for debugging) and fail the render when they differ
                                      beyond float rounding (CACHED MAPS) [0] */
@@ -1040,8 +1091,6 @@ typedef struct skgl_shadow skgl_shadow;
 
 SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out);
 SKGLDEF void skgl_destroy(skgl_context *ctx);
-/* GL objects the context currently owns (its own and its shadows') */
-SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
 /* inside a draw callback: model matrix of the next objects (column-major) */
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16]);
 
@@ -1200,14 +1249,6 @@ SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
    1 for the other techniques and before the first render */
 SKGLDEF float skgl_shadow_select_extent(const skgl_shadow *s);
 SKGLDEF const skgl_shadow_frame_stats *skgl_shadow_stats(const skgl_shadow *s);
-/* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
-   sorted by (level, py, px); writes at most cap, returns how many there are */
-SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap);
-/* RMSM: the RGBA32F texture of the last analysis, (s, t, lod, 1) per pixel
-   (0 where no sample), for debugging and tests; 0 before any */
-SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s);
-/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
-SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
 
 /* ---- point lights: cube shadow maps and VSDCT (King & Newhall 2004) -----
    skgl_point *lamp;   once: skgl_point_create(gl, &pdesc, &lamp)
@@ -1275,7 +1316,7 @@ typedef struct skgl_point_desc {
     int cache_budget_kb;          /* .cache: the most GPU memory the cache may take, KiB; a
                                      light whose cache is larger is drawn every frame [0: no
                                      limit] */
-    int verify_cache;             /* .cache, desktop GL: also render every face the view needs
+    int verify_cache;             /* DEBUGGING. .cache, desktop GL: also render every face the view needs
                                      uncached, read both back (a CPU-GPU stall: for
                                      debugging) and fail the render when they differ
                                      (CACHED MAPS) [0] */
@@ -1501,15 +1542,27 @@ SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u,
 /* the base frustum of the last render (world -> light clip); PVSM tiles
    are sk_crop_matrix crops of it (skgl_soft_tile_rects) */
 SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s);
+/* PVSM: the rectangles of the last render's tiles (skgl_soft_tiles) as it drew them, in clip
+   units of its base frustum (skgl_soft_matrix), carried there from the
+   prediction's; writes at most cap, returns how many there are */
+SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
+
+/* ---- DEBUGGING: for tests and debugging views (the manual's DEBUGGING) --- */
+/* GL objects the context currently owns (its own and its lights') */
+SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
+/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
+SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
+/* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
+   sorted by (level, py, px); writes at most cap, returns how many there are */
+SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap);
+/* RMSM: the RGBA32F texture of the last analysis, (s, t, lod, 1) per pixel
+   (0 where no sample); 0 before any */
+SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s);
 /* PVSM: the tiles of the last render, cells of the SMTG of the prediction
    they came from (2/grid clip units per cell of that frame's base frustum,
    this frame's when stats.prediction_age is 0); writes at most cap,
    returns how many there are */
 SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap);
-/* PVSM: the same tiles' rectangles as the last render drew them, in clip
-   units of its base frustum (skgl_soft_matrix), carried there from the
-   prediction's; writes at most cap, returns how many there are */
-SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
 /* PVSM: the SMTG pyramid of the prediction the last render used, laid out
    as sk_smtg_pyramid's (+INFINITY: no sample); returns the float count
    (writes at most cap), 0 before any */
@@ -1541,6 +1594,9 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(SKGL_MALLOC) != defined(SKGL_FREE)
+#error "shadowkit_gl.h: define both SKGL_MALLOC and SKGL_FREE, or neither (CONFIGURATION)"
+#endif
 #ifndef SKGL_MALLOC
 #define SKGL_MALLOC(n) malloc(n)
 #define SKGL_FREE(p) free(p)
@@ -1556,30 +1612,47 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 extern "C" {
 #endif
 
-/* THE MAP of this implementation; each section opens with a // >>anchor
-     1. The GL loader and enums ............... >>loader
-     2. What the context keeps ................ >>context_data
-     3. Saved state: the per-call tracker ..... >>state
-     4. The context: log and arguments, programs, the uniform and texture
-        caches, GPU timers, read-back rings, skgl_create ......... >>context
-     5. Shared pass helpers: the lights' lifecycle (>>lifecycle) and
-        objects, large worlds, the draw callback and the one caster pass
-        (>>caster_pass), the masks' inputs ........................ >>passes
-     6. Directional lights ...................... >>shadow
-        6.1 the light: desc, create, destroy ... >>shadow_life
-        6.2 fits: PSSM, PSM, LiSPSM, LSPSM ...... >>fits
-        6.3 FERKO's resolution estimation ....... >>ferko
-        6.4 RMSM's pages ........................ >>rmsm
-        6.5 the cache (CACHED MAPS) ............. >>cache
-        6.6 analyze and render .................. >>render
-        6.7 bind (forward shaders) .............. >>bind
-        6.8 the deferred mask ................... >>mask
-     7. Point lights: cube maps and VSDCT ...... >>point
-        the faces' cache ........................ >>point_cache
-     8. Several point lights in one atlas ...... >>atlas
-     9. Area lights: PCSS and PVSM: the frame timer, the light, its
-        frustum, the passes ...................... >>soft
-    10. Embedded GLSL, behind skgl__glsl() ..... >>glsl
+/* THE MAP of this implementation. Each anchor is a line of its own,
+   "// >>name", where the part it names begins: search for "// >>name".
+   Numbers are the sections' banners; shadowkit.h numbers its sections
+   the same where it has the math of the same technique (6.2, 6.3, 6.4, 7,
+   9); the other numbers are the GL side's own.
+     1. The GL loader and enums ................................ >>loader
+     2. What the context keeps ................................. >>context_data
+     3. Saved state: the per-call tracker ...................... >>state
+     4. The context ............................................ >>context
+        4.1 the error log ...................................... >>log
+            what a technique needs of the context .............. >>needs
+            a call's arguments ................................. >>args
+            the camera's depth convention ...................... >>camera
+        4.2 uniforms, 4.3 the user's textures, 4.4 GPU timers,
+        4.5 read-back rings, 4.6 the context's lifetime
+            what the context offers (skgl_caps) ................ >>caps
+     5. Shared pass helpers .................................... >>passes
+            the lights' lifecycle .............................. >>lifecycle
+        5.1 the lights' objects, 5.2 large worlds, 5.3 the draw
+            callback; the one caster pass ...................... >>caster_pass
+            layered single-pass rendering ...................... >>layered
+            caster programs .................................... >>casters
+        5.4 the masks' inputs
+     6. Directional lights ..................................... >>shadow
+            what differs from technique to technique ........... >>techniques
+        6.1 the light: desc, create, destroy ................... >>shadow_life
+        6.2 fits: PSSM, PSM, LiSPSM, LSPSM ..................... >>fits
+            AUTO: the library chooses (CHOOSING FOR YOU) ....... >>auto
+        6.3 FERKO's resolution estimation ...................... >>ferko
+        6.4 RMSM's pages ....................................... >>rmsm
+        6.5 the cache (CACHED MAPS) ............................ >>cache
+            RMSM's page cache .................................. >>rmsm_cache
+        6.6 analyze and render ................................. >>render
+        6.7 bind (forward shaders) ............................. >>bind
+        6.8 the deferred mask .................................. >>mask
+     7. Point lights: cube maps and VSDCT ...................... >>point
+            the faces' cache ................................... >>point_cache
+     8. Several point lights in one atlas ...................... >>atlas
+     9. Area lights: PCSS and PVSM: the frame timer, the light,
+        its frustum, the passes ................................ >>soft
+    10. Embedded GLSL, behind skgl__glsl() ..................... >>glsl
 */
 
 /* ---- 1. The GL loader and enums ----------------------------------------- */
@@ -1839,7 +1912,7 @@ typedef struct skgl__api {
 #undef SKGL__X
 } skgl__api;
 
-/* the embedded sources (section 9), by name: skgl__glsl(SKGL__GLSL_DEPTH_VERT) */
+/* the embedded sources (section 10), by name: skgl__glsl(SKGL__GLSL_DEPTH_VERT) */
 typedef enum skgl__glsl_id {
     SKGL__GLSL_DEPTH_VERT,
     SKGL__GLSL_DEPTH_FRAG,
@@ -1927,7 +2000,7 @@ typedef struct skgl__ring {
     double origin[SKGL__RING][3];
 } skgl__ring;
 
-/* the kinds of caster pass a caster program is linked for (>>casters) */
+/* the kinds of caster pass a caster program is linked for (5.3, caster programs) */
 enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_LAYERED = 3, SKGL__CV_COUNT = 4 };
 
 /* which of the scene's callbacks a caster pass calls (CACHED MAPS) */
@@ -1971,7 +2044,7 @@ struct skgl_context {
     struct skgl_caster *casters;           /* every caster made, freed with the context */
     struct skgl_caster *cur_caster;        /* bound by the callback now (NULL: the pass's program) */
     sk_result pass_error;                  /* a caster program that failed to link in this callback */
-    /* layered passes (>>layered): the depth program with layered.geom, made
+    /* layered passes (5.3): the depth program with layered.geom, made
        on first use; the layers of the pass under way */
     skgl__uint layered_prog;
     int layered_state;                     /* 0 not tried, 1 loop, 2 invocations, -1 no program */
@@ -1989,7 +2062,7 @@ struct skgl_context {
     skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
     float mask_dmap[4], ferko_dmap[4], rmsm_dmap[4];
     float cam_dmap[4];                     /* the convention of the depth buffer the call under way reads */
-    float cam_view_z[4];                   /* row 2 of its inverse projection (view depths, >>ferko) */
+    float cam_view_z[4];                   /* row 2 of its inverse projection (view depths, 6.3) */
     float ferko_view_z[4];                 /* the one ferko_prog holds */
     skgl__int ferko_u_ndc_to_light, ferko_u_world_w, ferko_u_view_z, reduce_u_src_size, final_u_src_size;
     skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
@@ -2450,7 +2523,8 @@ static void skgl__st_unpack(skgl_context *ctx, skgl__st *st)
 /* ---- 4. The context ----------------------------------------------------- */
 // >>context
 /* 4.1 the log, the arguments, programs and samplers */
-/* >>log  The error log (skgl_error_log) holds the last failure of the
+// >>log
+/* The error log (skgl_error_log) holds the last failure of the
    current call: every public call that takes the context clears it first,
    so an old message never stands for a new error. A broken rule is one
    message naming the argument or field, its value and the rule:
@@ -2622,7 +2696,8 @@ static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope
     return SK_OK;
 }
 
-/* >>needs  what a technique needs of the context (skgl_caps): SK_ERR_GL at
+// >>needs
+/* what a technique needs of the context (skgl_caps): SK_ERR_GL at
    create, the message naming the feature and the extension that gives it */
 #define SKGL__NEED(have, fn, what, feature)                                                        \
     do {                                                                                           \
@@ -2634,7 +2709,8 @@ static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope
 #define SKGL__FLOAT_BLEND "blending into float targets (GL_EXT_float_blend on OpenGL ES and WebGL2)"
 #define SKGL__GEOMETRY "geometry shaders (OpenGL 3.2, OpenGL ES 3.2)"
 
-/* >>args  a call's arguments: each check names the argument and its value */
+// >>args
+/* a call's arguments: each check names the argument and its value */
 #define SKGL__TRY(call)                                                                            \
     do {                                                                                           \
         sk_result skgl__r_ = (call);                                                               \
@@ -2723,7 +2799,8 @@ static void skgl__clip_depth(skgl_context *ctx, int back)
     if (ctx->clip_zero_to_one) ctx->ClipControl(SKGL__LOWER_LEFT, back ? SKGL__ZERO_TO_ONE : SKGL__NEGATIVE_ONE_TO_ONE);
 }
 
-/* >>camera  The camera's depth convention (CAMERA CONVENTIONS). Every
+// >>camera
+/* The camera's depth convention (CAMERA CONVENTIONS). Every
    call that takes a camera works on the same camera in OpenGL's
    convention (near at NDC z -1, a finite far at +1: what the fits and
    shadowkit's own passes assume) and reads the caller's depth buffer
@@ -3509,7 +3586,8 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->request_pages0 = ctx->request_levels = -1;
 }
 
-/* >>caps  What the context offers (skgl_caps), from its version and
+// >>caps
+/* What the context offers (skgl_caps), from its version and
    extension strings, less desc->disable_caps; the optional entry points
    loaded where they exist. Fails below GL 3.3 and ES 3.0, and for an
    api the context does not speak. */
@@ -4100,7 +4178,8 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
     return r;
 }
 
-/* >>caster_pass  Every caster pass of the directional and point lights
+// >>caster_pass
+/* Every caster pass of the directional and point lights
    goes through these two. skgl__casters_begin, once per call: the depth
    pass's state (skgl__st_depth_pass), shadowkit's depth program, the
    identity model (positions relative to origin), the caller's vertex array
@@ -4309,7 +4388,8 @@ static void skgl__casters_begin_layered(skgl_context *ctx, skgl__st *st, float s
                              depth_bias, origin);
 }
 
-/* >>casters  Caster programs (skgl_caster_*). A caster's hooks become one
+// >>casters
+/* Caster programs (skgl_caster_*). A caster's hooks become one
    program per kind of caster pass, built from the same embedded sources as
    shadowkit's own (SKGL_CASTER in place of attribute 0, SKGL_CASTER_FRAGMENT
    calling the fragment hook first): the depth passes (depth.vert +
@@ -5149,7 +5229,7 @@ typedef struct skgl__rmsm {
     unsigned frame;
 } skgl__rmsm;
 
-/* the cache's part (CACHED MAPS, >>cache): the static casters' depth per
+/* the cache's part (CACHED MAPS, 6.5): the static casters' depth per
    cached layer and the world matrix its depth stands for (world: the one
    it was drawn with, moved by the whole texels it was scrolled); this
    frame's caster matrix of each layer (vp: world relative to the light's
@@ -5207,7 +5287,8 @@ typedef struct skgl__fit_in {
     float shadow_zn;               /* where the shadows start (zn, or later with .fit_to_depth) */
 } skgl__fit_in;
 
-/* >>techniques  What differs from technique to technique, one row each in
+// >>techniques
+/* What differs from technique to technique, one row each in
    skgl_technique order: its own objects, its analysis (skgl_shadow_analyze;
    NULL: none), the fit of its layers and its caster passes. */
 typedef struct skgl__technique {
@@ -6948,7 +7029,8 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
     return r;
 }
 
-/* >>rmsm_cache  RMSM's page cache (desc.cache). The virtual map's texel
+// >>rmsm_cache
+/* RMSM's page cache (desc.cache). The virtual map's texel
    grid is fixed in light space (skgl__rmsm_frame), so a page keeps its
    depth from frame to frame: a pool slot holds it while it is requested
    and, after, until the slot is needed (least recently used first). Only
@@ -7377,7 +7459,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
-/* >>techniques, the table (declared in 6) */
+/* the techniques' table (its rows are declared with the light, in 6) */
 /* .fit_to_depth: FERKO's analysis targets and ring, for the depth range */
 static sk_result skgl__depth_fit_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
@@ -7700,7 +7782,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
 // >>point
 #define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
 
-/* a point light's cache (>>point_cache): the faces' static depth, the
+/* a point light's cache (7, the faces' cache): the faces' static depth, the
    light position and face side it holds, per face valid and equal to the
    map's face; the boxes invalidated since the last render; the scratch
    map of .verify_cache */
@@ -7751,7 +7833,7 @@ struct skgl_point_atlas {
     int w, h;
 };
 
-/* defined with the faces' passes (>>point_cache) */
+/* defined with the faces' passes (7, the faces' cache) */
 static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
 static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
 
@@ -8272,7 +8354,8 @@ static sk_result skgl__point_target(skgl_context *ctx, skgl__st *st, skgl_point 
     return SK_OK;
 }
 
-/* >>point_cache  CACHED MAPS for point lights: the faces' static depth in
+// >>point_cache
+/* CACHED MAPS for point lights: the faces' static depth in
    a texture shaped like the light's own (a cube with the same levels, or
    the 3 x 2 atlas), valid while the light stays where it was at the same
    face side; invalidated boxes redrawn in each face's rectangle of their
