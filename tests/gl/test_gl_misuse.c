@@ -636,32 +636,30 @@ static void nested_named(nest *n, int k, const char *fn) {
     n->named[k] = strstr(skgl_error_log(n->sk), want) != NULL;
 }
 static void nested_creates(nest *n) {
-    skgl_shadow_desc sd;
-    skgl_point_desc pd;
-    skgl_soft_desc fd;
-    skgl_caster_desc cd;
+    struct {
+        skgl_shadow_desc shadow;
+        skgl_point_desc point;
+        skgl_soft_desc soft;
+        skgl_caster_desc caster;
+    } d;
     skgl_shadow *s = NULL;
     skgl_point *p = NULL;
     skgl_soft *f = NULL;
     skgl_point_atlas *a = NULL;
     skgl_caster *c = NULL;
-    memset(&sd, 0, sizeof sd);
-    memset(&pd, 0, sizeof pd);
-    memset(&fd, 0, sizeof fd);
-    memset(&cd, 0, sizeof cd);
-    sd.resolution = 64;
-    pd.resolution = 64;
-    fd.resolution = 128;
-    cd.vertex = "layout(location = 0) in vec3 a_pos;\nvec4 skgl_caster_position() { return vec4(a_pos, 1.0); }\n";
-    n->made[0] = skgl_shadow_create(n->sk, &sd, &s);
+    memset(&d, 0, sizeof d);
+    d.shadow.resolution = d.point.resolution = 64;
+    d.soft.resolution = 128;
+    d.caster.vertex = "layout(location = 0) in vec3 a_pos;\nvec4 skgl_caster_position() { return vec4(a_pos, 1.0); }\n";
+    n->made[0] = skgl_shadow_create(n->sk, &d.shadow, &s);
     nested_named(n, 0, "skgl_shadow_create");
-    n->made[1] = skgl_point_create(n->sk, &pd, &p);
+    n->made[1] = skgl_point_create(n->sk, &d.point, &p);
     nested_named(n, 1, "skgl_point_create");
-    n->made[2] = skgl_soft_create(n->sk, &fd, &f);
+    n->made[2] = skgl_soft_create(n->sk, &d.soft, &f);
     nested_named(n, 2, "skgl_soft_create");
     n->made[3] = skgl_point_atlas_create(n->sk, 256, 128, &a);
     nested_named(n, 3, "skgl_point_atlas_create");
-    n->made[4] = skgl_caster_create(n->sk, &cd, &c);
+    n->made[4] = skgl_caster_create(n->sk, &d.caster, &c);
     nested_named(n, 4, "skgl_caster_create");
     n->left += (s != NULL) + (p != NULL) + (f != NULL) + (a != NULL) + (c != NULL);
 }
