@@ -47,23 +47,30 @@
      - A light direction is the direction the light TRAVELS (from the light
        towards the scene), need not be normalised.
 
-   SECTIONS (in the order of the header)
-     1. Core math                 matrices, frusta, convex clipping
-     2. Aliasing analysis         (Romanick's VGP353 notes: aliasing error d, RMSM LOD)
-     3. Crops and PSSM            Ferko 2013; Zhang et al. 2006 (crop matrix, practical
-                                  split scheme, focused and texel-snapped
-                                  stable crops)
-     4. PSM and LiSPSM            (Stamminger & Drettakis 2002;
+   SECTIONS (in the order of the header). A technique's section has the
+   number of shadowkit_gl.h's section for the same technique (6.2 fits,
+   6.3 FERKO, 6.4 RMSM, 7 point lights, 9 area lights); the math both
+   share is A and B. Each has a declarations banner and an implementation
+   banner; the implementation's opens with an anchor, a line of its own
+   "// >>name" (search for it; shadowkit_gl.h anchors its part of the same
+   technique alike: >>fits for all of 6.2, >>point, >>ferko, >>soft, >>rmsm):
+     A.   Core math               matrices, frusta, convex clipping     >>core
+     B.   Aliasing analysis       (Romanick's VGP353 notes: aliasing    >>aliasing
+                                  error d, RMSM LOD)
+     6.2a Crops and PSSM          Ferko 2013; Zhang et al. 2006 (crop   >>fits
+                                  matrix, practical split scheme,
+                                  focused and texel-snapped stable crops)
+     6.2b PSM and LiSPSM          (Stamminger & Drettakis 2002;         >>warps
                                   Wimmer, Scherzer & Purgathofer 2004)
-     5. LSPSM                     (Tang et al. 2017, Eq. 1)
-     6. Omnidirectional lights    (King & Newhall 2004, Eqs. 5.4.6-5.4.7,
-                                  HalfIntersection, caster culling, scissor,
-                                  resolution, VSDCT)
-     7. Resolution estimation     (Ferko 2013, Sec. 3.1-3.2)
-     8. PVSM                      (Shen et al. 2011, Eqs. 4-5,
-                                  rho(n), appendix convolution, SMTG,
-                                  kd-tree tiles, V*A/A merge)
-     9. RMSM pages                (Lefohn et al. 2007 page requests)
+     6.2c LSPSM                   (Tang et al. 2017, Eq. 1)             >>lspsm
+     7.   Omnidirectional lights  (King & Newhall 2004, Eqs. 5.4.6-     >>point
+                                  5.4.7, HalfIntersection, caster
+                                  culling, scissor, resolution, VSDCT)
+     6.3  Resolution estimation   (Ferko 2013, Sec. 3.1-3.2)            >>ferko
+     9.   PVSM                    (Shen et al. 2011, Eqs. 4-5, rho(n),  >>soft
+                                  appendix convolution, SMTG, kd-tree
+                                  tiles, V*A/A merge)
+     6.4  RMSM pages              (Lefohn et al. 2007 page requests)    >>rmsm
 
    REFERENCES
      Ferko 2013, "Resolution Estimation for Shadow Mapping".
@@ -119,7 +126,7 @@ extern "C" {
 #endif
 
 /* =========================================================================
-   1. Core math
+   A. Core math
    ========================================================================= */
 typedef struct sk_vec2 { float x, y; } sk_vec2;
 typedef struct sk_vec3 { float x, y, z; } sk_vec3;
@@ -191,7 +198,7 @@ SKDEF int sk_frustum_contains_point(const sk_frustum *f, sk_vec3 p);
 SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, int cap);
 
 /* =========================================================================
-   2. Aliasing analysis (Romanick's VGP353 notes)
+   B. Aliasing analysis (Romanick's VGP353 notes)
    ========================================================================= */
 /* d = ds * (rs/ri) * (n_dot_v / n_dot_l); aliasing where d > di.
    +INFINITY if n_dot_l <= 0, ri <= 0 or an argument is NaN; n_dot_v < 0 is
@@ -203,7 +210,7 @@ SKDEF float sk_aliasing_error(float ds, float rs, float ri, float n_dot_v, float
 SKDEF float sk_rmsm_lod(sk_vec2 dx, sk_vec2 dy);
 
 /* =========================================================================
-   3. Crop matrices and parallel splits (Ferko 2013; Zhang et al. 2006)
+   6.2a Crop matrices and parallel splits (Ferko 2013; Zhang et al. 2006)
    ========================================================================= */
 /* maps [r.x0,r.x1] x [r.y0,r.y1] x [zmin,zmax] of light clip space onto
    [-1,1]^3 (zmin maps to -1, zmax to +1). An axis with an empty or
@@ -276,8 +283,8 @@ SKDEF sk_result sk_stable_crop_origin(sk_sphere s, sk_mat4 light_view, int res, 
                                       const double origin[3], sk_mat4 *out_proj);
 
 /* =========================================================================
-   4. PSM and LiSPSM warping (Stamminger & Drettakis 2002,
-      Kozlov 2004, Wimmer et al. 2004)
+   6.2b PSM and LiSPSM warping (Stamminger & Drettakis 2002,
+        Kozlov 2004, Wimmer et al. 2004)
    ========================================================================= */
 typedef enum sk_depth_compare { SK_DEPTH_LESS = 0, SK_DEPTH_GREATER = 1 } sk_depth_compare;
 typedef struct sk_psm_desc {
@@ -355,7 +362,7 @@ typedef struct sk_lispsm_result {
 SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *out);
 
 /* =========================================================================
-   5. Light Space Partitioned Shadow Maps (Tang et al. 2017)
+   6.2c Light Space Partitioned Shadow Maps (Tang et al. 2017)
    ========================================================================= */
 typedef struct sk_lspsm_params { float zeta, sigma; int h_max, nw_max; } sk_lspsm_params;
 /* paper defaults: zeta 0.25, sigma 0.5, h_max 4, nw_max 2 */
@@ -415,7 +422,7 @@ SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
                          sk_mat4 *out_view_proj, sk_rect *out_rects, int cap);
 
 /* =========================================================================
-   6. Omnidirectional lights (King & Newhall 2004)
+   7. Omnidirectional lights (King & Newhall 2004)
    ========================================================================= */
 /* GL cube-map face order +X,-X,+Y,-Y,+Z,-Z and orientation (sampling a
    samplerCube with the light-to-point vector finds the texel rendered here).
@@ -496,7 +503,7 @@ SKDEF int sk_vsdct_lookup(const sk_vsdct_layout *l, sk_vec3 dir, float *u, float
 SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsigned short *out);
 
 /* =========================================================================
-   7. Resolution estimation (Ferko 2013)
+   6.3 Resolution estimation (Ferko 2013)
    ========================================================================= */
 typedef struct sk_res_estimate {
     sk_rect bounds;          /* light-clip xy AABB of visible samples, within [-1,1]^2 */
@@ -521,7 +528,7 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h,
         sk_mat4 cam_inv_view_proj, sk_mat4 light_view_proj, int max_res, sk_res_estimate *out);
 
 /* =========================================================================
-   8. Predicted virtual soft shadow maps (Shen et al. 2011)
+   9. Predicted virtual soft shadow maps (Shen et al. 2011)
    ========================================================================= */
 /* perceptual polynomials in log2(n); n clamped to [1, n_peak] so rho never
    decreases. NaN or n < 1 is taken as 1. */
@@ -578,7 +585,7 @@ SKDEF int sk_smtg_pyramid(const float *grid, int gw, int gh, float *out, int cap
 SKDEF int sk_fvsm_tiles(const float *grid, int gw, int gh, int max_res, sk_tile *out, int cap);
 
 /* =========================================================================
-   9. RMSM page requests (after Lefohn, Sengupta and Owens 2007)
+   6.4 RMSM page requests (after Lefohn, Sengupta and Owens 2007)
    ========================================================================= */
 typedef struct sk_page { int level, px, py; } sk_page;
 /* samples: (s, t, lod) with s,t in [0,1) shadow-map coordinates of level 0
@@ -668,7 +675,8 @@ SKDEF int sk_rmsm_page_requests(const sk_vec3 *samples, int count, int virtual_r
 extern "C" {
 #endif
 
-/* ---- 1. Core math ------------------------------------------------------ */
+/* ---- A. Core math ------------------------------------------------------ */
+// >>core
 
 /* Bit test, so it keeps working under -ffast-math. */
 static int sk__finite(float x)
@@ -1287,7 +1295,8 @@ SKDEF int sk_clip_frustum_aabb(const sk_frustum *f, sk_aabb box, sk_vec3 *out, i
     return count;
 }
 
-/* ---- 2. Aliasing analysis (Romanick's VGP353 notes) ------------------ */
+/* ---- B. Aliasing analysis (Romanick's VGP353 notes) ------------------ */
+// >>aliasing
 
 /* d = d_s (r_s / r_i) (N.V / N.L), the slides' aliasing error */
 SKDEF float sk_aliasing_error(float ds, float rs, float ri, float n_dot_v, float n_dot_l)
@@ -1310,7 +1319,8 @@ SKDEF float sk_rmsm_lod(sk_vec2 dx, sk_vec2 dy)
     return (float)(0.5 * SK_LOG2(a));
 }
 
-/* ---- 3. Crop matrices and parallel splits (Ferko 2013; Zhang et al. 2006) --- */
+/* ---- 6.2a Crop matrices and parallel splits (Ferko 2013; Zhang et al. 2006) --- */
+// >>fits
 
 /* one axis of sk_crop_matrix: [lo, hi] onto [-1, 1], or left alone */
 static void sk__crop_axis(float lo, float hi, float *scale, float *offset)
@@ -1567,7 +1577,8 @@ SKDEF sk_result sk_stable_crop_origin(sk_sphere s, sk_mat4 light_view, int res, 
     return SK_OK;
 }
 
-/* ---- 4. PSM and LiSPSM (Romanick's VGP353 notes) --------------------- */
+/* ---- 6.2b PSM and LiSPSM (Romanick's VGP353 notes) ------------------- */
+// >>warps
 
 /* Off-centre perspective from `eye` looking along `dir`, fitted around the
    points (all must lie in front); the casters' corners, taken to space `pp`
@@ -1888,7 +1899,8 @@ SKDEF sk_result sk_lispsm_matrices(const sk_lispsm_desc *d, sk_lispsm_result *ou
     return sk__mat_finite(&out->light_view_proj) ? SK_OK : SK_ERR_DEGENERATE;
 }
 
-/* ---- 5. Light Space Partitioned Shadow Maps (Tang et al. 2017) ------- */
+/* ---- 6.2c Light Space Partitioned Shadow Maps (Tang et al. 2017) ----- */
+// >>lspsm
 
 SKDEF sk_lspsm_params sk_lspsm_default_params(void)
 {
@@ -2226,7 +2238,8 @@ SKDEF int sk_lspsm_crops(const sk_lspsm_region *r, const sk_lspsm_params *p,
     return sk__lspsm_rows(r->n, r->L, r->theta, p, &sink, 1, cap);
 }
 
-/* ---- 6. Omnidirectional lights (King & Newhall 2004) ----------------- */
+/* ---- 7. Omnidirectional lights (King & Newhall 2004) ----------------- */
+// >>point
 
 /* Per face: right, up, forward (GL cube-map face table: s runs along
    right, t along up, the major axis is forward). */
@@ -2577,7 +2590,8 @@ SKDEF sk_result sk_vsdct_indirection_fill(const sk_vsdct_layout *l, int ni, unsi
     return SK_OK;
 }
 
-/* ---- 7. Resolution estimation (Ferko 2013) --------------------------- */
+/* ---- 6.3 Resolution estimation (Ferko 2013) ------------------------- */
+// >>ferko
 
 /* Seed 000, Sec. 3: every pixel's corners are shared with its neighbours, so
    one row of corners is projected per pixel row, in strips of SK__RES_STRIP
@@ -2783,7 +2797,8 @@ SKDEF sk_result sk_estimate_resolution(const float *depth, int w, int h, sk_mat4
     return SK_OK;
 }
 
-/* ---- 8. Predicted virtual soft shadow maps (Shen et al. 2011) -------- */
+/* ---- 9. Predicted virtual soft shadow maps (Shen et al. 2011) -------- */
+// >>soft
 
 /* The cubics' maxima, where their derivatives vanish:
    dynamic 0.7794 + 0.7934x - 0.08148x^2 = 0, static 1.406 - 0.09374x - 0.011832x^2 = 0 */
@@ -3025,7 +3040,8 @@ SKDEF int sk_fvsm_tiles(const float *grid, int gw, int gh, int max_res, sk_tile 
     return count;
 }
 
-/* ---- 9. RMSM page requests (Romanick's VGP353 notes) ----------------- */
+/* ---- 6.4 RMSM page requests (Romanick's VGP353 notes) --------------- */
+// >>rmsm
 
 static int sk__page_cmp(const sk_page *a, const sk_page *b)
 {

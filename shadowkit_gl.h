@@ -14,6 +14,29 @@
      (glfwGetProcAddress, eglGetProcAddress, OSMesaGetProcAddress...), so it
      coexists with glad, GLEW or anything else.
 
+   CONFIGURATION (define before the #include that has the implementation)
+     shadowkit.h's own (SK_ASSERT, the math functions, SKDEF,
+     SHADOWKIT_STATIC: its USAGE), and:
+         SHADOWKIT_GL_IMPLEMENTATION  the implementation in this file (with
+                                SHADOWKIT_IMPLEMENTATION in the same file)
+         SKGLDEF                default SKDEF: extern, or static with
+                                SHADOWKIT_STATIC
+         SKGL_MALLOC(n), SKGL_FREE(p)   default malloc and free; define
+                                both or neither (one alone is an #error)
+         SKGL_ORIGIN_CELL       default 256.0: the grid the directional
+                                passes' origin snaps to (LARGE WORLDS);
+                                <= 0 keeps the world origin
+         SKGL_LAYERED_LOOP      defined: the layered passes always use the
+                                GL 3.3 core geometry shader that loops over
+                                the layers, never the instanced one of
+                                GL_ARB_gpu_shader5 (what a driver without
+                                the extension runs; LAYERED PASSES)
+         SKGL__APIENTRY         the calling convention of the loaded GL
+                                entry points; default __stdcall on _WIN32,
+                                nothing elsewhere
+     Nothing else is read from the preprocessor: the rest is chosen at run
+     time through the descs.
+
    THE FLOW (one directional light, every frame)
 
        skgl_context *gl;                 once: skgl_create(&desc, &gl)
@@ -596,6 +619,34 @@
      of what the callback changed stays changed). These are undefined
      behaviour.
 
+   DOES NOT DO
+     - Spot lights: there is no skgl_spot. A point light (skgl_point) can
+       stand in for one, its map spread over the six faces of its cube.
+     - Threads: no call locks anything. A context and everything made from
+       it are used from one thread at a time, with the GL context they were
+       made in current there. Two skgl contexts, each over its own GL
+       context, share nothing and may be used at once.
+     - Context sharing: one skgl_context per GL context. Its GL objects are
+       used only in the GL context current at their create; share lists do
+       not make a light usable from another skgl_context (and GL never
+       shares framebuffers or vertex arrays).
+     - Detecting the misuse listed under "Not detected" above (use after
+       destroy, double destroy, another context's objects, another thread,
+       GL objects deleted behind its back, SCENE ACCESS broken without
+       desc.debug).
+
+   DEBUGGING (for tests and debugging views; not needed to draw shadows)
+     The declarations end with these, grouped under DEBUGGING:
+     skgl_gl_object_count (GL objects the context holds: 0 after everything
+     is destroyed), skgl_shadow_texture (the depth array), skgl_shadow_pages
+     and skgl_shadow_analysis_texture (RMSM's pages and last analysis),
+     skgl_soft_tiles and skgl_soft_pyramid (PVSM's tiles and SMTG pyramid).
+     And in the descs: skgl_desc.disable_caps (run a phone's or browser's
+     path on a desktop: OPENGL ES 3.0 AND WEBGL2), .verify_cache of
+     skgl_shadow_desc and skgl_point_desc (every cached map checked against
+     an uncached one, a CPU-GPU stall: CACHED MAPS; its result in
+     stats.cache_verify_texels), and skgl_desc.debug (ERRORS AND MISUSE).
+
    READ-BACKS
      What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
      page requests, a byte per page of every level: 32 KB for 16384 /
@@ -894,7 +945,7 @@ typedef struct skgl_desc {
                                      state is read or put back, each call sets what it
                                      needs and leaves what GL STATE lists [0] */
     skgl_api api;                 /* [SKGL_API_AUTO: read from GL_VERSION] */
-    unsigned disable_caps;        /* SKGL_CAP_* bits treated as absent [0: use all there are] */
+    unsigned disable_caps;        /* DEBUGGING: SKGL_CAP_* bits treated as absent [0: use all there are] */
     skgl_logger logger;           /* every message of skgl_error_log, as it is written, skgl_create's
                                      own included [zero: none] */
 } skgl_desc;
@@ -961,7 +1012,7 @@ typedef struct skgl_shadow_desc {
                                      the nearest layers are cached while they fit, the rest
                                      drawn every frame (RMSM: the static copy of the pool
                                      under dynamic casters, or none) [0: no limit] */
-    int verify_cache;             /* .cache, desktop GL: also render every cached layer
+    int verify_cache;             /* DEBUGGING. .cache, desktop GL: also render every cached layer
                                      (RMSM: page) uncached, read both back (a CPU-GPU stall:
                                      for debugging) and fail the render when they differ
                                      beyond float rounding (CACHED MAPS) [0] */
@@ -1095,8 +1146,6 @@ typedef struct skgl_shadow skgl_shadow;
 
 SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out);
 SKGLDEF void skgl_destroy(skgl_context *ctx);
-/* GL objects the context currently owns (its own and its shadows') */
-SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
 /* inside a draw callback: model matrix of the next objects (column-major) */
 SKGLDEF void skgl_set_model(skgl_context *ctx, const float model[16]);
 
@@ -1255,14 +1304,6 @@ SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer);
    1 for the other techniques and before the first render */
 SKGLDEF float skgl_shadow_select_extent(const skgl_shadow *s);
 SKGLDEF const skgl_shadow_frame_stats *skgl_shadow_stats(const skgl_shadow *s);
-/* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
-   sorted by (level, py, px); writes at most cap, returns how many there are */
-SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap);
-/* RMSM: the RGBA32F texture of the last analysis, (s, t, lod, 1) per pixel
-   (0 where no sample), for debugging and tests; 0 before any */
-SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s);
-/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
-SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
 
 /* ---- point lights: cube shadow maps and VSDCT (King & Newhall 2004) -----
    skgl_point *lamp;   once: skgl_point_create(gl, &pdesc, &lamp)
@@ -1330,7 +1371,7 @@ typedef struct skgl_point_desc {
     int cache_budget_kb;          /* .cache: the most GPU memory the cache may take, KiB; a
                                      light whose cache is larger is drawn every frame [0: no
                                      limit] */
-    int verify_cache;             /* .cache, desktop GL: also render every face the view needs
+    int verify_cache;             /* DEBUGGING. .cache, desktop GL: also render every face the view needs
                                      uncached, read both back (a CPU-GPU stall: for
                                      debugging) and fail the render when they differ
                                      (CACHED MAPS) [0] */
@@ -1556,15 +1597,27 @@ SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u,
 /* the base frustum of the last render (world -> light clip); PVSM tiles
    are sk_crop_matrix crops of it (skgl_soft_tile_rects) */
 SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s);
+/* PVSM: the rectangles of the last render's tiles (skgl_soft_tiles) as it drew them, in clip
+   units of its base frustum (skgl_soft_matrix), carried there from the
+   prediction's; writes at most cap, returns how many there are */
+SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
+
+/* ---- DEBUGGING: for tests and debugging views (the manual's DEBUGGING) --- */
+/* GL objects the context currently owns (its own and its lights') */
+SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
+/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
+SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
+/* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
+   sorted by (level, py, px); writes at most cap, returns how many there are */
+SKGLDEF int skgl_shadow_pages(const skgl_shadow *s, sk_page *out, int cap);
+/* RMSM: the RGBA32F texture of the last analysis, (s, t, lod, 1) per pixel
+   (0 where no sample); 0 before any */
+SKGLDEF unsigned skgl_shadow_analysis_texture(const skgl_shadow *s);
 /* PVSM: the tiles of the last render, cells of the SMTG of the prediction
    they came from (2/grid clip units per cell of that frame's base frustum,
    this frame's when stats.prediction_age is 0); writes at most cap,
    returns how many there are */
 SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap);
-/* PVSM: the same tiles' rectangles as the last render drew them, in clip
-   units of its base frustum (skgl_soft_matrix), carried there from the
-   prediction's; writes at most cap, returns how many there are */
-SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
 /* PVSM: the SMTG pyramid of the prediction the last render used, laid out
    as sk_smtg_pyramid's (+INFINITY: no sample); returns the float count
    (writes at most cap), 0 before any */
@@ -1596,6 +1649,9 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(SKGL_MALLOC) != defined(SKGL_FREE)
+#error "shadowkit_gl.h: define both SKGL_MALLOC and SKGL_FREE, or neither (CONFIGURATION)"
+#endif
 #ifndef SKGL_MALLOC
 #define SKGL_MALLOC(n) malloc(n)
 #define SKGL_FREE(p) free(p)
@@ -1611,30 +1667,47 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap);
 extern "C" {
 #endif
 
-/* THE MAP of this implementation; each section opens with a // >>anchor
-     1. The GL loader and enums ............... >>loader
-     2. What the context keeps ................ >>context_data
-     3. Saved state: the per-call tracker ..... >>state
-     4. The context: log and arguments, programs, the uniform and texture
-        caches, GPU timers, read-back rings, skgl_create ......... >>context
-     5. Shared pass helpers: the lights' lifecycle (>>lifecycle) and
-        objects, large worlds, the draw callback and the one caster pass
-        (>>caster_pass), the masks' inputs ........................ >>passes
-     6. Directional lights ...................... >>shadow
-        6.1 the light: desc, create, destroy ... >>shadow_life
-        6.2 fits: PSSM, PSM, LiSPSM, LSPSM ...... >>fits
-        6.3 FERKO's resolution estimation ....... >>ferko
-        6.4 RMSM's pages ........................ >>rmsm
-        6.5 the cache (CACHED MAPS) ............. >>cache
-        6.6 analyze and render .................. >>render
-        6.7 bind (forward shaders) .............. >>bind
-        6.8 the deferred mask ................... >>mask
-     7. Point lights: cube maps and VSDCT ...... >>point
-        the faces' cache ........................ >>point_cache
-     8. Several point lights in one atlas ...... >>atlas
-     9. Area lights: PCSS and PVSM: the frame timer, the light, its
-        frustum, the passes ...................... >>soft
-    10. Embedded GLSL, behind skgl__glsl() ..... >>glsl
+/* THE MAP of this implementation. Each anchor is a line of its own,
+   "// >>name", where the part it names begins: search for "// >>name".
+   Numbers are the sections' banners; shadowkit.h numbers its sections
+   the same where it has the math of the same technique (6.2, 6.3, 6.4, 7,
+   9); the other numbers are the GL side's own.
+     1. The GL loader and enums ................................ >>loader
+     2. What the context keeps ................................. >>context_data
+     3. Saved state: the per-call tracker ...................... >>state
+     4. The context ............................................ >>context
+        4.1 the error log ...................................... >>log
+            what a technique needs of the context .............. >>needs
+            a call's arguments ................................. >>args
+            the camera's depth convention ...................... >>camera
+        4.2 uniforms, 4.3 the user's textures, 4.4 GPU timers,
+        4.5 read-back rings, 4.6 the context's lifetime
+            what the context offers (skgl_caps) ................ >>caps
+     5. Shared pass helpers .................................... >>passes
+            the lights' lifecycle .............................. >>lifecycle
+        5.1 the lights' objects, 5.2 large worlds, 5.3 the draw
+            callback; the one caster pass ...................... >>caster_pass
+            layered single-pass rendering ...................... >>layered
+            caster programs .................................... >>casters
+        5.4 the masks' inputs
+     6. Directional lights ..................................... >>shadow
+            what differs from technique to technique ........... >>techniques
+        6.1 the light: desc, create, destroy ................... >>shadow_life
+        6.2 fits: PSSM, PSM, LiSPSM, LSPSM ..................... >>fits
+            AUTO: the library chooses (CHOOSING FOR YOU) ....... >>auto
+        6.3 FERKO's resolution estimation ...................... >>ferko
+        6.4 RMSM's pages ....................................... >>rmsm
+        6.5 the cache (CACHED MAPS) ............................ >>cache
+            RMSM's page cache .................................. >>rmsm_cache
+        6.6 analyze and render ................................. >>render
+        6.7 bind (forward shaders) ............................. >>bind
+        6.8 the deferred mask .................................. >>mask
+     7. Point lights: cube maps and VSDCT ...................... >>point
+            the faces' cache ................................... >>point_cache
+     8. Several point lights in one atlas ...................... >>atlas
+     9. Area lights: PCSS and PVSM: the frame timer, the light,
+        its frustum, the passes ................................ >>soft
+    10. Embedded GLSL, behind skgl__glsl() ..................... >>glsl
 */
 
 /* ---- 1. The GL loader and enums ----------------------------------------- */
@@ -1894,7 +1967,7 @@ typedef struct skgl__api {
 #undef SKGL__X
 } skgl__api;
 
-/* the embedded sources (section 9), by name: skgl__glsl(SKGL__GLSL_DEPTH_VERT) */
+/* the embedded sources (section 10), by name: skgl__glsl(SKGL__GLSL_DEPTH_VERT) */
 typedef enum skgl__glsl_id {
     SKGL__GLSL_DEPTH_VERT,
     SKGL__GLSL_DEPTH_FRAG,
@@ -1982,7 +2055,7 @@ typedef struct skgl__ring {
     double origin[SKGL__RING][3];
 } skgl__ring;
 
-/* the kinds of caster pass a caster program is linked for (>>casters) */
+/* the kinds of caster pass a caster program is linked for (5.3, caster programs) */
 enum { SKGL__CV_DEPTH = 0, SKGL__CV_CONS = 1, SKGL__CV_GBUF = 2, SKGL__CV_LAYERED = 3, SKGL__CV_COUNT = 4 };
 
 /* which of the scene's callbacks a caster pass calls (CACHED MAPS) */
@@ -2026,7 +2099,7 @@ struct skgl_context {
     struct skgl_caster *casters;           /* every caster made, freed with the context */
     struct skgl_caster *cur_caster;        /* bound by the callback now (NULL: the pass's program) */
     sk_result pass_error;                  /* a caster program that failed to link in this callback */
-    /* layered passes (>>layered): the depth program with layered.geom, made
+    /* layered passes (5.3): the depth program with layered.geom, made
        on first use; the layers of the pass under way */
     skgl__uint layered_prog;
     int layered_state;                     /* 0 not tried, 1 loop, 2 invocations, -1 no program */
@@ -2044,7 +2117,7 @@ struct skgl_context {
     skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
     float mask_dmap[4], ferko_dmap[4], rmsm_dmap[4];
     float cam_dmap[4];                     /* the convention of the depth buffer the call under way reads */
-    float cam_view_z[4];                   /* row 2 of its inverse projection (view depths, >>ferko) */
+    float cam_view_z[4];                   /* row 2 of its inverse projection (view depths, 6.3) */
     float ferko_view_z[4];                 /* the one ferko_prog holds */
     skgl__int ferko_u_ndc_to_light, ferko_u_world_w, ferko_u_view_z, reduce_u_src_size, final_u_src_size;
     skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
@@ -2445,6 +2518,12 @@ static void skgl__st_end(skgl_context *ctx, skgl__st *st)
    The passes clear with glClearBufferfv(GL_DEPTH, 0, 1.0), which leaves
    GL_DEPTH_CLEAR_VALUE alone (glClear would need it set and put back) but
    still obeys the depth write mask and the scissor test, both set here. */
+static void skgl__clear_depth(skgl_context *ctx)
+{
+    static const float one = 1.0f;
+    ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+}
+
 static void skgl__st_depth_pass(skgl_context *ctx, skgl__st *st, float slope_bias, float depth_bias)
 {
     skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
@@ -2499,7 +2578,8 @@ static void skgl__st_unpack(skgl_context *ctx, skgl__st *st)
 /* ---- 4. The context ----------------------------------------------------- */
 // >>context
 /* 4.1 the log, the arguments, programs and samplers */
-/* >>log  The error log (skgl_error_log) holds the last failure of the
+// >>log
+/* The error log (skgl_error_log) holds the last failure of the
    current call: every public call that takes the context clears it first,
    so an old message never stands for a new error. A broken rule is one
    message naming the argument or field, its value and the rule:
@@ -2604,6 +2684,38 @@ static sk_result skgl__not_nested(skgl_context *ctx, const char *fn)
                       fn);
 }
 
+/* What every create (light, atlas, caster) does first and last.
+   skgl__create_open: the context required (without one there is no log),
+   the call entered (the application's pending GL errors cleared), the
+   desc (no_desc) and out (no_out) required, and not from inside a draw
+   callback. skgl__create_alloc: the object, zeroed, or NULL with
+   SK_ERR_CAPACITY in the log. skgl__create_close: the call's own GL error
+   (what: what it was making), and any failure named for the call in the
+   log; on a failure the caller gives back what it made (its destroy, or
+   its free before the object is listed) and returns this result. */
+static sk_result skgl__create_open(skgl_context *ctx, const char *fn, int no_desc, int no_out)
+{
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, fn, 1);
+    if (no_desc || no_out)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s is NULL", fn, no_desc ? "desc" : "out");
+    return skgl__not_nested(ctx, fn);
+}
+
+static void *skgl__create_alloc(skgl_context *ctx, const char *fn, size_t bytes)
+{
+    void *o = SKGL_MALLOC(bytes);
+    if (o) memset(o, 0, bytes);
+    else (void)skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory (%lu bytes)", fn, (unsigned long)bytes);
+    return o;
+}
+
+static sk_result skgl__create_close(skgl_context *ctx, const char *fn, sk_result r, const char *what)
+{
+    if (r == SK_OK) r = skgl__create_check(ctx, fn, what);
+    return skgl__said(ctx, fn, r, NULL);
+}
+
 /* one rule of a desc: when cond fails, the message names the field and its
    value, and the caller returns SK_ERR_INVALID_ARG (needs ctx in scope) */
 #define SKGL__RULE(cond, fn, field, value, rule)                                                   \
@@ -2613,14 +2725,22 @@ static sk_result skgl__not_nested(skgl_context *ctx, const char *fn)
                               (double)(value), rule);                                              \
     } while (0)
 
-/* the bias and filtering rules directional and point lights share */
-static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope_bias, float depth_bias,
-                                  float normal_bias, skgl_bias bias, float plane_bias, int pcf_radius)
+/* the polygon offset rules of every light's depth passes */
+static sk_result skgl__offset_rules(skgl_context *ctx, const char *fn, float slope_bias, float depth_bias)
 {
     SKGL__RULE(slope_bias >= 0.0f && slope_bias <= 1e4f, fn, "slope_bias", slope_bias,
                "in [0, 10000] (disable_polygon_offset for none)");
     SKGL__RULE(depth_bias >= 0.0f && depth_bias <= 1e6f, fn, "depth_bias", depth_bias,
                "in [0, 1000000] (disable_polygon_offset for none)");
+    return SK_OK;
+}
+
+/* the bias and filtering rules directional and point lights share */
+static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope_bias, float depth_bias,
+                                  float normal_bias, skgl_bias bias, float plane_bias, int pcf_radius)
+{
+    sk_result r = skgl__offset_rules(ctx, fn, slope_bias, depth_bias);
+    if (r != SK_OK) return r;
     SKGL__RULE(normal_bias >= 0.0f && normal_bias <= 64.0f, fn, "normal_bias", normal_bias, "in [0, 64] texels");
     SKGL__RULE((int)bias >= (int)SKGL_BIAS_RECEIVER_PLANE && (int)bias <= (int)SKGL_BIAS_NONE, fn, "bias", bias,
                "one of skgl_bias");
@@ -2631,7 +2751,8 @@ static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope
     return SK_OK;
 }
 
-/* >>needs  what a technique needs of the context (skgl_caps): SK_ERR_GL at
+// >>needs
+/* what a technique needs of the context (skgl_caps): SK_ERR_GL at
    create, the message naming the feature and the extension that gives it */
 #define SKGL__NEED(have, fn, what, feature)                                                        \
     do {                                                                                           \
@@ -2643,7 +2764,8 @@ static sk_result skgl__bias_rules(skgl_context *ctx, const char *fn, float slope
 #define SKGL__FLOAT_BLEND "blending into float targets (GL_EXT_float_blend on OpenGL ES and WebGL2)"
 #define SKGL__GEOMETRY "geometry shaders (OpenGL 3.2, OpenGL ES 3.2)"
 
-/* >>args  a call's arguments: each check names the argument and its value */
+// >>args
+/* a call's arguments: each check names the argument and its value */
 #define SKGL__TRY(call)                                                                            \
     do {                                                                                           \
         sk_result skgl__r_ = (call);                                                               \
@@ -2732,7 +2854,8 @@ static void skgl__clip_depth(skgl_context *ctx, int back)
     if (ctx->clip_zero_to_one) ctx->ClipControl(SKGL__LOWER_LEFT, back ? SKGL__ZERO_TO_ONE : SKGL__NEGATIVE_ONE_TO_ONE);
 }
 
-/* >>camera  The camera's depth convention (CAMERA CONVENTIONS). Every
+// >>camera
+/* The camera's depth convention (CAMERA CONVENTIONS). Every
    call that takes a camera works on the same camera in OpenGL's
    convention (near at NDC z -1, a finite far at +1: what the fits and
    shadowkit's own passes assume) and reads the caller's depth buffer
@@ -3518,7 +3641,8 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->request_pages0 = ctx->request_levels = -1;
 }
 
-/* >>caps  What the context offers (skgl_caps), from its version and
+// >>caps
+/* What the context offers (skgl_caps), from its version and
    extension strings, less desc->disable_caps; the optional entry points
    loaded where they exist. Fails below GL 3.3 and ES 3.0, and for an
    api the context does not speak. */
@@ -3795,32 +3919,16 @@ static sk_result skgl__check(skgl_context *ctx, const char *what)
 
 /* ---- 5. Shared pass helpers --------------------------------------------- */
 // >>passes
-/* >>lifecycle  One lifecycle for every kind of light (shadow, point,
-   soft): create fills the defaults, checks every rule of the desc (one
-   message per broken rule, naming the field), makes its GL objects inside
-   one state-tracked call and frees everything it made on any failure;
-   destroy gives back its GL objects (the kind's free function) and the
-   struct, and does nothing without a context (the GL objects need it);
-   get_desc is the filled desc (zeros for NULL); stats the last frame's
-   (NULL for NULL). */
-#define SKGL__LIFECYCLE(kind, free_fn)                                                                  \
-    SKGLDEF void skgl_##kind##_destroy(skgl_context *ctx, skgl_##kind *o)                               \
-    {                                                                                                   \
-        if (!ctx || !o) return;                                                                         \
-        free_fn(ctx, o);                                                                                \
-        SKGL_FREE(o);                                                                                   \
-    }                                                                                                   \
-    SKGLDEF skgl_##kind##_desc skgl_##kind##_get_desc(const skgl_##kind *o)                             \
-    {                                                                                                   \
-        skgl_##kind##_desc d;                                                                           \
-        if (o) return o->desc;                                                                          \
-        memset(&d, 0, sizeof d);                                                                        \
-        return d;                                                                                       \
-    }                                                                                                   \
-    SKGLDEF const skgl_##kind##_frame_stats *skgl_##kind##_stats(const skgl_##kind *o)                  \
-    {                                                                                                   \
-        return o ? &o->stats : NULL;                                                                    \
-    }
+// >>lifecycle
+/* One lifecycle for every kind of light (shadow, point,
+   soft): create opens like every create (skgl__create_open), fills the
+   defaults, checks every rule of the desc (one message per broken rule,
+   naming the field), makes its GL objects inside one state-tracked call
+   and on any failure gives everything back through its destroy
+   (skgl__create_close); destroy gives back its GL objects (the kind's free
+   function) and the struct, and does nothing without a context (the GL
+   objects need it); get_desc is the filled desc (zeros for NULL); stats
+   the last frame's (NULL for NULL). */
 
 /* 5.1 the lights' objects (made inside a state-tracked call) */
 /* a 2D texture (target 2D) or 2-layer array (layers 2), nearest filtering,
@@ -4125,7 +4233,8 @@ static sk_result skgl__after_draw(skgl_context *ctx, skgl__st *st)
     return r;
 }
 
-/* >>caster_pass  Every caster pass of the directional and point lights
+// >>caster_pass
+/* Every caster pass of the directional and point lights
    goes through these two. skgl__casters_begin, once per call: the depth
    pass's state (skgl__st_depth_pass), shadowkit's depth program, the
    identity model (positions relative to origin), the caller's vertex array
@@ -4192,9 +4301,15 @@ static sk_result skgl__scene_draw(skgl_context *ctx, skgl__st *st, const skgl_sc
     return r;
 }
 
-/* the callbacks one pass of every caster makes (stats.passes): scene.draw,
-   and skgl_set_dynamic's when there is one */
-static int skgl__pass_callbacks(const skgl_context *ctx) { return 1 + (ctx->dyn.draw != NULL); }
+/* the callbacks one pass of the casters of cls (SKGL__DRAW_*) makes, what
+   stats.passes counts: scene.draw unless only the dynamic casters are
+   drawn, and skgl_set_dynamic's when there is one and it is drawn */
+static int skgl__class_callbacks(const skgl_context *ctx, int cls)
+{
+    return (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && ctx->dyn.draw != NULL);
+}
+/* ... and of every caster */
+static int skgl__pass_callbacks(const skgl_context *ctx) { return skgl__class_callbacks(ctx, SKGL__DRAW_ALL); }
 
 static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
                                     const double origin[3], skgl_draw_info *info)
@@ -4209,7 +4324,31 @@ static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_
     return skgl__scene_draw(ctx, st, scene, info);
 }
 
-/* >>layered  Layered single-pass caster rendering (desc.layered): the
+/* One caster pass of a cached map (a directional layer, an RMSM page, a
+   point face) into fb: the casters of cls (SKGL__DRAW_*) in rect (x, y,
+   w, h; NULL: the whole target, full x full texels, unscissored), cleared
+   first when clear; info names the pass (its rect is set here). The
+   callbacks made are added to *passes, the texels drawn to *texels. */
+static sk_result skgl__cached_pass(skgl_context *ctx, skgl__st *st, const skgl_scene *scene, const sk_mat4 *vp,
+                                   const double origin[3], skgl__uint fb, const int *rect, int full, int cls,
+                                   int clear, skgl_draw_info *info, int *passes, double *texels)
+{
+    sk_result r;
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, rect != NULL);
+    if (rect) skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
+    if (clear) skgl__clear_depth(ctx);
+    if (rect) memcpy(info->rect, rect, sizeof info->rect);
+    ctx->draw_class = cls;
+    r = skgl__casters_draw(ctx, st, scene, vp, origin, info);
+    ctx->draw_class = SKGL__DRAW_ALL;
+    *passes += skgl__class_callbacks(ctx, cls);
+    *texels += rect ? (double)rect[2] * rect[3] : (double)full * full;
+    return r;
+}
+
+// >>layered
+/* Layered single-pass caster rendering (desc.layered): the
    layers of a directional light (array texture) or the faces of a cube map
    attached whole (glFramebufferTexture), one callback, and layered.geom
    sending each triangle to every layer with gl_Layer. The program is made
@@ -4304,7 +4443,8 @@ static void skgl__casters_begin_layered(skgl_context *ctx, skgl__st *st, float s
                              depth_bias, origin);
 }
 
-/* >>casters  Caster programs (skgl_caster_*). A caster's hooks become one
+// >>casters
+/* Caster programs (skgl_caster_*). A caster's hooks become one
    program per kind of caster pass, built from the same embedded sources as
    shadowkit's own (SKGL_CASTER in place of attribute 0, SKGL_CASTER_FRAGMENT
    calling the fragment hook first): the depth passes (depth.vert +
@@ -4881,6 +5021,21 @@ static const char *skgl__caster_copy(char **p, const char *s)
     return r;
 }
 
+/* the desc's texts copied into the caster's block p, and its hooks parsed */
+static sk_result skgl__caster_copy_desc(skgl_context *ctx, skgl_caster *c, const skgl_caster_desc *desc, char *p)
+{
+    sk_result r;
+    int k;
+    c->vertex = skgl__caster_copy(&p, desc->vertex);
+    c->fragment = desc->fragment && desc->fragment[0] ? skgl__caster_copy(&p, desc->fragment) : NULL;
+    c->varyings = desc->varyings && desc->varyings[0] ? skgl__caster_copy(&p, desc->varyings) : NULL;
+    c->label = skgl__caster_copy(&p, desc->label ? desc->label : "caster");
+    for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) c->names[k] = skgl__caster_copy(&p, desc->uniforms[k]);
+    if (c->varyings && (r = skgl__caster_varyings(ctx, c)) != SK_OK) return r;
+    if ((r = skgl__hook_undefs(ctx, c->vertex, &c->undef_vertex)) != SK_OK) return r;
+    return c->fragment ? skgl__hook_undefs(ctx, c->fragment, &c->undef_fragment) : SK_OK;
+}
+
 SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *desc, skgl_caster **out)
 {
     static const char fn[] = "skgl_caster_create";
@@ -4890,42 +5045,26 @@ SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *
     int k;
     sk_result r;
     if (out) *out = NULL;
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__enter(ctx, fn, 1);
-    if (!desc || !out) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: %s is NULL", fn, !desc ? "desc" : "out");
+    SKGL__TRY(skgl__create_open(ctx, fn, !desc, !out));
     if (!desc->vertex || !desc->vertex[0])
         return skgl__fail(ctx, SK_ERR_INVALID_ARG,
                           "%s: desc.vertex is required: GLSL declaring vec4 skgl_caster_position(void)", fn);
-    if (ctx->model_loc >= 0)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: called inside a draw callback (make casters beforehand)",
-                          fn);
     bytes += strlen(desc->vertex) + 1;
     bytes += desc->fragment ? strlen(desc->fragment) + 1 : 0;
     bytes += desc->varyings ? strlen(desc->varyings) + 1 : 0;
     bytes += strlen(desc->label ? desc->label : "caster") + 1;
     for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) bytes += desc->uniforms[k] ? strlen(desc->uniforms[k]) + 1 : 0;
-    c = (skgl_caster *)SKGL_MALLOC(sizeof *c);
-    if (!c) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
-    memset(c, 0, sizeof *c);
-    c->text = p = (char *)SKGL_MALLOC(bytes);
-    if (!p) {
-        SKGL_FREE(c);
-        return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
+    c = (skgl_caster *)skgl__create_alloc(ctx, fn, sizeof *c);
+    if (!c) return SK_ERR_CAPACITY;
+    c->text = p = (char *)skgl__create_alloc(ctx, fn, bytes);
+    r = p ? SK_OK : SK_ERR_CAPACITY;
+    if (r == SK_OK) r = skgl__caster_copy_desc(ctx, c, desc, p);
+    if (r == SK_OK) {
+        ctx->log[0] = 0;
+        r = skgl__caster_link(ctx, c, SKGL__CV_DEPTH, fn);
     }
-    c->vertex = skgl__caster_copy(&p, desc->vertex);
-    c->fragment = desc->fragment && desc->fragment[0] ? skgl__caster_copy(&p, desc->fragment) : NULL;
-    c->varyings = desc->varyings && desc->varyings[0] ? skgl__caster_copy(&p, desc->varyings) : NULL;
-    c->label = skgl__caster_copy(&p, desc->label ? desc->label : "caster");
-    for (k = 0; k < SKGL_CASTER_UNIFORMS; k++) c->names[k] = skgl__caster_copy(&p, desc->uniforms[k]);
-    if ((c->varyings && (r = skgl__caster_varyings(ctx, c)) != SK_OK) ||
-        (r = skgl__hook_undefs(ctx, c->vertex, &c->undef_vertex)) != SK_OK ||
-        (c->fragment && (r = skgl__hook_undefs(ctx, c->fragment, &c->undef_fragment)) != SK_OK)) {
-        skgl__caster_free(ctx, c);
-        return r;
-    }
-    ctx->log[0] = 0;
-    r = skgl__caster_link(ctx, c, SKGL__CV_DEPTH, fn);
-    if (r != SK_OK) {
+    r = skgl__create_close(ctx, fn, r, "its depth program");
+    if (r != SK_OK) {   /* not listed yet: skgl_caster_destroy would not find it */
         skgl__caster_free(ctx, c);
         return r;
     }
@@ -5145,7 +5284,7 @@ typedef struct skgl__rmsm {
     unsigned frame;
 } skgl__rmsm;
 
-/* the cache's part (CACHED MAPS, >>cache): the static casters' depth per
+/* the cache's part (CACHED MAPS, 6.5): the static casters' depth per
    cached layer and the world matrix its depth stands for (world: the one
    it was drawn with, moved by the whole texels it was scrolled); this
    frame's caster matrix of each layer (vp: world relative to the light's
@@ -5207,7 +5346,8 @@ typedef struct skgl__fit_in {
     float shadow_zn;               /* where the shadows start (zn, or later with .fit_to_depth) */
 } skgl__fit_in;
 
-/* >>techniques  What differs from technique to technique, one row each in
+// >>techniques
+/* What differs from technique to technique, one row each in
    skgl_technique order: its own objects, its analysis (skgl_shadow_analyze;
    NULL: none), the fit of its layers and its caster passes. */
 typedef struct skgl__technique {
@@ -5234,7 +5374,8 @@ static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s);
 
 /* ---- 6.1 the light: its desc, create and destroy ---------------------- */
 // >>shadow_life
-/* the disable_ switches shared by directional and point lights */
+/* the disable_ switches shared by directional and point lights (soft
+   lights: the polygon offset's alone, plane_bias and pcf_radius NULL) */
 static void skgl__apply_switches(float *slope_bias, float *depth_bias, int no_offset, float *plane_bias, int no_plane,
                                  int *pcf_radius, int no_kernel)
 {
@@ -5442,6 +5583,7 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
 
 SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *desc, skgl_shadow **out)
 {
+    static const char fn[] = "skgl_shadow_create";
     skgl_shadow *s;
     skgl__st st;
     skgl__api *gl;
@@ -5449,17 +5591,12 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     sk_result r;
     int i;
     if (out) *out = NULL;
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__enter(ctx, "skgl_shadow_create", 1);
-    if (!desc || !out)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_shadow_create: %s is NULL", !desc ? "desc" : "out");
-    SKGL__TRY(skgl__not_nested(ctx, "skgl_shadow_create"));
+    SKGL__TRY(skgl__create_open(ctx, fn, !desc, !out));
     d = skgl__defaults(desc);
     r = skgl__shadow_validate(ctx, &d);
     if (r != SK_OK) return r;
-    s = (skgl_shadow *)SKGL_MALLOC(sizeof *s);
-    if (!s) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_shadow_create: out of memory");
-    memset(s, 0, sizeof *s);
+    s = (skgl_shadow *)skgl__create_alloc(ctx, fn, sizeof *s);
+    if (!s) return SK_ERR_CAPACITY;
     s->desc = d;
     s->id = ++ctx->next_id;
     if (!s->id) s->id = ++ctx->next_id;
@@ -5495,12 +5632,11 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
     if (r == SK_OK && d.cache && d.technique != SKGL_RMSM) r = skgl__cache_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
-    if (r == SK_OK)
-        r = skgl__create_check(ctx, "skgl_shadow_create", "the light's depth texture and framebuffers (out of GPU "
-                               "memory, or desc.resolution above GL_MAX_TEXTURE_SIZE?)");
+    r = skgl__create_close(ctx, fn, r, "the light's depth texture and framebuffers (out of GPU "
+                           "memory, or desc.resolution above GL_MAX_TEXTURE_SIZE?)");
     if (r != SK_OK) {
         skgl_shadow_destroy(ctx, s);
-        return skgl__said(ctx, "skgl_shadow_create", r, NULL);
+        return r;
     }
     s->stats.shadow_ms = s->stats.mask_ms = s->stats.analysis_ms = -1.0f;
     *out = s;
@@ -5531,7 +5667,20 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     s->rmsm.table_cpu = s->rmsm.table_new = NULL;
     s->rmsm.pages = NULL;
 }
-SKGL__LIFECYCLE(shadow, skgl__shadow_free)
+SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
+{
+    if (!ctx || !s) return;
+    skgl__shadow_free(ctx, s);
+    SKGL_FREE(s);
+}
+SKGLDEF skgl_shadow_desc skgl_shadow_get_desc(const skgl_shadow *s)
+{
+    skgl_shadow_desc d;
+    if (s) return s->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF const skgl_shadow_frame_stats *skgl_shadow_stats(const skgl_shadow *s) { return s ? &s->stats : NULL; }
 
 SKGLDEF sk_mat4 skgl_shadow_matrix(const skgl_shadow *s, int layer)
 {
@@ -6796,24 +6945,12 @@ SKGLDEF sk_result skgl_shadow_invalidate(skgl_context *ctx, skgl_shadow *s, cons
 static sk_result skgl__cache_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *rs, int i,
                                   const sk_mat4 *vp, skgl__uint fb, const int *rect, int cls, int clear)
 {
-    static const float one = 1.0f;
-    int res = s->desc.resolution;
     skgl_draw_info info;
-    sk_result r;
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
-    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, rect != NULL);
-    if (rect) skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
-    if (clear) ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
     memset(&info, 0, sizeof info);
     info.kind = SKGL_PASS_DIRECTIONAL;
     info.index = i;
-    if (rect) memcpy(info.rect, rect, sizeof info.rect);
-    ctx->draw_class = cls;
-    r = skgl__casters_draw(ctx, st, rs, vp, s->origin, &info);
-    ctx->draw_class = SKGL__DRAW_ALL;
-    s->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && ctx->dyn.draw != NULL);
-    s->stats.texels += rect ? (double)rect[2] * rect[3] : (double)res * res;
-    return r;
+    return skgl__cached_pass(ctx, st, rs, vp, s->origin, fb, rect, s->desc.resolution, cls, clear, &info,
+                             &s->stats.passes, &s->stats.texels);
 }
 
 /* a w x h rectangle of depth from (x, y) of src to (x + dx, y + dy) of dst
@@ -7069,7 +7206,8 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
     return r;
 }
 
-/* >>rmsm_cache  RMSM's page cache (desc.cache). The virtual map's texel
+// >>rmsm_cache
+/* RMSM's page cache (desc.cache). The virtual map's texel
    grid is fixed in light space (skgl__rmsm_frame), so a page keeps its
    depth from frame to frame: a pool slot holds it while it is requested
    and, after, until the slot is needed (least recently used first). Only
@@ -7204,29 +7342,18 @@ static void skgl__rmsm_assign(skgl_shadow *s)
 static sk_result skgl__page_draw(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *scene, int i,
                                  const int *rect, int cls)
 {
-    static const float one = 1.0f;
     int slot = s->desc.rmsm_page_size + 2;
     sk_mat4 vp = sk_mat4_mul(sk_crop_matrix(skgl__page_rect(s, &s->rmsm.pages[i]), -1.0f, 1.0f), s->rmsm.lvp);
     skgl_draw_info info;
-    sk_result r;
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm.page_fbo);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, slot, slot);
-    /* a whole page needs no scissor (the target is one slot), and leaving
-       it off as the copy into the pool does saves two state changes per
-       page; part of a page is drawn under its rectangle */
-    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, rect != NULL);
-    if (rect) skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
-    else ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
     memset(&info, 0, sizeof info);
     info.kind = SKGL_PASS_DIRECTIONAL;
     info.index = i;
-    if (rect) memcpy(info.rect, rect, sizeof info.rect);
-    ctx->draw_class = cls;
-    r = skgl__casters_draw(ctx, st, scene, &vp, s->rmsm.origin, &info);
-    ctx->draw_class = SKGL__DRAW_ALL;
-    s->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && ctx->dyn.draw != NULL);
-    s->stats.texels += rect ? (double)rect[2] * rect[3] : (double)slot * slot;
-    return r;
+    /* a whole page needs no scissor (the target is one slot), and leaving
+       it off as the copy into the pool does saves two state changes per
+       page; part of a page is drawn under its rectangle */
+    return skgl__cached_pass(ctx, st, scene, &vp, s->rmsm.origin, s->rmsm.page_fbo, rect, slot, cls, rect == NULL,
+                             &info, &s->stats.passes, &s->stats.texels);
 }
 
 /* One caster pass of page i into its slot of the pool framebuffer fb:
@@ -7442,8 +7569,6 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
    the light's origin, as the fits saw it) */
 static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const skgl_scene *rs, sk_vec3 light_dir)
 {
-    static const float one = 1.0f;
-    skgl__api *gl = &ctx->gl;
     skgl__st st;
     sk_result r = SK_OK, rc;
     int i, res;
@@ -7473,7 +7598,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         if (!s->fbo_layered) s->fbo_layered = skgl__framebuffer(ctx, &st, 0, 0, s->tex, SKGL__ALL_LAYERS);
         if (s->fbo_layered) {
             skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo_layered);
-            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);   /* every layer */
+            skgl__clear_depth(ctx);   /* every layer */
             skgl__casters_begin_layered(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
             for (i = 0; i < s->maps; i++) of[i] = i;
             memset(&info, 0, sizeof info);
@@ -7492,7 +7617,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     for (i = 0; !s->stats.layered && !s->desc.cache && i < s->maps; i++) {
         skgl_draw_info info;
         skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
-        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        skgl__clear_depth(ctx);
         memset(&info, 0, sizeof info);
         info.kind = SKGL_PASS_DIRECTIONAL;
         info.index = i;
@@ -7511,7 +7636,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
-/* >>techniques, the table (declared in 6) */
+/* the techniques' table (its rows are declared with the light, in 6) */
 /* .fit_to_depth: FERKO's analysis targets and ring, for the depth range */
 static sk_result skgl__depth_fit_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
@@ -7839,7 +7964,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
 // >>point
 #define SKGL__MAX_CUBE_MAP_TEXTURE_SIZE 0x851C
 
-/* a point light's cache (>>point_cache): the faces' static depth, the
+/* a point light's cache (7, the faces' cache): the faces' static depth, the
    light position and face side it holds, per face valid and equal to the
    map's face; the boxes invalidated since the last render; the scratch
    map of .verify_cache */
@@ -7890,7 +8015,7 @@ struct skgl_point_atlas {
     int w, h;
 };
 
-/* defined with the faces' passes (>>point_cache) */
+/* defined with the faces' passes (7, the faces' cache) */
 static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
 static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
 
@@ -8080,6 +8205,7 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
 
 SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *desc, skgl_point **out)
 {
+    static const char fn[] = "skgl_point_create";
     skgl__api *gl;
     skgl_point *p;
     skgl_point_desc d;
@@ -8090,11 +8216,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     int f, lv;
     sk_result r = SK_OK;
     if (out) *out = NULL;
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__enter(ctx, "skgl_point_create", 1);
-    if (!desc || !out)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_create: %s is NULL", !desc ? "desc" : "out");
-    SKGL__TRY(skgl__not_nested(ctx, "skgl_point_create"));
+    SKGL__TRY(skgl__create_open(ctx, fn, !desc, !out));
     d = skgl__point_defaults(desc);
     r = skgl__point_validate(ctx, &d);
     if (r != SK_OK) return r;
@@ -8107,9 +8229,8 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
                           d.resolution, d.technique == SKGL_POINT_CUBE ? max_size : max_size / 3,
                           d.technique == SKGL_POINT_CUBE ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
                                                          : "a third of GL_MAX_TEXTURE_SIZE, the 3 x 2 atlas");
-    p = (skgl_point *)SKGL_MALLOC(sizeof *p);
-    if (!p) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_point_create: out of memory");
-    memset(p, 0, sizeof *p);
+    p = (skgl_point *)skgl__create_alloc(ctx, fn, sizeof *p);
+    if (!p) return SK_ERR_CAPACITY;
     p->desc = d;
     p->id = ++ctx->next_id;
     if (!p->id) p->id = ++ctx->next_id;
@@ -8210,14 +8331,30 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     p->layout = skgl__point_layout(p, d.resolution);
     if (r == SK_OK && d.cache) r = skgl__point_cache_create(ctx, &st, p);
     skgl__st_end(ctx, &st);
-    if (r == SK_OK) r = skgl__create_check(ctx, "skgl_point_create", "the light's maps");
-    if (r != SK_OK) { skgl__point_free(ctx, p); SKGL_FREE(p); return skgl__said(ctx, "skgl_point_create", r, NULL); }
+    r = skgl__create_close(ctx, fn, r, "the light's maps");
+    if (r != SK_OK) {
+        skgl_point_destroy(ctx, p);
+        return r;
+    }
     p->stats.shadow_ms = p->stats.mask_ms = -1.0f;
     *out = p;
     return SK_OK;
 }
 
-SKGL__LIFECYCLE(point, skgl__point_free)
+SKGLDEF void skgl_point_destroy(skgl_context *ctx, skgl_point *p)
+{
+    if (!ctx || !p) return;
+    skgl__point_free(ctx, p);
+    SKGL_FREE(p);
+}
+SKGLDEF skgl_point_desc skgl_point_get_desc(const skgl_point *p)
+{
+    skgl_point_desc d;
+    if (p) return p->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF const skgl_point_frame_stats *skgl_point_stats(const skgl_point *p) { return p ? &p->stats : NULL; }
 SKGLDEF unsigned skgl_point_texture(const skgl_point *p)
 {
     return p ? skgl__point_tex(p) : 0;
@@ -8399,7 +8536,8 @@ static sk_result skgl__point_target(skgl_context *ctx, skgl__st *st, skgl_point 
     return SK_OK;
 }
 
-/* >>point_cache  CACHED MAPS for point lights: the faces' static depth in
+// >>point_cache
+/* CACHED MAPS for point lights: the faces' static depth in
    a texture shaped like the light's own (a cube with the same levels, or
    the 3 x 2 atlas), valid while the light stays where it was at the same
    face side; invalidated boxes redrawn in each face's rectangle of their
@@ -8498,26 +8636,15 @@ SKGLDEF sk_result skgl_point_invalidate(skgl_context *ctx, skgl_point *p, const 
 static sk_result skgl__point_face_pass(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
                                        int f, const sk_mat4 *vp, skgl__uint fb, const int *rect, int cls, int clear)
 {
-    static const float one = 1.0f;
     skgl_draw_info info;
-    sk_result r;
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)fb);
-    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
-    skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, rect[0], rect[1], rect[2], rect[3]);
-    if (clear) ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
     memset(&info, 0, sizeof info);
     info.kind = SKGL_PASS_CUBE_FACE;
     info.index = f;
     info.light_pos = p->light_pos;
     info.light_range = p->desc.range;
     info.point = p;
-    memcpy(info.rect, rect, sizeof info.rect);
-    ctx->draw_class = cls;
-    r = skgl__casters_draw(ctx, st, scene, vp, skgl__zero3, &info);
-    ctx->draw_class = SKGL__DRAW_ALL;
-    p->stats.passes += (cls != SKGL__DRAW_DYNAMIC) + (cls != SKGL__DRAW_STATIC && ctx->dyn.draw != NULL);
-    p->stats.texels += (double)rect[2] * rect[3];
-    return r;
+    return skgl__cached_pass(ctx, st, scene, vp, skgl__zero3, fb, rect, 0, cls, clear, &info, &p->stats.passes,
+                             &p->stats.texels);
 }
 
 /* the faces of a cached light (the non-layered loop of
@@ -8525,7 +8652,6 @@ static sk_result skgl__point_face_pass(skgl_context *ctx, skgl__st *st, skgl_poi
 static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
                                           unsigned faces, int m)
 {
-    static const float one = 1.0f;
     skgl__point_cache *c = &p->cache;
     sk_mat4 proj = sk_cube_face_proj(p->desc.near_plane, p->desc.range), face_vp;
     int f, k, vsdct = p->desc.technique == SKGL_POINT_VSDCT;
@@ -8550,7 +8676,7 @@ static sk_result skgl__point_faces_cached(skgl_context *ctx, skgl__st *st, skgl_
             skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)live);
             skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
             skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, x0, y0, m, m);
-            ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+            skgl__clear_depth(ctx);
             c->same[f] = 0;
             if (c->ndirty > 0) c->valid[f] = 0;
             p->stats.faces_culled++;
@@ -8659,8 +8785,6 @@ static sk_result skgl__point_verify(skgl_context *ctx, skgl__st *st, skgl_point 
 static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
                                         unsigned faces, int m)
 {
-    static const float one = 1.0f;
-    skgl__api *gl = &ctx->gl;
     sk_mat4 proj = sk_cube_face_proj(p->desc.near_plane, p->desc.range), face_vp;
     int f, vsdct = p->desc.technique == SKGL_POINT_VSDCT, shared = p->desc.atlas != NULL;
     int layered = !vsdct && p->desc.layered && p->fbo_layered && skgl__layered_ready(ctx);
@@ -8681,7 +8805,7 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
         skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
         if (!shared) {
             skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, 0, 0, 3 * m, 2 * m);
-            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+            skgl__clear_depth(ctx);
         }
     } else {
         skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
@@ -8694,7 +8818,7 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
         int of[6], n = 0;
         skgl_draw_info info;
         skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo_layered);
-        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);   /* all six faces */
+        skgl__clear_depth(ctx);   /* all six faces */
         for (f = 0; f < 6; f++) {
             if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
             vps[n] = sk_mat4_mul(proj, sk_cube_face_view(f, p->light_pos));
@@ -8720,10 +8844,10 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
         if (vsdct) {
             skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, p->layout.face_x[f], p->layout.face_y[f], m, m);
             skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, p->layout.face_x[f], p->layout.face_y[f], m, m);
-            if (shared) gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+            if (shared) skgl__clear_depth(ctx);
         } else {
             skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[f]);
-            gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+            skgl__clear_depth(ctx);
         }
         if (!(faces & (1u << f))) { p->stats.faces_culled++; continue; }
         memset(&info, 0, sizeof info);
@@ -8969,15 +9093,14 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
 // >>atlas
 SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int height, skgl_point_atlas **out)
 {
+    static const char fn[] = "skgl_point_atlas_create";
     skgl__api *gl;
     skgl__st st;
     skgl__int max_size = 0;
     skgl_point_atlas *a;
+    sk_result r = SK_OK;
     if (out) *out = NULL;
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__enter(ctx, "skgl_point_atlas_create", 1);
-    if (!out) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: out is NULL");
-    SKGL__TRY(skgl__not_nested(ctx, "skgl_point_atlas_create"));
+    SKGL__TRY(skgl__create_open(ctx, fn, 0, !out));
     if (width < 1 || height < 1)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_atlas_create: width x height = %d x %d: 1 or more each",
                           width, height);
@@ -8989,9 +9112,8 @@ SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int heig
     if (height > max_size)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG,
                           "skgl_point_atlas_create: height = %d: at most GL_MAX_TEXTURE_SIZE %d", height, max_size);
-    a = (skgl_point_atlas *)SKGL_MALLOC(sizeof *a);
-    if (!a) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_point_atlas_create: out of memory");
-    memset(a, 0, sizeof *a);
+    a = (skgl_point_atlas *)skgl__create_alloc(ctx, fn, sizeof *a);
+    if (!a) return SK_ERR_CAPACITY;
     a->w = width;
     a->h = height;
     skgl__st_begin(ctx, &st);
@@ -8999,10 +9121,11 @@ SKGLDEF sk_result skgl_point_atlas_create(skgl_context *ctx, int width, int heig
     skgl__atlas_alloc(ctx, &st, a->tex, width, height);
     a->fbo = skgl__framebuffer(ctx, &st, 0, 0, a->tex, -1);
     skgl__st_end(ctx, &st);
-    if (skgl__create_check(ctx, "skgl_point_atlas_create", "the atlas") != SK_OK || !a->fbo) {
-        if (!a->fbo) skgl__set_log(ctx, "skgl_point_atlas_create: the atlas's framebuffer is not complete", NULL);
+    if (!a->fbo) r = skgl__fail(ctx, SK_ERR_GL, "%s: the atlas's framebuffer is not complete", fn);
+    r = skgl__create_close(ctx, fn, r, "the atlas");
+    if (r != SK_OK) {
         skgl_point_atlas_destroy(ctx, a);
-        return SK_ERR_GL;
+        return r;
     }
     *out = a;
     return SK_OK;
@@ -9334,6 +9457,7 @@ static skgl_soft_desc skgl__soft_defaults(const skgl_soft_desc *d)
     if (r.slope_bias == 0.0f) r.slope_bias = 1.5f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
     if (r.rel_bias == 0.0f) r.rel_bias = 0.002f;
+    skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, NULL, 0, NULL, 0);
     if (r.resolution_scale == 0.0f) r.resolution_scale = 1.0f;
     return r;
 }
@@ -9360,10 +9484,7 @@ static sk_result skgl__soft_validate(skgl_context *ctx, const skgl_soft_desc *d)
     SKGL__RULE(d->static_scene == 0 || d->static_scene == 1, fn, "static_scene", d->static_scene, "0 or 1");
     SKGL__RULE(d->blocker_cells >= 2 && d->blocker_cells <= 16, fn, "blocker_cells", d->blocker_cells, "in 2..16");
     SKGL__RULE(d->pcf_taps >= 1 && d->pcf_taps <= 16, fn, "pcf_taps", d->pcf_taps, "in 1..16");
-    SKGL__RULE(d->slope_bias >= 0.0f && d->slope_bias <= 1e4f, fn, "slope_bias", d->slope_bias,
-               "in [0, 10000] (disable_polygon_offset for none)");
-    SKGL__RULE(d->depth_bias >= 0.0f && d->depth_bias <= 1e6f, fn, "depth_bias", d->depth_bias,
-               "in [0, 1000000] (disable_polygon_offset for none)");
+    SKGL__TRY(skgl__offset_rules(ctx, fn, d->slope_bias, d->depth_bias));
     SKGL__RULE(d->disable_polygon_offset == 0 || d->disable_polygon_offset == 1, fn, "disable_polygon_offset",
                d->disable_polygon_offset, "0 or 1");
     SKGL__RULE(d->rel_bias >= 0.0f && d->rel_bias <= 0.5f, fn, "rel_bias", d->rel_bias, "in [0, 0.5]");
@@ -9677,32 +9798,27 @@ static sk_result skgl__soft_targets(skgl_context *ctx, skgl__st *st, skgl_soft *
 
 SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out)
 {
+    static const char fn[] = "skgl_soft_create";
     skgl_soft *s;
     skgl_soft_desc d;
     skgl__st st;
     sk_result r;
     if (out) *out = NULL;
-    if (!ctx) return SK_ERR_INVALID_ARG;
-    skgl__enter(ctx, "skgl_soft_create", 1);
-    if (!desc || !out)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_soft_create: %s is NULL", !desc ? "desc" : "out");
-    SKGL__TRY(skgl__not_nested(ctx, "skgl_soft_create"));
+    SKGL__TRY(skgl__create_open(ctx, fn, !desc, !out));
     d = skgl__soft_defaults(desc);
     SKGL__TRY(skgl__soft_validate(ctx, &d));
-    s = (skgl_soft *)SKGL_MALLOC(sizeof *s);
-    if (!s) return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_soft_create: out of memory");
-    memset(s, 0, sizeof *s);
+    s = (skgl_soft *)skgl__create_alloc(ctx, fn, sizeof *s);
+    if (!s) return SK_ERR_CAPACITY;
     s->desc = d;
     r = skgl__soft_programs(ctx, s);
     skgl__st_begin(ctx, &st);
     if (r == SK_OK) r = skgl__soft_targets(ctx, &st, s);
     if (r == SK_OK) skgl__soft_constants(ctx, &st, s);
     skgl__st_end(ctx, &st);
-    if (r == SK_OK) r = skgl__create_check(ctx, "skgl_soft_create", "its textures and framebuffers");
+    r = skgl__create_close(ctx, fn, r, "its textures and framebuffers");
     if (r != SK_OK) {
-        skgl__soft_free(ctx, s);
-        SKGL_FREE(s);
-        return skgl__said(ctx, "skgl_soft_create", r, NULL);
+        skgl_soft_destroy(ctx, s);
+        return r;
     }
     skgl__ftimer_clear(s->timer.ms);
     skgl__ftimer_clear(s->stats.step_ms);
@@ -9712,7 +9828,20 @@ SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc
     return SK_OK;
 }
 
-SKGL__LIFECYCLE(soft, skgl__soft_free)
+SKGLDEF void skgl_soft_destroy(skgl_context *ctx, skgl_soft *s)
+{
+    if (!ctx || !s) return;
+    skgl__soft_free(ctx, s);
+    SKGL_FREE(s);
+}
+SKGLDEF skgl_soft_desc skgl_soft_get_desc(const skgl_soft *s)
+{
+    skgl_soft_desc d;
+    if (s) return s->desc;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF const skgl_soft_frame_stats *skgl_soft_stats(const skgl_soft *s) { return s ? &s->stats : NULL; }
 SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s) { return s ? s->light_vp : sk_mat4_identity(); }
 SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap)
 {
@@ -9949,9 +10078,8 @@ static sk_result skgl__soft_screen(skgl_context *ctx, skgl__st *st, skgl_soft *s
 static void skgl__soft_casters(skgl_context *ctx, skgl__st *st, const skgl_soft *s, skgl__uint prog,
                                skgl__int vp_loc, skgl__int model_loc, int variant)
 {
-    float slope = s->desc.disable_polygon_offset ? 0.0f : s->desc.slope_bias;
-    float units = s->desc.disable_polygon_offset ? 0.0f : s->desc.depth_bias;
-    skgl__casters_begin_with(ctx, st, prog, vp_loc, model_loc, variant, slope, units, skgl__zero3);
+    skgl__casters_begin_with(ctx, st, prog, vp_loc, model_loc, variant, s->desc.slope_bias, s->desc.depth_bias,
+                             skgl__zero3);
 }
 
 static void skgl__soft_info(skgl_draw_info *info, skgl_pass_kind kind, int index)
@@ -9965,7 +10093,7 @@ static void skgl__soft_info(skgl_draw_info *info, skgl_pass_kind kind, int index
 static sk_result skgl__soft_gbuffer(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_camera *cam,
                                     const skgl_scene *scene, int w, int h)
 {
-    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one = 1.0f;
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     skgl__api *gl = &ctx->gl;
     sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view), inv_view;
     skgl_draw_info info;
@@ -9994,7 +10122,7 @@ static sk_result skgl__soft_gbuffer(skgl_context *ctx, skgl__st *st, skgl_soft *
     skgl__casters_begin_with(ctx, st, s->prog_gbuf, s->gbuf_u_view_proj, s->gbuf_u_model, SKGL__CV_GBUF, 0.0f, 0.0f,
                              skgl__zero3);
     gl->ClearBufferfv(SKGL__COLOR, 0, zero);
-    gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+    skgl__clear_depth(ctx);
     if (!sk_mat4_inverse(cam->view, &inv_view)) inv_view = sk_mat4_identity();
     eye[0] = inv_view.m[12];
     eye[1] = inv_view.m[13];
@@ -10055,7 +10183,6 @@ static sk_result skgl__soft_pcss(skgl_context *ctx, skgl__st *st, skgl_soft *s, 
                                  const skgl_area_light *l, const sk_mat4 *inv, unsigned depth_tex,
                                  unsigned normal_tex, unsigned mask_tex)
 {
-    static const float one = 1.0f;
     skgl__unitbind b[4];
     skgl_draw_info info;
     int res = s->desc.resolution, w, h, n;
@@ -10065,7 +10192,7 @@ static sk_result skgl__soft_pcss(skgl_context *ctx, skgl__st *st, skgl_soft *s, 
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, res, res);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, SKGL__CV_DEPTH);
-    ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    skgl__clear_depth(ctx);
     skgl__soft_info(&info, SKGL_PASS_AREA, 0);
     r = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
     skgl__ftimer_end(ctx, &s->timer);
@@ -10100,7 +10227,6 @@ static sk_result skgl__soft_pcss(skgl_context *ctx, skgl__st *st, skgl_soft *s, 
    level 0 of the pyramid and the plain map */
 static sk_result skgl__soft_lowres_fine(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene)
 {
-    static const float one = 1.0f;
     skgl__unitbind b;
     skgl_draw_info info;
     int fine = skgl__soft_fine_size(ctx, s);
@@ -10109,7 +10235,7 @@ static sk_result skgl__soft_lowres_fine(skgl_context *ctx, skgl__st *st, skgl_so
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, fine, fine);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, SKGL__CV_DEPTH);
-    ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    skgl__clear_depth(ctx);
     skgl__st_set1(ctx, st, SKGL__S_DEPTH_CLAMP, 1);
     skgl__soft_info(&info, SKGL_PASS_AREA, 0);
     rc = skgl__casters_draw(ctx, st, scene, &s->light_vp, skgl__zero3, &info);
@@ -10358,7 +10484,7 @@ static void skgl__st_forget_units(skgl__st *st)
 static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_soft *s, const skgl_scene *scene,
                                         int w, int h)
 {
-    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one = 1.0f;
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     skgl__api *gl = &ctx->gl;
     skgl__unitbind b[2];
     skgl_draw_info info;
@@ -10389,7 +10515,7 @@ static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_so
         skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_map);
         skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, t->res_x, t->res_y);
         skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->depth_prog);
-        gl->ClearBufferfv(SKGL__DEPTH, 0, &one);
+        skgl__clear_depth(ctx);
         skgl__soft_info(&info, SKGL_PASS_AREA, 1 + i);
         r = skgl__casters_draw(ctx, st, scene, &vp, skgl__zero3, &info);
         skgl__st_forget_units(st);

@@ -42,6 +42,26 @@ $(BUILD)/compile/gl-header-cpp11: tests/compile/gl_header.c shadowkit.h shadowki
 $(BUILD)/compile/gl-header-cpp17: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test
 	$(MKDIR)
 	$(CXX17) $(OPT) $< -o $@ $(LDLIBS)
-test: $(GL_HEADER_BINS)
-check-compile: $(GL_HEADER_BINS)
-check-quick: check-shaders $(GL_HEADER_BINS)
+
+# SKGL_MALLOC alone, and SKGL_FREE alone, must stop at shadowkit_gl.h's
+# #error: the rule fails when the file compiles, or fails with another
+# message, and otherwise leaves a program that says so for the compile
+# flavour of tests/run_tests.sh
+GL_ALONE_BINS := $(addprefix $(BUILD)/compile/,gl-malloc-alone gl-free-alone)
+$(BUILD)/compile/gl-%-alone: tests/compile/gl_alloc_alone.c shadowkit.h shadowkit_gl.h | deps-test
+	$(MKDIR)
+	@if $(C99) $(OPT) -fsyntax-only $(if $(filter free,$*),-DSK_FREE_ALONE) $< > $(BUILD)/obj/gl-$*-alone.log 2>&1; \
+	then echo "$<: SKGL $* alone compiled: shadowkit_gl.h must refuse it"; exit 1; fi
+	@grep -q 'define both SKGL_MALLOC and SKGL_FREE, or neither' $(BUILD)/obj/gl-$*-alone.log || \
+	    { cat $(BUILD)/obj/gl-$*-alone.log; echo "$<: SKGL $* alone failed without the #error"; exit 1; }
+	@printf '#!/bin/sh\necho "SKGL %s alone: refused by the #error"\necho "%s: 1 passed, 0 failed"\n' $* $@ > $@ && chmod +x $@
+
+# the headers' anchors against their maps (tests/compile/check_anchors.sh,
+# run by the compile flavour from the repository root)
+$(BUILD)/compile/anchors: tests/compile/check_anchors.sh
+	$(MKDIR)
+	cp $< $@ && chmod +x $@
+
+test: $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(BUILD)/compile/anchors
+check-compile: $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(BUILD)/compile/anchors
+check-quick: check-shaders $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(BUILD)/compile/anchors

@@ -614,7 +614,7 @@ done:
     skgl_point_destroy(sk, p);
 }
 
-/* ---- 12: renders nested in a draw callback -------------------------------- */
+/* ---- 12: renders and creates nested in a draw callback -------------------- */
 typedef struct nest {
     skgl_context *sk;
     skgl_shadow *inner;
@@ -622,8 +622,47 @@ typedef struct nest {
     skgl_soft *soft;
     int try_nested;
     sk_result got[3];
+    sk_result made[5];   /* the five creates tried in the callback */
+    int named[5];        /* 1: the log names the create and the callback */
+    int left;            /* objects they handed out (0: every out stays NULL) */
 } nest;
 static nest nested;
+
+/* every create from inside a draw callback: refused by their shared opening
+   (skgl__create_open), the log naming the call, nothing handed out */
+static void nested_named(nest *n, int k, const char *fn) {
+    char want[96];
+    snprintf(want, sizeof want, "%s: called inside a draw callback", fn);
+    n->named[k] = strstr(skgl_error_log(n->sk), want) != NULL;
+}
+static void nested_creates(nest *n) {
+    struct {
+        skgl_shadow_desc shadow;
+        skgl_point_desc point;
+        skgl_soft_desc soft;
+        skgl_caster_desc caster;
+    } d;
+    skgl_shadow *s = NULL;
+    skgl_point *p = NULL;
+    skgl_soft *f = NULL;
+    skgl_point_atlas *a = NULL;
+    skgl_caster *c = NULL;
+    memset(&d, 0, sizeof d);
+    d.shadow.resolution = d.point.resolution = 64;
+    d.soft.resolution = 128;
+    d.caster.vertex = "layout(location = 0) in vec3 a_pos;\nvec4 skgl_caster_position() { return vec4(a_pos, 1.0); }\n";
+    n->made[0] = skgl_shadow_create(n->sk, &d.shadow, &s);
+    nested_named(n, 0, "skgl_shadow_create");
+    n->made[1] = skgl_point_create(n->sk, &d.point, &p);
+    nested_named(n, 1, "skgl_point_create");
+    n->made[2] = skgl_soft_create(n->sk, &d.soft, &f);
+    nested_named(n, 2, "skgl_soft_create");
+    n->made[3] = skgl_point_atlas_create(n->sk, 256, 128, &a);
+    nested_named(n, 3, "skgl_point_atlas_create");
+    n->made[4] = skgl_caster_create(n->sk, &d.caster, &c);
+    nested_named(n, 4, "skgl_caster_create");
+    n->left += (s != NULL) + (p != NULL) + (f != NULL) + (a != NULL) + (c != NULL);
+}
 
 static void draw_nesting(void *user, const skgl_draw_info *info) {
     nest *n = (nest *)user;
@@ -637,6 +676,7 @@ static void draw_nesting(void *user, const skgl_draw_info *info) {
         n->got[1] = skgl_point_render(n->sk, n->lamp, &cam, &sc, gt_v3(1, 3, 1));
         n->got[2] = skgl_soft_render(n->sk, n->soft, &cam, &sc, &l, env.gbuf.depth_tex, env.gbuf.color_tex,
                                      env.mask.color_tex);
+        nested_creates(n);
     }
     skgl_set_model(n->sk, lift);     /* lost when a nested render resets the model location */
     tb_gl_mesh_draw(&env.gl, &env.mesh, 0, 0);
@@ -676,6 +716,10 @@ static void test_nested(skgl_context *sk) {
                      nested.got[2] == SK_ERR_INVALID_ARG,
                  "nested renders: %s, %s, %s", sk_result_string(nested.got[0]), sk_result_string(nested.got[1]),
                  sk_result_string(nested.got[2]));
+    for (i = 0; i < 5; i++)
+        SK_CHECK_MSG(nested.made[i] == SK_ERR_INVALID_ARG && nested.named[i], "nested create %d: %s, named %d",
+                     (int)i, sk_result_string(nested.made[i]), nested.named[i]);
+    SK_CHECK_MSG(nested.left == 0, "nested creates handed out %d objects", nested.left);
     gt_mask_only(&env, outer, &cam, tried);
     for (i = 0; i < (size_t)W * H; i++) differ += fabsf(plain[i] - tried[i]) > 1e-3f;
     printf("  nested renders: %zu mask pixels differ from the render without them\n", differ);
