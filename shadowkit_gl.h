@@ -6131,7 +6131,7 @@ static sk_result skgl__fit_ferko_layer(skgl_shadow *s, const skgl__fit_in *in)
     return SK_OK;
 }
 
-/* ---- 6.5 AUTO: the library chooses (CHOOSING FOR YOU) ---------------- */
+/* ---- 6.2, continued: AUTO, the library chooses (CHOOSING FOR YOU) ---- */
 // >>auto
 /* The light-space width of a focused crop (its larger side), from its
    orthographic projection */
