@@ -385,7 +385,9 @@ static path_counts auto_path(gt_env *e, int frames, float (*height)(int f, int f
         SK_CHECK_MSG(strstr(st->auto_reason, "map") != NULL, "frame %d: reason '%s'", f, st->auto_reason);
         SK_CHECK_MSG(st->auto_technique == (st->maps == 1 ? SKGL_STANDARD : SKGL_PSSM), "frame %d: technique %d, %d maps",
                      f, (int)st->auto_technique, st->maps);
-        if (getenv("SK_AUTO_TRACE")) printf("y %.1f: %.2f %.2f %.2f %.2f -> %d\n", y, st->auto_texel_px[0], st->auto_texel_px[1], st->auto_texel_px[2], st->auto_texel_px[3], st->maps);
+        if (verbose())
+            printf("  %.1f m up: predicted texel %.2f %.2f %.2f %.2f px with 1-4 maps -> %d\n", y, st->auto_texel_px[0],
+                   st->auto_texel_px[1], st->auto_texel_px[2], st->auto_texel_px[3], st->maps);
         if (f == 0) pc.first = st->maps;
         if (prev && st->maps != prev) {
             pc.changes++;
