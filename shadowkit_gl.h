@@ -340,7 +340,9 @@
      in a SKGL_PASS_SPOT callback) by the cone (sk_spot_box_visible) and
      by the caster's shadow against the view; the mask's scissor is the
      range box's. The mask and sk_point_shadow give 0 outside the cone.
-     Not with .cache, .layered or a shared .atlas.
+     Spots share a point-light atlas (desc.atlas): skgl_point_atlas_pack
+     places a spot's one face beside the point lights' six, at its
+     selected side. Not with .cache or .layered.
 
    AREA LIGHTS (skgl_soft_*, Shen et al. 2011; the flow is in the declarations)
      SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
@@ -1391,15 +1393,16 @@ SKGLDEF sk_result skgl_spot_render(skgl_context *ctx, skgl_point *p, const skgl_
 
 /* ---- several point lights in one atlas (King & Newhall 2004's VSDCT, shared) ---
    skgl_point_atlas *atlas;  once: skgl_point_atlas_create(gl, 4096, 2048, &atlas)
-   each light: desc.technique = SKGL_POINT_VSDCT, desc.atlas = atlas
+   each light: desc.technique = SKGL_POINT_VSDCT (or a spot, desc.spot_angle > 0),
+     desc.atlas = atlas
    every frame:
      skgl_point_atlas_pack(gl, atlas, lights, n, &cam, light_positions);
      then per light skgl_point_render / skgl_point_mask / skgl_point_bind.
    The pack selects each light's face side as skgl_point_render would
    (.resolution, or sk_cube_resolution with .select_resolution), places the
-   6 n square faces on shelves (largest first, left to right, a new shelf
-   above when a row is full) and refills each light's indirection cube map
-   for its rectangles. When they do not fit, the largest side is halved
+   square faces (six a point light's, one a spot's) on shelves (largest
+   first, left to right, a new shelf above when a row is full) and refills
+   each light's indirection cube map for its rectangles. When they do not fit, the largest side is halved
    (the first light's on ties) until they do; the stats' atlas_wanted keeps
    the side selected. skgl_point_render of an atlas light then renders the
    side packed (it needs a pack first, SK_ERR_INVALID_ARG otherwise) and
@@ -7946,8 +7949,6 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
     SKGL__RULE(sk__finite(d->spot_angle) && d->spot_angle >= 0.0f && d->spot_angle <= 85.0f, fn, "spot_angle",
                d->spot_angle, "in [0, 85] degrees (0: omnidirectional)");
     SKGL__RULE(d->spot_angle == 0.0f || !d->cache, fn, "cache", d->cache, "0 for a spot light (desc.spot_angle)");
-    SKGL__RULE(d->spot_angle == 0.0f || !d->atlas, fn, "spot_angle", d->spot_angle,
-               "0 with desc.atlas (a spot keeps a map of its own)");
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -8893,14 +8894,22 @@ static void skgl__spot_uniforms(skgl_context *ctx, const skgl_point *p, const sk
 
 /* the map's side this frame: .resolution, or King & Newhall's selection
    for one face (N = 1: M^2 >= c S, S the pixels of the light's rectangle) */
+static int skgl__spot_select(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4])
+{
+    int sel;
+    if (!p->desc.select_resolution) return p->desc.resolution;
+    sel = sk_cube_resolution(1, skgl__point_pixels(p, vp, viewport), p->desc.resolution_c, p->desc.resolution);
+    return sel > 0 ? sel : p->desc.resolution;
+}
+
+/* this frame's side: the one skgl_point_atlas_pack placed, or selected */
 static int skgl__spot_side(skgl_context *ctx, skgl__st *st, skgl_point *p, const sk_mat4 *vp)
 {
     skgl__int viewport[4] = {0, 0, 0, 0};
-    int sel;
-    if (!p->desc.select_resolution) return p->desc.resolution;
-    if (p->desc.screen_w < 1 || p->desc.screen_h < 1) skgl__caller_viewport(ctx, st, viewport);
-    sel = sk_cube_resolution(1, skgl__point_pixels(p, vp, viewport), p->desc.resolution_c, p->desc.resolution);
-    return sel > 0 ? sel : p->desc.resolution;
+    if (p->desc.atlas) return p->layout.face_res;
+    if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1))
+        skgl__caller_viewport(ctx, st, viewport);
+    return skgl__spot_select(p, vp, viewport);
 }
 
 /* one pass into the spot's rectangle (cleared first); nothing drawn when
@@ -8912,7 +8921,7 @@ static sk_result skgl__spot_draw(skgl_context *ctx, skgl__st *st, skgl_point *p,
     skgl_draw_info info;
     sk_result r = SK_OK;
     skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[0]);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(p->desc.atlas ? p->desc.atlas->fbo : p->fbo[0]));
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, p->layout.face_x[0], p->layout.face_y[0], m, m);
     skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, p->layout.face_x[0], p->layout.face_y[0], m, m);
@@ -8951,6 +8960,8 @@ static sk_result skgl__spot_render_body(skgl_context *ctx, skgl_point *p, const 
     if (!(p->desc.spot_angle > 0.0f))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.spot_angle is 0: a point light renders with "
                           "skgl_point_render", fn);
+    if (p->desc.atlas && !p->packed)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: a shared-atlas light needs skgl_point_atlas_pack first", fn);
     vp = sk_mat4_mul(cam->proj, cam->view);
     p->light_pos = light_pos;
     p->spot_axis = sk__normalize(direction);
@@ -9050,19 +9061,21 @@ SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *h
     if (height) *height = a ? a->h : 0;
 }
 
-/* Shelf packing of the lights' faces, all six of a light of side res[i]:
+/* Shelf packing of the lights' faces, all six of a light of side res[i]
+   (a spot's one, nface[i] = 1):
    lights taken by side, largest first (order[] sorted so), squares placed
    left to right; a square that would pass the right edge starts a new
    shelf on top of the last one, as high as its first square, which is the
    tallest on it since sides only decrease. 1 and the corners in x, y
    (light i's face f at [6 i + f]) when everything fits in w x h, else 0. */
-static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *order, int *x, int *y)
+static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *nface, const int *order, int *x,
+                               int *y)
 {
     int k, f, cx = 0, sy = 0, shelf = 0;
     for (k = 0; k < n; k++) {
         int i = order[k], m = res[i];
         if (m > w) return 0;
-        for (f = 0; f < 6; f++) {
+        for (f = 0; f < nface[i]; f++) {
             if (cx + m > w) { sy += shelf; cx = 0; shelf = 0; }
             if (shelf == 0) shelf = m;
             if (sy + m > h) return 0;
@@ -9082,7 +9095,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
     skgl__int viewport[4] = {0, 0, 0, 0};
     sk_mat4 vp;
     sk_frustum view;
-    int *res, *order, *x, *y;
+    int *res, *order, *x, *y, *nface;
     int i, k, f, fits;
     sk_result r = SK_OK;
     const char *fn = "skgl_point_atlas_pack";
@@ -9100,11 +9113,12 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i]))
             return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: lights[%d] is NULL, not in this atlas, or its light_pos "
                               "is not finite", fn, i);
-    res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 14);
+    res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 15);
     if (!res) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
     order = res + n;
     x = order + n;
     y = x + 6 * n;
+    nface = y + 6 * n;
     skgl__st_begin(ctx, &st);
     /* each light's side, selected as skgl_point_render selects it */
     vp = sk_mat4_mul(cam->proj, cam->view);
@@ -9116,7 +9130,8 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         p->view = view;
         if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1) && !viewport[2])
             skgl__caller_viewport(ctx, &st, viewport);
-        res[i] = skgl__point_select(p, &vp, viewport, &faces);
+        nface[i] = p->desc.spot_angle > 0.0f ? 1 : 6;
+        res[i] = nface[i] == 1 ? skgl__spot_select(p, &vp, viewport) : skgl__point_select(p, &vp, viewport, &faces);
         if (res[i] < 1) res[i] = 1;
         lights[i]->stats.atlas_wanted = res[i];
     }
@@ -9127,7 +9142,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
             for (k = i; k > 0 && res[order[k - 1]] < res[order[k]]; k--) {
                 int t = order[k]; order[k] = order[k - 1]; order[k - 1] = t;
             }
-        fits = skgl__atlas_shelves(a->w, a->h, n, res, order, x, y);
+        fits = skgl__atlas_shelves(a->w, a->h, n, res, nface, order, x, y);
         if (fits || res[order[0]] <= 1) break;
         res[order[0]] /= 2;
     }
@@ -9140,7 +9155,10 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         l.face_res = res[i];
         l.atlas_w = a->w;
         l.atlas_h = a->h;
-        for (f = 0; f < 6; f++) { l.face_x[f] = x[6 * i + f]; l.face_y[f] = y[6 * i + f]; }
+        for (f = 0; f < 6; f++) {   /* a spot's one face in every slot */
+            l.face_x[f] = x[6 * i + (f < nface[i] ? f : 0)];
+            l.face_y[f] = y[6 * i + (f < nface[i] ? f : 0)];
+        }
         r = skgl__point_fill(ctx, &st, lights[i], &l);
         if (r == SK_OK) { lights[i]->packed = 1; lights[i]->face_res = res[i]; }
     }

@@ -17,6 +17,9 @@
      ("s0_", "s1_"), each bound on its own units, against each spot's mask.
    - caster culling: a caster box behind the spot is culled by the cone, the
      plate (in the cone) kept; the mask is unchanged by the culling.
+   - shared atlas: two point lights (256) and two spots (512) packed into
+     one 2048 x 1024 atlas, no two faces overlapping; a spot's mask there as
+     with its own map, and unchanged by the other lights' passes.
    - misuse: spot_angle out of range, skgl_point_render of a spot,
      skgl_spot_render of a point light, a zero direction: SK_ERR_INVALID_ARG
      and a message naming the field.
@@ -30,6 +33,7 @@
    - forward vs mask: 0 of 48,345 pixels differ in class for either spot,
      max |difference| 0.002;
    - culling: ground and plate drawn, the box behind the spot culled;
+   - atlas: 0 of 48,345 pixels differ from the spot's own map;
    - about 1.5 s.
    CAN FAIL (the runs are part of the record):
    - MA taken as the major axis (the point light's) in the spot's
@@ -37,7 +41,9 @@
    - the cone test removed from sk_point_shadow: plate 31,532 wrong,
      grazing 29,734 wrong (false lit);
    - sk_spot_box_visible removed from the spot's caster culling: 3 drawn,
-     0 culled (the two culling checks fail). */
+     0 culled (the two culling checks fail);
+   - the spot's pass drawn into its own (absent) framebuffer instead of the
+     shared atlas's: 3,401 of 48,345 pixels differ from its own map. */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -373,6 +379,83 @@ done:
     gt_env_free(&e);
 }
 
+/* two point lights and two spots in one atlas: the spots' faces placed
+   apart from the points' and each other's; a spot's mask in the atlas as
+   with a map of its own at the same side */
+static void test_atlas(void) {
+    gt_env e;
+    tb_cf_scene cf;
+    skgl_camera cam;
+    skgl_point_atlas *atlas = NULL;
+    skgl_point *l[4] = {NULL, NULL, NULL, NULL}, *own = NULL;
+    skgl_point_desc d;
+    sk_vec3 pos[4], dir[2];
+    float *a, *b;
+    int k, j, f, g;
+    size_t i, differ = 0, both = 0;
+    skgl_scene sc;
+    if (gt_env_init_cf(&e, &cf, "box", W, H) != 0) { gt_env_free(&e); return; }
+    a = gt_alloc(&e); b = gt_alloc(&e);
+    pos[0] = gt_v3(3, 2.5f, -1.5f); pos[1] = gt_v3(-3, 2, 2);
+    pos[2] = gt_v3(0.25f, 3, 0.125f); pos[3] = gt_v3(2.5f, 2.5f, -1.0f);
+    dir[0] = gt_v3(0.1f, -1, 0); dir[1] = gt_v3(-0.8f, -0.7f, 0.3f);
+    cam = gt_camera(gt_v3(5, 4, 6.5f), gt_v3(0, 0.5f, 0), 0.9f, 0.1f, 120, W, H);
+    SK_CHECK(skgl_point_atlas_create(e.sk, 2048, 1024, &atlas) == SK_OK);
+    for (k = 0; k < 4 && atlas; k++) {
+        memset(&d, 0, sizeof d);
+        d.technique = SKGL_POINT_VSDCT;
+        d.resolution = k < 2 ? 256 : 512;
+        d.range = RANGE;
+        d.atlas = atlas;
+        d.spot_angle = k < 2 ? 0.0f : 40.0f;
+        SK_CHECK_MSG(skgl_point_create(e.sk, &d, &l[k]) == SK_OK, "%s", skgl_error_log(e.sk));
+    }
+    own = make_spot(&e, 40.0f, 512, 0);
+    if (!a || !b || !atlas || !l[0] || !l[1] || !l[2] || !l[3] || !own || gt_gbuffer(&e, &cam) != 0) {
+        SK_CHECK_MSG(0, "setup");
+        goto done;
+    }
+    SK_CHECK(skgl_point_atlas_pack(e.sk, atlas, l, 4, &cam, pos) == SK_OK);
+    /* every face rectangle apart from every other light's (a spot has one) */
+    for (k = 0; k < 4; k++)
+        for (j = k + 1; j < 4; j++)
+            for (f = 0; f < (k < 2 ? 6 : 1); f++)
+                for (g = 0; g < (j < 2 ? 6 : 1); g++) {
+                    sk_vsdct_layout p = skgl_point_layout(l[k]), q = skgl_point_layout(l[j]);
+                    int apart = p.face_x[f] + p.face_res <= q.face_x[g] || q.face_x[g] + q.face_res <= p.face_x[f] ||
+                                p.face_y[f] + p.face_res <= q.face_y[g] || q.face_y[g] + q.face_res <= p.face_y[f];
+                    SK_CHECK_MSG(apart, "light %d face %d overlaps light %d face %d", k, f, j, g);
+                }
+    SK_CHECK(skgl_point_layout(l[2]).face_res == 512 && skgl_point_layout(l[0]).face_res == 256);
+    sc = gt_scene(&e);
+    sc.draw = spot_draw;
+    for (k = 0; k < 2; k++) SK_CHECK(skgl_point_render(e.sk, l[k], &cam, &sc, pos[k]) == SK_OK);
+    SK_CHECK(spot_mask(&e, l[2], &cam, pos[2], dir[0], a) == 0);
+    SK_CHECK(skgl_spot_render(e.sk, l[3], &cam, &sc, pos[3], dir[1]) == SK_OK);
+    SK_CHECK(spot_mask(&e, own, &cam, pos[2], dir[0], b) == 0);
+    for (i = 0; i < e.n; i++) {
+        if (!(a[i] >= 0)) continue;
+        both++;
+        differ += (a[i] > 0.5f) != (b[i] > 0.5f);
+    }
+    /* spot 0 again after the others drew into the atlas: unchanged */
+    SK_CHECK(skgl_point_mask(e.sk, l[2], &cam, e.gbuf.depth_tex, e.gbuf.color_tex, e.mask.color_tex) == SK_OK);
+    SK_CHECK(tb_gl_read_texture_red(&e.gl, e.mask.color_tex, e.w, e.h, b) == 0);
+    for (i = 0, j = 0; i < e.n; i++) if (a[i] >= 0 && a[i] != b[i]) j++;
+    printf("atlas: spot in the shared atlas vs its own map: %zu of %zu pixels differ in class; %d changed by the "
+           "other lights' passes\n", differ, both, j);
+    SK_CHECK(both > e.n / 3);
+    SK_CHECK_MSG(differ == 0, "%zu differ", differ);
+    SK_CHECK(j == 0);
+    SK_CHECK(e.gl.GetError() == 0);
+done:
+    for (k = 0; k < 4; k++) skgl_point_destroy(e.sk, l[k]);
+    skgl_point_destroy(e.sk, own);
+    skgl_point_atlas_destroy(e.sk, atlas);
+    free(a); free(b);
+    gt_env_free(&e);
+}
+
 static void test_misuse(void) {
     gt_env e;
     tb_cf_scene cf;
@@ -410,4 +493,4 @@ static void test_misuse(void) {
     gt_env_free(&e);
 }
 
-SK_TEST_MAIN(test_closed_form, test_grazing, test_forward_prefixed, test_culling, test_misuse)
+SK_TEST_MAIN(test_closed_form, test_grazing, test_forward_prefixed, test_culling, test_atlas, test_misuse)
