@@ -471,13 +471,23 @@ SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res);
    bad input.
    sk_spot_window: the map's window {x0, y0, x1, y1} in that eye space at
    unit depth (tangent units): the cone's square [-tan a, tan a]^2 clipped
-   to the bounding rectangle of `bounds` (NULL: not clipped) as seen from
-   the apex beyond depth zn (the box cut exactly by the plane at zn: its
-   corners in front and its edges' crossings of the plane), then made
-   square about its centre at the larger side, shifted (not shrunk) to stay
-   inside the cone's square. Returns 1; 0 (win the cone's square) when
-   bounds lie wholly behind zn or beside the cone (nothing to render), -1
-   on bad input (win zeroed).
+   to the bounding rectangle, seen from the apex beyond depth zn, of
+   `bounds` (NULL: not clipped), or with a `view` frustum of the part of
+   bounds inside it (sk_clip_frustum_aabb: the receivers the view can see;
+   the casters between them and the light project inside the same
+   rectangle); the body is cut exactly by the plane at zn (its vertices in
+   front and every crossing of the plane by a segment between two of
+   them). That rectangle is made square: res = 0: about its centre at the
+   larger side, shifted (not shrunk) to stay inside the cone's square;
+   res > 0 (a map of res texels, snapped for a stable map as the view
+   moves, like a stable directional crop): the side the smallest
+   2 tan a / 2^k that holds the rectangle grown by `margin` texels (0 or
+   more: a filter's reach) on each side and one texel more, the corner on
+   the grid of that side's texels laid from the cone's corner, so texels
+   stay put in the cone while the window follows the view, and the side
+   changes only by factors of two. Returns 1; 0 (win the cone's square)
+   when the body lies wholly behind zn or beside the cone (nothing to
+   render), -1 on bad input (win zeroed).
    sk_spot_matrix: world -> clip of the map: glFrustum over the window
    (x0 zn .. x1 zn, y0 zn .. y1 zn, zn, zf) times sk_spot_view; its window
    depth is sk_vsdct_depth_coeffs(zn, zf) of the depth along the axis. The
@@ -488,7 +498,7 @@ SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res);
    region counts); bad input: 1. */
 SKDEF sk_mat4 sk_spot_view(sk_vec3 apex, sk_vec3 axis);
 SKDEF int sk_spot_window(sk_vec3 apex, sk_vec3 axis, float half_angle, float zn, const sk_aabb *bounds,
-                         float win[4]);
+                         const sk_frustum *view, int res, float margin, float win[4]);
 SKDEF sk_mat4 sk_spot_matrix(sk_vec3 apex, sk_vec3 axis, const float win[4], float zn, float zf);
 SKDEF int sk_spot_box_visible(sk_vec3 apex, sk_vec3 axis, float half_angle, float range, sk_aabb box);
 
@@ -2521,76 +2531,104 @@ SKDEF sk_mat4 sk_spot_view(sk_vec3 apex, sk_vec3 axis)
     return sk__basis_view(s, u, sk__scale(f, -1.0f), apex);
 }
 
-/* the rectangle (at unit depth) that the box covers beyond depth zn in eye
-   space view; 0 when none of it lies beyond zn */
-static int sk__spot_box_rect(const sk_mat4 *view, const sk_aabb *b, double zn, double r[4])
+/* the rectangle (at unit depth) that the convex body of points pts covers
+   beyond depth zn in eye space view: its points in front, and the crossings
+   of the plane zn by every segment between two of them (a superset of its
+   edges: the others lie inside the body); 0 when none of it lies beyond zn */
+static int sk__spot_rect(const sk_mat4 *view, const sk_vec3 *pts, int n, double zn, double r[4])
 {
-    static const int edge[12][2] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
-                                    {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
-    double p[8][3];
-    int i, any = 0;
+    double p[SK_CLIP_MAX_POINTS][3];
+    int i, j, any = 0;
     r[0] = r[1] = 1e300;
     r[2] = r[3] = -1e300;
-    for (i = 0; i < 8; i++) {
-        sk_vec3 c = sk__aabb_corner(b, i);
+    for (i = 0; i < n; i++) {
         int k;
         for (k = 0; k < 3; k++)
-            p[i][k] = (double)view->m[k] * c.x + (double)view->m[4 + k] * c.y + (double)view->m[8 + k] * c.z +
-                      view->m[12 + k];
+            p[i][k] = (double)view->m[k] * pts[i].x + (double)view->m[4 + k] * pts[i].y +
+                      (double)view->m[8 + k] * pts[i].z + view->m[12 + k];
         p[i][2] = -p[i][2];   /* depth along the axis */
     }
-    for (i = 0; i < 20; i++) {
-        double x, y, d;
-        if (i < 8) {
-            if (p[i][2] < zn) continue;
-            x = p[i][0]; y = p[i][1]; d = p[i][2];
-        } else {
-            const double *a = p[edge[i - 8][0]], *c = p[edge[i - 8][1]];
-            double t;
-            if ((a[2] < zn) == (c[2] < zn)) continue;
-            t = (zn - a[2]) / (c[2] - a[2]);
-            x = a[0] + t * (c[0] - a[0]); y = a[1] + t * (c[1] - a[1]); d = zn;
+    for (i = 0; i < n; i++)
+        for (j = i; j < n; j++) {
+            double x, y, d;
+            if (j == i) {
+                if (p[i][2] < zn) continue;
+                x = p[i][0]; y = p[i][1]; d = p[i][2];
+            } else {
+                double t;
+                if ((p[i][2] < zn) == (p[j][2] < zn)) continue;
+                t = (zn - p[i][2]) / (p[j][2] - p[i][2]);
+                x = p[i][0] + t * (p[j][0] - p[i][0]); y = p[i][1] + t * (p[j][1] - p[i][1]); d = zn;
+            }
+            x /= d; y /= d;
+            if (x < r[0]) r[0] = x;
+            if (y < r[1]) r[1] = y;
+            if (x > r[2]) r[2] = x;
+            if (y > r[3]) r[3] = y;
+            any = 1;
         }
-        x /= d; y /= d;
-        if (x < r[0]) r[0] = x;
-        if (y < r[1]) r[1] = y;
-        if (x > r[2]) r[2] = x;
-        if (y > r[3]) r[3] = y;
-        any = 1;
-    }
     return any;
 }
 
-SKDEF int sk_spot_window(sk_vec3 apex, sk_vec3 axis, float half_angle, float zn, const sk_aabb *bounds,
-                         float win[4])
+/* the square window over rectangle r inside the cone's square [-t, t]^2:
+   centred (res 0) or snapped to the grid of res texels over its side */
+static void sk__spot_square(const double r[4], double t, int res, double margin, float win[4])
 {
-    double t, r[4], side, c[2];
-    sk_mat4 view;
+    double side = r[2] - r[0] > r[3] - r[1] ? r[2] - r[0] : r[3] - r[1], c, x0, tex, full;
     int k;
+    if (res > 0) {
+        /* the smallest 2t / 2^k holding the rectangle, its margins and one texel */
+        full = 2.0 * t;
+        while (full * 0.5 >= side + (2.0 * margin + 1.0) * full * 0.5 / res) full *= 0.5;
+        tex = full / res;
+        for (k = 0; k < 2; k++) {
+            x0 = -t + SK_FLOOR((r[k] - margin * tex + t) / tex) * tex;
+            if (x0 + full > t) x0 = t - full;
+            if (x0 < -t) x0 = -t;
+            win[k] = (float)x0;
+            win[k + 2] = (float)(x0 + full);
+        }
+        return;
+    }
+    for (k = 0; k < 2; k++) {
+        c = 0.5 * (r[k] + r[k + 2]);
+        if (c - 0.5 * side < -t) c = -t + 0.5 * side;
+        if (c + 0.5 * side > t) c = t - 0.5 * side;
+        win[k] = (float)(c - 0.5 * side);
+        win[k + 2] = (float)(c + 0.5 * side);
+    }
+}
+
+SKDEF int sk_spot_window(sk_vec3 apex, sk_vec3 axis, float half_angle, float zn, const sk_aabb *bounds,
+                         const sk_frustum *view, int res, float margin, float win[4])
+{
+    double t, r[4];
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    sk_mat4 eye;
+    int k, n;
     if (!win) return -1;
     win[0] = win[1] = win[2] = win[3] = 0.0f;
     if (!sk__spot_args(apex, axis, half_angle) || !sk__finite(zn) || !(zn > 0.0f) ||
-        (bounds && !sk__aabb_valid(bounds)))
+        (bounds && !sk__aabb_valid(bounds)) || res < 0 || !sk__finite(margin) || margin < 0.0f)
         return -1;
     t = SK_TAN((double)half_angle);
     win[0] = win[1] = (float)-t;
     win[2] = win[3] = (float)t;
     if (!bounds) return 1;
-    view = sk_spot_view(apex, axis);
-    if (!sk__spot_box_rect(&view, bounds, zn, r)) return 0;
+    if (view) {
+        n = sk_clip_frustum_aabb(view, *bounds, pts, SK_CLIP_MAX_POINTS);
+        if (n < 0) return -1;
+    } else {
+        for (n = 0; n < 8; n++) pts[n] = sk__aabb_corner(bounds, n);
+    }
+    eye = sk_spot_view(apex, axis);
+    if (n == 0 || !sk__spot_rect(&eye, pts, n, zn, r)) return 0;
     for (k = 0; k < 2; k++) {
         if (r[k] < -t) r[k] = -t;
         if (r[k + 2] > t) r[k + 2] = t;
         if (r[k] >= r[k + 2]) return 0;
     }
-    side = r[2] - r[0] > r[3] - r[1] ? r[2] - r[0] : r[3] - r[1];
-    for (k = 0; k < 2; k++) {
-        c[k] = 0.5 * (r[k] + r[k + 2]);
-        if (c[k] - 0.5 * side < -t) c[k] = -t + 0.5 * side;
-        if (c[k] + 0.5 * side > t) c[k] = t - 0.5 * side;
-        win[k] = (float)(c[k] - 0.5 * side);
-        win[k + 2] = (float)(c[k] + 0.5 * side);
-    }
+    sk__spot_square(r, t, res, margin, win);
     return 1;
 }
 

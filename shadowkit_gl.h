@@ -332,9 +332,12 @@
      One perspective map from the light down its direction, in a 2D depth
      texture of .resolution^2 (VSDCT's storage; its side selected by King
      and Newhall's N M^2 >= c S with N = 1 under .select_resolution). The
-     map's window is the cone's square clipped to the rectangle the scene's
-     bounds cover beyond the near plane, made square (sk_spot_window), so
-     a cone wider than the scene spends its texels on the scene. Depth and
+     map's window is the cone's square clipped to the rectangle that the
+     scene's bounds inside the view frustum cover beyond the near plane,
+     grown by the filter's reach and snapped (sk_spot_window): its side a
+     power-of-two fraction of the cone's, its corner on that side's texel
+     grid, so texels stay put while the window follows the view, and a
+     cone wider than what the view sees spends its texels there. Depth and
      both biases are the point light's (Eq. 5.4.6 with MA the depth along
      the axis). Caster culling (.cull_casters, skgl_point_caster_visible
      in a SKGL_PASS_SPOT callback) by the cone (sk_spot_box_visible) and
@@ -8968,8 +8971,12 @@ static sk_result skgl__spot_render_body(skgl_context *ctx, skgl_point *p, const 
     p->view = sk_frustum_from_matrix(vp);
     skgl__st_begin(ctx, &st);
     m = skgl__spot_side(ctx, &st, p, &vp);
+    /* the part of the cone the view sees, snapped (a stable map), grown by
+       the filter's reach: (2r) x (2r) taps, the 2x2 under each, the normal offset */
     fit = sk_spot_window(light_pos, p->spot_axis, (float)skgl__spot_radians(p), p->desc.near_plane,
-                         &scene->bounds, p->spot_win);
+                         &scene->bounds, &p->view, m,
+                         (float)(p->desc.pcf_radius + 1 + (p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f)),
+                         p->spot_win);
     p->spot_rel = sk_spot_matrix(o, p->spot_axis, p->spot_win, p->desc.near_plane, p->desc.range);
     light_vp = sk_spot_matrix(light_pos, p->spot_axis, p->spot_win, p->desc.near_plane, p->desc.range);
     /* the filter's reach (skgl__point_reach is in units of a face's half side) */

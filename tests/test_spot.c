@@ -8,6 +8,10 @@
        basis; every one must fall inside the window; and a box whose
        projection is known in closed form (a plate centred under a spot
        looking straight down) gives its exact rectangle;
+     - the view fit: points sampled in box, view frustum and cone inside
+       the window by the margin; the snapped window's side 2 tan a / 2^k
+       and its corner on the texel grid, moving by whole texels with the
+       view;
      - the matrix: the projected window corners at two depths land on the
        clip square's corners, window depth as Eq. 5.4.6 of King and Newhall
        2004 (z = zf/(zf-zn) - zf zn/((zf-zn) MA));
@@ -60,27 +64,27 @@ static void test_window_closed_form(void) {
        corners, depth 2) */
     sk_aabb b = box(-1, 0, -1, 1, 1, 1);
     float w[4];
-    int r = sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), (float)(60 * PI_D / 180), 0.05f, &b, w);
+    int r = sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), (float)(60 * PI_D / 180), 0.05f, &b, NULL, 0, 0, w);
     SK_CHECK(r == 1);
     SK_CHECK_NEAR(w[0], -0.5, 1e-6);
     SK_CHECK_NEAR(w[1], -0.5, 1e-6);
     SK_CHECK_NEAR(w[2], 0.5, 1e-6);
     SK_CHECK_NEAR(w[3], 0.5, 1e-6);
     /* a narrow cone inside the box's rectangle: the cone's own square */
-    r = sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), (float)(20 * PI_D / 180), 0.05f, &b, w);
+    r = sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), (float)(20 * PI_D / 180), 0.05f, &b, NULL, 0, 0, w);
     SK_CHECK(r == 1);
     SK_CHECK_NEAR(w[2], tan(20 * PI_D / 180), 1e-6);
     SK_CHECK_NEAR(w[0], -tan(20 * PI_D / 180), 1e-6);
     /* a box wholly behind the apex: nothing to render */
     b = box(-1, 4, -1, 1, 5, 1);
-    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 0.5f, 0.05f, &b, w) == 0);
+    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 0.5f, 0.05f, &b, NULL, 0, 0, w) == 0);
     /* beside the cone */
     b = box(10, 0, -1, 12, 1, 1);
-    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 0.5f, 0.05f, &b, w) == 0);
+    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 0.5f, 0.05f, &b, NULL, 0, 0, w) == 0);
     /* bad input */
-    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, 0, 0), 0.5f, 0.05f, NULL, w) == -1);
-    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 2.0f, 0.05f, NULL, w) == -1);
-    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 0.5f, 0.0f, NULL, w) == -1);
+    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, 0, 0), 0.5f, 0.05f, NULL, NULL, 0, 0, w) == -1);
+    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 2.0f, 0.05f, NULL, NULL, 0, 0, w) == -1);
+    SK_CHECK(sk_spot_window(v3(0, 3, 0), v3(0, -1, 0), 0.5f, 0.0f, NULL, NULL, 0, 0, w) == -1);
     SK_CHECK(w[0] == 0 && w[2] == 0);
 }
 
@@ -96,7 +100,7 @@ static void test_window_covers(void) {
         sk_aabb b = box((float)(cx - rnd() * 3), (float)(cy - rnd() * 2), (float)(cz - rnd() * 3),
                         (float)(cx + rnd() * 3), (float)(cy + rnd() * 2), (float)(cz + rnd() * 3));
         sk_mat4 v = sk_spot_view(apex, axis);
-        int r = sk_spot_window(apex, axis, ha, zn, &b, w), s;
+        int r = sk_spot_window(apex, axis, ha, zn, &b, NULL, 0, 0, w), s;
         if (r != 1) continue;
         SK_CHECK_NEAR(w[2] - w[0], w[3] - w[1], 1e-5);
         SK_CHECK(w[0] >= -t - 1e-5 && w[2] <= t + 1e-5 && w[1] >= -t - 1e-5 && w[3] <= t + 1e-5);
@@ -119,6 +123,87 @@ static void test_window_covers(void) {
     SK_CHECK(samples > 10000);
     SK_CHECK(outside == 0);
     SK_CHECK(clipped > 20);
+}
+
+/* fitted to what random views see, snapped for a 256-texel map with a
+   2-texel margin: every sampled point of box, view and cone (beyond zn)
+   lies inside the window by the margin; the side is 2 tan a / 2^k and the
+   corner on its texel grid from the cone's corner; a view moved a little
+   keeps the side and moves the corner by whole texels */
+static void test_window_view_snapped(void) {
+    int trial, outside = 0, samples = 0, narrower = 0, grid_off = 0, tried = 0, side_kept = 0;
+    const int res = 256;
+    const float margin = 2.0f;
+    for (trial = 0; trial < 300; trial++) {
+        sk_vec3 apex = v3((float)(rnd() * 8 - 4), (float)(2 + rnd() * 3), (float)(rnd() * 8 - 4));
+        sk_vec3 axis = v3((float)(rnd() * 2 - 1), (float)(-0.3 - rnd()), (float)(rnd() * 2 - 1));
+        sk_vec3 eye = v3((float)(rnd() * 10 - 5), (float)(0.5 + rnd() * 4), (float)(rnd() * 10 - 5));
+        sk_vec3 at = v3((float)(rnd() * 6 - 3), 0.0f, (float)(rnd() * 6 - 3)), eye2;
+        float ha = (float)(0.3 + rnd() * 0.9), zn = 0.05f, w[4], w2[4], wb[4];
+        double t = tan(ha), tex, k2;
+        sk_aabb b = box(-6, 0, -6, 6, 2, 6);
+        sk_mat4 v = sk_spot_view(apex, axis);
+        sk_frustum f = sk_frustum_from_matrix(sk_mat4_mul(sk_mat4_perspective(0.4f, 1.6f, 0.1f, 5.0f),
+                                                          sk_mat4_look_at(eye, at, v3(0, 1, 0))));
+        sk_frustum f2;
+        sk_vec3 verts[SK_CLIP_MAX_POINTS];
+        int nv;
+        int r = sk_spot_window(apex, axis, ha, zn, &b, &f, res, margin, w), s;
+        if (r != 1) continue;
+        tried++;
+        tex = (w[2] - w[0]) / res;
+        SK_CHECK_NEAR(w[2] - w[0], w[3] - w[1], 1e-5);
+        k2 = log2(2 * t / (w[2] - w[0]));
+        if (fabs(k2 - floor(k2 + 0.5)) > 1e-4) grid_off++;
+        if (fabs((w[0] + t) / tex - floor((w[0] + t) / tex + 0.5)) > 1e-2 ||
+            fabs((w[1] + t) / tex - floor((w[1] + t) / tex + 0.5)) > 1e-2)
+            grid_off++;
+        SK_CHECK(sk_spot_window(apex, axis, ha, zn, &b, NULL, res, margin, wb) == 1);
+        if (w[2] - w[0] < wb[2] - wb[0] - 1e-6) narrower++;
+        nv = sk_clip_frustum_aabb(&f, b, verts, SK_CLIP_MAX_POINTS);
+        for (s = 0; s < 3000 + nv; s++) {
+            double e[3], x, y;
+            sk_vec3 q = v3((float)(b.min.x + (b.max.x - b.min.x) * rnd()), (float)(b.min.y + (b.max.y - b.min.y) * rnd()),
+                           (float)(b.min.z + (b.max.z - b.min.z) * rnd()));
+            int in = 1, k;
+            /* the body's own vertices too (sk_clip_frustum_aabb, tests/test_core.c's), where the margin is tight */
+            if (s >= 3000) q = verts[s - 3000];
+            for (k = 0; k < 6 && in && s < 3000; k++)
+                in = f.planes[k].n.x * q.x + f.planes[k].n.y * q.y + f.planes[k].n.z * q.z + f.planes[k].d >= 0;
+            if (!in) continue;
+            eye_of(&v, q.x, q.y, q.z, e);
+            if (e[2] < zn) continue;
+            x = e[0] / e[2]; y = e[1] / e[2];
+            if (fabs(x) > t || fabs(y) > t) continue;
+            samples++;
+            /* inside by the margin, unless the cone's edge is nearer */
+            if (x < w[0] + (w[0] > -t + 1e-6 ? margin * tex : 0) - 1e-5 ||
+                x > w[2] - (w[2] < t - 1e-6 ? margin * tex : 0) + 1e-5 ||
+                y < w[1] + (w[1] > -t + 1e-6 ? margin * tex : 0) - 1e-5 ||
+                y > w[3] - (w[3] < t - 1e-6 ? margin * tex : 0) + 1e-5)
+                outside++;
+        }
+        /* the view moved by a millimetre */
+        eye2 = v3(eye.x + 0.001f, eye.y, eye.z - 0.001f);
+        f2 = sk_frustum_from_matrix(sk_mat4_mul(sk_mat4_perspective(0.4f, 1.6f, 0.1f, 5.0f),
+                                                sk_mat4_look_at(eye2, at, v3(0, 1, 0))));
+        if (sk_spot_window(apex, axis, ha, zn, &b, &f2, res, margin, w2) == 1 &&
+            fabs((w2[2] - w2[0]) - (w[2] - w[0])) < 1e-6) {
+            side_kept++;
+            SK_CHECK_NEAR((w2[0] - w[0]) / tex, floor((w2[0] - w[0]) / tex + 0.5), 1e-2);
+        }
+    }
+    printf("view fit: %d windows, %d narrower than the scene's, %d off the grid; %d samples, %d outside; a view "
+           "moved 1 mm kept the side %d times\n", tried, narrower, grid_off, samples, outside, side_kept);
+    /* measured: 189 windows, 81 narrower, 8235 samples, the side kept 189 times;
+       the margin left out of the snapped corner: 86 samples outside; the
+       corner left off the grid: 44 windows off it */
+    SK_CHECK(tried > 100);
+    SK_CHECK(narrower > tried / 4);
+    SK_CHECK(grid_off == 0);
+    SK_CHECK(samples > 5000);
+    SK_CHECK(outside == 0);
+    SK_CHECK(side_kept > tried * 9 / 10);
 }
 
 static void test_matrix(void) {
@@ -175,4 +260,5 @@ static void test_box_visible(void) {
     SK_CHECK(sk_spot_box_visible(v3(0, 3, 0), v3(0, -1, 0), 0.3f, 5, box(-0.1f, 4, -0.1f, 0.1f, 4.2f, 0.1f)) == 0);
 }
 
-SK_TEST_MAIN(test_view_basis, test_window_closed_form, test_window_covers, test_matrix, test_box_visible)
+SK_TEST_MAIN(test_view_basis, test_window_closed_form, test_window_covers, test_window_view_snapped, test_matrix,
+             test_box_visible)
