@@ -341,11 +341,13 @@
      both biases are the point light's (Eq. 5.4.6 with MA the depth along
      the axis). Caster culling (.cull_casters, skgl_point_caster_visible
      in a SKGL_PASS_SPOT callback) by the cone (sk_spot_box_visible) and
-     by the caster's shadow against the view; the mask's scissor is the
-     range box's. The mask and sk_point_shadow give 0 outside the cone.
+     by the caster's shadow against the view; the mask's scissor, and the
+     S of the selection, are those of the box around the cone's bounding
+     sphere. The mask and sk_point_shadow give 0 outside the cone.
      Spots share a point-light atlas (desc.atlas): skgl_point_atlas_pack
      places a spot's one face beside the point lights' six, at its
-     selected side. Not with .cache or .layered.
+     selected side (for S, the direction of its last render; the range
+     sphere before the first). Not with .cache or .layered.
 
    AREA LIGHTS (skgl_soft_*, Shen et al. 2011; the flow is in the declarations)
      SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
@@ -8189,13 +8191,28 @@ static int skgl__popcount6(unsigned b)
     return n;
 }
 
+/* the sphere that bounds what the light reaches: its range sphere, or a
+   spot's cone (half-angle a up to 60 degrees: the sphere through the apex
+   and the rim of the cone's cap, centre range / (2 cos a) down the axis;
+   wider cones: the range sphere, which is then smaller) */
+static float skgl__light_bound(const skgl_point *p, sk_vec3 *centre)
+{
+    double c = p->desc.spot_angle > 0.0f ? SK_COS((double)p->desc.spot_angle * 3.14159265358979323846 / 180.0) : 0.0;
+    *centre = p->light_pos;
+    if (!(c >= 0.5) || !(sk__len(p->spot_axis) > 0.0f)) return p->desc.range;   /* (not aimed yet) */
+    *centre = sk__add(p->light_pos, sk__scale(p->spot_axis, (float)(p->desc.range / (2.0 * c))));
+    return (float)(p->desc.range / (2.0 * c));
+}
+
 /* the pixel count S of the light (its scissor rectangle on the screen) */
 static float skgl__point_pixels(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4])
 {
     int rect[4], w = p->desc.screen_w, h = p->desc.screen_h;
     if (w < 1 || h < 1) { w = viewport[2]; h = viewport[3]; }
     if (w < 1 || h < 1) return 0.0f;
-    if (!sk_light_scissor(p->light_pos, p->desc.range, *vp, w, h, rect)) return 0.0f;
+    sk_vec3 c;
+    float radius = skgl__light_bound(p, &c);
+    if (!sk_light_scissor(c, radius, *vp, w, h, rect)) return 0.0f;
     return (float)rect[2] * (float)rect[3];
 }
 
@@ -8782,6 +8799,8 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     int w = 0, h = 0, vsdct, n;
     sk_mat4 vp, inv;
     int rect[4];
+    sk_vec3 bound_c;
+    float bound_r;
     sk_result r;
     const char *why;
     const char *fn = "skgl_point_mask";
@@ -8813,10 +8832,12 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
         skgl__set_log(ctx, "skgl_point_mask: mask_tex", why);
         return SK_ERR_INVALID_ARG;
     }
-    /* King & Newhall's scissor: the light's range box on the screen; the whole
-       viewport when the eye is inside it (sk_light_scissor) */
+    /* King & Newhall's scissor: the light's range box (a spot's: its cone's
+       sphere's box) on the screen; the whole viewport when the eye is
+       inside it (sk_light_scissor) */
     rect[0] = rect[1] = 0; rect[2] = w; rect[3] = h;
-    if (p->desc.scissor && !sk_light_scissor(p->light_pos, p->desc.range, vp, w, h, rect)) {
+    bound_r = skgl__light_bound(p, &bound_c);
+    if (p->desc.scissor && !sk_light_scissor(bound_c, bound_r, vp, w, h, rect)) {
         memset(p->stats.scissor, 0, sizeof p->stats.scissor);
         p->stats.mask_ms = ctx->timing ? 0.0f : -1.0f;
         skgl__st_end(ctx, &st);
