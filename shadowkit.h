@@ -469,6 +469,46 @@ SKDEF int sk_light_scissor(sk_vec3 light_pos, float radius, sk_mat4 view_proj,
    (faces outside [0,6], pixels < 0, c <= 0, max_res < 1, NaN). */
 SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res);
 
+/* Spot lights: a cone from `apex` along `axis` (any length > 0) of
+   half-angle `half_angle` radians in (0, 1.5], capped at `range`; its map is
+   one perspective projection looking down the axis.
+   sk_spot_view: world -> the spot's eye space (gluLookAt's convention: the
+   axis is -z; x and y are the cross products with the world axis least
+   aligned with the axis, so they depend on the axis alone); the identity on
+   bad input.
+   sk_spot_window: the map's window {x0, y0, x1, y1} in that eye space at
+   unit depth (tangent units): the cone's square [-tan a, tan a]^2 clipped
+   to the bounding rectangle, seen from the apex beyond depth zn, of
+   `bounds` (NULL: not clipped), or with a `view` frustum of the part of
+   bounds inside it (sk_clip_frustum_aabb: the receivers the view can see;
+   the casters between them and the light project inside the same
+   rectangle); the body is cut exactly by the plane at zn (its vertices in
+   front and every crossing of the plane by a segment between two of
+   them). That rectangle is made square: res = 0: about its centre at the
+   larger side, shifted (not shrunk) to stay inside the cone's square;
+   res > 0 (a map of res texels, snapped for a stable map as the view
+   moves, like a stable directional crop): the side the smallest
+   2 tan a / 2^k that holds the rectangle grown by `margin` texels (0 or
+   more: a filter's reach) on each side and one texel more, the corner on
+   the grid of that side's texels laid from the cone's corner, so texels
+   stay put in the cone while the window follows the view, and the side
+   changes only by factors of two. Returns 1; 0 (win the cone's square)
+   when the body lies wholly behind zn or beside the cone (nothing to
+   render), -1 on bad input (win zeroed).
+   sk_spot_matrix: world -> clip of the map: glFrustum over the window
+   (x0 zn .. x1 zn, y0 zn .. y1 zn, zn, zf) times sk_spot_view; its window
+   depth is sk_vsdct_depth_coeffs(zn, zf) of the depth along the axis. The
+   identity on bad input.
+   sk_spot_box_visible: 0 when the box cannot meet the cone (its bounding
+   sphere lies outside the cone, behind the apex, or beyond range), else 1.
+   Conservative (a sphere that only meets the cone's round cap's corner
+   region counts); bad input: 1. */
+SKDEF sk_mat4 sk_spot_view(sk_vec3 apex, sk_vec3 axis);
+SKDEF int sk_spot_window(sk_vec3 apex, sk_vec3 axis, float half_angle, float zn, const sk_aabb *bounds,
+                         const sk_frustum *view, int res, float margin, float win[4]);
+SKDEF sk_mat4 sk_spot_matrix(sk_vec3 apex, sk_vec3 axis, const float win[4], float zn, float zf);
+SKDEF int sk_spot_box_visible(sk_vec3 apex, sk_vec3 axis, float half_angle, float range, sk_aabb box);
+
 /* Virtual Shadow Depth Cube Texture: six faces as sub-rects of one 2D depth
    texture, laid out 3 x 2 (face f at column f%3, row f/3, row 0 at the
    bottom). face_res in [1, SK_VSDCT_MAX_FACE_RES].
@@ -2486,6 +2526,170 @@ SKDEF int sk_cube_resolution(int faces, float pixels, float c, int max_res)
     need = (double)c * pixels / faces;
     while (m < top && (double)m * m < need) m *= 2;
     return m;
+}
+
+static int sk__spot_args(sk_vec3 apex, sk_vec3 axis, float half_angle)
+{
+    return sk__v3_finite(apex) && sk__v3_finite(axis) && sk__len(axis) > 0.0f && sk__finite(half_angle) &&
+           half_angle > 0.0f && half_angle <= 1.5f;
+}
+
+SKDEF sk_mat4 sk_spot_view(sk_vec3 apex, sk_vec3 axis)
+{
+    sk_vec3 f, s, u;
+    if (!sk__v3_finite(apex) || !sk__v3_finite(axis) || !(sk__len(axis) > 0.0f)) return sk_mat4_identity();
+    f = sk__normalize(axis);
+    s = sk__normalize(sk__cross(f, sk__least_aligned_axis(f)));
+    u = sk__cross(s, f);
+    return sk__basis_view(s, u, sk__scale(f, -1.0f), apex);
+}
+
+/* the rectangle (at unit depth) that the convex body of points pts covers
+   beyond depth zn in eye space view: its points in front, and the crossings
+   of the plane zn by every segment between two of them (a superset of its
+   edges: the others lie inside the body); 0 when none of it lies beyond zn */
+static int sk__spot_rect(const sk_mat4 *view, const sk_vec3 *pts, int n, double zn, double r[4])
+{
+    double p[SK_CLIP_MAX_POINTS][3];
+    int i, j, any = 0;
+    r[0] = r[1] = 1e300;
+    r[2] = r[3] = -1e300;
+    for (i = 0; i < n; i++) {
+        int k;
+        for (k = 0; k < 3; k++)
+            p[i][k] = (double)view->m[k] * pts[i].x + (double)view->m[4 + k] * pts[i].y +
+                      (double)view->m[8 + k] * pts[i].z + view->m[12 + k];
+        p[i][2] = -p[i][2];   /* depth along the axis */
+    }
+    for (i = 0; i < n; i++)
+        for (j = i; j < n; j++) {
+            double x, y, d;
+            if (j == i) {
+                if (p[i][2] < zn) continue;
+                x = p[i][0]; y = p[i][1]; d = p[i][2];
+            } else {
+                double t;
+                if ((p[i][2] < zn) == (p[j][2] < zn)) continue;
+                t = (zn - p[i][2]) / (p[j][2] - p[i][2]);
+                x = p[i][0] + t * (p[j][0] - p[i][0]); y = p[i][1] + t * (p[j][1] - p[i][1]); d = zn;
+            }
+            x /= d; y /= d;
+            if (x < r[0]) r[0] = x;
+            if (y < r[1]) r[1] = y;
+            if (x > r[2]) r[2] = x;
+            if (y > r[3]) r[3] = y;
+            any = 1;
+        }
+    return any;
+}
+
+/* the square window over rectangle r inside the cone's square [-t, t]^2:
+   centred (res 0) or snapped to the grid of res texels over its side */
+static void sk__spot_square(const double r[4], double t, int res, double margin, float win[4])
+{
+    double side = r[2] - r[0] > r[3] - r[1] ? r[2] - r[0] : r[3] - r[1], c, x0, tex, full;
+    int k;
+    if (res > 0) {
+        /* the smallest 2t / 2^k holding the rectangle, its margins and one texel */
+        full = 2.0 * t;
+        while (full * 0.5 >= side + (2.0 * margin + 1.0) * full * 0.5 / res) full *= 0.5;
+        tex = full / res;
+        for (k = 0; k < 2; k++) {
+            x0 = -t + SK_FLOOR((r[k] - margin * tex + t) / tex) * tex;
+            if (x0 + full > t) x0 = t - full;
+            if (x0 < -t) x0 = -t;
+            win[k] = (float)x0;
+            win[k + 2] = (float)(x0 + full);
+        }
+        return;
+    }
+    for (k = 0; k < 2; k++) {
+        c = 0.5 * (r[k] + r[k + 2]);
+        if (c - 0.5 * side < -t) c = -t + 0.5 * side;
+        if (c + 0.5 * side > t) c = t - 0.5 * side;
+        win[k] = (float)(c - 0.5 * side);
+        win[k + 2] = (float)(c + 0.5 * side);
+    }
+}
+
+SKDEF int sk_spot_window(sk_vec3 apex, sk_vec3 axis, float half_angle, float zn, const sk_aabb *bounds,
+                         const sk_frustum *view, int res, float margin, float win[4])
+{
+    double t, r[4];
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    sk_mat4 eye;
+    int k, n;
+    if (!win) return -1;
+    win[0] = win[1] = win[2] = win[3] = 0.0f;
+    if (!sk__spot_args(apex, axis, half_angle) || !sk__finite(zn) || !(zn > 0.0f) ||
+        (bounds && !sk__aabb_valid(bounds)) || res < 0 || !sk__finite(margin) || margin < 0.0f)
+        return -1;
+    t = SK_TAN((double)half_angle);
+    win[0] = win[1] = (float)-t;
+    win[2] = win[3] = (float)t;
+    if (!bounds) return 1;
+    if (view) {
+        n = sk_clip_frustum_aabb(view, *bounds, pts, SK_CLIP_MAX_POINTS);
+        if (n < 0) return -1;
+    } else {
+        for (n = 0; n < 8; n++) pts[n] = sk__aabb_corner(bounds, n);
+    }
+    eye = sk_spot_view(apex, axis);
+    if (n == 0 || !sk__spot_rect(&eye, pts, n, zn, r)) return 0;
+    for (k = 0; k < 2; k++) {
+        if (r[k] < -t) r[k] = -t;
+        if (r[k + 2] > t) r[k + 2] = t;
+        if (r[k] >= r[k + 2]) return 0;
+    }
+    sk__spot_square(r, t, res, margin, win);
+    return 1;
+}
+
+SKDEF sk_mat4 sk_spot_matrix(sk_vec3 apex, sk_vec3 axis, const float win[4], float zn, float zf)
+{
+    sk_mat4 p, view;
+    double l, r, b, t, n = zn, f = zf;
+    if (!win || !sk__v3_finite(apex) || !sk__v3_finite(axis) || !(sk__len(axis) > 0.0f) || !sk__finite(zn) ||
+        !sk__finite(zf) || !(zn > 0.0f) || !(zf > zn) || !sk__finite(win[0]) || !sk__finite(win[1]) ||
+        !sk__finite(win[2]) || !sk__finite(win[3]) || !(win[2] > win[0]) || !(win[3] > win[1]))
+        return sk_mat4_identity();
+    l = win[0] * n; r = win[2] * n; b = win[1] * n; t = win[3] * n;
+    memset(&p, 0, sizeof p);
+    p.m[0] = (float)(2.0 * n / (r - l));
+    p.m[5] = (float)(2.0 * n / (t - b));
+    p.m[8] = (float)((r + l) / (r - l));
+    p.m[9] = (float)((t + b) / (t - b));
+    p.m[10] = (float)(-(f + n) / (f - n));
+    p.m[11] = -1.0f;
+    p.m[14] = (float)(-2.0 * f * n / (f - n));
+    view = sk_spot_view(apex, axis);
+    return sk_mat4_mul(p, view);
+}
+
+SKDEF int sk_spot_box_visible(sk_vec3 apex, sk_vec3 axis, float half_angle, float range, sk_aabb box)
+{
+    double v[3], a[3], al, along, dist2, perp, rad, ca, sa;
+    int k;
+    if (!sk__spot_args(apex, axis, half_angle) || !sk__finite(range) || !(range > 0.0f) || !sk__aabb_valid(&box))
+        return 1;
+    al = SK_SQRT((double)axis.x * axis.x + (double)axis.y * axis.y + (double)axis.z * axis.z);
+    a[0] = axis.x / al; a[1] = axis.y / al; a[2] = axis.z / al;
+    v[0] = 0.5 * ((double)box.min.x + box.max.x) - apex.x;
+    v[1] = 0.5 * ((double)box.min.y + box.max.y) - apex.y;
+    v[2] = 0.5 * ((double)box.min.z + box.max.z) - apex.z;
+    rad = 0.5 * SK_SQRT(((double)box.max.x - box.min.x) * ((double)box.max.x - box.min.x) +
+                        ((double)box.max.y - box.min.y) * ((double)box.max.y - box.min.y) +
+                        ((double)box.max.z - box.min.z) * ((double)box.max.z - box.min.z));
+    along = dist2 = 0.0;
+    for (k = 0; k < 3; k++) { along += v[k] * a[k]; dist2 += v[k] * v[k]; }
+    if (SK_SQRT(dist2) > (double)range + rad) return 0;
+    if (along < -rad) return 0;
+    perp = dist2 - along * along;
+    perp = perp > 0.0 ? SK_SQRT(perp) : 0.0;
+    /* the centre's distance to the cone's side (negative inside) */
+    ca = SK_COS((double)half_angle);
+    sa = SK_SQRT(1.0 - ca * ca);   /* half_angle in (0, 1.5]: sin > 0 */
+    return perp * ca - along * sa <= rad;
 }
 
 SKDEF sk_result sk_vsdct_layout_make(int face_res, sk_vsdct_layout *out)

@@ -396,6 +396,27 @@
      desc.atlas): skgl_point_atlas_pack places every light's six faces at
      its selected side each frame, halving the largest side until they fit.
 
+   SPOT LIGHTS (a skgl_point with desc.spot_angle > 0; skgl_spot_render)
+     One perspective map from the light down its direction, in a 2D depth
+     texture of .resolution^2 (VSDCT's storage; its side selected by King
+     and Newhall's N M^2 >= c S with N = 1 under .select_resolution). The
+     map's window is the cone's square clipped to the rectangle that the
+     scene's bounds inside the view frustum cover beyond the near plane,
+     grown by the filter's reach and snapped (sk_spot_window): its side a
+     power-of-two fraction of the cone's, its corner on that side's texel
+     grid, so texels stay put while the window follows the view, and a
+     cone wider than what the view sees spends its texels there. Depth and
+     both biases are the point light's (Eq. 5.4.6 with MA the depth along
+     the axis). Caster culling (.cull_casters, skgl_point_caster_visible
+     in a SKGL_PASS_SPOT callback) by the cone (sk_spot_box_visible) and
+     by the caster's shadow against the view; the mask's scissor, and the
+     S of the selection, are those of the box around the cone's bounding
+     sphere. The mask and sk_point_shadow give 0 outside the cone.
+     Spots share a point-light atlas (desc.atlas): skgl_point_atlas_pack
+     places a spot's one face beside the point lights' six, at its
+     selected side (for S, the direction of its last render; the range
+     sphere before the first). Not with .cache or .layered.
+
    AREA LIGHTS (skgl_soft_*, Shen et al. 2011; the flow is in the declarations)
      SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
      SKGL_SOFT_PVSM    predicted virtual soft shadow maps: a conservative
@@ -807,7 +828,8 @@ typedef enum skgl_pass_kind {
     SKGL_PASS_CUBE_FACE = 1,      /* a face of a point light's cube (index = face, +X,-X,+Y,-Y,+Z,-Z) */
     SKGL_PASS_AREA = 2,           /* an area light's map (skgl_soft): index 0 PCSS's map or PVSM's
                                      low-resolution map, 1 + i PVSM tile i */
-    SKGL_PASS_CAMERA = 3          /* skgl_soft's own G-buffer (depth_tex = 0): the camera's view */
+    SKGL_PASS_CAMERA = 3,         /* skgl_soft's own G-buffer (depth_tex = 0): the camera's view */
+    SKGL_PASS_SPOT = 4            /* a spot light's map (SPOT LIGHTS; index 0, info.point the light) */
 } skgl_pass_kind;
 struct skgl_point;
 
@@ -1375,6 +1397,10 @@ typedef struct skgl_point_desc {
                                      uncached, read both back (a CPU-GPU stall: for
                                      debugging) and fail the render when they differ
                                      (CACHED MAPS) [0] */
+    float spot_angle;             /* > 0: a spot light, the cone's half-angle in degrees, at
+                                     most 85: one perspective map (SPOT LIGHTS; technique is
+                                     then SKGL_POINT_VSDCT's storage), drawn by skgl_spot_render
+                                     [0: omnidirectional] */
 } skgl_point_desc;
 
 /* What a point light's last frame did (skgl_point_stats). */
@@ -1448,17 +1474,36 @@ SKGLDEF unsigned skgl_point_texture(const skgl_point *p);
    in a shared atlas, the rectangles of the last skgl_point_atlas_pack) */
 SKGLDEF sk_vsdct_layout skgl_point_layout(const skgl_point *p);
 
+/* ---- spot lights: a skgl_point with desc.spot_angle > 0 (SPOT LIGHTS) -----
+   skgl_point *spot;   once: skgl_point_create(gl, &pdesc, &spot), pdesc.spot_angle = 30
+   every frame:
+     skgl_spot_render(gl, spot, &cam, &scene, light_pos, direction);
+       calls scene.draw once (info->kind = SKGL_PASS_SPOT); with
+       .cull_casters the callback asks skgl_point_caster_visible(info, box),
+       which culls by the cone (sk_spot_box_visible) and by the caster's
+       shadow against the view.
+     skgl_point_mask / skgl_point_bind as for a point light (the mask is 0
+       outside the cone); forward: "#define SK_POINT_SPOT 1\n" before
+       skgl_point_glsl_snippet(), or LAMP0_POINT_SPOT before a prefixed one. */
+/* Renders the spot's map: one perspective projection from light_pos down
+   `direction` (any length > 0), fitted to the cone clipped by
+   scene->bounds (sk_spot_window), at .resolution, or the side
+   sk_cube_resolution selects for one face (.select_resolution). */
+SKGLDEF sk_result skgl_spot_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam, const skgl_scene *scene,
+                                   sk_vec3 light_pos, sk_vec3 direction);
+
 /* ---- several point lights in one atlas (King & Newhall 2004's VSDCT, shared) ---
    skgl_point_atlas *atlas;  once: skgl_point_atlas_create(gl, 4096, 2048, &atlas)
-   each light: desc.technique = SKGL_POINT_VSDCT, desc.atlas = atlas
+   each light: desc.technique = SKGL_POINT_VSDCT (or a spot, desc.spot_angle > 0),
+     desc.atlas = atlas
    every frame:
      skgl_point_atlas_pack(gl, atlas, lights, n, &cam, light_positions);
      then per light skgl_point_render / skgl_point_mask / skgl_point_bind.
    The pack selects each light's face side as skgl_point_render would
    (.resolution, or sk_cube_resolution with .select_resolution), places the
-   6 n square faces on shelves (largest first, left to right, a new shelf
-   above when a row is full) and refills each light's indirection cube map
-   for its rectangles. When they do not fit, the largest side is halved
+   square faces (six a point light's, one a spot's) on shelves (largest
+   first, left to right, a new shelf above when a row is full) and refills
+   each light's indirection cube map for its rectangles. When they do not fit, the largest side is halved
    (the first light's on ties) until they do; the stats' atlas_wanted keeps
    the side selected. skgl_point_render of an atlas light then renders the
    side packed (it needs a pack first, SK_ERR_INVALID_ARG otherwise) and
@@ -3166,12 +3211,13 @@ static const char *const skgl__shadow_names[SKGL__L_SHADOW_N] = {
     "sk_light_dir"};
 enum {
     SKGL__P_CUBE, SKGL__P_ATLAS, SKGL__P_INDIRECTION, SKGL__P_POS, SKGL__P_RANGE, SKGL__P_DEPTH, SKGL__P_TEXEL,
-    SKGL__P_NORMAL_BIAS, SKGL__P_PCF, SKGL__P_BIAS_MODE, SKGL__P_PLANE_BIAS, SKGL__P_FACES, SKGL__L_POINT_N
+    SKGL__P_NORMAL_BIAS, SKGL__P_PCF, SKGL__P_BIAS_MODE, SKGL__P_PLANE_BIAS, SKGL__P_FACES, SKGL__P_SPOT,
+    SKGL__P_BASIS, SKGL__P_COS, SKGL__L_POINT_N
 };
 static const char *const skgl__point_names[SKGL__L_POINT_N] = {
     "sk_point_cube", "sk_point_atlas", "sk_point_indirection", "sk_point_pos", "sk_point_range", "sk_point_depth",
     "sk_point_texel", "sk_point_normal_bias", "sk_point_pcf", "sk_point_bias_mode", "sk_point_plane_bias",
-    "sk_point_faces"};
+    "sk_point_faces", "sk_point_spot", "sk_point_basis", "sk_point_cos"};
 
 static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint program, int kind,
                                  const char *prefix)
@@ -8007,6 +8053,12 @@ struct skgl_point {
     skgl__timer t_render, t_mask;
     skgl__point_cache cache;       /* desc.cache only */
     skgl_point_frame_stats stats;
+    /* a spot (desc.spot_angle > 0): its axis, the map's window
+       (sk_spot_window) and light-relative position -> clip matrix of the
+       last render */
+    sk_vec3 spot_axis;
+    float spot_win[4];
+    sk_mat4 spot_rel;
 };
 
 struct skgl_point_atlas {
@@ -8018,6 +8070,9 @@ struct skgl_point_atlas {
 /* defined with the faces' passes (7, the faces' cache) */
 static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
 static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
+/* defined with the spot lights (>>spot) */
+static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster);
+static void skgl__spot_uniforms(skgl_context *ctx, const skgl_point *p, const skgl__int *L);
 
 /* the 2D depth texture the light renders into and samples: shared or its own */
 static skgl__uint skgl__point_tex(const skgl_point *p)
@@ -8041,6 +8096,7 @@ static skgl_point_desc skgl__point_defaults(const skgl_point_desc *d)
                          &r.pcf_radius, r.disable_pcf_kernel);
     if (r.resolution_c == 0.0f) r.resolution_c = 2.0f;
     if (r.vsdct_grey_levels == 0) r.vsdct_grey_levels = 256;
+    if (r.spot_angle > 0.0f) r.technique = SKGL_POINT_VSDCT;   /* a spot's one map: a 2D atlas rectangle */
     return r;
 }
 
@@ -8053,6 +8109,10 @@ static sk_vsdct_layout skgl__point_layout(const skgl_point *p, int m)
     sk_vsdct_layout_make(p->desc.resolution, &l);
     l.face_res = m;
     for (f = 0; f < 6; f++) { l.face_x[f] = (f % 3) * m; l.face_y[f] = (f / 3) * m; }
+    if (p->desc.spot_angle > 0.0f) {   /* a spot: one face in the corner of its own map */
+        l.atlas_w = l.atlas_h = p->desc.resolution;
+        for (f = 0; f < 6; f++) l.face_x[f] = l.face_y[f] = 0;
+    }
     return l;
 }
 
@@ -8065,7 +8125,9 @@ static sk_result skgl__point_fill(skgl_context *ctx, skgl__st *st, skgl_point *p
     unsigned short *buf;
     int f;
     if (p->filled_res != 0 && memcmp(&p->layout, l, sizeof *l) == 0) return SK_OK;
-    if (!ctx->caps.norm16) {   /* SK_POINT_VSDCT_ANALYTIC: the shader maps the faces itself */
+    /* SK_POINT_VSDCT_ANALYTIC: the shader maps the faces itself; a spot
+       samples through its matrix */
+    if (!ctx->caps.norm16 || p->desc.spot_angle > 0.0f) {
         p->layout = *l;
         p->layout_serial++;
         p->filled_res = l->face_res;
@@ -8196,6 +8258,9 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
                "0, or 1 with desc.cache");
     SKGL__NEED(!d->verify_cache || ctx->caps.api == SKGL_API_GL33, fn, "desc.verify_cache",
                "depth read-backs (glReadPixels of GL_DEPTH_COMPONENT: desktop OpenGL)");
+    SKGL__RULE(sk__finite(d->spot_angle) && d->spot_angle >= 0.0f && d->spot_angle <= 85.0f, fn, "spot_angle",
+               d->spot_angle, "in [0, 85] degrees (0: omnidirectional)");
+    SKGL__RULE(d->spot_angle == 0.0f || !d->cache, fn, "cache", d->cache, "0 for a spot light (desc.spot_angle)");
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -8224,7 +8289,8 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     gl->GetIntegerv(d.technique == SKGL_POINT_CUBE ? SKGL__MAX_CUBE_MAP_TEXTURE_SIZE : SKGL__MAX_TEXTURE_SIZE,
                     &max_size);
     /* a shared atlas bounds the side by packing (skgl_point_atlas_pack halves it) */
-    if (d.technique == SKGL_POINT_CUBE ? d.resolution > max_size : !d.atlas && d.resolution > max_size / 3)
+    if (d.technique == SKGL_POINT_CUBE || d.spot_angle > 0.0f ? d.resolution > max_size
+                                                                : !d.atlas && d.resolution > max_size / 3)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_point_create: desc.resolution = %d: at most %d here (%s)",
                           d.resolution, d.technique == SKGL_POINT_CUBE ? max_size : max_size / 3,
                           d.technique == SKGL_POINT_CUBE ? "GL_MAX_CUBE_MAP_TEXTURE_SIZE"
@@ -8240,6 +8306,7 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     fs = (char *)SKGL_MALLOC(n);
     if (!fs) { SKGL_FREE(p); return skgl__fail(ctx, SK_ERR_CAPACITY, "skgl_point_create: out of memory"); }
     strcpy(fs, d.technique == SKGL_POINT_VSDCT ? "#define SK_POINT_VSDCT 1\n" : "#define SK_POINT_VSDCT 0\n");
+    if (d.spot_angle > 0.0f) strcat(fs, "#define SK_POINT_SPOT 1\n");
     if (!ctx->caps.norm16) strcat(fs, "#define SK_POINT_VSDCT_ANALYTIC 1\n");
     strcat(fs, skgl__glsl(SKGL__GLSL_POINT_SAMPLE_GLSL));
     p->prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), fs, skgl__glsl(SKGL__GLSL_POINT_MASK_FRAG));
@@ -8289,7 +8356,9 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
         }
     } else {
         if (!d.atlas) {
-            skgl__atlas_alloc(ctx, &st, p->tex, 3 * d.resolution, 2 * d.resolution);
+            /* a spot's one face, or the 3 x 2 faces */
+            if (d.spot_angle > 0.0f) skgl__atlas_alloc(ctx, &st, p->tex, d.resolution, d.resolution);
+            else skgl__atlas_alloc(ctx, &st, p->tex, 3 * d.resolution, 2 * d.resolution);
             p->fbo[0] = skgl__framebuffer(ctx, &st, 0, 0, p->tex, -1);
             if (!p->fbo[0]) {
                 skgl__set_log(ctx, "skgl_point_create: point shadow framebuffer incomplete", NULL);
@@ -8378,9 +8447,10 @@ SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster
 {
     skgl_point *p;
     int vis;
-    if (!info || info->kind != SKGL_PASS_CUBE_FACE || !info->point) return 1;
+    if (!info || (info->kind != SKGL_PASS_CUBE_FACE && info->kind != SKGL_PASS_SPOT) || !info->point) return 1;
     p = info->point;
     if (!p->desc.cull_casters) return 1;
+    if (info->kind == SKGL_PASS_SPOT) return skgl__spot_caster_visible(p, caster);
     /* King & Newhall's caster culling: the light-to-box cone frustum (or the
        light's range box when the light is inside the box) against the view
        frustum; then the box against this face's frustum */
@@ -8440,13 +8510,28 @@ static int skgl__popcount6(unsigned b)
     return n;
 }
 
+/* the sphere that bounds what the light reaches: its range sphere, or a
+   spot's cone (half-angle a up to 60 degrees: the sphere through the apex
+   and the rim of the cone's cap, centre range / (2 cos a) down the axis;
+   wider cones: the range sphere, which is then smaller) */
+static float skgl__light_bound(const skgl_point *p, sk_vec3 *centre)
+{
+    double c = p->desc.spot_angle > 0.0f ? SK_COS((double)p->desc.spot_angle * 3.14159265358979323846 / 180.0) : 0.0;
+    *centre = p->light_pos;
+    if (!(c >= 0.5) || !(sk__len(p->spot_axis) > 0.0f)) return p->desc.range;   /* (not aimed yet) */
+    *centre = sk__add(p->light_pos, sk__scale(p->spot_axis, (float)(p->desc.range / (2.0 * c))));
+    return (float)(p->desc.range / (2.0 * c));
+}
+
 /* the pixel count S of the light (its scissor rectangle on the screen) */
 static float skgl__point_pixels(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4])
 {
     int rect[4], w = p->desc.screen_w, h = p->desc.screen_h;
     if (w < 1 || h < 1) { w = viewport[2]; h = viewport[3]; }
     if (w < 1 || h < 1) return 0.0f;
-    if (!sk_light_scissor(p->light_pos, p->desc.range, *vp, w, h, rect)) return 0.0f;
+    sk_vec3 c;
+    float radius = skgl__light_bound(p, &c);
+    if (!sk_light_scissor(c, radius, *vp, w, h, rect)) return 0.0f;
     return (float)rect[2] * (float)rect[3];
 }
 
@@ -8884,6 +8969,9 @@ static sk_result skgl__point_render_body(skgl_context *ctx, skgl_point *p, const
     SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
     if (p->desc.atlas && !p->packed)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: a shared-atlas light needs skgl_point_atlas_pack first", fn);
+    if (p->desc.spot_angle > 0.0f)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.spot_angle = %g: a spot light renders with "
+                          "skgl_spot_render", fn, (double)p->desc.spot_angle);
     vp = sk_mat4_mul(cam->proj, cam->view);
     p->light_pos = light_pos;
     p->view = sk_frustum_from_matrix(vp);
@@ -8926,7 +9014,8 @@ static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__p
 {
     const skgl__api *gl = &ctx->gl;
     const skgl__int *L = e->loc;
-    float texel = 2.0f / (float)p->face_res;
+    /* one texel at MA = 1: a cube face spans 2 there, a spot's map its window */
+    float texel = (p->desc.spot_angle > 0.0f ? p->spot_win[2] - p->spot_win[0] : 2.0f) / (float)p->face_res;
     if (e->owner != p->id || e->unit != unit) {
         float scale, bias, depth[2];
         sk_vsdct_depth_coeffs(p->desc.near_plane, p->desc.range, &scale, &bias);
@@ -8961,6 +9050,7 @@ static void skgl__point_uniforms(skgl_context *ctx, const skgl_point *p, skgl__p
         e->layout = p->layout_serial;
     }
     if (L[SKGL__P_POS] >= 0) gl->Uniform3fv(L[SKGL__P_POS], 1, &p->light_pos.x);
+    if (p->desc.spot_angle > 0.0f) skgl__spot_uniforms(ctx, p, L);
 }
 
 SKGLDEF sk_result skgl_point_bind(skgl_context *ctx, const skgl_point *p, unsigned program, int unit)
@@ -9015,6 +9105,8 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     int w = 0, h = 0, vsdct, n;
     sk_mat4 vp, inv;
     int rect[4];
+    sk_vec3 bound_c;
+    float bound_r;
     sk_result r;
     const char *why;
     const char *fn = "skgl_point_mask";
@@ -9046,10 +9138,12 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
         skgl__set_log(ctx, "skgl_point_mask: mask_tex", why);
         return SK_ERR_INVALID_ARG;
     }
-    /* King & Newhall's scissor: the light's range box on the screen; the whole
-       viewport when the eye is inside it (sk_light_scissor) */
+    /* King & Newhall's scissor: the light's range box (a spot's: its cone's
+       sphere's box) on the screen; the whole viewport when the eye is
+       inside it (sk_light_scissor) */
     rect[0] = rect[1] = 0; rect[2] = w; rect[3] = h;
-    if (p->desc.scissor && !sk_light_scissor(p->light_pos, p->desc.range, vp, w, h, rect)) {
+    bound_r = skgl__light_bound(p, &bound_c);
+    if (p->desc.scissor && !sk_light_scissor(bound_c, bound_r, vp, w, h, rect)) {
         memset(p->stats.scissor, 0, sizeof p->stats.scissor);
         p->stats.mask_ms = ctx->timing ? 0.0f : -1.0f;
         skgl__st_end(ctx, &st);
@@ -9088,6 +9182,160 @@ SKGLDEF sk_result skgl_point_mask(skgl_context *ctx, skgl_point *p, const skgl_c
     return r != SK_OK ? r : skgl__check(ctx, "skgl_point_mask");
 }
 
+
+/* ---- Spot lights: a point light with a cone, one perspective map -------- */
+// >>spot
+static double skgl__spot_radians(const skgl_point *p) { return (double)p->desc.spot_angle * 3.14159265358979323846 / 180.0; }
+
+/* caster culling for a spot: the box (grown by the filter's reach) against
+   the cone, then its shadow frustum against the view (King & Newhall's
+   caster culling with the cone in place of the faces) */
+static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster)
+{
+    int vis;
+    if (sk__aabb_valid(&caster)) {
+        caster.min = sk__sub(caster.min, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
+        caster.max = sk__add(caster.max, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
+    }
+    vis = sk_spot_box_visible(p->light_pos, p->spot_axis, (float)skgl__spot_radians(p), p->desc.range, caster) &&
+          sk_caster_visible(p->light_pos, p->desc.range, caster, &p->view);
+    if (vis) p->stats.casters_drawn++; else p->stats.casters_culled++;
+    return vis;
+}
+
+/* the spot's own uniforms (SK_POINT_SPOT): its matrix, basis and cone,
+   sent with every bind (the axis may move every frame) */
+static void skgl__spot_uniforms(skgl_context *ctx, const skgl_point *p, const skgl__int *L)
+{
+    const skgl__api *gl = &ctx->gl;
+    sk_vec3 o = sk__v3(0.0f, 0.0f, 0.0f);
+    sk_mat4 v = sk_spot_view(o, p->spot_axis);
+    /* columns right, up, axis: the view's rows, the axis its -z row negated
+       (a mat4: the loader has no glUniformMatrix3fv) */
+    float basis[16];
+    memset(basis, 0, sizeof basis);
+    basis[0] = v.m[0]; basis[1] = v.m[4]; basis[2] = v.m[8];
+    basis[4] = v.m[1]; basis[5] = v.m[5]; basis[6] = v.m[9];
+    basis[8] = -v.m[2]; basis[9] = -v.m[6]; basis[10] = -v.m[10];
+    if (L[SKGL__P_SPOT] >= 0) gl->UniformMatrix4fv(L[SKGL__P_SPOT], 1, 0, p->spot_rel.m);
+    if (L[SKGL__P_BASIS] >= 0) gl->UniformMatrix4fv(L[SKGL__P_BASIS], 1, 0, basis);
+    skgl__u1f(gl, L[SKGL__P_COS], (float)SK_COS(skgl__spot_radians(p)));
+}
+
+/* the map's side this frame: .resolution, or King & Newhall's selection
+   for one face (N = 1: M^2 >= c S, S the pixels of the light's rectangle) */
+static int skgl__spot_select(const skgl_point *p, const sk_mat4 *vp, const skgl__int viewport[4])
+{
+    int sel;
+    if (!p->desc.select_resolution) return p->desc.resolution;
+    sel = sk_cube_resolution(1, skgl__point_pixels(p, vp, viewport), p->desc.resolution_c, p->desc.resolution);
+    return sel > 0 ? sel : p->desc.resolution;
+}
+
+/* this frame's side: the one skgl_point_atlas_pack placed, or selected */
+static int skgl__spot_side(skgl_context *ctx, skgl__st *st, skgl_point *p, const sk_mat4 *vp)
+{
+    skgl__int viewport[4] = {0, 0, 0, 0};
+    if (p->desc.atlas) return p->layout.face_res;
+    if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1))
+        skgl__caller_viewport(ctx, st, viewport);
+    return skgl__spot_select(p, vp, viewport);
+}
+
+/* one pass into the spot's rectangle (cleared first); nothing drawn when
+   the scene lies outside the cone (fit 0) */
+static sk_result skgl__spot_draw(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                 const sk_mat4 *light_vp, int m, int fit)
+{
+    static const float one = 1.0f;
+    skgl_draw_info info;
+    sk_result r = SK_OK;
+    skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(p->desc.atlas ? p->desc.atlas->fbo : p->fbo[0]));
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, p->layout.face_x[0], p->layout.face_y[0], m, m);
+    skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, p->layout.face_x[0], p->layout.face_y[0], m, m);
+    ctx->gl.ClearBufferfv(SKGL__DEPTH, 0, &one);
+    if (fit == 1) {
+        memset(&info, 0, sizeof info);
+        info.kind = SKGL_PASS_SPOT;
+        info.light_pos = p->light_pos;
+        info.light_range = p->desc.range;
+        info.point = p;
+        r = skgl__casters_draw(ctx, st, scene, light_vp, skgl__zero3, &info);
+        p->stats.passes += skgl__pass_callbacks(ctx);
+        p->stats.faces_rendered = 1;
+        p->stats.texels += (double)m * m;
+    } else p->stats.faces_culled = 1;
+    skgl__model_end(ctx);
+    return r;
+}
+
+static sk_result skgl__spot_render_body(skgl_context *ctx, skgl_point *p, const skgl_camera *cam,
+                                        const skgl_scene *scene, sk_vec3 light_pos, sk_vec3 direction)
+{
+    skgl__st st;
+    sk_mat4 vp, light_vp;
+    sk_vec3 o = sk__v3(0.0f, 0.0f, 0.0f);
+    int m, fit;
+    sk_result r;
+    const char *fn = "skgl_spot_render";
+    skgl__cam ci;
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, scene ? &scene->bounds : NULL, &ci));
+    cam = &ci.gl;   /* OpenGL's convention from here on */
+    SKGL__TRY(skgl__arg_scene(ctx, fn, scene, 1));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, light_pos, "light_pos", 0));
+    SKGL__TRY(skgl__arg_vec(ctx, fn, direction, "direction", 1));
+    if (!(p->desc.spot_angle > 0.0f))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.spot_angle is 0: a point light renders with "
+                          "skgl_point_render", fn);
+    if (p->desc.atlas && !p->packed)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: a shared-atlas light needs skgl_point_atlas_pack first", fn);
+    vp = sk_mat4_mul(cam->proj, cam->view);
+    p->light_pos = light_pos;
+    p->spot_axis = sk__normalize(direction);
+    p->view = sk_frustum_from_matrix(vp);
+    skgl__st_begin(ctx, &st);
+    m = skgl__spot_side(ctx, &st, p, &vp);
+    /* the part of the cone the view sees, snapped (a stable map), grown by
+       the filter's reach: (2r) x (2r) taps, the 2x2 under each, the normal offset */
+    fit = sk_spot_window(light_pos, p->spot_axis, (float)skgl__spot_radians(p), p->desc.near_plane,
+                         &scene->bounds, &p->view, m,
+                         (float)(p->desc.pcf_radius + 1 + (p->desc.normal_bias > 0.0f ? p->desc.normal_bias : 0.0f)),
+                         p->spot_win);
+    p->spot_rel = sk_spot_matrix(o, p->spot_axis, p->spot_win, p->desc.near_plane, p->desc.range);
+    light_vp = sk_spot_matrix(light_pos, p->spot_axis, p->spot_win, p->desc.near_plane, p->desc.range);
+    /* the filter's reach (skgl__point_reach is in units of a face's half side) */
+    p->cull_margin = (float)(skgl__point_reach(p, m) * 0.5 * (p->spot_win[2] - p->spot_win[0]) * p->desc.range);
+    r = skgl__point_target(ctx, &st, p, m);
+    if (r != SK_OK) { skgl__st_end(ctx, &st); return r; }
+    p->face_res = m;
+    p->stats.passes = p->stats.faces_rendered = p->stats.faces_culled = 0;
+    p->stats.casters_drawn = p->stats.casters_culled = 0;
+    p->stats.texels = 0.0;
+    skgl__timer_begin(ctx, &p->t_render);
+    r = skgl__spot_draw(ctx, &st, p, scene, &light_vp, m, fit);
+    skgl__timer_end(ctx, &p->t_render);
+    p->stats.shadow_ms = p->t_render.ms;
+    p->stats.resolution = m;
+    p->rendered = 1;
+    skgl__st_end(ctx, &st);
+    return r != SK_OK ? r : skgl__check(ctx, fn);
+}
+
+SKGLDEF sk_result skgl_spot_render(skgl_context *ctx, skgl_point *p, const skgl_camera *cam, const skgl_scene *scene,
+                                   sk_vec3 light_pos, sk_vec3 direction)
+{
+    sk_result r;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, "skgl_spot_render", 0);
+    SKGL__TRY(skgl__not_nested(ctx, "skgl_spot_render"));
+    skgl__clip_depth(ctx, 0);   /* the pass under OpenGL's clip depth (CAMERA CONVENTIONS) */
+    r = skgl__spot_render_body(ctx, p, cam, scene, light_pos, direction);
+    skgl__clip_depth(ctx, 1);
+    return skgl__said(ctx, "skgl_spot_render", r, NULL);
+}
 
 /* ---- 8. Several point lights in one atlas ------------------------------- */
 // >>atlas
@@ -9146,19 +9394,21 @@ SKGLDEF void skgl_point_atlas_size(const skgl_point_atlas *a, int *width, int *h
     if (height) *height = a ? a->h : 0;
 }
 
-/* Shelf packing of the lights' faces, all six of a light of side res[i]:
+/* Shelf packing of the lights' faces, all six of a light of side res[i]
+   (a spot's one, nface[i] = 1):
    lights taken by side, largest first (order[] sorted so), squares placed
    left to right; a square that would pass the right edge starts a new
    shelf on top of the last one, as high as its first square, which is the
    tallest on it since sides only decrease. 1 and the corners in x, y
    (light i's face f at [6 i + f]) when everything fits in w x h, else 0. */
-static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *order, int *x, int *y)
+static int skgl__atlas_shelves(int w, int h, int n, const int *res, const int *nface, const int *order, int *x,
+                               int *y)
 {
     int k, f, cx = 0, sy = 0, shelf = 0;
     for (k = 0; k < n; k++) {
         int i = order[k], m = res[i];
         if (m > w) return 0;
-        for (f = 0; f < 6; f++) {
+        for (f = 0; f < nface[i]; f++) {
             if (cx + m > w) { sy += shelf; cx = 0; shelf = 0; }
             if (shelf == 0) shelf = m;
             if (sy + m > h) return 0;
@@ -9178,7 +9428,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
     skgl__int viewport[4] = {0, 0, 0, 0};
     sk_mat4 vp;
     sk_frustum view;
-    int *res, *order, *x, *y;
+    int *res, *order, *x, *y, *nface;
     int i, k, f, fits;
     sk_result r = SK_OK;
     const char *fn = "skgl_point_atlas_pack";
@@ -9196,11 +9446,12 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         if (!lights[i] || lights[i]->desc.atlas != a || !sk__v3_finite(light_pos[i]))
             return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: lights[%d] is NULL, not in this atlas, or its light_pos "
                               "is not finite", fn, i);
-    res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 14);
+    res = (int *)SKGL_MALLOC(sizeof(int) * (size_t)n * 15);
     if (!res) return skgl__fail(ctx, SK_ERR_CAPACITY, "%s: out of memory", fn);
     order = res + n;
     x = order + n;
     y = x + 6 * n;
+    nface = y + 6 * n;
     skgl__st_begin(ctx, &st);
     /* each light's side, selected as skgl_point_render selects it */
     vp = sk_mat4_mul(cam->proj, cam->view);
@@ -9212,7 +9463,8 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         p->view = view;
         if (p->desc.select_resolution && (p->desc.screen_w < 1 || p->desc.screen_h < 1) && !viewport[2])
             skgl__caller_viewport(ctx, &st, viewport);
-        res[i] = skgl__point_select(p, &vp, viewport, &faces);
+        nface[i] = p->desc.spot_angle > 0.0f ? 1 : 6;
+        res[i] = nface[i] == 1 ? skgl__spot_select(p, &vp, viewport) : skgl__point_select(p, &vp, viewport, &faces);
         if (res[i] < 1) res[i] = 1;
         lights[i]->stats.atlas_wanted = res[i];
     }
@@ -9223,7 +9475,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
             for (k = i; k > 0 && res[order[k - 1]] < res[order[k]]; k--) {
                 int t = order[k]; order[k] = order[k - 1]; order[k - 1] = t;
             }
-        fits = skgl__atlas_shelves(a->w, a->h, n, res, order, x, y);
+        fits = skgl__atlas_shelves(a->w, a->h, n, res, nface, order, x, y);
         if (fits || res[order[0]] <= 1) break;
         res[order[0]] /= 2;
     }
@@ -9236,7 +9488,10 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
         l.face_res = res[i];
         l.atlas_w = a->w;
         l.atlas_h = a->h;
-        for (f = 0; f < 6; f++) { l.face_x[f] = x[6 * i + f]; l.face_y[f] = y[6 * i + f]; }
+        for (f = 0; f < 6; f++) {   /* a spot's one face in every slot */
+            l.face_x[f] = x[6 * i + (f < nface[i] ? f : 0)];
+            l.face_y[f] = y[6 * i + (f < nface[i] ? f : 0)];
+        }
         r = skgl__point_fill(ctx, &st, lights[i], &l);
         if (r == SK_OK) { lights[i]->packed = 1; lights[i]->face_res = res[i]; }
     }
@@ -11276,9 +11531,24 @@ static const char skgl__src_point_sample_glsl[] =
     "   (its direction picks it), compared with the receiver's depth along that\n"
     "   face's axis. A surface facing away from the light (given a normal) is in\n"
     "   its own shadow: 0. Beyond sk_point_range: 1 (no shadow from this light;\n"
-    "   attenuation is the shader's business). */\n"
+    "   attenuation is the shader's business).\n"
+    "\n"
+    "   Spot lights (SK_POINT_SPOT 1, which implies SK_POINT_VSDCT 1): one perspective\n"
+    "   map down the spot's axis in sk_point_faces[0]'s rectangle of the atlas,\n"
+    "   sk_point_spot (light-relative position -> the map's clip space) and\n"
+    "   sk_point_basis (the map's right, up and axis) in place of the six faces;\n"
+    "   MA is the depth along the axis, so Eq. (5.4.6) and both biases hold as\n"
+    "   they are. Outside the cone (cosine below sk_point_cos): 0, the spot\n"
+    "   does not light it. */\n"
     "#ifndef SK_POINT_VSDCT\n"
     "#define SK_POINT_VSDCT 0\n"
+    "#endif\n"
+    "#ifndef SK_POINT_SPOT\n"
+    "#define SK_POINT_SPOT 0\n"
+    "#endif\n"
+    "#if SK_POINT_SPOT   /* a spot's map lives in a VSDCT atlas */\n"
+    "#undef SK_POINT_VSDCT\n"
+    "#define SK_POINT_VSDCT 1\n"
     "#endif\n"
     "#ifndef SK_POINT_VSDCT_ANALYTIC\n"
     "#define SK_POINT_VSDCT_ANALYTIC 0\n"
@@ -11302,6 +11572,11 @@ static const char skgl__src_point_sample_glsl[] =
     "#else\n"
     "uniform highp samplerCubeShadow sk_point_cube;\n"
     "#endif\n"
+    "#if SK_POINT_SPOT\n"
+    "uniform mat4 sk_point_spot;         /* light-relative position -> the map's clip space */\n"
+    "uniform mat4 sk_point_basis;        /* columns: the map's right, up and axis (world), 0 */\n"
+    "uniform float sk_point_cos;         /* cosine of the cone's half-angle */\n"
+    "#endif\n"
     "\n"
     "/* the major-axis component of |v| along the axis that d's face looks down */\n"
     "float sk_point_ma(vec3 av, vec3 d)\n"
@@ -11311,10 +11586,31 @@ static const char skgl__src_point_sample_glsl[] =
     "    return ad.y >= ad.z ? av.y : av.z;\n"
     "}\n"
     "\n"
+    "/* MA of the light-relative point v itself: its major-axis component, or\n"
+    "   for a spot its depth along the axis */\n"
+    "float sk_point_ma_of(vec3 v)\n"
+    "{\n"
+    "#if SK_POINT_SPOT\n"
+    "    return dot(v, sk_point_basis[2].xyz);\n"
+    "#else\n"
+    "    vec3 av = abs(v);\n"
+    "    return max(av.x, max(av.y, av.z));\n"
+    "#endif\n"
+    "}\n"
+    "\n"
     "/* one hardware 2x2 comparison of depth ref along direction d */\n"
     "float sk_point_tap(vec3 d, float ref)\n"
     "{\n"
-    "#if SK_POINT_VSDCT\n"
+    "#if SK_POINT_SPOT\n"
+    "    /* the map's clip space, into face 0's rectangle (its full extent is the\n"
+    "       inset one grown by half a texel), clamped inside it */\n"
+    "    vec4 c = sk_point_spot * vec4(d, 1.0);\n"
+    "    vec4 r = sk_point_faces[0];\n"
+    "    vec2 st = 0.5 * c.xy / c.w + 0.5;\n"
+    "    vec2 texel = 1.0 / vec2(textureSize(sk_point_atlas, 0));\n"
+    "    vec2 uv = clamp(r.xy - 0.5 * texel + st * (r.zw - r.xy + texel), r.xy, r.zw);\n"
+    "    return texture(sk_point_atlas, vec3(uv, ref));\n"
+    "#elif SK_POINT_VSDCT\n"
     "    /* the indirection keeps (u, v) half a texel inside the face, but its 16\n"
     "       bits round to 1/65535 of the atlas: clamped again here, in float, or\n"
     "       the 2x2 filter could give a neighbouring sub-rect a sliver of weight */\n"
@@ -11351,9 +11647,9 @@ static const char skgl__src_point_sample_glsl[] =
     "float sk_point_plane_ma(vec3 v, vec3 n, vec3 d)\n"
     "{\n"
     "    float t = dot(n, v) / dot(n, d);\n"
-    "    float t0 = max(abs(v.x), max(abs(v.y), abs(v.z))) / max(sk_point_ma(abs(d), d), 1e-30);\n"
+    "    float t0 = sk_point_ma_of(v) / max(sk_point_ma_of(d), 1e-30);\n"
     "    t = clamp(t, 0.5 * t0, 2.0 * t0);\n"
-    "    return t * sk_point_ma(abs(d), d);\n"
+    "    return t * sk_point_ma_of(d);\n"
     "}\n"
     "\n"
     "/* one tap along d compared with the receiver plane: the plane's window\n"
@@ -11369,7 +11665,7 @@ static const char skgl__src_point_sample_glsl[] =
     "    float dz_dma = abs(sk_point_depth.x) / (m * m);\n"
     "    float slope = dz_dma * (abs(sk_point_plane_ma(v, n, d + t1) - m) + abs(sk_point_plane_ma(v, n, d + t2) - m));\n"
     "    /* the receiver's own uncertainty: dz/dMA = -scale / MA^2 at v */\n"
-    "    float ma = max(abs(v.x), max(abs(v.y), abs(v.z)));\n"
+    "    float ma = sk_point_ma_of(v);\n"
     "    float slack = abs(sk_point_depth.x) / max(ma * ma, 1e-30) * sk_point_receiver_slack;\n"
     "    return sk_point_tap(d, z - (1.0 + sk_point_plane_bias) * slope - slack - 4.0e-7);\n"
     "}\n"
@@ -11380,20 +11676,28 @@ static const char skgl__src_point_sample_glsl[] =
     "    float dist = length(v);\n"
     "    if (!(dist > 0.0) || dist > sk_point_range) return 1.0;\n"
     "    if (dot(world_normal, v) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;\n"
+    "#if SK_POINT_SPOT\n"
+    "    if (dot(v, sk_point_basis[2].xyz) < sk_point_cos * dist) return 0.0;\n"
+    "#endif\n"
     "    vec3 av = abs(v);\n"
-    "    float ma = max(av.x, max(av.y, av.z));\n"
+    "    float ma = sk_point_ma_of(v);\n"
     "    bool plane = sk_point_bias_mode == 0 && dot(world_normal, world_normal) > 0.0;\n"
     "    vec3 n = world_normal;\n"
     "    if (sk_point_bias_mode == 1 || sk_point_normal_bias > 0.0)\n"
     "        v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);\n"
     "    av = abs(v);\n"
-    "    ma = max(av.x, max(av.y, av.z));\n"
+    "    ma = sk_point_ma_of(v);\n"
     "    if (!(ma > 0.0)) return 1.0;\n"
-    "    /* the face plane's axes at v (any two axes other than the major one) */\n"
+    "    /* the face plane's axes at v (any two axes other than the major one;\n"
+    "       a spot's map's right and up) */\n"
     "    vec3 t1, t2;\n"
+    "#if SK_POINT_SPOT\n"
+    "    t1 = sk_point_basis[0].xyz; t2 = sk_point_basis[1].xyz;\n"
+    "#else\n"
     "    if (av.x >= av.y && av.x >= av.z) { t1 = vec3(0.0, 0.0, 1.0); t2 = vec3(0.0, 1.0, 0.0); }\n"
     "    else if (av.y >= av.z) { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 0.0, 1.0); }\n"
     "    else { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 1.0, 0.0); }\n"
+    "#endif\n"
     "    float step = sk_point_texel * ma;\n"
     "    if (sk_point_pcf <= 0)\n"
     "        return plane ? sk_point_plane_tap(v, n, v, t1 * step, t2 * step)\n"
@@ -11406,7 +11710,11 @@ static const char skgl__src_point_sample_glsl[] =
     "            if (plane) {\n"
     "                sum += sk_point_plane_tap(v, n, d, t1 * step, t2 * step);\n"
     "            } else {\n"
+    "#if SK_POINT_SPOT\n"
+    "                float m = max(ma, 1e-30);\n"
+    "#else\n"
     "                float m = max(sk_point_ma(av, d), 1e-30);\n"
+    "#endif\n"
     "                sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);\n"
     "            }\n"
     "        }\n"

@@ -1,5 +1,5 @@
 # mk/examples.mk - the tutorial programs in examples/ (included by the Makefile).
-#   make examples        build build/examples/01_hard_shadows .. 07_engine_casters
+#   make examples        build build/examples/01_hard_shadows .. 08_spot_lights
 #   make examples-demo   render each one headless into out/ (part of make demo)
 # Each example is one C99 file holding the shadowkit implementation, plus
 # examples/common.c, linked with the testbed library and GLFW.
@@ -9,7 +9,8 @@
 .SECONDEXPANSION:
 
 EX_DIR   := $(BUILD)/examples
-EX_NAMES := 01_hard_shadows 02_cascades 03_warping 04_adaptive 05_point_light 06_soft_shadows 07_engine_casters
+EX_NAMES := 01_hard_shadows 02_cascades 03_warping 04_adaptive 05_point_light 06_soft_shadows 07_engine_casters \
+            08_spot_lights
 EX_BINS  := $(addprefix $(EX_DIR)/,$(EX_NAMES))
 EX_OBJS  := $(addprefix $(EX_DIR)/obj/,$(addsuffix .o,$(EX_NAMES)))
 EX_HDRS  := shadowkit.h shadowkit_gl.h examples/common.h
@@ -56,6 +57,7 @@ examples-demo: $(EX_BINS)
 	./$(EX_DIR)/06_soft_shadows --headless --technique tiles --out $(OUT)/06_soft_shadows-tiles.png
 	./$(EX_DIR)/05_point_light --headless --technique vsdct --out $(OUT)/05_point_light-vsdct.png
 	./$(EX_DIR)/07_engine_casters --headless --out $(OUT)/07_engine_casters.png
-	@echo "examples: images in $(OUT)/: 01_hard_shadows.png 02_cascades.png 02_cascades-show.png 03_warping-{lispsm,psm,standard}.png 04_adaptive-{ferko,lspsm,rmsm}.png 05_point_light-{cube,vsdct}.png 06_soft_shadows-{pvsm,pcss,tiles}.png 07_engine_casters.png"
+	./$(EX_DIR)/08_spot_lights --headless --out $(OUT)/08_spot_lights.png
+	@echo "examples: images in $(OUT)/: 01_hard_shadows.png 02_cascades.png 02_cascades-show.png 03_warping-{lispsm,psm,standard}.png 04_adaptive-{ferko,lspsm,rmsm}.png 05_point_light-{cube,vsdct}.png 06_soft_shadows-{pvsm,pcss,tiles}.png 07_engine_casters.png 08_spot_lights.png"
 
 DEMO_TARGETS += examples-demo

@@ -35,9 +35,24 @@
    (its direction picks it), compared with the receiver's depth along that
    face's axis. A surface facing away from the light (given a normal) is in
    its own shadow: 0. Beyond sk_point_range: 1 (no shadow from this light;
-   attenuation is the shader's business). */
+   attenuation is the shader's business).
+
+   Spot lights (SK_POINT_SPOT 1, which implies SK_POINT_VSDCT 1): one perspective
+   map down the spot's axis in sk_point_faces[0]'s rectangle of the atlas,
+   sk_point_spot (light-relative position -> the map's clip space) and
+   sk_point_basis (the map's right, up and axis) in place of the six faces;
+   MA is the depth along the axis, so Eq. (5.4.6) and both biases hold as
+   they are. Outside the cone (cosine below sk_point_cos): 0, the spot
+   does not light it. */
 #ifndef SK_POINT_VSDCT
 #define SK_POINT_VSDCT 0
+#endif
+#ifndef SK_POINT_SPOT
+#define SK_POINT_SPOT 0
+#endif
+#if SK_POINT_SPOT   /* a spot's map lives in a VSDCT atlas */
+#undef SK_POINT_VSDCT
+#define SK_POINT_VSDCT 1
 #endif
 #ifndef SK_POINT_VSDCT_ANALYTIC
 #define SK_POINT_VSDCT_ANALYTIC 0
@@ -61,6 +76,11 @@ uniform vec4 sk_point_faces[6];     /* per face: its sub-rect inset by half a te
 #else
 uniform highp samplerCubeShadow sk_point_cube;
 #endif
+#if SK_POINT_SPOT
+uniform mat4 sk_point_spot;         /* light-relative position -> the map's clip space */
+uniform mat4 sk_point_basis;        /* columns: the map's right, up and axis (world), 0 */
+uniform float sk_point_cos;         /* cosine of the cone's half-angle */
+#endif
 
 /* the major-axis component of |v| along the axis that d's face looks down */
 float sk_point_ma(vec3 av, vec3 d)
@@ -70,10 +90,31 @@ float sk_point_ma(vec3 av, vec3 d)
     return ad.y >= ad.z ? av.y : av.z;
 }
 
+/* MA of the light-relative point v itself: its major-axis component, or
+   for a spot its depth along the axis */
+float sk_point_ma_of(vec3 v)
+{
+#if SK_POINT_SPOT
+    return dot(v, sk_point_basis[2].xyz);
+#else
+    vec3 av = abs(v);
+    return max(av.x, max(av.y, av.z));
+#endif
+}
+
 /* one hardware 2x2 comparison of depth ref along direction d */
 float sk_point_tap(vec3 d, float ref)
 {
-#if SK_POINT_VSDCT
+#if SK_POINT_SPOT
+    /* the map's clip space, into face 0's rectangle (its full extent is the
+       inset one grown by half a texel), clamped inside it */
+    vec4 c = sk_point_spot * vec4(d, 1.0);
+    vec4 r = sk_point_faces[0];
+    vec2 st = 0.5 * c.xy / c.w + 0.5;
+    vec2 texel = 1.0 / vec2(textureSize(sk_point_atlas, 0));
+    vec2 uv = clamp(r.xy - 0.5 * texel + st * (r.zw - r.xy + texel), r.xy, r.zw);
+    return texture(sk_point_atlas, vec3(uv, ref));
+#elif SK_POINT_VSDCT
     /* the indirection keeps (u, v) half a texel inside the face, but its 16
        bits round to 1/65535 of the atlas: clamped again here, in float, or
        the 2x2 filter could give a neighbouring sub-rect a sliver of weight */
@@ -110,9 +151,9 @@ float sk_point_tap(vec3 d, float ref)
 float sk_point_plane_ma(vec3 v, vec3 n, vec3 d)
 {
     float t = dot(n, v) / dot(n, d);
-    float t0 = max(abs(v.x), max(abs(v.y), abs(v.z))) / max(sk_point_ma(abs(d), d), 1e-30);
+    float t0 = sk_point_ma_of(v) / max(sk_point_ma_of(d), 1e-30);
     t = clamp(t, 0.5 * t0, 2.0 * t0);
-    return t * sk_point_ma(abs(d), d);
+    return t * sk_point_ma_of(d);
 }
 
 /* one tap along d compared with the receiver plane: the plane's window
@@ -128,7 +169,7 @@ float sk_point_plane_tap(vec3 v, vec3 n, vec3 d, vec3 t1, vec3 t2)
     float dz_dma = abs(sk_point_depth.x) / (m * m);
     float slope = dz_dma * (abs(sk_point_plane_ma(v, n, d + t1) - m) + abs(sk_point_plane_ma(v, n, d + t2) - m));
     /* the receiver's own uncertainty: dz/dMA = -scale / MA^2 at v */
-    float ma = max(abs(v.x), max(abs(v.y), abs(v.z)));
+    float ma = sk_point_ma_of(v);
     float slack = abs(sk_point_depth.x) / max(ma * ma, 1e-30) * sk_point_receiver_slack;
     return sk_point_tap(d, z - (1.0 + sk_point_plane_bias) * slope - slack - 4.0e-7);
 }
@@ -139,20 +180,28 @@ float sk_point_shadow(vec3 world_pos, vec3 world_normal)
     float dist = length(v);
     if (!(dist > 0.0) || dist > sk_point_range) return 1.0;
     if (dot(world_normal, v) >= 0.0 && dot(world_normal, world_normal) > 0.0) return 0.0;
+#if SK_POINT_SPOT
+    if (dot(v, sk_point_basis[2].xyz) < sk_point_cos * dist) return 0.0;
+#endif
     vec3 av = abs(v);
-    float ma = max(av.x, max(av.y, av.z));
+    float ma = sk_point_ma_of(v);
     bool plane = sk_point_bias_mode == 0 && dot(world_normal, world_normal) > 0.0;
     vec3 n = world_normal;
     if (sk_point_bias_mode == 1 || sk_point_normal_bias > 0.0)
         v += world_normal * (sk_point_normal_bias * sk_point_texel * ma);
     av = abs(v);
-    ma = max(av.x, max(av.y, av.z));
+    ma = sk_point_ma_of(v);
     if (!(ma > 0.0)) return 1.0;
-    /* the face plane's axes at v (any two axes other than the major one) */
+    /* the face plane's axes at v (any two axes other than the major one;
+       a spot's map's right and up) */
     vec3 t1, t2;
+#if SK_POINT_SPOT
+    t1 = sk_point_basis[0].xyz; t2 = sk_point_basis[1].xyz;
+#else
     if (av.x >= av.y && av.x >= av.z) { t1 = vec3(0.0, 0.0, 1.0); t2 = vec3(0.0, 1.0, 0.0); }
     else if (av.y >= av.z) { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 0.0, 1.0); }
     else { t1 = vec3(1.0, 0.0, 0.0); t2 = vec3(0.0, 1.0, 0.0); }
+#endif
     float step = sk_point_texel * ma;
     if (sk_point_pcf <= 0)
         return plane ? sk_point_plane_tap(v, n, v, t1 * step, t2 * step)
@@ -165,7 +214,11 @@ float sk_point_shadow(vec3 world_pos, vec3 world_normal)
             if (plane) {
                 sum += sk_point_plane_tap(v, n, d, t1 * step, t2 * step);
             } else {
+#if SK_POINT_SPOT
+                float m = max(ma, 1e-30);
+#else
                 float m = max(sk_point_ma(av, d), 1e-30);
+#endif
                 sum += sk_point_tap(d, sk_point_depth.x / m + sk_point_depth.y);
             }
         }

@@ -184,7 +184,7 @@ static void snippet_files(void)
     char buf[65536], pre[65536], path[512];
     int d, k;
     for (d = 0; d < 2; d++)
-        for (k = 0; k < 6; k++) {
+        for (k = 0; k < 7; k++) {
             const char *body = "";
             FILE *f;
             pre[0] = 0;
@@ -197,6 +197,7 @@ static void snippet_files(void)
                 snprintf(pre, sizeof pre, "#define SK_POINT_VSDCT 1\n#define SK_POINT_VSDCT_ANALYTIC 1\n%s",
                          skgl_point_glsl_snippet());
                 break;
+            case 6: snprintf(pre, sizeof pre, "#define SK_POINT_SPOT 1\n%s", skgl_point_glsl_snippet()); break;
             default: skgl_point_glsl_snippet_prefixed("lamp_", pre, (int)sizeof pre); break;
             }
             body = k == 0   ? "void main() { o = vec4(sk_shadow(p, vec3(0.0, 1.0, 0.0), 1.0)); }\n"

@@ -90,7 +90,7 @@
    Budgets (cg_rows): the issue's per technique, STANDARD, PSM, LiSPSM 40;
    PSSM, LSPSM 40 + 8 per layer past the first; FERKO 76 (the issue's 60
    is below the floor its own rules set: see FERKO'S BUDGET); RMSM 60 + 7 per
-   page (6 before each page went through the one-page target); point lights 40 + 6 per face rendered; PCSS 40; PVSM 100 + 25 per
+   page (6 before each page went through the one-page target); point lights and spots 40 + 6 per face rendered (a spot has one); PCSS 40; PVSM 100 + 25 per
    tile; skgl_shadow_bind, skgl_point_bind 12 per call: x1 in caller-owns
    mode, x2 with the state restored, and in a steady frame no
    glGetUniformLocation, glCheckFramebufferStatus or
@@ -119,9 +119,13 @@
                                                 (3324 | 1662); SYNC: 1195 | 1137, 1 ReadPixels
      POINT_CUBE (6 faces)    342/110/15/2/2/0    90/30/0/0/0/0 | 54/0/0/0/0/0 (152 | 76)
      POINT_VSDCT (6 faces)   341/110/16/2/2/0    100/33/0/0/0/0 | 59/0/0/0/0/0 (152 | 76)
+     SPOT (1 face, new)      87/33/0/0/0/0 | 46/0/0/0/0/0 (92 | 46: the point
+                             budget, 40 + 6 per face)
      skgl_shadow_bind        43 (RMSM 47)/1/19   10 (13)/3/0 | 6 (9)/0/0 (24 | 12)
      skgl_point_bind         27 (VSDCT 32)/1/11-12
                                                 8 (11)/3/0 | 4 (7)/0/0 (24 | 12)
+     skgl_point_bind (SPOT, new)                14/3/0 | 10/0/0 (24 | 12): its matrix,
+                             basis and cone sent with every bind
      SOFT_PCSS               212/55/13/2/4/0     68/24/0/0/0/0 | 36/0/0/0/0/0 (80 | 40)
      SOFT_PVSM (1 tile)      732/55/51/30/4/9 (7 ReadPixels, 2 GL_QUERY_RESULT waits)
                              latency 1 (default): 167/39/0/0/0/0 | 120/0/0/0/0/0 (250 | 125);
@@ -633,7 +637,10 @@ typedef struct cg_row {
 } cg_row;
 
 enum { R_STANDARD, R_PSM, R_LISPSM, R_PSSM, R_LSPSM, R_FERKO_SYNC, R_FERKO, R_RMSM_SYNC, R_RMSM, R_AUTO, R_CUBE, R_VSDCT,
-       R_PCSS, R_PVSM_SYNC, R_PVSM, R_BIND_STANDARD, R_BIND_PSSM, R_BIND_RMSM, R_BIND_CUBE, R_BIND_VSDCT, R_N };
+       R_SPOT, R_PCSS, R_PVSM_SYNC, R_PVSM, R_BIND_STANDARD, R_BIND_PSSM, R_BIND_RMSM, R_BIND_CUBE, R_BIND_VSDCT,
+       R_BIND_SPOT, R_N };
+/* a K_POINT / K_BIND_POINT row's technique for a spot light (desc.spot_angle 45) */
+#define CG_SPOT 2
 
 static const cg_row cg_rows[R_N] = {
     /* name, kind, technique, cascades, sync_readback, bind row, budget base, per unit, unit, free
@@ -663,6 +670,8 @@ static const cg_row cg_rows[R_N] = {
      {{95, 30, 0, 0, 0, 0, 0, 0}, {103, 30, 0, 0, 0, 0, 0, 0}, {59, 0, 0, 0, 0, 0, 0, 0}}},
     {"POINT_VSDCT", K_POINT, SKGL_POINT_VSDCT, 0, 0, R_BIND_VSDCT, 40, 6, U_FACES, 0, 1, 0,
      {{105, 33, 0, 0, 0, 0, 0, 0}, {113, 33, 0, 0, 0, 0, 0, 0}, {64, 0, 0, 0, 0, 0, 0, 0}}},
+    {"SPOT", K_POINT, CG_SPOT, 0, 0, R_BIND_SPOT, 40, 6, U_FACES, 0, 1, 0,
+     {{87, 33, 0, 0, 0, 0, 0, 0}, {95, 33, 0, 0, 0, 0, 0, 0}, {46, 0, 0, 0, 0, 0, 0, 0}}},
     {"SOFT_PCSS", K_SOFT, SKGL_SOFT_PCSS, 0, 0, -1, 40, 0, U_NONE, 0, 1, 0,
      {{68, 24, 0, 0, 0, 0, 0, 0}, {76, 24, 0, 0, 0, 0, 0, 0}, {36, 0, 0, 0, 0, 0, 0, 0}}},
     {"SOFT_PVSM, sync_readback", K_SOFT, SKGL_SOFT_PVSM, 0, 1, -1, 100, 25, U_TILES, 0, 1,
@@ -679,6 +688,8 @@ static const cg_row cg_rows[R_N] = {
      {{8, 3, 0, 0, 0, 0, 0, 0}, {8, 3, 0, 0, 0, 0, 0, 0}, {4, 0, 0, 0, 0, 0, 0, 0}}},
     {"skgl_point_bind (VSDCT)", K_BIND_POINT, SKGL_POINT_VSDCT, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
      {{11, 3, 0, 0, 0, 0, 0, 0}, {11, 3, 0, 0, 0, 0, 0, 0}, {7, 0, 0, 0, 0, 0, 0, 0}}},
+    {"skgl_point_bind (SPOT)", K_BIND_POINT, CG_SPOT, 0, 0, -1, 12, 0, U_CALLS, 0, 1, 0,
+     {{14, 3, 0, 0, 0, 0, 0, 0}, {14, 3, 0, 0, 0, 0, 0, 0}, {10, 0, 0, 0, 0, 0, 0, 0}}},
 };
 
 /* what a row measured, per timing setting */
@@ -694,7 +705,7 @@ static cg_result results[M_N][R_N];
 typedef struct cg_env {
     gt_env e;
     gt_forward fw;             /* skgl_glsl_snippet() */
-    unsigned point_prog[2];    /* skgl_point_glsl_snippet(), cube and VSDCT */
+    unsigned point_prog[3];    /* skgl_point_glsl_snippet(), cube, VSDCT and spot */
     skgl_camera cam;
     sk_vec3 light;
     int probe;                 /* the positive control: the callback calls a trampoline per pass */
@@ -731,9 +742,17 @@ static const char point_fs[] =
     "    o_visibility = sk_point_shadow(v_world, gl_FrontFacing ? n : -n);\n"
     "}\n";
 
+/* vsdct 2: a spot's */
 static unsigned cg_point_program(cg_env *x, int vsdct) {
     int ok = 0;
-    unsigned prog = gt_point_program_of(&x->e.gl, vsdct, gt_forward_vs, point_fs, &ok);
+    const char *vs[1], *fs[3];
+    unsigned prog;
+    vs[0] = gt_forward_vs;
+    fs[0] = "#version 330 core\n#define SK_POINT_SPOT 1\n";
+    fs[1] = skgl_point_glsl_snippet();
+    fs[2] = point_fs;
+    prog = vsdct == 2 ? gt_program(&x->e.gl, 1, vs, 3, fs, &ok)
+                      : gt_point_program_of(&x->e.gl, vsdct, gt_forward_vs, point_fs, &ok);
     if (prog && !ok) { x->e.gl.DeleteProgram(prog); SK_CHECK_MSG(0, "point forward program"); return 0; }
     return prog;
 }
@@ -742,7 +761,7 @@ static void cg_env_free(cg_env *x) {
     int i;
     if (x->e.ctx) {
         gt_forward_destroy(&x->e, &x->fw);
-        for (i = 0; i < 2; i++) if (x->point_prog[i]) x->e.gl.DeleteProgram(x->point_prog[i]);
+        for (i = 0; i < 3; i++) if (x->point_prog[i]) x->e.gl.DeleteProgram(x->point_prog[i]);
     }
     gt_env_free(&x->e);
     memset(x, 0, sizeof *x);
@@ -763,7 +782,8 @@ static int cg_env_init(cg_env *x, const char *scene, skgl_camera cam, sk_vec3 li
     }
     x->point_prog[0] = cg_point_program(x, 0);
     x->point_prog[1] = cg_point_program(x, 1);
-    if (!x->point_prog[0] || !x->point_prog[1]) return -1;
+    x->point_prog[2] = cg_point_program(x, 2);
+    if (!x->point_prog[0] || !x->point_prog[1] || !x->point_prog[2]) return -1;
     cg_install(tb_gl_context_getproc(x->e.ctx));
     return 0;
 }
@@ -820,7 +840,10 @@ static void cg_binds(cg_env *x, skgl_context *sk, const skgl_shadow *s, const sk
                      int bind_row) {
     const cg_row *row = &cg_rows[bind_row];
     cg_result *res = &results[mode][bind_row];
-    unsigned prog = s ? x->fw.program : x->point_prog[p && skgl_point_get_desc(p).technique == SKGL_POINT_VSDCT];
+    unsigned prog = s ? x->fw.program
+                      : x->point_prog[p && skgl_point_get_desc(p).spot_angle > 0.0f
+                                          ? 2
+                                          : p && skgl_point_get_desc(p).technique == SKGL_POINT_VSDCT];
     int f, ok = 1;
     for (f = 0; f < WARMUP + FRAMES; f++) {
         x->e.gl.UseProgram(prog);
@@ -866,12 +889,15 @@ static void cg_run_row(cg_env *x, skgl_context *sk, int mode, int ri) {
         skgl_point *p = NULL;
         skgl_scene sc = cg_scene(x);
         memset(&d, 0, sizeof d);
-        d.technique = (skgl_point_technique)row->technique;
+        d.technique = row->technique == CG_SPOT ? SKGL_POINT_VSDCT : (skgl_point_technique)row->technique;
+        d.spot_angle = row->technique == CG_SPOT ? 45.0f : 0.0f;
         CG_OK(skgl_point_create(sk, &d, &p));
         if (!p) return;
         for (f = 0; f < WARMUP + FRAMES; f++) {
             cg_reset();
-            CG_OK(skgl_point_render(sk, p, &x->cam, &sc, x->light));
+            /* the spot looks down and towards the room's far wall */
+            if (row->technique == CG_SPOT) CG_OK(skgl_spot_render(sk, p, &x->cam, &sc, x->light, gt_v3(0, -1, -0.6f)));
+            else CG_OK(skgl_point_render(sk, p, &x->cam, &sc, x->light));
             CG_OK(skgl_point_mask(sk, p, &x->cam, x->e.gbuf.depth_tex, x->e.gbuf.color_tex, x->e.mask.color_tex));
             units = skgl_point_stats(p)->faces_rendered;
             passes = skgl_point_stats(p)->passes;
@@ -1304,7 +1330,7 @@ static void cg_run_env(const char *scene, skgl_camera cam, sk_vec3 light, const 
 static void test_calls(void) {
     static const int ground_rows[] = {R_STANDARD, R_PSM,   R_LISPSM,    R_PSSM, R_LSPSM, R_FERKO_SYNC,
                                       R_FERKO,    R_RMSM_SYNC, R_RMSM, R_AUTO,  R_PCSS,  R_PVSM_SYNC, R_PVSM};
-    static const int room_rows[] = {R_CUBE, R_VSDCT};
+    static const int room_rows[] = {R_CUBE, R_VSDCT, R_SPOT};
     const char *path = "out/tests/gl-calls.md";
     FILE *fp;
     int m, ri;
