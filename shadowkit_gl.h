@@ -641,8 +641,8 @@
      behaviour.
 
    DOES NOT DO
-     - Spot lights: there is no skgl_spot. A point light (skgl_point) can
-       stand in for one, its map spread over the six faces of its cube.
+     - Spot lights as a light of their own: a spot is a point light with a
+       cone (SPOT LIGHTS). Spots are not cached (.cache is refused).
      - Threads: no call locks anything. A context and everything made from
        it are used from one thread at a time, with the GL context they were
        made in current there. Two skgl contexts, each over its own GL
@@ -1749,6 +1749,7 @@ extern "C" {
         6.8 the deferred mask .................................. >>mask
      7. Point lights: cube maps and VSDCT ...................... >>point
             the faces' cache ................................... >>point_cache
+            spot lights: one perspective map in a cone ......... >>spot
      8. Several point lights in one atlas ...................... >>atlas
      9. Area lights: PCSS and PVSM: the frame timer, the light,
         its frustum, the passes ................................ >>soft
@@ -8070,7 +8071,7 @@ struct skgl_point_atlas {
 /* defined with the faces' passes (7, the faces' cache) */
 static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
 static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
-/* defined with the spot lights (>>spot) */
+/* defined with the spot lights (7, SPOT LIGHTS) */
 static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster);
 static void skgl__spot_uniforms(skgl_context *ctx, const skgl_point *p, const skgl__int *L);
 
