@@ -308,7 +308,11 @@
                     pages of the last frame's requests are rendered (by
                     default; .sync_readback = 1: this frame's); where a
                     page is missing the lookup falls back
-                    to a coarser resident one.
+                    to a coarser resident one. Where the pool holds them
+                    (.rmsm_band_pages, stats.rmsm_band) the pages go a
+                    level finer than the pixel and no coarser than a world
+                    size: a texel matched to a pixel misses casters
+                    thinner than the pixel (a pole at 500 m).
      Focused crops end the shadow range where the scene ends and fit the view
      clipped to the scene. Stable crops (.stable = 1) bound each cascade by a
      sphere that depends only on the camera's projection and the split
@@ -554,7 +558,8 @@
    READ-BACKS
      What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
      page requests, a byte per page of every level: 32 KB for 16384 /
-     128) is read into the next of three pixel pack buffers, followed by a
+     128, four bytes with the finer bands of .rmsm_band_pages) is read
+     into the next of three pixel pack buffers, followed by a
      fence. Later calls poll the fences with a zero timeout (never waiting;
      the poll flushes, or a fence might never reach the GPU) and use the
      newest buffer that has landed: a frame late on a GPU that keeps up,
@@ -5057,7 +5062,7 @@ typedef struct skgl__rmsm {
     int bands;                     /* request bands (rmsm_request.vert): 1 (rmsm_band_pages -1), else levels */
     int req_fmt;                   /* rmsm.requests' format: the atlas in R8, banded in RGBA8 */
     unsigned char *req_cpu, *table_cpu, *table_new;
-    unsigned char *mark;           /* banded: per atlas texel, the band + 1 that last asked for it */
+    unsigned char *mark;           /* banded: per atlas texel, the band that last marked it (scratch) */
     sk_page *pages;
     int *slot_of;                  /* per page: its pool slot */
     int npages, analyzed;
@@ -6113,8 +6118,8 @@ static int skgl__rmsm_band_mark(skgl_shadow *s, const unsigned char *atlas, int 
 /* The banded requests (desc.rmsm_band_pages >= 0) as one request atlas in
    rmsm.mark (nonzero: asked for): the finest band whose pages fit in the
    pool with the coarsest page, else band 0, the pixel-matched pages (blue
-   0 in the banded atlas, exactly those of the matched one). Lefohn, Sengupta and Owens
-   match a texel to a pixel, which leaves a caster thinner than the
+   0 in the banded atlas, exactly those of the matched one). Lefohn,
+   Sengupta and Owens match a texel to a pixel, which leaves a caster thinner than the
    pixel's footprint (a pole's shadow at 500 m) to the chance of covering
    a texel centre; the pool's spare slots buy texels of half a pixel and,
    band by band, a finer cap on the texel's world size. A band b > 0 fits

@@ -8,7 +8,13 @@
 
    test_pages_match_cpu - pool of 64^2 pages: the GPU's resident pages are
    exactly sk_rmsm_page_requests over the analysis texture's samples, in
-   order, plus the coarsest page: boxes 70, terrace 83, fence 139 pages.
+   order, plus the coarsest page (desc.rmsm_band_pages -1): boxes 155,
+   terrace 434, fence 810 pages; with the finer bands (the default) the
+   band the pool holds, exactly band_pages' over the same samples: boxes
+   band 6 (1774 pages), terrace and fence band 7 (2315, 3088: level 0).
+   Pool of 24^2 (test_accuracy): boxes band 6 (572 pages), covered
+   0.0054%, area 0.25%; terrace and fence band 0 (434 pixel-matched pages
+   fill most of the pool; fence's 810 do not fit, min level 1).
 
    test_accuracy - pool of 24^2 pages, against the focused 2048^2 map, on
    the exact reference with the default bias (receiver plane); covered %
