@@ -331,7 +331,11 @@
                     pages of the last frame's requests are rendered (by
                     default; .sync_readback = 1: this frame's); where a
                     page is missing the lookup falls back
-                    to a coarser resident one.
+                    to a coarser resident one. Where the pool holds them
+                    (.rmsm_band_pages, stats.rmsm_band) the pages go a
+                    level finer than the pixel and no coarser than a world
+                    size: a texel matched to a pixel misses casters
+                    thinner than the pixel (a pole at 500 m).
      SKGL_AUTO      the library chooses (CHOOSING FOR YOU): one focused map
                     (STANDARD) or 2 to .cascades cascades (PSSM), per frame,
                     from the view's depth range and the scene; call
@@ -671,7 +675,8 @@
    READ-BACKS
      What the CPU needs from the GPU (FERKO's estimate, 32 bytes; RMSM's
      page requests, a byte per page of every level: 32 KB for 16384 /
-     128) is read into the next of three pixel pack buffers, followed by a
+     128, four bytes with the finer bands of .rmsm_band_pages) is read
+     into the next of three pixel pack buffers, followed by a
      fence. Later calls poll the fences with a zero timeout (never waiting;
      the poll flushes, or a fence might never reach the GPU) and use the
      newest buffer that has landed: a frame late on a GPU that keeps up,
@@ -1060,6 +1065,14 @@ typedef struct skgl_shadow_desc {
     int rmsm_pool_pages;          /* RMSM: the physical pool holds this^2 pages, 2..64 [24];
                                      .resolution is the virtual map's side, a power
                                      of two [16384 for RMSM], at most 1024 pages */
+    int rmsm_band_pages;          /* RMSM: finer pages than the pixel-matched level, in at most
+                                     this many slots: a texel of half a pixel, and none coarser
+                                     than the finest world size they afford (a caster thinner
+                                     than a pixel, a pole's shadow at 500 m, needs texels
+                                     under the pixel; stats.rmsm_band). [0: the pool, half of
+                                     it with .cache, the rest kept for earlier frames' pages];
+                                     -1: the pixel-matched level alone (Lefohn, Sengupta and
+                                     Owens 2007); else 1..rmsm_pool_pages^2 */
     float psm_slide;              /* PSM: the virtual camera slides back by this
                                      times sqrt(near*far) of the receivers, its
                                      near plane with it: more uniform texels,
@@ -1132,6 +1145,9 @@ typedef struct skgl_shadow_frame_stats {
     int pages_rendered;                   /* RMSM: pages drawn this frame (uncached: every page of the
                                              frame, the coarsest always among them) */
     int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
+    int rmsm_band;                        /* RMSM: the request band of this frame's pages, the finest the
+                                             pool held: 0 the pixel-matched level; b > 0 one level
+                                             finer and at most level levels - 1 - b (desc.rmsm_band_pages) */
     int pages_reused;                     /* RMSM, .cache: pages of this frame kept from an earlier one */
     int pages_evicted;                    /* RMSM, .cache: resident pages whose slot a new page took */
     int pages_resident;                   /* RMSM: pages the pool holds (uncached: this frame's) */
@@ -2167,7 +2183,8 @@ struct skgl_context {
     float ferko_view_z[4];                 /* the one ferko_prog holds */
     skgl__int ferko_u_ndc_to_light, ferko_u_world_w, ferko_u_view_z, reduce_u_src_size, final_u_src_size;
     skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
-    int reduce_src[2], final_src[2], request_pages0, request_levels;
+    skgl__int request_u_bands;
+    int reduce_src[2], final_src[2], request_pages0, request_levels, request_bands;
     float rmsm_vres;
     skgl__progent progs[SKGL__PROG_CACHE]; /* the user's programs (skgl_*_bind) */
     skgl__texent texs[SKGL__TEX_CACHE];    /* the user's mask and depth textures */
@@ -3683,9 +3700,10 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->rmsm_vres = -1.0f;
     ctx->request_u_pages0 = gl->GetUniformLocation(ctx->request_prog, "u_pages0");
     ctx->request_u_levels = gl->GetUniformLocation(ctx->request_prog, "u_levels");
+    ctx->request_u_bands = gl->GetUniformLocation(ctx->request_prog, "u_bands");
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->request_prog, "u_samples"), 1);
-    ctx->request_pages0 = ctx->request_levels = -1;
+    ctx->request_pages0 = ctx->request_levels = ctx->request_bands = -1;
 }
 
 // >>caps
@@ -5311,7 +5329,10 @@ typedef struct skgl__lru {
 typedef struct skgl__rmsm {
     skgl__uint samples, samples_fbo, requests, requests_fbo, table;
     int atlas_w, atlas_h, pages0, levels, w, h;
+    int bands;                     /* request bands (rmsm_request.vert): 1 (rmsm_band_pages -1), else levels */
+    int req_fmt;                   /* rmsm.requests' format: the atlas in R8, banded in RGBA8 */
     unsigned char *req_cpu, *table_cpu, *table_new;
+    unsigned char *mark;           /* banded: per atlas texel, the band that last marked it (scratch) */
     sk_page *pages;
     int *slot_of;                  /* per page: its pool slot */
     int npages, analyzed;
@@ -5625,6 +5646,8 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                fn, "resolution", d->resolution, "RMSM: a power of two, rmsm_page_size to 1024 pages");
     SKGL__RULE(d->rmsm_pool_pages >= 2 && d->rmsm_pool_pages <= 64 && d->rmsm_pool_pages * (d->rmsm_page_size + 2) <= 16384,
                fn, "rmsm_pool_pages", d->rmsm_pool_pages, "in 2..64, rmsm_pool_pages * (rmsm_page_size + 2) <= 16384");
+    SKGL__RULE(d->rmsm_band_pages >= -1 && d->rmsm_band_pages <= d->rmsm_pool_pages * d->rmsm_pool_pages, fn,
+               "rmsm_band_pages", d->rmsm_band_pages, "-1 (none), 0 (the default) or up to rmsm_pool_pages^2");
     return SK_OK;
 }
 
@@ -5703,6 +5726,8 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     skgl__timer_free(ctx, &s->t_mask);
     skgl__timer_free(ctx, &s->t_analyze);
     SKGL_FREE(s->rmsm.req_cpu);
+    SKGL_FREE(s->rmsm.mark);
+    s->rmsm.mark = NULL;
     SKGL_FREE(s->rmsm.table_cpu);
     SKGL_FREE(s->rmsm.table_new);
     SKGL_FREE(s->rmsm.pages);
@@ -6529,9 +6554,17 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
 
 /* ---- 6.4 RMSM: virtual shadow map pages (Romanick's VGP353 notes) ---- */
 // >>rmsm
+/* the bytes of one read-back of rmsm.requests */
+static size_t skgl__rmsm_req_bytes(const skgl_shadow *s)
+{
+    return (size_t)s->rmsm.atlas_w * (size_t)s->rmsm.atlas_h * (s->rmsm.req_fmt == SKGL__RGBA ? 4u : 1u);
+}
+
 /* the request atlas (R8) and the page table (RGBA8): every level's page grid
    side by side, level l (n_l = pages0 >> l pages a side) from column
-   2 pages0 - 2 n_l; the table starts all 0 (nothing resident) */
+   2 pages0 - 2 n_l; the table starts all 0 (nothing resident). The
+   requests are that atlas, in R8 with desc.rmsm_band_pages -1, else in RGBA8
+   with the levels each level-0 page's samples ask for (rmsm_request.vert). */
 static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
     int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
@@ -6540,13 +6573,17 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
     for (s->rmsm.levels = 1; (1 << (s->rmsm.levels - 1)) < s->rmsm.pages0; s->rmsm.levels++) {}
     s->rmsm.atlas_w = 2 * s->rmsm.pages0 - 1;
     s->rmsm.atlas_h = s->rmsm.pages0;
+    s->rmsm.bands = s->desc.rmsm_band_pages < 0 ? 1 : s->rmsm.levels;
+    s->rmsm.req_fmt = s->rmsm.bands > 1 ? SKGL__RGBA : SKGL__RED;
     bytes = (size_t)s->rmsm.atlas_w * (size_t)s->rmsm.atlas_h;
-    s->rmsm.req_cpu = (unsigned char *)SKGL_MALLOC(bytes);
+    s->rmsm.req_cpu = (unsigned char *)SKGL_MALLOC(skgl__rmsm_req_bytes(s));
+    s->rmsm.mark = (unsigned char *)SKGL_MALLOC(bytes);
     s->rmsm.table_cpu = (unsigned char *)SKGL_MALLOC(4 * bytes);
     s->rmsm.table_new = (unsigned char *)SKGL_MALLOC(4 * bytes);
     s->rmsm.pages = (sk_page *)SKGL_MALLOC(sizeof(sk_page) * (size_t)cap);
     s->rmsm.slot_of = (int *)SKGL_MALLOC(sizeof(int) * (size_t)cap);
-    if (!s->rmsm.req_cpu || !s->rmsm.table_cpu || !s->rmsm.table_new || !s->rmsm.pages || !s->rmsm.slot_of)
+    if (!s->rmsm.req_cpu || !s->rmsm.mark || !s->rmsm.table_cpu || !s->rmsm.table_new || !s->rmsm.pages ||
+        !s->rmsm.slot_of)
         return SK_ERR_CAPACITY;
     memset(s->rmsm.table_cpu, 0, 4 * bytes);
     if (s->desc.cache) {   /* the page cache: every slot empty, everything to draw */
@@ -6560,12 +6597,12 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
         s->cache.layers = s->stats.cache_layers = 1;
         s->stats.cache_verify_texels = -1;
     }
-    s->rmsm.requests = skgl__color_texture(ctx, st, SKGL__R8, s->rmsm.atlas_w, s->rmsm.atlas_h, 1, SKGL__RED,
-                                           SKGL__UNSIGNED_BYTE, NULL);
+    s->rmsm.requests = skgl__color_texture(ctx, st, s->rmsm.bands > 1 ? SKGL__RGBA8 : SKGL__R8, s->rmsm.atlas_w,
+                                           s->rmsm.atlas_h, 1, s->rmsm.req_fmt, SKGL__UNSIGNED_BYTE, NULL);
     s->rmsm.table = skgl__color_texture(ctx, st, SKGL__RGBA8, s->rmsm.atlas_w, s->rmsm.atlas_h, 1, SKGL__RGBA,
                                         SKGL__UNSIGNED_BYTE, s->rmsm.table_cpu);
     s->rmsm.requests_fbo = skgl__framebuffer(ctx, st, s->rmsm.requests, 1, 0, 0);
-    skgl__ring_create(ctx, st, &s->rmsm.ring, bytes);
+    skgl__ring_create(ctx, st, &s->rmsm.ring, skgl__rmsm_req_bytes(s));
     {
         int slot = s->desc.rmsm_page_size + 2;
         sk_result r = skgl__verify_texture(ctx, st, &s->rmsm.page_tex, &s->rmsm.page_fbo, slot, slot,
@@ -6599,33 +6636,115 @@ static size_t skgl__atlas_index(const skgl_shadow *s, int level, int px, int py)
     return (size_t)py * (size_t)s->rmsm.atlas_w + (size_t)(2 * s->rmsm.pages0 - 2 * n + px);
 }
 
-/* The pages to render from the requests read back (a nonzero texel per
-   page some pixel asks for, levels clamped to [0, levels - 1] as
-   sk_rmsm_page_requests clamps them). When they do not fit in the pool
-   (with the coarsest page, always resident), the finest level rises: its
-   requests fold into their parents one level up (page (px, py) of level l
-   is inside (px/2, py/2) of level l + 1, the page a sample clamped to
-   l + 1 would have asked for), until they fit. The list is sorted by
-   (level, py, px), as sk_rmsm_page_requests sorts. req is folded in place. */
-static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *req)
+/* pages some pixel asks for in one request atlas, from level l0 up */
+static int skgl__rmsm_count(const skgl_shadow *s, const unsigned char *req, int l0)
 {
-    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count = 0, l, px, py;
-    int top = s->rmsm.levels - 1;
-    for (l = 0; l < s->rmsm.levels; l++)
+    int count = 0, l, px, py;
+    for (l = l0; l < s->rmsm.levels; l++)
         for (py = 0; py < (s->rmsm.pages0 >> l); py++)
             for (px = 0; px < (s->rmsm.pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
-    s->stats.pages_requested = count;
+    return count;
+}
+
+/* the level request band b asks for where the pixel-matched one is f
+   (rmsm_request.vert): band 0 f, band b > 0 one finer and at most top - b */
+static int skgl__band_level(int f, int b, int top)
+{
+    if (b == 0) return f;
+    f = f > 0 ? f - 1 : 0;
+    return f < top - b ? f : top - b;
+}
+
+/* Band b > 0's pages, from the banded atlas's level-0 texels (red and
+   green: the least and 254 - the greatest pixel-matched level of the
+   page's samples; 255 in red: none): a sample asks for the ancestor of
+   its level-0 page at its band level, so the page asks for its ancestors
+   at the band levels of [fmin, fmax] (every one between: a superset where
+   the levels present skip one). Each is marked in rmsm.mark with stamp;
+   their count, which stops past stop (a band that cannot fit). */
+static int skgl__rmsm_band_mark(skgl_shadow *s, const unsigned char *atlas, int b, unsigned char stamp, int stop)
+{
+    int n0 = s->rmsm.pages0, top = s->rmsm.levels - 1, count = 0, px, py, l;
+    for (py = 0; py < n0; py++)
+        for (px = 0; px < n0; px++) {
+            const unsigned char *e = atlas + 4 * skgl__atlas_index(s, 0, px, py);
+            int lo, hi;
+            if (e[0] == 255) continue;
+            lo = skgl__band_level(e[0], b, top);
+            hi = skgl__band_level(254 - e[1], b, top);
+            for (l = lo; l <= hi; l++) {
+                unsigned char *m = &s->rmsm.mark[skgl__atlas_index(s, l, px >> l, py >> l)];
+                if (*m == stamp) continue;
+                *m = stamp;
+                if (++count > stop) return count;
+            }
+        }
+    return count;
+}
+
+/* The banded requests (desc.rmsm_band_pages >= 0) as one request atlas in
+   rmsm.mark (nonzero: asked for): the finest band whose pages fit in the
+   pool with the coarsest page, else band 0, the pixel-matched pages (blue
+   0 in the banded atlas, exactly those of the matched one). Lefohn,
+   Sengupta and Owens match a texel to a pixel, which leaves a caster thinner than the
+   pixel's footprint (a pole's shadow at 500 m) to the chance of covering
+   a texel centre; the pool's spare slots buy texels of half a pixel and,
+   band by band, a finer cap on the texel's world size. A band b > 0 fits
+   in cap slots. */
+static unsigned char *skgl__rmsm_bands(skgl_shadow *s, const unsigned char *atlas, int cap)
+{
+    size_t bytes = (size_t)s->rmsm.atlas_w * (size_t)s->rmsm.atlas_h, i;
+    int b, n = 0;
+    for (i = 0; i < bytes; i++) n += atlas[4 * i + 2] != 255;
+    s->stats.pages_requested = n;
+    memset(s->rmsm.mark, 0, bytes);
+    for (b = s->rmsm.bands - 1; b > 0; b--)
+        if (skgl__rmsm_band_mark(s, atlas, b, (unsigned char)b, cap - 1) + 1 <= cap) break;
+    s->stats.rmsm_band = b;
+    if (b > 0)
+        for (i = 0; i < bytes; i++) s->rmsm.mark[i] = s->rmsm.mark[i] == (unsigned char)b;
+    else
+        for (i = 0; i < bytes; i++) s->rmsm.mark[i] = atlas[4 * i + 2] != 255;
+    return s->rmsm.mark;
+}
+
+/* the slots a finer band may take (desc.rmsm_band_pages): a cached light
+   keeps half the pool for the pages of earlier frames (skgl__rmsm_assign),
+   which a band that filled it would evict */
+static int skgl__rmsm_band_cap(const skgl_shadow *s)
+{
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
+    if (s->desc.rmsm_band_pages > 0) return s->desc.rmsm_band_pages;
+    return s->desc.cache ? cap / 2 : cap;
+}
+
+/* The pages to render from the requests read back: the request atlas (a
+   nonzero texel per page some pixel asks for, levels clamped to [0,
+   levels - 1] as sk_rmsm_page_requests clamps them) with
+   desc.rmsm_band_pages -1, else the banded atlas, whose band skgl__rmsm_bands
+   picks. When they do not fit in the pool (with the coarsest page, always
+   resident), the finest level rises: its requests fold into their parents
+   one level up (page (px, py) of level l is inside (px/2, py/2) of level
+   l + 1, the page a sample clamped to l + 1 would have asked for), until
+   they fit. The list is sorted by (level, py, px), as
+   sk_rmsm_page_requests sorts. The requests are folded in place. */
+static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *data)
+{
+    int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count, l, px, py;
+    int top = s->rmsm.levels - 1;
+    unsigned char *req = data;
+    s->stats.rmsm_band = 0;
+    if (s->rmsm.bands > 1) req = skgl__rmsm_bands(s, data, skgl__rmsm_band_cap(s));
+    else s->stats.pages_requested = skgl__rmsm_count(s, req, 0);
+    count = skgl__rmsm_count(s, req, 0);
     while (count + 1 > cap && min_level < top) {
         int n = s->rmsm.pages0 >> min_level;
-        count = 0;
         for (py = 0; py < n; py++)
             for (px = 0; px < n; px++)
                 if (req[skgl__atlas_index(s, min_level, px, py)])
                     req[skgl__atlas_index(s, min_level + 1, px / 2, py / 2)] = 1;
         min_level++;
-        for (l = min_level; l < s->rmsm.levels; l++)
-            for (py = 0; py < (s->rmsm.pages0 >> l); py++)
-                for (px = 0; px < (s->rmsm.pages0 >> l); px++) count += req[skgl__atlas_index(s, l, px, py)] != 0;
+        count = skgl__rmsm_count(s, req, min_level);
     }
     s->rmsm.npages = 0;
     for (l = min_level; l < s->rmsm.levels; l++)
@@ -6681,8 +6800,8 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
 {
     skgl__api *gl = &ctx->gl;
-    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    int sync = s->desc.sync_readback || !s->rmsm.analyzed, slot;
+    static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+    int sync = s->desc.sync_readback || !s->rmsm.analyzed, slot, banded = s->rmsm.bands > 1;
     (void)o;   /* lvp and inv are relative to it already; the render places the pages itself */
     if (s->rmsm.w != w || s->rmsm.h != h) {
         skgl__delete_texture(ctx, &s->rmsm.samples);
@@ -6716,10 +6835,18 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
         skgl__u1f(gl, ctx->rmsm_u_virtual_res, ctx->rmsm_vres);
     }
     gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
-    /* the requests: a point per sample onto its page's texel */
+    /* the requests: a point per sample onto its page's texel; banded, two:
+       one there (blue 0) and one onto its level-0 page ((f, 254 - f) in
+       red and green), the least of each kept (blending MIN, from the
+       clear's 255: none) */
     skgl__st_framebuffer(ctx, st, s->rmsm.requests_fbo);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h);
-    gl->ClearBufferfv(SKGL__COLOR, 0, zero);
+    gl->ClearBufferfv(SKGL__COLOR, 0, banded ? one : zero);
+    if (banded) {
+        skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
+        skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__MIN, SKGL__MIN, 0, 0);
+        skgl__st_set4(ctx, st, SKGL__S_BLEND_FUNC, SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
+    }
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
     if (ctx->request_pages0 != s->rmsm.pages0 || ctx->request_levels != s->rmsm.levels) {
         ctx->request_pages0 = s->rmsm.pages0;
@@ -6727,20 +6854,28 @@ static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow
         skgl__u1i(gl, ctx->request_u_pages0, s->rmsm.pages0);
         skgl__u1i(gl, ctx->request_u_levels, s->rmsm.levels);
     }
+    if (ctx->request_bands != s->rmsm.bands) {
+        ctx->request_bands = s->rmsm.bands;
+        skgl__u1i(gl, ctx->request_u_bands, s->rmsm.bands);
+    }
     skgl__st_texture(ctx, st, 1, SKGL__T_2D, s->rmsm.samples, ctx->point_sampler);
     /* the vertex shader's gl_PointSize, not the glPointSize the caller set */
     skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
-    gl->DrawArrays(SKGL__POINTS, 0, w * h);
+    gl->DrawArrays(SKGL__POINTS, 0, w * h * (banded ? 2 : 1));
+    skgl__st_set1(ctx, st, SKGL__S_BLEND, 0);
     if (sync) {
         /* this frame's requests: the read-back waits for the GPU. A byte
            a texel (GL_RED of the R8 atlas): rows of atlas_w bytes, hence
            the pack alignment of 1 (the default 4 would pad them) */
-        skgl__st_pack(ctx, st, 0, s->rmsm.atlas_h, s->rmsm.atlas_w);
-        gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, s->rmsm.req_cpu);
+        skgl__st_pack(ctx, st, 0, s->rmsm.atlas_h, (int)(skgl__rmsm_req_bytes(s) / (size_t)s->rmsm.atlas_h));
+        gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, (skgl__enum)s->rmsm.req_fmt, SKGL__UNSIGNED_BYTE,
+                       s->rmsm.req_cpu);
         skgl__rmsm_pages(s, s->rmsm.req_cpu);
     } else if ((slot = skgl__ring_slot(ctx, st, &s->rmsm.ring)) >= 0) {
-        skgl__st_pack(ctx, st, s->rmsm.ring.buf[slot], s->rmsm.atlas_h, s->rmsm.atlas_w);
-        gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, SKGL__RED, SKGL__UNSIGNED_BYTE, (void *)0);
+        skgl__st_pack(ctx, st, s->rmsm.ring.buf[slot], s->rmsm.atlas_h,
+                      (int)(skgl__rmsm_req_bytes(s) / (size_t)s->rmsm.atlas_h));
+        gl->ReadPixels(0, 0, s->rmsm.atlas_w, s->rmsm.atlas_h, (skgl__enum)s->rmsm.req_fmt, SKGL__UNSIGNED_BYTE,
+                       (void *)0);
         skgl__ring_fence(ctx, &s->rmsm.ring, slot);
     }
     s->rmsm.analyzed = 1;
@@ -7560,7 +7695,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         s->rmsm.pages[0].px = s->rmsm.pages[0].py = 0;
         s->rmsm.npages = 1;
         s->stats.pages_requested = 0;
-        s->stats.rmsm_min_level = 0;
+        s->stats.rmsm_min_level = s->stats.rmsm_band = 0;
     }
     s->stats.passes = 0;
     s->stats.texels = 0.0;
@@ -7849,8 +7984,10 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
         e->extent[0] = e->extent[1] = e->select = -1.0f;
     }
     if (e->layers != s->maps) { e->layers = s->maps; skgl__u1i(gl, L[SKGL__L_LAYERS], s->maps); }
-    if (e->min_level != s->stats.rmsm_min_level) {
-        e->min_level = s->stats.rmsm_min_level;
+    /* sk_rmsm_min_level: the finest level rendered, or -b when the pages
+       are those of request band b (skgl__rmsm_pages: never both) */
+    if (e->min_level != s->stats.rmsm_min_level - s->stats.rmsm_band) {
+        e->min_level = s->stats.rmsm_min_level - s->stats.rmsm_band;
         skgl__u1i(gl, L[SKGL__L_MIN_LEVEL], e->min_level);
     }
     /* FERKO and AUTO draw into the lower-left view_w x view_h texels:
@@ -11049,7 +11186,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "uniform highp sampler2D sk_page_table;   /* RMSM: per page of every level, (slot x, slot y)/255 and a = resident */\n"
     "uniform int sk_rmsm_pages0;        /* RMSM: pages per side at level 0 */\n"
     "uniform int sk_rmsm_levels;        /* RMSM: levels, the last one page */\n"
-    "uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered */\n"
+    "uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered; -b: the pages of request band b (rmsm_request.vert) */\n"
     "uniform int sk_rmsm_page;          /* RMSM: page side in texels (+2 border texels in the pool) */\n"
     "uniform float sk_select_extent;    /* a partition's rect in its light NDC: [-e, e]^2 */\n"
     "uniform vec2 sk_map_extent;        /* the part of each layer this frame rendered, in texture coordinates */\n"
@@ -11168,7 +11305,9 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    if (any(lessThan(st, vec2(0.0))) || any(greaterThanEqual(st, vec2(1.0)))) return 1.0;\n"
     "    float vres = float(sk_rmsm_pages0 * sk_rmsm_page), page = float(sk_rmsm_page);\n"
     "    vec2 pool = vec2(textureSize(sk_shadow_map, 0).xy);\n"
-    "    for (int level = clamp(int(floor(lod)), sk_rmsm_min_level, sk_rmsm_levels - 1); level < sk_rmsm_levels; level++) {\n"
+    "    int band = max(-sk_rmsm_min_level, 0);\n"
+    "    int first = int(floor(lod)) - band;\n"
+    "    for (int level = clamp(first, max(sk_rmsm_min_level, 0), sk_rmsm_levels - 1); level < sk_rmsm_levels; level++) {\n"
     "        int n = sk_rmsm_pages0 >> level;\n"
     "        ivec2 pg = min(ivec2(st * float(n)), ivec2(n - 1));\n"
     "        vec4 e = texelFetch(sk_page_table, ivec2(2 * sk_rmsm_pages0 - 2 * n + pg.x, pg.y), 0);\n"
@@ -11469,17 +11608,33 @@ static const char skgl__src_rmsm_request_vert[] =
     "   the finest levels into their ancestors (the same pages a raised minimum\n"
     "   level would request, from the one read-back). Atlas layout: level\n"
     "   l's n_l = u_pages0 >> l pages per side start at column 2 u_pages0 - 2 n_l;\n"
-    "   the atlas is (2 u_pages0 - 1) x u_pages0 texels. */\n"
+    "   the atlas is (2 u_pages0 - 1) x u_pages0 texels.\n"
+    "   u_bands > 1 (banded requests): the atlas in RGBA8, cleared to 1 and\n"
+    "   blended by MIN, two points per sample: one onto that texel with blue 0,\n"
+    "   one onto its level-0 page with (f, 254 - f) / 255 in red and green, f\n"
+    "   the level above: per level-0 page the least and the greatest level its\n"
+    "   samples ask for. Request band b's pages follow on the CPU\n"
+    "   (skgl__rmsm_bands): band 0 the level f (blue), band b > 0 one level\n"
+    "   finer and at most level u_levels - 1 - b, each the ancestor of the\n"
+    "   sample's level-0 page. */\n"
     "uniform sampler2D u_samples;\n"
     "uniform int u_pages0;\n"
     "uniform int u_levels;\n"
+    "uniform int u_bands;\n"
+    "flat out vec3 v_request;\n"
     "void main()\n"
     "{\n"
     "    ivec2 size = textureSize(u_samples, 0);\n"
-    "    vec4 s = texelFetch(u_samples, ivec2(gl_VertexID % size.x, gl_VertexID / size.x), 0);\n"
+    "    int i = u_bands > 1 ? gl_VertexID / 2 : gl_VertexID;\n"
+    "    vec4 s = texelFetch(u_samples, ivec2(i % size.x, i / size.x), 0);\n"
     "    gl_PointSize = 1.0;\n"
+    "    v_request = u_bands > 1 ? vec3(1.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);\n"
     "    if (s.w < 0.5) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }   /* outside: clipped */\n"
     "    int level = clamp(int(floor(s.z)), 0, u_levels - 1);\n"
+    "    if (u_bands > 1 && gl_VertexID % 2 == 1) {\n"
+    "        v_request = vec3(float(level), float(254 - level), 255.0) / 255.0;\n"
+    "        level = 0;\n"
+    "    }\n"
     "    int n = u_pages0 >> level;\n"
     "    ivec2 page = min(ivec2(s.xy * float(n)), ivec2(n - 1));\n"
     "    vec2 texel = vec2(float(2 * u_pages0 - 2 * n + page.x), float(page.y)) + 0.5;\n"
@@ -11487,11 +11642,13 @@ static const char skgl__src_rmsm_request_vert[] =
     "}\n"
     ;
 static const char skgl__src_rmsm_request_frag[] =
-    "/* RMSM page requests: a set texel is a requested page. */\n"
-    "out float o_request;\n"
+    "/* RMSM page requests: a set texel is a requested page (banded: the\n"
+    "   levels, rmsm_request.vert). */\n"
+    "flat in vec3 v_request;\n"
+    "out vec4 o_request;\n"
     "void main()\n"
     "{\n"
-    "    o_request = 1.0;\n"
+    "    o_request = vec4(v_request, 1.0);\n"
     "}\n"
     ;
 static const char skgl__src_point_sample_glsl[] =

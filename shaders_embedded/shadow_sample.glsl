@@ -56,7 +56,7 @@ uniform int sk_rmsm;               /* 1: a virtual map through sk_page_table */
 uniform highp sampler2D sk_page_table;   /* RMSM: per page of every level, (slot x, slot y)/255 and a = resident */
 uniform int sk_rmsm_pages0;        /* RMSM: pages per side at level 0 */
 uniform int sk_rmsm_levels;        /* RMSM: levels, the last one page */
-uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered */
+uniform int sk_rmsm_min_level;     /* RMSM: the finest level rendered; -b: the pages of request band b (rmsm_request.vert) */
 uniform int sk_rmsm_page;          /* RMSM: page side in texels (+2 border texels in the pool) */
 uniform float sk_select_extent;    /* a partition's rect in its light NDC: [-e, e]^2 */
 uniform vec2 sk_map_extent;        /* the part of each layer this frame rendered, in texture coordinates */
@@ -175,7 +175,9 @@ float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, vec3 plane_normal, float
     if (any(lessThan(st, vec2(0.0))) || any(greaterThanEqual(st, vec2(1.0)))) return 1.0;
     float vres = float(sk_rmsm_pages0 * sk_rmsm_page), page = float(sk_rmsm_page);
     vec2 pool = vec2(textureSize(sk_shadow_map, 0).xy);
-    for (int level = clamp(int(floor(lod)), sk_rmsm_min_level, sk_rmsm_levels - 1); level < sk_rmsm_levels; level++) {
+    int band = max(-sk_rmsm_min_level, 0);
+    int first = int(floor(lod)) - band;
+    for (int level = clamp(first, max(sk_rmsm_min_level, 0), sk_rmsm_levels - 1); level < sk_rmsm_levels; level++) {
         int n = sk_rmsm_pages0 >> level;
         ivec2 pg = min(ivec2(st * float(n)), ivec2(n - 1));
         vec4 e = texelFetch(sk_page_table, ivec2(2 * sk_rmsm_pages0 - 2 * n + pg.x, pg.y), 0);

@@ -128,6 +128,9 @@ static int pair_create(world *w, light_kind k, int res, pair *pr) {
             if (k == L_RMSM) {
                 d.rmsm_page_size = 64;
                 d.sync_readback = 1;
+                /* the finer pages' slots set alike: by default a cached
+                   light's band takes half the pool, an uncached one's all */
+                d.rmsm_band_pages = 288;
             }
             pr->s[i] = gt_shadow(&w->e, &d);
             if (!pr->s[i]) return -1;

@@ -181,6 +181,18 @@ static int verbose(void) {
     return v && *v && *v != '0';
 }
 
+/* SK_GL_TEST_METHODS=rmsm runs only the methods whose name contains the
+   string (a quicker survey; the checks across methods are skipped then) */
+static int method_selected(int k) {
+    const char *f = getenv("SK_GL_TEST_METHODS");
+    return !f || !*f || strstr(methods[k].name, f) != NULL;
+}
+
+static int methods_filtered(void) {
+    const char *f = getenv("SK_GL_TEST_METHODS");
+    return f && *f;
+}
+
 /* Every technique over every view and sun. Measured (Mesa 22.3 llvmpipe,
    320x180), pooled shadow-area error % and by band (0-10, 10-50, 50-200,
    200+ m), texels per frame:
@@ -192,8 +204,8 @@ static int verbose(void) {
      psm 2048            3.16   2.05  5.62  9.13  9.53   4.2M
      lspsm               1.23   1.03  1.45  4.00  3.83  27.3M
      ferko max 4096      3.63   2.81  6.12  3.54  2.41  16.8M
-     rmsm 16384          2.65   1.94  4.02  7.90  9.97   2.3M
-     rmsm 65536          1.38   0.62  2.73  7.53  9.97   5.2M
+     rmsm 16384          2.30   1.93  3.30  3.13  2.63   3.2M
+     rmsm 65536          1.09   0.62  1.96  4.76  3.29   8.1M
      lspsm 1024          3.05   2.54  4.25  5.64  4.49   6.8M
    LSPSM at 1024^2 a partition (1.6x PSSM 4x1024^2's texels: 6.5
    partitions a frame on average) has 2.0x PSSM's error, 2.1x in the
@@ -218,9 +230,19 @@ static int verbose(void) {
    the footprint (the area's square root before, which is coarser than a
    grazing receiver's narrow side needs): 4.36% pooled at 16384^2 (1.95
    8.81 22.78 34.28 by band, 1.1M texels) and 3.50% at 65536^2 (0.79 8.72
-   22.77 34.28, 2.2M): the virtual size hardly mattered. What remains beyond 200 m is the same at both virtual
-   sizes: the page matches the pixel there (a 2-3 m texel at 500 m), and a
-   pole's 0.3 m shadow is a point sample inside one texel. */
+   22.77 34.28, 2.2M): the virtual size hardly mattered. Pixel-matched
+   (desc.rmsm_band_pages -1), 2.65% (1.94 4.02 7.90 9.97, 2.3M) and 1.38%
+   (0.62 2.73 7.53 9.97, 5.2M): beyond 200 m the same at both sizes, as
+   the page matches the pixel there (a 2-3 m texel at 500 m) and a pole's
+   0.3 m shadow is a point sample inside one texel. The pages now go a
+   level finer than the pixel, capped in world size, as far as the pool
+   holds them (request bands, stats.rmsm_band): at 16384^2 every frame
+   takes level 0; at 65536^2 band 6-9 in 21 frames, the pixel-matched
+   band 0 in 9 whose pixel-matched pages already fill most of the pool.
+   With a 64^2 pool and every frame at band 9, 65536^2 gives 0.73%
+   (0.61 1.06 0.74 1.53, 16.1M): beyond 200 m 14 of 913 px remain
+   wrong, at the feet of far buildings (the bias at a contact, not
+   resolution), so 1% there is out of reach of the page level alone. */
 static void test_open_world(void) {
     gt_env e;
     pool pools[METHODS];
@@ -239,7 +261,7 @@ static void test_open_world(void) {
     res = gt_alloc(&e);
     for (k = 0; k < METHODS; k++) {
         skgl_shadow_desc d = method_desc(&methods[k]);
-        sh[k] = gt_shadow(&e, &d);
+        sh[k] = method_selected(k) ? gt_shadow(&e, &d) : NULL;
     }
     for (v = 0; v < TB_OPEN_WORLD_VIEWS; v++) {
         skgl_camera cam = ow_camera(v);
@@ -253,6 +275,7 @@ static void test_open_world(void) {
                 pool one;
                 memset(&one, 0, sizeof one);
                 frame_err[k][f] = -1.0;
+                if (!method_selected(k)) continue;
                 if (!sh[k] || ow_frame(&e, sh[k], &methods[k], &cam, light, res) != 0) {
                     pools[k].failed++;
                     continue;
@@ -272,19 +295,21 @@ static void test_open_world(void) {
                 if (k == M_FERKO) ferko_below_cap += st->map_width < methods[k].resolution;
                 if (verbose())
                     printf("view %d sun %d %-20s %7.2f%% (shadow %6.0f px) slide %.1f n %.1f map %dx%d pages %d/%d "
-                           "min level %d\n",
+                           "min level %d band %d, 200+ m %.0f of %.0f px wrong\n",
                            v, s, methods[k].name, frame_err[k][f], one.b.shadow, st->psm_slide, st->warp_n[0],
-                           st->map_width, st->map_height, st->pages_rendered, st->pages_requested, st->rmsm_min_level);
+                           st->map_width, st->map_height, st->pages_rendered, st->pages_requested,
+                           st->rmsm_min_level, st->rmsm_band, one.b.band_wrong[3], one.b.band_shadow[3]);
             }
         }
     }
     printf("open world, %d views x %d suns, %dx%d, pooled shadow-area error %% and by view-depth band (m):\n",
            TB_OPEN_WORLD_VIEWS, TB_OPEN_WORLD_SUNS, W, H);
-    for (k = 0; k < METHODS; k++) print_pool(methods[k].name, &pools[k]);
+    for (k = 0; k < METHODS; k++)
+        if (method_selected(k)) print_pool(methods[k].name, &pools[k]);
     printf("PSM: largest slide %.1f m; FERKO: %d of %d frames below its cap\n", max_slide, ferko_below_cap, FRAMES);
     for (k = 0; k < METHODS; k++) SK_CHECK_MSG(pools[k].failed == 0, "%s: %d frames failed", methods[k].name,
                                                pools[k].failed);
-    {
+    if (!methods_filtered()) {
         double std = gt_pool_pct(pools[M_STD2048].b.wrong, pools[M_STD2048].b.shadow);
         double pssm = gt_pool_pct(pools[M_PSSM].b.wrong, pools[M_PSSM].b.shadow);
         double lis = gt_pool_pct(pools[M_LISPSM].b.wrong, pools[M_LISPSM].b.shadow);
@@ -304,16 +329,10 @@ static void test_open_world(void) {
         }
         SK_CHECK_MSG(lis <= 0.5 * std, "LiSPSM pooled %.2f%% against standard 2048's %.2f%%", lis, std);
         SK_CHECK_MSG(psm <= 0.7 * std, "PSM pooled %.2f%% against standard 2048's %.2f%%", psm, std);
-        /* RMSM's pages matched to the narrow side of the pixel's
-           footprint: pooled 0.22x standard 2048's (0.36x with the area's
-           square root), 50-200 m 7.90% (22.78%), and the error falls as
-           the virtual map grows (65536^2: 1.38%) */
+        /* RMSM pooled 0.19x standard 2048's (0.22x pixel-matched, 0.36x
+           with the area's square root) */
         double rmsm = gt_pool_pct(pools[M_RMSM].b.wrong, pools[M_RMSM].b.shadow);
-        double rmsm64 = gt_pool_pct(pools[M_RMSM64K].b.wrong, pools[M_RMSM64K].b.shadow);
-        double rmsm_mid = gt_pool_pct(pools[M_RMSM].b.band_wrong[2], pools[M_RMSM].b.band_shadow[2]);
         SK_CHECK_MSG(rmsm <= 0.3 * std, "RMSM pooled %.2f%% against standard 2048's %.2f%%", rmsm, std);
-        SK_CHECK_MSG(rmsm_mid <= 11.0, "RMSM 50-200 m %.2f%%", rmsm_mid);
-        SK_CHECK_MSG(rmsm64 <= 0.7 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
         /* the warps and cascades spend texels where the view needs them:
            a texel over 2 px on 68.7% (PSSM), 37.3% (LiSPSM) and 44.4%
            (PSM) of the pixels, against 94.7% for standard 2048 */
@@ -328,6 +347,24 @@ static void test_open_world(void) {
            scene's 40 m over tan 8 degrees (285 m) and the body's extent
            behind the camera; measured 295.8 m (1273 m with the scene box) */
         SK_CHECK_MSG(max_slide > 0.0f && max_slide <= 320.0f, "PSM slide %.1f m", max_slide);
+    }
+    if (method_selected(M_RMSM) && method_selected(M_RMSM64K)) {
+        /* RMSM's pages a level finer than the pixel and capped in world
+           size where the pool holds them (desc.rmsm_band_pages): 50-200 m
+           3.13% (7.90% pixel-matched, 22.78% with the area's square root),
+           the error falls as the virtual map grows (65536^2: 1.09%,
+           16384^2: 2.30%), and beyond 200 m 2.63% and 3.29% (9.97% at
+           both, pixel-matched: 91 of 913 px; with the page level from
+           the area, 34.28%). Bounds about 1.5x; beyond 200 m 5% */
+        double rmsm = gt_pool_pct(pools[M_RMSM].b.wrong, pools[M_RMSM].b.shadow);
+        double rmsm64 = gt_pool_pct(pools[M_RMSM64K].b.wrong, pools[M_RMSM64K].b.shadow);
+        double rmsm_mid = gt_pool_pct(pools[M_RMSM].b.band_wrong[2], pools[M_RMSM].b.band_shadow[2]);
+        double far16 = gt_pool_pct(pools[M_RMSM].b.band_wrong[3], pools[M_RMSM].b.band_shadow[3]);
+        double far64 = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[3], pools[M_RMSM64K].b.band_shadow[3]);
+        SK_CHECK_MSG(rmsm_mid <= 5.0, "RMSM 50-200 m %.2f%%", rmsm_mid);
+        SK_CHECK_MSG(rmsm64 <= 0.7 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
+        SK_CHECK_MSG(far16 <= 5.0 && far64 <= 5.0, "RMSM beyond 200 m: 16384^2 %.2f%%, 65536^2 %.2f%%", far16,
+                     far64);
     }
     for (f = 0; f < FRAMES; f++) {
         /* LiSPSM never loses to the plain map in any frame: measured at
