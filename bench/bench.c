@@ -34,6 +34,11 @@
        area_10_50_pct,area_50_200_pct,area_200_pct
        method     standard | standard-stable | pssm | psm | lispsm |
                   lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
+                  auto (SKGL_AUTO: one focused map or up to 4 cascades
+                  sharing resolution^2 texels, chosen per frame) |
+                  pssm-fit | standard-fit (desc.fit_to_depth: the splits
+                  over the analysed depth range, SDSM; params as the
+                  practical pssm / standard row they are compared with) |
                   cube-naive | cube | vsdct (point lights, "room") |
                   floor (the limit: params say which over-resolved map)
                   (DESIGN.md names)
@@ -49,8 +54,9 @@
                   rasteriser the wall clock between two glFinish calls, see
                   g_wall_timing), median of
                   --repeat timing passes
-       analysis_ms GPU time of FERKO's skgl_shadow_analyze (median, like
-                  shadow_ms); 0 for the methods that analyse nothing
+       analysis_ms GPU time of skgl_shadow_analyze (FERKO, RMSM, AUTO,
+                  the -fit rows; median, like shadow_ms); 0 for the methods
+                  that analyse nothing
        total_ms   shadow_ms + analysis_ms + mask_ms (the deferred mask pass,
                   one sample)
        device     GL renderer string (CSV-quoted: llvmpipe's has commas)
@@ -105,6 +111,17 @@
                                 distance from the floor and its texel
                                 figures (means over the views); the
                                 companion table of the charts
+     bench-auto.txt             issue 28's acceptance figure, per chart: each
+                                AUTO point (time, error), the time of the
+                                other configurations' Pareto front at
+                                AUTO's error (their staircase: the fastest
+                                at least as accurate), the ratio, whether
+                                AUTO is on the front, PASS (on it or within
+                                1.25x) or MISS; AUTO's choice per view
+                                (stats.auto_reason); and each -fit row
+                                against its practical twin (error and time
+                                ratios)
+     bench-data/auto-choices.txt  the sweep's AUTO choices, one line a run
      bench-bands.txt            per scene and configuration: the shadow-area
                                 error by view-depth band, pooled over the
                                 views (sums of wrong and of shadow pixels),
@@ -120,9 +137,15 @@
      added here (y = the model's lowest point, 3x its horizontal extent) so
      that its shadows have a receiver. When the folder is missing only the
      procedural scenes run, and stderr says so. Procedural (testbed):
-     ground-boxes, fence, terrace, and open-world (2 km, a camera at
+     ground-boxes, fence, terrace, open-world (2 km, a camera at
      head height, far plane 1000 m: the regime of cascades, warps and
-     virtual maps; its own views, see make_open_world_views). The scenes
+     virtual maps; its own views, see make_open_world_views) and forest
+     (600 m, 600 instanced trees whose leaf cards are alpha-tested, a
+     camera walking among them, far plane 400 m; its own views,
+     make_forest_views; drawn as test_gl_forest.c draws it, bench_forest:
+     the trees through a caster program in the shadow passes and through
+     the same hooks in the G-buffer, the reference tracing the expanded
+     trees through the same alpha texture). The scenes
      are bench_common.c's bench_scene_table, one entry a scene. One
      directional light per scene; and the "room" with a point light for the omnidirectional methods (see
      point_bench: cube-naive, cube, vsdct).
@@ -138,7 +161,12 @@
    Timing: per scene, `--repeat` timing passes (default 5) go over every
    configuration; in each pass a configuration gets a new map, one warm-up
    render (not timed: texture allocation, llvmpipe shader variants) and one
-   timed render per view. shadow_ms is the median over the passes.
+   timed render per view. A light that analyses the depth buffer through
+   the read-back ring (AUTO and the -fit rows: sync_readback 0, the range
+   of an earlier frame, as a game runs them) gets instead a new map and
+   ANALYSIS_WARM untimed frames on each view, so that the ring holds that
+   view's own range; its analysis time is counted like FERKO's.
+   shadow_ms is the median over the passes.
    Interleaving the repetitions this way means a slow spell of a shared
    machine spoils one sample of many configurations instead of every sample
    of one. The last pass also runs the mask pass once per view (its time is
@@ -156,10 +184,11 @@
      build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
                        [--only SCENE[,SCENE..]] [--views N] [--images]
                        [--views-only] [--gp FILE] [--plot-only] [--dry-run]
-                       [--methods M[,M..]] [--no-floor]
+                       [--methods M[,M..]] [--no-floor] [--no-soft]
      --quick      the small sweep of `make demo` (also SK_BENCH_QUICK=1)
      --methods    only these methods of the directional sweep (bench_methods)
      --no-floor   no floor rows (two over-resolved maps a view)
+     --no-soft    no area-light rows (the soft_bench part)
      --plot-only  redraw the charts from an existing OUT/bench.csv
      --dry-run    print the sweep (configurations, runs) and exit
      --help       all options
@@ -503,7 +532,7 @@ static void draw_casters(void *user, const skgl_draw_info *info) {
 
 /* ------------------------------------------------------------- options */
 typedef struct bench_opts {
-    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor;
+    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor, no_soft;
     bench_paths p;             /* --scenes, --out, --only, --gp */
     const char *methods;
 } bench_opts;
@@ -512,7 +541,7 @@ static void usage(FILE *f, const char *argv0) {
     fprintf(f,
             "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
             "          [--views N] [--images] [--views-only] [--soft-only] [--bias B] [--gp FILE] [--plot-only]\n"
-            "          [--methods M[,M..]] [--no-floor] [--dry-run]\n"
+            "          [--methods M[,M..]] [--no-floor] [--no-soft] [--dry-run]\n"
             "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
             "  --repeat N     timing passes, the median is reported (default 5)\n"
             "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
@@ -521,6 +550,7 @@ static void usage(FILE *f, const char *argv0) {
             "  --methods LIST only these methods of the directional sweep (standard, pssm, psm,\n"
             "                 lispsm, lspsm, ferko, rmsm, auto, fit; default all)\n"
             "  --no-floor     no floor runs (the over-resolved maps of each view)\n"
+            "  --no-soft      no area-light rows (PCSS, PVSM on sponza and the fence)\n"
             "  --views N      first N of the views overview,low,close (default 3)\n"
             "  --images       write reference and error PNGs per view to OUT/bench/\n"
             "  --views-only   only the reference PNGs of each view (no sweep, no CSV rows)\n"
@@ -2013,6 +2043,7 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
         else if (strcmp(a, "--methods") == 0 && more) o.methods = argv[++i];
         else if (strcmp(a, "--no-floor") == 0) o.no_floor = 1;
+        else if (strcmp(a, "--no-soft") == 0) o.no_soft = 1;
         else if (strcmp(a, "--bias") == 0 && more) {
             const char *b = argv[++i];
             if (strcmp(b, "plane") == 0) g_bias = SKGL_BIAS_RECEIVER_PLANE;
@@ -2280,7 +2311,10 @@ int main(int argc, char **argv) {
                         if (rr->reason[0]) {
                             fprintf(stderr, "        auto on %s: %s\n", vd[v].v.name, rr->reason);
                             if (autoch)
+                            {
                                 fprintf(autoch, "%s %s %s %s\n", def->name, cfg->params, vd[v].v.name, rr->reason);
+                                fflush(autoch);
+                            }
                         }
                         if (o.images && c == 0) {
                             snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.p.out_dir,
@@ -2348,7 +2382,7 @@ int main(int argc, char **argv) {
         tb_scene_free(&s);
     }
     if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
-    soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
+    if (!o.no_soft) soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
     if (walk) fclose(walk);
