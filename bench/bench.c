@@ -34,6 +34,11 @@
        area_10_50_pct,area_50_200_pct,area_200_pct
        method     standard | standard-stable | pssm | psm | lispsm |
                   lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
+                  auto (SKGL_AUTO: one focused map or up to 4 cascades
+                  sharing resolution^2 texels, chosen per frame) |
+                  pssm-fit | standard-fit (desc.fit_to_depth: the splits
+                  over the analysed depth range, SDSM; params as the
+                  practical pssm / standard row they are compared with) |
                   cube-naive | cube | vsdct (point lights, "room") |
                   floor (the limit: params say which over-resolved map)
                   (DESIGN.md names)
@@ -49,8 +54,9 @@
                   rasteriser the wall clock between two glFinish calls, see
                   g_wall_timing), median of
                   --repeat timing passes
-       analysis_ms GPU time of FERKO's skgl_shadow_analyze (median, like
-                  shadow_ms); 0 for the methods that analyse nothing
+       analysis_ms GPU time of skgl_shadow_analyze (FERKO, RMSM, AUTO,
+                  the -fit rows; median, like shadow_ms); 0 for the methods
+                  that analyse nothing
        total_ms   shadow_ms + analysis_ms + mask_ms (the deferred mask pass,
                   one sample)
        device     GL renderer string (CSV-quoted: llvmpipe's has commas)
@@ -105,6 +111,17 @@
                                 distance from the floor and its texel
                                 figures (means over the views); the
                                 companion table of the charts
+     bench-auto.txt             issue 28's acceptance figure, per chart: each
+                                AUTO point (time, error), the time of the
+                                other configurations' Pareto front at
+                                AUTO's error (their staircase: the fastest
+                                at least as accurate), the ratio, whether
+                                AUTO is on the front, PASS (on it or within
+                                1.25x) or MISS; AUTO's choice per view
+                                (stats.auto_reason); and each -fit row
+                                against its practical twin (error and time
+                                ratios)
+     bench-data/auto-choices.txt  the sweep's AUTO choices, one line a run
      bench-bands.txt            per scene and configuration: the shadow-area
                                 error by view-depth band, pooled over the
                                 views (sums of wrong and of shadow pixels),
@@ -120,9 +137,15 @@
      added here (y = the model's lowest point, 3x its horizontal extent) so
      that its shadows have a receiver. When the folder is missing only the
      procedural scenes run, and stderr says so. Procedural (testbed):
-     ground-boxes, fence, terrace, and open-world (2 km, a camera at
+     ground-boxes, fence, terrace, open-world (2 km, a camera at
      head height, far plane 1000 m: the regime of cascades, warps and
-     virtual maps; its own views, see make_open_world_views). The scenes
+     virtual maps; its own views, see make_open_world_views) and forest
+     (600 m, 600 instanced trees whose leaf cards are alpha-tested, a
+     camera walking among them, far plane 400 m; its own views,
+     make_forest_views; drawn as test_gl_forest.c draws it, bench_forest:
+     the trees through a caster program in the shadow passes and through
+     the same hooks in the G-buffer, the reference tracing the expanded
+     trees through the same alpha texture). The scenes
      are bench_common.c's bench_scene_table, one entry a scene. One
      directional light per scene; and the "room" with a point light for the omnidirectional methods (see
      point_bench: cube-naive, cube, vsdct).
@@ -138,7 +161,12 @@
    Timing: per scene, `--repeat` timing passes (default 5) go over every
    configuration; in each pass a configuration gets a new map, one warm-up
    render (not timed: texture allocation, llvmpipe shader variants) and one
-   timed render per view. shadow_ms is the median over the passes.
+   timed render per view. A light that analyses the depth buffer through
+   the read-back ring (AUTO and the -fit rows: sync_readback 0, the range
+   of an earlier frame, as a game runs them) gets instead a new map and
+   ANALYSIS_WARM untimed frames on each view, so that the ring holds that
+   view's own range; its analysis time is counted like FERKO's.
+   shadow_ms is the median over the passes.
    Interleaving the repetitions this way means a slow spell of a shared
    machine spoils one sample of many configurations instead of every sample
    of one. The last pass also runs the mask pass once per view (its time is
@@ -156,10 +184,11 @@
      build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
                        [--only SCENE[,SCENE..]] [--views N] [--images]
                        [--views-only] [--gp FILE] [--plot-only] [--dry-run]
-                       [--methods M[,M..]] [--no-floor]
+                       [--methods M[,M..]] [--no-floor] [--no-soft]
      --quick      the small sweep of `make demo` (also SK_BENCH_QUICK=1)
      --methods    only these methods of the directional sweep (bench_methods)
      --no-floor   no floor rows (two over-resolved maps a view)
+     --no-soft    no area-light rows (the soft_bench part)
      --plot-only  redraw the charts from an existing OUT/bench.csv
      --dry-run    print the sweep (configurations, runs) and exit
      --help       all options
@@ -204,6 +233,9 @@ static const double band_edge[BENCH_BANDS + 1] = {0.0, 10.0, 50.0, 200.0, 1e30};
 static const char *const band_name[BENCH_BANDS] = {"0-10", "10-50", "50-200", "200+"};
 /* the floor's method name in bench.csv (see floor_runs) */
 #define BENCH_FLOOR "floor"
+/* AUTO's choice per view (maps, stats.auto_reason), one line a run, written
+   by the sweep and quoted in bench-auto.txt */
+#define BENCH_AUTO_CHOICES "bench-data/auto-choices.txt"
 /* the reference's marks for pixels it leaves out (tb_reference.h), besides
    background and out of range */
 #define BENCH_VIS_BACKFACING TB_VIS_BACKFACING
@@ -311,6 +343,38 @@ static void add_rmsm(int vres) {
     c->desc.sync_readback = 1;   /* this view's pages (see add_ferko) */
 }
 
+/* SKGL_AUTO at a texel budget of res^2 (one focused map or up to 4
+   cascades sharing it, desc.auto_texel_px's default target of 1 px). Its
+   analysis runs each frame without a stall (sync_readback 0: the depth
+   range of an earlier frame through the read-back ring, widened by 10%),
+   as a game would run it; the sweep gives each view a fresh light and
+   ANALYSIS_WARM frames of that view first, so that the ring has landed
+   with the view's own range (analysing_async). */
+static void add_auto(int res) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "auto");
+    snprintf(c->params, sizeof c->params, "resolution=%d;cascades=4;texel_px=1;pcf=1", res);
+    c->desc.technique = SKGL_AUTO;
+    c->desc.resolution = res;
+    c->desc.cascades = 4;
+}
+
+/* desc.fit_to_depth (sample distribution shadow maps, Lauritzen, Salvi and
+   Lefohn 2011): PSSM's practical splits, or the standard focused map, over
+   the view depths the analysis found; analysed each frame like AUTO */
+static void add_pssm_fit(int cascades, int res) {
+    add_pssm(cascades, 0.75f, res, 0.0f, 1);
+    snprintf(g_cfg[g_ncfg - 1].method, sizeof g_cfg[0].method, "pssm-fit");
+    g_cfg[g_ncfg - 1].desc.fit_to_depth = 1;
+}
+
+static void add_standard_fit(int res) {
+    add_standard(0, res, 1);
+    snprintf(g_cfg[g_ncfg - 1].method, sizeof g_cfg[0].method, "standard-fit");
+    g_cfg[g_ncfg - 1].desc.fit_to_depth = 1;
+}
+
 /* The sweep, one entry a method: its configurations in the quick sweep
    (`make demo`) and the full one. A new method is an add_<method> above
    and one entry here (its chart series and front labels follow from the
@@ -405,6 +469,26 @@ static void sweep_rmsm(int quick) {
     if (!quick) add_rmsm(32768);
 }
 
+static void sweep_auto(int quick) {
+    int r;
+    for (r = 1; r < (quick ? 3 : 4); r++) add_auto(std_res[r]);
+}
+
+/* the fitted rows mirror practical ones of sweep_pssm and sweep_standard
+   (lambda 0.75, no blend band, pcf 1), which bench-auto.txt pairs them with */
+static void sweep_fit(int quick) {
+    int c, r;
+    if (quick) {
+        add_pssm_fit(4, 512);
+        add_pssm_fit(4, 1024);
+        add_standard_fit(2048);
+        return;
+    }
+    for (c = 2; c <= 8; c *= 2)
+        for (r = 0; r < 3; r++) add_pssm_fit(c, pssm_res[r]);
+    for (r = 1; r < 4; r++) add_standard_fit(std_res[r]);
+}
+
 typedef struct bench_method {
     const char *name;              /* --methods picks by it; the rows' method starts with it */
     void (*sweep)(int quick);
@@ -412,7 +496,8 @@ typedef struct bench_method {
 
 static const bench_method bench_methods[] = {
     {"standard", sweep_standard}, {"pssm", sweep_pssm},   {"psm", sweep_psm},   {"lispsm", sweep_lispsm},
-    {"lspsm", sweep_lspsm},       {"ferko", sweep_ferko}, {"rmsm", sweep_rmsm},
+    {"lspsm", sweep_lspsm},       {"ferko", sweep_ferko}, {"rmsm", sweep_rmsm}, {"auto", sweep_auto},
+    {"fit", sweep_fit},
 };
 
 /* the configurations of the methods selected by `methods` (a comma list of
@@ -447,7 +532,7 @@ static void draw_casters(void *user, const skgl_draw_info *info) {
 
 /* ------------------------------------------------------------- options */
 typedef struct bench_opts {
-    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor;
+    int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor, no_soft;
     bench_paths p;             /* --scenes, --out, --only, --gp */
     const char *methods;
 } bench_opts;
@@ -456,15 +541,16 @@ static void usage(FILE *f, const char *argv0) {
     fprintf(f,
             "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
             "          [--views N] [--images] [--views-only] [--soft-only] [--bias B] [--gp FILE] [--plot-only]\n"
-            "          [--methods M[,M..]] [--no-floor] [--dry-run]\n"
+            "          [--methods M[,M..]] [--no-floor] [--no-soft] [--dry-run]\n"
             "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
             "  --repeat N     timing passes, the median is reported (default 5)\n"
             "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
             "  --out DIR      output folder (default out)\n"
             "  --only LIST    only these scenes (comma separated names)\n"
             "  --methods LIST only these methods of the directional sweep (standard, pssm, psm,\n"
-            "                 lispsm, lspsm, ferko, rmsm; default all)\n"
+            "                 lispsm, lspsm, ferko, rmsm, auto, fit; default all)\n"
             "  --no-floor     no floor runs (the over-resolved maps of each view)\n"
+            "  --no-soft      no area-light rows (PCSS, PVSM on sponza and the fence)\n"
             "  --views N      first N of the views overview,low,close (default 3)\n"
             "  --images       write reference and error PNGs per view to OUT/bench/\n"
             "  --views-only   only the reference PNGs of each view (no sweep, no CSV rows)\n"
@@ -487,6 +573,7 @@ typedef struct plot_pt {
     int scene;                /* index into the scene names */
     char method[32], params[160];
     double err_sum, ms_sum;
+    double an_sum;            /* analysis_ms summed over the views (part of ms_sum) */
     int n;                    /* views */
     int err_n;                /* views with a y value */
     double err, ms;           /* means */
@@ -550,6 +637,12 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
         snprintf(buf, n, "rmsm %d", (s = strstr(p->params, "virtual_resolution=")) ? atoi(s + 19) : 0);
     else if (strcmp(p->method, "lspsm") == 0)
         snprintf(buf, n, "lspsm %d", res);
+    else if (strcmp(p->method, "auto") == 0)
+        snprintf(buf, n, "AUTO %d", res);
+    else if (strcmp(p->method, "pssm-fit") == 0)
+        snprintf(buf, n, "%d\xc3\x97%d fit", casc, res);
+    else if (strcmp(p->method, "standard-fit") == 0)
+        snprintf(buf, n, "%d fit", res);
     else if (strncmp(p->method, "pssm", 4) == 0)
         snprintf(buf, n, "%d\xc3\x97%d \xce\xbb%g%s", casc, res, lambda, blend > 0 ? " blend" : "");
     else
@@ -657,6 +750,7 @@ static int plot_read(const char *csv, plot_data *d) {
             p->err_n++;
         }
         p->ms_sum += soft ? atof(fld[12]) : atof(fld[10]) + atof(fld[11]);   /* depth passes + analysis (FERKO) */
+        if (!soft) p->an_sum += atof(fld[11]);
         p->n++;
         if (*fld[BENCH_COL_TEXEL]) {
             for (k = 0; k < 4; k++) p->texel_sum[k] += atof(fld[BENCH_COL_TEXEL + k]);
@@ -696,7 +790,87 @@ static void write_limit_table(FILE *t, const plot_data *d, int si, plot_pt *cons
     fputc('\n', t);
 }
 
-static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FILE *limit) {
+/* The acceptance figure of SKGL_AUTO (bench-auto.txt), per chart: each
+   AUTO point; the Pareto front of the other configurations (AUTO left
+   out) read as a staircase, whose time at AUTO's error is that of its
+   fastest point at least as accurate; the ratio of AUTO's time to it
+   (below 1: AUTO is faster than anything as accurate); whether AUTO is on
+   the chart's front (every configuration); pass = on the front or within
+   AUTO_FRONT_RATIO of it. Then AUTO's choice per view (BENCH_AUTO_CHOICES)
+   and the fitted splits (.fit_to_depth, SDSM) against the same practical
+   configuration. sel: the chart's points in order of time. */
+#define AUTO_FRONT_RATIO 1.25
+static double front_time_at(plot_pt *const *sel, int nsel, double err) {
+    double best = 1e300;
+    int k;
+    for (k = 0; k < nsel; k++) {
+        if (strcmp(sel[k]->method, "auto") == 0 || !(sel[k]->err < best)) continue;
+        best = sel[k]->err;   /* a front point of the others */
+        if (best <= err) return sel[k]->ms;
+    }
+    return -1.0;
+}
+
+static void write_auto_table(FILE *t, const plot_data *d, int si, plot_pt *const *sel, int nsel, const char *out_dir,
+                             FILE *lab) {
+    char path[1100], line[512];
+    int k, j, nauto = 0, npass = 0;
+    fprintf(t, "scene %s\n  %-44s %10s %11s %9s %12s %8s %6s %-5s %s\n", d->scenes[si], "AUTO params", "chart_ms",
+            "analysis_ms", "error%", "front_ms@err", "ratio", "front", "pass", "ratio w/o analysis");
+    for (k = 0; k < nsel; k++) {
+        const plot_pt *p = sel[k];
+        double ft;
+        char ratio[24] = "-", fts[24] = "-", lb[64];
+        int pass;
+        if (strcmp(p->method, "auto") != 0) continue;
+        ft = front_time_at(sel, nsel, p->err);
+        if (ft > 0) {
+            snprintf(fts, sizeof fts, "%.3f", ft);
+            snprintf(ratio, sizeof ratio, "%.3f", p->ms / ft);
+        }
+        pass = p->front || ft <= 0 || p->ms / ft <= AUTO_FRONT_RATIO;
+        nauto++;
+        npass += pass;
+        fprintf(t, "  %-44s %10.3f %11.3f %9.3f %12s %8s %6s %-5s", p->params, p->ms, p->an_sum / p->n, p->err, fts,
+                ratio, p->front ? "yes" : "no", pass ? "PASS" : "MISS");
+        if (ft > 0) fprintf(t, " %.3f", (p->ms - p->an_sum / p->n) / ft);
+        fputc('\n', t);
+        short_label(p, lb, sizeof lb);
+        if (lab)
+            fprintf(lab, "%.4f %.4f \"%s: %s\"\n", p->ms, p->err, lb,
+                    ft > 0 ? (snprintf(fts, sizeof fts, "%.2fx front", p->ms / ft), fts) : "below the front");
+    }
+    if (nauto == 0) fprintf(t, "  (no AUTO rows)\n");
+    else fprintf(t, "  AUTO: %d of %d points on the front or within %.2fx of its time\n", npass, nauto, AUTO_FRONT_RATIO);
+    snprintf(path, sizeof path, "%.900s/" BENCH_AUTO_CHOICES, out_dir);
+    {
+        FILE *f = fopen(path, "r");
+        size_t sl = strlen(d->scenes[si]);
+        if (f) {
+            fprintf(t, "  AUTO's choice per view (stats.auto_reason):\n");
+            while (fgets(line, sizeof line, f))
+                if (strncmp(line, d->scenes[si], sl) == 0 && line[sl] == ' ') fprintf(t, "    %s", line + sl + 1);
+            fclose(f);
+        }
+    }
+    fprintf(t, "  fitted to the depth buffer (SDSM) vs the practical split scheme, same texels:\n");
+    fprintf(t, "    %-14s %-44s %9s %9s %8s %9s %9s %8s\n", "method", "params", "fit err%", "prac err%", "err x",
+            "fit ms", "prac ms", "time x");
+    for (k = 0; k < nsel; k++) {
+        const plot_pt *p = sel[k];
+        const char *base = strcmp(p->method, "pssm-fit") == 0 ? "pssm"
+                           : strcmp(p->method, "standard-fit") == 0 ? "standard" : NULL;
+        if (!base) continue;
+        for (j = 0; j < nsel; j++)
+            if (strcmp(sel[j]->method, base) == 0 && strcmp(sel[j]->params, p->params) == 0) break;
+        if (j == nsel) continue;
+        fprintf(t, "    %-14s %-44s %9.3f %9.3f %8.3f %9.3f %9.3f %8.3f\n", p->method, p->params, p->err, sel[j]->err,
+                sel[j]->err > 0 ? p->err / sel[j]->err : 0.0, p->ms, sel[j]->ms, sel[j]->ms > 0 ? p->ms / sel[j]->ms : 0.0);
+    }
+    fputc('\n', t);
+}
+
+static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FILE *limit, FILE *autotab) {
     plot_pt **sel = (plot_pt **)malloc(sizeof *sel * (size_t)(d->npts > 0 ? d->npts : 1));
     char methods[16][32], path[1400], base[1200], list[600] = "", cmd[3000];
     int nsel = 0, nm = 0, m, k, maxn = 0, logy = 1, nfront = 0, rc = 0;
@@ -778,6 +952,12 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
             }
         fclose(g);
     } else rc = -1;
+    /* AUTO's points with their distance from the front, labelled on the chart */
+    snprintf(path, sizeof path, "%s.autolab.dat", base);
+    g = fopen(path, "w");
+    if (g) fprintf(g, "# AUTO on %s: shadow_ms %s label\n", d->scenes[si], ykind);
+    if (!soft && autotab) write_auto_table(autotab, d, si, sel, nsel, o->p.out_dir, g);
+    if (g) fclose(g);
     snprintf(path, sizeof path, "%s.vars.gp", base);
     if (!(g = fopen(path, "w"))) { free(sel); return -1; }
     fprintf(g, "# written by bench/bench.c; draw with: gnuplot %s %s\nscene = ", path, o->p.gp);
@@ -796,6 +976,8 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
     gp_string(g, list);
     fprintf(g, "\nnviews = %d\nrepeat = %d\nlogy = %d\nwidth = %d\nheight = %d\n", maxn, repeat, logy, BENCH_W, BENCH_H);
     fprintf(g, "soft = %d\n", soft);
+    for (k = 0; k < nsel && strcmp(sel[k]->method, "auto") != 0; k++) {}
+    fprintf(g, "has_auto = %d\n", k < nsel);
     fprintf(g, "tmin = %g\ntmax = %g\nemin = %g\nemax = %g\n", tmin, tmax, emin, emax);
     fprintf(g, "floor = %g\nfloor_texel = %g\n", floor,
             d->floor_texel_n[si] ? d->floor_texel[si] / d->floor_texel_n[si] : -1.0);
@@ -830,16 +1012,26 @@ static int plot_all(const bench_opts *o, int repeat) {
     plot_data d;
     char csv[1100], dir[1100];
     int i, rc = 0;
-    FILE *limit;
+    FILE *limit, *autotab;
     if (!gnuplot_ready("bench", o->p.gp)) return -1;
     snprintf(csv, sizeof csv, "%s/bench.csv", o->p.out_dir);
     if (plot_read(csv, &d) != 0) return -1;
     snprintf(dir, sizeof dir, "%s/bench-data", o->p.out_dir);
     mkdir_p(dir);
     limit = open_limit_table(o->p.out_dir, d.device);
+    snprintf(dir, sizeof dir, "%.900s/bench-auto.txt", o->p.out_dir);
+    if ((autotab = fopen(dir, "w")) != NULL)
+        fprintf(autotab, "# SKGL_AUTO against the Pareto front, per chart (means over the views): front_ms@err = the "
+                         "time of the fastest configuration other than AUTO at least as accurate as AUTO (the others' "
+                         "front read as a staircase; - : none is); ratio = AUTO's time / that; front = AUTO on the "
+                         "chart's front; pass = on it or ratio <= %.2f (issue 28). chart_ms = shadow_ms + analysis_ms, the "
+                         "chart's time (front_ms@err likewise); ratio w/o analysis: AUTO's depth passes alone over "
+                         "front_ms@err (what the ratio would be were its analysis free).\n"
+                         "# device %s\n\n", AUTO_FRONT_RATIO, d.device);
     for (i = 0; i < d.nscenes; i++)
-        if (plot_scene(o, &d, i, repeat, limit) != 0) rc = -1;
+        if (plot_scene(o, &d, i, repeat, limit, autotab) != 0) rc = -1;
     if (limit) fclose(limit);
+    if (autotab) fclose(autotab);
     if (d.nscenes == 0) fprintf(stderr, "bench: %s has no rows: no charts\n", csv);
     free(d.pts);
     return rc;
@@ -885,6 +1077,8 @@ typedef struct run_rec {
     tb_footprint_stats texel;         /* directional rows: the texel-to-pixel figure (count 0: none) */
     int has_bands;                    /* directional rows: the band counts below are set */
     uint64_t band_shadow[BENCH_BANDS], band_wrong[BENCH_BANDS];
+    int maps;                         /* the stats' maps (AUTO: its choice) */
+    char reason[128];                 /* AUTO: the stats' auto_reason */
 } run_rec;
 
 /* scratch of the texel-to-pixel figure (bench_texel_stats), one frame's worth */
@@ -927,6 +1121,9 @@ static int score_run(bench_gl *B, skgl_shadow *sh, view_data *vd, float *mask_px
     rr->mask_ms = st->mask_ms;
     rr->texels = st->texels;
     rr->passes = st->passes;
+    rr->maps = st->maps;
+    if (skgl_shadow_get_desc(sh).technique == SKGL_AUTO)
+        snprintf(rr->reason, sizeof rr->reason, "%s", st->auto_reason);
     score_hard(vd->ref, mask_px, rr);
     if (vd->rc.world) rr->texel = bench_texel_stats(sh, &vd->rc, vd->ref, &g_texel);
     if (vd->band)
@@ -1019,16 +1216,27 @@ static float render_ms(skgl_shadow *sh) {
     return g_wall_timing ? g_last_render_ms : skgl_shadow_stats(sh)->shadow_ms;
 }
 
-/* one frame's shadow work: FERKO and RMSM first analyse the view's depth buffer;
-   *analysis_ms gets that pass's time (0 for the other methods) */
+/* 1 when a light analyses the view's depth buffer before each render */
+static int analyses(const skgl_shadow_desc *d) {
+    return d->technique == SKGL_FERKO || d->technique == SKGL_RMSM || d->technique == SKGL_AUTO || d->fit_to_depth;
+}
+
+/* analysing through the read-back ring (an earlier frame's figures): the
+   sweep warms such a light up on each view (ANALYSIS_WARM frames) */
+#define ANALYSIS_WARM 2
+static int analysing_async(const skgl_shadow_desc *d) { return analyses(d) && !d->sync_readback; }
+
+/* one frame's shadow work: FERKO, RMSM, AUTO and .fit_to_depth first analyse
+   the view's depth buffer; *analysis_ms gets that pass's time (0 for the
+   other methods) */
 static sk_result render_frame(bench_gl *B, skgl_shadow *sh, const view_data *vd, const skgl_scene *sc,
                               sk_vec3 light_dir, float *analysis_ms) {
-    skgl_technique t = skgl_shadow_get_desc(sh).technique;
+    skgl_shadow_desc d = skgl_shadow_get_desc(sh);
     double clock = 0.0;
     sk_result r;
     *analysis_ms = 0.0f;
     if (g_wall_timing) bench_wall_ms(B, &clock);
-    if (t == SKGL_FERKO || t == SKGL_RMSM) {
+    if (analyses(&d)) {
         r = skgl_shadow_analyze(B->sk, sh, &vd->v.cam, sc, light_dir, vd->gbuf.depth_tex);
         if (r != SK_OK) return r;
         *analysis_ms = g_wall_timing ? (float)bench_wall_ms(B, &clock) : skgl_shadow_stats(sh)->analysis_ms;
@@ -1051,16 +1259,20 @@ static int *depth_bands(const bench_receivers *rc) {
     return band;
 }
 
-/* G-buffer and reference of one view; for a directional light (area NULL)
+/* G-buffer (the forest's when forest is given) and reference of one view;
+   for a directional light (area NULL)
    also its receivers (the texel-to-pixel figure) and view-depth bands.
    0 ok; free with free_view either way. */
-static int prepare_view(bench_gl *B, const tb_gl_mesh *mesh, const tb_reference *ref, sk_vec3 light_dir,
-                        const tb_light *area, view_data *vd, float *depth, float *rgba, float *nrm) {
+static int prepare_view(bench_gl *B, const tb_gl_mesh *mesh, const bench_forest *forest, const tb_reference *ref,
+                        sk_vec3 light_dir, const tb_light *area, view_data *vd, float *depth, float *rgba,
+                        float *nrm) {
     tb_light L;
     size_t i, n = (size_t)BENCH_W * BENCH_H;
     int k;
     if (tb_gl_fbo_create(&B->gl, &vd->gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0) return -1;
-    if (tb_gl_gbuffer_render(&B->gl, &B->gb, mesh, &vd->gbuf, &vd->v.view_proj) != 0) return -1;
+    if (forest ? bench_forest_gbuffer(B, forest, &vd->gbuf, &vd->v.view_proj) != 0
+               : tb_gl_gbuffer_render(&B->gl, &B->gb, mesh, &vd->gbuf, &vd->v.view_proj) != 0)
+        return -1;
     if (tb_gl_read_depth(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, depth) != 0) return -1;
     if (tb_gl_read_rgba_float(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) return -1;
     for (i = 0; i < n; i++)
@@ -1476,7 +1688,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                 double t0 = now_s(), e4 = -1, p4 = -1, t4 = -1;
                 memset(&vd, 0, sizeof vd);
                 vd.v = views[vi];
-                if (prepare_view(B, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
+                if (prepare_view(B, &mesh, NULL, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
                     fprintf(stderr, "bench: soft shadows: %s %s: G-buffer / reference failed\n", def.name, vd.v.name);
                     free_view(B, &vd);
                     continue;
@@ -1568,7 +1780,7 @@ static void soft_bench(bench_gl *B, const bench_opts *o, FILE *csv, float *depth
                 finish_view(&bv, &s.bounds);
                 memset(&vd, 0, sizeof vd);
                 vd.v = bv;
-                if (prepare_view(B, &mesh, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
+                if (prepare_view(B, &mesh, NULL, ref, def.light_dir, &tl, &vd, depth, rgba, nrm) != 0) {
                     free_view(B, &vd);
                     ok = 0;
                     break;
@@ -1622,7 +1834,7 @@ static const struct walk_cfg {
 };
 
 static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *s, const tb_gl_mesh *mesh,
-                       const tb_reference *ref, const bench_view *views, const skgl_scene *sc, int frames,
+                       const bench_forest *forest, const tb_reference *ref, const bench_view *views, const skgl_scene *sc, int frames,
                        int repeat, float *depth, float *rgba, float *nrm, float *mask_px, FILE *csv, FILE *txt) {
     skgl_shadow *sh[2] = {NULL, NULL};
     double ms[2] = {0, 0}, err[2] = {0, 0}, area[2] = {0, 0}, p95[2] = {0, 0}, parts = 0;
@@ -1647,7 +1859,7 @@ static void walk_scene(bench_gl *B, const bench_scene_def *def, const tb_scene *
         vd.v.target = v3_add(v3_scale(views[1].target, 1.0f - t), v3_scale(views[0].target, t));
         snprintf(vd.v.name, sizeof vd.v.name, "walk%02d", k);
         finish_view(&vd.v, &s->bounds);
-        if (prepare_view(B, mesh, ref, def->light_dir, NULL, &vd, depth, rgba, nrm) == 0) {
+        if (prepare_view(B, mesh, forest, ref, def->light_dir, NULL, &vd, depth, rgba, nrm) == 0) {
             for (m = 0; m < 2; m++) {
                 run_rec rr;
                 const char *why = "";
@@ -1806,7 +2018,7 @@ int main(int argc, char **argv) {
     int ndefs = 0, i, c, v, status = 0, shared = 0;
     const char *env;
     bench_gl B;
-    FILE *csv = NULL, *walk = NULL, *walk_txt = NULL, *bands = NULL;
+    FILE *csv = NULL, *walk = NULL, *walk_txt = NULL, *bands = NULL, *autoch = NULL;
     char path[1200];
     progress pg;
     float *depth = NULL, *rgba = NULL, *nrm = NULL, *mask_px = NULL;
@@ -1831,6 +2043,7 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
         else if (strcmp(a, "--methods") == 0 && more) o.methods = argv[++i];
         else if (strcmp(a, "--no-floor") == 0) o.no_floor = 1;
+        else if (strcmp(a, "--no-soft") == 0) o.no_soft = 1;
         else if (strcmp(a, "--bias") == 0 && more) {
             const char *b = argv[++i];
             if (strcmp(b, "plane") == 0) g_bias = SKGL_BIAS_RECEIVER_PLANE;
@@ -1911,6 +2124,8 @@ int main(int argc, char **argv) {
     }
 
     mkdir_p(o.p.out_dir);
+    snprintf(path, sizeof path, "%.900s/bench-data", o.p.out_dir);
+    mkdir_p(path);
     /* charts of an earlier sweep would no longer match bench.csv */
     for (i = 0; i <= bench_scene_count; i++) {
         snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.p.out_dir,
@@ -1925,6 +2140,8 @@ int main(int argc, char **argv) {
     snprintf(path, sizeof path, "%.900s/bench-walk.txt", o.p.out_dir);
     walk_txt = fopen(path, "w");
     if (walk_txt) fprintf(walk_txt, "# device %s, times %s\n", B.renderer, timing_label(B.renderer));
+    snprintf(path, sizeof path, "%.900s/" BENCH_AUTO_CHOICES, o.p.out_dir);
+    autoch = fopen(path, "w");
     snprintf(path, sizeof path, "%.900s/bench-bands.txt", o.p.out_dir);
     bands = fopen(path, "w");
     if (bands) {
@@ -1955,8 +2172,12 @@ int main(int argc, char **argv) {
         run_rec *recs = NULL, floors[BENCH_MAX_VIEWS];
         int pass;
         double last_note = now_s();
+        bench_forest fo;
+        bench_forest_draw_user fdu;
+        const int forest = (def->flags & BENCH_FOREST) != 0;
         memset(vd, 0, sizeof vd);
         memset(&mesh, 0, sizeof mesh);
+        memset(&fo, 0, sizeof fo);
         if (load_scene(def, &s) != 0) {
             fprintf(stderr, "bench: cannot load scene %s %s: skipped\n", def->name, def->path);
             tb_scene_free(&s);
@@ -1965,8 +2186,12 @@ int main(int argc, char **argv) {
             pg.total_units -= (long)o.views * g_ncfg * o.repeat;
             continue;
         }
-        if (tb_gl_mesh_create(&B.gl, &mesh, &s) != 0 || !(ref = tb_reference_create(&s))) {
+        /* the forest: its ground and instanced trees (bench_forest), not the
+           expanded mesh, which only the reference traces */
+        if ((!forest && tb_gl_mesh_create(&B.gl, &mesh, &s) != 0) || !(ref = tb_reference_create(&s)) ||
+            (forest && bench_forest_open(&B, &fo, &s, ref) != 0)) {
             fprintf(stderr, "bench: cannot upload / build the reference of %s: skipped\n", def->name);
+            tb_reference_destroy(ref);
             if (mesh.vao) tb_gl_mesh_destroy(&B.gl, &mesh);
             tb_scene_free(&s);
             status = 1;
@@ -1977,7 +2202,8 @@ int main(int argc, char **argv) {
         scene_views(def, &s, views);
         for (v = 0; v < o.views; v++) {
             vd[v].v = views[v];
-            if (prepare_view(&B, &mesh, ref, def->light_dir, NULL, &vd[v], depth, rgba, nrm) != 0) {
+            if (prepare_view(&B, &mesh, forest ? &fo : NULL, ref, def->light_dir, NULL, &vd[v], depth, rgba, nrm) !=
+                0) {
                 fprintf(stderr, "bench: G-buffer / reference failed for %s view %s\n", def->name, views[v].name);
                 status = 1;
                 goto scene_done;
@@ -2000,11 +2226,21 @@ int main(int argc, char **argv) {
         sc.draw = draw_casters;
         sc.user = &du;
         sc.bounds = s.bounds;
+        if (forest) {
+            fdu.gl = &B.gl;
+            fdu.sk = B.sk;
+            fdu.f = &fo;
+            sc.draw = bench_forest_draw;
+            sc.user = &fdu;
+        }
         /* Timing passes: every configuration once per pass, `repeat` passes,
            so that a slow spell of the machine (other jobs on a shared CPU
            under llvmpipe) touches one sample of many configurations rather
            than every sample of one. Per configuration and pass: a new map,
-           one warm-up render (not timed), then one timed render per view.
+           one warm-up render (not timed), then one timed render per view;
+           a light analysing through the read-back ring (AUTO, .fit_to_depth)
+           gets a new map and ANALYSIS_WARM untimed frames on each view
+           instead, so that it renders from that view's own depth range.
            The last pass also runs the mask pass once per view and scores it. */
         recs = (run_rec *)calloc((size_t)g_ncfg * (size_t)o.views, sizeof *recs);
         if (!recs) { fprintf(stderr, "bench: out of memory\n"); status = 1; goto scene_done; }
@@ -2034,7 +2270,19 @@ int main(int argc, char **argv) {
                     run_rec *rr = &rc[v];
                     const char *why = "skgl_shadow_render";
                     if (rr->state < 0) continue;
-                    r = render_frame(&B, sh, &vd[v], &sc, def->light_dir, &rr->analysis[rr->n]);
+                    r = SK_OK;
+                    if (analysing_async(&cfg->desc)) {
+                        int w;
+                        if (v > 0) {
+                            skgl_shadow_destroy(B.sk, sh);
+                            sh = NULL;
+                            r = skgl_shadow_create(B.sk, &cfg->desc, &sh);
+                        }
+                        for (w = v > 0 ? 0 : 1; w < ANALYSIS_WARM && r == SK_OK; w++)
+                            r = render_frame(&B, sh, &vd[v], &sc, def->light_dir, &warm_ms);
+                        if (r != SK_OK) why = "skgl_shadow_create/render (warm-up)";
+                    }
+                    if (r == SK_OK) r = render_frame(&B, sh, &vd[v], &sc, def->light_dir, &rr->analysis[rr->n]);
                     if (r == SK_OK) {
                         rr->shadow[rr->n++] = render_ms(sh);
                         pg.units++;
@@ -2060,6 +2308,14 @@ int main(int argc, char **argv) {
                                 pg.total, el_s, eta_s, def->name, vd[v].v.name, cfg->method, cfg->params, rr->err,
                                 rr->hard.area_pct, rr->hard.edge_p95_px, (double)median(tmp, rr->n),
                                 (double)rr->mask_ms);
+                        if (rr->reason[0]) {
+                            fprintf(stderr, "        auto on %s: %s\n", vd[v].v.name, rr->reason);
+                            if (autoch)
+                            {
+                                fprintf(autoch, "%s %s %s %s\n", def->name, cfg->params, vd[v].v.name, rr->reason);
+                                fflush(autoch);
+                            }
+                        }
                         if (o.images && c == 0) {
                             snprintf(path, sizeof path, "%.900s/bench/%.63s-%.15s-error-%.31s.png", o.p.out_dir,
                                      def->name, vd[v].v.name, cfg->method);
@@ -2104,7 +2360,7 @@ int main(int argc, char **argv) {
                                         floors, o.views);
             fflush(bands);
         }
-        if (walk) walk_scene(&B, def, &s, &mesh, ref, views, &sc, o.quick ? 6 : 12, o.repeat, depth, rgba, nrm,
+        if (walk) walk_scene(&B, def, &s, &mesh, forest ? &fo : NULL, ref, views, &sc, o.quick ? 6 : 12, o.repeat, depth, rgba, nrm,
                              mask_px, walk, walk_txt);
         fprintf(stderr, "bench: scene %s done in %.1f s\n", def->name, now_s() - ts);
     scene_done:
@@ -2114,17 +2370,26 @@ int main(int argc, char **argv) {
             free_view(&B, &vd[v]);
         }
         tb_reference_destroy(ref);
-        tb_gl_mesh_destroy(&B.gl, &mesh);
+        if (mesh.vao) tb_gl_mesh_destroy(&B.gl, &mesh);
+        if (forest) {
+            if (fo.failed_calls) {
+                fprintf(stderr, "bench: forest: skgl_use_caster failed %d times: %s\n", fo.failed_calls,
+                        skgl_error_log(B.sk));
+                status = 1;
+            }
+            bench_forest_close(&B, &fo);
+        }
         tb_scene_free(&s);
     }
     if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
-    soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
+    if (!o.no_soft) soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
     if (walk) fclose(walk);
     if (walk_txt) fclose(walk_txt);
     if (bands) fclose(bands);
-    walk = walk_txt = bands = NULL;
+    if (autoch) fclose(autoch);
+    walk = walk_txt = bands = autoch = NULL;
     {
         char a[32];
         fmt_duration(now_s() - t_start, a, sizeof a);

@@ -162,6 +162,7 @@ const bench_scene_entry bench_scene_table[] = {
     {"fence", NULL, BENCH_IN_SWEEP | BENCH_IN_CACHE},
     {"terrace", NULL, BENCH_IN_SWEEP | BENCH_IN_CACHE},
     {"open-world", NULL, BENCH_IN_SWEEP | BENCH_OPEN_WORLD},
+    {"forest", NULL, BENCH_IN_SWEEP | BENCH_FOREST},
 };
 const int bench_scene_count = (int)(sizeof bench_scene_table / sizeof bench_scene_table[0]);
 
@@ -183,6 +184,7 @@ int bench_scenes(const char *prog, unsigned in, const char *scenes_dir, const ch
         d->flags = e->flags;
         d->light_dir = v3_norm(v3(-0.45f, -1.0f, -0.35f));
         if (e->flags & BENCH_OPEN_WORLD) tb_open_world_sun(0, 2, &d->light_dir);
+        if (e->flags & BENCH_FOREST) tb_forest_sun(0, 2, &d->light_dir);
         if (e->file && !file_exists(d->path)) {
             fprintf(stderr, "%s: %s is missing: scene %s skipped\n", prog, d->path, d->name);
             continue;
@@ -250,6 +252,21 @@ void make_open_world_views(bench_view *v) {
         tb_open_world_view(i, &v[i].eye, &v[i].target);
         v[i].zn = 0.5f;
         v[i].zf = 1000.0f;
+        v[i].cam.view = sk_mat4_look_at(v[i].eye, v[i].target, v3(0, 1, 0));
+        v[i].cam.proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, v[i].zn, v[i].zf);
+        v[i].view_proj = sk_mat4_mul(v[i].cam.proj, v[i].cam.view);
+    }
+}
+
+void make_forest_views(bench_view *v) {
+    static const char *names[3] = {"trail0", "trail1", "trail2"};
+    int i;
+    memset(v, 0, 3 * sizeof *v);
+    for (i = 0; i < 3; i++) {
+        snprintf(v[i].name, sizeof v[i].name, "%s", names[i]);
+        tb_forest_view(i, &v[i].eye, &v[i].target);
+        v[i].zn = 0.3f;
+        v[i].zf = TB_FOREST_FAR;
         v[i].cam.view = sk_mat4_look_at(v[i].eye, v[i].target, v3(0, 1, 0));
         v[i].cam.proj = sk_mat4_perspective(BENCH_FOVY, (float)BENCH_W / (float)BENCH_H, v[i].zn, v[i].zf);
         v[i].view_proj = sk_mat4_mul(v[i].cam.proj, v[i].cam.view);
@@ -337,6 +354,7 @@ int make_views(const tb_scene *s, bench_view *v) {
 
 void scene_views(const bench_scene_def *def, const tb_scene *s, bench_view *v) {
     if (def->flags & BENCH_OPEN_WORLD) make_open_world_views(v);
+    else if (def->flags & BENCH_FOREST) make_forest_views(v);
     else make_views(s, v);
 }
 
@@ -390,4 +408,85 @@ int bench_trace(const tb_reference *ref, const sk_mat4 *view_proj, const float *
     tv.width = BENCH_W;
     tv.height = BENCH_H;
     return tb_reference_trace_exact(ref, &tv, depth, light, NULL, vis, NULL) != 0 ? -1 : 0;
+}
+
+/* ---------------------------------------------------------------- forest */
+#define BENCH_GL_TEXTURE_2D 0x0DE1
+#define BENCH_GL_TEXTURE0 0x84C0
+
+int bench_forest_open(bench_gl *B, bench_forest *f, const tb_scene *s, tb_reference *ref) {
+    tb_scene ground, tree;
+    float *uv = NULL, *tree_uv = NULL, inst[TB_FOREST_TREES * TB_FOREST_INSTANCE_FLOATS];
+    unsigned char alpha[TB_FOREST_ALPHA_SIZE * TB_FOREST_ALPHA_SIZE];
+    unsigned first = 0, count = 0;
+    char err[1024] = "";
+    skgl_caster_desc d;
+    int ok;
+    memset(f, 0, sizeof *f);
+    tb_scene_init(&ground);
+    tb_scene_init(&tree);
+    tb_forest_alpha(alpha);
+    tb_forest_instances(inst);
+    ok = tb_forest_build_ground(&ground) == 0 && tb_forest_tree(&tree, &tree_uv) == 0 &&
+         tb_forest_uv(s, &uv, &first, &count) == 0;
+    if (ok)
+        ok = tb_reference_set_alpha(ref, uv, first, count, alpha, TB_FOREST_ALPHA_SIZE, TB_FOREST_ALPHA_SIZE, 0.5f) ==
+                 0 &&
+             tb_reference_alpha_primary(ref, 1) == 0;
+    if (ok)
+        ok = tb_gl_mesh_create(&B->gl, &f->ground, &ground) == 0 &&
+             tb_gl_instanced_create(&B->gl, &f->trees, &tree, tree_uv, inst, TB_FOREST_TREES, alpha,
+                                    TB_FOREST_ALPHA_SIZE, TB_FOREST_ALPHA_SIZE) == 0 &&
+             tb_gl_gbuffer_create_instanced(&B->gl, &f->gb_trees, 1, err, sizeof err) == 0;
+    if (ok) {
+        /* bound once: shadowkit leaves the casters' units alone */
+        B->gl.ActiveTexture(BENCH_GL_TEXTURE0 + BENCH_FOREST_ALPHA_UNIT);
+        B->gl.BindTexture(BENCH_GL_TEXTURE_2D, f->trees.alpha_tex);
+        B->gl.ActiveTexture(BENCH_GL_TEXTURE0);
+        memset(&d, 0, sizeof d);
+        d.vertex = tb_gl_instanced_vertex_hook;
+        d.fragment = tb_gl_instanced_fragment_hook;
+        d.varyings = TB_GL_INSTANCED_VARYINGS;
+        d.uniforms[0] = "u_alpha";
+        d.label = "bench forest, alpha-tested";
+        ok = skgl_caster_create(B->sk, &d, &f->caster) == SK_OK;
+        if (!ok) snprintf(err, sizeof err, "skgl_caster_create: %s", skgl_error_log(B->sk));
+    }
+    if (!ok) {
+        fprintf(stderr, "bench: forest setup failed: %s\n", err);
+        bench_forest_close(B, f);
+    }
+    tb_scene_free(&ground);
+    tb_scene_free(&tree);
+    free(uv);
+    free(tree_uv);
+    return ok ? 0 : -1;
+}
+
+void bench_forest_close(bench_gl *B, bench_forest *f) {
+    if (f->caster) skgl_caster_destroy(B->sk, f->caster);
+    if (f->gb_trees.program) tb_gl_gbuffer_destroy(&B->gl, &f->gb_trees);
+    if (f->trees.vao) tb_gl_instanced_destroy(&B->gl, &f->trees);
+    if (f->ground.vao) tb_gl_mesh_destroy(&B->gl, &f->ground);
+    memset(f, 0, sizeof *f);
+}
+
+/* the ground with shadowkit's own program, the trees instanced through the
+   caster program (every tree: the instances are not culled per pass) */
+void bench_forest_draw(void *user, const skgl_draw_info *info) {
+    const bench_forest_draw_user *u = (const bench_forest_draw_user *)user;
+    const int *loc;
+    (void)info;
+    tb_gl_mesh_draw(u->gl, &u->f->ground, 0, 0);
+    loc = skgl_use_caster(u->sk, u->f->caster);
+    if (!loc) {
+        u->f->failed_calls++;
+        return;
+    }
+    u->gl->Uniform1i(loc[0], BENCH_FOREST_ALPHA_UNIT);
+    tb_gl_instanced_draw(u->gl, &u->f->trees);
+}
+
+int bench_forest_gbuffer(bench_gl *B, const bench_forest *f, const tb_gl_fbo *fbo, const sk_mat4 *view_proj) {
+    return tb_gl_gbuffer_render_instanced(&B->gl, &B->gb, &f->ground, &f->gb_trees, &f->trees, fbo, view_proj);
 }

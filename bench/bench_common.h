@@ -75,7 +75,9 @@ int scene_selected(const char *only, const char *name);
 enum {
     BENCH_IN_SWEEP = 1,              /* bench.c's sweep runs it */
     BENCH_IN_CACHE = 2,              /* bench_cache.c's walks run it */
-    BENCH_OPEN_WORLD = 4             /* the open world's head-height views and sun */
+    BENCH_OPEN_WORLD = 4,            /* the open world's head-height views and sun */
+    BENCH_FOREST = 8                 /* the forest's trail views and sun; trees instanced and
+                                        alpha-tested (bench_forest) */
 };
 typedef struct bench_scene_entry {
     const char *name;
@@ -132,6 +134,10 @@ int make_views(const tb_scene *s, bench_view *v);
    made for; its sun (the scene's light_dir) is 20 degrees up behind view
    0, across view 1 and nearly against view 2. */
 void make_open_world_views(bench_view *v);
+/* The forest's first three trail views (tb_forest_view): near 0.3 m, far
+   TB_FOREST_FAR; its sun (the scene's light_dir) is 20 degrees up behind
+   view 0 (tb_forest_sun(0, 2)). */
+void make_forest_views(bench_view *v);
 /* the views of a scene by its flags */
 void scene_views(const bench_scene_def *def, const tb_scene *s, bench_view *v);
 
@@ -153,6 +159,35 @@ typedef struct bench_gl {
 #define BENCH_TIMING_GPU_ONLY (-1)
 int bench_gl_open(bench_gl *B, const char *prog, int timing);
 void bench_gl_close(bench_gl *B);
+
+/* The forest on the GPU as test_gl_forest.c draws it: the ground a plain
+   mesh, the trees one mesh instanced TB_FOREST_TREES times, in the shadow
+   passes through a caster program (skgl_caster_create: the instance
+   transform in the vertex hook, the leaf atlas's alpha test in the
+   fragment hook), in the camera's G-buffer through a program of the same
+   hooks, so the camera sees what casts. */
+#define BENCH_FOREST_ALPHA_UNIT 4    /* casters' samplers use units 4 and up (skgl_caster_desc) */
+typedef struct bench_forest {
+    tb_gl_mesh ground;
+    tb_gl_instanced trees;
+    tb_gl_gbuffer gb_trees;          /* the camera's pass of the trees, alpha-tested */
+    skgl_caster *caster;
+    int failed_calls;                /* skgl_use_caster returned NULL */
+} bench_forest;
+/* the GL objects, the leaf atlas bound on BENCH_FOREST_ALPHA_UNIT, and the
+   reference's alpha test (tb_reference_set_alpha and its primary rays) for
+   ref, built from s = tb_scene_build_forest's scene. 0 ok; else closed. */
+int bench_forest_open(bench_gl *B, bench_forest *f, const tb_scene *s, tb_reference *ref);
+void bench_forest_close(bench_gl *B, bench_forest *f);
+/* an skgl_scene draw callback: user is a bench_forest_draw_user */
+typedef struct bench_forest_draw_user {
+    const tb_gl_funcs *gl;
+    skgl_context *sk;
+    bench_forest *f;
+} bench_forest_draw_user;
+void bench_forest_draw(void *user, const skgl_draw_info *info);
+/* the camera's G-buffer of the forest into fbo; 0 ok */
+int bench_forest_gbuffer(bench_gl *B, const bench_forest *f, const tb_gl_fbo *fbo, const sk_mat4 *view_proj);
 
 /* The exact reference (tb_reference_trace_exact) of the view whose
    G-buffer was drawn with the float view_proj and has window depth

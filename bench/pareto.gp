@@ -9,7 +9,9 @@
 # outfile, methods (space-separated), nviews, repeat, logy, width, height,
 # tmin, tmax, emin, emax, soft (1: area-light rows), floor (the mean
 # error of the floor rows, an over-resolved map per view; -1: none),
-# floor_texel (their mean share of texels over 1 px).
+# floor_texel (their mean share of texels over 1 px), has_auto (1: the
+# chart has SKGL_AUTO rows: drawn as large black stars, labelled from
+# <scene>.autolab.dat with their time over the front's at their error).
 # The error (y) is bench.csv's shadow_area_pct on hard-shadow charts: wrong
 # pixels as a % of the reference's shadow pixels, which the lit majority of
 # the frame does not dilute (it can exceed 100); on soft charts
@@ -77,8 +79,17 @@ if (floor >= 0) {
 }
 
 frontfile = database . '.front.dat'
+if (!exists("has_auto")) { has_auto = 0 }
+# AUTO: a large black star; without AUTO rows the label file is the front's
+# (whose third column the labels below already draw) drawn with no labels
+autofile = has_auto ? database . '.autolab.dat' : frontfile
+is_auto(i) = word(methods, i) eq 'auto'
 plot for [i = 1:nm] sprintf('%s.%s.dat', database, word(methods, i)) using 1:2 \
-         with points pt shapes[(i - 1) % 12 + 1] ps 1.4 lc rgb colours[(i - 1) % 12 + 1] title word(methods, i), \
+         with points pt (is_auto(i) ? 3 : shapes[(i - 1) % 12 + 1]) ps (is_auto(i) ? 3.2 : 1.4) \
+         lw (is_auto(i) ? 2.5 : 1) lc rgb (is_auto(i) ? '#000000' : colours[(i - 1) % 12 + 1]) \
+         title (is_auto(i) ? 'AUTO' : word(methods, i)), \
+     autofile using 1:2:(has_auto ? stringcolumn(3) : "") with labels left offset 1.6,0.6 \
+         font 'DejaVu Sans Bold,10' tc rgb '#000000' notitle, \
      frontfile using 1:2 with steps lw 2 lc rgb '#333333' dt 2 title 'Pareto front', \
      frontfile using 1:2 with points pt 6 ps 2.6 lw 1.5 lc rgb '#333333' notitle, \
      frontfile using 1:2:3 with labels right offset -1.3,-0.9 font 'DejaVu Sans,9' tc rgb '#333333' notitle
