@@ -2181,7 +2181,9 @@ struct skgl_context {
     float cam_dmap[4];                     /* the convention of the depth buffer the call under way reads */
     float cam_view_z[4];                   /* row 2 of its inverse projection (view depths, 6.3) */
     float ferko_view_z[4];                 /* the one ferko_prog holds */
-    skgl__int ferko_u_ndc_to_light, ferko_u_world_w, ferko_u_view_z, reduce_u_src_size, final_u_src_size;
+    skgl__int ferko_u_ndc_to_light, ferko_u_world_w, ferko_u_view_z, ferko_u_depth_only, reduce_u_src_size,
+        final_u_src_size;
+    int ferko_depth_only;                  /* the value ferko_prog holds (-1: not sent) */
     skgl__int rmsm_u_inv_view_proj, rmsm_u_light, rmsm_u_virtual_res, request_u_pages0, request_u_levels;
     skgl__int request_u_bands;
     int reduce_src[2], final_src[2], request_pages0, request_levels, request_bands;
@@ -3680,6 +3682,8 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
     ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
     ctx->ferko_u_view_z = gl->GetUniformLocation(ctx->ferko_prog, "u_view_z");
+    ctx->ferko_u_depth_only = gl->GetUniformLocation(ctx->ferko_prog, "u_depth_only");
+    ctx->ferko_depth_only = -1;
     ctx->ferko_view_z[0] = ctx->ferko_view_z[1] = ctx->ferko_view_z[2] = ctx->ferko_view_z[3] = 0.0f;   /* GL's own */
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->ferko_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->ferko_prog, "u_depth"), 1);
@@ -6506,6 +6510,11 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     world_w[0] = inv->m[3]; world_w[1] = inv->m[7]; world_w[2] = inv->m[11]; world_w[3] = inv->m[15];
     gl->UniformMatrix4fv(ctx->ferko_u_ndc_to_light, 1, 0, ndc_to_light.m);
     gl->Uniform4fv(ctx->ferko_u_world_w, 1, world_w);
+    if (ctx->ferko_depth_only != (s->desc.technique != SKGL_FERKO)) {
+        /* AUTO and .fit_to_depth read only the depth range: no patches */
+        ctx->ferko_depth_only = s->desc.technique != SKGL_FERKO;
+        skgl__u1i(gl, ctx->ferko_u_depth_only, ctx->ferko_depth_only);
+    }
     if (memcmp(ctx->ferko_view_z, ctx->cam_view_z, sizeof ctx->ferko_view_z) != 0) {   /* a new projection */
         memcpy(ctx->ferko_view_z, ctx->cam_view_z, sizeof ctx->ferko_view_z);
         gl->Uniform4fv(ctx->ferko_u_view_z, 1, ctx->cam_view_z);
@@ -11438,6 +11447,7 @@ static const char skgl__src_ferko_analyze_frag[] =
     "uniform sampler2D u_depth;           /* window depth, row 0 at the bottom */\n"
     "uniform mat4 u_ndc_to_light;         /* light view-projection * inverse camera view-projection */\n"
     "uniform vec4 u_world_w;              /* row 3 of the inverse camera view-projection */\n"
+    "uniform int u_depth_only;            /* 1: only the bounds and the view depths (AUTO, fit_to_depth): no patch */\n"
     "uniform vec4 u_view_z;               /* row 2 of the inverse camera projection: view z = dot(u_view_z, ndc) / dot(u_world_w, ndc) */\n"
     "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
     "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
@@ -11474,6 +11484,25 @@ static const char skgl__src_ferko_analyze_frag[] =
     "    float cz[25];                    /* corners base .. base+4, 5 x 5: NDC z of the averaged depth, or 2 (none) */\n"
     "    vec4 b = vec4(SK_BIG), pt = vec4(SK_BIG);\n"
     "    int x, y, k;\n"
+    "    if (u_depth_only != 0) {\n"
+    "        /* the 16 pixels of the block alone: no neighbours, no corners */\n"
+    "        for (y = 0; y < 4; y++)\n"
+    "            for (x = 0; x < 4; x++) {\n"
+    "                float dp = sk_depth_at(base + ivec2(x, y), size);\n"
+    "                if (dp < 0.0) continue;\n"
+    "                vec3 c = vec3((vec2(base + ivec2(x, y)) + 0.5) * to_ndc - 1.0, dp * u_depth_map.x + u_depth_map.y);\n"
+    "                float ww = dot(u_world_w, vec4(c, 1.0));\n"
+    "                vec4 l = sk_to_light(c);\n"
+    "                if (!(l.w > 0.0) || any(greaterThan(abs(l.xyz), vec3(l.w)))) continue;\n"
+    "                vec2 p = l.xy / l.w;\n"
+    "                b = min(b, vec4(p, -p));\n"
+    "                float depth = -dot(u_view_z, vec4(c, 1.0)) / ww;\n"
+    "                pt.zw = min(pt.zw, vec2(depth, -depth));\n"
+    "            }\n"
+    "        o_bounds = b;\n"
+    "        o_patch = pt;\n"
+    "        return;\n"
+    "    }\n"
     "    for (y = 0; y < 6; y++)\n"
     "        for (x = 0; x < 6; x++) d[y * 6 + x] = sk_depth_at(base + ivec2(x - 1, y - 1), size);\n"
     "    for (y = 0; y < 5; y++)\n"

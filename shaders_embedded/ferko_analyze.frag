@@ -17,6 +17,7 @@
 uniform sampler2D u_depth;           /* window depth, row 0 at the bottom */
 uniform mat4 u_ndc_to_light;         /* light view-projection * inverse camera view-projection */
 uniform vec4 u_world_w;              /* row 3 of the inverse camera view-projection */
+uniform int u_depth_only;            /* 1: only the bounds and the view depths (AUTO, fit_to_depth): no patch */
 uniform vec4 u_view_z;               /* row 2 of the inverse camera projection: view z = dot(u_view_z, ndc) / dot(u_world_w, ndc) */
 uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;
                                       z: the near plane's depth (1 with reverse-Z), w: a far depth
@@ -53,6 +54,25 @@ void main()
     float cz[25];                    /* corners base .. base+4, 5 x 5: NDC z of the averaged depth, or 2 (none) */
     vec4 b = vec4(SK_BIG), pt = vec4(SK_BIG);
     int x, y, k;
+    if (u_depth_only != 0) {
+        /* the 16 pixels of the block alone: no neighbours, no corners */
+        for (y = 0; y < 4; y++)
+            for (x = 0; x < 4; x++) {
+                float dp = sk_depth_at(base + ivec2(x, y), size);
+                if (dp < 0.0) continue;
+                vec3 c = vec3((vec2(base + ivec2(x, y)) + 0.5) * to_ndc - 1.0, dp * u_depth_map.x + u_depth_map.y);
+                float ww = dot(u_world_w, vec4(c, 1.0));
+                vec4 l = sk_to_light(c);
+                if (!(l.w > 0.0) || any(greaterThan(abs(l.xyz), vec3(l.w)))) continue;
+                vec2 p = l.xy / l.w;
+                b = min(b, vec4(p, -p));
+                float depth = -dot(u_view_z, vec4(c, 1.0)) / ww;
+                pt.zw = min(pt.zw, vec2(depth, -depth));
+            }
+        o_bounds = b;
+        o_patch = pt;
+        return;
+    }
     for (y = 0; y < 6; y++)
         for (x = 0; x < 6; x++) d[y * 6 + x] = sk_depth_at(base + ivec2(x - 1, y - 1), size);
     for (y = 0; y < 5; y++)
