@@ -34,6 +34,14 @@
          SKGL__APIENTRY         the calling convention of the loaded GL
                                 entry points; default __stdcall on _WIN32,
                                 nothing elsewhere
+         SKGL_NO_SOFT           defined: the area lights (skgl_soft_*,
+                                PCSS and PVSM) and their shaders are left
+                                out; the declarations stay, skgl_soft_create
+                                and skgl_soft_render return
+                                SK_ERR_INVALID_ARG with "...: compiled out
+                                (SKGL_NO_SOFT)" in skgl_error_log, the
+                                accessors answer as for NULL;
+                                skgl_area_light_axes stays
      Nothing else is read from the preprocessor: the rest is chosen at run
      time through the descs.
 
@@ -9652,6 +9660,7 @@ SKGLDEF sk_result skgl_point_atlas_pack(skgl_context *ctx, skgl_point_atlas *a, 
 
 
 /* ---- 9. Area lights: PCSS and PVSM (Shen et al. 2011) ------------------- */
+#ifndef SKGL_NO_SOFT
 // >>soft
 /* 9.1 pass timing of a frame -------------------------------------------
    An area light's frame has a varying number of timed passes (PVSM: two
@@ -10267,6 +10276,7 @@ SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap)
     return s->pyramid_floats;
 }
 
+#endif /* SKGL_NO_SOFT */
 /* 9.3 the light's frustum ------------------------------------------------ */
 /* the light's frame as sk_mat4_look_at builds it: x = direction x up, y, -z = direction */
 static int skgl__area_frame(const skgl_area_light *l, sk_vec3 *x, sk_vec3 *y, sk_vec3 *f)
@@ -10294,6 +10304,7 @@ SKGLDEF void skgl_area_light_axes(const skgl_area_light *light, sk_vec3 *half_u,
     *half_v = sk__scale(y, light->half_height);
 }
 
+#ifndef SKGL_NO_SOFT
 /* glFrustum from tangents of the light's view: x/z in [x0, x1], y/z in [y0, y1] */
 static sk_mat4 skgl__tan_frustum(double x0, double x1, double y0, double y1, double zn, double zf)
 {
@@ -11083,6 +11094,44 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
     return skgl__said(ctx, "skgl_soft_render", r, r == SK_ERR_DEGENERATE ? "the whole scene is behind the light's "
                       "plane (the mask is not written)" : NULL);
 }
+#else /* SKGL_NO_SOFT: the area lights' entry points refuse, their accessors answer as for NULL */
+static sk_result skgl__compiled_out(skgl_context *ctx, const char *fn, const char *macro)
+{
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: compiled out (%s)", fn, macro);
+}
+SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out)
+{
+    (void)desc;
+    if (out) *out = NULL;
+    return skgl__compiled_out(ctx, "skgl_soft_create", "SKGL_NO_SOFT");
+}
+SKGLDEF void skgl_soft_destroy(skgl_context *ctx, skgl_soft *s) { (void)ctx; (void)s; }
+SKGLDEF skgl_soft_desc skgl_soft_get_desc(const skgl_soft *s)
+{
+    skgl_soft_desc d;
+    (void)s;
+    memset(&d, 0, sizeof d);
+    return d;
+}
+SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_camera *cam,
+                                   const skgl_scene *scene, const skgl_area_light *light,
+                                   unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
+{
+    (void)s; (void)cam; (void)scene; (void)light; (void)depth_tex; (void)normal_tex; (void)mask_tex;
+    return skgl__compiled_out(ctx, "skgl_soft_render", "SKGL_NO_SOFT");
+}
+SKGLDEF const skgl_soft_frame_stats *skgl_soft_stats(const skgl_soft *s) { (void)s; return NULL; }
+SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s) { (void)s; return sk_mat4_identity(); }
+SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap) { (void)s; (void)out; (void)cap; return 0; }
+SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap)
+{
+    (void)s; (void)out; (void)cap;
+    return 0;
+}
+SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap) { (void)s; (void)out; (void)cap; return 0; }
+#endif /* SKGL_NO_SOFT */
 
 
 /* ---- 10. Embedded GLSL: the files of shaders_embedded/, by `make shaders` --- */
@@ -11093,6 +11142,7 @@ SKGLDEF sk_result skgl_soft_render(skgl_context *ctx, skgl_soft *s, const skgl_c
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Woverlength-strings"
+#pragma GCC diagnostic ignored "-Wunused-const-variable" /* the literals of a compiled-out feature (SKGL_NO_*) */
 #endif
 /* SKGL_EMBEDDED_SHADERS_BEGIN */
 static const char skgl__src_depth_vert[] =
@@ -12708,7 +12758,14 @@ static const char skgl__src_soft_dilate_frag[] =
 #pragma GCC diagnostic pop
 #endif
 
-/* the one way the code above reaches the sources */
+/* the one way the code above reaches the sources; a compiled-out feature's
+   (CONFIGURATION: SKGL_NO_*) are "", so its literals are never referenced
+   and the compiler drops them */
+#ifdef SKGL_NO_SOFT
+#define SKGL__SOFT_SRC(src) ""
+#else
+#define SKGL__SOFT_SRC(src) src
+#endif
 static const char *skgl__glsl(skgl__glsl_id id)
 {
     static const char *const src[SKGL__GLSL_N] = {
@@ -12724,21 +12781,21 @@ static const char *skgl__glsl(skgl__glsl_id id)
         skgl__src_rmsm_request_frag,
         skgl__src_point_sample_glsl,
         skgl__src_point_mask_frag,
-        skgl__src_soft_common_glsl,
-        skgl__src_soft_kernel_frag,
-        skgl__src_soft_smtg_vert,
-        skgl__src_soft_smtg_frag,
-        skgl__src_soft_reduce_vert,
-        skgl__src_soft_reduce_frag,
-        skgl__src_soft_filter_frag,
-        skgl__src_soft_resolve_frag,
-        skgl__src_soft_cons_geom,
-        skgl__src_soft_cons_frag,
-        skgl__src_soft_gbuffer_vert,
-        skgl__src_soft_gbuffer_frag,
-        skgl__src_pcss_mask_frag,
+        SKGL__SOFT_SRC(skgl__src_soft_common_glsl),
+        SKGL__SOFT_SRC(skgl__src_soft_kernel_frag),
+        SKGL__SOFT_SRC(skgl__src_soft_smtg_vert),
+        SKGL__SOFT_SRC(skgl__src_soft_smtg_frag),
+        SKGL__SOFT_SRC(skgl__src_soft_reduce_vert),
+        SKGL__SOFT_SRC(skgl__src_soft_reduce_frag),
+        SKGL__SOFT_SRC(skgl__src_soft_filter_frag),
+        SKGL__SOFT_SRC(skgl__src_soft_resolve_frag),
+        SKGL__SOFT_SRC(skgl__src_soft_cons_geom),
+        SKGL__SOFT_SRC(skgl__src_soft_cons_frag),
+        SKGL__SOFT_SRC(skgl__src_soft_gbuffer_vert),
+        SKGL__SOFT_SRC(skgl__src_soft_gbuffer_frag),
+        SKGL__SOFT_SRC(skgl__src_pcss_mask_frag),
         skgl__src_layered_geom,
-        skgl__src_soft_dilate_frag,
+        SKGL__SOFT_SRC(skgl__src_soft_dilate_frag),
     };
     return (int)id >= 0 && id < SKGL__GLSL_N ? src[id] : "";
 }

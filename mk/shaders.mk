@@ -43,6 +43,19 @@ $(BUILD)/compile/gl-header-cpp17: tests/compile/gl_header.c shadowkit.h shadowki
 	$(MKDIR)
 	$(CXX17) $(OPT) $< -o $@ $(LDLIBS)
 
+# the opt-outs (shadowkit_gl.h's CONFIGURATION: SKGL_NO_*): gl_header.c
+# with each alone and with all together, as C99 and C++17; gl-no-all-* is
+# what the object size and line count of the report compare
+GL_OPTOUTS := soft
+gl_optout_flags = $(foreach o,$(if $(filter all,$(1)),$(GL_OPTOUTS),$(1)),-DSKGL_NO_$(shell echo $(o) | tr a-z A-Z))
+GL_OPTOUT_BINS := $(foreach o,$(GL_OPTOUTS) all,$(BUILD)/compile/gl-no-$(o)-c99 $(BUILD)/compile/gl-no-$(o)-cpp17)
+$(BUILD)/compile/gl-no-%-c99: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test
+	$(MKDIR)
+	$(C99) $(OPT) $(call gl_optout_flags,$*) $< -o $@ $(LDLIBS)
+$(BUILD)/compile/gl-no-%-cpp17: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test
+	$(MKDIR)
+	$(CXX17) $(OPT) $(call gl_optout_flags,$*) $< -o $@ $(LDLIBS)
+
 # SKGL_MALLOC alone, and SKGL_FREE alone, must stop at shadowkit_gl.h's
 # #error: the rule fails when the file compiles, or fails with another
 # message, and otherwise leaves a program that says so for the compile
@@ -62,6 +75,6 @@ $(BUILD)/compile/anchors: tests/compile/check_anchors.sh
 	$(MKDIR)
 	cp $< $@ && chmod +x $@
 
-test: $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(BUILD)/compile/anchors
-check-compile: $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(BUILD)/compile/anchors
-check-quick: check-shaders $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(BUILD)/compile/anchors
+test: $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(GL_OPTOUT_BINS) $(BUILD)/compile/anchors
+check-compile: $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(GL_OPTOUT_BINS) $(BUILD)/compile/anchors
+check-quick: check-shaders $(GL_HEADER_BINS) $(GL_ALONE_BINS) $(GL_OPTOUT_BINS) $(BUILD)/compile/anchors
