@@ -42,6 +42,13 @@
                                 (SKGL_NO_SOFT)" in skgl_error_log, the
                                 accessors answer as for NULL;
                                 skgl_area_light_axes stays
+         SKGL_NO_RMSM           defined: SKGL_RMSM (virtual shadow map
+                                pages, their cache and the context's two
+                                RMSM programs) is left out; a shadow
+                                created with technique SKGL_RMSM fails
+                                with SK_ERR_INVALID_ARG, "... compiled out
+                                (SKGL_NO_RMSM)"; skgl_shadow_pages and
+                                skgl_shadow_analysis_texture answer 0
      Nothing else is read from the preprocessor: the rest is chosen at run
      time through the descs.
 
@@ -3703,6 +3710,7 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->final_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->final_prog, "u_src"), 1);
     ctx->reduce_src[0] = ctx->final_src[0] = -1;
+#ifndef SKGL_NO_RMSM
     ctx->rmsm_u_inv_view_proj = gl->GetUniformLocation(ctx->rmsm_prog, "u_inv_view_proj");
     ctx->rmsm_u_light = gl->GetUniformLocation(ctx->rmsm_prog, "u_light");
     ctx->rmsm_u_virtual_res = gl->GetUniformLocation(ctx->rmsm_prog, "u_virtual_res");
@@ -3716,6 +3724,7 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->request_prog, "u_samples"), 1);
     ctx->request_pages0 = ctx->request_levels = ctx->request_bands = -1;
+#endif
 }
 
 // >>caps
@@ -3884,6 +3893,7 @@ static sk_result skgl__create_programs(skgl_context *ctx)
     if (ctx->reduce_prog)
         ctx->final_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 1\n",
                                         skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
+#ifndef SKGL_NO_RMSM
     if (ctx->final_prog)
         ctx->rmsm_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
                                        skgl__glsl(SKGL__GLSL_RMSM_ANALYZE_FRAG), NULL);
@@ -3891,6 +3901,9 @@ static sk_result skgl__create_programs(skgl_context *ctx)
         ctx->request_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_RMSM_REQUEST_VERT),
                                           skgl__glsl(SKGL__GLSL_RMSM_REQUEST_FRAG), NULL);
     if (ctx->request_prog) return SK_OK;
+#else
+    if (ctx->final_prog) return SK_OK;   /* SKGL_NO_RMSM: no page analysis, no request scatter */
+#endif
     {
         char driver[sizeof ctx->log];
         memcpy(driver, ctx->log, sizeof driver);
@@ -5444,8 +5457,10 @@ static const skgl__technique *skgl__technique_of(const skgl_shadow *s);
 /* defined in 6.3 and 6.4, used by the light's lifecycle and its fits */
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
 static void skgl__fit_ferko(skgl_shadow *s, float zf);
+#ifndef SKGL_NO_RMSM
 static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s);
+#endif
 /* defined in 6.5 */
 static sk_result skgl__cache_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 static sk_result skgl__verify_texture(skgl_context *ctx, skgl__st *st, skgl__uint *tex, skgl__uint *fbo, int w, int h,
@@ -5651,6 +5666,9 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__NEED(!d->verify_cache || ctx->caps.api == SKGL_API_GL33, fn, "desc.verify_cache",
                "depth read-backs (glReadPixels of GL_DEPTH_COMPONENT: desktop OpenGL)");
     if (!rmsm) return SK_OK;
+#ifdef SKGL_NO_RMSM
+    SKGL__RULE(0, fn, "technique", d->technique, "RMSM is compiled out (SKGL_NO_RMSM)");
+#endif
     SKGL__RULE(d->rmsm_page_size >= 16 && d->rmsm_page_size <= 1024 && !(d->rmsm_page_size & (d->rmsm_page_size - 1)),
                fn, "rmsm_page_size", d->rmsm_page_size, "a power of two in 16..1024");
     SKGL__RULE(d->resolution >= d->rmsm_page_size && !(d->resolution & (d->resolution - 1)) &&
@@ -6322,6 +6340,7 @@ static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
     return SK_OK;
 }
 
+#ifndef SKGL_NO_RMSM
 /* RMSM: the pages are fitted by skgl__render_rmsm */
 static sk_result skgl__fit_rmsm(skgl_shadow *s, const skgl__fit_in *in)
 {
@@ -6329,6 +6348,7 @@ static sk_result skgl__fit_rmsm(skgl_shadow *s, const skgl__fit_in *in)
     s->maps = 1;
     return SK_OK;
 }
+#endif
 
 /* ---- 6.3 FERKO: resolution estimation on the GPU (Ferko 2013) --------- */
 // >>ferko
@@ -6570,6 +6590,7 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
 }
 
 /* ---- 6.4 RMSM: virtual shadow map pages (Romanick's VGP353 notes) ---- */
+#ifndef SKGL_NO_RMSM
 // >>rmsm
 /* the bytes of one read-back of rmsm.requests */
 static size_t skgl__rmsm_req_bytes(const skgl_shadow *s)
@@ -6924,6 +6945,7 @@ static sk_result skgl__rmsm_frame(const sk_aabb *world, sk_vec3 light_dir, sk_ma
     rel = skgl__scene_rel(&rel, o);
     return skgl__ferko_light(&rel, light_dir, lvp);
 }
+#endif /* SKGL_NO_RMSM */
 
 /* ---- 6.5 the cache: static casters kept from frame to frame ----------- */
 // >>cache
@@ -7406,6 +7428,7 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
 }
 
 // >>rmsm_cache
+#ifndef SKGL_NO_RMSM
 /* RMSM's page cache (desc.cache). The virtual map's texel
    grid is fixed in light space (skgl__rmsm_frame), so a page keeps its
    depth from frame to frame: a pool slot holds it while it is requested
@@ -7761,6 +7784,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
+#endif /* SKGL_NO_RMSM */
 
 /* ---- 6.6 analyze and render ------------------------------------------- */
 // >>render
@@ -7858,7 +7882,11 @@ static const skgl__technique skgl__techniques[] = {
     {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
     {"FERKO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ferko_layer,
      skgl__render_layers},
+#ifndef SKGL_NO_RMSM
     {"RMSM", skgl__rmsm_create, skgl__rmsm_free, skgl__analyze_rmsm, skgl__fit_rmsm, skgl__render_rmsm},
+#else
+    {"RMSM", NULL, NULL, NULL, NULL, NULL},   /* refused at create (skgl__shadow_validate) */
+#endif
     {"AUTO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_auto, skgl__render_layers},
 };
 
@@ -7908,12 +7936,15 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         if (!sk_mat4_inverse(cam->proj, &pinv)) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj is singular", fn);
         for (k = 0; k < 4; k++) ctx->cam_view_z[k] = pinv.m[k * 4 + 2];
     }
+#ifndef SKGL_NO_RMSM
     if (s->desc.technique == SKGL_RMSM) {   /* the page grid is fixed in the world (skgl__rmsm_frame) */
         sk_mat4 vlvp;
         double vo[3];
         r = skgl__rmsm_frame(&scene->bounds, light_dir, &vlvp, vo);
         lvp = skgl__shift(&vlvp, vo, o);
-    } else r = skgl__ferko_light(&rs, light_dir, &lvp);
+    } else
+#endif
+        r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
     skgl__st_begin(ctx, &st);
     why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
@@ -12761,6 +12792,11 @@ static const char skgl__src_soft_dilate_frag[] =
 /* the one way the code above reaches the sources; a compiled-out feature's
    (CONFIGURATION: SKGL_NO_*) are "", so its literals are never referenced
    and the compiler drops them */
+#ifdef SKGL_NO_RMSM
+#define SKGL__RMSM_SRC(src) ""
+#else
+#define SKGL__RMSM_SRC(src) src
+#endif
 #ifdef SKGL_NO_SOFT
 #define SKGL__SOFT_SRC(src) ""
 #else
@@ -12776,9 +12812,9 @@ static const char *skgl__glsl(skgl__glsl_id id)
         skgl__src_shadow_mask_frag,
         skgl__src_ferko_analyze_frag,
         skgl__src_ferko_reduce_frag,
-        skgl__src_rmsm_analyze_frag,
-        skgl__src_rmsm_request_vert,
-        skgl__src_rmsm_request_frag,
+        SKGL__RMSM_SRC(skgl__src_rmsm_analyze_frag),
+        SKGL__RMSM_SRC(skgl__src_rmsm_request_vert),
+        SKGL__RMSM_SRC(skgl__src_rmsm_request_frag),
         skgl__src_point_sample_glsl,
         skgl__src_point_mask_frag,
         SKGL__SOFT_SRC(skgl__src_soft_common_glsl),

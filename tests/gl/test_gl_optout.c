@@ -1,5 +1,5 @@
 /* test_gl_optout.c - shadowkit_gl.h with its optional features compiled
-   out (CONFIGURATION: SKGL_NO_SOFT): the directional techniques that stay
+   out (CONFIGURATION: SKGL_NO_SOFT, SKGL_NO_RMSM): the directional techniques that stay
    still shadow, and a removed feature's entry points refuse with a message
    naming the macro.
 
@@ -12,9 +12,11 @@
    Can fail: at a quarter of the map resolution (SK_GL_TEST_RES_SCALE=0.25)
    0.6540% / 0.2638%, both fail; built without SKGL_NO_SOFT,
    skgl_soft_create succeeds on the zeroed desc (its defaults) and five
-   checks of test_refusals fail. */
+   checks of test_refusals fail; built without SKGL_NO_RMSM, an SKGL_RMSM
+   shadow is created and four checks fail. */
 #define SK_TEST_OWN_IMPLEMENTATION 1
 #define SKGL_NO_SOFT
+#define SKGL_NO_RMSM
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -70,6 +72,8 @@ static void test_refusals(void)
     tb_scene sc;
     skgl_soft_desc sd;
     skgl_soft *soft = (skgl_soft *)&sd;   /* must be reset to NULL */
+    skgl_shadow_desc d;
+    skgl_shadow *s = (skgl_shadow *)&d;
     int objects;
     tb_scene_init(&sc);
     tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
@@ -83,6 +87,13 @@ static void test_refusals(void)
     SK_CHECK(skgl_soft_render(e.sk, NULL, NULL, NULL, NULL, 0, 0, 0) == SK_ERR_INVALID_ARG);
     SK_CHECK(strstr(skgl_error_log(e.sk), "SKGL_NO_SOFT") != NULL);
     SK_CHECK(skgl_soft_stats(NULL) == NULL && skgl_soft_tiles(NULL, NULL, 0) == 0);
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_RMSM;
+    SK_CHECK(skgl_shadow_create(e.sk, &d, &s) == SK_ERR_INVALID_ARG);
+    SK_CHECK(s == NULL);
+    SK_CHECK_MSG(strstr(skgl_error_log(e.sk), "skgl_shadow_create: desc.technique") != NULL &&
+                     strstr(skgl_error_log(e.sk), "compiled out (SKGL_NO_RMSM)") != NULL,
+                 "log: %s", skgl_error_log(e.sk));
     SK_CHECK(skgl_gl_object_count(e.sk) == objects);
     SK_CHECK(e.gl.GetError() == 0);
     gt_env_free(&e);
