@@ -38,9 +38,9 @@
    receiver pixel depth steps; 0.3 m, 8 steps) the false light barely fell
    (31 -> 30 at 8 deg); with the receiver's plane alone (these settings) the
    foot pixels of a lit wall shadowed themselves: 12 new open false-shadow
-   pixels at 8 deg (box, azimuths 30 and 150). Mask cost, box at 20 deg, 400 x 225, standard: 10.9 ->
-   16.7 ms and 16.4 -> 25.1 ms in two runs (1.5x, a shared 2-core machine).
-   About 10 s.
+   pixels at 8 deg (box, azimuths 30 and 150). Mask cost, box at 20 deg,
+   400 x 225, standard: 10.9 -> 16.7 ms and 16.4 -> 25.1 ms in two runs
+   (1.5x, a shared 2-core machine). About 10 s.
 
    CAN FAIL (record): with contact_visibility() returning 1.0 at once in
    shadow_mask.frag (the march disabled), all six halving checks fail
