@@ -1108,6 +1108,17 @@ typedef struct skgl_shadow_desc {
                                      whose worst texel spans at most this many pixels of the
                                      depth buffer analysed; when none does, the count whose
                                      texels are smallest. More than 0 [1.0] */
+    float contact_length;         /* contact shadows in skgl_shadow_mask: a march this long (world
+                                     units: a few centimetres to decimetres) from each receiver
+                                     toward the light through the camera's depth buffer, its
+                                     result min()'d with the map's; it restores the shadow the
+                                     map's bias lifts off a caster's foot; with normal_tex
+                                     (without, it does little). Not in the forward snippet
+                                     nor for point lights. 0 or more [0: off] */
+    int contact_steps;            /* the march's depth-buffer samples, 1..64 [8] */
+    float contact_thickness;      /* a sample is blocked by a surface in front of it by less
+                                     than this (world units): thin casters throw no endless
+                                     shadow; more than 0 [contact_length] */
 } skgl_shadow_desc;
 
 typedef struct skgl_camera {
@@ -2189,6 +2200,7 @@ struct skgl_context {
        values of the uniforms that seldom change, as last sent */
     skgl__progent mask_ent;                /* the directional mask's snippet uniforms */
     skgl__int mask_u_has_normals, mask_u_camera;
+    skgl__int mask_u_contact, mask_u_view_proj;   /* contact shadows: the march, the camera */
     /* u_depth_map (the camera's depth convention) of the mask and analysis
        programs, and the values last sent (the default convention's at link) */
     skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
@@ -3689,6 +3701,8 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW, "");
     ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
     ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
+    ctx->mask_u_contact = gl->GetUniformLocation(ctx->mask_prog, "u_contact");
+    ctx->mask_u_view_proj = gl->GetUniformLocation(ctx->mask_prog, "u_view_proj");
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
     ctx->mask_u_depth_map = skgl__depth_map_init(gl, ctx->mask_prog, ctx->mask_dmap);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_depth"), 1);
@@ -5538,6 +5552,8 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     if (r.plane_bias == 0.0f) r.plane_bias = 0.5f;
     if (r.psm_slide == 0.0f) r.psm_slide = 0.5f;
     if (r.auto_texel_px == 0.0f) r.auto_texel_px = 1.0f;
+    if (r.contact_steps == 0) r.contact_steps = 8;
+    if (r.contact_thickness == 0.0f) r.contact_thickness = r.contact_length;
     if (r.fade_band == 0.0f) r.fade_band = 0.1f;
     if (r.disable_fade) r.fade_band = 0.0f;
     if (r.pcf_radius == 0) r.pcf_radius = 1;
@@ -5628,6 +5644,11 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(d->psm_slide >= 0.0f && d->psm_slide <= 1e3f, fn, "psm_slide", d->psm_slide,
                "in [0, 1000] (disable_psm_slide for none)");
     SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
+    SKGL__RULE(d->contact_length >= 0.0f && d->contact_length <= 1e6f, fn, "contact_length", d->contact_length,
+               "finite, 0 or more (0: no contact shadows)");
+    SKGL__RULE(d->contact_steps >= 1 && d->contact_steps <= 64, fn, "contact_steps", d->contact_steps, "in 1..64");
+    SKGL__RULE(d->contact_length == 0.0f || (d->contact_thickness > 0.0f && d->contact_thickness <= 1e6f), fn,
+               "contact_thickness", d->contact_thickness, "finite, more than 0");
     SKGL__NEED(!d->layered || ctx->caps.geometry_shader, fn, "desc.layered", SKGL__GEOMETRY);
     SKGL__NEED(ctx->caps.float_render || (d->technique != SKGL_FERKO && d->technique != SKGL_RMSM), fn,
                d->technique == SKGL_FERKO ? "SKGL_FERKO's analysis" : "SKGL_RMSM's page requests",
@@ -8134,6 +8155,22 @@ SKGLDEF sk_result skgl_unbind(skgl_context *ctx, int unit)
 
 /* ---- 6.8 the deferred mask ------------------------------------------- */
 // >>mask
+/* the contact march's uniforms (mask program current): length, steps,
+   thickness, and the camera-relative view-projection the samples project by */
+static void skgl__mask_contact(skgl_context *ctx, const skgl_shadow_desc *d, const skgl_camera *rc)
+{
+    float c[4];
+    c[0] = d->contact_length;
+    c[1] = (float)d->contact_steps;
+    c[2] = d->contact_thickness;
+    c[3] = 0.0f;
+    if (ctx->mask_u_contact >= 0) ctx->gl.Uniform4fv(ctx->mask_u_contact, 1, c);
+    if (d->contact_length > 0.0f && ctx->mask_u_view_proj >= 0) {
+        sk_mat4 vp = sk_mat4_mul(rc->proj, rc->view);
+        ctx->gl.UniformMatrix4fv(ctx->mask_u_view_proj, 1, 0, vp.m);
+    }
+}
+
 SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
                                    unsigned depth_tex, unsigned normal_tex, unsigned mask_tex)
 {
@@ -8183,6 +8220,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
             skgl__u1i(&ctx->gl, ctx->mask_u_has_normals, normal_tex != 0);
         }
         skgl__mask_camera(ctx, ctx->mask_u_camera, &inv, &rc.view);
+        skgl__mask_contact(ctx, &s->desc, &rc);
         ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
     }
     skgl__timer_end(ctx, &s->t_mask);
@@ -11486,6 +11524,76 @@ static const char skgl__src_shadow_mask_frag[] =
     "uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;\n"
     "                                      z: the near plane's depth (1 with reverse-Z), w: a far depth\n"
     "                                      on every pixel's ray (0.5 when the far plane is at infinity) */\n"
+    "uniform vec4 u_contact;             /* contact shadows (desc.contact_length): x the march's length in\n"
+    "                                      world units (0: off), y its steps, z the thickness */\n"
+    "uniform mat4 u_view_proj;           /* the camera's view-projection, the inverse of u_camera[0] */\n"
+    "\n"
+    "vec3 mask_world(ivec2 px, float d)\n"
+    "{\n"
+    "    vec2 ndc_xy = (vec2(px) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;\n"
+    "    vec4 w = u_camera[0] * vec4(ndc_xy, d * u_depth_map.x + u_depth_map.y, 1.0);\n"
+    "    return w.xyz / w.w;\n"
+    "}\n"
+    "\n"
+    "float mask_view_depth(vec3 world) { return -(u_camera[1] * vec4(world, 1.0)).z; }\n"
+    "\n"
+    "/* one pixel's view-depth step across the receiver: the largest one-sided\n"
+    "   difference to its four neighbours (those inside the frame). At a depth\n"
+    "   edge it is the jump, which turns the march off on the edge's pixels,\n"
+    "   where the buffer's rounding to pixel centres is widest; at a caster's\n"
+    "   foot the depth is continuous and the step small. */\n"
+    "float receiver_depth_step(ivec2 px, float z)\n"
+    "{\n"
+    "    ivec2 last = textureSize(u_depth, 0) - 1;\n"
+    "    float g = 0.0;\n"
+    "    for (int a = 0; a < 2; a++) {\n"
+    "        ivec2 e = ivec2(1 - a, a);\n"
+    "        ivec2 lo = clamp(px - e, ivec2(0), last), hi = clamp(px + e, ivec2(0), last);\n"
+    "        float dl = abs(mask_view_depth(mask_world(lo, texelFetch(u_depth, lo, 0).r)) - z);\n"
+    "        float dh = abs(mask_view_depth(mask_world(hi, texelFetch(u_depth, hi, 0).r)) - z);\n"
+    "        g = max(g, max(lo == px ? 0.0 : dl, hi == px ? 0.0 : dh));\n"
+    "    }\n"
+    "    return g;\n"
+    "}\n"
+    "\n"
+    "/* Contact shadows: a short march from the receiver toward the light through\n"
+    "   the depth buffer (screen-space ray marching, as in McGuire and Mara 2014's\n"
+    "   depth-buffer ray casting with a constant thickness). A sample is blocked\n"
+    "   when the buffer's surface at its pixel lies in front of it by less than\n"
+    "   the thickness (a thin caster throws no endless shadow behind it) and is\n"
+    "   not the receiver's own surface. A pixel centre off the sample's exact\n"
+    "   position on a plane the camera grazes lies far in front of or behind the\n"
+    "   sample, so depth alone cannot tell the receiver's ground from a caster;\n"
+    "   with normals, planes can: the buffer's point must lie off the receiver's\n"
+    "   plane by more than 1/1000 of the view depth, and the sample must not lie\n"
+    "   in front of the buffer surface's own plane (the foot of a lit wall\n"
+    "   marching out over the ground). Without normals the buffer must lie in\n"
+    "   front by more than two of the receiver's pixel depth steps.\n"
+    "   0 blocked, 1 clear. */\n"
+    "float contact_visibility(vec3 world, vec3 n, ivec2 px, float z)\n"
+    "{\n"
+    "    vec2 size = vec2(textureSize(u_depth, 0));\n"
+    "    bool plane = u_has_normals != 0;\n"
+    "    float tol = plane ? sk_receiver_slack : 2.0 * receiver_depth_step(px, z) + sk_receiver_slack;\n"
+    "    float plane_tol = 1e-3 * z + sk_receiver_slack;\n"
+    "    int steps = int(u_contact.y);\n"
+    "    for (int i = 1; i <= steps; i++) {\n"
+    "        vec3 p = world - sk_light_dir * (u_contact.x * float(i) / float(steps));\n"
+    "        vec4 c = u_view_proj * vec4(p, 1.0);\n"
+    "        if (c.w <= 0.0) break;\n"
+    "        vec2 win = (c.xy / c.w * 0.5 + 0.5) * size;\n"
+    "        if (any(lessThan(win, vec2(0.0))) || any(greaterThanEqual(win, size))) break;\n"
+    "        ivec2 q = ivec2(win);\n"
+    "        vec3 b = mask_world(q, texelFetch(u_depth, q, 0).r);\n"
+    "        float in_front = mask_view_depth(p) - mask_view_depth(b);\n"
+    "        if (in_front <= tol || in_front >= u_contact.z) continue;\n"
+    "        if (!plane) return 0.0;\n"
+    "        if (dot(b - world, n) > plane_tol && dot(b - p, normalize(texelFetch(u_normals, q, 0).xyz)) >= 0.0)\n"
+    "            return 0.0;\n"
+    "    }\n"
+    "    return 1.0;\n"
+    "}\n"
+    "\n"
     "void main()\n"
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy);\n"
@@ -11505,6 +11613,7 @@ static const char skgl__src_shadow_mask_frag[] =
     "    vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);\n"
     "    float view_depth = -(u_camera[1] * vec4(world, 1.0)).z;\n"
     "    float v = sk_shadow(world, n, view_depth);\n"
+    "    if (u_contact.x > 0.0 && !background && v > 0.0) v = min(v, contact_visibility(world, n, px, view_depth));\n"
     "    o_visibility = background ? 1.0 : v;\n"
     "}\n"
     ;

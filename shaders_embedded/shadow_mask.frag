@@ -12,6 +12,76 @@ uniform mat4 u_camera[2];           /* [0]: inverse view-projection, [1]: view (
 uniform vec4 u_depth_map;           /* the camera's depth convention (skgl_camera): NDC z = d * x + y;
                                       z: the near plane's depth (1 with reverse-Z), w: a far depth
                                       on every pixel's ray (0.5 when the far plane is at infinity) */
+uniform vec4 u_contact;             /* contact shadows (desc.contact_length): x the march's length in
+                                      world units (0: off), y its steps, z the thickness */
+uniform mat4 u_view_proj;           /* the camera's view-projection, the inverse of u_camera[0] */
+
+vec3 mask_world(ivec2 px, float d)
+{
+    vec2 ndc_xy = (vec2(px) + 0.5) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+    vec4 w = u_camera[0] * vec4(ndc_xy, d * u_depth_map.x + u_depth_map.y, 1.0);
+    return w.xyz / w.w;
+}
+
+float mask_view_depth(vec3 world) { return -(u_camera[1] * vec4(world, 1.0)).z; }
+
+/* one pixel's view-depth step across the receiver: the largest one-sided
+   difference to its four neighbours (those inside the frame). At a depth
+   edge it is the jump, which turns the march off on the edge's pixels,
+   where the buffer's rounding to pixel centres is widest; at a caster's
+   foot the depth is continuous and the step small. */
+float receiver_depth_step(ivec2 px, float z)
+{
+    ivec2 last = textureSize(u_depth, 0) - 1;
+    float g = 0.0;
+    for (int a = 0; a < 2; a++) {
+        ivec2 e = ivec2(1 - a, a);
+        ivec2 lo = clamp(px - e, ivec2(0), last), hi = clamp(px + e, ivec2(0), last);
+        float dl = abs(mask_view_depth(mask_world(lo, texelFetch(u_depth, lo, 0).r)) - z);
+        float dh = abs(mask_view_depth(mask_world(hi, texelFetch(u_depth, hi, 0).r)) - z);
+        g = max(g, max(lo == px ? 0.0 : dl, hi == px ? 0.0 : dh));
+    }
+    return g;
+}
+
+/* Contact shadows: a short march from the receiver toward the light through
+   the depth buffer (screen-space ray marching, as in McGuire and Mara 2014's
+   depth-buffer ray casting with a constant thickness). A sample is blocked
+   when the buffer's surface at its pixel lies in front of it by less than
+   the thickness (a thin caster throws no endless shadow behind it) and is
+   not the receiver's own surface. A pixel centre off the sample's exact
+   position on a plane the camera grazes lies far in front of or behind the
+   sample, so depth alone cannot tell the receiver's ground from a caster;
+   with normals, planes can: the buffer's point must lie off the receiver's
+   plane by more than 1/1000 of the view depth, and the sample must not lie
+   in front of the buffer surface's own plane (the foot of a lit wall
+   marching out over the ground). Without normals the buffer must lie in
+   front by more than two of the receiver's pixel depth steps.
+   0 blocked, 1 clear. */
+float contact_visibility(vec3 world, vec3 n, ivec2 px, float z)
+{
+    vec2 size = vec2(textureSize(u_depth, 0));
+    bool plane = u_has_normals != 0;
+    float tol = plane ? sk_receiver_slack : 2.0 * receiver_depth_step(px, z) + sk_receiver_slack;
+    float plane_tol = 1e-3 * z + sk_receiver_slack;
+    int steps = int(u_contact.y);
+    for (int i = 1; i <= steps; i++) {
+        vec3 p = world - sk_light_dir * (u_contact.x * float(i) / float(steps));
+        vec4 c = u_view_proj * vec4(p, 1.0);
+        if (c.w <= 0.0) break;
+        vec2 win = (c.xy / c.w * 0.5 + 0.5) * size;
+        if (any(lessThan(win, vec2(0.0))) || any(greaterThanEqual(win, size))) break;
+        ivec2 q = ivec2(win);
+        vec3 b = mask_world(q, texelFetch(u_depth, q, 0).r);
+        float in_front = mask_view_depth(p) - mask_view_depth(b);
+        if (in_front <= tol || in_front >= u_contact.z) continue;
+        if (!plane) return 0.0;
+        if (dot(b - world, n) > plane_tol && dot(b - p, normalize(texelFetch(u_normals, q, 0).xyz)) >= 0.0)
+            return 0.0;
+    }
+    return 1.0;
+}
+
 void main()
 {
     ivec2 px = ivec2(gl_FragCoord.xy);
@@ -31,5 +101,6 @@ void main()
     vec3 n = u_has_normals != 0 ? normalize(texelFetch(u_normals, px, 0).xyz) : vec3(0.0);
     float view_depth = -(u_camera[1] * vec4(world, 1.0)).z;
     float v = sk_shadow(world, n, view_depth);
+    if (u_contact.x > 0.0 && !background && v > 0.0) v = min(v, contact_visibility(world, n, px, view_depth));
     o_visibility = background ? 1.0 : v;
 }
