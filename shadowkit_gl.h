@@ -2201,6 +2201,7 @@ struct skgl_context {
     skgl__progent mask_ent;                /* the directional mask's snippet uniforms */
     skgl__int mask_u_has_normals, mask_u_camera;
     skgl__int mask_u_contact, mask_u_view_proj;   /* contact shadows: the march, the camera */
+    float mask_contact[4];                 /* the march's values mask_prog holds (GL's 0 at first) */
     /* u_depth_map (the camera's depth convention) of the mask and analysis
        programs, and the values last sent (the default convention's at link) */
     skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
@@ -8164,7 +8165,12 @@ static void skgl__mask_contact(skgl_context *ctx, const skgl_shadow_desc *d, con
     c[1] = (float)d->contact_steps;
     c[2] = d->contact_thickness;
     c[3] = 0.0f;
-    if (ctx->mask_u_contact >= 0) ctx->gl.Uniform4fv(ctx->mask_u_contact, 1, c);
+    /* the program keeps the last values: sent only when they change (a
+       light without contact shadows costs no call after the first) */
+    if (ctx->mask_u_contact >= 0 && memcmp(c, ctx->mask_contact, sizeof c) != 0) {
+        memcpy(ctx->mask_contact, c, sizeof c);
+        ctx->gl.Uniform4fv(ctx->mask_u_contact, 1, c);
+    }
     if (d->contact_length > 0.0f && ctx->mask_u_view_proj >= 0) {
         sk_mat4 vp = sk_mat4_mul(rc->proj, rc->view);
         ctx->gl.UniformMatrix4fv(ctx->mask_u_view_proj, 1, 0, vp.m);
