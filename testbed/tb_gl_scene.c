@@ -118,11 +118,12 @@ static const char *tb_gbuffer_fs_ =
     "    o_normal = vec4(gl_FrontFacing ? n : -n, 1.0);   /* toward the camera */\n"
     "}\n";
 
-static unsigned tb_compile_(const tb_gl_funcs *gl, unsigned type, const char *src, char *err,
-                            size_t errlen) {
+/* a shader from count source strings; 0 (the log in err) when it fails */
+static unsigned tb_compile_parts_(const tb_gl_funcs *gl, unsigned type, int count, const char *const *src, char *err,
+                                  size_t errlen) {
     unsigned sh = gl->CreateShader(type);
     int ok = 0;
-    gl->ShaderSource(sh, 1, &src, NULL);
+    gl->ShaderSource(sh, count, src, NULL);
     gl->CompileShader(sh);
     gl->GetShaderiv(sh, TB_GL_COMPILE_STATUS, &ok);
     if (!ok) {
@@ -133,28 +134,39 @@ static unsigned tb_compile_(const tb_gl_funcs *gl, unsigned type, const char *sr
     return sh;
 }
 
+static unsigned tb_compile_(const tb_gl_funcs *gl, unsigned type, const char *src, char *err, size_t errlen) {
+    return tb_compile_parts_(gl, type, 1, &src, err, errlen);
+}
+
+/* the program of vs and fs (both deleted: flagged, freed with the
+   program); 0 (the log in err) when it does not link */
+static unsigned tb_link_(const tb_gl_funcs *gl, unsigned vs, unsigned fs, char *err, size_t errlen) {
+    unsigned p = gl->CreateProgram();
+    int ok = 0;
+    gl->AttachShader(p, vs);
+    gl->AttachShader(p, fs);
+    gl->LinkProgram(p);
+    gl->DeleteShader(vs);
+    gl->DeleteShader(fs);
+    gl->GetProgramiv(p, TB_GL_LINK_STATUS, &ok);
+    if (!ok) {
+        if (err && errlen) gl->GetProgramInfoLog(p, (int)errlen, NULL, err);
+        gl->DeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
 int tb_gl_gbuffer_create(const tb_gl_funcs *gl, tb_gl_gbuffer *g, char *err, size_t errlen) {
     unsigned vs, fs;
-    int ok = 0;
     memset(g, 0, sizeof *g);
     if (err && errlen) err[0] = 0;
     vs = tb_compile_(gl, TB_GL_VERTEX_SHADER, tb_gbuffer_vs_, err, errlen);
     if (!vs) return -1;
     fs = tb_compile_(gl, TB_GL_FRAGMENT_SHADER, tb_gbuffer_fs_, err, errlen);
     if (!fs) { gl->DeleteShader(vs); return -1; }
-    g->program = gl->CreateProgram();
-    gl->AttachShader(g->program, vs);
-    gl->AttachShader(g->program, fs);
-    gl->LinkProgram(g->program);
-    gl->DeleteShader(vs);   /* flagged; freed with the program */
-    gl->DeleteShader(fs);
-    gl->GetProgramiv(g->program, TB_GL_LINK_STATUS, &ok);
-    if (!ok) {
-        if (err && errlen) gl->GetProgramInfoLog(g->program, (int)errlen, NULL, err);
-        gl->DeleteProgram(g->program);
-        g->program = 0;
-        return -1;
-    }
+    g->program = tb_link_(gl, vs, fs, err, errlen);
+    if (!g->program) return -1;
     g->u_view_proj = gl->GetUniformLocation(g->program, "u_view_proj");
     g->u_alpha = -1;
     return 0;
@@ -266,26 +278,10 @@ static const char tb_instanced_fs_main_[] =
 
 static const char tb_no_alpha_test_[] = "void skgl_caster_fragment() {}\n";
 
-static unsigned tb_compile_parts_(const tb_gl_funcs *gl, unsigned type, int count, const char *const *src, char *err,
-                                  size_t errlen) {
-    unsigned sh = gl->CreateShader(type);
-    int ok = 0;
-    gl->ShaderSource(sh, count, src, NULL);
-    gl->CompileShader(sh);
-    gl->GetShaderiv(sh, TB_GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        if (err && errlen) gl->GetShaderInfoLog(sh, (int)errlen, NULL, err);
-        gl->DeleteShader(sh);
-        return 0;
-    }
-    return sh;
-}
-
 int tb_gl_gbuffer_create_instanced(const tb_gl_funcs *gl, tb_gl_gbuffer *g, int alpha_test, char *err,
                                    size_t errlen) {
     const char *vs[4], *fs[4];
     unsigned v, f;
-    int ok = 0;
     memset(g, 0, sizeof *g);
     g->u_alpha = -1;
     if (err && errlen) err[0] = 0;
@@ -299,19 +295,8 @@ int tb_gl_gbuffer_create_instanced(const tb_gl_funcs *gl, tb_gl_gbuffer *g, int 
     if (!v) return -1;
     f = tb_compile_parts_(gl, TB_GL_FRAGMENT_SHADER, 3, fs, err, errlen);
     if (!f) { gl->DeleteShader(v); return -1; }
-    g->program = gl->CreateProgram();
-    gl->AttachShader(g->program, v);
-    gl->AttachShader(g->program, f);
-    gl->LinkProgram(g->program);
-    gl->DeleteShader(v);   /* flagged; freed with the program */
-    gl->DeleteShader(f);
-    gl->GetProgramiv(g->program, TB_GL_LINK_STATUS, &ok);
-    if (!ok) {
-        if (err && errlen) gl->GetProgramInfoLog(g->program, (int)errlen, NULL, err);
-        gl->DeleteProgram(g->program);
-        g->program = 0;
-        return -1;
-    }
+    g->program = tb_link_(gl, v, f, err, errlen);
+    if (!g->program) return -1;
     g->u_view_proj = gl->GetUniformLocation(g->program, "u_view_proj");
     g->u_alpha = gl->GetUniformLocation(g->program, "u_alpha");
     return 0;
