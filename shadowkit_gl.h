@@ -1044,7 +1044,14 @@ typedef struct skgl_shadow_desc {
     float plane_bias;             /* receiver plane: comparison tolerance in texels of the
                                      plane's own depth slope, 0..64 [0.5] */
     int disable_plane_bias;       /* 1: no tolerance beyond the plane itself [0] */
-    int pcf_radius;               /* (2r)^2 hardware 2x2 compares, 1..8 [1] */
+    int pcf_radius;               /* the filter's half-width in texels, 1..8, when .filter_world
+                                     is 0: (r+1)^2 hardware 2x2 compares [1] */
+    float filter_world;           /* the filter's half-width in world units (metres if your
+                                     scene is in metres), across the light's direction: the
+                                     same penumbra in every cascade, at every resolution and
+                                     in every technique (but RMSM: one 2x2 compare), up to
+                                     8 texels of a layer (BIAS AND FILTERING); 0 or more
+                                     [0: .pcf_radius texels] */
     int disable_pcf_kernel;       /* 1: one hardware 2x2 compare, no kernel [0] */
     int cache;                    /* 1: keep scene.draw's (static) casters' depth from frame
                                      to frame and redraw only what changed (CACHED MAPS):
@@ -2096,7 +2103,7 @@ static const char *skgl__glsl(skgl__glsl_id id);
 #define SKGL__TIMER_RING 3                 /* timer queries per timed pass, read two or three frames late */
 #define SKGL__RING 3                       /* pixel pack buffers per late read-back */
 #define SKGL__FERKO_LEVELS 5               /* analysis + reductions, for G-buffers up to 65536 a side */
-#define SKGL__LOCS 19                      /* the most snippet uniforms (the directional one's) */
+#define SKGL__LOCS 20                      /* the most snippet uniforms (the directional one's) */
 enum { SKGL__PK_SHADOW = 0, SKGL__PK_POINT = 1 };
 
 /* a program holding a GLSL snippet (skgl__progent_lookup) */
@@ -3250,13 +3257,13 @@ enum {
     SKGL__L_MAP, SKGL__L_TABLE, SKGL__L_RMSM, SKGL__L_PAGES0, SKGL__L_LEVELS, SKGL__L_MIN_LEVEL, SKGL__L_PAGE,
     SKGL__L_LIGHT_VP, SKGL__L_SPLITS, SKGL__L_LAYERS, SKGL__L_SELECT_BY_MAP, SKGL__L_MAP_EXTENT,
     SKGL__L_SELECT_EXTENT, SKGL__L_BLEND_BAND, SKGL__L_NORMAL_BIAS, SKGL__L_BIAS_MODE, SKGL__L_PLANE_BIAS,
-    SKGL__L_PCF, SKGL__L_LIGHT_DIR, SKGL__L_SHADOW_N
+    SKGL__L_PCF, SKGL__L_LIGHT_DIR, SKGL__L_FILTER_WORLD, SKGL__L_SHADOW_N
 };
 static const char *const skgl__shadow_names[SKGL__L_SHADOW_N] = {
     "sk_shadow_map", "sk_page_table", "sk_rmsm", "sk_rmsm_pages0", "sk_rmsm_levels", "sk_rmsm_min_level",
     "sk_rmsm_page", "sk_light_vp", "sk_splits", "sk_layers", "sk_select_by_map", "sk_map_extent",
     "sk_select_extent", "sk_blend_band", "sk_normal_bias", "sk_bias_mode", "sk_plane_bias", "sk_pcf_radius",
-    "sk_light_dir"};
+    "sk_light_dir", "sk_filter_world"};
 enum {
     SKGL__P_CUBE, SKGL__P_ATLAS, SKGL__P_INDIRECTION, SKGL__P_POS, SKGL__P_RANGE, SKGL__P_DEPTH, SKGL__P_TEXEL,
     SKGL__P_NORMAL_BIAS, SKGL__P_PCF, SKGL__P_BIAS_MODE, SKGL__P_PLANE_BIAS, SKGL__P_FACES, SKGL__P_SPOT,
@@ -5561,8 +5568,17 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     if (r.bias == SKGL_BIAS_NONE) r.normal_bias = 0.0f;
     skgl__apply_switches(&r.slope_bias, &r.depth_bias, r.disable_polygon_offset, &r.plane_bias,
                          r.disable_plane_bias, &r.pcf_radius, r.disable_pcf_kernel);
+    if (r.disable_pcf_kernel) r.filter_world = 0.0f;
     if (r.disable_psm_slide) r.psm_slide = 0.0f;
     return r;
+}
+
+/* the texels the PCF box reaches beyond its point: .pcf_radius, or with a
+   world radius the most the shader takes (SK_PCF_MAX_TEXELS in
+   shadow_sample.glsl), whatever the layer's texel size */
+static int skgl__filter_reach(const skgl_shadow_desc *d)
+{
+    return d->filter_world > 0.0f ? 8 : d->pcf_radius;
 }
 
 /* hand-set splits: all 0, or one finite increasing depth > 0 per boundary
@@ -5638,6 +5654,8 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(d->blend_band >= 0.0f && d->blend_band < 1.0f, fn, "blend_band", d->blend_band, "in [0, 1)");
     SKGL__TRY(skgl__bias_rules(ctx, fn, d->slope_bias, d->depth_bias, d->normal_bias, d->bias, d->plane_bias,
                                d->pcf_radius));
+    SKGL__RULE(d->filter_world >= 0.0f && d->filter_world <= 1e6f, fn, "filter_world", d->filter_world,
+               "in [0, 1000000] world units (0: pcf_radius texels)");
     SKGL__RULE(d->max_distance >= 0.0f, fn, "max_distance", d->max_distance, "0 or more");
     SKGL__RULE(d->disable_fade == 0 || d->disable_fade == 1, fn, "disable_fade", d->disable_fade, "0 or 1");
     SKGL__RULE(d->disable_fade || (d->fade_band > 0.0f && d->fade_band <= 1.0f), fn, "fade_band", d->fade_band,
@@ -5976,7 +5994,7 @@ static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const s
     sk_frustum slice;
     sk_lspsm_region reg;
     sk_vec3 view_dir = sk__v3(-cam->view.m[2], -cam->view.m[6], -cam->view.m[10]);
-    float margin = (float)(s->desc.pcf_radius + 3) + (s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    float margin = (float)(skgl__filter_reach(&s->desc) + 3) + (s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
     float k = 1.0f - 2.0f * margin / (float)s->desc.resolution;
     int i, n;
     sk_result r = sk_frustum_slice(view, zn, cam_zf, zn, zf, &slice);
@@ -6488,7 +6506,7 @@ static void skgl__fit_ferko(skgl_shadow *s, float zf)
 {
     const sk_res_estimate *e = &s->ferko.est;
     int res = s->desc.resolution, w = e->width, h = e->height;
-    int margin = s->desc.pcf_radius + 2 + (int)SK_CEIL(s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
+    int margin = skgl__filter_reach(&s->desc) + 2 + (int)SK_CEIL(s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
     sk_mat4 m, t = sk_mat4_identity(), lvp = skgl__shift(&s->ferko.lvp, s->ferko.origin, s->origin);
     sk_rect b = e->bounds;
     if (e->samples > 0 && w > 0 && h > 0) {
@@ -8047,6 +8065,7 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
         skgl__u1i(gl, L[SKGL__L_BIAS_MODE], s->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
         skgl__u1f(gl, L[SKGL__L_PLANE_BIAS], s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
         skgl__u1i(gl, L[SKGL__L_PCF], s->desc.pcf_radius);
+        skgl__u1f(gl, L[SKGL__L_FILTER_WORLD], s->desc.filter_world);
         e->owner = s->id;
         e->unit = unit;
         e->sentinel_i = s->desc.rmsm_page_size;
@@ -11294,10 +11313,22 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   every shadow edge toward the light by about sk_normal_bias texels times\n"
     "   the cotangent of the light's elevation. In both, the casters were drawn\n"
     "   with slope-scaled polygon offset (skgl_shadow_desc.slope_bias).\n"
-    "   Filtering: the bilinear 2x2 comparison (radius 0), or a (2r)x(2r) grid of\n"
-    "   them; mode 0 weighs the same texels with the same weights, one\n"
-    "   comparison each. A surface facing away from the light (given a normal) is\n"
-    "   in its own shadow: 0, whatever the map says near its silhouette. */\n"
+    "   Filtering: a box of half-width R texels (per axis) over the map's texels,\n"
+    "   each texel weighed by the part of the box it covers. R is\n"
+    "   sk_filter_world world units in texels of the layer at the point (its\n"
+    "   texels' world size, so the same penumbra in every cascade, at every\n"
+    "   resolution, across a warped map), at least 1/2 (one bilinear 2x2\n"
+    "   comparison) and at most SK_PCF_MAX_TEXELS; or, when sk_filter_world is\n"
+    "   0, sk_pcf_radius texels (0: 1/2). Mode 1 takes the box's texels two by\n"
+    "   two along each axis in hardware bilinear comparisons placed between\n"
+    "   them in the ratio of their weights (Castano 2013, \"Shadow Mapping\n"
+    "   Summary - Part 1\", the optimised PCF of The Witness): (ceil(2R)+1)^2\n"
+    "   texels in (ceil((ceil(2R)+1)/2))^2 taps, (r+1)^2 for an integer radius\n"
+    "   r, which weighs exactly what the (2r)^2 taps at p + k + 1/2 of earlier\n"
+    "   versions did. Mode 0 compares each texel against its own plane depth,\n"
+    "   one comparison each, with the same weights. A surface facing away from\n"
+    "   the light (given a normal) is in its own shadow: 0, whatever the map says\n"
+    "   near its silhouette. */\n"
     "uniform highp sampler2DArrayShadow sk_shadow_map;\n"
     "uniform mat4 sk_light_vp[8];\n"
     "uniform float sk_splits[10];       /* view depths: layer i covers [splits[i], splits[i+1]); after the\n"
@@ -11314,6 +11345,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "   distance spans in the map. */\n"
     "float sk_receiver_slack = 0.0;\n"
     "uniform int sk_pcf_radius;\n"
+    "uniform float sk_filter_world;     /* the filter's half-width in world units (0: sk_pcf_radius texels) */\n"
     "uniform vec3 sk_light_dir;         /* travel direction, unit */\n"
     "uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */\n"
     "uniform int sk_rmsm;               /* 1: a virtual map through sk_page_table */\n"
@@ -11374,31 +11406,70 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    return tanv > SK_PLANE_MAX_TAN ? g * (SK_PLANE_MAX_TAN / tanv) : g;\n"
     "}\n"
     "\n"
+    "/* the filter's half-width in texels of the layer whose light clip at p is c\n"
+    "   (matrix m, texture size size), per axis of the map: sk_filter_world over\n"
+    "   the world size of the layer's texels there, the length of light NDC's\n"
+    "   gradient over world position (sk_texel_size) for each axis; else the\n"
+    "   texel radius */\n"
+    "const float SK_PCF_MAX_TEXELS = 8.0;\n"
+    "vec2 sk_filter_texels(mat4 m, vec4 c, vec2 size)\n"
+    "{\n"
+    "    if (!(sk_filter_world > 0.0)) return vec2(max(float(sk_pcf_radius), 0.5));\n"
+    "    vec3 r3 = vec3(m[0][3], m[1][3], m[2][3]);\n"
+    "    vec2 g = vec2(length(vec3(m[0][0], m[1][0], m[2][0]) - (c.x / c.w) * r3),\n"
+    "                  length(vec3(m[0][1], m[1][1], m[2][1]) - (c.y / c.w) * r3)) / c.w;\n"
+    "    return clamp(sk_filter_world * 0.5 * g * size, vec2(0.5), vec2(SK_PCF_MAX_TEXELS));\n"
+    "}\n"
+    "\n"
+    "/* the part of texel j ([j, j + 1] in texel space) that the box [lo, hi] covers */\n"
+    "float sk_box_cover(float lo, float hi, float j) { return max(min(hi, j + 1.0) - max(lo, j), 0.0); }\n"
+    "\n"
     "/* Percentage-closer filtering against the receiver's plane. p: the lookup\n"
     "   in texel space of the sampled texture (texel j's centre at j + 0.5); z:\n"
-    "   its window depth; gt: the plane's depth change per texel. The footprint\n"
-    "   and weights are those of the hardware path: radius 0 one bilinear 2x2,\n"
-    "   radius r the (2r)x(2r) bilinear taps at p + k + 1/2 (k = -r .. r-1),\n"
-    "   i.e. (2r+1)^2 texels with separable weights. Each texel is compared with\n"
-    "   the plane's depth at its own centre, less the tolerance (plus slack,\n"
-    "   the depth uncertainty of the receiver itself). */\n"
-    "float sk_pcf_plane(vec2 p, float z, vec2 gt, float slack, float layer, vec2 size, int r)\n"
+    "   its window depth; gt: the plane's depth change per texel; R: the box's\n"
+    "   half-width in texels. Each texel the box reaches is compared with the\n"
+    "   plane's depth at its own centre, less the tolerance (plus slack, the\n"
+    "   depth uncertainty of the receiver itself), and weighed by the part of\n"
+    "   the box it covers. */\n"
+    "float sk_pcf_plane(vec2 p, float z, vec2 gt, float slack, float layer, vec2 size, vec2 R)\n"
     "{\n"
-    "    int m = max(2 * r, 1);\n"
-    "    vec2 b = p - (r > 0 ? 0.0 : 0.5);\n"
-    "    vec2 base = floor(b), fr = b - base;\n"
+    "    vec2 lo = p - R, hi = p + R, first = floor(lo);\n"
+    "    ivec2 n = ivec2(ceil(hi) - first);\n"
     "    float tol = sk_plane_bias * (abs(gt.x) + abs(gt.y)) + slack + 4.0e-7;\n"
     "    float sum = 0.0;\n"
-    "    for (int ky = -r; ky <= m - r; ky++) {\n"
-    "        float wy = (ky <= m - r - 1 ? 1.0 - fr.y : 0.0) + (ky >= 1 - r ? fr.y : 0.0);\n"
-    "        for (int kx = -r; kx <= m - r; kx++) {\n"
-    "            float wx = (kx <= m - r - 1 ? 1.0 - fr.x : 0.0) + (kx >= 1 - r ? fr.x : 0.0);\n"
-    "            vec2 tc = base + vec2(float(kx), float(ky)) + 0.5;\n"
+    "    for (int ky = 0; ky < n.y; ky++) {\n"
+    "        float wy = sk_box_cover(lo.y, hi.y, first.y + float(ky));\n"
+    "        for (int kx = 0; kx < n.x; kx++) {\n"
+    "            float wx = sk_box_cover(lo.x, hi.x, first.x + float(kx));\n"
+    "            vec2 tc = first + vec2(float(kx), float(ky)) + 0.5;\n"
     "            float zt = max(z + dot(gt, tc - p) - tol, 0.0);\n"
     "            if (wx * wy > 0.0) sum += wx * wy * texture(sk_shadow_map, vec4(tc / size, layer, zt));\n"
     "        }\n"
     "    }\n"
-    "    return sum / float(m * m);\n"
+    "    return sum / (4.0 * R.x * R.y);\n"
+    "}\n"
+    "\n"
+    "/* The same box through hardware 2x2 comparisons against one depth z: along\n"
+    "   each axis the texels it reaches are taken in pairs (j, j + 1), each pair\n"
+    "   one bilinear tap between their centres at j + 1/2 + w(j+1) / (w(j) +\n"
+    "   w(j+1)) weighing w(j) + w(j+1) (a last texel alone: its centre), so the\n"
+    "   tap's bilinear weights are the texels' box weights (Castano 2013) */\n"
+    "float sk_pcf_taps(vec2 p, float z, float layer, vec2 size, vec2 R)\n"
+    "{\n"
+    "    vec2 lo = p - R, hi = p + R, first = floor(lo);\n"
+    "    ivec2 taps = (ivec2(ceil(hi) - first) + 1) / 2;\n"
+    "    float sum = 0.0;\n"
+    "    for (int ty = 0; ty < taps.y; ty++) {\n"
+    "        float y = first.y + float(2 * ty);\n"
+    "        float ay = sk_box_cover(lo.y, hi.y, y), by = sk_box_cover(lo.y, hi.y, y + 1.0);\n"
+    "        for (int tx = 0; tx < taps.x; tx++) {\n"
+    "            float x = first.x + float(2 * tx);\n"
+    "            float ax = sk_box_cover(lo.x, hi.x, x), bx = sk_box_cover(lo.x, hi.x, x + 1.0);\n"
+    "            vec2 tc = vec2(x, y) + 0.5 + vec2(bx / (ax + bx), by / (ay + by));\n"
+    "            sum += (ax + bx) * (ay + by) * texture(sk_shadow_map, vec4(tc / size, layer, z));\n"
+    "        }\n"
+    "    }\n"
+    "    return sum / (4.0 * R.x * R.y);\n"
     "}\n"
     "\n"
     "float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int layer)\n"
@@ -11413,20 +11484,15 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    if (uvz.z > 1.0) return 1.0;\n"
     "    float z = max(uvz.z, 0.0);\n"
     "    vec2 size = vec2(textureSize(sk_shadow_map, 0).xy);\n"
+    "    vec2 R = sk_filter_texels(sk_light_vp[layer], c, size);\n"
     "    if (sk_bias_mode == 0) {\n"
     "        vec2 g = sk_plane_slope(sk_light_vp[layer], c, plane_normal);\n"
     "        return sk_pcf_plane(uvz.xy * size, z, g / size, sk_slack_depth(sk_light_vp[layer], c), float(layer), size,\n"
-    "                            sk_pcf_radius);\n"
+    "                            R);\n"
     "    }\n"
-    "    if (sk_pcf_radius <= 0)\n"
+    "    if (R.x <= 0.5 && R.y <= 0.5)\n"
     "        return texture(sk_shadow_map, vec4(uvz.xy, float(layer), z));\n"
-    "    vec2 texel = 1.0 / size;\n"
-    "    float sum = 0.0;\n"
-    "    int r = sk_pcf_radius;\n"
-    "    for (int y = -r; y < r; y++)\n"
-    "        for (int x = -r; x < r; x++)\n"
-    "            sum += texture(sk_shadow_map, vec4(uvz.xy + (vec2(x, y) + 0.5) * texel, float(layer), z));\n"
-    "    return sum / float(4 * r * r);\n"
+    "    return sk_pcf_taps(uvz.xy * size, z, float(layer), size, R);\n"
     "}\n"
     "\n"
     "/* RMSM: the point through the page table, from its level up to the\n"
@@ -11458,7 +11524,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "        vec2 pp = slot * (page + 2.0) + 1.0 + f;\n"
     "        if (sk_bias_mode == 0)\n"
     "            return sk_pcf_plane(pp, max(uvz.z, 0.0), sk_plane_slope(sk_light_vp[0], c, plane_normal) / lres,\n"
-    "                                sk_slack_depth(sk_light_vp[0], c), 0.0, pool, 0);\n"
+    "                                sk_slack_depth(sk_light_vp[0], c), 0.0, pool, vec2(0.5));\n"
     "        return texture(sk_shadow_map, vec4(pp / pool, 0.0, max(uvz.z, 0.0)));\n"
     "    }\n"
     "    return 1.0;\n"

@@ -30,10 +30,22 @@
    every shadow edge toward the light by about sk_normal_bias texels times
    the cotangent of the light's elevation. In both, the casters were drawn
    with slope-scaled polygon offset (skgl_shadow_desc.slope_bias).
-   Filtering: the bilinear 2x2 comparison (radius 0), or a (2r)x(2r) grid of
-   them; mode 0 weighs the same texels with the same weights, one
-   comparison each. A surface facing away from the light (given a normal) is
-   in its own shadow: 0, whatever the map says near its silhouette. */
+   Filtering: a box of half-width R texels (per axis) over the map's texels,
+   each texel weighed by the part of the box it covers. R is
+   sk_filter_world world units in texels of the layer at the point (its
+   texels' world size, so the same penumbra in every cascade, at every
+   resolution, across a warped map), at least 1/2 (one bilinear 2x2
+   comparison) and at most SK_PCF_MAX_TEXELS; or, when sk_filter_world is
+   0, sk_pcf_radius texels (0: 1/2). Mode 1 takes the box's texels two by
+   two along each axis in hardware bilinear comparisons placed between
+   them in the ratio of their weights (Castano 2013, "Shadow Mapping
+   Summary - Part 1", the optimised PCF of The Witness): (ceil(2R)+1)^2
+   texels in (ceil((ceil(2R)+1)/2))^2 taps, (r+1)^2 for an integer radius
+   r, which weighs exactly what the (2r)^2 taps at p + k + 1/2 of earlier
+   versions did. Mode 0 compares each texel against its own plane depth,
+   one comparison each, with the same weights. A surface facing away from
+   the light (given a normal) is in its own shadow: 0, whatever the map says
+   near its silhouette. */
 uniform highp sampler2DArrayShadow sk_shadow_map;
 uniform mat4 sk_light_vp[8];
 uniform float sk_splits[10];       /* view depths: layer i covers [splits[i], splits[i+1]); after the
@@ -50,6 +62,7 @@ uniform float sk_plane_bias;       /* mode 0: tolerance in texels of the plane's
    distance spans in the map. */
 float sk_receiver_slack = 0.0;
 uniform int sk_pcf_radius;
+uniform float sk_filter_world;     /* the filter's half-width in world units (0: sk_pcf_radius texels) */
 uniform vec3 sk_light_dir;         /* travel direction, unit */
 uniform int sk_select_by_map;      /* 1: layer = the partition holding the point */
 uniform int sk_rmsm;               /* 1: a virtual map through sk_page_table */
@@ -110,31 +123,70 @@ vec2 sk_plane_slope(mat4 m, vec4 c, vec3 n)
     return tanv > SK_PLANE_MAX_TAN ? g * (SK_PLANE_MAX_TAN / tanv) : g;
 }
 
+/* the filter's half-width in texels of the layer whose light clip at p is c
+   (matrix m, texture size size), per axis of the map: sk_filter_world over
+   the world size of the layer's texels there, the length of light NDC's
+   gradient over world position (sk_texel_size) for each axis; else the
+   texel radius */
+const float SK_PCF_MAX_TEXELS = 8.0;
+vec2 sk_filter_texels(mat4 m, vec4 c, vec2 size)
+{
+    if (!(sk_filter_world > 0.0)) return vec2(max(float(sk_pcf_radius), 0.5));
+    vec3 r3 = vec3(m[0][3], m[1][3], m[2][3]);
+    vec2 g = vec2(length(vec3(m[0][0], m[1][0], m[2][0]) - (c.x / c.w) * r3),
+                  length(vec3(m[0][1], m[1][1], m[2][1]) - (c.y / c.w) * r3)) / c.w;
+    return clamp(sk_filter_world * 0.5 * g * size, vec2(0.5), vec2(SK_PCF_MAX_TEXELS));
+}
+
+/* the part of texel j ([j, j + 1] in texel space) that the box [lo, hi] covers */
+float sk_box_cover(float lo, float hi, float j) { return max(min(hi, j + 1.0) - max(lo, j), 0.0); }
+
 /* Percentage-closer filtering against the receiver's plane. p: the lookup
    in texel space of the sampled texture (texel j's centre at j + 0.5); z:
-   its window depth; gt: the plane's depth change per texel. The footprint
-   and weights are those of the hardware path: radius 0 one bilinear 2x2,
-   radius r the (2r)x(2r) bilinear taps at p + k + 1/2 (k = -r .. r-1),
-   i.e. (2r+1)^2 texels with separable weights. Each texel is compared with
-   the plane's depth at its own centre, less the tolerance (plus slack,
-   the depth uncertainty of the receiver itself). */
-float sk_pcf_plane(vec2 p, float z, vec2 gt, float slack, float layer, vec2 size, int r)
+   its window depth; gt: the plane's depth change per texel; R: the box's
+   half-width in texels. Each texel the box reaches is compared with the
+   plane's depth at its own centre, less the tolerance (plus slack, the
+   depth uncertainty of the receiver itself), and weighed by the part of
+   the box it covers. */
+float sk_pcf_plane(vec2 p, float z, vec2 gt, float slack, float layer, vec2 size, vec2 R)
 {
-    int m = max(2 * r, 1);
-    vec2 b = p - (r > 0 ? 0.0 : 0.5);
-    vec2 base = floor(b), fr = b - base;
+    vec2 lo = p - R, hi = p + R, first = floor(lo);
+    ivec2 n = ivec2(ceil(hi) - first);
     float tol = sk_plane_bias * (abs(gt.x) + abs(gt.y)) + slack + 4.0e-7;
     float sum = 0.0;
-    for (int ky = -r; ky <= m - r; ky++) {
-        float wy = (ky <= m - r - 1 ? 1.0 - fr.y : 0.0) + (ky >= 1 - r ? fr.y : 0.0);
-        for (int kx = -r; kx <= m - r; kx++) {
-            float wx = (kx <= m - r - 1 ? 1.0 - fr.x : 0.0) + (kx >= 1 - r ? fr.x : 0.0);
-            vec2 tc = base + vec2(float(kx), float(ky)) + 0.5;
+    for (int ky = 0; ky < n.y; ky++) {
+        float wy = sk_box_cover(lo.y, hi.y, first.y + float(ky));
+        for (int kx = 0; kx < n.x; kx++) {
+            float wx = sk_box_cover(lo.x, hi.x, first.x + float(kx));
+            vec2 tc = first + vec2(float(kx), float(ky)) + 0.5;
             float zt = max(z + dot(gt, tc - p) - tol, 0.0);
             if (wx * wy > 0.0) sum += wx * wy * texture(sk_shadow_map, vec4(tc / size, layer, zt));
         }
     }
-    return sum / float(m * m);
+    return sum / (4.0 * R.x * R.y);
+}
+
+/* The same box through hardware 2x2 comparisons against one depth z: along
+   each axis the texels it reaches are taken in pairs (j, j + 1), each pair
+   one bilinear tap between their centres at j + 1/2 + w(j+1) / (w(j) +
+   w(j+1)) weighing w(j) + w(j+1) (a last texel alone: its centre), so the
+   tap's bilinear weights are the texels' box weights (Castano 2013) */
+float sk_pcf_taps(vec2 p, float z, float layer, vec2 size, vec2 R)
+{
+    vec2 lo = p - R, hi = p + R, first = floor(lo);
+    ivec2 taps = (ivec2(ceil(hi) - first) + 1) / 2;
+    float sum = 0.0;
+    for (int ty = 0; ty < taps.y; ty++) {
+        float y = first.y + float(2 * ty);
+        float ay = sk_box_cover(lo.y, hi.y, y), by = sk_box_cover(lo.y, hi.y, y + 1.0);
+        for (int tx = 0; tx < taps.x; tx++) {
+            float x = first.x + float(2 * tx);
+            float ax = sk_box_cover(lo.x, hi.x, x), bx = sk_box_cover(lo.x, hi.x, x + 1.0);
+            vec2 tc = vec2(x, y) + 0.5 + vec2(bx / (ax + bx), by / (ay + by));
+            sum += (ax + bx) * (ay + by) * texture(sk_shadow_map, vec4(tc / size, layer, z));
+        }
+    }
+    return sum / (4.0 * R.x * R.y);
 }
 
 float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int layer)
@@ -149,20 +201,15 @@ float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int 
     if (uvz.z > 1.0) return 1.0;
     float z = max(uvz.z, 0.0);
     vec2 size = vec2(textureSize(sk_shadow_map, 0).xy);
+    vec2 R = sk_filter_texels(sk_light_vp[layer], c, size);
     if (sk_bias_mode == 0) {
         vec2 g = sk_plane_slope(sk_light_vp[layer], c, plane_normal);
         return sk_pcf_plane(uvz.xy * size, z, g / size, sk_slack_depth(sk_light_vp[layer], c), float(layer), size,
-                            sk_pcf_radius);
+                            R);
     }
-    if (sk_pcf_radius <= 0)
+    if (R.x <= 0.5 && R.y <= 0.5)
         return texture(sk_shadow_map, vec4(uvz.xy, float(layer), z));
-    vec2 texel = 1.0 / size;
-    float sum = 0.0;
-    int r = sk_pcf_radius;
-    for (int y = -r; y < r; y++)
-        for (int x = -r; x < r; x++)
-            sum += texture(sk_shadow_map, vec4(uvz.xy + (vec2(x, y) + 0.5) * texel, float(layer), z));
-    return sum / float(4 * r * r);
+    return sk_pcf_taps(uvz.xy * size, z, float(layer), size, R);
 }
 
 /* RMSM: the point through the page table, from its level up to the
@@ -194,7 +241,7 @@ float sk_shadow_rmsm(vec3 world_pos, vec3 world_normal, vec3 plane_normal, float
         vec2 pp = slot * (page + 2.0) + 1.0 + f;
         if (sk_bias_mode == 0)
             return sk_pcf_plane(pp, max(uvz.z, 0.0), sk_plane_slope(sk_light_vp[0], c, plane_normal) / lres,
-                                sk_slack_depth(sk_light_vp[0], c), 0.0, pool, 0);
+                                sk_slack_depth(sk_light_vp[0], c), 0.0, pool, vec2(0.5));
         return texture(sk_shadow_map, vec4(pp / pool, 0.0, max(uvz.z, 0.0)));
     }
     return 1.0;

@@ -69,6 +69,8 @@ static void s_bias(skgl_shadow_desc *d) { d->bias = (skgl_bias)7; }
 static void s_plane(skgl_shadow_desc *d) { d->plane_bias = -1.0f; }
 static void s_pcf(skgl_shadow_desc *d) { d->pcf_radius = -1; }
 static void s_pcf_big(skgl_shadow_desc *d) { d->pcf_radius = 9; }
+static void s_filter_world(skgl_shadow_desc *d) { d->filter_world = -0.5f; }
+static void s_filter_world_nan(skgl_shadow_desc *d) { d->filter_world = NAN; }
 static void s_maxd(skgl_shadow_desc *d) { d->max_distance = -5.0f; }
 static void s_slide(skgl_shadow_desc *d) { d->psm_slide = -1.0f; }
 static void s_zeta(skgl_shadow_desc *d) { d->lspsm.zeta = 0.75f; }
@@ -90,6 +92,8 @@ static const shadow_case shadow_cases[] = {
     {"desc.plane_bias = -1: in [0, 64] texels (disable_plane_bias for none)", s_plane},
     {"desc.pcf_radius = -1: in 1..8 (disable_pcf_kernel for one 2x2 compare)", s_pcf},
     {"desc.pcf_radius = 9:", s_pcf_big},
+    {"desc.filter_world = -0.5: in [0, 1000000] world units (0: pcf_radius texels)", s_filter_world},
+    {"desc.filter_world = nan:", s_filter_world_nan},
     {"desc.max_distance = -5:", s_maxd},
     {"desc.psm_slide = -1: in [0, 1000] (disable_psm_slide for none)", s_slide},
     {"desc.lspsm.zeta = 0.75:", s_zeta},
@@ -133,13 +137,16 @@ static void test_shadow_switches(gt_env *e) {
     d.disable_polygon_offset = 1;
     d.disable_plane_bias = 1;
     d.disable_pcf_kernel = 1;
+    d.filter_world = 0.25f;
     d.disable_psm_slide = 1;
     SK_CHECK(skgl_shadow_create(e->sk, &d, &s) == SK_OK);
     got = skgl_shadow_get_desc(s);
     SK_CHECK_MSG(got.lambda == 0.0f && got.slope_bias == 0.0f && got.depth_bias == 0.0f && got.plane_bias == 0.0f &&
-                     got.pcf_radius == 0 && got.psm_slide == 0.0f && got.normal_bias == 0.0f,
-                 "filled: lambda %g slope %g depth %g plane %g pcf %d slide %g normal %g", got.lambda, got.slope_bias,
-                 got.depth_bias, got.plane_bias, got.pcf_radius, got.psm_slide, got.normal_bias);
+                     got.pcf_radius == 0 && got.filter_world == 0.0f && got.psm_slide == 0.0f &&
+                     got.normal_bias == 0.0f,
+                 "filled: lambda %g slope %g depth %g plane %g pcf %d world %g slide %g normal %g", got.lambda,
+                 got.slope_bias, got.depth_bias, got.plane_bias, got.pcf_radius, got.filter_world, got.psm_slide,
+                 got.normal_bias);
     SK_CHECK(skgl_shadow_create(e->sk, &got, &t) == SK_OK);
     again = skgl_shadow_get_desc(t);
     SK_CHECK(memcmp(&again, &got, sizeof got) == 0);
