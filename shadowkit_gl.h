@@ -465,10 +465,36 @@
      about .normal_bias texels times the cotangent of the light's elevation
      (10 texels at 8 degrees). In both, casters are drawn with slope-scaled
      polygon offset (.slope_bias, in depth slope units, i.e. texels).
-     .pcf_radius = 0 takes one bilinear 2x2 comparison; r > 0 takes (2r)x(2r)
-     of them (the receiver plane weighs the same (2r+1)^2 texels the same
-     way, one comparison each). Area lights (skgl_soft_*) use their own
-     receiver-plane comparison inside their filters.
+     The filter (directional lights) is a box over the map's texels, each
+     texel weighed by the part of the box it covers. Its size, the half-width:
+       .filter_world  in world units, measured across the light's direction:
+                      the same penumbra in every cascade, at every map
+                      resolution and in every technique (test_gl_filter_world:
+                      10-90% widths within 0.3% over 3 PSSM cascades and 2
+                      resolutions, STANDARD, PSM and LiSPSM within 2% of
+                      them; LSPSM and FERKO take the same path).
+                      The shader divides it by the world size of the texels
+                      of the point's layer, per map axis (a warped map's
+                      change across the view), and keeps the result in
+                      [1/2, 8] texels: a radius past 8 texels of a fine
+                      cascade is cut to 8 there (its penumbra narrower than
+                      asked for), one under half a texel is the one 2x2
+                      comparison. RMSM: always one 2x2 comparison (its pages'
+                      borders are one texel). A constant world width, not a
+                      sun's angular size: for penumbrae that widen with the
+                      distance to the caster, see the area lights (PCSS).
+       .pcf_radius    r texels, when .filter_world is 0 (the default, 1);
+                      .disable_pcf_kernel: the one 2x2 comparison (radius 1/2).
+     With the normal offset (or no bias) the box's texels are taken two by
+     two along each axis in hardware 2x2 comparisons placed between them in
+     the ratio of their weights (Castano 2013, "Shadow Mapping Summary - Part
+     1"): a radius of R texels reads (ceil(2R)+1)^2 texels in
+     ceil((ceil(2R)+1)/2)^2 comparisons, (r+1)^2 for r texels where earlier
+     versions took (2r)^2 comparisons (4, 9, 16, 49 for r = 1, 2, 3, 6 where
+     they took 4, 16, 36, 144) for the same weights. The receiver plane
+     compares each texel with its own plane depth: (ceil(2R)+1)^2
+     comparisons, (2r+1)^2 for r texels, as before. Area lights (skgl_soft_*)
+     use their own receiver-plane comparison inside their filters.
 
    REFERENCES
      Ferko 2013, "Resolution Estimation for Shadow Mapping".
@@ -484,6 +510,7 @@
      Dou, Yan, Kerzner, Dai and Wyman 2014, "Adaptive Depth Bias for Shadow
        Maps", JCGT 3(4).
      Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques", GDC.
+     Castano 2013, "Shadow Mapping Summary - Part 1" (The Witness blog).
 
    GLSL SNIPPETS
      skgl_glsl_snippet() and skgl_point_glsl_snippet() are GLSL 330 core to
@@ -497,9 +524,9 @@
          view direction, positive in front), and the uniforms
          sk_shadow_map (sampler2DArrayShadow, on `unit`), sk_light_vp[8],
          sk_splits[10], sk_layers, sk_blend_band, sk_bias_mode,
-         sk_normal_bias, sk_plane_bias, sk_pcf_radius, sk_light_dir,
-         sk_select_by_map, sk_select_extent, sk_map_extent, sk_rmsm,
-         sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
+         sk_normal_bias, sk_plane_bias, sk_pcf_radius, sk_filter_world,
+         sk_light_dir, sk_select_by_map, sk_select_extent, sk_map_extent,
+         sk_rmsm, sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
          sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; the global
          float sk_receiver_slack (0; yours to set: the world-space
          uncertainty of your positions);

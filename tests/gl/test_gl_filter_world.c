@@ -1,23 +1,24 @@
 /* test_gl_filter_world.c - the filter radius in world units
    (skgl_shadow_desc.filter_world): the same penumbra, in pixels, in every
-   cascade and at every map resolution; and the box kernel's figures
-   (penumbra, staircase, taps) printed beside it.
+   cascade, at every map resolution and in every technique; and the box
+   kernel's edge (penumbra, staircase) against the exact one.
 
-   Scene: a ground and three walls 0.6 m high running across the view
-   (along x) at z = 2.5, 0 and -2.5; a sun 45 degrees up behind them
-   (travelling +z), so each wall's top throws a straight shadow edge along
-   x on the ground 0.6 m in front of the wall. An orthographic camera
-   looking down -z, 35 degrees below the horizon, W x H: every pixel of
-   the ground spans the same distance, so a penumbra of one world width
-   has one width in pixels wherever it lies, and the three edges lie at
-   three view depths. PSSM, three cascades split by hand between the
+   Scene: a ground and three walls 0.4 m high and 0.2 m thick running
+   across the view (along x) at z = 1.6, 0 and -1.6; a sun 45 degrees up
+   behind them (travelling +z), so each wall's top throws a straight shadow
+   edge along x on the ground 0.4 m in front of the wall. An orthographic
+   camera looking down -z, 35 degrees below the horizon and turned 4
+   degrees (the edges cross the pixel rows at every phase), W x H: every
+   pixel of the ground spans the same distance, so a penumbra of one world
+   width has one width in pixels wherever it lies, and the three edges lie
+   at three view depths. PSSM, three cascades split by hand between the
    edges (each edge in the middle of its cascade), at RES_LO and RES_HI.
 
-   The penumbra: per column of the middle of the image (x in [-3, 3]), the
-   visibility along the column across the edge, from the lit side (below)
-   to the shadow (above), and the rows where it crosses 0.9 and 0.1
-   (linear between pixels); its width is their distance, averaged over the
-   columns. The deferred mask (receiver plane, the G-buffer's normals).
+   The penumbra: per column whose ground x lies in [-2, 2], the visibility
+   up the column across the edge, from the lit side (below) into the
+   shadow (above), and the rows where it crosses 0.9 and 0.1 (linear
+   between pixels); its width is their distance, averaged over the columns.
+   The deferred mask (receiver plane, the G-buffer's normals).
 
    test_world_width  filter_world FW: the six widths (3 cascades x 2
                      resolutions) within 15% of each other (max / min
@@ -25,15 +26,68 @@
                      own 10-90% width, 0.8 x 2 FW across the edge in the
                      light's plane, on the ground / sin(45 deg), in rows
                      of the camera.
-   test_texel_width  the control: pcf_radius (texels) in place of the
+   test_texel_width  the control: pcf_radius 3 (texels) in place of the
                      world radius spreads the widths past 15% (the texels
                      are not the same size in the three cascades), so the
                      first test can tell.
+   test_techniques   STANDARD, PSM and LiSPSM (warped: their texels change
+                     size across the view) at RES_HI, FW: every edge's
+                     width within 15% of PSSM's mean.
+   test_staircase    the kernel's edge against the exact one: a light whose
+                     map axes lie 6 degrees off the edges (azimuth 276),
+                     STAIR_RES maps (a texel about a pixel), both bias
+                     modes, radius 0 (the 2x2), 1, 2, 3 texels and the world
+                     radius 2 FW. Per column, the row where the mask
+                     crosses 0.5 against the exact edge (the wall top's
+                     shadow line, which the exact reference's transition
+                     is checked to lie within half a pixel of); the
+                     staircase is half the peak-to-peak of that difference
+                     less its mean. Asserted: both bias modes give the same
+                     staircase (within STAIR_SAME_PX) and width (within
+                     WIDTH_SAME_REL), the same weights; the receiver plane
+                     moves no edge (|offset| <= PLANE_OFFSET_MAX_PX); the
+                     staircase falls and the width grows with the texel
+                     radius; the 2x2 shows a staircase (>= STAIR_2X2_MIN_PX,
+                     so the measure can see one) and 3 texels at most
+                     STAIR_R3_MAX_PX.
 
-   Measured (Mesa 22.3 llvmpipe, OSMesa, 320 x 180; see the printout):
-   FILLED IN BELOW.
+   Measured (Mesa 22.3 llvmpipe, OSMesa, 320 x 180; 1.6 s):
+   - world radius 0.035 m, PSSM, 10-90% widths in rows, cascades 0 / 1 / 2:
+       128^2: 2.884 2.886 2.885 (2.22, 3.04, 2.43 texels)
+       256^2: 2.879 2.878 2.885 (4.44, 6.08, 4.87 texels)
+     spread 1.003 (bound 1.15); the model 2.732 (the measure reads a
+     linear ramp about 5% wide of its 10-90%). STANDARD 2.878-2.886, PSM
+     2.920-2.934, LiSPSM 2.904-2.914.
+   - pcf_radius 3 instead: 3.768 2.855 3.463 / 2.123 1.725 1.979, spread
+     2.185.
+   - staircase +-px / 10-90% width px, receiver plane (normal offset the
+     same within 0.03 px, 4.38 px toward the light):
+       2x2 0.591 / 1.60, 1 texel 0.449 / 2.39, 2 texels 0.203 / 4.24,
+       3 texels 0.184 / 6.20, world 0.07 m 0.505 / 5.50; plane offset
+       within 0.002 px of the exact edge. The world radius is square in the
+       world and these maps' texels are 2.9-4.1 times longer along the
+       edges than across them (0.085 m against 0.021-0.030 m): it spans
+       0.82 texel along the edges where the 3-texel radius spans 3, hence
+       its staircase. The kernel of earlier
+       versions (the (2r)^2 taps) gave these figures to the third decimal
+       at every radius (the same weights).
+   Above 8 texels of a layer (SK_PCF_MAX_TEXELS) the shader cuts the
+   radius: with FW at 512^2 the cascades would need 8.9, 12.2 and 9.7
+   texels, and their widths fall to 2.64, 2.08 and 2.46 rows (spread
+   1.385); hence maps of 128^2 and 256^2, which at 320 x 180 are what
+   768^2 and 1536^2 are at 1920 x 1080.
 
-   CAN FAIL: FILLED IN BELOW. */
+   CAN FAIL (record):
+   - the world radius ignored (sk_filter_texels returning the texel radius
+     whatever sk_filter_world): test_world_width fails 7 checks (spread
+     1.504; widths 1.09-1.63 rows against the model 2.732) and
+     test_techniques 9; 16 in all.
+   - every layer's radius from layer 0's matrix (sk_light_vp[0] in
+     sk_shadow_layer's sk_filter_texels call): the spread 1.288 fails.
+   - the receiver plane's kernel without its fractional row weights (wy = 1
+     in sk_pcf_plane): 14 checks fail (its widths and staircase no longer
+     the normal offset's, its edges moved 0.58-0.67 px, PSM's width 22% off
+     PSSM's). */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -52,6 +106,11 @@
 #define WALL_H 0.4f
 #define WIDTH_SPREAD_MAX 1.15   /* the 15% */
 #define WIDTH_MODEL_TOL 0.25
+#define STAIR_SAME_PX 0.03
+#define WIDTH_SAME_REL 0.05
+#define PLANE_OFFSET_MAX_PX 0.05
+#define STAIR_2X2_MIN_PX 0.4
+#define STAIR_R3_MAX_PX 0.25
 
 static const float wall_z[N_EDGE] = {1.6f, 0.0f, -1.6f};   /* near to far */
 static const int resolutions[N_RES] = {RES_LO, RES_HI};
@@ -255,6 +314,115 @@ static void test_techniques(void) {
     }
 }
 
+/* One straight edge under a light L, per column of ground x in [-2, 2]:
+   the row where the visibility crosses 0.5 against the row where the
+   ground crosses the exact edge, the shadow of wall i's top at z = wall +
+   0.1 + WALL_H L.z / -L.y (linear between the pixel centres' world z);
+   offset: their mean difference; staircase: half the peak-to-peak of the
+   difference less its mean; width: the mean 10-90% width; ref_off: the
+   most the exact reference's transition (between two pixel centres) lies
+   from the exact row. Rows, i.e. pixels. */
+typedef struct fw_edge { double offset, staircase, width, ref_off; int columns; } fw_edge;
+static fw_edge edge_profile(const fw_world *w, const float *ref, sk_vec3 L, int i) {
+    double ze = wall_z[i] + 0.1 + WALL_H * L.z / -L.y, dev[W], lo = 1e30, hi = -1e30, wsum = 0.0;
+    int c, n = 0, nw = 0;
+    fw_edge r;
+    memset(&r, 0, sizeof r);
+    for (c = 0; c < W; c++) {
+        double mid[3], p[3], q[3], row_e = -1, row50 = -1, at90 = -1, at10 = -1, row_ref = -1;
+        int k;
+        if (gt_world(&w->e, (size_t)(H / 2) * W + (size_t)c, mid) != 0 || fabs(mid[0]) > 2.0) continue;
+        for (k = 0; k + 1 < H; k++) {
+            size_t a = (size_t)k * W + (size_t)c;
+            float va = w->vis[a], vb = w->vis[a + W];
+            if (gt_world(&w->e, a, p) || gt_world(&w->e, a + W, q) || fabs(p[1]) > 1e-3 || fabs(q[1]) > 1e-3) continue;
+            if (p[2] > ze + EDGE_WINDOW_LIT || p[2] < ze - EDGE_WINDOW_SHADOW) continue;
+            if (row_e < 0 && p[2] >= ze && q[2] < ze) row_e = k + (p[2] - ze) / (p[2] - q[2]);
+            if (row50 < 0 && va >= 0.5f && vb < 0.5f) row50 = k + (va - 0.5) / (va - vb);
+            if (at90 < 0 && va >= 0.9f && vb < 0.9f) at90 = k + (va - 0.9) / (va - vb);
+            if (at10 < 0 && va >= 0.1f && vb < 0.1f) at10 = k + (va - 0.1) / (va - vb);
+            if (row_ref < 0 && ref[a] >= 0.5f && ref[a + W] >= 0.0f && ref[a + W] < 0.5f) row_ref = k + 0.5;
+        }
+        if (row_e < 0 || row50 < 0 || row_ref < 0) continue;
+        dev[n++] = row50 - row_e;
+        r.ref_off = fmax(r.ref_off, fabs(row_ref - row_e));
+        if (at90 >= 0 && at10 > at90) { wsum += at10 - at90; nw++; }
+    }
+    for (c = 0; c < n; c++) r.offset += dev[c] / n;
+    for (c = 0; c < n; c++) { lo = fmin(lo, dev[c] - r.offset); hi = fmax(hi, dev[c] - r.offset); }
+    r.staircase = n ? 0.5 * (hi - lo) : -1.0;
+    r.width = nw ? wsum / nw : -1.0;
+    r.columns = n;
+    return r;
+}
+
+/* The kernel's edge under a light at 45 degrees whose map axes lie 6
+   degrees off the edges (azimuth 276), STAIR_RES^2 maps (a texel about a
+   pixel), both bias modes, radius 0 (the 2x2 comparison) to 3 texels and
+   the world radius; the three edges pooled. */
+#define STAIR_RES 64
+#define N_STAIR 5
+static void test_staircase(void) {
+    fw_world *w = world();
+    sk_vec3 L = gt_sun_dir(45.0, 276.0);
+    float *ref;
+    fw_edge got[2][N_STAIR];
+    int mode, k, i;
+    if (!w) { SK_CHECK(0); return; }
+    ref = gt_alloc(&w->e);
+    if (!ref || gt_reference(&w->e, L, ref) != 0) { SK_CHECK(0); free(ref); return; }
+    for (mode = 0; mode < 2; mode++)
+        for (k = 0; k < N_STAIR; k++) {
+            skgl_shadow_desc d = gt_shadow_desc(SKGL_PSSM, STAIR_RES, N_EDGE, 0);
+            skgl_shadow *s;
+            fw_edge *g = &got[mode][k];
+            d.splits[0] = 0.5f * (ground_depth(w, edge_z(0)) + ground_depth(w, edge_z(1)));
+            d.splits[1] = 0.5f * (ground_depth(w, edge_z(1)) + ground_depth(w, edge_z(2)));
+            d.disable_fade = 1;
+            d.bias = mode ? SKGL_BIAS_NORMAL_OFFSET : SKGL_BIAS_RECEIVER_PLANE;
+            d.pcf_radius = k < 4 ? k : 0;
+            d.disable_pcf_kernel = k == 0;
+            d.filter_world = k == 4 ? 2.0f * FW : 0.0f;
+            s = gt_shadow(&w->e, &d);
+            if (!s || gt_mask(&w->e, s, &w->cam, L, w->vis) != 0) { SK_CHECK(0); break; }
+            memset(g, 0, sizeof *g);
+            for (i = 0; i < N_EDGE; i++) {
+                fw_edge e = edge_profile(w, ref, L, i);
+                SK_CHECK_MSG(e.columns > W / 4 && e.width > 0.0, "edge %d: %d columns, width %g", i, e.columns,
+                             e.width);
+                g->offset += e.offset / N_EDGE;
+                g->staircase += e.staircase / N_EDGE;
+                g->width += e.width / N_EDGE;
+                g->ref_off = fmax(g->ref_off, e.ref_off);
+            }
+            printf("  %-13s %-12s staircase +-%.3f px, penumbra %.3f px, offset %+.3f px (reference within %.2f px "
+                   "of the exact edge)\n", mode ? "normal-offset" : "plane",
+                   k == 4 ? "world 0.07" : k == 0 ? "2x2" : k == 1 ? "1 texel" : k == 2 ? "2 texels" : "3 texels",
+                   g->staircase, g->width, g->offset, g->ref_off);
+            /* the exact reference's transition, between two pixel centres,
+               lies within half a pixel of the exact edge */
+            SK_CHECK_MSG(g->ref_off <= 0.501, "reference %.3f px off the exact edge", g->ref_off);
+            skgl_shadow_destroy(w->e.sk, s);
+        }
+    for (k = 0; k < N_STAIR; k++) {
+        /* both bias modes weigh the same texels the same way */
+        SK_CHECK_MSG(fabs(got[0][k].staircase - got[1][k].staircase) <= STAIR_SAME_PX &&
+                         fabs(got[0][k].width / got[1][k].width - 1.0) <= WIDTH_SAME_REL,
+                     "kernel %d: plane +-%.3f px %.3f px wide, normal offset +-%.3f px %.3f px wide", k,
+                     got[0][k].staircase, got[0][k].width, got[1][k].staircase, got[1][k].width);
+        /* the receiver plane moves no edge */
+        SK_CHECK_MSG(fabs(got[0][k].offset) <= PLANE_OFFSET_MAX_PX, "kernel %d: plane offset %.3f px", k,
+                     got[0][k].offset);
+        if (k > 0 && k < 4)
+            SK_CHECK_MSG(got[0][k].staircase < got[0][k - 1].staircase && got[0][k].width > got[0][k - 1].width,
+                         "radius %d: staircase %.3f, width %.3f; radius %d: %.3f, %.3f", k, got[0][k].staircase,
+                         got[0][k].width, k - 1, got[0][k - 1].staircase, got[0][k - 1].width);
+    }
+    SK_CHECK_MSG(got[0][0].staircase >= STAIR_2X2_MIN_PX, "2x2: staircase +-%.3f px", got[0][0].staircase);
+    SK_CHECK_MSG(got[0][3].staircase <= STAIR_R3_MAX_PX, "3 texels: staircase +-%.3f px", got[0][3].staircase);
+    free(ref);
+}
+
 static void free_world(void) {
     fw_world *w = world();
     if (!w) return;
@@ -262,4 +430,4 @@ static void free_world(void) {
     gt_env_free(&w->e);
 }
 
-SK_TEST_MAIN(test_world_width, test_texel_width, test_techniques, free_world)
+SK_TEST_MAIN(test_world_width, test_texel_width, test_techniques, test_staircase, free_world)
