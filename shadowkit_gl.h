@@ -471,8 +471,8 @@
                       the same penumbra in every cascade, at every map
                       resolution and in every technique (test_gl_filter_world:
                       10-90% widths within 0.3% over 3 PSSM cascades and 2
-                      resolutions, STANDARD, PSM and LiSPSM within 2% of
-                      them; LSPSM and FERKO take the same path).
+                      resolutions; STANDARD, PSM, LiSPSM, LSPSM and FERKO
+                      within 5% of them).
                       The shader divides it by the world size of the texels
                       of the point's layer, per map axis (a warped map's
                       change across the view), and keeps the result in
