@@ -91,7 +91,7 @@
    - the receiver plane's kernel without its fractional row weights (wy = 1
      in sk_pcf_plane): 15 checks fail (its widths and staircase no longer
      the normal offset's, its edges moved 0.58-0.67 px; PSM 22% narrower
-     than PSSM, FERKO 16% wider). */
+     than PSSM, LSPSM 16% wider at the far edge). */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
