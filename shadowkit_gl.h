@@ -251,7 +251,8 @@
      cache stable maps. A point light's faces are kept while the light
      stays where it was at the same face side; its caster culling then
      keeps every static caster a face can see, whatever the view, and culls
-     only the dynamic ones by the view. RMSM keeps pages: its virtual
+     only the dynamic ones by the view. A spot's map is kept while its
+     matrix (position, direction, window) and side stay (SPOT LIGHTS). RMSM keeps pages: its virtual
      map's texel grid is fixed in light space (the scene's bounds and the
      light alone place it, not the camera), so a page keeps its depth from
      frame to frame. Every page is drawn at the same place of a one-page
@@ -434,7 +435,14 @@
      Spots share a point-light atlas (desc.atlas): skgl_point_atlas_pack
      places a spot's one face beside the point lights' six, at its
      selected side (for S, the direction of its last render; the range
-     sphere before the first). Not with .cache or .layered.
+     sphere before the first). Not with .layered. Cached (.cache, CACHED
+     MAPS) as a point light's faces: the map's static depth is kept while
+     the light's matrix (position, direction, the snapped window) and the
+     side stay as they were, redrawn where skgl_point_invalidate says,
+     the dynamic casters drawn over a copy; a view that changes the window
+     (it sees another part of the cone) draws it whole. A cached spot's
+     caster culling keeps every static caster in the cone, whatever the
+     view. Not cached in a shared atlas (as point lights).
 
    AREA LIGHTS (skgl_soft_*, Shen et al. 2011; the flow is in the declarations)
      SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
@@ -8251,6 +8259,7 @@ typedef struct skgl__point_cache {
     sk_vec3 pos;
     int valid[6], same[6], dyn[6][4];
     sk_aabb dirty[SKGL_CACHE_REGIONS];
+    sk_mat4 spot_vp;               /* a spot: the light matrix its one face was drawn with */
 } skgl__point_cache;
 
 struct skgl_point {
@@ -8301,7 +8310,7 @@ struct skgl_point_atlas {
 static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
 static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
 /* defined with the spot lights (7, SPOT LIGHTS) */
-static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster);
+static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster, int info_dynamic);
 static void skgl__spot_uniforms(skgl_context *ctx, const skgl_point *p, const skgl__int *L);
 
 /* the 2D depth texture the light renders into and samples: shared or its own */
@@ -8490,7 +8499,6 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
                "depth read-backs (glReadPixels of GL_DEPTH_COMPONENT: desktop OpenGL)");
     SKGL__RULE(sk__finite(d->spot_angle) && d->spot_angle >= 0.0f && d->spot_angle <= 85.0f, fn, "spot_angle",
                d->spot_angle, "in [0, 85] degrees (0: omnidirectional)");
-    SKGL__RULE(d->spot_angle == 0.0f || !d->cache, fn, "cache", d->cache, "0 for a spot light (desc.spot_angle)");
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -8680,7 +8688,7 @@ SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster
     if (!info || (info->kind != SKGL_PASS_CUBE_FACE && info->kind != SKGL_PASS_SPOT) || !info->point) return 1;
     p = info->point;
     if (!p->desc.cull_casters) return 1;
-    if (info->kind == SKGL_PASS_SPOT) return skgl__spot_caster_visible(p, caster);
+    if (info->kind == SKGL_PASS_SPOT) return skgl__spot_caster_visible(p, caster, info->dynamic);
     /* King & Newhall's caster culling: the light-to-box cone frustum (or the
        light's range box when the light is inside the box) against the view
        frustum; then the box against this face's frustum */
@@ -8862,6 +8870,7 @@ static double skgl__point_cache_bytes(const skgl_point *p)
 {
     int lv;
     double b = 0.0;
+    if (p->desc.spot_angle > 0.0f) return 4.0 * p->desc.resolution * p->desc.resolution;
     if (p->desc.technique == SKGL_POINT_VSDCT) return 4.0 * 6.0 * p->desc.resolution * p->desc.resolution;
     for (lv = 0; lv < p->levels; lv++) b += 4.0 * 6.0 * (double)(p->desc.resolution >> lv) * (p->desc.resolution >> lv);
     return b;
@@ -8883,8 +8892,9 @@ static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_
     }
     gl->GenTextures(1, &c->tex);
     ctx->objects++;
-    if (p->desc.technique == SKGL_POINT_VSDCT) {
-        skgl__atlas_alloc(ctx, st, c->tex, 3 * p->desc.resolution, 2 * p->desc.resolution);
+    if (p->desc.technique == SKGL_POINT_VSDCT) {   /* a spot's one face, or the 3 x 2 faces */
+        int spot = p->desc.spot_angle > 0.0f;
+        skgl__atlas_alloc(ctx, st, c->tex, (spot ? 1 : 3) * p->desc.resolution, (spot ? 1 : 2) * p->desc.resolution);
         c->fbo[0] = skgl__framebuffer(ctx, st, 0, 0, c->tex, -1);
         return c->fbo[0] ? SK_OK : skgl__fail(ctx, SK_ERR_GL, "skgl_point_create: cache framebuffer incomplete");
     }
@@ -9420,15 +9430,17 @@ static double skgl__spot_radians(const skgl_point *p) { return (double)p->desc.s
 /* caster culling for a spot: the box (grown by the filter's reach) against
    the cone, then its shadow frustum against the view (King & Newhall's
    caster culling with the cone in place of the faces) */
-static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster)
+static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster, int info_dynamic)
 {
     int vis;
     if (sk__aabb_valid(&caster)) {
         caster.min = sk__sub(caster.min, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
         caster.max = sk__add(caster.max, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
     }
+    /* a cached spot keeps its static casters for every view that leaves
+       its window as it is: culled by the cone only */
     vis = sk_spot_box_visible(p->light_pos, p->spot_axis, (float)skgl__spot_radians(p), p->desc.range, caster) &&
-          sk_caster_visible(p->light_pos, p->desc.range, caster, &p->view);
+          ((p->cache.tex && !info_dynamic) || sk_caster_visible(p->light_pos, p->desc.range, caster, &p->view));
     if (vis) p->stats.casters_drawn++; else p->stats.casters_culled++;
     return vis;
 }
@@ -9472,6 +9484,131 @@ static int skgl__spot_side(skgl_context *ctx, skgl__st *st, skgl_point *p, const
     return skgl__spot_select(p, vp, viewport);
 }
 
+/* one caster pass of a cached spot into fb, scissored to rect (x, y, w, h) */
+static sk_result skgl__spot_pass(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                 const sk_mat4 *light_vp, skgl__uint fb, const int *rect, int cls, int clear)
+{
+    skgl_draw_info info;
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_SPOT;
+    info.light_pos = p->light_pos;
+    info.light_range = p->desc.range;
+    info.point = p;
+    return skgl__cached_pass(ctx, st, scene, light_vp, skgl__zero3, fb, rect, 0, cls, clear, &info, &p->stats.passes,
+                             &p->stats.texels);
+}
+
+/* CACHED MAPS for a spot: its one face's static depth, kept while the light
+   matrix (position, axis, window: sk_spot_window's snapped window changes
+   only when the view's part of the cone does) and the side stay as they
+   were drawn; invalidated boxes redrawn in their rectangles; the dynamic
+   casters drawn over a copy each frame. As skgl__point_faces_cached does a
+   face. A frame whose view sees none of the cone (fit 0) clears the map
+   and keeps the cache, unless a box was invalidated meanwhile. */
+static sk_result skgl__spot_draw_cached(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                        const sk_mat4 *light_vp, int m, int fit)
+{
+    skgl__point_cache *c = &p->cache;
+    int rect[4] = {0, 0, 0, 0}, rects[SKGL_CACHE_REGIONS][4], k, nr;
+    double w[16];
+    sk_result r = SK_OK;
+    rect[2] = rect[3] = m;
+    if (c->all || c->m != m || memcmp(&c->spot_vp, light_vp, sizeof c->spot_vp) != 0) c->valid[0] = 0;
+    p->stats.faces_reused = p->stats.cache_regions = 0;
+    p->stats.cache_copied = 0.0;
+    c->fresh = 0;
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, m, m);
+    if (fit != 1) {   /* read as lit, as without a cache */
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[0]);
+        skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+        skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, 0, 0, m, m);
+        skgl__clear_depth(ctx);
+        c->same[0] = 0;
+        if (c->ndirty > 0) c->valid[0] = 0;
+        c->ndirty = 0;
+        p->stats.faces_culled = 1;
+        return SK_OK;
+    }
+    if (!c->valid[0]) {
+        r = skgl__spot_pass(ctx, st, p, scene, light_vp, c->fbo[0], rect, SKGL__DRAW_STATIC, 1);
+        c->valid[0] = r == SK_OK;
+        c->same[0] = 0;
+        c->fresh = 1u;
+    } else {
+        p->stats.faces_reused = 1;
+        skgl__world_matrix(light_vp, skgl__zero3, w);
+        nr = skgl__dirty_rects(w, c->dirty, c->ndirty, m, rects);
+        for (k = 0; k < nr && r == SK_OK; k++) {
+            r = skgl__spot_pass(ctx, st, p, scene, light_vp, c->fbo[0], rects[k], SKGL__DRAW_STATIC, 1);
+            c->same[0] = 0;
+            p->stats.cache_regions++;
+        }
+    }
+    /* the map from the cache: whole, or only what last frame's dynamic
+       casters covered when the cache did not change */
+    if (r == SK_OK) {
+        int *d = c->dyn[0], x = c->same[0] ? d[0] : 0, y = c->same[0] ? d[1] : 0;
+        int cw = c->same[0] ? d[2] : m, ch = c->same[0] ? d[3] : m;
+        if (cw > 0) skgl__blit_depth(ctx, st, c->fbo[0], p->fbo[0], x, y, cw, ch, 0, 0);
+        p->stats.cache_copied += (double)cw * ch;
+        c->same[0] = 1;
+        d[2] = d[3] = 0;
+    }
+    if (r == SK_OK && ctx->dyn.draw) {
+        int dr[4];
+        memcpy(dr, rect, sizeof dr);
+        skgl__world_matrix(light_vp, skgl__zero3, w);
+        if (!skgl__has_dynamic_bounds(&ctx->dyn.bounds) || skgl__cache_box_rect(w, &ctx->dyn.bounds, m, dr)) {
+            r = skgl__spot_pass(ctx, st, p, scene, light_vp, p->fbo[0], dr, SKGL__DRAW_DYNAMIC, 0);
+            memcpy(c->dyn[0], dr, sizeof dr);
+        }
+    }
+    if (r != SK_OK) c->valid[0] = 0;
+    p->stats.faces_rendered = 1;
+    c->spot_vp = *light_vp;
+    c->m = m;
+    c->ndirty = 0;
+    c->all = 0;
+    return r;
+}
+
+/* .verify_cache for a spot: its face drawn with all its casters into a
+   scratch map of the same size, at the same place, against the face the
+   render left (skgl__point_verify's tolerance) */
+static sk_result skgl__spot_verify(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                   const sk_mat4 *light_vp, int m)
+{
+    skgl__point_cache *c = &p->cache;
+    int rect[4] = {0, 0, 0, 0};
+    size_t n = (size_t)m * (size_t)m;
+    skgl__verify_count v;
+    float *a, *b;
+    sk_result r = skgl__verify_texture(ctx, st, &c->verify_tex, &c->verify_fbo, p->desc.resolution,
+                                       p->desc.resolution, "skgl_spot_render");
+    if (r != SK_OK) return r;
+    a = (float *)SKGL_MALLOC(n * sizeof *a);
+    b = (float *)SKGL_MALLOC(n * sizeof *b);
+    if (!a || !b) { SKGL_FREE(a); SKGL_FREE(b); return SK_ERR_CAPACITY; }
+    memset(&v, 0, sizeof v);
+    rect[2] = rect[3] = m;
+    r = skgl__spot_pass(ctx, st, p, scene, light_vp, c->verify_fbo, rect, SKGL__DRAW_ALL, 1);
+    p->stats.passes -= skgl__pass_callbacks(ctx);   /* not the cache's work */
+    p->stats.texels -= (double)n;
+    skgl__verify_read(ctx, st, p->fbo[0], 0, 0, m, m, a);
+    skgl__verify_read(ctx, st, c->verify_fbo, 0, 0, m, m, b);
+    skgl__verify_compare(a, b, m, m, &v);
+    SKGL_FREE(a);
+    SKGL_FREE(b);
+    p->stats.cache_verify_texels = v.runs;
+    if (r == SK_OK && v.runs > (int)(SKGL__VERIFY_RUNS * (double)n))
+        r = skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_spot_render: desc.verify_cache: the spot's map (%s this frame) "
+                       "differs from the uncached map in %d texels side by side, by up to %g in depth: a caster "
+                       "scene.draw draws changed without skgl_point_invalidate (moving casters belong in "
+                       "skgl_set_dynamic, inside its bounds); %d texels alone, float rounding, accepted",
+                       c->fresh ? "drawn whole" : "kept", v.runs, (double)v.worst, v.alone);
+    return r;
+}
+
 /* one pass into the spot's rectangle (cleared first); nothing drawn when
    the scene lies outside the cone (fit 0) */
 static sk_result skgl__spot_draw(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
@@ -9481,6 +9618,12 @@ static sk_result skgl__spot_draw(skgl_context *ctx, skgl__st *st, skgl_point *p,
     skgl_draw_info info;
     sk_result r = SK_OK;
     skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+    if (p->cache.tex) {
+        r = skgl__spot_draw_cached(ctx, st, p, scene, light_vp, m, fit);
+        if (r == SK_OK && fit == 1 && p->desc.verify_cache) r = skgl__spot_verify(ctx, st, p, scene, light_vp, m);
+        skgl__model_end(ctx);
+        return r;
+    }
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(p->desc.atlas ? p->desc.atlas->fbo : p->fbo[0]));
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, p->layout.face_x[0], p->layout.face_y[0], m, m);
