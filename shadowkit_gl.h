@@ -510,7 +510,12 @@
          sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
          sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; the global
          float sk_receiver_slack (0; yours to set: the world-space
-         uncertainty of your positions);
+         uncertainty of your positions); with "#define SK_SHADOW_CONTACT
+         1" before the snippet (contact shadows in the forward snippet,
+         skgl_shadow_contact_depth) also sk_contact_depth (sampler2D, on
+         `unit` + 2), sk_contact, sk_contact_camera[3],
+         sk_contact_depth_map and the functions sk_shadow_map_visibility,
+         sk_contact_combine and sk_contact_*;
        point: float sk_point_shadow(vec3 world_pos, vec3 world_normal),
          and sk_point_cube (samplerCubeShadow) or, with SK_POINT_VSDCT,
          sk_point_atlas (sampler2DShadow) and sk_point_indirection
@@ -1121,8 +1126,9 @@ typedef struct skgl_shadow_desc {
                                      toward the light through the camera's depth buffer, its
                                      result min()'d with the map's; it restores the shadow the
                                      map's bias lifts off a caster's foot; with normal_tex
-                                     (without, it does little). Not in the forward snippet
-                                     nor for point lights. 0 or more [0: off] */
+                                     (without, it does little). In the forward snippet with
+                                     SK_SHADOW_CONTACT and skgl_shadow_contact_depth. Not for
+                                     point lights. 0 or more [0: off] */
     int contact_steps;            /* the march's depth-buffer samples, 1..64 [8] */
     float contact_thickness;      /* a sample is blocked by a surface in front of it by less
                                      than this (world units): thin casters throw no endless
@@ -1349,6 +1355,21 @@ SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
    Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
    keep it free of samplers of another type in that program. */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
+/* Contact shadows in a forward shader (desc.contact_length > 0): the
+   camera's depth buffer the snippet's march reads, depth_tex (a depth
+   pre-pass of `cam`, in cam's depth convention; never the depth
+   attachment the forward pass draws into: reading it while drawing is a
+   feedback loop), 0: none. The shader declares "#define SK_SHADOW_CONTACT
+   1" before the snippet (its uniforms: GLSL SNIPPETS); skgl_shadow_bind
+   then binds depth_tex to unit + 2 (a nearest, non-comparing sampler
+   there: keep that unit free) and sets the march's uniforms, and
+   sk_shadow() min()s the map's visibility with the march's (the mask's
+   march, the buffer's normals taken from its depth). Without the define,
+   without a depth_tex or with contact_length 0 the bind sets nothing more
+   (no call). Call it when the camera or the buffer changes (each frame
+   for a moving camera), after skgl_shadow_render or before. */
+SKGLDEF sk_result skgl_shadow_contact_depth(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                            unsigned depth_tex);
 /* skgl_shadow_bind for a shader whose world positions are relative to
    `origin` (camera-relative rendering: sk_shadow() then takes
    world_pos - origin); NULL: world space, as skgl_shadow_bind */
@@ -2123,6 +2144,12 @@ typedef struct skgl__progent {
     int layers, min_level, has_normals;
     float extent[2], select, texel;
     unsigned layout;
+    /* the forward contact march's uniforms (SK_SHADOW_CONTACT), looked up
+       at the program's first bind: depth sampler, sk_contact,
+       sk_contact_camera, sk_contact_depth_map; the sampler's unit as set
+       (-1: not yet), and whether the program's march is on */
+    int contact_looked, contact_unit, contact_on;
+    skgl__int contact_loc[4];
 } skgl__progent;
 
 typedef struct skgl__texent {
@@ -5447,6 +5474,11 @@ struct skgl_shadow {
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl__cache cache;             /* desc.cache only */
     skgl_shadow_frame_stats stats;
+    /* skgl_shadow_contact_depth: the camera depth buffer of the forward
+       contact march (0: none), its camera and depth convention */
+    skgl__uint contact_tex;
+    skgl_camera contact_cam;
+    float contact_dmap[4];
 };
 
 /* what a fit starts from: the camera and the scene (relative to the
@@ -8098,6 +8130,76 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
     return skgl_shadow_bind_origin(ctx, s, program, unit, NULL);
 }
 
+SKGLDEF sk_result skgl_shadow_contact_depth(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                            unsigned depth_tex)
+{
+    const char *fn = "skgl_shadow_contact_depth";
+    skgl__cam ci;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, fn, 0);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, NULL, &ci));
+    if (depth_tex && !ctx->gl.IsTexture(depth_tex))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: depth_tex = %u is not a texture", fn, depth_tex);
+    s->contact_tex = depth_tex;
+    s->contact_cam = *cam;
+    memcpy(s->contact_dmap, ci.dmap, sizeof s->contact_dmap);
+    return SK_OK;
+}
+
+/* The forward contact march (SK_SHADOW_CONTACT) on the current program,
+   whose locations are looked up at its first bind (a program without the
+   march: nothing after that). Its depth sampler is set to `unit` once (two
+   samplers of different types must never share a unit, and GL's default
+   is 0); a light with contact shadows and a depth buffer binds it there
+   (a nearest, non-comparing sampler: texelFetch reads raw depth) and sets
+   the march, the camera's matrices relative to origin as the shader's
+   positions are; a light without turns a march the program holds off.
+   Returns the unit it left active (-1: none). */
+static skgl__int skgl__forward_contact(skgl_context *ctx, const skgl_shadow *s, skgl__progent *e, skgl__uint program,
+                                       int unit, const double origin[3])
+{
+    static const char *const names[4] = {"sk_contact_depth", "sk_contact", "sk_contact_camera", "sk_contact_depth_map"};
+    const skgl__api *gl = &ctx->gl;
+    skgl_camera rc;
+    sk_mat4 m[3];
+    float c[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    int i;
+    if (!e->contact_looked) {
+        char name[SKGL_PREFIX_MAX + 32];
+        for (i = 0; i < 4; i++) {
+            if (e->prefix[0]) snprintf(name, sizeof name, "%s%s", e->prefix, names[i] + 3);
+            e->contact_loc[i] = gl->GetUniformLocation(program, e->prefix[0] ? name : names[i]);
+        }
+        e->contact_looked = 1;
+        e->contact_unit = -1;
+    }
+    if (e->contact_loc[0] < 0) return -1;
+    if (e->contact_unit != unit) {
+        gl->Uniform1i(e->contact_loc[0], unit);
+        e->contact_unit = unit;
+    }
+    rc = skgl__camera_rel(&s->contact_cam, origin);
+    m[0] = sk_mat4_mul(rc.proj, rc.view);
+    if (!(s->desc.contact_length > 0.0f && s->contact_tex) || !sk_mat4_inverse(m[0], &m[1])) {
+        if (e->contact_on && e->contact_loc[1] >= 0) gl->Uniform4fv(e->contact_loc[1], 1, c);
+        e->contact_on = 0;
+        return -1;
+    }
+    m[2] = rc.view;
+    c[0] = s->desc.contact_length;
+    c[1] = (float)s->desc.contact_steps;
+    c[2] = s->desc.contact_thickness;
+    gl->ActiveTexture((skgl__enum)(SKGL__TEXTURE0 + unit));
+    gl->BindTexture(SKGL__TEXTURE_2D, s->contact_tex);
+    gl->BindSampler((skgl__uint)unit, ctx->point_sampler);
+    if (e->contact_loc[1] >= 0) gl->Uniform4fv(e->contact_loc[1], 1, c);
+    if (e->contact_loc[2] >= 0) gl->UniformMatrix4fv(e->contact_loc[2], 3, 0, m[0].m);
+    if (e->contact_loc[3] >= 0) gl->Uniform4fv(e->contact_loc[3], 1, s->contact_dmap);
+    e->contact_on = 1;
+    return SKGL__TEXTURE0 + unit;
+}
+
 /* the active unit the caller had (default mode; -1 in caller-owns mode,
    where the bind leaves the last unit it used active) */
 static skgl__int skgl__bind_active(skgl_context *ctx)
@@ -8146,6 +8248,15 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
         gl->ActiveTexture((skgl__enum)last);
         gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
         gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
+    }
+    /* the forward contact march (SK_SHADOW_CONTACT) on unit + 2: in a
+       steady frame only a light with contact shadows costs a call */
+    if (unit + 2 > 31 && s->desc.contact_length > 0.0f && s->contact_tex)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: contact shadows take unit + 2, at most 29", fn,
+                          unit);
+    if (unit + 2 <= 31) {
+        skgl__int cu = skgl__forward_contact(ctx, s, e, program, unit + 2, origin ? origin : skgl__zero3);
+        if (cu >= 0) last = cu;
     }
     if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
     skgl__shadow_uniforms(ctx, s, e, unit, unit + 1, origin ? origin : skgl__zero3);
@@ -11616,7 +11727,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    return mix(v, 1.0, clamp((view_depth - start) / (end - start), 0.0, 1.0));\n"
     "}\n"
     "\n"
-    "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
+    "float sk_shadow_map_visibility(vec3 world_pos, vec3 world_normal, float view_depth)\n"
     "{\n"
     "    float rmsm_lod = 0.0;\n"
     "    if (sk_rmsm != 0) {\n"
@@ -11656,6 +11767,125 @@ static const char skgl__src_shadow_sample_glsl[] =
     "            v = mix(v, sk_shadow_layer(world_pos, world_normal, pn, layer + 1), t);\n"
     "    }\n"
     "    return sk_fade(v, view_depth, sk_splits[sk_layers]);\n"
+    "}\n"
+    "\n"
+    "/* Contact shadows in a forward shader (skgl_shadow_desc.contact_length):\n"
+    "   \"#define SK_SHADOW_CONTACT 1\" before the snippet declares the camera's\n"
+    "   depth buffer and the march's uniforms; skgl_shadow_bind binds the buffer\n"
+    "   named by skgl_shadow_contact_depth on unit + 2 and sets them, when the\n"
+    "   light has contact_length > 0 (without the define, or with length 0, the\n"
+    "   snippet is as it was: no sampler, no call). The march is the mask's\n"
+    "   (shadow_mask.frag, McGuire and Mara 2014's depth-buffer ray casting with\n"
+    "   a constant thickness) from the receiver's own position and normal; the\n"
+    "   buffer's surface normals, which a forward pass has no buffer of, come\n"
+    "   from the depth buffer itself (sk_contact_normal). */\n"
+    "#ifndef SK_SHADOW_CONTACT\n"
+    "#define SK_SHADOW_CONTACT 0\n"
+    "#endif\n"
+    "#if SK_SHADOW_CONTACT\n"
+    "uniform highp sampler2D sk_contact_depth;  /* the camera's depth buffer: a depth pre-pass, not the target drawn */\n"
+    "uniform vec4 sk_contact;                   /* x the march's length (world units; 0: off), y steps, z thickness */\n"
+    "uniform mat4 sk_contact_camera[3];         /* the camera of sk_shadow's positions: view-projection, its\n"
+    "                                              inverse, view */\n"
+    "uniform vec4 sk_contact_depth_map;         /* the buffer's depth convention: NDC z = depth * x + y */\n"
+    "\n"
+    "vec3 sk_contact_world(ivec2 q)\n"
+    "{\n"
+    "    vec2 ndc_xy = (vec2(q) + 0.5) / vec2(textureSize(sk_contact_depth, 0)) * 2.0 - 1.0;\n"
+    "    float d = texelFetch(sk_contact_depth, q, 0).r;\n"
+    "    vec4 w = sk_contact_camera[1] * vec4(ndc_xy, d * sk_contact_depth_map.x + sk_contact_depth_map.y, 1.0);\n"
+    "    return w.xyz / w.w;\n"
+    "}\n"
+    "\n"
+    "float sk_contact_view_depth(vec3 p) { return -(sk_contact_camera[2] * vec4(p, 1.0)).z; }\n"
+    "\n"
+    "/* the buffer surface's normal at pixel q (position b), toward the camera:\n"
+    "   on each axis the one-sided difference toward the side that continues\n"
+    "   q's plane, the one whose next two pixels extrapolate q's view depth best\n"
+    "   (the second difference; at a crease, such as a wall's foot on the\n"
+    "   ground, the other side bends away) */\n"
+    "vec3 sk_contact_normal(ivec2 q, vec3 b)\n"
+    "{\n"
+    "    ivec2 last = textureSize(sk_contact_depth, 0) - 1;\n"
+    "    vec3 t[2];\n"
+    "    float zb = sk_contact_view_depth(b);\n"
+    "    for (int a = 0; a < 2; a++) {\n"
+    "        ivec2 e = ivec2(1 - a, a);\n"
+    "        vec3 lo = sk_contact_world(clamp(q - e, ivec2(0), last)), hi = sk_contact_world(clamp(q + e, ivec2(0), last));\n"
+    "        float zl2 = sk_contact_view_depth(sk_contact_world(clamp(q - 2 * e, ivec2(0), last)));\n"
+    "        float zh2 = sk_contact_view_depth(sk_contact_world(clamp(q + 2 * e, ivec2(0), last)));\n"
+    "        float el = abs(2.0 * sk_contact_view_depth(lo) - zl2 - zb), eh = abs(2.0 * sk_contact_view_depth(hi) - zh2 - zb);\n"
+    "        t[a] = eh < el ? hi - b : b - lo;\n"
+    "    }\n"
+    "    vec3 n = cross(t[0], t[1]);\n"
+    "    vec3 to_eye = -(sk_contact_camera[2] * vec4(b, 1.0)).xyz * mat3(sk_contact_camera[2]);\n"
+    "    return normalize(dot(n, to_eye) < 0.0 ? -n : n);\n"
+    "}\n"
+    "\n"
+    "/* the buffer's view-depth step at pixel q (depth z): the largest one-sided\n"
+    "   difference to its four neighbours, as shadow_mask.frag's\n"
+    "   receiver_depth_step */\n"
+    "float sk_contact_step(ivec2 q, float z)\n"
+    "{\n"
+    "    ivec2 last = textureSize(sk_contact_depth, 0) - 1;\n"
+    "    float g = 0.0;\n"
+    "    for (int a = 0; a < 2; a++) {\n"
+    "        ivec2 e = ivec2(1 - a, a);\n"
+    "        ivec2 lo = clamp(q - e, ivec2(0), last), hi = clamp(q + e, ivec2(0), last);\n"
+    "        float dl = abs(sk_contact_view_depth(sk_contact_world(lo)) - z);\n"
+    "        float dh = abs(sk_contact_view_depth(sk_contact_world(hi)) - z);\n"
+    "        g = max(g, max(lo == q ? 0.0 : dl, hi == q ? 0.0 : dh));\n"
+    "    }\n"
+    "    return g;\n"
+    "}\n"
+    "\n"
+    "/* 0 blocked, 1 clear: shadow_mask.frag's contact_visibility, the receiver's\n"
+    "   normal its own, the buffer's from its depth (a receiver without a\n"
+    "   normal: the buffer must lie in front by more than two of the receiver's\n"
+    "   pixel depth steps) */\n"
+    "float sk_contact_visibility(vec3 world, vec3 n, float z)\n"
+    "{\n"
+    "    vec2 size = vec2(textureSize(sk_contact_depth, 0));\n"
+    "    bool plane = dot(n, n) > 0.0;\n"
+    "    float plane_tol = 1e-3 * z, tol = 0.0;\n"
+    "    int steps = int(sk_contact.y);\n"
+    "    if (!plane) {\n"
+    "        vec4 c0 = sk_contact_camera[0] * vec4(world, 1.0);\n"
+    "        ivec2 q0 = clamp(ivec2((c0.xy / c0.w * 0.5 + 0.5) * size), ivec2(0), ivec2(size) - 1);\n"
+    "        tol = 2.0 * sk_contact_step(q0, z);\n"
+    "    }\n"
+    "    for (int i = 1; i <= steps; i++) {\n"
+    "        vec3 p = world - sk_light_dir * (sk_contact.x * float(i) / float(steps));\n"
+    "        vec4 c = sk_contact_camera[0] * vec4(p, 1.0);\n"
+    "        if (c.w <= 0.0) break;\n"
+    "        vec2 win = (c.xy / c.w * 0.5 + 0.5) * size;\n"
+    "        if (any(lessThan(win, vec2(0.0))) || any(greaterThanEqual(win, size))) break;\n"
+    "        ivec2 q = ivec2(win);\n"
+    "        vec3 b = sk_contact_world(q);\n"
+    "        float in_front = sk_contact_view_depth(p) - sk_contact_view_depth(b);\n"
+    "        if (in_front <= tol || in_front >= sk_contact.z) continue;\n"
+    "        if (!plane) return 0.0;\n"
+    "        if (dot(b - world, normalize(n)) > plane_tol && dot(b - p, sk_contact_normal(q, b)) >= 0.0) return 0.0;\n"
+    "    }\n"
+    "    return 1.0;\n"
+    "}\n"
+    "#endif\n"
+    "\n"
+    "/* the map's visibility v combined with the contact march (when on) */\n"
+    "float sk_contact_combine(float v, vec3 world_pos, vec3 world_normal, float view_depth)\n"
+    "{\n"
+    "#if SK_SHADOW_CONTACT\n"
+    "    if (sk_contact.x > 0.0 && v > 0.0) v = min(v, sk_contact_visibility(world_pos, world_normal, view_depth));\n"
+    "#endif\n"
+    "    return v;\n"
+    "}\n"
+    "\n"
+    "/* the shadow at world_pos: the map's visibility (sk_shadow_map_visibility),\n"
+    "   with contact shadows when SK_SHADOW_CONTACT is on */\n"
+    "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
+    "{\n"
+    "    return sk_contact_combine(sk_shadow_map_visibility(world_pos, world_normal, view_depth), world_pos, world_normal,\n"
+    "                              view_depth);\n"
     "}\n"
     ;
 static const char skgl__src_shadow_mask_frag[] =
