@@ -251,7 +251,8 @@
      cache stable maps. A point light's faces are kept while the light
      stays where it was at the same face side; its caster culling then
      keeps every static caster a face can see, whatever the view, and culls
-     only the dynamic ones by the view. RMSM keeps pages: its virtual
+     only the dynamic ones by the view. A spot's map is kept while its
+     matrix (position, direction, window) and side stay (SPOT LIGHTS). RMSM keeps pages: its virtual
      map's texel grid is fixed in light space (the scene's bounds and the
      light alone place it, not the camera), so a page keeps its depth from
      frame to frame. Every page is drawn at the same place of a one-page
@@ -434,7 +435,14 @@
      Spots share a point-light atlas (desc.atlas): skgl_point_atlas_pack
      places a spot's one face beside the point lights' six, at its
      selected side (for S, the direction of its last render; the range
-     sphere before the first). Not with .cache or .layered.
+     sphere before the first). Not with .layered. Cached (.cache, CACHED
+     MAPS) as a point light's faces: the map's static depth is kept while
+     the light's matrix (position, direction, the snapped window) and the
+     side stay as they were, redrawn where skgl_point_invalidate says,
+     the dynamic casters drawn over a copy; a view that changes the window
+     (it sees another part of the cone) draws it whole. A cached spot's
+     caster culling keeps every static caster in the cone, whatever the
+     view. Not cached in a shared atlas (as point lights).
 
    AREA LIGHTS (skgl_soft_*, Shen et al. 2011; the flow is in the declarations)
      SKGL_SOFT_PCSS    percentage-closer soft shadows on one map.
@@ -529,7 +537,12 @@
          sk_rmsm, sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
          sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; the global
          float sk_receiver_slack (0; yours to set: the world-space
-         uncertainty of your positions);
+         uncertainty of your positions); with "#define SK_SHADOW_CONTACT
+         1" before the snippet (contact shadows in the forward snippet,
+         skgl_shadow_contact_depth) also sk_contact_depth (sampler2D, on
+         `unit` + 2), sk_contact, sk_contact_camera[3],
+         sk_contact_depth_map and the functions sk_shadow_map_visibility,
+         sk_contact_combine and sk_contact_*;
        point: float sk_point_shadow(vec3 world_pos, vec3 world_normal),
          and sk_point_cube (samplerCubeShadow) or, with SK_POINT_VSDCT,
          sk_point_atlas (sampler2DShadow) and sk_point_indirection
@@ -1147,8 +1160,9 @@ typedef struct skgl_shadow_desc {
                                      toward the light through the camera's depth buffer, its
                                      result min()'d with the map's; it restores the shadow the
                                      map's bias lifts off a caster's foot; with normal_tex
-                                     (without, it does little). Not in the forward snippet
-                                     nor for point lights. 0 or more [0: off] */
+                                     (without, it does little). In the forward snippet with
+                                     SK_SHADOW_CONTACT and skgl_shadow_contact_depth. Not for
+                                     point lights. 0 or more [0: off] */
     int contact_steps;            /* the march's depth-buffer samples, 1..64 [8] */
     float contact_thickness;      /* a sample is blocked by a surface in front of it by less
                                      than this (world units): thin casters throw no endless
@@ -1375,6 +1389,21 @@ SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
    Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
    keep it free of samplers of another type in that program. */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
+/* Contact shadows in a forward shader (desc.contact_length > 0): the
+   camera's depth buffer the snippet's march reads, depth_tex (a depth
+   pre-pass of `cam`, in cam's depth convention; never the depth
+   attachment the forward pass draws into: reading it while drawing is a
+   feedback loop), 0: none. The shader declares "#define SK_SHADOW_CONTACT
+   1" before the snippet (its uniforms: GLSL SNIPPETS); skgl_shadow_bind
+   then binds depth_tex to unit + 2 (a nearest, non-comparing sampler
+   there: keep that unit free) and sets the march's uniforms, and
+   sk_shadow() min()s the map's visibility with the march's (the mask's
+   march, the buffer's normals taken from its depth). Without the define,
+   without a depth_tex or with contact_length 0 the bind sets nothing more
+   (no call). Call it when the camera or the buffer changes (each frame
+   for a moving camera), after skgl_shadow_render or before. */
+SKGLDEF sk_result skgl_shadow_contact_depth(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                            unsigned depth_tex);
 /* skgl_shadow_bind for a shader whose world positions are relative to
    `origin` (camera-relative rendering: sk_shadow() then takes
    world_pos - origin); NULL: world space, as skgl_shadow_bind */
@@ -2149,6 +2178,12 @@ typedef struct skgl__progent {
     int layers, min_level, has_normals;
     float extent[2], select, texel;
     unsigned layout;
+    /* the forward contact march's uniforms (SK_SHADOW_CONTACT), looked up
+       at the program's first bind: depth sampler, sk_contact,
+       sk_contact_camera, sk_contact_depth_map; the sampler's unit as set
+       (-1: not yet), and whether the program's march is on */
+    int contact_looked, contact_unit, contact_on;
+    skgl__int contact_loc[4];
 } skgl__progent;
 
 typedef struct skgl__texent {
@@ -5473,6 +5508,11 @@ struct skgl_shadow {
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl__cache cache;             /* desc.cache only */
     skgl_shadow_frame_stats stats;
+    /* skgl_shadow_contact_depth: the camera depth buffer of the forward
+       contact march (0: none), its camera and depth convention */
+    skgl__uint contact_tex;
+    skgl_camera contact_cam;
+    float contact_dmap[4];
 };
 
 /* what a fit starts from: the camera and the scene (relative to the
@@ -8136,6 +8176,76 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
     return skgl_shadow_bind_origin(ctx, s, program, unit, NULL);
 }
 
+SKGLDEF sk_result skgl_shadow_contact_depth(skgl_context *ctx, skgl_shadow *s, const skgl_camera *cam,
+                                            unsigned depth_tex)
+{
+    const char *fn = "skgl_shadow_contact_depth";
+    skgl__cam ci;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__enter(ctx, fn, 0);
+    SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
+    SKGL__TRY(skgl__camera_in(ctx, fn, cam, NULL, &ci));
+    if (depth_tex && !ctx->gl.IsTexture(depth_tex))
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: depth_tex = %u is not a texture", fn, depth_tex);
+    s->contact_tex = depth_tex;
+    s->contact_cam = *cam;
+    memcpy(s->contact_dmap, ci.dmap, sizeof s->contact_dmap);
+    return SK_OK;
+}
+
+/* The forward contact march (SK_SHADOW_CONTACT) on the current program,
+   whose locations are looked up at its first bind (a program without the
+   march: nothing after that). Its depth sampler is set to `unit` once (two
+   samplers of different types must never share a unit, and GL's default
+   is 0); a light with contact shadows and a depth buffer binds it there
+   (a nearest, non-comparing sampler: texelFetch reads raw depth) and sets
+   the march, the camera's matrices relative to origin as the shader's
+   positions are; a light without turns a march the program holds off.
+   Returns the unit it left active (-1: none). */
+static skgl__int skgl__forward_contact(skgl_context *ctx, const skgl_shadow *s, skgl__progent *e, skgl__uint program,
+                                       int unit, const double origin[3])
+{
+    static const char *const names[4] = {"sk_contact_depth", "sk_contact", "sk_contact_camera", "sk_contact_depth_map"};
+    const skgl__api *gl = &ctx->gl;
+    skgl_camera rc;
+    sk_mat4 m[3];
+    float c[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    int i;
+    if (!e->contact_looked) {
+        char name[SKGL_PREFIX_MAX + 32];
+        for (i = 0; i < 4; i++) {
+            if (e->prefix[0]) snprintf(name, sizeof name, "%s%s", e->prefix, names[i] + 3);
+            e->contact_loc[i] = gl->GetUniformLocation(program, e->prefix[0] ? name : names[i]);
+        }
+        e->contact_looked = 1;
+        e->contact_unit = -1;
+    }
+    if (e->contact_loc[0] < 0) return -1;
+    if (e->contact_unit != unit) {
+        gl->Uniform1i(e->contact_loc[0], unit);
+        e->contact_unit = unit;
+    }
+    rc = skgl__camera_rel(&s->contact_cam, origin);
+    m[0] = sk_mat4_mul(rc.proj, rc.view);
+    if (!(s->desc.contact_length > 0.0f && s->contact_tex) || !sk_mat4_inverse(m[0], &m[1])) {
+        if (e->contact_on && e->contact_loc[1] >= 0) gl->Uniform4fv(e->contact_loc[1], 1, c);
+        e->contact_on = 0;
+        return -1;
+    }
+    m[2] = rc.view;
+    c[0] = s->desc.contact_length;
+    c[1] = (float)s->desc.contact_steps;
+    c[2] = s->desc.contact_thickness;
+    gl->ActiveTexture((skgl__enum)(SKGL__TEXTURE0 + unit));
+    gl->BindTexture(SKGL__TEXTURE_2D, s->contact_tex);
+    gl->BindSampler((skgl__uint)unit, ctx->point_sampler);
+    if (e->contact_loc[1] >= 0) gl->Uniform4fv(e->contact_loc[1], 1, c);
+    if (e->contact_loc[2] >= 0) gl->UniformMatrix4fv(e->contact_loc[2], 3, 0, m[0].m);
+    if (e->contact_loc[3] >= 0) gl->Uniform4fv(e->contact_loc[3], 1, s->contact_dmap);
+    e->contact_on = 1;
+    return SKGL__TEXTURE0 + unit;
+}
+
 /* the active unit the caller had (default mode; -1 in caller-owns mode,
    where the bind leaves the last unit it used active) */
 static skgl__int skgl__bind_active(skgl_context *ctx)
@@ -8184,6 +8294,15 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
         gl->ActiveTexture((skgl__enum)last);
         gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
         gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
+    }
+    /* the forward contact march (SK_SHADOW_CONTACT) on unit + 2: in a
+       steady frame only a light with contact shadows costs a call */
+    if (unit + 2 > 31 && s->desc.contact_length > 0.0f && s->contact_tex)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: contact shadows take unit + 2, at most 29", fn,
+                          unit);
+    if (unit + 2 <= 31) {
+        skgl__int cu = skgl__forward_contact(ctx, s, e, program, unit + 2, origin ? origin : skgl__zero3);
+        if (cu >= 0) last = cu;
     }
     if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
     skgl__shadow_uniforms(ctx, s, e, unit, unit + 1, origin ? origin : skgl__zero3);
@@ -8297,6 +8416,7 @@ typedef struct skgl__point_cache {
     sk_vec3 pos;
     int valid[6], same[6], dyn[6][4];
     sk_aabb dirty[SKGL_CACHE_REGIONS];
+    sk_mat4 spot_vp;               /* a spot: the light matrix its one face was drawn with */
 } skgl__point_cache;
 
 struct skgl_point {
@@ -8347,7 +8467,7 @@ struct skgl_point_atlas {
 static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
 static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
 /* defined with the spot lights (7, SPOT LIGHTS) */
-static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster);
+static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster, int info_dynamic);
 static void skgl__spot_uniforms(skgl_context *ctx, const skgl_point *p, const skgl__int *L);
 
 /* the 2D depth texture the light renders into and samples: shared or its own */
@@ -8536,7 +8656,6 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
                "depth read-backs (glReadPixels of GL_DEPTH_COMPONENT: desktop OpenGL)");
     SKGL__RULE(sk__finite(d->spot_angle) && d->spot_angle >= 0.0f && d->spot_angle <= 85.0f, fn, "spot_angle",
                d->spot_angle, "in [0, 85] degrees (0: omnidirectional)");
-    SKGL__RULE(d->spot_angle == 0.0f || !d->cache, fn, "cache", d->cache, "0 for a spot light (desc.spot_angle)");
     if (d->atlas && d->technique != SKGL_POINT_VSDCT)
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: desc.atlas is set: only SKGL_POINT_VSDCT lives in an atlas", fn);
     if (d->atlas && !d->atlas->tex)
@@ -8726,7 +8845,7 @@ SKGLDEF int skgl_point_caster_visible(const skgl_draw_info *info, sk_aabb caster
     if (!info || (info->kind != SKGL_PASS_CUBE_FACE && info->kind != SKGL_PASS_SPOT) || !info->point) return 1;
     p = info->point;
     if (!p->desc.cull_casters) return 1;
-    if (info->kind == SKGL_PASS_SPOT) return skgl__spot_caster_visible(p, caster);
+    if (info->kind == SKGL_PASS_SPOT) return skgl__spot_caster_visible(p, caster, info->dynamic);
     /* King & Newhall's caster culling: the light-to-box cone frustum (or the
        light's range box when the light is inside the box) against the view
        frustum; then the box against this face's frustum */
@@ -8908,6 +9027,7 @@ static double skgl__point_cache_bytes(const skgl_point *p)
 {
     int lv;
     double b = 0.0;
+    if (p->desc.spot_angle > 0.0f) return 4.0 * p->desc.resolution * p->desc.resolution;
     if (p->desc.technique == SKGL_POINT_VSDCT) return 4.0 * 6.0 * p->desc.resolution * p->desc.resolution;
     for (lv = 0; lv < p->levels; lv++) b += 4.0 * 6.0 * (double)(p->desc.resolution >> lv) * (p->desc.resolution >> lv);
     return b;
@@ -8929,8 +9049,9 @@ static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_
     }
     gl->GenTextures(1, &c->tex);
     ctx->objects++;
-    if (p->desc.technique == SKGL_POINT_VSDCT) {
-        skgl__atlas_alloc(ctx, st, c->tex, 3 * p->desc.resolution, 2 * p->desc.resolution);
+    if (p->desc.technique == SKGL_POINT_VSDCT) {   /* a spot's one face, or the 3 x 2 faces */
+        int spot = p->desc.spot_angle > 0.0f;
+        skgl__atlas_alloc(ctx, st, c->tex, (spot ? 1 : 3) * p->desc.resolution, (spot ? 1 : 2) * p->desc.resolution);
         c->fbo[0] = skgl__framebuffer(ctx, st, 0, 0, c->tex, -1);
         return c->fbo[0] ? SK_OK : skgl__fail(ctx, SK_ERR_GL, "skgl_point_create: cache framebuffer incomplete");
     }
@@ -9466,15 +9587,17 @@ static double skgl__spot_radians(const skgl_point *p) { return (double)p->desc.s
 /* caster culling for a spot: the box (grown by the filter's reach) against
    the cone, then its shadow frustum against the view (King & Newhall's
    caster culling with the cone in place of the faces) */
-static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster)
+static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster, int info_dynamic)
 {
     int vis;
     if (sk__aabb_valid(&caster)) {
         caster.min = sk__sub(caster.min, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
         caster.max = sk__add(caster.max, sk__v3(p->cull_margin, p->cull_margin, p->cull_margin));
     }
+    /* a cached spot keeps its static casters for every view that leaves
+       its window as it is: culled by the cone only */
     vis = sk_spot_box_visible(p->light_pos, p->spot_axis, (float)skgl__spot_radians(p), p->desc.range, caster) &&
-          sk_caster_visible(p->light_pos, p->desc.range, caster, &p->view);
+          ((p->cache.tex && !info_dynamic) || sk_caster_visible(p->light_pos, p->desc.range, caster, &p->view));
     if (vis) p->stats.casters_drawn++; else p->stats.casters_culled++;
     return vis;
 }
@@ -9518,6 +9641,131 @@ static int skgl__spot_side(skgl_context *ctx, skgl__st *st, skgl_point *p, const
     return skgl__spot_select(p, vp, viewport);
 }
 
+/* one caster pass of a cached spot into fb, scissored to rect (x, y, w, h) */
+static sk_result skgl__spot_pass(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                 const sk_mat4 *light_vp, skgl__uint fb, const int *rect, int cls, int clear)
+{
+    skgl_draw_info info;
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_SPOT;
+    info.light_pos = p->light_pos;
+    info.light_range = p->desc.range;
+    info.point = p;
+    return skgl__cached_pass(ctx, st, scene, light_vp, skgl__zero3, fb, rect, 0, cls, clear, &info, &p->stats.passes,
+                             &p->stats.texels);
+}
+
+/* CACHED MAPS for a spot: its one face's static depth, kept while the light
+   matrix (position, axis, window: sk_spot_window's snapped window changes
+   only when the view's part of the cone does) and the side stay as they
+   were drawn; invalidated boxes redrawn in their rectangles; the dynamic
+   casters drawn over a copy each frame. As skgl__point_faces_cached does a
+   face. A frame whose view sees none of the cone (fit 0) clears the map
+   and keeps the cache, unless a box was invalidated meanwhile. */
+static sk_result skgl__spot_draw_cached(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                        const sk_mat4 *light_vp, int m, int fit)
+{
+    skgl__point_cache *c = &p->cache;
+    int rect[4] = {0, 0, 0, 0}, rects[SKGL_CACHE_REGIONS][4], k, nr;
+    double w[16];
+    sk_result r = SK_OK;
+    rect[2] = rect[3] = m;
+    if (c->all || c->m != m || memcmp(&c->spot_vp, light_vp, sizeof c->spot_vp) != 0) c->valid[0] = 0;
+    p->stats.faces_reused = p->stats.cache_regions = 0;
+    p->stats.cache_copied = 0.0;
+    c->fresh = 0;
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, m, m);
+    if (fit != 1) {   /* read as lit, as without a cache */
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)p->fbo[0]);
+        skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
+        skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, 0, 0, m, m);
+        skgl__clear_depth(ctx);
+        c->same[0] = 0;
+        if (c->ndirty > 0) c->valid[0] = 0;
+        c->ndirty = 0;
+        p->stats.faces_culled = 1;
+        return SK_OK;
+    }
+    if (!c->valid[0]) {
+        r = skgl__spot_pass(ctx, st, p, scene, light_vp, c->fbo[0], rect, SKGL__DRAW_STATIC, 1);
+        c->valid[0] = r == SK_OK;
+        c->same[0] = 0;
+        c->fresh = 1u;
+    } else {
+        p->stats.faces_reused = 1;
+        skgl__world_matrix(light_vp, skgl__zero3, w);
+        nr = skgl__dirty_rects(w, c->dirty, c->ndirty, m, rects);
+        for (k = 0; k < nr && r == SK_OK; k++) {
+            r = skgl__spot_pass(ctx, st, p, scene, light_vp, c->fbo[0], rects[k], SKGL__DRAW_STATIC, 1);
+            c->same[0] = 0;
+            p->stats.cache_regions++;
+        }
+    }
+    /* the map from the cache: whole, or only what last frame's dynamic
+       casters covered when the cache did not change */
+    if (r == SK_OK) {
+        int *d = c->dyn[0], x = c->same[0] ? d[0] : 0, y = c->same[0] ? d[1] : 0;
+        int cw = c->same[0] ? d[2] : m, ch = c->same[0] ? d[3] : m;
+        if (cw > 0) skgl__blit_depth(ctx, st, c->fbo[0], p->fbo[0], x, y, cw, ch, 0, 0);
+        p->stats.cache_copied += (double)cw * ch;
+        c->same[0] = 1;
+        d[2] = d[3] = 0;
+    }
+    if (r == SK_OK && ctx->dyn.draw) {
+        int dr[4];
+        memcpy(dr, rect, sizeof dr);
+        skgl__world_matrix(light_vp, skgl__zero3, w);
+        if (!skgl__has_dynamic_bounds(&ctx->dyn.bounds) || skgl__cache_box_rect(w, &ctx->dyn.bounds, m, dr)) {
+            r = skgl__spot_pass(ctx, st, p, scene, light_vp, p->fbo[0], dr, SKGL__DRAW_DYNAMIC, 0);
+            memcpy(c->dyn[0], dr, sizeof dr);
+        }
+    }
+    if (r != SK_OK) c->valid[0] = 0;
+    p->stats.faces_rendered = 1;
+    c->spot_vp = *light_vp;
+    c->m = m;
+    c->ndirty = 0;
+    c->all = 0;
+    return r;
+}
+
+/* .verify_cache for a spot: its face drawn with all its casters into a
+   scratch map of the same size, at the same place, against the face the
+   render left (skgl__point_verify's tolerance) */
+static sk_result skgl__spot_verify(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
+                                   const sk_mat4 *light_vp, int m)
+{
+    skgl__point_cache *c = &p->cache;
+    int rect[4] = {0, 0, 0, 0};
+    size_t n = (size_t)m * (size_t)m;
+    skgl__verify_count v;
+    float *a, *b;
+    sk_result r = skgl__verify_texture(ctx, st, &c->verify_tex, &c->verify_fbo, p->desc.resolution,
+                                       p->desc.resolution, "skgl_spot_render");
+    if (r != SK_OK) return r;
+    a = (float *)SKGL_MALLOC(n * sizeof *a);
+    b = (float *)SKGL_MALLOC(n * sizeof *b);
+    if (!a || !b) { SKGL_FREE(a); SKGL_FREE(b); return SK_ERR_CAPACITY; }
+    memset(&v, 0, sizeof v);
+    rect[2] = rect[3] = m;
+    r = skgl__spot_pass(ctx, st, p, scene, light_vp, c->verify_fbo, rect, SKGL__DRAW_ALL, 1);
+    p->stats.passes -= skgl__pass_callbacks(ctx);   /* not the cache's work */
+    p->stats.texels -= (double)n;
+    skgl__verify_read(ctx, st, p->fbo[0], 0, 0, m, m, a);
+    skgl__verify_read(ctx, st, c->verify_fbo, 0, 0, m, m, b);
+    skgl__verify_compare(a, b, m, m, &v);
+    SKGL_FREE(a);
+    SKGL_FREE(b);
+    p->stats.cache_verify_texels = v.runs;
+    if (r == SK_OK && v.runs > (int)(SKGL__VERIFY_RUNS * (double)n))
+        r = skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_spot_render: desc.verify_cache: the spot's map (%s this frame) "
+                       "differs from the uncached map in %d texels side by side, by up to %g in depth: a caster "
+                       "scene.draw draws changed without skgl_point_invalidate (moving casters belong in "
+                       "skgl_set_dynamic, inside its bounds); %d texels alone, float rounding, accepted",
+                       c->fresh ? "drawn whole" : "kept", v.runs, (double)v.worst, v.alone);
+    return r;
+}
+
 /* one pass into the spot's rectangle (cleared first); nothing drawn when
    the scene lies outside the cone (fit 0) */
 static sk_result skgl__spot_draw(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
@@ -9527,6 +9775,12 @@ static sk_result skgl__spot_draw(skgl_context *ctx, skgl__st *st, skgl_point *p,
     skgl_draw_info info;
     sk_result r = SK_OK;
     skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+    if (p->cache.tex) {
+        r = skgl__spot_draw_cached(ctx, st, p, scene, light_vp, m, fit);
+        if (r == SK_OK && fit == 1 && p->desc.verify_cache) r = skgl__spot_verify(ctx, st, p, scene, light_vp, m);
+        skgl__model_end(ctx);
+        return r;
+    }
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(p->desc.atlas ? p->desc.atlas->fbo : p->fbo[0]));
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, p->layout.face_x[0], p->layout.face_y[0], m, m);
@@ -11566,7 +11820,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    return mix(v, 1.0, clamp((view_depth - start) / (end - start), 0.0, 1.0));\n"
     "}\n"
     "\n"
-    "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
+    "float sk_shadow_map_visibility(vec3 world_pos, vec3 world_normal, float view_depth)\n"
     "{\n"
     "    float rmsm_lod = 0.0;\n"
     "    if (sk_rmsm != 0) {\n"
@@ -11606,6 +11860,125 @@ static const char skgl__src_shadow_sample_glsl[] =
     "            v = mix(v, sk_shadow_layer(world_pos, world_normal, pn, layer + 1), t);\n"
     "    }\n"
     "    return sk_fade(v, view_depth, sk_splits[sk_layers]);\n"
+    "}\n"
+    "\n"
+    "/* Contact shadows in a forward shader (skgl_shadow_desc.contact_length):\n"
+    "   \"#define SK_SHADOW_CONTACT 1\" before the snippet declares the camera's\n"
+    "   depth buffer and the march's uniforms; skgl_shadow_bind binds the buffer\n"
+    "   named by skgl_shadow_contact_depth on unit + 2 and sets them, when the\n"
+    "   light has contact_length > 0 (without the define, or with length 0, the\n"
+    "   snippet is as it was: no sampler, no call). The march is the mask's\n"
+    "   (shadow_mask.frag, McGuire and Mara 2014's depth-buffer ray casting with\n"
+    "   a constant thickness) from the receiver's own position and normal; the\n"
+    "   buffer's surface normals, which a forward pass has no buffer of, come\n"
+    "   from the depth buffer itself (sk_contact_normal). */\n"
+    "#ifndef SK_SHADOW_CONTACT\n"
+    "#define SK_SHADOW_CONTACT 0\n"
+    "#endif\n"
+    "#if SK_SHADOW_CONTACT\n"
+    "uniform highp sampler2D sk_contact_depth;  /* the camera's depth buffer: a depth pre-pass, not the target drawn */\n"
+    "uniform vec4 sk_contact;                   /* x the march's length (world units; 0: off), y steps, z thickness */\n"
+    "uniform mat4 sk_contact_camera[3];         /* the camera of sk_shadow's positions: view-projection, its\n"
+    "                                              inverse, view */\n"
+    "uniform vec4 sk_contact_depth_map;         /* the buffer's depth convention: NDC z = depth * x + y */\n"
+    "\n"
+    "vec3 sk_contact_world(ivec2 q)\n"
+    "{\n"
+    "    vec2 ndc_xy = (vec2(q) + 0.5) / vec2(textureSize(sk_contact_depth, 0)) * 2.0 - 1.0;\n"
+    "    float d = texelFetch(sk_contact_depth, q, 0).r;\n"
+    "    vec4 w = sk_contact_camera[1] * vec4(ndc_xy, d * sk_contact_depth_map.x + sk_contact_depth_map.y, 1.0);\n"
+    "    return w.xyz / w.w;\n"
+    "}\n"
+    "\n"
+    "float sk_contact_view_depth(vec3 p) { return -(sk_contact_camera[2] * vec4(p, 1.0)).z; }\n"
+    "\n"
+    "/* the buffer surface's normal at pixel q (position b), toward the camera:\n"
+    "   on each axis the one-sided difference toward the side that continues\n"
+    "   q's plane, the one whose next two pixels extrapolate q's view depth best\n"
+    "   (the second difference; at a crease, such as a wall's foot on the\n"
+    "   ground, the other side bends away) */\n"
+    "vec3 sk_contact_normal(ivec2 q, vec3 b)\n"
+    "{\n"
+    "    ivec2 last = textureSize(sk_contact_depth, 0) - 1;\n"
+    "    vec3 t[2];\n"
+    "    float zb = sk_contact_view_depth(b);\n"
+    "    for (int a = 0; a < 2; a++) {\n"
+    "        ivec2 e = ivec2(1 - a, a);\n"
+    "        vec3 lo = sk_contact_world(clamp(q - e, ivec2(0), last)), hi = sk_contact_world(clamp(q + e, ivec2(0), last));\n"
+    "        float zl2 = sk_contact_view_depth(sk_contact_world(clamp(q - 2 * e, ivec2(0), last)));\n"
+    "        float zh2 = sk_contact_view_depth(sk_contact_world(clamp(q + 2 * e, ivec2(0), last)));\n"
+    "        float el = abs(2.0 * sk_contact_view_depth(lo) - zl2 - zb), eh = abs(2.0 * sk_contact_view_depth(hi) - zh2 - zb);\n"
+    "        t[a] = eh < el ? hi - b : b - lo;\n"
+    "    }\n"
+    "    vec3 n = cross(t[0], t[1]);\n"
+    "    vec3 to_eye = -(sk_contact_camera[2] * vec4(b, 1.0)).xyz * mat3(sk_contact_camera[2]);\n"
+    "    return normalize(dot(n, to_eye) < 0.0 ? -n : n);\n"
+    "}\n"
+    "\n"
+    "/* the buffer's view-depth step at pixel q (depth z): the largest one-sided\n"
+    "   difference to its four neighbours, as shadow_mask.frag's\n"
+    "   receiver_depth_step */\n"
+    "float sk_contact_step(ivec2 q, float z)\n"
+    "{\n"
+    "    ivec2 last = textureSize(sk_contact_depth, 0) - 1;\n"
+    "    float g = 0.0;\n"
+    "    for (int a = 0; a < 2; a++) {\n"
+    "        ivec2 e = ivec2(1 - a, a);\n"
+    "        ivec2 lo = clamp(q - e, ivec2(0), last), hi = clamp(q + e, ivec2(0), last);\n"
+    "        float dl = abs(sk_contact_view_depth(sk_contact_world(lo)) - z);\n"
+    "        float dh = abs(sk_contact_view_depth(sk_contact_world(hi)) - z);\n"
+    "        g = max(g, max(lo == q ? 0.0 : dl, hi == q ? 0.0 : dh));\n"
+    "    }\n"
+    "    return g;\n"
+    "}\n"
+    "\n"
+    "/* 0 blocked, 1 clear: shadow_mask.frag's contact_visibility, the receiver's\n"
+    "   normal its own, the buffer's from its depth (a receiver without a\n"
+    "   normal: the buffer must lie in front by more than two of the receiver's\n"
+    "   pixel depth steps) */\n"
+    "float sk_contact_visibility(vec3 world, vec3 n, float z)\n"
+    "{\n"
+    "    vec2 size = vec2(textureSize(sk_contact_depth, 0));\n"
+    "    bool plane = dot(n, n) > 0.0;\n"
+    "    float plane_tol = 1e-3 * z, tol = 0.0;\n"
+    "    int steps = int(sk_contact.y);\n"
+    "    if (!plane) {\n"
+    "        vec4 c0 = sk_contact_camera[0] * vec4(world, 1.0);\n"
+    "        ivec2 q0 = clamp(ivec2((c0.xy / c0.w * 0.5 + 0.5) * size), ivec2(0), ivec2(size) - 1);\n"
+    "        tol = 2.0 * sk_contact_step(q0, z);\n"
+    "    }\n"
+    "    for (int i = 1; i <= steps; i++) {\n"
+    "        vec3 p = world - sk_light_dir * (sk_contact.x * float(i) / float(steps));\n"
+    "        vec4 c = sk_contact_camera[0] * vec4(p, 1.0);\n"
+    "        if (c.w <= 0.0) break;\n"
+    "        vec2 win = (c.xy / c.w * 0.5 + 0.5) * size;\n"
+    "        if (any(lessThan(win, vec2(0.0))) || any(greaterThanEqual(win, size))) break;\n"
+    "        ivec2 q = ivec2(win);\n"
+    "        vec3 b = sk_contact_world(q);\n"
+    "        float in_front = sk_contact_view_depth(p) - sk_contact_view_depth(b);\n"
+    "        if (in_front <= tol || in_front >= sk_contact.z) continue;\n"
+    "        if (!plane) return 0.0;\n"
+    "        if (dot(b - world, normalize(n)) > plane_tol && dot(b - p, sk_contact_normal(q, b)) >= 0.0) return 0.0;\n"
+    "    }\n"
+    "    return 1.0;\n"
+    "}\n"
+    "#endif\n"
+    "\n"
+    "/* the map's visibility v combined with the contact march (when on) */\n"
+    "float sk_contact_combine(float v, vec3 world_pos, vec3 world_normal, float view_depth)\n"
+    "{\n"
+    "#if SK_SHADOW_CONTACT\n"
+    "    if (sk_contact.x > 0.0 && v > 0.0) v = min(v, sk_contact_visibility(world_pos, world_normal, view_depth));\n"
+    "#endif\n"
+    "    return v;\n"
+    "}\n"
+    "\n"
+    "/* the shadow at world_pos: the map's visibility (sk_shadow_map_visibility),\n"
+    "   with contact shadows when SK_SHADOW_CONTACT is on */\n"
+    "float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)\n"
+    "{\n"
+    "    return sk_contact_combine(sk_shadow_map_visibility(world_pos, world_normal, view_depth), world_pos, world_normal,\n"
+    "                              view_depth);\n"
     "}\n"
     ;
 static const char skgl__src_shadow_mask_frag[] =

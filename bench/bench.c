@@ -40,6 +40,7 @@
                   over the analysed depth range, SDSM; params as the
                   practical pssm / standard row they are compared with) |
                   cube-naive | cube | vsdct (point lights, "room") |
+                  spot | cube-cone | vsdct-cone (spot lights, "room-spot") |
                   floor (the limit: params say which over-resolved map)
                   (DESIGN.md names)
        params     key=value;key=value (resolution is per map / per cascade)
@@ -148,7 +149,9 @@
      trees through the same alpha texture). The scenes
      are bench_common.c's bench_scene_table, one entry a scene. One
      directional light per scene; and the "room" with a point light for the omnidirectional methods (see
-     point_bench: cube-naive, cube, vsdct).
+     point_bench: cube-naive, cube, vsdct), and again under a spot light,
+     "room-spot" (spot_bench: spot against cube-cone and vsdct-cone; its
+     own chart, pareto-room-spot.png; --only room-spot runs it alone).
 
    Views (3, derived from the bounds of the non-ground objects, so they work
    for any scene; see bench_common.h make_views): "overview" (the whole content from 35
@@ -616,12 +619,13 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
         if ((s = strstr(p->params, "light="))) sscanf(s + 6, "%15[a-z]", light);
         if (strcmp(p->method, "pcss") == 0) snprintf(buf, n, "pcss %d %s", res, light);
         else snprintf(buf, n, "%s %s", p->method, light);
-    } else if (strncmp(p->method, "cube", 4) == 0 || strcmp(p->method, "vsdct") == 0) {
+    } else if (strncmp(p->method, "cube", 4) == 0 || strncmp(p->method, "vsdct", 5) == 0 ||
+               strcmp(p->method, "spot") == 0) {
         /* the point-light switches that are on: faces, casters, scissor, resolution */
         static const char *const keys[4] = {"faces=1", "casters=1", "scissor=1", "select=1"};
         static const char *const tags[4] = {" faces", " casters", " scissor", " res"};
         int k;
-        size_t used = (size_t)snprintf(buf, n, "%s", p->method);
+        size_t used = (size_t)snprintf(buf, n, "%s %d", p->method, res);
         for (k = 0; k < 4 && used < n; k++)
             if (strstr(p->params, keys[k])) used += (size_t)snprintf(buf + used, n - used, "%s", tags[k]);
     } else if (strcmp(p->method, "psm") == 0)
@@ -1507,6 +1511,199 @@ out:
     tb_scene_free(&s);
 }
 
+/* -------------------------------------------------------- spot lights */
+/* The room scene under a spot light (scene "room-spot" in bench.csv, a
+   chart of its own): skgl_spot_render's one perspective map at 256 to
+   2048, plain and with caster culling, scissor and resolution selection,
+   against what a spot costs without it: a point light (cube, VSDCT, every
+   optimization on, faces culled by the view) at the spot's place, whose
+   shader would cut it by the cone. Scored inside the cone: the point
+   light's exact reference there, the receivers outside the cone left out
+   (as out of range) and those within SPOT_EDGE_DEG of its edge too
+   (counted as silhouettes in excluded_px). Views: "inside" (the spot in view, aimed
+   down past the crate), "away" (behind the camera, aimed into the view).
+   Methods: spot, cube-cone, vsdct-cone. */
+#define SPOT_EDGE_DEG 0.5
+
+typedef struct spot_cfg {
+    const char *method;
+    skgl_point_technique technique;
+    int spot, resolution, opt;   /* opt: caster culling, scissor, resolution selection (and faces) */
+} spot_cfg;
+
+static const spot_cfg spot_cfgs[] = {
+    {"spot", SKGL_POINT_VSDCT, 1, 256, 0},       {"spot", SKGL_POINT_VSDCT, 1, 512, 0},
+    {"spot", SKGL_POINT_VSDCT, 1, 1024, 0},      {"spot", SKGL_POINT_VSDCT, 1, 2048, 0},
+    {"spot", SKGL_POINT_VSDCT, 1, 1024, 1},      {"cube-cone", SKGL_POINT_CUBE, 0, 512, 1},
+    {"cube-cone", SKGL_POINT_CUBE, 0, 1024, 1},  {"vsdct-cone", SKGL_POINT_VSDCT, 0, 512, 1},
+};
+
+typedef struct spot_view {
+    const char *name;
+    float eye[3], target[3], light[3], dir[3], angle, range;
+} spot_view;
+
+static const spot_view spot_views[] = {
+    {"inside", {4.2f, 3.2f, 4.2f}, {-1.0f, 1.0f, -1.0f}, {0.5f, 2.4f, 0.5f}, {0.3f, -1.0f, -0.6f}, 45.0f, 8.0f},
+    {"away", {3.2f, 1.7f, -1.8f}, {4.9f, 1.0f, -4.9f}, {0.5f, 2.4f, 0.5f}, {1.0f, -0.9f, -1.2f}, 35.0f, 8.0f},
+};
+
+/* the degrees between the axis and the direction from lp to pixel i's
+   receiver (depth buffer, view_proj's inverse); -1 on background */
+static double spot_angle_of(const sk_mat4 *inv, const float *depth, size_t i, sk_vec3 lp, sk_vec3 axis) {
+    double p[3], v[3], vl, al, c;
+    if (!(depth[i] < 1.0f) ||
+        tb_unproject_pixel(inv, BENCH_W, BENCH_H, (int)(i % BENCH_W), (int)(i / BENCH_W), depth[i], p) != 0)
+        return -1.0;
+    v[0] = p[0] - lp.x; v[1] = p[1] - lp.y; v[2] = p[2] - lp.z;
+    vl = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    al = sqrt((double)axis.x * axis.x + (double)axis.y * axis.y + (double)axis.z * axis.z);
+    c = vl > 0 && al > 0 ? (v[0] * axis.x + v[1] * axis.y + v[2] * axis.z) / (vl * al) : 1.0;
+    return acos(c < -1 ? -1 : c > 1 ? 1 : c) * 57.29577951308232;
+}
+
+static void spot_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *rgba, float *mask_px) {
+    tb_scene s;
+    tb_gl_mesh mesh;
+    tb_reference *ref = NULL;
+    draw_user du;
+    skgl_scene sc;
+    size_t n = (size_t)BENCH_W * BENCH_H, i;
+    float *refv = (float *)malloc(sizeof(float) * n);
+    int v, c, k;
+    memset(&mesh, 0, sizeof mesh);
+    tb_scene_init(&s);
+    if (!refv || tb_scene_build_room(&s) != 0 || tb_gl_mesh_create(&B->gl, &mesh, &s) != 0 ||
+        !(ref = tb_reference_create(&s))) {
+        fprintf(stderr, "bench: room scene setup failed: spot rows skipped\n");
+        goto out;
+    }
+    du.gl = &B->gl;
+    du.scene = &s;
+    du.mesh = &mesh;
+    sc.draw = point_draw_casters;
+    sc.user = &du;
+    sc.bounds = s.bounds;
+    for (v = 0; v < (int)(sizeof spot_views / sizeof spot_views[0]); v++) {
+        const spot_view *pv = &spot_views[v];
+        bench_view bv;
+        tb_gl_fbo gbuf;
+        tb_view tv;
+        tb_light L;
+        sk_vec3 lp = v3(pv->light[0], pv->light[1], pv->light[2]), dir = v3(pv->dir[0], pv->dir[1], pv->dir[2]);
+        memset(&bv, 0, sizeof bv);
+        memset(&gbuf, 0, sizeof gbuf);
+        snprintf(bv.name, sizeof bv.name, "%s", pv->name);
+        bv.eye = v3(pv->eye[0], pv->eye[1], pv->eye[2]);
+        bv.target = v3(pv->target[0], pv->target[1], pv->target[2]);
+        finish_view(&bv, &s.bounds);
+        if (tb_gl_fbo_create(&B->gl, &gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0 ||
+            tb_gl_gbuffer_render(&B->gl, &B->gb, &mesh, &gbuf, &bv.view_proj) != 0 ||
+            tb_gl_read_depth(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, depth) != 0 ||
+            tb_gl_read_rgba_float(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) {
+            fprintf(stderr, "bench: room-spot view %s: G-buffer failed\n", pv->name);
+            if (gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &gbuf);
+            continue;
+        }
+        memset(&tv, 0, sizeof tv);
+        if (!sk_mat4_inverse(bv.view_proj, &tv.inv_view_proj)) { tb_gl_fbo_destroy(&B->gl, &gbuf); continue; }
+        tv.width = BENCH_W;
+        tv.height = BENCH_H;
+        memset(&L, 0, sizeof L);
+        L.type = TB_LIGHT_POINT;
+        L.position = lp;
+        L.range = pv->range;
+        if (tb_reference_trace_exact(ref, &tv, depth, &L, NULL, refv, NULL) != 0) {
+            tb_gl_fbo_destroy(&B->gl, &gbuf);
+            continue;
+        }
+        /* the spot's reference: the point light's inside the cone, the rest left out */
+        for (i = 0; i < n; i++) {
+            double a = spot_angle_of(&tv.inv_view_proj, depth, i, lp, dir);
+            if (!(refv[i] >= 0.0f) || a < 0.0) continue;
+            if (fabs(a - pv->angle) < SPOT_EDGE_DEG) refv[i] = BENCH_VIS_SILHOUETTE;
+            else if (a > pv->angle) refv[i] = TB_VIS_OUT_OF_RANGE;
+        }
+        for (c = 0; c < (int)(sizeof spot_cfgs / sizeof spot_cfgs[0]); c++) {
+            const spot_cfg *pc = &spot_cfgs[c];
+            skgl_point_desc d;
+            skgl_point *p = NULL;
+            const skgl_point_frame_stats *st;
+            float sms[BENCH_MAX_REPEAT], mms[BENCH_MAX_REPEAT];
+            run_rec rr;
+            char params[160];
+            sk_result r;
+            int reps = repeat < 1 ? 1 : repeat > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : repeat;
+            memset(&d, 0, sizeof d);
+            d.technique = pc->technique;
+            d.bias = g_bias;
+            d.resolution = pc->resolution;
+            d.range = pv->range;
+            d.spot_angle = pc->spot ? pv->angle : 0.0f;
+            d.cull_faces = pc->opt && !pc->spot;
+            d.cull_casters = pc->opt;
+            d.scissor = pc->opt;
+            d.select_resolution = pc->opt;
+            d.screen_w = BENCH_W;
+            d.screen_h = BENCH_H;
+            r = skgl_point_create(B->sk, &d, &p);
+            if (r != SK_OK) {
+                fprintf(stderr, "bench: skgl_point_create %s: %s (%s)\n", pc->method, sk_result_string(r),
+                        skgl_error_log(B->sk));
+                continue;
+            }
+            memset(&rr, 0, sizeof rr);
+            for (k = 0; k <= reps; k++) {   /* one warm-up, then the timed ones */
+                r = pc->spot ? skgl_spot_render(B->sk, p, &bv.cam, &sc, lp, dir)
+                             : skgl_point_render(B->sk, p, &bv.cam, &sc, lp);
+                if (r == SK_OK) {
+                    /* the mask starts unlit: outside a spot's scissor nothing is lit by it */
+                    tb_gl_fbo_bind(&B->gl, &B->mask);
+                    B->gl.ClearColor(0, 0, 0, 0);
+                    B->gl.Clear(0x00004000u);
+                    tb_gl_fbo_bind(&B->gl, NULL);
+                    r = skgl_point_mask(B->sk, p, &bv.cam, gbuf.depth_tex, gbuf.color_tex, B->mask.color_tex);
+                }
+                if (r != SK_OK) break;
+                st = skgl_point_stats(p);
+                if (k > 0) { sms[k - 1] = st->shadow_ms; mms[k - 1] = st->mask_ms; }
+            }
+            if (r != SK_OK || tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, mask_px) != 0) {
+                fprintf(stderr, "bench: %s on room-spot %s failed: %s\n", pc->method, pv->name,
+                        skgl_error_log(B->sk));
+                skgl_point_destroy(B->sk, p);
+                continue;
+            }
+            st = skgl_point_stats(p);
+            rr.n = 0;
+            rr.mask_ms = median(mms, reps);
+            rr.texels = st->texels;
+            rr.passes = st->passes;
+            score_hard(refv, mask_px, &rr);
+            /* the configuration only (the views' cones are spot_views'), so that a chart point is a mean over views */
+            snprintf(params, sizeof params, "resolution=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d",
+                     d.resolution, d.cull_faces, d.cull_casters, d.scissor, d.select_resolution);
+            {
+                float sm = median(sms, reps);
+                write_row(csv, pc->method, params, "room-spot", pv->name, &rr, sm, B->renderer);
+                fprintf(stderr, "bench: room-spot %-6s %-10s %s: side %d, %d faces, %d casters culled: err %.3f%% "
+                                "(shadow area %.3f%% of %llu px, edge p95 %.2f px) shadow %.2f ms mask %.2f ms\n",
+                        pv->name, pc->method, params, st->resolution, st->faces_rendered, st->casters_culled, rr.err,
+                        rr.hard.area_pct, (unsigned long long)rr.hard.shadow, rr.hard.edge_p95_px, (double)sm,
+                        (double)rr.mask_ms);
+            }
+            skgl_point_destroy(B->sk, p);
+        }
+        fflush(csv);
+        tb_gl_fbo_destroy(&B->gl, &gbuf);
+    }
+out:
+    free(refv);
+    tb_reference_destroy(ref);
+    if (mesh.vao) tb_gl_mesh_destroy(&B->gl, &mesh);
+    tb_scene_free(&s);
+}
+
 /* The walk-through of Tang et al. 2017's Table 1: the camera moves in `frames`
    steps from the "low" view to the "overview" one; at each step LSPSM and
    PSSM with 8 cascades at the same per-map resolution (1024) render and are
@@ -2076,7 +2273,8 @@ int main(int argc, char **argv) {
     {
         ndefs = bench_scenes("bench", BENCH_IN_SWEEP, o.p.scenes_dir, o.p.only, defs, BENCH_MAX_SCENES, &shared);
         if (o.soft_only) ndefs = 0;
-        if (ndefs == 0 && !scene_selected(o.p.only, "room") && !o.soft_only) {
+        if (ndefs == 0 && !scene_selected(o.p.only, "room") && !scene_selected(o.p.only, "room-spot") &&
+            !o.soft_only) {
             fprintf(stderr, "bench: no scene selected (--only %s)\n", o.p.only ? o.p.only : "");
             return 2;
         }
@@ -2382,6 +2580,7 @@ int main(int argc, char **argv) {
         tb_scene_free(&s);
     }
     if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
+    if (scene_selected(o.p.only, "room-spot") && !o.soft_only) spot_bench(&B, o.repeat, csv, depth, rgba, mask_px);
     if (!o.no_soft) soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;

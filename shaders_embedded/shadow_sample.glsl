@@ -256,7 +256,7 @@ float sk_fade(float v, float view_depth, float end)
     return mix(v, 1.0, clamp((view_depth - start) / (end - start), 0.0, 1.0));
 }
 
-float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
+float sk_shadow_map_visibility(vec3 world_pos, vec3 world_normal, float view_depth)
 {
     float rmsm_lod = 0.0;
     if (sk_rmsm != 0) {
@@ -296,4 +296,123 @@ float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
             v = mix(v, sk_shadow_layer(world_pos, world_normal, pn, layer + 1), t);
     }
     return sk_fade(v, view_depth, sk_splits[sk_layers]);
+}
+
+/* Contact shadows in a forward shader (skgl_shadow_desc.contact_length):
+   "#define SK_SHADOW_CONTACT 1" before the snippet declares the camera's
+   depth buffer and the march's uniforms; skgl_shadow_bind binds the buffer
+   named by skgl_shadow_contact_depth on unit + 2 and sets them, when the
+   light has contact_length > 0 (without the define, or with length 0, the
+   snippet is as it was: no sampler, no call). The march is the mask's
+   (shadow_mask.frag, McGuire and Mara 2014's depth-buffer ray casting with
+   a constant thickness) from the receiver's own position and normal; the
+   buffer's surface normals, which a forward pass has no buffer of, come
+   from the depth buffer itself (sk_contact_normal). */
+#ifndef SK_SHADOW_CONTACT
+#define SK_SHADOW_CONTACT 0
+#endif
+#if SK_SHADOW_CONTACT
+uniform highp sampler2D sk_contact_depth;  /* the camera's depth buffer: a depth pre-pass, not the target drawn */
+uniform vec4 sk_contact;                   /* x the march's length (world units; 0: off), y steps, z thickness */
+uniform mat4 sk_contact_camera[3];         /* the camera of sk_shadow's positions: view-projection, its
+                                              inverse, view */
+uniform vec4 sk_contact_depth_map;         /* the buffer's depth convention: NDC z = depth * x + y */
+
+vec3 sk_contact_world(ivec2 q)
+{
+    vec2 ndc_xy = (vec2(q) + 0.5) / vec2(textureSize(sk_contact_depth, 0)) * 2.0 - 1.0;
+    float d = texelFetch(sk_contact_depth, q, 0).r;
+    vec4 w = sk_contact_camera[1] * vec4(ndc_xy, d * sk_contact_depth_map.x + sk_contact_depth_map.y, 1.0);
+    return w.xyz / w.w;
+}
+
+float sk_contact_view_depth(vec3 p) { return -(sk_contact_camera[2] * vec4(p, 1.0)).z; }
+
+/* the buffer surface's normal at pixel q (position b), toward the camera:
+   on each axis the one-sided difference toward the side that continues
+   q's plane, the one whose next two pixels extrapolate q's view depth best
+   (the second difference; at a crease, such as a wall's foot on the
+   ground, the other side bends away) */
+vec3 sk_contact_normal(ivec2 q, vec3 b)
+{
+    ivec2 last = textureSize(sk_contact_depth, 0) - 1;
+    vec3 t[2];
+    float zb = sk_contact_view_depth(b);
+    for (int a = 0; a < 2; a++) {
+        ivec2 e = ivec2(1 - a, a);
+        vec3 lo = sk_contact_world(clamp(q - e, ivec2(0), last)), hi = sk_contact_world(clamp(q + e, ivec2(0), last));
+        float zl2 = sk_contact_view_depth(sk_contact_world(clamp(q - 2 * e, ivec2(0), last)));
+        float zh2 = sk_contact_view_depth(sk_contact_world(clamp(q + 2 * e, ivec2(0), last)));
+        float el = abs(2.0 * sk_contact_view_depth(lo) - zl2 - zb), eh = abs(2.0 * sk_contact_view_depth(hi) - zh2 - zb);
+        t[a] = eh < el ? hi - b : b - lo;
+    }
+    vec3 n = cross(t[0], t[1]);
+    vec3 to_eye = -(sk_contact_camera[2] * vec4(b, 1.0)).xyz * mat3(sk_contact_camera[2]);
+    return normalize(dot(n, to_eye) < 0.0 ? -n : n);
+}
+
+/* the buffer's view-depth step at pixel q (depth z): the largest one-sided
+   difference to its four neighbours, as shadow_mask.frag's
+   receiver_depth_step */
+float sk_contact_step(ivec2 q, float z)
+{
+    ivec2 last = textureSize(sk_contact_depth, 0) - 1;
+    float g = 0.0;
+    for (int a = 0; a < 2; a++) {
+        ivec2 e = ivec2(1 - a, a);
+        ivec2 lo = clamp(q - e, ivec2(0), last), hi = clamp(q + e, ivec2(0), last);
+        float dl = abs(sk_contact_view_depth(sk_contact_world(lo)) - z);
+        float dh = abs(sk_contact_view_depth(sk_contact_world(hi)) - z);
+        g = max(g, max(lo == q ? 0.0 : dl, hi == q ? 0.0 : dh));
+    }
+    return g;
+}
+
+/* 0 blocked, 1 clear: shadow_mask.frag's contact_visibility, the receiver's
+   normal its own, the buffer's from its depth (a receiver without a
+   normal: the buffer must lie in front by more than two of the receiver's
+   pixel depth steps) */
+float sk_contact_visibility(vec3 world, vec3 n, float z)
+{
+    vec2 size = vec2(textureSize(sk_contact_depth, 0));
+    bool plane = dot(n, n) > 0.0;
+    float plane_tol = 1e-3 * z, tol = 0.0;
+    int steps = int(sk_contact.y);
+    if (!plane) {
+        vec4 c0 = sk_contact_camera[0] * vec4(world, 1.0);
+        ivec2 q0 = clamp(ivec2((c0.xy / c0.w * 0.5 + 0.5) * size), ivec2(0), ivec2(size) - 1);
+        tol = 2.0 * sk_contact_step(q0, z);
+    }
+    for (int i = 1; i <= steps; i++) {
+        vec3 p = world - sk_light_dir * (sk_contact.x * float(i) / float(steps));
+        vec4 c = sk_contact_camera[0] * vec4(p, 1.0);
+        if (c.w <= 0.0) break;
+        vec2 win = (c.xy / c.w * 0.5 + 0.5) * size;
+        if (any(lessThan(win, vec2(0.0))) || any(greaterThanEqual(win, size))) break;
+        ivec2 q = ivec2(win);
+        vec3 b = sk_contact_world(q);
+        float in_front = sk_contact_view_depth(p) - sk_contact_view_depth(b);
+        if (in_front <= tol || in_front >= sk_contact.z) continue;
+        if (!plane) return 0.0;
+        if (dot(b - world, normalize(n)) > plane_tol && dot(b - p, sk_contact_normal(q, b)) >= 0.0) return 0.0;
+    }
+    return 1.0;
+}
+#endif
+
+/* the map's visibility v combined with the contact march (when on) */
+float sk_contact_combine(float v, vec3 world_pos, vec3 world_normal, float view_depth)
+{
+#if SK_SHADOW_CONTACT
+    if (sk_contact.x > 0.0 && v > 0.0) v = min(v, sk_contact_visibility(world_pos, world_normal, view_depth));
+#endif
+    return v;
+}
+
+/* the shadow at world_pos: the map's visibility (sk_shadow_map_visibility),
+   with contact shadows when SK_SHADOW_CONTACT is on */
+float sk_shadow(vec3 world_pos, vec3 world_normal, float view_depth)
+{
+    return sk_contact_combine(sk_shadow_map_visibility(world_pos, world_normal, view_depth), world_pos, world_normal,
+                              view_depth);
 }

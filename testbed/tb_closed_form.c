@@ -246,7 +246,10 @@ static float tb_cf_shade_(const tb_cf_scene *cf, const tb_light *L, const double
     }
 }
 
-int tb_cf_visibility(const tb_cf_scene *cf, const tb_view *view, const tb_light *light, float *vis) {
+/* the visibility loop; cone: NULL, or a spot's unit axis and the cosine of
+   its half-angle (receivers outside the cone get 0) */
+static int tb_cf_trace_(const tb_cf_scene *cf, const tb_view *view, const tb_light *light, const double *cone,
+                        float *vis) {
     double lx[2] = {0, 0}, lz[2] = {0, 0};
     int x, y, k;
     if (!cf || !view || !light || !vis || view->width <= 0 || view->height <= 0) return -1;
@@ -286,6 +289,32 @@ int tb_cf_visibility(const tb_cf_scene *cf, const tb_view *view, const tb_light 
                 continue;
             }
             vis[i] = tb_cf_shade_(cf, light, p, n, kind, index, lx, lz);
+            if (cone && vis[i] > 0) {
+                double d[3], len;
+                d[0] = p[0] - (double)light->position.x;
+                d[1] = p[1] - (double)light->position.y;
+                d[2] = p[2] - (double)light->position.z;
+                len = sqrt(tb_cf_dot_(d, d));
+                if (!(tb_cf_dot_(d, cone) > cone[3] * len)) vis[i] = 0.0f;
+            }
         }
     return 0;
+}
+
+int tb_cf_visibility(const tb_cf_scene *cf, const tb_view *view, const tb_light *light, float *vis) {
+    return tb_cf_trace_(cf, view, light, NULL, vis);
+}
+
+int tb_cf_spot_visibility(const tb_cf_scene *cf, const tb_view *view, const tb_light *light, sk_vec3 axis,
+                          double half_angle_deg, float *vis) {
+    double cone[4], len;
+    if (!light || light->type != TB_LIGHT_POINT || !tb_cf_v3ok_(axis) || !(half_angle_deg > 0) ||
+        !(half_angle_deg < 90))
+        return -1;
+    cone[0] = axis.x; cone[1] = axis.y; cone[2] = axis.z;
+    len = sqrt(tb_cf_dot_(cone, cone));
+    if (!(len > 0)) return -1;
+    cone[0] /= len; cone[1] /= len; cone[2] /= len;
+    cone[3] = cos(half_angle_deg * 3.14159265358979323846 / 180.0);
+    return tb_cf_trace_(cf, view, light, cone, vis);
 }

@@ -82,6 +82,16 @@ int tb_cf_build(tb_scene *s, tb_cf_scene *cf, const char *name);
    plate, half axes along x and z). */
 int tb_cf_visibility(const tb_cf_scene *cf, const tb_view *view, const tb_light *light, float *vis);
 
+/* A spot light: light (TB_LIGHT_POINT, its range as above) with a cone
+   about `axis` (any length > 0) of half-angle half_angle_deg in (0, 90):
+   tb_cf_visibility's answer with every lit receiver whose direction from
+   the light is more than half_angle_deg off the axis set to 0. The cone's
+   edge is then as exact as the shadows' (the receiver point is the
+   analytic surface's). -1 as tb_cf_visibility, and for a light that is not
+   a point light, a zero or non-finite axis or an angle out of range. */
+int tb_cf_spot_visibility(const tb_cf_scene *cf, const tb_view *view, const tb_light *light, sk_vec3 axis,
+                          double half_angle_deg, float *vis);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,7 +1,9 @@
 /* shadowkit_web.c - the live demo page (make web): every technique of
    shadowkit_gl.h on WebGL2, built with Emscripten.
 
-   - scenes: boxes and a fence made here, and the bunny, the Sponza ivy and
+   - scenes: boxes, a fence and a street under a spot light made here (the
+     street picks the "spot" technique: skgl_spot_render, a skgl_point
+     with a cone), and the bunny, the Sponza ivy and
      curtains when make web found ../shared/scenes (baked by scene_bake.c and
      embedded);
    - a technique switcher, and two techniques side by side (the left and
@@ -107,6 +109,26 @@ static void scene_fence(mesh *m)
     for (i = 0; i < 8; i++) mesh_box(m, -7.0f + 2 * i - 0.05f, 0, 3.95f, -7.0f + 2 * i + 0.05f, 3, 4.05f);
 }
 
+/* a street for the spot light: houses on both sides, lamp posts, crates
+   and a bench on the road */
+static void scene_street(mesh *m)
+{
+    int i;
+    mesh_box(m, -15, -0.1f, -15, 15, 0, 15);
+    for (i = 0; i < 5; i++) {
+        float x = -12.0f + 6.0f * (float)i;
+        mesh_box(m, x, 0, -11, x + 4, 3.0f + (float)(i % 3), -7);
+        mesh_box(m, x + 1, 0, 7, x + 5, 4.0f - (float)(i % 2), 11);
+        mesh_box(m, x + 2.95f, 0, -5.05f, x + 3.05f, 3.2f, -4.95f);   /* a post, its arm over the road */
+        mesh_box(m, x + 2.95f, 3.1f, -5.05f, x + 3.05f, 3.2f, -3.5f);
+    }
+    mesh_box(m, -2, 0, -1, -1, 1, 0);
+    mesh_box(m, -0.6f, 0, 0.4f, 0.2f, 0.8f, 1.2f);
+    mesh_box(m, 2, 0.45f, -2, 4.5f, 0.55f, -1.6f);                  /* a bench: seat and legs */
+    mesh_box(m, 2.1f, 0, -1.95f, 2.2f, 0.45f, -1.65f);
+    mesh_box(m, 4.3f, 0, -1.95f, 4.4f, 0.45f, -1.65f);
+}
+
 /* a scene baked by scene_bake.c; 0 ok */
 static int scene_file(mesh *m, const char *path)
 {
@@ -130,7 +152,7 @@ static int scene_file(mesh *m, const char *path)
 }
 
 /* ---- techniques ------------------------------------------------------------ */
-enum { K_DIR, K_POINT, K_SOFT };
+enum { K_DIR, K_POINT, K_SOFT, K_SPOT };
 typedef struct tech {
     const char *name;
     int kind, technique, maps;   /* maps: layers the texel budget is shared by */
@@ -139,7 +161,7 @@ static const tech g_techs[] = {
     {"STANDARD", K_DIR, SKGL_STANDARD, 1}, {"PSSM", K_DIR, SKGL_PSSM, 4},         {"PSM", K_DIR, SKGL_PSM, 1},
     {"LiSPSM", K_DIR, SKGL_LISPSM, 4},     {"LSPSM", K_DIR, SKGL_LSPSM, 4},       {"FERKO", K_DIR, SKGL_FERKO, 1},
     {"RMSM", K_DIR, SKGL_RMSM, 1},         {"cube", K_POINT, SKGL_POINT_CUBE, 6}, {"VSDCT", K_POINT, SKGL_POINT_VSDCT, 6},
-    {"PCSS", K_SOFT, SKGL_SOFT_PCSS, 1},   {"PVSM", K_SOFT, SKGL_SOFT_PVSM, 1}};
+    {"PCSS", K_SOFT, SKGL_SOFT_PCSS, 1},   {"PVSM", K_SOFT, SKGL_SOFT_PVSM, 1},   {"spot", K_SPOT, SKGL_POINT_VSDCT, 1}};
 #define TECHS ((int)(sizeof g_techs / sizeof g_techs[0]))
 
 typedef struct light {
@@ -153,8 +175,8 @@ typedef struct light {
 static struct {
     skgl_context *sk;
     int w, h;
-    mesh scenes[5];
-    const char *scene_names[5];
+    mesh scenes[6];
+    const char *scene_names[6];
     int nscenes, scene, side, tint, budget;
     unsigned vao, vbo[3];
     unsigned prog_g, prog_c, depth, normal, fb_g, fb_m;
@@ -292,6 +314,18 @@ static skgl_area_light area_light(void)
     return a;
 }
 
+/* the spot (the "spot" technique): at the lamp, aimed at the middle of the
+   scene's floor, a 35 degree cone */
+static sk_vec3 spot_dir(void)
+{
+    sk_aabb b = S.scenes[S.scene].bounds;
+    sk_vec3 p = lamp_pos(0.9f), d;
+    d.x = 0.5f * (b.min.x + b.max.x) - p.x;
+    d.y = b.min.y - p.y;
+    d.z = 0.5f * (b.min.z + b.max.z) - p.z;
+    return d;
+}
+
 static void draw(void *user, const skgl_draw_info *info)
 {
     (void)user; (void)info;
@@ -321,7 +355,8 @@ static void free_light(light *l)
 {
     if (!l->obj) return;
     if (g_techs[l->tech].kind == K_DIR) skgl_shadow_destroy(S.sk, (skgl_shadow *)l->obj);
-    else if (g_techs[l->tech].kind == K_POINT) skgl_point_destroy(S.sk, (skgl_point *)l->obj);
+    else if (g_techs[l->tech].kind == K_POINT || g_techs[l->tech].kind == K_SPOT)
+        skgl_point_destroy(S.sk, (skgl_point *)l->obj);
     else skgl_soft_destroy(S.sk, (skgl_soft *)l->obj);
     l->obj = NULL;
 }
@@ -342,12 +377,13 @@ static void make_light(light *l, int t)
         d.resolution = res;
         d.cascades = e->technique == SKGL_LISPSM ? 4 : 0;
         r = skgl_shadow_create(S.sk, &d, (skgl_shadow **)&l->obj);
-    } else if (e->kind == K_POINT) {
+    } else if (e->kind == K_POINT || e->kind == K_SPOT) {
         skgl_point_desc d;
         memset(&d, 0, sizeof d);
         d.technique = (skgl_point_technique)e->technique;
         d.resolution = p2;
         d.range = 60.0f;
+        if (e->kind == K_SPOT) d.spot_angle = 35.0f;
         d.bias = SKGL_BIAS_NORMAL_OFFSET;   /* see the manual's OpenGL ES section: SwiftShader */
         r = skgl_point_create(S.sk, &d, (skgl_point **)&l->obj);
     } else {
@@ -393,10 +429,11 @@ static void render_light(light *l, int slot, unsigned prog, const skgl_camera *c
             for (i = 0; i <= st->maps && i < 8; i++) splits[i] = st->splits[i];
             for (; i < 8; i++) splits[i] = 1e30f;
         }
-    } else if (e->kind == K_POINT) {
+    } else if (e->kind == K_POINT || e->kind == K_SPOT) {
         skgl_point *p = (skgl_point *)l->obj;
         const skgl_point_frame_stats *st;
-        skgl_point_render(S.sk, p, cam, sc, lamp_pos(0.9f));
+        if (e->kind == K_SPOT) skgl_spot_render(S.sk, p, cam, sc, lamp_pos(0.9f), spot_dir());
+        else skgl_point_render(S.sk, p, cam, sc, lamp_pos(0.9f));
         skgl_point_mask(S.sk, p, cam, S.depth, S.normal, l->mask);
         st = skgl_point_stats(p);
         ms(a, sizeof a, "shadow", st->shadow_ms);
@@ -572,7 +609,8 @@ int main(void)
     if (skgl_create(&desc, &S.sk) != SK_OK) { printf("skgl_create failed\n"); return 1; }
     scene_boxes(&S.scenes[0]); S.scene_names[0] = "boxes";
     scene_fence(&S.scenes[1]); S.scene_names[1] = "fence";
-    S.nscenes = 2;
+    scene_street(&S.scenes[2]); S.scene_names[2] = "spot street";
+    S.nscenes = 3;
     for (i = 0; i < 3; i++)
         if (scene_file(&S.scenes[S.nscenes], files[i][0]) == 0) S.scene_names[S.nscenes++] = files[i][1];
     for (i = 0; i < S.nscenes; i++) mesh_bounds(&S.scenes[i]);

@@ -42,7 +42,7 @@ static void *web_getproc(const char *name)
 
 static esx_run g_run;
 static esx_data_header g_h;
-static float *g_pos, *g_nrm, *g_vis;
+static float *g_pos, *g_nrm, *g_vis, g_spot[ESX_W * ESX_H];
 static unsigned *g_idx;
 static unsigned char *g_desk;
 static char g_out[8192];
@@ -209,6 +209,7 @@ int main(void)
     sc.vertices = (int)g_h.vertices;
     sc.indices = (int)g_h.indices;
     memcpy(&sc.bounds, g_h.bounds, sizeof sc.bounds);
+    esx_spot_reference(&sc, g_vis + ESX_W * ESX_H, g_spot);   /* the point light's cut by the cone */
     if (esx_begin(&g_run, web_getproc, &sc, 0) != 0) {
         say("FAIL %s\n", g_run.log);
         g_fail++;
@@ -226,7 +227,8 @@ int main(void)
     for (t = 0; t < ESX_TECHS; t++) {
         const esx_tech *e = &esx_techs[t];
         int soft = e->kind == ESX_SOFT;
-        const float *vis = g_vis + (size_t)(e->kind == ESX_DIR ? 0 : e->kind == ESX_POINT ? 1 : 2) * ESX_W * ESX_H;
+        const float *vis = e->kind == ESX_SPOT ? g_spot
+                           : g_vis + (size_t)(e->kind == ESX_DIR ? 0 : e->kind == ESX_POINT ? 1 : 2) * ESX_W * ESX_H;
         const unsigned char *desk = g_desk + (size_t)t * ESX_W * ESX_H;
         double d, re, rd;
         if (g_run.result[t] != SK_OK) {

@@ -40,8 +40,12 @@
    culling on, the light at (1.5, 4.5, 1)): walk (the camera every other
    frame of the walk: faces culled and back), dynamic, static, light (the
    light moves 5 cm a frame: every face drawn whole), appear.
+   Spot lights (a 55 degree spot at the same place, axis (-0.3, -1, -0.2),
+   512^2) run the point lights' scenarios; and test_spot_passes counts a
+   cached spot's passes frame by frame (below).
    Also: verify_cache fails a render when a static caster moved without an
-   invalidation, and the contracts (FERKO and layered refused, bad boxes).
+   invalidation (cube, VSDCT, spot), and the contracts (FERKO and layered
+   refused, bad boxes, a cached spot in a shared atlas).
 
    Measured (Mesa 22.3 llvmpipe), pixels whose class differs from the
    twin's and from the .cache 0 light's, over all frames of a scenario: 0
@@ -71,6 +75,18 @@
    fault, hence the second comparison); last frame's dynamic rectangle not
    copied back: dynamic and dynwhole 0.57% / 0.61% / 0.61%, points 1.44%
    (20 checks).
+   Spots: 0 pixels differ in every scenario; texels after frame 0 cached /
+   uncached: walk 0 (the view sees the whole cone: the window stays, the
+   map is reused on all 11 frames), dynamic 0.019, static 0.144, appear 0
+   (box3 is outside the cone: no region drawn), light 1.0. Passes
+   (test_spot_passes): frame 0 one pass of 512^2 texels; 3 still frames 0
+   passes, 0 texels (the uncached spot 1 pass, 262,144 texels each);
+   box0 invalidated: 1 pass, 1 region, 17,550 texels (0.067 of the map);
+   NULL, a moved light (5 cm) or a turned one: 1 pass, the whole map; the
+   mover as the dynamic casters: 1 pass, 3,770 texels (0.014). Can fail:
+   the light matrix left out of the spot cache's key (a local copy):
+   light 0.644% differ from the twin and the .cache 0 spot, maps reused,
+   and the moved and turned frames keep the map (5 checks fail).
    RMSM: 0 pixels differ in every scenario (a page is drawn with the same
    matrix cached or not, relative to the virtual map's own origin). Page
    texels drawn after frame 0, cached / uncached: walk 0.051, dynamic
@@ -305,10 +321,20 @@ static void test_cached_equals_uncached(void) {
 }
 
 /* ---- point lights: the cube and VSDCT ---- */
+/* a spot light's direction (the spots' scenarios) */
+#define SPOT_ANGLE 55.0f
+static sk_vec3 spot_dir(void) { return gt_v3(-0.3f, -1, -0.2f); }
+
+/* a point light's render, or a spot's (desc.spot_angle) down spot_dir() */
+static sk_result point_render(world *w, skgl_point *p, const skgl_camera *cam, const skgl_scene *sc, sk_vec3 pos) {
+    return skgl_point_get_desc(p).spot_angle > 0.0f ? skgl_spot_render(w->e.sk, p, cam, sc, pos, spot_dir())
+                                                    : skgl_point_render(w->e.sk, p, cam, sc, pos);
+}
+
 static int point_mask_of(world *w, skgl_point *p, const skgl_camera *cam, const skgl_scene *sc, sk_vec3 pos,
                          float *out) {
     size_t i;
-    sk_result r = skgl_point_render(w->e.sk, p, cam, sc, pos);
+    sk_result r = point_render(w, p, cam, sc, pos);
     if (r == SK_OK) r = skgl_point_mask(w->e.sk, p, cam, w->e.gbuf.depth_tex, w->e.gbuf.color_tex, w->e.mask.color_tex);
     if (r != SK_OK) {
         SK_CHECK_MSG(0, "point: %s (%s)", sk_result_string(r), skgl_error_log(w->e.sk));
@@ -319,13 +345,15 @@ static int point_mask_of(world *w, skgl_point *p, const skgl_camera *cam, const 
     return 0;
 }
 
-static skgl_point *point_light(world *w, skgl_point_technique tech, int cache) {
+/* kind 0 cube, 1 VSDCT, 2 a spot (SPOT_ANGLE, a 512 map) */
+static skgl_point *point_light(world *w, int kind, int cache) {
     skgl_point_desc d;
     skgl_point *p = NULL;
     sk_result r;
     memset(&d, 0, sizeof d);
-    d.technique = tech;
-    d.resolution = 256;
+    d.technique = kind == 0 ? SKGL_POINT_CUBE : SKGL_POINT_VSDCT;
+    d.spot_angle = kind == 2 ? SPOT_ANGLE : 0.0f;
+    d.resolution = kind == 2 ? 512 : 256;
     d.range = 16;
     d.cull_faces = 1;
     d.cull_casters = 1;
@@ -336,8 +364,8 @@ static skgl_point *point_light(world *w, skgl_point_technique tech, int cache) {
     return p;
 }
 
-static tally run_point(world *w, skgl_point_technique tech, scenario sc_kind) {
-    skgl_point *cached = point_light(w, tech, 1), *twin = point_light(w, tech, 1), *plain = point_light(w, tech, 0);
+static tally run_point(world *w, int kind, scenario sc_kind) {
+    skgl_point *cached = point_light(w, kind, 1), *twin = point_light(w, kind, 1), *plain = point_light(w, kind, 0);
     float *a = gt_alloc(&w->e), *b = gt_alloc(&w->e), *c = gt_alloc(&w->e);
     tally t;
     int f, frames = sc_kind == WALK ? 12 : 8;
@@ -397,11 +425,12 @@ done:
 
 static void test_point_cached_equals_uncached(void) {
     world *w = &W_;
+    static const char *const names[3] = {"point-cube", "point-vsdct", "spot"};
     int ti, k;
-    for (ti = 0; ti < 2; ti++)
+    for (ti = 0; ti < 3; ti++)
         for (k = 0; k < BUDGET; k++) {
-            const char *name = ti ? "point-vsdct" : "point-cube";
-            tally t = run_point(w, ti ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE, (scenario)k);
+            const char *name = names[ti];
+            tally t = run_point(w, ti, (scenario)k);
             double pct = t.covered ? 100.0 * (double)t.differ / (double)t.covered : 100.0;
             double pct_plain = t.covered ? 100.0 * (double)t.differ_plain / (double)t.covered : 100.0;
             printf("%-16s %-8s differ %llu of %llu (%.5f%%), from .cache 0 %llu; faces reused %d, regions %d; "
@@ -430,8 +459,7 @@ typedef struct verified {
 } verified;
 
 static sk_result verified_render(world *w, const verified *v, const skgl_camera *cam, const skgl_scene *sc) {
-    return v->s ? skgl_shadow_render(w->e.sk, v->s, cam, sc, v->light)
-                : skgl_point_render(w->e.sk, v->p, cam, sc, v->light);
+    return v->s ? skgl_shadow_render(w->e.sk, v->s, cam, sc, v->light) : point_render(w, v->p, cam, sc, v->light);
 }
 static int verified_texels(const verified *v) {
     return v->s ? skgl_shadow_stats(v->s)->cache_verify_texels : skgl_point_stats(v->p)->cache_verify_texels;
@@ -488,21 +516,24 @@ static void test_verify(void) {
     skgl_shadow_destroy(w->e.sk, s);
 }
 
-/* verify_cache of a point light (cube, VSDCT): correct use passes, a
-   static caster moved without skgl_point_invalidate fails naming it */
+/* verify_cache of a point light (cube, VSDCT) and a spot: correct use
+   passes, a static caster moved without skgl_point_invalidate fails naming it */
 static void test_point_verify(void) {
     world *w = &W_;
     skgl_scene sc = gt_movers_scene(w);
     skgl_camera cam = walk_camera(3);
     sk_vec3 pos = gt_v3(1.5f, 4.5f, 1.0f);
+    static const char *const labels[3] = {"point verify_cache (cube)", "point verify_cache (vsdct)",
+                                          "spot verify_cache"};
     int ti;
-    for (ti = 0; ti < 2; ti++) {
+    for (ti = 0; ti < 3; ti++) {
         skgl_point_desc d;
         skgl_point *p = NULL;
         sk_result r;
         verified v;
         memset(&d, 0, sizeof d);
         d.technique = ti ? SKGL_POINT_VSDCT : SKGL_POINT_CUBE;
+        d.spot_angle = ti == 2 ? SPOT_ANGLE : 0.0f;
         d.resolution = 256;
         d.range = 16;
         d.verify_cache = 1;
@@ -513,16 +544,106 @@ static void test_point_verify(void) {
         SK_CHECK_MSG(r == SK_OK, "skgl_point_create: %s (%s)", sk_result_string(r), skgl_error_log(w->e.sk));
         if (r != SK_OK) continue;
         SK_CHECK(skgl_point_stats(p)->cache_verify_texels == -1);
-        SK_CHECK(skgl_point_render(w->e.sk, p, &cam, &sc, pos) == SK_OK);
+        SK_CHECK(point_render(w, p, &cam, &sc, pos) == SK_OK);
         SK_CHECK(skgl_point_stats(p)->cache_verify_texels == 0);
-        SK_CHECK(skgl_point_render(w->e.sk, p, &cam, &sc, pos) == SK_OK);   /* every face kept */
+        SK_CHECK(point_render(w, p, &cam, &sc, pos) == SK_OK);   /* every face kept */
         SK_CHECK(skgl_point_stats(p)->faces_reused > 0 && skgl_point_stats(p)->cache_verify_texels == 0);
         memset(&v, 0, sizeof v);
         v.p = p;
         v.light = pos;
-        check_unannounced_move(w, &v, &cam, &sc, ti ? "point verify_cache (vsdct)" : "point verify_cache (cube)");
+        check_unannounced_move(w, &v, &cam, &sc, labels[ti]);
         skgl_point_destroy(w->e.sk, p);
     }
+}
+
+/* A cached spot's passes frame by frame (stats: callbacks made, texels
+   drawn, map reused, regions): drawn once, then not at all while nothing
+   changes; an invalidated box redraws its rectangle, NULL the whole map; a
+   light that moves or turns draws it whole; the dynamic casters alone
+   each frame they are set. The uncached spot draws its one pass every
+   frame. */
+typedef struct spot_frame {
+    int passes, reused, regions;
+    double texels;
+} spot_frame;
+
+static spot_frame spot_frame_of(world *w, skgl_point *p, const skgl_camera *cam, const skgl_scene *sc, sk_vec3 pos,
+                                sk_vec3 dir) {
+    spot_frame f;
+    const skgl_point_frame_stats *st = skgl_point_stats(p);
+    sk_result r = skgl_spot_render(w->e.sk, p, cam, sc, pos, dir);
+    SK_CHECK_MSG(r == SK_OK, "skgl_spot_render: %s (%s)", sk_result_string(r), skgl_error_log(w->e.sk));
+    f.passes = st->passes;
+    f.reused = st->faces_reused;
+    f.regions = st->cache_regions;
+    f.texels = st->texels;
+    return f;
+}
+
+static void test_spot_passes(void) {
+    world *w = &W_;
+    skgl_scene sc = gt_movers_scene(w);
+    skgl_camera cam = walk_camera(3);
+    skgl_point *p = point_light(w, 2, 1), *plain = point_light(w, 2, 0);
+    sk_vec3 pos = gt_v3(1.5f, 4.5f, 1.0f), dir = spot_dir();
+    const sk_aabb box0 = w->e.scene.objects[w->box0].bounds;
+    const double whole = 512.0 * 512.0;
+    spot_frame f;
+    int k;
+    if (!p || !plain) goto done;
+    SK_CHECK(skgl_point_stats(p)->cache_bytes == whole * 4);
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    printf("spot cache: frame 0: %d passes, %.0f texels\n", f.passes, f.texels);
+    SK_CHECK(f.passes == 1 && f.reused == 0 && f.texels == whole);
+    for (k = 1; k <= 3; k++) {   /* nothing changed: not drawn */
+        f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+        SK_CHECK_MSG(f.passes == 0 && f.reused == 1 && f.texels == 0.0, "still frame %d: %d passes, %.0f texels",
+                     k, f.passes, f.texels);
+        f = spot_frame_of(w, plain, &cam, &sc, pos, dir);
+        SK_CHECK(f.passes == 1 && f.texels == whole);
+    }
+    SK_CHECK(skgl_point_invalidate(w->e.sk, p, &box0) == SK_OK);
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    printf("spot cache: box0 invalidated: %d passes, %d regions, %.0f texels (%.3f of the map)\n", f.passes,
+           f.regions, f.texels, f.texels / whole);
+    SK_CHECK(f.passes == 1 && f.regions == 1 && f.reused == 1 && f.texels > 0 && f.texels < 0.25 * whole);
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    SK_CHECK(f.passes == 0);
+    SK_CHECK(skgl_point_invalidate(w->e.sk, p, NULL) == SK_OK);
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    SK_CHECK(f.passes == 1 && f.reused == 0 && f.texels == whole);
+    pos.x += 0.05f;   /* moved */
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    SK_CHECK(f.passes == 1 && f.reused == 0 && f.texels == whole);
+    SK_CHECK(spot_frame_of(w, p, &cam, &sc, pos, dir).passes == 0);
+    dir.x += 0.01f;   /* turned */
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    SK_CHECK(f.passes == 1 && f.reused == 0 && f.texels == whole);
+    /* the mover, in the cone, as the dynamic casters: drawn alone, in its rectangle */
+    w->mover_at = gt_v3(0, 0, 0);
+    set_mover(w, 1);
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    printf("spot cache: the mover dynamic: %d passes, %.0f texels (%.3f of the map)\n", f.passes, f.texels,
+           f.texels / whole);
+    SK_CHECK(f.passes == 1 && f.reused == 1 && f.texels > 0 && f.texels < 0.25 * whole);
+    SK_CHECK(skgl_set_dynamic(w->e.sk, NULL) == SK_OK);
+    f = spot_frame_of(w, p, &cam, &sc, pos, dir);
+    SK_CHECK(f.passes == 0 && f.reused == 1);
+    /* the contract: not in a shared atlas */
+    {
+        skgl_point_atlas *a = NULL;
+        skgl_point_desc d = skgl_point_get_desc(p);
+        skgl_point *q = NULL;
+        SK_CHECK(skgl_point_atlas_create(w->e.sk, 1024, 1024, &a) == SK_OK);
+        d.atlas = a;
+        SK_CHECK(skgl_point_create(w->e.sk, &d, &q) == SK_ERR_INVALID_ARG && q == NULL);
+        SK_CHECK(strstr(skgl_error_log(w->e.sk), "cache") != NULL);
+        skgl_point_atlas_destroy(w->e.sk, a);
+    }
+done:
+    w->mover_at = gt_v3(-6, 0, -6);
+    skgl_point_destroy(w->e.sk, p);
+    skgl_point_destroy(w->e.sk, plain);
 }
 
 static void test_contracts(void) {
@@ -591,6 +712,7 @@ static void test_cache(void) {
     test_point_cached_equals_uncached();
     test_verify();
     test_point_verify();
+    test_spot_passes();
     test_contracts();
     /* every light's cache, framebuffers and verify map freed */
     SK_CHECK_MSG(skgl_gl_object_count(w->e.sk) == objects, "%d GL objects, %d before",
