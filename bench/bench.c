@@ -184,9 +184,11 @@
      build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
                        [--only SCENE[,SCENE..]] [--views N] [--images]
                        [--views-only] [--gp FILE] [--plot-only] [--dry-run]
-                       [--methods M[,M..]] [--no-floor] [--no-soft]
+                       [--methods M[,M..]] [--match P[,P..]] [--no-floor] [--no-soft]
      --quick      the small sweep of `make demo` (also SK_BENCH_QUICK=1)
      --methods    only these methods of the directional sweep (bench_methods)
+     --match      of those, only the configurations whose "method params"
+                  hold every '+'-joined part of one of the patterns
      --no-floor   no floor rows (two over-resolved maps a view)
      --no-soft    no area-light rows (the soft_bench part)
      --plot-only  redraw the charts from an existing OUT/bench.csv
@@ -509,6 +511,31 @@ static void build_sweep(int quick, const char *methods) {
         if (scene_selected(methods, bench_methods[m].name)) bench_methods[m].sweep(quick);
 }
 
+/* --match: 1 when "method params" of c holds every '+'-joined part of one
+   of the comma-separated patterns ("auto,pssm+lambda=0.9;+blend=0;") */
+static int cfg_matches(const bench_cfg *c, const char *patterns) {
+    char text[sizeof c->method + sizeof c->params + 2], pat[256], *save = NULL, *one;
+    snprintf(text, sizeof text, "%.31s %.159s", c->method, c->params);
+    snprintf(pat, sizeof pat, "%s", patterns);
+    for (one = strtok_r(pat, ",", &save); one; one = strtok_r(NULL, ",", &save)) {
+        char *save2 = NULL, *part;
+        int all = 1;
+        for (part = strtok_r(one, "+", &save2); part; part = strtok_r(NULL, "+", &save2))
+            if (!strstr(text, part)) all = 0;
+        if (all) return 1;
+    }
+    return 0;
+}
+
+/* keeps the configurations --match selects, in order */
+static void filter_sweep(const char *patterns) {
+    int i, n = 0;
+    if (!patterns || !*patterns) return;
+    for (i = 0; i < g_ncfg; i++)
+        if (cfg_matches(&g_cfg[i], patterns)) g_cfg[n++] = g_cfg[i];
+    g_ncfg = n;
+}
+
 /* ---------------------------------------------------- the draw callback */
 typedef struct draw_user {
     const tb_gl_funcs *gl;
@@ -535,13 +562,14 @@ typedef struct bench_opts {
     int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor, no_soft;
     bench_paths p;             /* --scenes, --out, --only, --gp */
     const char *methods;
+    const char *match;         /* --match */
 } bench_opts;
 
 static void usage(FILE *f, const char *argv0) {
     fprintf(f,
             "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
             "          [--views N] [--images] [--views-only] [--soft-only] [--bias B] [--gp FILE] [--plot-only]\n"
-            "          [--methods M[,M..]] [--no-floor] [--no-soft] [--dry-run]\n"
+            "          [--methods M[,M..]] [--match P[,P..]] [--no-floor] [--no-soft] [--dry-run]\n"
             "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
             "  --repeat N     timing passes, the median is reported (default 5)\n"
             "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
@@ -549,6 +577,8 @@ static void usage(FILE *f, const char *argv0) {
             "  --only LIST    only these scenes (comma separated names)\n"
             "  --methods LIST only these methods of the directional sweep (standard, pssm, psm,\n"
             "                 lispsm, lspsm, ferko, rmsm, auto, fit; default all)\n"
+            "  --match LIST   of those, only the configurations whose \"method params\" hold every\n"
+            "                 '+'-joined part of one pattern: auto,pssm+lambda=0.9;+blend=0;\n"
             "  --no-floor     no floor runs (the over-resolved maps of each view)\n"
             "  --no-soft      no area-light rows (PCSS, PVSM on sponza and the fence)\n"
             "  --views N      first N of the views overview,low,close (default 3)\n"
@@ -2042,6 +2072,7 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--images") == 0) o.images = 1;
         else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
         else if (strcmp(a, "--methods") == 0 && more) o.methods = argv[++i];
+        else if (strcmp(a, "--match") == 0 && more) o.match = argv[++i];
         else if (strcmp(a, "--no-floor") == 0) o.no_floor = 1;
         else if (strcmp(a, "--no-soft") == 0) o.no_soft = 1;
         else if (strcmp(a, "--bias") == 0 && more) {
@@ -2082,6 +2113,7 @@ int main(int argc, char **argv) {
         }
     }
     build_sweep(o.quick, o.methods);
+    filter_sweep(o.match);
     for (i = 0; i < g_ncfg; i++) g_cfg[i].desc.bias = g_bias;
     memset(&pg, 0, sizeof pg);
     pg.total = ndefs * o.views * g_ncfg;
