@@ -1097,7 +1097,17 @@ typedef struct skgl_shadow_desc {
     int rmsm_page_size;           /* RMSM: page side in texels, a power of two in [16, 1024] [128] */
     int rmsm_pool_pages;          /* RMSM: the physical pool holds this^2 pages, 2..64 [24];
                                      .resolution is the virtual map's side, a power
-                                     of two [16384 for RMSM], at most 1024 pages */
+                                     of two [16384 for RMSM], at most 1024 pages.
+                                     The pool is one depth texture of (this x
+                                     (.rmsm_page_size + 2))^2 32-bit texels: 24, 3120^2,
+                                     39 MB; 48, 6240^2, 156 MB. Measured (bench, 1280x720,
+                                     16384^2 virtual, shadow-area error, mean of 3 views):
+                                     sponza-ivy 13.89% at 24, 6.53% at 48 (standard 2048^2
+                                     12.89%); terrace 16.07%, 3.75% (10.17%); at 48 the
+                                     frame draws 3-4x the pages (1107-2017 against
+                                     325-507) in 1.4-2.4x the time. 24 stays the default
+                                     for its memory and passes; 48 where the view needs
+                                     the pages */
     int rmsm_band_pages;          /* RMSM: finer pages than the pixel-matched level, in at most
                                      this many slots: a texel of half a pixel, and none coarser
                                      than the finest world size they afford (a caster thinner

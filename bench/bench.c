@@ -334,14 +334,16 @@ static void add_ferko(int res) {
     c->desc.sync_readback = 1;
 }
 
-/* RMSM: a virtual map of vres^2 texels in pages of 128^2, a pool of 24^2 pages */
-static void add_rmsm(int vres) {
+/* RMSM: a virtual map of vres^2 texels in pages of 128^2, a pool of
+   pool^2 pages (24: the default, 39 MB; 48: 156 MB) */
+static void add_rmsm(int vres, int pool) {
     bench_cfg *c = &g_cfg[g_ncfg++];
     memset(c, 0, sizeof *c);
     snprintf(c->method, sizeof c->method, "rmsm");
-    snprintf(c->params, sizeof c->params, "virtual_resolution=%d;page=128;pool=24;pcf=0", vres);
+    snprintf(c->params, sizeof c->params, "virtual_resolution=%d;page=128;pool=%d;pcf=0", vres, pool);
     c->desc.technique = SKGL_RMSM;
     c->desc.resolution = vres;
+    c->desc.rmsm_pool_pages = pool;
     c->desc.sync_readback = 1;   /* this view's pages (see add_ferko) */
 }
 
@@ -466,9 +468,10 @@ static void sweep_ferko(int quick) {
 }
 
 static void sweep_rmsm(int quick) {
-    if (!quick) add_rmsm(8192);
-    add_rmsm(16384);
-    if (!quick) add_rmsm(32768);
+    if (!quick) add_rmsm(8192, 24);
+    add_rmsm(16384, 24);
+    if (!quick) add_rmsm(16384, 48);   /* the pool's size against the default's */
+    if (!quick) add_rmsm(32768, 24);
 }
 
 static void sweep_auto(int quick) {
@@ -663,8 +666,12 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
     }
     else if (strcmp(p->method, "ferko") == 0)
         snprintf(buf, n, "ferko max %d", (s = strstr(p->params, "max_resolution=")) ? atoi(s + 15) : 0);
-    else if (strcmp(p->method, "rmsm") == 0)
+    else if (strcmp(p->method, "rmsm") == 0) {
+        const char *pool = strstr(p->params, "pool=");
         snprintf(buf, n, "rmsm %d", (s = strstr(p->params, "virtual_resolution=")) ? atoi(s + 19) : 0);
+        if (pool && atoi(pool + 5) != 24)
+            snprintf(buf + strlen(buf), n - strlen(buf), " pool %d\xc2\xb2", atoi(pool + 5));
+    }
     else if (strcmp(p->method, "lspsm") == 0)
         snprintf(buf, n, "lspsm %d", res);
     else if (strcmp(p->method, "auto") == 0)
