@@ -386,19 +386,36 @@
      You give a texel budget, .resolution^2 texels a frame [2048^2], and a
      target, .auto_texel_px: how many pixels one shadow texel may span [1].
      Each frame, for 1 to .cascades [4] maps sharing the budget (side
-     .resolution / sqrt(n)), AUTO fits the crops over the view depths the
-     analysis found (as .fit_to_depth) and predicts the texel-to-pixel
-     ratio at the near end of each map (the crop's larger side over the
-     map's side, against a pixel's footprint there, 2 d tan(fovy/2) / the
-     analysed depth buffer's height). It takes the fewest maps whose worst
-     ratio meets the target, else the count with the smallest ratio. The
+     .resolution / sqrt(n)), AUTO splits the view depths the analysis found
+     (as .fit_to_depth) with the logarithmic scheme (lambda 1: over a range
+     that starts at the nearest receiver seen, the log splits spread the
+     perspective aliasing evenly; Zhang, Sun, Xu and Lun 2006's uniform
+     term only helps a near plane in front of every receiver, so .lambda
+     [0.75] serves before the first analysis), fits each count's crops once
+     and predicts the texel-to-pixel ratio at the near end of each map (the
+     crop's larger side over the map's side, against a pixel's footprint
+     there, 2 d tan(fovy/2) / the analysed depth buffer's height). A small
+     range needs fewer maps: it takes the fewest maps whose worst ratio
+     meets the target, else the count with the smallest ratio. The
      count in use is kept unless the new one is 15% better, has fewer maps
      and meets 0.85 of the target, or the old misses the target by 15% and
      the new one meets it (hysteresis: a camera bobbing about the height
      where the count changes keeps it). stats.maps, stats.auto_technique
-     (SKGL_STANDARD or SKGL_PSSM), stats.auto_texel_px (the prediction for
-     each count) and stats.auto_reason (in words) say what it chose and
-     why. Not with .stable or .cache (the splits follow the depth buffer).
+     (SKGL_STANDARD or SKGL_PSSM), stats.auto_lambda, stats.auto_texel_px
+     (the prediction for each count) and stats.auto_reason (in words) say
+     what it chose and why. Not with .stable or .cache (the splits follow
+     the depth buffer).
+     The analysis runs only when the range may have changed: the first
+     call, a new G-buffer size or projection, the camera moved more than 5%
+     of the nearest depth measured or turned more than about 1.7 degrees,
+     and every 8th call whatever the camera did (moving objects); otherwise
+     skgl_shadow_analyze keeps the last range and does no GL work
+     (stats.auto_analysed 0, analysis_ms 0).
+     Memory: .cascades layers of .resolution^2 depth texels (32-bit float),
+     though a frame draws at most .resolution^2 texels (n maps of side
+     .resolution / sqrt(n), each in a corner of its layer): 64 MiB at the
+     defaults (4 x 2048^2 x 4 bytes) for 16 MiB drawn. .cascades bounds it
+     (2: 32 MiB).
      Why not the warps or virtual maps: at equal texels PSSM matched or
      beat LiSPSM, PSM and LSPSM in the open world and has none of their
      failure cases (a light along the view, casters behind the camera); a
@@ -1061,7 +1078,8 @@ typedef struct skgl_shadow_desc {
     int resolution;               /* texels per side of each map, 1 or more (2 or more with
                                      .stable) [2048] */
     int cascades;                 /* PSSM, 1..SKGL_MAX_CASCADES [4] */
-    float lambda;                 /* PSSM split scheme weight in (0, 1] [0.75] */
+    float lambda;                 /* PSSM split scheme weight in (0, 1] (AUTO: before its first
+                                     analysis; after it, 1) [0.75] */
     int uniform_splits;           /* 1: lambda 0, the uniform split scheme [0] */
     float splits[SKGL_MAX_CASCADES - 1];  /* PSSM, LiSPSM per cascade: hand-set view depths where
                                      cascade i ends and i + 1 begins, increasing, one per
@@ -1126,7 +1144,17 @@ typedef struct skgl_shadow_desc {
     int rmsm_page_size;           /* RMSM: page side in texels, a power of two in [16, 1024] [128] */
     int rmsm_pool_pages;          /* RMSM: the physical pool holds this^2 pages, 2..64 [24];
                                      .resolution is the virtual map's side, a power
-                                     of two [16384 for RMSM], at most 1024 pages */
+                                     of two [16384 for RMSM], at most 1024 pages.
+                                     The pool is one depth texture of (this x
+                                     (.rmsm_page_size + 2))^2 32-bit texels: 24, 3120^2,
+                                     39 MB; 48, 6240^2, 156 MB. Measured (bench, 1280x720,
+                                     16384^2 virtual, shadow-area error, mean of 3 views):
+                                     sponza-ivy 13.89% at 24, 6.53% at 48 (standard 2048^2
+                                     12.89%); terrace 16.07%, 3.75% (10.17%); at 48 the
+                                     frame draws 3-4x the pages (1107-2017 against
+                                     325-507) in 1.4-2.4x the time. 24 stays the default
+                                     for its memory and passes; 48 where the view needs
+                                     the pages */
     int rmsm_band_pages;          /* RMSM: finer pages than the pixel-matched level, in at most
                                      this many slots: a texel of half a pixel, and none coarser
                                      than the finest world size they afford (a caster thinner
@@ -1250,6 +1278,14 @@ typedef struct skgl_shadow_frame_stats {
     float auto_texel_px[SKGL_MAX_CASCADES];  /* AUTO: with k + 1 maps, the predicted texel size in
                                              pixels at the near end of the worst map (0: not tried) */
     char auto_reason[128];                /* AUTO: the choice in words */
+    float auto_lambda;                    /* AUTO: the split weight of the cascades (0 with one map;
+                                             1, the log scheme, over an analysed range) */
+    int auto_crops;                       /* AUTO: crops fitted this frame: each count's once
+                                             (1 + 2 + .. + .cascades, every count scored by its
+                                             crops; the chosen count's are kept, not refitted) */
+    int auto_analysed;                    /* AUTO: 1 when the last skgl_shadow_analyze ran the
+                                             analysis, 0 when it kept the last one (the view had
+                                             not moved: CHOOSING FOR YOU) */
 } skgl_shadow_frame_stats;
 
 
@@ -5501,6 +5537,8 @@ struct skgl_shadow {
     int rendered;                  /* 1 after a render that succeeded: the maps may be read */
     skgl__ferko ferko;             /* SKGL_FERKO, SKGL_AUTO and .fit_to_depth */
     int auto_maps;                 /* SKGL_AUTO: the map count in use (0 before the first fit) */
+    sk_mat4 auto_view, auto_proj;  /* SKGL_AUTO: the camera of the last analysis run */
+    int auto_kept;                 /* SKGL_AUTO: analyses kept (not run) since it ran */
     int step[SKGL_MAX_CASCADES][2];   /* .stable: each crop's width and height, steps of the ladder
                                       2^(k/8) (skgl__ladder_step; SKGL__NO_STEP before the first) */
     int far_step;                  /* .stable: the shadow range's end, likewise */
@@ -6194,11 +6232,26 @@ static sk_result skgl__fit_layers(skgl_shadow *s, const skgl_camera *cam, const 
    the layer before: layer i is also sampled in the blend region at the end
    of layer i-1, [s_i - band, s_i), so its crop covers that region too, or
    the blend would fade toward "outside the map", lit); *z0: where it starts */
-static sk_result skgl__layer_slice(const skgl_shadow *s, const skgl__fit_in *in, int i, sk_frustum *slice, float *z0)
+static sk_result skgl__slice_of(const skgl_shadow *s, const skgl__fit_in *in, const float *sp, int i,
+                                sk_frustum *slice, float *z0)
 {
-    const float *sp = s->stats.splits;
     *z0 = i > 0 ? sp[i] - s->desc.blend_band * (sp[i] - sp[i - 1]) : sp[0];
     return sk_frustum_slice(&in->view, in->zn, in->cam_zf, *z0, sp[i + 1], slice);
+}
+
+static sk_result skgl__layer_slice(const skgl_shadow *s, const skgl__fit_in *in, int i, sk_frustum *slice, float *z0)
+{
+    return skgl__slice_of(s, in, s->stats.splits, i, slice, z0);
+}
+
+/* the focused crop of a slice: its part inside the scene (the whole slice
+   when none is), fitted in light space */
+static sk_result skgl__focused_crop(const skgl__fit_in *in, const sk_frustum *slice, sk_mat4 *proj)
+{
+    sk_vec3 pts[SK_CLIP_MAX_POINTS];
+    int n = sk_clip_frustum_aabb(slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
+    return n > 0 ? sk_fit_ortho(pts, n, in->lview, &in->scene->bounds, proj)
+                 : sk_fit_ortho(slice->corners, 8, in->lview, &in->scene->bounds, proj);
 }
 
 /* A cached stable crop's depth range: the scene's bounds in light space
@@ -6300,10 +6353,8 @@ static sk_result skgl__fit_slices(skgl_shadow *s, const skgl__fit_in *in, int wa
                                       &proj);
             if (r == SK_OK && d->cache) skgl__scene_depth_range(&proj, &in->lview, &in->scene->bounds);
         } else {
-            sk_vec3 pts[SK_CLIP_MAX_POINTS];
-            int n = sk_clip_frustum_aabb(&slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
-            r = n > 0 ? sk_fit_ortho(pts, n, in->lview, &in->scene->bounds, &proj)
-                      : sk_fit_ortho(slice.corners, 8, in->lview, &in->scene->bounds, &proj);
+            r = skgl__focused_crop(in, &slice, &proj);
+            if (d->technique == SKGL_AUTO) s->stats.auto_crops++;
         }
         if (r != SK_OK) return r;
         s->vp[i] = sk_mat4_mul(proj, in->lview);
@@ -6357,36 +6408,72 @@ static int skgl__auto_side(int res, int n)
     return side < 16 ? 16 : side;
 }
 
-/* With n cascades over [in->shadow_zn, in->zf] (the light's split scheme),
-   the largest ratio over the cascades of a texel (the crop's larger side
+/* AUTO's split weight: Zhang, Sun, Xu and Lun 2006's practical split
+   scheme, C_i = lambda C_i^log + (1 - lambda) C_i^uni (the form of
+   Romanick's VGP353 notes, week 5, which number no equation). Over a
+   range [n, f] the logarithmic splits give every cascade the same ratio
+   C_i+1 / C_i = (f / n)^(1/m), and the texel-to-pixel ratio at a
+   cascade's near end grows with that ratio alone: the log scheme spreads
+   the perspective aliasing evenly. The uniform term is the paper's remedy
+   for a near plane far in front of every receiver, whose log splits
+   spend the first cascades on empty space. Once the analysis has measured
+   the view depths (the shadow range starts at the nearest receiver
+   seen, sample distribution shadow maps, Lauritzen, Salvi and Lefohn 2011)
+   that waste is gone: lambda 1, the log scheme, whatever the range (over
+   a small range f / n is small and the two schemes nearly agree). Before
+   the first analysis the range starts at the near plane: .lambda [0.75].
+   Measured (test_gl_auto, open world, 2048^2 of texels, pooled error):
+   4 maps 1.70% at lambda 0.75, 1.08% at 0.9, 1.03% at 1; 3 maps 1.95,
+   1.41, 1.33%; 2 maps 2.68, 1.60, 1.51%; on the small scenes every
+   lambda within 0.05 point. */
+static float skgl__auto_lambda(const skgl_shadow *s, const skgl__fit_in *in)
+{
+    if (!(in->shadow_zn > 0.0f)) return 0.0f;   /* an orthographic view from depth 0: uniform */
+    return s->stats.depth_hi > 0.0f ? 1.0f : s->desc.lambda;
+}
+
+/* one count AUTO tries: its splits, its focused crops (kept for the
+   count chosen, so that each crop is fitted once), its worst
+   texel-to-pixel ratio (0: a slice or a crop did not fit) */
+typedef struct skgl__auto_try {
+    float sp[SKGL_MAX_CASCADES + 1];
+    sk_mat4 proj[SKGL_MAX_CASCADES];
+    float ratio;
+} skgl__auto_try;
+
+/* With n cascades over [in->shadow_zn, in->zf] split with lambda, the
+   largest ratio over the cascades of a texel (the crop's larger side
    over the map's side) to a pixel's footprint at the cascade's near end
    (2 d tan(fovy / 2) / the view's height in pixels): the texel-to-pixel
-   ratio the worst place of the view gets. 0 when a crop does not fit. */
-static float skgl__auto_score(const skgl_shadow *s, const skgl__fit_in *in, int n, float px_h)
+   ratio the worst place of the view gets. Counts the crops it fits in
+   stats.auto_crops. */
+static void skgl__auto_score(skgl_shadow *s, const skgl__fit_in *in, int n, float lambda, float px_h,
+                             skgl__auto_try *t)
 {
     const sk_mat4 *pr = &in->cam->proj;
-    float sp[SKGL_MAX_CASCADES + 1], worst = 0.0f;
+    float worst = 0.0f;
     int i, side = skgl__auto_side(s->desc.resolution, n);
     int persp = pr->m[11] != 0.0f;
-    if (skgl__splits(&s->desc, n, in->shadow_zn, in->zf, sp) != SK_OK) return 0.0f;
+    t->ratio = 0.0f;
+    if (n == 1) {
+        t->sp[0] = in->shadow_zn;
+        t->sp[1] = in->zf;
+    } else if (sk_pssm_splits(in->shadow_zn, in->zf, n, lambda, t->sp) != SK_OK) {
+        return;
+    }
     for (i = 0; i < n; i++) {
         sk_frustum slice;
-        sk_vec3 pts[SK_CLIP_MAX_POINTS];
-        sk_mat4 proj;
-        int k;
-        float pixel, ratio;
-        if (sk_frustum_slice(&in->view, in->zn, in->cam_zf, sp[i], sp[i + 1], &slice) != SK_OK) return 0.0f;
-        k = sk_clip_frustum_aabb(&slice, in->scene->bounds, pts, SK_CLIP_MAX_POINTS);
-        if ((k > 0 ? sk_fit_ortho(pts, k, in->lview, &in->scene->bounds, &proj)
-                   : sk_fit_ortho(slice.corners, 8, in->lview, &in->scene->bounds, &proj)) != SK_OK)
-            return 0.0f;
+        float z0, pixel, ratio;
+        if (skgl__slice_of(s, in, t->sp, i, &slice, &z0) != SK_OK) return;
+        s->stats.auto_crops++;
+        if (skgl__focused_crop(in, &slice, &t->proj[i]) != SK_OK) return;
         /* pixel footprint: perspective 2 d / (P[1][1] H), orthographic 2 / (P[1][1] H) */
-        pixel = (persp ? 2.0f * sp[i] : 2.0f) / (SK_FABSF(pr->m[5]) * px_h);
-        ratio = skgl__crop_side(&proj) / (float)side / pixel;
-        if (!(ratio < 1e30f)) return 0.0f;
+        pixel = (persp ? 2.0f * t->sp[i] : 2.0f) / (SK_FABSF(pr->m[5]) * px_h);
+        ratio = skgl__crop_side(&t->proj[i]) / (float)side / pixel;
+        if (!(ratio < 1e30f)) return;
         if (ratio > worst) worst = ratio;
     }
-    return worst;
+    t->ratio = worst;
 }
 
 /* AUTO's rule: of 1 to .cascades maps sharing .resolution^2 texels, the
@@ -6417,32 +6504,46 @@ static int skgl__auto_count(const float *score, int counts, int cur, float targe
 
 static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
 {
+    skgl__auto_try t[SKGL_MAX_CASCADES];
     float score[SKGL_MAX_CASCADES], px_h = s->ferko.h > 0 ? (float)s->ferko.h : (float)s->desc.resolution;
-    float target = s->desc.auto_texel_px;
+    float target = s->desc.auto_texel_px, lambda = skgl__auto_lambda(s, in);
     int n, cur = s->auto_maps, side, i;
-    sk_result r;
-    for (n = 1; n <= SKGL_MAX_CASCADES; n++)
-        score[n - 1] = s->stats.auto_texel_px[n - 1] = n <= s->layers ? skgl__auto_score(s, in, n, px_h) : 0.0f;
+    s->stats.auto_crops = 0;
+    for (n = 1; n <= SKGL_MAX_CASCADES; n++) {
+        t[n - 1].ratio = 0.0f;
+        if (n <= s->layers) skgl__auto_score(s, in, n, lambda, px_h, &t[n - 1]);
+        score[n - 1] = s->stats.auto_texel_px[n - 1] = t[n - 1].ratio;
+    }
     n = skgl__auto_count(score, s->layers, cur, target);
     s->auto_maps = n;
     s->maps = n;
     s->stats.auto_technique = n == 1 ? SKGL_STANDARD : SKGL_PSSM;
+    s->stats.auto_lambda = n == 1 ? 0.0f : lambda;
     snprintf(s->stats.auto_reason, sizeof s->stats.auto_reason,
-             "%d map%s: a texel spans %.2f px at worst, target %.2f%s; depths %.3g..%.3g%s", n, n > 1 ? "s" : "",
-             (double)score[n - 1], (double)target, n == cur ? " (kept)" : "", (double)in->shadow_zn, (double)in->zf,
-             s->stats.depth_hi > 0.0f ? "" : " (no analysis yet)");
-    if (skgl__splits(&s->desc, n, in->shadow_zn, in->zf, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
-    r = skgl__fit_slices(s, in, 0);
-    if (r != SK_OK) return r;
+             "%d map%s: a texel spans %.2f px at worst, target %.2f%s; depths %.3g..%.3g%s, lambda %.2g", n,
+             n > 1 ? "s" : "", (double)score[n - 1], (double)target, n == cur ? " (kept)" : "",
+             (double)in->shadow_zn, (double)in->zf, s->stats.depth_hi > 0.0f ? "" : " (no analysis yet)",
+             (double)s->stats.auto_lambda);
+    if (t[n - 1].ratio > 0.0f) {
+        /* the crops the score fitted */
+        memcpy(s->stats.splits, t[n - 1].sp, (size_t)(n + 1) * sizeof(float));
+        for (i = 0; i < n; i++) s->vp[i] = sk_mat4_mul(t[n - 1].proj[i], in->lview);
+    } else {
+        /* no count fitted: the layers' own fit says why */
+        sk_result r;
+        if (skgl__splits(&s->desc, n, in->shadow_zn, in->zf, s->stats.splits) != SK_OK) return SK_ERR_INVALID_ARG;
+        r = skgl__fit_slices(s, in, 0);
+        if (r != SK_OK) return r;
+    }
     side = skgl__auto_side(s->desc.resolution, n);
     s->view_w = s->view_h = side < s->desc.resolution ? side : s->desc.resolution;
     for (i = 0; i < n && s->view_w < s->desc.resolution; i++) {
-        sk_mat4 t = sk_mat4_identity();
+        sk_mat4 m = sk_mat4_identity();
         float f = (float)s->view_w / (float)s->desc.resolution;
-        t.m[0] = t.m[5] = f;
-        t.m[12] = t.m[13] = f - 1.0f;
+        m.m[0] = m.m[5] = f;
+        m.m[12] = m.m[13] = f - 1.0f;
         s->render_vp[i] = s->vp[i];
-        s->vp[i] = sk_mat4_mul(t, s->vp[i]);
+        s->vp[i] = sk_mat4_mul(m, s->vp[i]);
     }
     return SK_OK;
 }
@@ -6614,6 +6715,15 @@ static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, s
 }
 
 
+/* an earlier frame's analysis, if it has landed (the last one kept if not) */
+static void skgl__ferko_poll(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    float v[8];
+    int slot;
+    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko.ring, v)) >= 0)
+        skgl__ferko_land(s, v, &s->ferko.ring.lvp[slot], s->ferko.ring.origin[slot]);
+}
+
 /* FERKO analysis: the 4x4-block pass, the 16x16 reductions, the final 2x1
    texels; read back at once (sync_readback, and the first analysis) or
    into the ring, the estimate of an earlier frame taken when it lands */
@@ -6629,9 +6739,7 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
         skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
         return SK_ERR_GL;
     }
-    /* an earlier frame's estimate, if it has landed (the last one kept if not) */
-    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ferko.ring, v)) >= 0)
-        skgl__ferko_land(s, v, &s->ferko.ring.lvp[slot], s->ferko.ring.origin[slot]);
+    skgl__ferko_poll(ctx, st, s);
     skgl__timer_begin(ctx, &s->t_analyze);
     skgl__st_screen_pass(ctx, st);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
@@ -6693,6 +6801,60 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
     }
     skgl__timer_end(ctx, &s->t_analyze);
     s->stats.analysis_ms = s->t_analyze.ms;
+    return SK_OK;
+}
+
+/* SKGL_AUTO's analysis is run again when the view depths it measured may
+   have changed (CHOOSING FOR YOU): before the first, when the G-buffer's
+   size or the camera's projection changed, when the camera moved more than
+   5% of the nearest depth measured (half the 10% margin skgl__depth_fit
+   widens the range by; the other half covers the read-back's latency) or
+   turned more than about 1.7 degrees (a rotation element changed by more
+   than 0.03), and every SKGL__AUTO_KEEP + 1 frames whatever the camera did
+   (objects that move). Otherwise the last range is kept: no GL work. */
+#define SKGL__AUTO_KEEP 7
+static int skgl__auto_stale(const skgl_shadow *s, const skgl_camera *cam, int w, int h)
+{
+    double d2 = 0.0, reach = 0.05 * (double)s->ferko.depth_lo;
+    int r, c;
+    if (s->ferko.state == 0 || s->auto_kept >= SKGL__AUTO_KEEP || s->ferko.w != w || s->ferko.h != h ||
+        !(s->ferko.depth_hi > 0.0f) || memcmp(&cam->proj, &s->auto_proj, sizeof cam->proj) != 0)
+        return 1;
+    for (c = 0; c < 3; c++)
+        for (r = 0; r < 3; r++)
+            if (SK_FABSF(cam->view.m[c * 4 + r] - s->auto_view.m[c * 4 + r]) > 0.03f) return 1;
+    for (r = 0; r < 3; r++) {
+        /* eye = -R^T t of each rigid view matrix */
+        double e0 = 0.0, e1 = 0.0;
+        for (c = 0; c < 3; c++) {
+            e0 -= (double)cam->view.m[r * 4 + c] * cam->view.m[12 + c];
+            e1 -= (double)s->auto_view.m[r * 4 + c] * s->auto_view.m[12 + c];
+        }
+        d2 += (e0 - e1) * (e0 - e1);
+    }
+    return !(d2 <= reach * reach);
+}
+
+/* AUTO: FERKO's analysis (its depth range only) when skgl__auto_stale says
+   so, else the ring polled and the last range kept */
+static sk_result skgl__analyze_auto(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_camera *cam,
+                                    const sk_mat4 *inv, const sk_mat4 *lvp, const double o[3], unsigned depth_tex,
+                                    int w, int h)
+{
+    sk_result r;
+    if (!skgl__auto_stale(s, cam, w, h)) {
+        skgl__ferko_poll(ctx, st, s);
+        s->auto_kept++;
+        s->stats.auto_analysed = 0;
+        s->stats.analysis_ms = 0.0f;
+        return SK_OK;
+    }
+    r = skgl__analyze_ferko(ctx, st, s, inv, lvp, o, depth_tex, w, h);
+    if (r != SK_OK) return r;
+    s->auto_view = cam->view;
+    s->auto_proj = cam->proj;
+    s->auto_kept = 0;
+    s->stats.auto_analysed = 1;
     return SK_OK;
 }
 
@@ -8060,7 +8222,8 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
         return SK_ERR_INVALID_ARG;
     }
-    r = skgl__technique_of(s)->analyze(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    if (s->desc.technique == SKGL_AUTO) r = skgl__analyze_auto(ctx, &st, s, cam, &inv, &lvp, o, depth_tex, w, h);
+    else r = skgl__technique_of(s)->analyze(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
 }

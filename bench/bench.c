@@ -187,9 +187,11 @@
      build/bench/bench [--quick] [--repeat N] [--scenes DIR] [--out DIR]
                        [--only SCENE[,SCENE..]] [--views N] [--images]
                        [--views-only] [--gp FILE] [--plot-only] [--dry-run]
-                       [--methods M[,M..]] [--no-floor] [--no-soft]
+                       [--methods M[,M..]] [--match P[,P..]] [--no-floor] [--no-soft]
      --quick      the small sweep of `make demo` (also SK_BENCH_QUICK=1)
      --methods    only these methods of the directional sweep (bench_methods)
+     --match      of those, only the configurations whose "method params"
+                  hold every '+'-joined part of one of the patterns
      --no-floor   no floor rows (two over-resolved maps a view)
      --no-soft    no area-light rows (the soft_bench part)
      --plot-only  redraw the charts from an existing OUT/bench.csv
@@ -335,14 +337,16 @@ static void add_ferko(int res) {
     c->desc.sync_readback = 1;
 }
 
-/* RMSM: a virtual map of vres^2 texels in pages of 128^2, a pool of 24^2 pages */
-static void add_rmsm(int vres) {
+/* RMSM: a virtual map of vres^2 texels in pages of 128^2, a pool of
+   pool^2 pages (24: the default, 39 MB; 48: 156 MB) */
+static void add_rmsm(int vres, int pool) {
     bench_cfg *c = &g_cfg[g_ncfg++];
     memset(c, 0, sizeof *c);
     snprintf(c->method, sizeof c->method, "rmsm");
-    snprintf(c->params, sizeof c->params, "virtual_resolution=%d;page=128;pool=24;pcf=0", vres);
+    snprintf(c->params, sizeof c->params, "virtual_resolution=%d;page=128;pool=%d;pcf=0", vres, pool);
     c->desc.technique = SKGL_RMSM;
     c->desc.resolution = vres;
+    c->desc.rmsm_pool_pages = pool;
     c->desc.sync_readback = 1;   /* this view's pages (see add_ferko) */
 }
 
@@ -467,9 +471,10 @@ static void sweep_ferko(int quick) {
 }
 
 static void sweep_rmsm(int quick) {
-    if (!quick) add_rmsm(8192);
-    add_rmsm(16384);
-    if (!quick) add_rmsm(32768);
+    if (!quick) add_rmsm(8192, 24);
+    add_rmsm(16384, 24);
+    if (!quick) add_rmsm(16384, 48);   /* the pool's size against the default's */
+    if (!quick) add_rmsm(32768, 24);
 }
 
 static void sweep_auto(int quick) {
@@ -512,6 +517,31 @@ static void build_sweep(int quick, const char *methods) {
         if (scene_selected(methods, bench_methods[m].name)) bench_methods[m].sweep(quick);
 }
 
+/* --match: 1 when "method params" of c holds every '+'-joined part of one
+   of the comma-separated patterns ("auto,pssm+lambda=0.9;+blend=0;") */
+static int cfg_matches(const bench_cfg *c, const char *patterns) {
+    char text[sizeof c->method + sizeof c->params + 2], pat[256], *save = NULL, *one;
+    snprintf(text, sizeof text, "%.31s %.159s", c->method, c->params);
+    snprintf(pat, sizeof pat, "%s", patterns);
+    for (one = strtok_r(pat, ",", &save); one; one = strtok_r(NULL, ",", &save)) {
+        char *save2 = NULL, *part;
+        int all = 1;
+        for (part = strtok_r(one, "+", &save2); part; part = strtok_r(NULL, "+", &save2))
+            if (!strstr(text, part)) all = 0;
+        if (all) return 1;
+    }
+    return 0;
+}
+
+/* keeps the configurations --match selects, in order */
+static void filter_sweep(const char *patterns) {
+    int i, n = 0;
+    if (!patterns || !*patterns) return;
+    for (i = 0; i < g_ncfg; i++)
+        if (cfg_matches(&g_cfg[i], patterns)) g_cfg[n++] = g_cfg[i];
+    g_ncfg = n;
+}
+
 /* ---------------------------------------------------- the draw callback */
 typedef struct draw_user {
     const tb_gl_funcs *gl;
@@ -538,13 +568,14 @@ typedef struct bench_opts {
     int quick, repeat, repeat_given, views, images, plot_only, dry_run, views_only, soft_only, no_floor, no_soft;
     bench_paths p;             /* --scenes, --out, --only, --gp */
     const char *methods;
+    const char *match;         /* --match */
 } bench_opts;
 
 static void usage(FILE *f, const char *argv0) {
     fprintf(f,
             "usage: %s [--quick] [--repeat N] [--scenes DIR] [--out DIR] [--only SCENE[,SCENE..]]\n"
             "          [--views N] [--images] [--views-only] [--soft-only] [--bias B] [--gp FILE] [--plot-only]\n"
-            "          [--methods M[,M..]] [--no-floor] [--no-soft] [--dry-run]\n"
+            "          [--methods M[,M..]] [--match P[,P..]] [--no-floor] [--no-soft] [--dry-run]\n"
             "  --quick        small sweep (make demo); also SK_BENCH_QUICK=1\n"
             "  --repeat N     timing passes, the median is reported (default 5)\n"
             "  --scenes DIR   the shared scenes (default ../shared/scenes)\n"
@@ -552,6 +583,8 @@ static void usage(FILE *f, const char *argv0) {
             "  --only LIST    only these scenes (comma separated names)\n"
             "  --methods LIST only these methods of the directional sweep (standard, pssm, psm,\n"
             "                 lispsm, lspsm, ferko, rmsm, auto, fit; default all)\n"
+            "  --match LIST   of those, only the configurations whose \"method params\" hold every\n"
+            "                 '+'-joined part of one pattern: auto,pssm+lambda=0.9;+blend=0;\n"
             "  --no-floor     no floor runs (the over-resolved maps of each view)\n"
             "  --no-soft      no area-light rows (PCSS, PVSM on sponza and the fence)\n"
             "  --views N      first N of the views overview,low,close (default 3)\n"
@@ -637,8 +670,12 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
     }
     else if (strcmp(p->method, "ferko") == 0)
         snprintf(buf, n, "ferko max %d", (s = strstr(p->params, "max_resolution=")) ? atoi(s + 15) : 0);
-    else if (strcmp(p->method, "rmsm") == 0)
+    else if (strcmp(p->method, "rmsm") == 0) {
+        const char *pool = strstr(p->params, "pool=");
         snprintf(buf, n, "rmsm %d", (s = strstr(p->params, "virtual_resolution=")) ? atoi(s + 19) : 0);
+        if (pool && atoi(pool + 5) != 24)
+            snprintf(buf + strlen(buf), n - strlen(buf), " pool %d\xc2\xb2", atoi(pool + 5));
+    }
     else if (strcmp(p->method, "lspsm") == 0)
         snprintf(buf, n, "lspsm %d", res);
     else if (strcmp(p->method, "auto") == 0)
@@ -2239,6 +2276,7 @@ int main(int argc, char **argv) {
         else if (strcmp(a, "--images") == 0) o.images = 1;
         else if (strcmp(a, "--soft-only") == 0) o.soft_only = 1;
         else if (strcmp(a, "--methods") == 0 && more) o.methods = argv[++i];
+        else if (strcmp(a, "--match") == 0 && more) o.match = argv[++i];
         else if (strcmp(a, "--no-floor") == 0) o.no_floor = 1;
         else if (strcmp(a, "--no-soft") == 0) o.no_soft = 1;
         else if (strcmp(a, "--bias") == 0 && more) {
@@ -2280,6 +2318,7 @@ int main(int argc, char **argv) {
         }
     }
     build_sweep(o.quick, o.methods);
+    filter_sweep(o.match);
     for (i = 0; i < g_ncfg; i++) g_cfg[i].desc.bias = g_bias;
     memset(&pg, 0, sizeof pg);
     pg.total = ndefs * o.views * g_ncfg;
