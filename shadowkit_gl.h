@@ -470,6 +470,42 @@
      way, one comparison each). Area lights (skgl_soft_*) use their own
      receiver-plane comparison inside their filters.
 
+   FILTERABLE MAPS
+     .filter = SKGL_FILTER_EVSM gives a directional light exponential
+     variance shadow maps (EVSM: Lauritzen and McCool 2008, "Layered Variance
+     Shadow Maps", Sec. 4). After its depth passes, each map's depth x =
+     2z - 1 is warped by exp(40 x) and -exp(-40 x), the two warps and their
+     squares are box-blurred over 2 .evsm_blur + 1 texels a side (two
+     full-screen passes a map: a row, then a column) into an RGBA32F array,
+     and a receiver is lit by the smaller of the two warps' Chebyshev upper
+     bounds, read with one bilinear tap. Choose it for wide soft edges at a
+     fixed cost: the passes, draws and GL calls are the same at every blur
+     radius (the blur's shader reads 2 (2r + 1) texels a map texel, once a
+     frame, against PCF's (2r)^2 comparisons every screen pixel), and the
+     map needs no comparison bias (no acne, slope-scaled offset only).
+     Its price: light bleeding where casters overlap at different depths
+     (a receiver under a low caster, inside a blur width of a high caster's
+     edge, sees a little light; the positive warp keeps it small: on
+     tests/gl/test_gl_evsm.c's two plates, no inner-shadow pixel above 0.05
+     at a 5-texel blur, 1 of 1204 at 17 texels, where nearly plain variance
+     maps leave 4.5% and 13.9%); .evsm_bleed cuts the bound's tail to take
+     the rest away, moving edges toward the lit side. The blur widens the
+     edges (the shadow-area error against the exact reference rises from
+     PCF's 2.4% to 3.6% on ground-boxes, STANDARD 1024^2), and perspective
+     maps (PSM) lose some of the warp's reach: their depth crowds near 1
+     (7.4% against PCF's 2.3%). Memory: 16 bytes a texel for every layer,
+     plus one layer's worth for the blur (a 2048^2 map: 4 + 64 + 64 MiB;
+     4 cascades of 1024^2: 16 + 64 + 16 MiB). Needs float colour targets
+     with linear filtering: OpenGL 3.3, or OpenGL ES / WebGL2 with
+     GL_EXT_color_buffer_float and GL_OES_texture_float_linear (refused
+     with SK_ERR_GL otherwise). Every technique that renders whole maps
+     takes it: STANDARD, PSSM (layered or not), PSM, LiSPSM, LSPSM, FERKO,
+     AUTO; RMSM is refused (desc.filter). Point and spot lights filter by
+     PCF only. In a forward shader, "#define SK_SHADOW_EVSM 1" before the
+     snippet compiles its EVSM part (a program with it takes units unit ..
+     unit + 2, the moments on unit + 2; a program without it is refused for
+     an EVSM light); the deferred mask has it always.
+
    REFERENCES
      Ferko 2013, "Resolution Estimation for Shadow Mapping".
      Shen, Guennebaud, Yang and Feng 2011, "Predicted Virtual Soft Shadow
@@ -484,6 +520,10 @@
      Dou, Yan, Kerzner, Dai and Wyman 2014, "Adaptive Depth Bias for Shadow
        Maps", JCGT 3(4).
      Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques", GDC.
+     Donnelly and Lauritzen 2006, "Variance Shadow Maps", I3D; Lauritzen
+       2007, "Summed-Area Variance Shadow Maps", GPU Gems 3 ch. 8 (light-
+       bleeding reduction); Lauritzen and McCool 2008, "Layered Variance
+       Shadow Maps", Graphics Interface (the exponential warp, EVSM).
 
    GLSL SNIPPETS
      skgl_glsl_snippet() and skgl_point_glsl_snippet() are GLSL 330 core to
@@ -500,7 +540,10 @@
          sk_normal_bias, sk_plane_bias, sk_pcf_radius, sk_light_dir,
          sk_select_by_map, sk_select_extent, sk_map_extent, sk_rmsm,
          sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
-         sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; the global
+         sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; with
+         SK_SHADOW_EVSM defined, also sk_moments (sampler2DArray, on
+         `unit` + 2), sk_filter, sk_evsm and the functions sk_chebyshev,
+         sk_evsm_visibility; the global
          float sk_receiver_slack (0; yours to set: the world-space
          uncertainty of your positions);
        point: float sk_point_shadow(vec3 world_pos, vec3 world_normal),
@@ -1356,7 +1399,10 @@ SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
    SK_ERR_INVALID_ARG for a light never rendered and, with desc.debug, for
    a program that is not current or lacks the snippet (ERRORS AND MISUSE).
    Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
-   keep it free of samplers of another type in that program. */
+   keep it free of samplers of another type in that program. A program
+   with SK_SHADOW_EVSM also takes unit + 2 (the EVSM moments, bound there
+   for a light with SKGL_FILTER_EVSM; unit at most 29); an EVSM light bound
+   to a program without it is SK_ERR_INVALID_ARG (FILTERABLE MAPS). */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
 /* skgl_shadow_bind for a shader whose world positions are relative to
    `origin` (camera-relative rendering: sk_shadow() then takes
@@ -1804,6 +1850,7 @@ extern "C" {
         6.5 the cache (CACHED MAPS) ............................ >>cache
             RMSM's page cache .................................. >>rmsm_cache
         6.6 analyze and render ................................. >>render
+            the filterable map: EVSM's moments ................. >>evsm
         6.7 bind (forward shaders) ............................. >>bind
         6.8 the deferred mask .................................. >>mask
      7. Point lights: cube maps and VSDCT ...................... >>point
@@ -8106,7 +8153,7 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     return skgl__said(ctx, fn, r, NULL);
 }
 
-/* ---- 6.6 the filterable map: EVSM moments ---------------------------- */
+/* ---- 6.6, the filterable map: EVSM moments ---------------------------- */
 // >>evsm
 /* Exponential variance shadow maps (Lauritzen and McCool 2008, Sec. 4):
    depth x = 2 z - 1 in [-1, 1] warped by exp(c+ x) and -exp(-c- x); with
