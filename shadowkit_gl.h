@@ -5587,7 +5587,7 @@ static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s);
 /* defined in 6.6 (the filterable map) */
 static sk_result skgl__evsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 static void skgl__evsm_free(skgl_context *ctx, skgl_shadow *s);
-static sk_result skgl__evsm_moments(skgl_context *ctx, skgl_shadow *s);
+static void skgl__evsm_moments(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 
 /* ---- 6.1 the light: its desc, create and destroy ---------------------- */
 // >>shadow_life
@@ -8007,6 +8007,8 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         s->stats.texels += (double)s->view_w * s->view_h;
     }
     skgl__model_end(ctx);
+    /* EVSM: the moments, timed with the depth passes */
+    if (r == SK_OK && s->desc.filter == SKGL_FILTER_EVSM) skgl__evsm_moments(ctx, &st, s);
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;
     s->stats.maps = s->maps;
@@ -8148,7 +8150,6 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     skgl__clip_depth(ctx, 0);
     r = skgl__technique_of(s)->render(ctx, s, &rs, light_dir);
     skgl__clip_depth(ctx, 1);
-    if (r == SK_OK && s->desc.filter == SKGL_FILTER_EVSM) r = skgl__evsm_moments(ctx, s);
     if (r == SK_OK) s->rendered = 1;
     return skgl__said(ctx, fn, r, NULL);
 }
@@ -8247,32 +8248,29 @@ static void skgl__evsm_free(skgl_context *ctx, skgl_shadow *s)
 /* After the depth passes: each map's moments, blurred by a box of
    2 evsm_blur + 1 texels a side in two passes (evsm_moments.frag); two
    draws and the same calls per map at every radius. Only the region this
-   frame rendered (FERKO, AUTO: view_w x view_h) is read and written. */
-static sk_result skgl__evsm_moments(skgl_context *ctx, skgl_shadow *s)
+   frame rendered (FERKO, AUTO: view_w x view_h) is read and written.
+   Under the render's tracker st, after its caster passes. */
+static void skgl__evsm_moments(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
     skgl__api *gl = &ctx->gl;
-    skgl__st st;
     float ext[2];
     int i, k;
     ext[0] = (float)s->view_w;
     ext[1] = (float)s->view_h;
-    skgl__st_begin(ctx, &st);
-    skgl__st_screen_pass(ctx, &st);
-    skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-    skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
     for (i = 0; i < s->maps; i++)
         for (k = 0; k < 2; k++) {
-            skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)(k ? s->evsm.fbo[i] : s->evsm.tmp_fbo));
-            skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->evsm_prog[k]);
-            if (k) skgl__st_texture(ctx, &st, 0, SKGL__T_2D, s->evsm.tmp, ctx->point_sampler);
-            else skgl__st_texture(ctx, &st, 0, SKGL__T_2D_ARRAY, s->tex, ctx->point_sampler);
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(k ? s->evsm.fbo[i] : s->evsm.tmp_fbo));
+            skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->evsm_prog[k]);
+            if (k) skgl__st_texture(ctx, st, 0, SKGL__T_2D, s->evsm.tmp, ctx->point_sampler);
+            else skgl__st_texture(ctx, st, 0, SKGL__T_2D_ARRAY, s->tex, ctx->point_sampler);
             skgl__u1i(gl, ctx->evsm_u_radius[k], s->desc.evsm_blur);
             if (ctx->evsm_u_extent[k] >= 0) gl->Uniform2fv(ctx->evsm_u_extent[k], 1, ext);
             if (!k) skgl__u1i(gl, ctx->evsm_u_layer, i);
             gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
         }
-    skgl__st_end(ctx, &st);
-    return skgl__check(ctx, "skgl_shadow_render");
 }
 
 /* ---- 6.7 bind: the snippet's uniforms in a forward shader ------------- */

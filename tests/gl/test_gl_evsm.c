@@ -24,8 +24,8 @@
        a 5- and a 17-texel blur. PCF's share is 0 (asserted).
    (c) COST: a narrow (1-texel) and a wide (16-texel) blur on 3 cascades:
        the same GL calls of every counted kind in skgl_shadow_render
-       (measured, each: 6 draws = 2 a map, 11 programs, 11 framebuffers, 4
-       textures, 2 samplers, 15 uniforms, 4 viewports, 5 enables) and the
+       (measured, each: 6 draws = 2 a map, 10 programs, 10 framebuffers, 4
+       textures, 2 samplers, 15 uniforms, 2 viewports, 5 enables) and the
        same caster passes, while the wide blur's edge really is wider (partly
        lit pixels 387 -> 4330; asserted > 3x).
    Also: every GL object freed (skgl_gl_object_count, after a warm-up that
