@@ -504,7 +504,8 @@
      PCF only. In a forward shader, "#define SK_SHADOW_EVSM 1" before the
      snippet compiles its EVSM part (a program with it takes units unit ..
      unit + 2, the moments on unit + 2; a program without it is refused for
-     an EVSM light); the deferred mask has it always.
+     an EVSM light); the deferred mask has it always. With .cache the
+     moments are blurred again every frame, from the cached depth.
 
    REFERENCES
      Ferko 2013, "Resolution Estimation for Shadow Mapping".

@@ -36,9 +36,9 @@
    CAN FAIL (record, each check broken once on purpose):
    - without the negative warp (sk_evsm_visibility returns the positive
      bound alone) the accuracy bounds fail: standard 7.47%, PSSM 4.54%,
-     LiSPSM 5.45%, PSM 17.5% (false light where the filter region holds
-     the receiver's own surface). The bleeding figures do not move (the
-     positive warp is the one that bounds bleeding behind two casters).
+     LiSPSM 5.45%, PSM 17.5% (all of it false light). The bleeding
+     figures do not move: behind two casters it is the positive warp's
+     bound that is the smaller one.
    - without the second moment (the variance replaced by its minimum) the
      accuracy bounds fail: 23.4%, 18.3%, 28.3%, 35.0% (false shadow).
    - without the positive warp (the negative bound alone) the bleeding
