@@ -510,7 +510,6 @@ static void sweep_evsm(int quick) {
     int r, b;
     if (quick) {
         add_evsm(1, 1024, 2);
-        add_evsm(1, 2048, 2);
         add_evsm(4, 1024, 2);
         return;
     }

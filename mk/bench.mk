@@ -5,7 +5,7 @@
 #                     on 2 cores under llvmpipe before AUTO and the forest): out/bench.csv,
 #                     out/bench-walk.{csv,txt}, out/pareto-<scene>.png (gnuplot,
 #                     bench/pareto.gp) and out/bench-auto.txt (AUTO against the front)
-#   make bench-demo   the quick sweep (41 configurations; about 3 minutes before AUTO and
+#   make bench-demo   the quick sweep (40 configurations; about 3 minutes before AUTO and
 #                     the forest) for `make demo`
 #   make bench-plot   redraw the charts from an existing out/bench.csv (one written
 #                     by this bench: an older CSV without the texel and band columns
