@@ -504,7 +504,9 @@
      PCF only. In a forward shader, "#define SK_SHADOW_EVSM 1" before the
      snippet compiles its EVSM part (a program with it takes units unit ..
      unit + 2, the moments on unit + 2; a program without it is refused for
-     an EVSM light); the deferred mask has it always. With .cache the
+     an EVSM light); the deferred mask of an EVSM light has it (a second
+     mask program, made with the first EVSM light: PCF lights' mask stays
+     as it was). With .cache the
      moments are blurred again every frame, from the cached depth.
 
    REFERENCES
@@ -2183,6 +2185,17 @@ typedef struct skgl__progent {
     unsigned layout;
 } skgl__progent;
 
+/* The directional mask program compiled with EVSM (SK_SHADOW_EVSM), made
+   with the first EVSM light: its own locations and sent values, swapped
+   with the context's mask_* fields for an EVSM light's mask
+   (skgl__mask_swap), so that the PCF mask program stays as it was */
+typedef struct skgl__mask_prog {
+    skgl__uint prog;
+    skgl__progent ent;
+    skgl__int u_has_normals, u_camera, u_contact, u_view_proj, u_depth_map;
+    float contact[4], dmap[4];
+} skgl__mask_prog;
+
 typedef struct skgl__texent {
     skgl__uint tex;                        /* 0: a free entry */
     unsigned tick;
@@ -2272,6 +2285,7 @@ struct skgl_context {
        [1] programs, made with the first EVSM light, and their locations */
     skgl__uint evsm_prog[2];
     skgl__int evsm_u_radius[2], evsm_u_extent[2], evsm_u_layer;
+    skgl__mask_prog mask_evsm;
     /* u_depth_map (the camera's depth convention) of the mask and analysis
        programs, and the values last sent (the default convention's at link) */
     skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
@@ -3288,14 +3302,14 @@ static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *f
     return skgl__link(ctx, sh, 2);
 }
 
-/* the directional mask: the snippet with EVSM compiled in (SK_SHADOW_EVSM;
+/* the directional mask: the snippet (with its EVSM part when evsm: then
    sk_filter picks it per light), then shadow_mask.frag */
-static skgl__uint skgl__mask_program(skgl_context *ctx)
+static skgl__uint skgl__mask_program(skgl_context *ctx, int evsm)
 {
     const char *fs[3];
     char log[900];
     skgl__uint sh[2];
-    fs[0] = "#define SK_SHADOW_EVSM 1\n";
+    fs[0] = evsm ? "#define SK_SHADOW_EVSM 1\n" : "";
     fs[1] = skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL);
     fs[2] = skgl__glsl(SKGL__GLSL_SHADOW_MASK_FRAG);
     sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), NULL);
@@ -3772,12 +3786,12 @@ static void skgl__ring_fence(skgl_context *ctx, skgl__ring *r, int i)
 static void skgl__release(skgl_context *ctx)
 {
     skgl__api *gl = &ctx->gl;
-    skgl__uint *progs[11];
+    skgl__uint *progs[12];
     int i;
     progs[0] = &ctx->depth_prog; progs[1] = &ctx->mask_prog; progs[2] = &ctx->ferko_prog;
     progs[3] = &ctx->reduce_prog; progs[4] = &ctx->final_prog; progs[5] = &ctx->rmsm_prog;
     progs[6] = &ctx->request_prog; progs[7] = &ctx->layered_prog; progs[8] = &ctx->evsm_prog[0];
-    progs[9] = &ctx->evsm_prog[1]; progs[10] = NULL;
+    progs[9] = &ctx->evsm_prog[1]; progs[10] = &ctx->mask_evsm.prog; progs[11] = NULL;
     for (i = 0; progs[i]; i++)
         if (*progs[i]) { gl->DeleteProgram(*progs[i]); ctx->objects--; *progs[i] = 0; }
     if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
@@ -3788,14 +3802,10 @@ static void skgl__release(skgl_context *ctx)
     ctx->cmp_sampler = ctx->point_sampler = 0;
 }
 
-/* the constant uniforms of shadowkit's own programs (sampler units), set
-   once after they are linked, and their locations */
-static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
+/* the mask program's locations and constant uniforms (mask_prog, after a link) */
+static void skgl__mask_locations(skgl_context *ctx, skgl__st *st)
 {
     skgl__api *gl = &ctx->gl;
-    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "skgl_view_proj");
-    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "skgl_model");
-    ctx->model_loc = -1;   /* no caster pass under way */
     skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW, "");
     ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
     ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
@@ -3806,6 +3816,37 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_depth"), 1);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_normals"), 2);
     ctx->mask_ent.has_normals = -1;
+}
+
+/* swaps the context's mask program (mask_* fields) with the EVSM one */
+static void skgl__mask_swap(skgl_context *ctx)
+{
+    skgl__mask_prog *m = &ctx->mask_evsm, t;
+    t.prog = ctx->mask_prog; ctx->mask_prog = m->prog; m->prog = t.prog;
+    t.ent = ctx->mask_ent; ctx->mask_ent = m->ent; m->ent = t.ent;
+    t.u_has_normals = ctx->mask_u_has_normals; ctx->mask_u_has_normals = m->u_has_normals;
+    m->u_has_normals = t.u_has_normals;
+    t.u_camera = ctx->mask_u_camera; ctx->mask_u_camera = m->u_camera; m->u_camera = t.u_camera;
+    t.u_contact = ctx->mask_u_contact; ctx->mask_u_contact = m->u_contact; m->u_contact = t.u_contact;
+    t.u_view_proj = ctx->mask_u_view_proj; ctx->mask_u_view_proj = m->u_view_proj; m->u_view_proj = t.u_view_proj;
+    t.u_depth_map = ctx->mask_u_depth_map; ctx->mask_u_depth_map = m->u_depth_map; m->u_depth_map = t.u_depth_map;
+    memcpy(t.contact, ctx->mask_contact, sizeof t.contact);
+    memcpy(ctx->mask_contact, m->contact, sizeof t.contact);
+    memcpy(m->contact, t.contact, sizeof t.contact);
+    memcpy(t.dmap, ctx->mask_dmap, sizeof t.dmap);
+    memcpy(ctx->mask_dmap, m->dmap, sizeof t.dmap);
+    memcpy(m->dmap, t.dmap, sizeof t.dmap);
+}
+
+/* the constant uniforms of shadowkit's own programs (sampler units), set
+   once after they are linked, and their locations */
+static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
+{
+    skgl__api *gl = &ctx->gl;
+    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "skgl_view_proj");
+    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "skgl_model");
+    ctx->model_loc = -1;   /* no caster pass under way */
+    skgl__mask_locations(ctx, st);
     ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
     ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
     ctx->ferko_u_view_z = gl->GetUniformLocation(ctx->ferko_prog, "u_view_z");
@@ -3994,7 +4035,7 @@ static sk_result skgl__create_programs(skgl_context *ctx)
 {
     ctx->depth_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL);
     if (ctx->depth_prog)
-        ctx->mask_prog = skgl__mask_program(ctx);
+        ctx->mask_prog = skgl__mask_program(ctx, 0);
     if (ctx->mask_prog)
         ctx->ferko_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
                                         skgl__glsl(SKGL__GLSL_FERKO_ANALYZE_FRAG), NULL);
@@ -8168,12 +8209,21 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
    about 4e-6 at c = 40) */
 #define SKGL__EVSM_SPREAD 1e-4f
 
-/* the blur's two programs, made with the first EVSM light and kept with
-   the context; the depth (horizontal) and the moments (vertical) on unit 0 */
+/* the blur's two programs and the EVSM mask, made with the first EVSM light
+   and kept with the context; the blur reads the depth (horizontal) or the
+   moments (vertical) on unit 0 */
 static sk_result skgl__evsm_programs(skgl_context *ctx, skgl__st *st)
 {
     skgl__api *gl = &ctx->gl;
     int k;
+    if (!ctx->mask_evsm.prog) {
+        skgl__uint p = skgl__mask_program(ctx, 1);
+        if (!p) return SK_ERR_GL;
+        skgl__mask_swap(ctx);
+        ctx->mask_prog = p;
+        skgl__mask_locations(ctx, st);
+        skgl__mask_swap(ctx);
+    }
     for (k = 0; k < 2; k++) {
         skgl__uint p = ctx->evsm_prog[k];
         float c[2];
@@ -8500,6 +8550,8 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular near this camera's "
                           "origin", fn);
+    /* an EVSM light: the mask program with EVSM, under the context's mask_* names */
+    if (s->desc.filter == SKGL_FILTER_EVSM) skgl__mask_swap(ctx);
     skgl__st_begin(ctx, &st);
     skgl__timer_begin(ctx, &s->t_mask);
     r = skgl__arg_texture(ctx, &st, fn, depth_tex, "depth_tex");
@@ -8529,6 +8581,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     skgl__timer_end(ctx, &s->t_mask);
     s->stats.mask_ms = s->t_mask.ms;
     skgl__st_end(ctx, &st);
+    if (s->desc.filter == SKGL_FILTER_EVSM) skgl__mask_swap(ctx);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_mask");
 }
 
