@@ -521,6 +521,45 @@
      comparisons, (2r+1)^2 for r texels, as before. Area lights (skgl_soft_*)
      use their own receiver-plane comparison inside their filters.
 
+   FILTERABLE MAPS
+     .filter = SKGL_FILTER_EVSM gives a directional light exponential
+     variance shadow maps (EVSM: Lauritzen and McCool 2008, "Layered Variance
+     Shadow Maps", Sec. 4). After its depth passes, each map's depth x =
+     2z - 1 is warped by exp(40 x) and -exp(-40 x), the two warps and their
+     squares are box-blurred over 2 .evsm_blur + 1 texels a side (two
+     full-screen passes a map: a row, then a column) into an RGBA32F array,
+     and a receiver is lit by the smaller of the two warps' Chebyshev upper
+     bounds, read with one bilinear tap. Choose it for wide soft edges at a
+     fixed cost: the passes, draws and GL calls are the same at every blur
+     radius (the blur's shader reads 2 (2r + 1) texels a map texel, once a
+     frame, against PCF's (2r)^2 comparisons every screen pixel), and the
+     map needs no comparison bias (no acne, slope-scaled offset only).
+     Its price: light bleeding where casters overlap at different depths
+     (a receiver under a low caster, inside a blur width of a high caster's
+     edge, sees a little light; the positive warp keeps it small: on
+     tests/gl/test_gl_evsm.c's two plates, no inner-shadow pixel above 0.05
+     at a 5-texel blur, 1 of 1204 at 17 texels, where nearly plain variance
+     maps leave 4.5% and 13.9%); .evsm_bleed cuts the bound's tail to take
+     the rest away, moving edges toward the lit side. The blur widens the
+     edges (the shadow-area error against the exact reference rises from
+     PCF's 2.4% to 3.6% on ground-boxes, STANDARD 1024^2), and perspective
+     maps (PSM) lose some of the warp's reach: their depth crowds near 1
+     (7.4% against PCF's 2.3%). Memory: 16 bytes a texel for every layer,
+     plus one layer's worth for the blur (a 2048^2 map: 4 + 64 + 64 MiB;
+     4 cascades of 1024^2: 16 + 64 + 16 MiB). Needs float colour targets
+     with linear filtering: OpenGL 3.3, or OpenGL ES / WebGL2 with
+     GL_EXT_color_buffer_float and GL_OES_texture_float_linear (refused
+     with SK_ERR_GL otherwise). Every technique that renders whole maps
+     takes it: STANDARD, PSSM (layered or not), PSM, LiSPSM, LSPSM, FERKO,
+     AUTO; RMSM is refused (desc.filter). Point and spot lights filter by
+     PCF only. In a forward shader, "#define SK_SHADOW_EVSM 1" before the
+     snippet compiles its EVSM part (a program with it takes units unit ..
+     unit + 2, the moments on unit + 2; a program without it is refused for
+     an EVSM light); the deferred mask of an EVSM light has it (a second
+     mask program, made with the first EVSM light: PCF lights' mask stays
+     as it was). With .cache the
+     moments are blurred again every frame, from the cached depth.
+
    REFERENCES
      Ferko 2013, "Resolution Estimation for Shadow Mapping".
      Shen, Guennebaud, Yang and Feng 2011, "Predicted Virtual Soft Shadow
@@ -536,6 +575,10 @@
        Maps", JCGT 3(4).
      Isidoro 2006, "Shadow Mapping: GPU-based Tips and Techniques", GDC.
      Castano 2013, "Shadow Mapping Summary - Part 1" (The Witness blog).
+     Donnelly and Lauritzen 2006, "Variance Shadow Maps", I3D; Lauritzen
+       2007, "Summed-Area Variance Shadow Maps", GPU Gems 3 ch. 8 (light-
+       bleeding reduction); Lauritzen and McCool 2008, "Layered Variance
+       Shadow Maps", Graphics Interface (the exponential warp, EVSM).
 
    GLSL SNIPPETS
      skgl_glsl_snippet() and skgl_point_glsl_snippet() are GLSL 330 core to
@@ -552,12 +595,15 @@
          sk_normal_bias, sk_plane_bias, sk_pcf_radius, sk_filter_world,
          sk_light_dir, sk_select_by_map, sk_select_extent, sk_map_extent,
          sk_rmsm, sk_page_table (sampler2D, on `unit` + 1), sk_rmsm_pages0,
-         sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; the global
+         sk_rmsm_levels, sk_rmsm_min_level, sk_rmsm_page; with
+         SK_SHADOW_EVSM defined, also sk_moments (sampler2DArray, on
+         `unit` + 2), sk_filter, sk_evsm and the functions sk_chebyshev,
+         sk_evsm_visibility; the global
          float sk_receiver_slack (0; yours to set: the world-space
          uncertainty of your positions); with "#define SK_SHADOW_CONTACT
          1" before the snippet (contact shadows in the forward snippet,
          skgl_shadow_contact_depth) also sk_contact_depth (sampler2D, on
-         `unit` + 2), sk_contact, sk_contact_camera[3],
+         `unit` + 3), sk_contact, sk_contact_camera[3],
          sk_contact_depth_map and the functions sk_shadow_map_visibility,
          sk_contact_combine and sk_contact_*;
        point: float sk_point_shadow(vec3 world_pos, vec3 world_normal),
@@ -1072,6 +1118,13 @@ typedef enum skgl_bias {
                                      see acne and measure the other two */
 } skgl_bias;
 
+/* How a directional light's map is filtered (BIAS AND FILTERING, FILTERABLE MAPS) */
+typedef enum skgl_filter {
+    SKGL_FILTER_PCF = 0,          /* percentage-closer filtering of the depth map (.pcf_radius) */
+    SKGL_FILTER_EVSM = 1          /* exponential variance shadow maps: a blurred RGBA32F moments
+                                     map beside the depth map (Lauritzen and McCool 2008) */
+} skgl_filter;
+
 /* Zero-initialised fields take the default in brackets. */
 typedef struct skgl_shadow_desc {
     skgl_technique technique;     /* [SKGL_STANDARD] */
@@ -1195,6 +1248,16 @@ typedef struct skgl_shadow_desc {
     float contact_thickness;      /* a sample is blocked by a surface in front of it by less
                                      than this (world units): thin casters throw no endless
                                      shadow; more than 0 [contact_length] */
+    skgl_filter filter;           /* SKGL_FILTER_EVSM: the filterable map (FILTERABLE MAPS): STANDARD,
+                                     PSSM, PSM, LiSPSM, LSPSM, FERKO, AUTO; not RMSM. Needs float
+                                     targets with linear filtering (OpenGL ES: GL_EXT_color_buffer_float
+                                     and GL_OES_texture_float_linear) [SKGL_FILTER_PCF] */
+    int evsm_blur;                /* EVSM: the blur's radius in texels, a (2r+1)^2 box, 1..64; the same
+                                     passes and GL calls at every radius [2] */
+    int disable_evsm_blur;        /* 1: EVSM without the blur (bilinear taps of the moments only) [0] */
+    float evsm_bleed;             /* EVSM: light-bleeding reduction, the part of the Chebyshev bound
+                                     cut off (Lauritzen 2007): less light where casters overlap,
+                                     edges moved toward the lit side; in [0, 1) [0: none] */
 } skgl_shadow_desc;
 
 typedef struct skgl_camera {
@@ -1423,7 +1486,10 @@ SKGLDEF int skgl_glsl_snippet_prefixed(const char *prefix, char *out, int cap);
    SK_ERR_INVALID_ARG for a light never rendered and, with desc.debug, for
    a program that is not current or lacks the snippet (ERRORS AND MISUSE).
    Unit `unit` + 1 is the RMSM page table's (bound there for SKGL_RMSM):
-   keep it free of samplers of another type in that program. */
+   keep it free of samplers of another type in that program. A program
+   with SK_SHADOW_EVSM also takes unit + 2 (the EVSM moments, bound there
+   for a light with SKGL_FILTER_EVSM; unit at most 29); an EVSM light bound
+   to a program without it is SK_ERR_INVALID_ARG (FILTERABLE MAPS). */
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit);
 /* Contact shadows in a forward shader (desc.contact_length > 0): the
    camera's depth buffer the snippet's march reads, depth_tex (a depth
@@ -1431,7 +1497,7 @@ SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsi
    attachment the forward pass draws into: reading it while drawing is a
    feedback loop), 0: none. The shader declares "#define SK_SHADOW_CONTACT
    1" before the snippet (its uniforms: GLSL SNIPPETS); skgl_shadow_bind
-   then binds depth_tex to unit + 2 (a nearest, non-comparing sampler
+   then binds depth_tex to unit + 3 (a nearest, non-comparing sampler
    there: keep that unit free) and sets the march's uniforms, and
    sk_shadow() min()s the map's visibility with the march's (the mask's
    march, the buffer's normals taken from its depth). Without the define,
@@ -1886,6 +1952,7 @@ extern "C" {
         6.5 the cache (CACHED MAPS) ............................ >>cache
             RMSM's page cache .................................. >>rmsm_cache
         6.6 analyze and render ................................. >>render
+            the filterable map: EVSM's moments ................. >>evsm
         6.7 bind (forward shaders) ............................. >>bind
         6.8 the deferred mask .................................. >>mask
      7. Point lights: cube maps and VSDCT ...................... >>point
@@ -2025,7 +2092,7 @@ typedef unsigned long long skgl__u64;
 #define SKGL__RGBA16F 0x881A
 #define SKGL__NEAREST_MIPMAP_NEAREST 0x2700
 #define SKGL__COLOR_ATTACHMENT2 0x8CE2
-#define SKGL__UNITS 4                      /* texture units the mask pass uses: 0 .. 3 */
+#define SKGL__UNITS 5                      /* texture units the mask pass uses: 0 .. 4 (4: EVSM's moments) */
 #define SKGL__POLYGON_MODE 0x0B40
 #define SKGL__FRONT_AND_BACK 0x0408
 #define SKGL__FILL 0x1B02
@@ -2183,6 +2250,7 @@ typedef enum skgl__glsl_id {
     SKGL__GLSL_PCSS_MASK_FRAG,
     SKGL__GLSL_LAYERED_GEOM,
     SKGL__GLSL_SOFT_DILATE_FRAG,
+    SKGL__GLSL_EVSM_MOMENTS_FRAG,
     SKGL__GLSL_N
 } skgl__glsl_id;
 static const char *skgl__glsl(skgl__glsl_id id);
@@ -2195,7 +2263,7 @@ static const char *skgl__glsl(skgl__glsl_id id);
 #define SKGL__TIMER_RING 3                 /* timer queries per timed pass, read two or three frames late */
 #define SKGL__RING 3                       /* pixel pack buffers per late read-back */
 #define SKGL__FERKO_LEVELS 5               /* analysis + reductions, for G-buffers up to 65536 a side */
-#define SKGL__LOCS 20                      /* the most snippet uniforms (the directional one's) */
+#define SKGL__LOCS 23                      /* the most snippet uniforms (the directional one's, EVSM's included) */
 enum { SKGL__PK_SHADOW = 0, SKGL__PK_POINT = 1 };
 
 /* a program holding a GLSL snippet (skgl__progent_lookup) */
@@ -2221,6 +2289,17 @@ typedef struct skgl__progent {
     int contact_looked, contact_unit, contact_on;
     skgl__int contact_loc[4];
 } skgl__progent;
+
+/* The directional mask program compiled with EVSM (SK_SHADOW_EVSM), made
+   with the first EVSM light: its own locations and sent values, swapped
+   with the context's mask_* fields for an EVSM light's mask
+   (skgl__mask_swap), so that the PCF mask program stays as it was */
+typedef struct skgl__mask_prog {
+    skgl__uint prog;
+    skgl__progent ent;
+    skgl__int u_has_normals, u_camera, u_contact, u_view_proj, u_depth_map;
+    float contact[4], dmap[4];
+} skgl__mask_prog;
 
 typedef struct skgl__texent {
     skgl__uint tex;                        /* 0: a free entry */
@@ -2307,6 +2386,11 @@ struct skgl_context {
     skgl__int mask_u_has_normals, mask_u_camera;
     skgl__int mask_u_contact, mask_u_view_proj;   /* contact shadows: the march, the camera */
     float mask_contact[4];                 /* the march's values mask_prog holds (GL's 0 at first) */
+    /* EVSM (FILTERABLE MAPS): the moments blur's horizontal [0] and vertical
+       [1] programs, made with the first EVSM light, and their locations */
+    skgl__uint evsm_prog[2];
+    skgl__int evsm_u_radius[2], evsm_u_extent[2], evsm_u_layer;
+    skgl__mask_prog mask_evsm;
     /* u_depth_map (the camera's depth convention) of the mask and analysis
        programs, and the values last sent (the default convention's at link) */
     skgl__int mask_u_depth_map, ferko_u_depth_map, rmsm_u_depth_map;
@@ -3323,6 +3407,22 @@ static skgl__uint skgl__program(skgl_context *ctx, const char *vs, const char *f
     return skgl__link(ctx, sh, 2);
 }
 
+/* the directional mask: the snippet (with its EVSM part when evsm: then
+   sk_filter picks it per light), then shadow_mask.frag */
+static skgl__uint skgl__mask_program(skgl_context *ctx, int evsm)
+{
+    const char *fs[3];
+    char log[900];
+    skgl__uint sh[2];
+    fs[0] = evsm ? "#define SK_SHADOW_EVSM 1\n" : "";
+    fs[1] = skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL);
+    fs[2] = skgl__glsl(SKGL__GLSL_SHADOW_MASK_FRAG);
+    sh[0] = skgl__shader(ctx, SKGL__VERTEX_SHADER, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), NULL);
+    sh[1] = sh[0] ? skgl__shader_n(ctx, SKGL__FRAGMENT_SHADER, fs, 3, log, (int)sizeof log) : 0;
+    if (sh[0] && !sh[1]) skgl__set_log(ctx, "shader compile failed", log);
+    return skgl__link(ctx, sh, 2);
+}
+
 static skgl__uint skgl__sampler(skgl_context *ctx, int compare)
 {
     skgl__uint s = 0;
@@ -3362,6 +3462,12 @@ static const char *const skgl__shadow_names[SKGL__L_SHADOW_N] = {
     "sk_rmsm_page", "sk_light_vp", "sk_splits", "sk_layers", "sk_select_by_map", "sk_map_extent",
     "sk_select_extent", "sk_blend_band", "sk_normal_bias", "sk_bias_mode", "sk_plane_bias", "sk_pcf_radius",
     "sk_light_dir", "sk_filter_world"};
+/* EVSM's (SK_SHADOW_EVSM), after the others in a program's locations */
+enum { SKGL__L_MOMENTS = SKGL__L_SHADOW_N, SKGL__L_FILTER, SKGL__L_EVSM, SKGL__L_SHADOW_ALL };
+static const char *const skgl__evsm_names[SKGL__L_SHADOW_ALL - SKGL__L_SHADOW_N] = {"sk_moments", "sk_filter",
+                                                                                     "sk_evsm"};
+/* every directional location fits a program entry (a compile error otherwise) */
+typedef char skgl__locs_fit[SKGL__L_SHADOW_ALL <= SKGL__LOCS ? 1 : -1];
 enum {
     SKGL__P_CUBE, SKGL__P_ATLAS, SKGL__P_INDIRECTION, SKGL__P_POS, SKGL__P_RANGE, SKGL__P_DEPTH, SKGL__P_TEXEL,
     SKGL__P_NORMAL_BIAS, SKGL__P_PCF, SKGL__P_BIAS_MODE, SKGL__P_PLANE_BIAS, SKGL__P_FACES, SKGL__P_SPOT,
@@ -3387,6 +3493,10 @@ static void skgl__progent_lookup(skgl_context *ctx, skgl__progent *e, skgl__uint
         /* "sk_x" is "<prefix>x" in a prefixed snippet (skgl__glsl_prefixed) */
         if (prefix[0]) snprintf(name, sizeof name, "%s%s", prefix, names[i] + 3);
         e->loc[i] = ctx->gl.GetUniformLocation(program, prefix[0] ? name : names[i]);
+    }
+    for (i = 0; kind == SKGL__PK_SHADOW && i < SKGL__L_SHADOW_ALL - SKGL__L_SHADOW_N; i++) {
+        if (prefix[0]) snprintf(name, sizeof name, "%s%s", prefix, skgl__evsm_names[i] + 3);
+        e->loc[SKGL__L_SHADOW_N + i] = ctx->gl.GetUniformLocation(program, prefix[0] ? name : skgl__evsm_names[i]);
     }
     ctx->gl.GetProgramiv(program, SKGL__ACTIVE_UNIFORMS, &e->uniforms);
 }
@@ -3781,11 +3891,12 @@ static void skgl__ring_fence(skgl_context *ctx, skgl__ring *r, int i)
 static void skgl__release(skgl_context *ctx)
 {
     skgl__api *gl = &ctx->gl;
-    skgl__uint *progs[9];
+    skgl__uint *progs[12];
     int i;
     progs[0] = &ctx->depth_prog; progs[1] = &ctx->mask_prog; progs[2] = &ctx->ferko_prog;
     progs[3] = &ctx->reduce_prog; progs[4] = &ctx->final_prog; progs[5] = &ctx->rmsm_prog;
-    progs[6] = &ctx->request_prog; progs[7] = &ctx->layered_prog; progs[8] = NULL;
+    progs[6] = &ctx->request_prog; progs[7] = &ctx->layered_prog; progs[8] = &ctx->evsm_prog[0];
+    progs[9] = &ctx->evsm_prog[1]; progs[10] = &ctx->mask_evsm.prog; progs[11] = NULL;
     for (i = 0; progs[i]; i++)
         if (*progs[i]) { gl->DeleteProgram(*progs[i]); ctx->objects--; *progs[i] = 0; }
     if (ctx->empty_vao) { gl->DeleteVertexArrays(1, &ctx->empty_vao); ctx->objects--; }
@@ -3796,14 +3907,10 @@ static void skgl__release(skgl_context *ctx)
     ctx->cmp_sampler = ctx->point_sampler = 0;
 }
 
-/* the constant uniforms of shadowkit's own programs (sampler units), set
-   once after they are linked, and their locations */
-static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
+/* the mask program's locations and constant uniforms (mask_prog, after a link) */
+static void skgl__mask_locations(skgl_context *ctx, skgl__st *st)
 {
     skgl__api *gl = &ctx->gl;
-    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "skgl_view_proj");
-    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "skgl_model");
-    ctx->model_loc = -1;   /* no caster pass under way */
     skgl__progent_lookup(ctx, &ctx->mask_ent, ctx->mask_prog, SKGL__PK_SHADOW, "");
     ctx->mask_u_has_normals = gl->GetUniformLocation(ctx->mask_prog, "u_has_normals");
     ctx->mask_u_camera = gl->GetUniformLocation(ctx->mask_prog, "u_camera");
@@ -3814,6 +3921,37 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_depth"), 1);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->mask_prog, "u_normals"), 2);
     ctx->mask_ent.has_normals = -1;
+}
+
+/* swaps the context's mask program (mask_* fields) with the EVSM one */
+static void skgl__mask_swap(skgl_context *ctx)
+{
+    skgl__mask_prog *m = &ctx->mask_evsm, t;
+    t.prog = ctx->mask_prog; ctx->mask_prog = m->prog; m->prog = t.prog;
+    t.ent = ctx->mask_ent; ctx->mask_ent = m->ent; m->ent = t.ent;
+    t.u_has_normals = ctx->mask_u_has_normals; ctx->mask_u_has_normals = m->u_has_normals;
+    m->u_has_normals = t.u_has_normals;
+    t.u_camera = ctx->mask_u_camera; ctx->mask_u_camera = m->u_camera; m->u_camera = t.u_camera;
+    t.u_contact = ctx->mask_u_contact; ctx->mask_u_contact = m->u_contact; m->u_contact = t.u_contact;
+    t.u_view_proj = ctx->mask_u_view_proj; ctx->mask_u_view_proj = m->u_view_proj; m->u_view_proj = t.u_view_proj;
+    t.u_depth_map = ctx->mask_u_depth_map; ctx->mask_u_depth_map = m->u_depth_map; m->u_depth_map = t.u_depth_map;
+    memcpy(t.contact, ctx->mask_contact, sizeof t.contact);
+    memcpy(ctx->mask_contact, m->contact, sizeof t.contact);
+    memcpy(m->contact, t.contact, sizeof t.contact);
+    memcpy(t.dmap, ctx->mask_dmap, sizeof t.dmap);
+    memcpy(ctx->mask_dmap, m->dmap, sizeof t.dmap);
+    memcpy(m->dmap, t.dmap, sizeof t.dmap);
+}
+
+/* the constant uniforms of shadowkit's own programs (sampler units), set
+   once after they are linked, and their locations */
+static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
+{
+    skgl__api *gl = &ctx->gl;
+    ctx->depth_u_view_proj = gl->GetUniformLocation(ctx->depth_prog, "skgl_view_proj");
+    ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "skgl_model");
+    ctx->model_loc = -1;   /* no caster pass under way */
+    skgl__mask_locations(ctx, st);
     ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
     ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
     ctx->ferko_u_view_z = gl->GetUniformLocation(ctx->ferko_prog, "u_view_z");
@@ -4002,8 +4140,7 @@ static sk_result skgl__create_programs(skgl_context *ctx)
 {
     ctx->depth_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL);
     if (ctx->depth_prog)
-        ctx->mask_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
-                                       skgl__glsl(SKGL__GLSL_SHADOW_SAMPLE_GLSL), skgl__glsl(SKGL__GLSL_SHADOW_MASK_FRAG));
+        ctx->mask_prog = skgl__mask_program(ctx, 0);
     if (ctx->mask_prog)
         ctx->ferko_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
                                         skgl__glsl(SKGL__GLSL_FERKO_ANALYZE_FRAG), NULL);
@@ -5517,6 +5654,13 @@ typedef struct skgl__cache {
     skgl__uint verify_tex, verify_fbo;
 } skgl__cache;
 
+/* desc.filter = SKGL_FILTER_EVSM (FILTERABLE MAPS): the moments array (a
+   bilinear RGBA32F layer per map), the horizontal blur's target, and the
+   framebuffers of both */
+typedef struct skgl__evsm {
+    skgl__uint tex, tmp, fbo[SKGL_MAX_CASCADES], tmp_fbo;
+} skgl__evsm;
+
 struct skgl_shadow {
     skgl_shadow_desc desc;
     unsigned id;                   /* per context, never reused: whose constants a program holds */
@@ -5545,6 +5689,7 @@ struct skgl_shadow {
     float fade_start;              /* the view depth where the distance fade starts (+INF: none) */
     skgl__rmsm rmsm;               /* SKGL_RMSM only */
     skgl__cache cache;             /* desc.cache only */
+    skgl__evsm evsm;               /* desc.filter = SKGL_FILTER_EVSM only */
     skgl_shadow_frame_stats stats;
     /* skgl_shadow_contact_depth: the camera depth buffer of the forward
        contact march (0: none), its camera and depth convention */
@@ -5593,6 +5738,10 @@ static sk_result skgl__cache_create(skgl_context *ctx, skgl__st *st, skgl_shadow
 static sk_result skgl__verify_texture(skgl_context *ctx, skgl__st *st, skgl__uint *tex, skgl__uint *fbo, int w, int h,
                                       const char *fn);
 static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s);
+/* defined in 6.6 (the filterable map) */
+static sk_result skgl__evsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
+static void skgl__evsm_free(skgl_context *ctx, skgl_shadow *s);
+static void skgl__evsm_moments(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 
 /* ---- 6.1 the light: its desc, create and destroy ---------------------- */
 // >>shadow_life
@@ -5675,6 +5824,8 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
                          r.disable_plane_bias, &r.pcf_radius, r.disable_pcf_kernel);
     if (r.disable_pcf_kernel) r.filter_world = 0.0f;
     if (r.disable_psm_slide) r.psm_slide = 0.0f;
+    if (r.evsm_blur == 0) r.evsm_blur = 2;
+    if (r.disable_evsm_blur) r.evsm_blur = 0;
     return r;
 }
 
@@ -5729,6 +5880,29 @@ static sk_result skgl__splits(const skgl_shadow_desc *d, int layers, float zn, f
         out[i] = v > hi ? hi : v;
         if (out[i] < lo) out[i] = lo;
     }
+    return SK_OK;
+}
+
+/* desc.filter and the EVSM fields: the moments are RGBA32F targets, read
+   through bilinear filtering */
+static sk_result skgl__evsm_rules(skgl_context *ctx, const char *fn, const skgl_shadow_desc *d)
+{
+    int evsm = d->filter == SKGL_FILTER_EVSM;
+    SKGL__RULE(d->filter == SKGL_FILTER_PCF || evsm, fn, "filter", d->filter,
+               "SKGL_FILTER_PCF (0) or SKGL_FILTER_EVSM (1)");
+    SKGL__RULE(!evsm || d->technique != SKGL_RMSM, fn, "filter", d->filter,
+               "SKGL_FILTER_EVSM blurs whole maps: not with SKGL_RMSM (a pool of pages of many levels)");
+    SKGL__RULE(d->disable_evsm_blur == 0 || d->disable_evsm_blur == 1, fn, "disable_evsm_blur", d->disable_evsm_blur,
+               "0 or 1");
+    SKGL__RULE(d->disable_evsm_blur || (d->evsm_blur >= 1 && d->evsm_blur <= 64), fn, "evsm_blur", d->evsm_blur,
+               "in 1..64 texels (0: the default 2; disable_evsm_blur for none)");
+    SKGL__RULE(d->evsm_bleed >= 0.0f && d->evsm_bleed < 1.0f, fn, "evsm_bleed", d->evsm_bleed, "in [0, 1)");
+    SKGL__NEED(!evsm || ctx->caps.float_render, fn, "SKGL_FILTER_EVSM's moments", SKGL__FLOAT_RENDER);
+    /* OpenGL ES 3.0 filters 32-bit float textures only with this extension
+       (an unfilterable texture under GL_LINEAR is incomplete: it reads 0) */
+    SKGL__NEED(!evsm || ctx->caps.api == SKGL_API_GL33 || skgl__has_extension(ctx, "GL_OES_texture_float_linear"), fn,
+               "SKGL_FILTER_EVSM's moments", "linear filtering of 32-bit float textures (GL_OES_texture_float_linear "
+               "on OpenGL ES and WebGL2)");
     return SK_OK;
 }
 
@@ -5810,6 +5984,7 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                "0, or 1 with desc.cache");
     SKGL__NEED(!d->verify_cache || ctx->caps.api == SKGL_API_GL33, fn, "desc.verify_cache",
                "depth read-backs (glReadPixels of GL_DEPTH_COMPONENT: desktop OpenGL)");
+    SKGL__TRY(skgl__evsm_rules(ctx, fn, d));
     if (!rmsm) return SK_OK;
 #ifdef SKGL_NO_RMSM
     SKGL__RULE(0, fn, "technique", d->technique, "RMSM is compiled out (SKGL_NO_RMSM)");
@@ -5876,6 +6051,7 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     }
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
     if (r == SK_OK && d.cache && d.technique != SKGL_RMSM) r = skgl__cache_create(ctx, &st, s);
+    if (r == SK_OK && d.filter == SKGL_FILTER_EVSM) r = skgl__evsm_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
     r = skgl__create_close(ctx, fn, r, "the light's depth texture and framebuffers (out of GPU "
                            "memory, or desc.resolution above GL_MAX_TEXTURE_SIZE?)");
@@ -5896,6 +6072,7 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
     skgl__delete_framebuffer(ctx, &s->fbo_layered);
     skgl__cache_free(ctx, s);
+    skgl__evsm_free(ctx, s);
     if (skgl__technique_of(s)->destroy) skgl__technique_of(s)->destroy(ctx, s);
     skgl__timer_free(ctx, &s->t_render);
     skgl__timer_free(ctx, &s->t_mask);
@@ -8119,6 +8296,8 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         s->stats.texels += (double)s->view_w * s->view_h;
     }
     skgl__model_end(ctx);
+    /* EVSM: the moments, timed with the depth passes */
+    if (r == SK_OK && s->desc.filter == SKGL_FILTER_EVSM) skgl__evsm_moments(ctx, &st, s);
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;
     s->stats.maps = s->maps;
@@ -8265,6 +8444,134 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
     return skgl__said(ctx, fn, r, NULL);
 }
 
+/* ---- 6.6, the filterable map: EVSM moments ---------------------------- */
+// >>evsm
+/* Exponential variance shadow maps (Lauritzen and McCool 2008, Sec. 4):
+   depth x = 2 z - 1 in [-1, 1] warped by exp(c+ x) and -exp(-c- x); with
+   c+ = c- = 40 the squares stay below 32-bit float's largest (e^80 ~ 5.5e34;
+   Lauritzen's bound is 42) and a blur of 129 of them too. */
+#define SKGL__EVSM_POS 40.0f
+#define SKGL__EVSM_NEG 40.0f
+/* the smallest variance, as a spread of window depth: above the rounding of
+   E[w^2] - E[w]^2 in 32-bit floats (a relative 1.2e-7 of w^2, a spread of
+   about 4e-6 at c = 40) */
+#define SKGL__EVSM_SPREAD 1e-4f
+
+/* the blur's two programs and the EVSM mask, made with the first EVSM light
+   and kept with the context; the blur reads the depth (horizontal) or the
+   moments (vertical) on unit 0 */
+static sk_result skgl__evsm_programs(skgl_context *ctx, skgl__st *st)
+{
+    skgl__api *gl = &ctx->gl;
+    int k;
+    if (!ctx->mask_evsm.prog) {
+        skgl__uint p = skgl__mask_program(ctx, 1);
+        if (!p) return SK_ERR_GL;
+        skgl__mask_swap(ctx);
+        ctx->mask_prog = p;
+        skgl__mask_locations(ctx, st);
+        skgl__mask_swap(ctx);
+    }
+    for (k = 0; k < 2; k++) {
+        skgl__uint p = ctx->evsm_prog[k];
+        float c[2];
+        if (p) continue;
+        p = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), k ? "#define SK_EVSM_VERTICAL 1\n" : "",
+                          skgl__glsl(SKGL__GLSL_EVSM_MOMENTS_FRAG));
+        if (!p) return SK_ERR_GL;
+        ctx->evsm_prog[k] = p;
+        ctx->evsm_u_radius[k] = gl->GetUniformLocation(p, "u_radius");
+        ctx->evsm_u_extent[k] = gl->GetUniformLocation(p, "u_extent");
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        skgl__u1i(gl, gl->GetUniformLocation(p, k ? "u_src" : "u_depth"), 0);
+        if (k) continue;
+        ctx->evsm_u_layer = gl->GetUniformLocation(p, "u_layer");
+        c[0] = SKGL__EVSM_POS;
+        c[1] = SKGL__EVSM_NEG;
+        gl->Uniform2fv(gl->GetUniformLocation(p, "u_exponents"), 1, c);
+    }
+    return SK_OK;
+}
+
+/* a framebuffer drawing into one layer of a colour array texture, checked
+   complete (0: not) */
+static skgl__uint skgl__layer_framebuffer(skgl_context *ctx, skgl__st *st, skgl__uint tex, int layer)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__uint fb = 0;
+    gl->GenFramebuffers(1, &fb);
+    ctx->objects++;
+    skgl__st_framebuffer(ctx, st, fb);
+    gl->FramebufferTextureLayer(SKGL__DRAW_FRAMEBUFFER, SKGL__COLOR_ATTACHMENT0, tex, 0, layer);
+    if (gl->CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE) return fb;
+    skgl__delete_framebuffer(ctx, &fb);
+    /* the tracked binding named the framebuffer just deleted: GL fell back to 0 */
+    st->cur[SKGL__S_DRAW_FB][0] = 0;
+    st->cur[SKGL__S_READ_FB][0] = 0;
+    return 0;
+}
+
+/* the light's moments array (one layer per map, as its depth texture) and
+   the horizontal pass's target; 16 bytes a texel each */
+static sk_result skgl__evsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    skgl__api *gl = &ctx->gl;
+    int i, n = s->tex_size;
+    SKGL__TRY(skgl__evsm_programs(ctx, st));
+    gl->GenTextures(1, &s->evsm.tex);
+    ctx->objects++;
+    skgl__st_unpack(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->evsm.tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__RGBA32F, n, n, s->layers, 0, SKGL__RGBA, SKGL__FLOAT, NULL);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
+    gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
+    for (i = 0; i < s->layers; i++)
+        if (!(s->evsm.fbo[i] = skgl__layer_framebuffer(ctx, st, s->evsm.tex, i))) return SK_ERR_GL;
+    s->evsm.tmp = skgl__color_texture(ctx, st, SKGL__RGBA32F, n, n, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->evsm.tmp_fbo = skgl__framebuffer(ctx, st, s->evsm.tmp, 1, 0, 0);
+    return s->evsm.tmp_fbo ? SK_OK : SK_ERR_GL;
+}
+
+static void skgl__evsm_free(skgl_context *ctx, skgl_shadow *s)
+{
+    int i;
+    skgl__delete_texture(ctx, &s->evsm.tex);
+    skgl__delete_texture(ctx, &s->evsm.tmp);
+    for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->evsm.fbo[i]);
+    skgl__delete_framebuffer(ctx, &s->evsm.tmp_fbo);
+}
+
+/* After the depth passes: each map's moments, blurred by a box of
+   2 evsm_blur + 1 texels a side in two passes (evsm_moments.frag); two
+   draws and the same calls per map at every radius. Only the region this
+   frame rendered (FERKO, AUTO: view_w x view_h) is read and written.
+   Under the render's tracker st, after its caster passes. */
+static void skgl__evsm_moments(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    skgl__api *gl = &ctx->gl;
+    float ext[2];
+    int i, k;
+    ext[0] = (float)s->view_w;
+    ext[1] = (float)s->view_h;
+    skgl__st_screen_pass(ctx, st);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
+    for (i = 0; i < s->maps; i++)
+        for (k = 0; k < 2; k++) {
+            skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(k ? s->evsm.fbo[i] : s->evsm.tmp_fbo));
+            skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->evsm_prog[k]);
+            if (k) skgl__st_texture(ctx, st, 0, SKGL__T_2D, s->evsm.tmp, ctx->point_sampler);
+            else skgl__st_texture(ctx, st, 0, SKGL__T_2D_ARRAY, s->tex, ctx->point_sampler);
+            skgl__u1i(gl, ctx->evsm_u_radius[k], s->desc.evsm_blur);
+            if (ctx->evsm_u_extent[k] >= 0) gl->Uniform2fv(ctx->evsm_u_extent[k], 1, ext);
+            if (!k) skgl__u1i(gl, ctx->evsm_u_layer, i);
+            gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
+        }
+}
+
 /* ---- 6.7 bind: the snippet's uniforms in a forward shader ------------- */
 // >>bind
 /* The directional snippet's uniforms on the current program (entry e):
@@ -8296,6 +8603,16 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
         skgl__u1f(gl, L[SKGL__L_PLANE_BIAS], s->desc.plane_bias > 0.0f ? s->desc.plane_bias : 0.0f);
         skgl__u1i(gl, L[SKGL__L_PCF], s->desc.pcf_radius);
         skgl__u1f(gl, L[SKGL__L_FILTER_WORLD], s->desc.filter_world);
+        if (L[SKGL__L_MOMENTS] >= 0) {   /* a program with SK_SHADOW_EVSM (the mask's always) */
+            float k[4];
+            k[0] = SKGL__EVSM_POS;
+            k[1] = SKGL__EVSM_NEG;
+            k[2] = s->desc.evsm_bleed;
+            k[3] = SKGL__EVSM_SPREAD;
+            skgl__u1i(gl, L[SKGL__L_MOMENTS], table_unit + 1);
+            skgl__u1i(gl, L[SKGL__L_FILTER], s->desc.filter == SKGL_FILTER_EVSM);
+            if (L[SKGL__L_EVSM] >= 0) gl->Uniform4fv(L[SKGL__L_EVSM], 1, k);
+        }
         e->owner = s->id;
         e->unit = unit;
         e->sentinel_i = s->desc.rmsm_page_size;
@@ -8332,6 +8649,27 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
         gl->Uniform1fv(L[SKGL__L_SPLITS], s->maps + 2, sp);
     }
     if (L[SKGL__L_LIGHT_DIR] >= 0) gl->Uniform3fv(L[SKGL__L_LIGHT_DIR], 1, &s->light_dir.x);
+}
+
+/* an EVSM light needs the snippet's EVSM part (SK_SHADOW_EVSM), and a
+   program that has it takes three units from `unit` (sk_moments on
+   unit + 2, of a sampler type of its own), whichever light it binds */
+static sk_result skgl__evsm_program_fits(skgl_context *ctx, const char *fn, const skgl_shadow *s,
+                                         const skgl__progent *e, skgl__uint program, int unit, const char *prefix)
+{
+    const char *p = prefix && prefix[0] ? prefix : "sk_";
+    char up[SKGL_PREFIX_MAX + 1];
+    int i;
+    for (i = 0; p[i] && i < SKGL_PREFIX_MAX; i++) up[i] = (char)toupper((unsigned char)p[i]);
+    up[i] = 0;
+    if (s->desc.filter == SKGL_FILTER_EVSM && e->loc[SKGL__L_MOMENTS] < 0)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG,
+                          "%s: s->desc.filter = SKGL_FILTER_EVSM, but program = %u has no active uniform %smoments: "
+                          "put \"#define %sSHADOW_EVSM 1\" before the snippet", fn, program, p, up);
+    if (e->loc[SKGL__L_MOMENTS] >= 0 && unit > 29)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: a program with %sSHADOW_EVSM takes units unit .. "
+                          "unit + 2: at most 29", fn, unit, up);
+    return SK_OK;
 }
 
 SKGLDEF sk_result skgl_shadow_bind(skgl_context *ctx, const skgl_shadow *s, unsigned program, int unit)
@@ -8446,6 +8784,7 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
     SKGL__TRY(skgl__arg_program(ctx, fn, program));
     e = skgl__user_program(ctx, program, SKGL__PK_SHADOW, prefix ? prefix : "");
     SKGL__TRY(skgl__snippet_present(ctx, fn, e, SKGL__L_MAP, program, prefix, "sk_shadow_map"));
+    SKGL__TRY(skgl__evsm_program_fits(ctx, fn, s, e, program, unit, prefix));
     gl = &ctx->gl;
     active = skgl__bind_active(ctx);
     last = SKGL__TEXTURE0 + unit;
@@ -8458,14 +8797,21 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
         gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
         gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
     }
-    /* the forward contact march (SK_SHADOW_CONTACT) on unit + 2: in a
+    /* the forward contact march (SK_SHADOW_CONTACT) on unit + 3 (unit + 2 is
+       EVSM's): in a
        steady frame only a light with contact shadows costs a call */
-    if (unit + 2 > 31 && s->desc.contact_length > 0.0f && s->contact_tex)
-        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: contact shadows take unit + 2, at most 29", fn,
+    if (unit + 3 > 31 && s->desc.contact_length > 0.0f && s->contact_tex)
+        return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: unit = %d: contact shadows take unit + 3, at most 28", fn,
                           unit);
-    if (unit + 2 <= 31) {
-        skgl__int cu = skgl__forward_contact(ctx, s, e, program, unit + 2, origin ? origin : skgl__zero3);
+    if (unit + 3 <= 31) {
+        skgl__int cu = skgl__forward_contact(ctx, s, e, program, unit + 3, origin ? origin : skgl__zero3);
         if (cu >= 0) last = cu;
+    }
+    if (s->desc.filter == SKGL_FILTER_EVSM) {   /* the moments, bilinear through the texture's own filter */
+        last = SKGL__TEXTURE0 + unit + 2;
+        gl->ActiveTexture((skgl__enum)last);
+        gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->evsm.tex);
+        gl->BindSampler((skgl__uint)unit + 2, 0);
     }
     if (active >= 0 && active != last) gl->ActiveTexture((skgl__enum)active);
     skgl__shadow_uniforms(ctx, s, e, unit, unit + 1, origin ? origin : skgl__zero3);
@@ -8533,18 +8879,22 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     if (!sk_mat4_inverse(sk_mat4_mul(rc.proj, rc.view), &inv))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj * cam->view is singular near this camera's "
                           "origin", fn);
+    /* an EVSM light: the mask program with EVSM, under the context's mask_* names */
+    if (s->desc.filter == SKGL_FILTER_EVSM) skgl__mask_swap(ctx);
     skgl__st_begin(ctx, &st);
     skgl__timer_begin(ctx, &s->t_mask);
     r = skgl__arg_texture(ctx, &st, fn, depth_tex, "depth_tex");
     if (r == SK_OK) r = skgl__arg_texture(ctx, &st, fn, normal_tex, "normal_tex");
     if (r == SK_OK) r = skgl__mask_begin(ctx, &st, mask_tex, &w, &h, "skgl_shadow_mask: mask_tex");
     if (r == SK_OK) {
-        skgl__unitbind b[4];
+        skgl__unitbind b[5];
         int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
         skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
         if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm.table, 0);
         else if (ctx->caps.webgl) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, 0, 0);   /* see skgl__mask_gbuffer */
         skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
+        /* EVSM: the moments on unit 4, bilinear through the texture's own filter */
+        if (s->desc.filter == SKGL_FILTER_EVSM) skgl__bind_unit(&b[n++], 4, SKGL__T_2D_ARRAY, s->evsm.tex, 0);
         skgl__st_units(ctx, &st, b, n);
         skgl__st_set1(ctx, &st, SKGL__S_PROGRAM, (skgl__int)ctx->mask_prog);
         skgl__depth_map_send(&ctx->gl, ctx->mask_u_depth_map, ctx->mask_dmap, ci.dmap);
@@ -8560,6 +8910,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
     skgl__timer_end(ctx, &s->t_mask);
     s->stats.mask_ms = s->t_mask.ms;
     skgl__st_end(ctx, &st);
+    if (s->desc.filter == SKGL_FILTER_EVSM) skgl__mask_swap(ctx);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_mask");
 }
 
@@ -11916,6 +12267,42 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    return sum / (4.0 * R.x * R.y);\n"
     "}\n"
     "\n"
+    "#ifdef SK_SHADOW_EVSM\n"
+    "/* EVSM, the filterable map (desc.filter = SKGL_FILTER_EVSM; compiled in\n"
+    "   when SK_SHADOW_EVSM is defined before the snippet). Each layer has a\n"
+    "   blurred moments map (Lauritzen and McCool 2008, \"Layered Variance Shadow\n"
+    "   Maps\", Sec. 4): E[exp(c+ x)], E[exp(c+ x)^2], E[-exp(-c- x)],\n"
+    "   E[exp(-c- x)^2] over the filter, x = 2 z - 1 the map's window depth. Each\n"
+    "   warp's Chebyshev upper bound (Donnelly and Lauritzen 2006, \"Variance\n"
+    "   Shadow Maps\", Eq. 5) bounds the lit fraction; the smaller of the two is\n"
+    "   taken, then the light-bleeding reduction cuts the bound's tail below\n"
+    "   sk_evsm.z and rescales the rest (Lauritzen 2007, GPU Gems 3 ch. 8). */\n"
+    "uniform highp sampler2DArray sk_moments;   /* RGBA32F, bilinear, on `unit` + 2 */\n"
+    "uniform int sk_filter;             /* 1: EVSM, 0: the PCF of sk_shadow_layer */\n"
+    "uniform vec4 sk_evsm;              /* x c+, y c-, z light-bleeding reduction, w the smallest variance,\n"
+    "                                      in window depth (each warp's scaled by its slope) */\n"
+    "\n"
+    "float sk_chebyshev(vec2 m, float t, float min_var, float bleed)\n"
+    "{\n"
+    "    if (t <= m.x) return 1.0;\n"
+    "    float var = max(m.y - m.x * m.x, min_var);\n"
+    "    float d = t - m.x;\n"
+    "    float p = var / (var + d * d);\n"
+    "    return clamp((p - bleed) / (1.0 - bleed), 0.0, 1.0);\n"
+    "}\n"
+    "\n"
+    "/* uv: the lookup in the layer; z: the receiver's window depth */\n"
+    "float sk_evsm_visibility(vec2 uv, float z, float layer)\n"
+    "{\n"
+    "    vec4 m = textureLod(sk_moments, vec3(uv, layer), 0.0);\n"
+    "    float x = 2.0 * z - 1.0;\n"
+    "    vec2 w = vec2(exp(sk_evsm.x * x), -exp(-sk_evsm.y * x));\n"
+    "    /* the variance a depth spread of sk_evsm.w makes in each warp: its slope times the spread */\n"
+    "    vec2 s = 2.0 * sk_evsm.w * sk_evsm.xy * abs(w);\n"
+    "    return min(sk_chebyshev(m.xy, w.x, s.x * s.x, sk_evsm.z), sk_chebyshev(m.zw, w.y, s.y * s.y, sk_evsm.z));\n"
+    "}\n"
+    "#endif\n"
+    "\n"
     "float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int layer)\n"
     "{\n"
     "    float nb = sk_bias_mode == 1 || sk_normal_bias > 0.0 ? sk_normal_bias : 0.0;\n"
@@ -11927,6 +12314,9 @@ static const char skgl__src_shadow_sample_glsl[] =
     "    if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, sk_map_extent))) return 1.0;\n"
     "    if (uvz.z > 1.0) return 1.0;\n"
     "    float z = max(uvz.z, 0.0);\n"
+    "#ifdef SK_SHADOW_EVSM\n"
+    "    if (sk_filter == 1) return sk_evsm_visibility(uvz.xy, z, float(layer));\n"
+    "#endif\n"
     "    vec2 size = vec2(textureSize(sk_shadow_map, 0).xy);\n"
     "    vec2 R = sk_filter_texels(sk_light_vp[layer], c, size);\n"
     "    if (sk_bias_mode == 0) {\n"
@@ -12028,7 +12418,7 @@ static const char skgl__src_shadow_sample_glsl[] =
     "/* Contact shadows in a forward shader (skgl_shadow_desc.contact_length):\n"
     "   \"#define SK_SHADOW_CONTACT 1\" before the snippet declares the camera's\n"
     "   depth buffer and the march's uniforms; skgl_shadow_bind binds the buffer\n"
-    "   named by skgl_shadow_contact_depth on unit + 2 and sets them, when the\n"
+    "   named by skgl_shadow_contact_depth on unit + 3 and sets them, when the\n"
     "   light has contact_length > 0 (without the define, or with length 0, the\n"
     "   snippet is as it was: no sampler, no call). The march is the mask's\n"
     "   (shadow_mask.frag, McGuire and Mara 2014's depth-buffer ray casting with\n"
@@ -13528,6 +13918,53 @@ static const char skgl__src_soft_dilate_frag[] =
     "    o_cons_copy = o_cons;\n"
     "}\n"
     ;
+static const char skgl__src_evsm_moments_frag[] =
+    "/* EVSM moments (exponential variance shadow maps: Lauritzen and McCool\n"
+    "   2008, \"Layered Variance Shadow Maps\", Sec. 4, the exponential warp with\n"
+    "   a positive and a negative exponent). One separable box blur in two\n"
+    "   passes over a layer of the light's map: the horizontal pass reads the\n"
+    "   depth layer, warps each texel's depth x = 2 z - 1 into\n"
+    "   (exp(c+ x), exp(c+ x)^2, -exp(-c- x), exp(-c- x)^2) and averages 2r+1 of\n"
+    "   them along a row; the vertical pass (SK_EVSM_VERTICAL) averages 2r+1 of\n"
+    "   those along a column into the layer of the moments array. Reads clamp\n"
+    "   to the texels this frame rendered (u_extent). Two draws per layer\n"
+    "   whatever the radius. */\n"
+    "in vec2 v_uv;\n"
+    "out vec4 o_moments;\n"
+    "uniform int u_radius;\n"
+    "uniform vec2 u_extent;              /* the rendered region, in texels */\n"
+    "#ifdef SK_EVSM_VERTICAL\n"
+    "uniform highp sampler2D u_src;      /* the horizontal pass's moments */\n"
+    "#else\n"
+    "uniform highp sampler2DArray u_depth;   /* the light's depth maps (no comparison) */\n"
+    "uniform int u_layer;\n"
+    "uniform vec2 u_exponents;           /* c+, c- */\n"
+    "#endif\n"
+    "\n"
+    "vec4 moments_at(ivec2 t)\n"
+    "{\n"
+    "#ifdef SK_EVSM_VERTICAL\n"
+    "    return texelFetch(u_src, t, 0);\n"
+    "#else\n"
+    "    float x = 2.0 * texelFetch(u_depth, ivec3(t, u_layer), 0).r - 1.0;\n"
+    "    float p = exp(u_exponents.x * x), n = -exp(-u_exponents.y * x);\n"
+    "    return vec4(p, p * p, n, n * n);\n"
+    "#endif\n"
+    "}\n"
+    "\n"
+    "void main()\n"
+    "{\n"
+    "    ivec2 px = ivec2(gl_FragCoord.xy), last = ivec2(u_extent) - 1;\n"
+    "#ifdef SK_EVSM_VERTICAL\n"
+    "    ivec2 step = ivec2(0, 1);\n"
+    "#else\n"
+    "    ivec2 step = ivec2(1, 0);\n"
+    "#endif\n"
+    "    vec4 sum = vec4(0.0);\n"
+    "    for (int k = -u_radius; k <= u_radius; k++) sum += moments_at(clamp(px + k * step, ivec2(0), last));\n"
+    "    o_moments = sum / float(2 * u_radius + 1);\n"
+    "}\n"
+    ;
 /* SKGL_EMBEDDED_SHADERS_END */
 #if defined(__GNUC__) || defined(__clang__)
 #pragma GCC diagnostic pop
@@ -13576,6 +14013,7 @@ static const char *skgl__glsl(skgl__glsl_id id)
         SKGL__SOFT_SRC(skgl__src_pcss_mask_frag),
         skgl__src_layered_geom,
         SKGL__SOFT_SRC(skgl__src_soft_dilate_frag),
+        skgl__src_evsm_moments_frag,
     };
     return (int)id >= 0 && id < SKGL__GLSL_N ? src[id] : "";
 }

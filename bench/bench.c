@@ -36,6 +36,8 @@
                   lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
                   auto (SKGL_AUTO: one focused map or up to 4 cascades
                   sharing resolution^2 texels, chosen per frame) |
+                  evsm (desc.filter = SKGL_FILTER_EVSM: one map, or 4 PSSM
+                  cascades; blur = desc.evsm_blur) |
                   pssm-fit | standard-fit (desc.fit_to_depth: the splits
                   over the analysed depth range, SDSM; params as the
                   practical pssm / standard row they are compared with) |
@@ -382,6 +384,20 @@ static void add_standard_fit(int res) {
     g_cfg[g_ncfg - 1].desc.fit_to_depth = 1;
 }
 
+/* EVSM (skgl_shadow_desc.filter): one map or PSSM cascades, the blur's
+   radius in texels */
+static void add_evsm(int cascades, int res, int blur) {
+    bench_cfg *c = &g_cfg[g_ncfg++];
+    memset(c, 0, sizeof *c);
+    snprintf(c->method, sizeof c->method, "evsm");
+    snprintf(c->params, sizeof c->params, "cascades=%d;resolution=%d;blur=%d", cascades, res, blur);
+    c->desc.technique = cascades > 1 ? SKGL_PSSM : SKGL_STANDARD;
+    c->desc.cascades = cascades;
+    c->desc.resolution = res;
+    c->desc.filter = SKGL_FILTER_EVSM;
+    c->desc.evsm_blur = blur;
+}
+
 /* The sweep, one entry a method: its configurations in the quick sweep
    (`make demo`) and the full one. A new method is an add_<method> above
    and one entry here (its chart series and front labels follow from the
@@ -497,6 +513,19 @@ static void sweep_fit(int quick) {
     for (r = 1; r < 4; r++) add_standard_fit(std_res[r]);
 }
 
+static void sweep_evsm(int quick) {
+    static const int blurs[] = {1, 2, 4, 8};
+    int r, b;
+    if (quick) {
+        add_evsm(1, 1024, 2);
+        add_evsm(4, 1024, 2);
+        return;
+    }
+    for (r = 1; r < 3; r++)
+        for (b = 0; b < 4; b++) add_evsm(1, std_res[r], blurs[b]);
+    for (b = 0; b < 3; b++) add_evsm(4, 1024, blurs[b]);
+}
+
 typedef struct bench_method {
     const char *name;              /* --methods picks by it; the rows' method starts with it */
     void (*sweep)(int quick);
@@ -505,7 +534,7 @@ typedef struct bench_method {
 static const bench_method bench_methods[] = {
     {"standard", sweep_standard}, {"pssm", sweep_pssm},   {"psm", sweep_psm},   {"lispsm", sweep_lispsm},
     {"lspsm", sweep_lspsm},       {"ferko", sweep_ferko}, {"rmsm", sweep_rmsm}, {"auto", sweep_auto},
-    {"fit", sweep_fit},
+    {"fit", sweep_fit},           {"evsm", sweep_evsm},
 };
 
 /* the configurations of the methods selected by `methods` (a comma list of
@@ -680,6 +709,11 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
         snprintf(buf, n, "lspsm %d", res);
     else if (strcmp(p->method, "auto") == 0)
         snprintf(buf, n, "AUTO %d", res);
+    else if (strcmp(p->method, "evsm") == 0) {
+        int blur = (s = strstr(p->params, "blur=")) ? atoi(s + 5) : 0;
+        if (casc > 1) snprintf(buf, n, "evsm %d\xc3\x97%d r%d", casc, res, blur);
+        else snprintf(buf, n, "evsm %d r%d", res, blur);
+    }
     else if (strcmp(p->method, "pssm-fit") == 0)
         snprintf(buf, n, "%d\xc3\x97%d fit", casc, res);
     else if (strcmp(p->method, "standard-fit") == 0)

@@ -1,11 +1,11 @@
 # mk/bench.mk - the speed-vs-accuracy bench (bench/bench.c; included by the Makefile).
-#   make bench        full sweep of every shadowkit_gl.h method (199 configurations,
+#   make bench        full sweep of every shadowkit_gl.h method (210 configurations,
 #                     SKGL_AUTO and the fit_to_depth rows among them; 8 scenes, the forest
 #                     among them; 3 views, plus the LSPSM walk and the floor; about 20 minutes
 #                     on 2 cores under llvmpipe before AUTO and the forest): out/bench.csv,
 #                     out/bench-walk.{csv,txt}, out/pareto-<scene>.png (gnuplot,
 #                     bench/pareto.gp) and out/bench-auto.txt (AUTO against the front)
-#   make bench-demo   the quick sweep (38 configurations; about 3 minutes before AUTO and
+#   make bench-demo   the quick sweep (40 configurations; about 3 minutes before AUTO and
 #                     the forest) for `make demo`
 #   make bench-plot   redraw the charts from an existing out/bench.csv (one written
 #                     by this bench: an older CSV without the texel and band columns

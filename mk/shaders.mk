@@ -14,7 +14,8 @@ SHADER_SRCS := shaders_embedded/depth.vert shaders_embedded/depth.frag \
                shaders_embedded/soft_resolve.frag shaders_embedded/soft_cons.geom \
                shaders_embedded/soft_cons.frag shaders_embedded/soft_gbuffer.vert \
                shaders_embedded/soft_gbuffer.frag shaders_embedded/pcss_mask.frag \
-               shaders_embedded/layered.geom shaders_embedded/soft_dilate.frag
+               shaders_embedded/layered.geom shaders_embedded/soft_dilate.frag \
+               shaders_embedded/evsm_moments.frag
 EMBED := $(BUILD)/tools/embed
 
 $(EMBED): shaders_embedded/embed.c | deps-test

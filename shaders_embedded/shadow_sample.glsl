@@ -189,6 +189,42 @@ float sk_pcf_taps(vec2 p, float z, float layer, vec2 size, vec2 R)
     return sum / (4.0 * R.x * R.y);
 }
 
+#ifdef SK_SHADOW_EVSM
+/* EVSM, the filterable map (desc.filter = SKGL_FILTER_EVSM; compiled in
+   when SK_SHADOW_EVSM is defined before the snippet). Each layer has a
+   blurred moments map (Lauritzen and McCool 2008, "Layered Variance Shadow
+   Maps", Sec. 4): E[exp(c+ x)], E[exp(c+ x)^2], E[-exp(-c- x)],
+   E[exp(-c- x)^2] over the filter, x = 2 z - 1 the map's window depth. Each
+   warp's Chebyshev upper bound (Donnelly and Lauritzen 2006, "Variance
+   Shadow Maps", Eq. 5) bounds the lit fraction; the smaller of the two is
+   taken, then the light-bleeding reduction cuts the bound's tail below
+   sk_evsm.z and rescales the rest (Lauritzen 2007, GPU Gems 3 ch. 8). */
+uniform highp sampler2DArray sk_moments;   /* RGBA32F, bilinear, on `unit` + 2 */
+uniform int sk_filter;             /* 1: EVSM, 0: the PCF of sk_shadow_layer */
+uniform vec4 sk_evsm;              /* x c+, y c-, z light-bleeding reduction, w the smallest variance,
+                                      in window depth (each warp's scaled by its slope) */
+
+float sk_chebyshev(vec2 m, float t, float min_var, float bleed)
+{
+    if (t <= m.x) return 1.0;
+    float var = max(m.y - m.x * m.x, min_var);
+    float d = t - m.x;
+    float p = var / (var + d * d);
+    return clamp((p - bleed) / (1.0 - bleed), 0.0, 1.0);
+}
+
+/* uv: the lookup in the layer; z: the receiver's window depth */
+float sk_evsm_visibility(vec2 uv, float z, float layer)
+{
+    vec4 m = textureLod(sk_moments, vec3(uv, layer), 0.0);
+    float x = 2.0 * z - 1.0;
+    vec2 w = vec2(exp(sk_evsm.x * x), -exp(-sk_evsm.y * x));
+    /* the variance a depth spread of sk_evsm.w makes in each warp: its slope times the spread */
+    vec2 s = 2.0 * sk_evsm.w * sk_evsm.xy * abs(w);
+    return min(sk_chebyshev(m.xy, w.x, s.x * s.x, sk_evsm.z), sk_chebyshev(m.zw, w.y, s.y * s.y, sk_evsm.z));
+}
+#endif
+
 float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int layer)
 {
     float nb = sk_bias_mode == 1 || sk_normal_bias > 0.0 ? sk_normal_bias : 0.0;
@@ -200,6 +236,9 @@ float sk_shadow_layer(vec3 world_pos, vec3 world_normal, vec3 plane_normal, int 
     if (any(lessThan(uvz.xy, vec2(0.0))) || any(greaterThan(uvz.xy, sk_map_extent))) return 1.0;
     if (uvz.z > 1.0) return 1.0;
     float z = max(uvz.z, 0.0);
+#ifdef SK_SHADOW_EVSM
+    if (sk_filter == 1) return sk_evsm_visibility(uvz.xy, z, float(layer));
+#endif
     vec2 size = vec2(textureSize(sk_shadow_map, 0).xy);
     vec2 R = sk_filter_texels(sk_light_vp[layer], c, size);
     if (sk_bias_mode == 0) {
@@ -301,7 +340,7 @@ float sk_shadow_map_visibility(vec3 world_pos, vec3 world_normal, float view_dep
 /* Contact shadows in a forward shader (skgl_shadow_desc.contact_length):
    "#define SK_SHADOW_CONTACT 1" before the snippet declares the camera's
    depth buffer and the march's uniforms; skgl_shadow_bind binds the buffer
-   named by skgl_shadow_contact_depth on unit + 2 and sets them, when the
+   named by skgl_shadow_contact_depth on unit + 3 and sets them, when the
    light has contact_length > 0 (without the define, or with length 0, the
    snippet is as it was: no sampler, no call). The march is the mask's
    (shadow_mask.frag, McGuire and Mara 2014's depth-buffer ray casting with

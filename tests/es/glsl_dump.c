@@ -158,6 +158,11 @@ static int caster_passes(esx_run *r)
     sd.layered = caps.geometry_shader;
     bad |= skgl_shadow_create(r->sk, &sd, &s) != SK_OK || skgl_shadow_render(r->sk, s, &cam, &sc, esx_sun_dir()) != SK_OK;
     skgl_shadow_destroy(r->sk, s);
+    s = NULL;
+    /* EVSM's moments passes (made with the first EVSM light), where the context can */
+    sd.filter = SKGL_FILTER_EVSM;
+    if (skgl_shadow_create(r->sk, &sd, &s) == SK_OK) bad |= skgl_shadow_render(r->sk, s, &cam, &sc, esx_sun_dir()) != SK_OK;
+    skgl_shadow_destroy(r->sk, s);
     memset(&pd, 0, sizeof pd);
     pd.resolution = 128;
     pd.range = esx_point_range();
@@ -184,7 +189,7 @@ static void snippet_files(void)
     char buf[65536], pre[65536], path[512];
     int d, k;
     for (d = 0; d < 2; d++)
-        for (k = 0; k < 8; k++) {
+        for (k = 0; k < 9; k++) {
             const char *body = "";
             FILE *f;
             pre[0] = 0;
@@ -199,9 +204,10 @@ static void snippet_files(void)
                 break;
             case 6: snprintf(pre, sizeof pre, "#define SK_POINT_SPOT 1\n%s", skgl_point_glsl_snippet()); break;
             case 7: snprintf(pre, sizeof pre, "#define SK_SHADOW_CONTACT 1\n%s", skgl_glsl_snippet()); break;
+            case 8: snprintf(pre, sizeof pre, "#define SK_SHADOW_EVSM 1\n%s", skgl_glsl_snippet()); break;
             default: skgl_point_glsl_snippet_prefixed("lamp_", pre, (int)sizeof pre); break;
             }
-            body = k == 0 || k == 7 ? "void main() { o = vec4(sk_shadow(p, vec3(0.0, 1.0, 0.0), 1.0)); }\n"
+            body = k == 0 || k >= 7 ? "void main() { o = vec4(sk_shadow(p, vec3(0.0, 1.0, 0.0), 1.0)); }\n"
                    : k == 1 ? "void main() { o = vec4(sun_shadow(p, vec3(0.0, 1.0, 0.0), 1.0)); }\n"
                    : k == 5 ? "void main() { o = vec4(lamp_point_shadow(p, vec3(0.0, 1.0, 0.0))); }\n"
                             : "void main() { o = vec4(sk_point_shadow(p, vec3(0.0, 1.0, 0.0))); }\n";

@@ -33,12 +33,13 @@
    results "not available" the values are kept and no GL_QUERY_RESULT is
    read, and in frame 5, whose slots are still busy, no query is begun;
    available again, frame 6 reads the two pending results of each ring.
-   test_program_cache: skgl_shadow_bind looks up 20 locations on a
-   program's first bind (the snippet's uniforms; 19 before
-   sk_filter_world), none on the next; two lights with different .pcf_radius bound
+   test_program_cache: skgl_shadow_bind looks up 27 locations on a
+   program's first bind (the snippet's 20 uniforms, 19 before
+   sk_filter_world; EVSM's 3, SK_SHADOW_EVSM; the forward contact march's
+   4, SK_SHADOW_CONTACT), none on the next; two lights with different .pcf_radius bound
    in turn to one program leave their own radius each (read back with
    glGetUniformiv); the program linked again (its uniforms back at 0) is
-   found by the default mode's check (20 look-ups, the units set again), as
+   found by the default mode's check (27 look-ups, the units set again), as
    is a program deleted and made anew (Mesa gave the new one another name
    here, 72 for 69; a reused name takes the same check); in caller-owns
    mode the cache is trusted (the relinked program's sampler stays 0) until
@@ -423,7 +424,7 @@ static void test_program_cache(void) {
     SK_CHECK(skgl_shadow_render(own, o1, &ca, &sc, light_dir()) == SK_OK);
     /* first bind: the look-ups; the next: none */
     n = bind_lookups(&e, sk, s1, p);
-    SK_CHECK_MSG(n == 20, "first bind: %ld look-ups", n);
+    SK_CHECK_MSG(n == 27, "first bind: %ld look-ups", n);
     n = bind_lookups(&e, sk, s1, p);
     SK_CHECK_MSG(n == 0, "second bind: %ld look-ups", n);
     SK_CHECK(uniform_i(&e, &x, p, "sk_shadow_map") == 5 && uniform_i(&e, &x, p, "sk_pcf_radius") == 1);
@@ -438,7 +439,7 @@ static void test_program_cache(void) {
     e.gl.LinkProgram(p);
     SK_CHECK(uniform_i(&e, &x, p, "sk_shadow_map") == 0);
     n = bind_lookups(&e, sk, s1, p);
-    SK_CHECK_MSG(n == 20 && uniform_i(&e, &x, p, "sk_shadow_map") == 5 && uniform_i(&e, &x, p, "sk_pcf_radius") == 1,
+    SK_CHECK_MSG(n == 27 && uniform_i(&e, &x, p, "sk_shadow_map") == 5 && uniform_i(&e, &x, p, "sk_pcf_radius") == 1,
                  "relinked: %ld look-ups, unit %d, radius %d", n, uniform_i(&e, &x, p, "sk_shadow_map"),
                  uniform_i(&e, &x, p, "sk_pcf_radius"));
     /* deleted and made anew: GL hands the freed name out again */
@@ -447,11 +448,11 @@ static void test_program_cache(void) {
     printf("program %u deleted, the new one is %u\n", p, p2);
     SK_CHECK(p2 != 0);
     n = bind_lookups(&e, sk, s1, p2);
-    SK_CHECK_MSG(n == 20 && uniform_i(&e, &x, p2, "sk_shadow_map") == 5, "made anew: %ld look-ups, unit %d", n,
+    SK_CHECK_MSG(n == 27 && uniform_i(&e, &x, p2, "sk_shadow_map") == 5, "made anew: %ld look-ups, unit %d", n,
                  uniform_i(&e, &x, p2, "sk_shadow_map"));
     /* caller-owns mode: the cache is trusted until skgl_forget_program */
     n = bind_lookups(&e, own, o1, p2);
-    SK_CHECK(n == 20 && uniform_i(&e, &x, p2, "sk_shadow_map") == 5);
+    SK_CHECK(n == 27 && uniform_i(&e, &x, p2, "sk_shadow_map") == 5);
     e.gl.LinkProgram(p2);
     n = bind_lookups(&e, own, o1, p2);
     SK_CHECK_MSG(n == 0 && uniform_i(&e, &x, p2, "sk_shadow_map") == 0,
@@ -459,7 +460,7 @@ static void test_program_cache(void) {
                  uniform_i(&e, &x, p2, "sk_shadow_map"));
     skgl_forget_program(own, p2);
     n = bind_lookups(&e, own, o1, p2);
-    SK_CHECK_MSG(n == 20 && uniform_i(&e, &x, p2, "sk_shadow_map") == 5 && uniform_i(&e, &x, p2, "sk_pcf_radius") == 1,
+    SK_CHECK_MSG(n == 27 && uniform_i(&e, &x, p2, "sk_shadow_map") == 5 && uniform_i(&e, &x, p2, "sk_pcf_radius") == 1,
                  "caller owns, forgotten: %ld look-ups, unit %d", n, uniform_i(&e, &x, p2, "sk_shadow_map"));
     /* 17 programs in 16 entries: the least recently bound goes first */
     for (i = 0; i < 17; i++) {
@@ -470,7 +471,7 @@ static void test_program_cache(void) {
     n = bind_lookups(&e, sk, s1, many[16]);
     SK_CHECK_MSG(n == 0, "the most recent program: %ld look-ups", n);
     n = bind_lookups(&e, sk, s1, many[0]);
-    SK_CHECK_MSG(n == 20, "the least recent program: %ld look-ups", n);
+    SK_CHECK_MSG(n == 27, "the least recent program: %ld look-ups", n);
     for (i = 0; i < 17; i++) if (many[i]) e.gl.DeleteProgram(many[i]);
     e.gl.DeleteProgram(p2);
     SK_CHECK(e.gl.GetError() == 0);
