@@ -74,8 +74,8 @@
    moments' passes use (draws, program, framebuffer, texture and uniform
    state); every other name is the real function ---- */
 static tb_gl_getproc_fn real_getproc;
-static long calls[10];
 enum { C_DRAW, C_PROGRAM, C_FB, C_TEX, C_SAMPLER, C_ACTIVE, C_UNIFORM, C_VIEWPORT, C_ENABLE, C_N };
+static long calls[C_N];
 typedef void (*ev_draw_fn)(unsigned, int, int);
 typedef void (*ev_u1_fn)(unsigned);
 typedef void (*ev_u2_fn)(unsigned, unsigned);
