@@ -22,17 +22,13 @@
 # CPU seconds, and last the "N passed, M failed" line. The same figures go to
 # $BUILD/test-logs/times.tsv (flavour, name, wall s, cpu s). Programs start
 # longest first: by their last wall time (kept in
-# $BUILD/test-logs/history.tsv), else by a guess from their flavour.
+# $BUILD/test-logs/history.tsv), else by tests/test_times.tsv (the wall
+# seconds of a clean run on 2 cores: a clean checkout has no history;
+# refresh it from history.tsv when programs change much), else by a guess
+# from their flavour.
 #
 # Environment: BUILD (build), SK_TEST_JOBS (nproc) programs run at once,
-# SK_TEST_TIMEOUT (300) seconds per program. With at least as many programs
-# at once as cores, llvmpipe rasterizes in each program's own thread
-# (LP_NUM_THREADS=0, unless set): its worker threads only add waiting at
-# their barriers when every core already runs a program (test_gl_cache_property
-# 52 -> 35 CPU s, the same results). On a clean checkout, with no history,
-# programs are ordered by tests/test_times.tsv (wall seconds measured on 2
-# cores; refresh it from $BUILD/test-logs/history.tsv when programs change
-# much).
+# SK_TEST_TIMEOUT (300) seconds per program.
 set -uo pipefail
 
 cd "$(dirname "$0")/.." || exit 2
@@ -41,9 +37,6 @@ JOBS=${SK_TEST_JOBS:-$(nproc 2>/dev/null || echo 2)}
 TIMEOUT=${SK_TEST_TIMEOUT:-300}
 flavours=("$@")
 [ ${#flavours[@]} -gt 0 ] || flavours=(c99 cpp asan-c99 asan-cpp compile gl integration fuzz hygiene)
-
-NCPU=$(nproc 2>/dev/null || echo 2)
-[ "$JOBS" -lt "$NCPU" ] || export LP_NUM_THREADS=${LP_NUM_THREADS:-0}
 
 LOGS=$BUILD/test-logs
 mkdir -p "$LOGS" || exit 2
