@@ -33,6 +33,11 @@ $(BUILD)/obj/hygiene/shared_impl_gl.o: tests/gl/shared_impl_gl.c shadowkit.h sha
 	$(MKDIR)
 	$(CC) -std=c99 $(SANITIZE) $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) -c $< -o $@
 
+$(BUILD)/obj/hygiene/shared_impl_gl_loop.o: tests/gl/shared_impl_gl.c shadowkit.h shadowkit_gl.h | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(SANITIZE) $(WARN) $(TESTBED_CFLAGS) -DSKGL_LAYERED_LOOP=1 $(DEPFLAGS) -c $< -o $@
+# (the loop programs' prerequisite on it: mk/testbed.mk, where GL_LOOP_IMPL is set)
+
 $(HYG_GL_BINS): $(HYG_DIR)/%: tests/gl/%.c $(HYG_OPTIONS) $$(GL_TEST_DEPS) $$(TESTBED_LIB) \
                 $(BUILD)/obj/hygiene/shared_impl_gl.o | deps-gl
 	$(MKDIR)

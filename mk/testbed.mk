@@ -47,14 +47,26 @@ $(BUILD)/testbed/selftest: testbed/selftest.c $(TESTBED_LIB) $(TESTBED_HDRS) | d
 GL_TESTS     := $(sort $(wildcard tests/gl/test_gl_*.c))
 GL_TEST_BINS := $(patsubst tests/gl/%.c,$(BUILD)/gl/%,$(GL_TESTS))
 GL_TEST_DEPS := shadowkit.h shadowkit_gl.h tests/sk_test.h tests/shared_impl.h $(wildcard tests/gl/*.h)
-GL_OWN_IMPL  := $(call sk_own_impl,$(GL_TESTS))
-# the source and objects that make GL test $(1) of flavour $(2) (gl, hygiene) use the shared object
+# The programs whose one configuration is the line "#define SKGL_LAYERED_LOOP 1"
+# (test_gl_*_loop.c: the layered passes through the looping geometry
+# shader; each asserts stats.layered == 1) link a second shared object,
+# shared_impl_gl_loop.o, compiled with it.
+GL_LOOP_IMPL := $(basename $(notdir $(shell grep -lx '\#define SKGL_LAYERED_LOOP 1' $(GL_TESTS) /dev/null)))
+GL_OWN_IMPL  := $(filter-out $(GL_LOOP_IMPL),$(call sk_own_impl,$(GL_TESTS)))
+# the shared object GL test $(1) of flavour $(2) (gl, hygiene) links
+gl_impl_obj = $(BUILD)/obj/$(2)/shared_impl_gl$(if $(filter $(1),$(GL_LOOP_IMPL)),_loop).o
+# the source and objects that make GL test $(1) of flavour $(2) use the shared object
 gl_impl = $(if $(filter $(1),$(GL_OWN_IMPL)),$<,-include tests/shared_impl.h -DSK_TEST_SHARED_IMPL_GL $< \
-              $(BUILD)/obj/$(2)/shared_impl_gl.o)
+              $(call gl_impl_obj,$(1),$(2)))
 
 $(BUILD)/obj/gl/shared_impl_gl.o: tests/gl/shared_impl_gl.c shadowkit.h shadowkit_gl.h | deps-gl
 	$(MKDIR)
 	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) $(DEPFLAGS) -c $< -o $@
+$(BUILD)/obj/gl/shared_impl_gl_loop.o: tests/gl/shared_impl_gl.c shadowkit.h shadowkit_gl.h | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) -DSKGL_LAYERED_LOOP=1 $(DEPFLAGS) -c $< -o $@
+$(addprefix $(BUILD)/gl/,$(GL_LOOP_IMPL)): $(BUILD)/obj/gl/shared_impl_gl_loop.o
+$(addprefix $(BUILD)/hygiene/,$(GL_LOOP_IMPL)): $(BUILD)/obj/hygiene/shared_impl_gl_loop.o
 
 $(BUILD)/gl/%: tests/gl/%.c $(GL_TEST_DEPS) $(TESTBED_LIB) $(BUILD)/obj/gl/shared_impl_gl.o | deps-gl
 	$(MKDIR)
