@@ -49,6 +49,34 @@
                                 with SK_ERR_INVALID_ARG, "... compiled out
                                 (SKGL_NO_RMSM)"; skgl_shadow_pages and
                                 skgl_shadow_analysis_texture answer 0
+         SKGL_NO_CACHE          defined: cached maps (CACHED MAPS: the
+                                static casters' copies of directional
+                                layers, RMSM pages, point faces and spots,
+                                their scrolls, region redraws and
+                                .verify_cache read-backs) are left out; a
+                                desc with .cache 1 (skgl_shadow_create,
+                                skgl_point_create) fails with
+                                SK_ERR_INVALID_ARG, "...: desc.cache = 1:
+                                cached maps are compiled out
+                                (SKGL_NO_CACHE)"; skgl_shadow_invalidate
+                                and skgl_point_invalidate check their
+                                arguments and return SK_OK, as for a light
+                                without a cache (nothing to redraw);
+                                skgl_set_dynamic stays (its casters are
+                                drawn in every pass)
+         SKGL_NO_CASTERS        defined: caster programs (CASTER PROGRAMS)
+                                are left out; skgl_caster_create returns
+                                SK_ERR_INVALID_ARG with "skgl_caster_create:
+                                compiled out (SKGL_NO_CASTERS)" and *out
+                                NULL, skgl_use_caster returns NULL with
+                                "skgl_use_caster: compiled out
+                                (SKGL_NO_CASTERS)" (in a draw callback the
+                                render then fails with SK_ERR_INVALID_ARG),
+                                skgl_caster_destroy does nothing. Neither
+                                switch has shaders of its own to remove:
+                                the cache copies depth with blits, and a
+                                caster's hooks replace parts of depth.vert
+                                and depth.frag, which every light uses
      Nothing else is read from the preprocessor: the rest is chosen at run
      time through the descs.
 
@@ -4671,6 +4699,7 @@ static sk_result skgl__casters_draw(skgl_context *ctx, skgl__st *st, const skgl_
     return skgl__scene_draw(ctx, st, scene, info);
 }
 
+#if !defined(SKGL_NO_CACHE) || !defined(SKGL_NO_RMSM)
 /* One caster pass of a cached map (a directional layer, an RMSM page, a
    point face) into fb: the casters of cls (SKGL__DRAW_*) in rect (x, y,
    w, h; NULL: the whole target, full x full texels, unscissored), cleared
@@ -4693,6 +4722,7 @@ static sk_result skgl__cached_pass(skgl_context *ctx, skgl__st *st, const skgl_s
     *texels += rect ? (double)rect[2] * rect[3] : (double)full * full;
     return r;
 }
+#endif
 
 // >>layered
 /* Layered single-pass caster rendering (desc.layered): the
@@ -4791,6 +4821,7 @@ static void skgl__casters_begin_layered(skgl_context *ctx, skgl__st *st, float s
 }
 
 // >>casters
+#ifndef SKGL_NO_CASTERS
 /* Caster programs (skgl_caster_*). A caster's hooks become one
    program per kind of caster pass, built from the same embedded sources as
    shadowkit's own (SKGL_CASTER in place of attribute 0, SKGL_CASTER_FRAGMENT
@@ -5500,6 +5531,28 @@ SKGLDEF const int *skgl_use_caster(skgl_context *ctx, skgl_caster *caster)
     skgl__model(ctx, skgl__identity);
     return v->user;
 }
+#else /* SKGL_NO_CASTERS: the caster entry points refuse, naming the macro; no caster is ever current */
+static skgl__uint skgl__caster_current(const skgl_context *ctx) { return ctx->pass_prog; }
+static void skgl__casters_release(skgl_context *ctx) { (void)ctx; }
+SKGLDEF sk_result skgl_caster_create(skgl_context *ctx, const skgl_caster_desc *desc, skgl_caster **out)
+{
+    (void)desc;
+    if (out) *out = NULL;
+    if (!ctx) return SK_ERR_INVALID_ARG;
+    skgl__log_clear(ctx);
+    return skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_caster_create: compiled out (SKGL_NO_CASTERS)");
+}
+SKGLDEF void skgl_caster_destroy(skgl_context *ctx, skgl_caster *caster) { (void)ctx; (void)caster; }
+SKGLDEF const int *skgl_use_caster(skgl_context *ctx, skgl_caster *caster)
+{
+    (void)caster;
+    if (!ctx) return NULL;
+    if (ctx->pass_error == SK_OK)   /* inside a callback the render returns it (skgl__after_draw) */
+        skgl__fail(ctx, SK_ERR_INVALID_ARG, "skgl_use_caster: compiled out (SKGL_NO_CASTERS)");
+    if (ctx->model_loc >= 0) ctx->pass_error = SK_ERR_INVALID_ARG;
+    return NULL;
+}
+#endif /* SKGL_NO_CASTERS */
 
 /* 5.4 the masks' inputs ------------------------------------------------- */
 /* The mask texture as the only colour target of the masks' framebuffer,
@@ -5734,10 +5787,14 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
 static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s);
 #endif
 /* defined in 6.5 */
+#ifndef SKGL_NO_CACHE
 static sk_result skgl__cache_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
+static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s);
+#endif
+#if !defined(SKGL_NO_CACHE) || !defined(SKGL_NO_RMSM)
 static sk_result skgl__verify_texture(skgl_context *ctx, skgl__st *st, skgl__uint *tex, skgl__uint *fbo, int w, int h,
                                       const char *fn);
-static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s);
+#endif
 /* defined in 6.6 (the filterable map) */
 static sk_result skgl__evsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 static void skgl__evsm_free(skgl_context *ctx, skgl_shadow *s);
@@ -5964,6 +6021,9 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
                d->lspsm.nw_max, "in 1..SKGL_MAX_CASCADES");
     SKGL__RULE(d->sync_readback == 0 || d->sync_readback == 1, fn, "sync_readback", d->sync_readback, "0 or 1");
     SKGL__RULE(d->cache == 0 || d->cache == 1, fn, "cache", d->cache, "0 or 1");
+#ifdef SKGL_NO_CACHE
+    SKGL__RULE(!d->cache, fn, "cache", d->cache, "cached maps are compiled out (SKGL_NO_CACHE)");
+#endif
     SKGL__RULE(d->fit_to_depth == 0 || d->fit_to_depth == 1, fn, "fit_to_depth", d->fit_to_depth, "0 or 1");
     SKGL__RULE(d->auto_texel_px > 0.0f && d->auto_texel_px <= 1e6f, fn, "auto_texel_px", d->auto_texel_px,
                "in (0, 1e6] (0: the default 1)");
@@ -6050,7 +6110,9 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
         }
     }
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
+#ifndef SKGL_NO_CACHE
     if (r == SK_OK && d.cache && d.technique != SKGL_RMSM) r = skgl__cache_create(ctx, &st, s);
+#endif
     if (r == SK_OK && d.filter == SKGL_FILTER_EVSM) r = skgl__evsm_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
     r = skgl__create_close(ctx, fn, r, "the light's depth texture and framebuffers (out of GPU "
@@ -6071,7 +6133,9 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     skgl__delete_texture(ctx, &s->tex);
     for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
     skgl__delete_framebuffer(ctx, &s->fbo_layered);
+#ifndef SKGL_NO_CACHE
     skgl__cache_free(ctx, s);
+#endif
     skgl__evsm_free(ctx, s);
     if (skgl__technique_of(s)->destroy) skgl__technique_of(s)->destroy(ctx, s);
     skgl__timer_free(ctx, &s->t_render);
@@ -7414,6 +7478,7 @@ static sk_result skgl__rmsm_frame(const sk_aabb *world, sk_vec3 light_dir, sk_ma
    is the cache plus the dynamic casters (skgl_set_dynamic), drawn over a
    copy each frame; without dynamic casters the copy is made only when the
    cache changed. */
+#ifndef SKGL_NO_CACHE
 
 /* world -> light clip of a matrix that takes p - o, in double */
 static void skgl__world_matrix(const sk_mat4 *m, const double o[3], double w[16])
@@ -7574,6 +7639,7 @@ static void skgl__cache_free(skgl_context *ctx, skgl_shadow *s)
     for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->cache.fbo[i]);
     skgl__delete_framebuffer(ctx, &s->cache.verify_fbo);
 }
+#endif /* SKGL_NO_CACHE */
 
 /* an invalidated box: NULL (everything) or finite with min <= max */
 static sk_result skgl__arg_box(skgl_context *ctx, const char *fn, const sk_aabb *box)
@@ -7584,6 +7650,7 @@ static sk_result skgl__arg_box(skgl_context *ctx, const char *fn, const sk_aabb 
     return SK_OK;
 }
 
+#ifndef SKGL_NO_CACHE
 /* box into a list of SKGL_CACHE_REGIONS; a full list's last entry takes the union */
 static void skgl__dirty_add(sk_aabb *dirty, int *n, const sk_aabb *box)
 {
@@ -7592,6 +7659,7 @@ static void skgl__dirty_add(sk_aabb *dirty, int *n, const sk_aabb *box)
     u->min = sk__v3(skgl__minf(u->min.x, box->min.x), skgl__minf(u->min.y, box->min.y), skgl__minf(u->min.z, box->min.z));
     u->max = sk__v3(skgl__maxf(u->max.x, box->max.x), skgl__maxf(u->max.y, box->max.y), skgl__maxf(u->max.z, box->max.z));
 }
+#endif
 
 SKGLDEF sk_result skgl_shadow_invalidate(skgl_context *ctx, skgl_shadow *s, const sk_aabb *box)
 {
@@ -7600,12 +7668,15 @@ SKGLDEF sk_result skgl_shadow_invalidate(skgl_context *ctx, skgl_shadow *s, cons
     skgl__enter(ctx, "skgl_shadow_invalidate", 0);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__arg_box(ctx, fn, box));
+#ifndef SKGL_NO_CACHE   /* compiled out, no light has a cache: nothing to redraw */
     if (!s->desc.cache || s->cache.all) return SK_OK;
     if (!box) s->cache.all = 1;
     else skgl__dirty_add(s->cache.dirty, &s->cache.ndirty, box);
+#endif
     return SK_OK;
 }
 
+#ifndef SKGL_NO_CACHE
 /* one caster pass of layer i with matrix vp into framebuffer fb: the
    casters of `cls` (SKGL__DRAW_*), in rect (NULL: the whole layer),
    cleared first unless it draws over what is there */
@@ -7619,7 +7690,9 @@ static sk_result skgl__cache_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *
     return skgl__cached_pass(ctx, st, rs, vp, s->origin, fb, rect, s->desc.resolution, cls, clear, &info,
                              &s->stats.passes, &s->stats.texels);
 }
+#endif
 
+#if !defined(SKGL_NO_CACHE) || !defined(SKGL_NO_RMSM)
 /* a w x h rectangle of depth from (x, y) of src to (x + dx, y + dy) of dst
    (a blit obeys the scissor test: off) */
 static void skgl__blit_depth(skgl_context *ctx, skgl__st *st, skgl__uint src, skgl__uint dst, int x, int y, int w,
@@ -7631,6 +7704,8 @@ static void skgl__blit_depth(skgl_context *ctx, skgl__st *st, skgl__uint src, sk
     ctx->gl.BlitFramebuffer(x, y, x + w, y + h, x + dx, y + dy, x + dx + w, y + dy + h, SKGL__DEPTH_BUFFER_BIT,
                             SKGL__NEAREST);
 }
+#endif
+#ifndef SKGL_NO_CACHE
 static void skgl__cache_copy(skgl_context *ctx, skgl__st *st, skgl_shadow *s, skgl__uint src, skgl__uint dst, int x,
                              int y, int w, int h, int dx, int dy)
 {
@@ -7800,7 +7875,9 @@ static void skgl__verify_compare(const float *a, const float *b, int w, int h, s
             else v->alone++;
         }
 }
+#endif /* SKGL_NO_CACHE */
 
+#if !defined(SKGL_NO_CACHE) || !defined(SKGL_NO_RMSM)
 /* the scratch depth map of .verify_cache, w x h (made on first use) */
 static sk_result skgl__verify_texture(skgl_context *ctx, skgl__st *st, skgl__uint *tex, skgl__uint *fbo, int w, int h,
                                       const char *fn)
@@ -7818,6 +7895,8 @@ static sk_result skgl__verify_texture(skgl_context *ctx, skgl__st *st, skgl__uin
     if (!*fbo) return skgl__fail(ctx, SK_ERR_GL, "%s: verify framebuffer incomplete", fn);
     return SK_OK;
 }
+#endif
+#ifndef SKGL_NO_CACHE
 static sk_result skgl__verify_target(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int size)
 {
     return skgl__verify_texture(ctx, st, &s->cache.verify_tex, &s->cache.verify_fbo, size, size, "skgl_shadow_render");
@@ -7872,6 +7951,7 @@ static sk_result skgl__cache_verify(skgl_context *ctx, skgl__st *st, skgl_shadow
     }
     return r;
 }
+#endif /* SKGL_NO_CACHE */
 
 // >>rmsm_cache
 #ifndef SKGL_NO_RMSM
@@ -7900,6 +7980,7 @@ static sk_rect skgl__page_rect(const skgl_shadow *s, const sk_page *pg)
     return r;
 }
 
+#ifndef SKGL_NO_CACHE
 /* the part (x, y, w, h in the pool) of page pg's slot at (sx, sy) that a
    texel rectangle of its level (skgl__cache_box_rect) covers; 0: none */
 static int skgl__page_clip(const skgl_shadow *s, const sk_page *pg, const int *lrect, int sx, int sy, int out[4])
@@ -7919,6 +8000,7 @@ static void skgl__page_box_rects(const skgl_shadow *s, const double *w, const sk
     int l;
     for (l = 0; l < s->rmsm.levels; l++) has[l] = skgl__cache_box_rect(w, box, s->desc.resolution >> l, rect[l]);
 }
+#endif
 
 /* the slot's position in the pool */
 static void skgl__slot_xy(const skgl_shadow *s, int k, int *x, int *y)
@@ -7927,6 +8009,7 @@ static void skgl__slot_xy(const skgl_shadow *s, int k, int *x, int *y)
     *y = (k / s->desc.rmsm_pool_pages) * (s->desc.rmsm_page_size + 2);
 }
 
+#ifndef SKGL_NO_CACHE
 static int skgl__lru_order(const void *a, const void *b)
 {
     unsigned x = ((const skgl__lru *)a)->last, y = ((const skgl__lru *)b)->last;
@@ -8003,6 +8086,7 @@ static void skgl__rmsm_assign(skgl_shadow *s)
         m->slot_of[i] = k;
     }
 }
+#endif /* SKGL_NO_CACHE */
 
 /* page i drawn in the page target (rmsm.page_fbo) at (0, 0): the casters
    of cls (SKGL__DRAW_*), the whole slot cleared first (rect NULL) or over
@@ -8050,6 +8134,7 @@ static sk_result skgl__page_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *s
     return r;
 }
 
+#ifndef SKGL_NO_CACHE
 /* page i's slot from the map to the static copy (to 0) or back (to 1) */
 static void skgl__page_copy(skgl_context *ctx, skgl__st *st, skgl_shadow *s, int i, int back)
 {
@@ -8165,6 +8250,7 @@ static sk_result skgl__rmsm_verify(skgl_context *ctx, skgl__st *st, skgl_shadow 
     }
     return r;
 }
+#endif /* SKGL_NO_CACHE */
 
 /* RMSM: this frame's pages into their pool slots (skgl__page_pass). With
    desc.cache only the slots skgl__rmsm_assign emptied are drawn, with the
@@ -8188,8 +8274,11 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     s->stats.pages_rendered = s->stats.pages_reused = s->stats.pages_evicted = 0;
     s->stats.cache_full = s->stats.cache_scrolled = s->stats.cache_reused = s->stats.cache_regions = 0;
     s->stats.cache_copied = 0.0;
+#ifndef SKGL_NO_CACHE
     if (cached) skgl__rmsm_assign(s);
-    else for (i = 0; i < s->rmsm.npages; i++) s->rmsm.slot_of[i] = i;
+    else
+#endif
+        for (i = 0; i < s->rmsm.npages; i++) s->rmsm.slot_of[i] = i;
     skgl__st_begin(ctx, &st);
     skgl__rmsm_table(ctx, &st, s);
     s->light_dir = sk__normalize(light_dir);
@@ -8208,13 +8297,17 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         s->stats.pages_rendered++;
         if (!t) continue;
         t->valid = rc == SK_OK;
+#ifndef SKGL_NO_CACHE
         if (s->cache.tex) skgl__page_copy(ctx, &st, s, i, 0);
+#endif
     }
+#ifndef SKGL_NO_CACHE
     if (cached) {
         rc = skgl__rmsm_dynamic(ctx, &st, s, scene);
         if (r == SK_OK) r = rc;
         if (r == SK_OK && s->desc.verify_cache) r = skgl__rmsm_verify(ctx, &st, s, scene);
     }
+#endif
     skgl__model_end(ctx);
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;
@@ -8279,10 +8372,12 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
         }
     }
     if (!s->stats.layered) skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, o);
+#ifndef SKGL_NO_CACHE
     if (s->desc.cache) {   /* CACHED MAPS (never layered: validated at create) */
         r = skgl__render_cached(ctx, &st, s, rs);
         if (r == SK_OK && s->desc.verify_cache) r = skgl__cache_verify(ctx, &st, s, rs);
     }
+#endif
     for (i = 0; !s->stats.layered && !s->desc.cache && i < s->maps; i++) {
         skgl_draw_info info;
         skgl__st_set1(ctx, &st, SKGL__S_DRAW_FB, (skgl__int)s->fbo[i]);
@@ -8978,8 +9073,10 @@ struct skgl_point_atlas {
 };
 
 /* defined with the faces' passes (7, the faces' cache) */
+#ifndef SKGL_NO_CACHE
 static sk_result skgl__point_cache_create(skgl_context *ctx, skgl__st *st, skgl_point *p);
 static void skgl__point_cache_free(skgl_context *ctx, skgl_point *p);
+#endif
 /* defined with the spot lights (7, SPOT LIGHTS) */
 static int skgl__spot_caster_visible(skgl_point *p, sk_aabb caster, int info_dynamic);
 static void skgl__spot_uniforms(skgl_context *ctx, const skgl_point *p, const skgl__int *L);
@@ -9088,7 +9185,9 @@ static void skgl__point_free(skgl_context *ctx, skgl_point *p)
     if (p->lin_sampler) { gl->DeleteSamplers(1, &p->lin_sampler); ctx->objects--; }
     for (f = 0; f < 6; f++) skgl__delete_framebuffer(ctx, &p->fbo[f]);
     skgl__delete_framebuffer(ctx, &p->fbo_layered);
+#ifndef SKGL_NO_CACHE
     skgl__point_cache_free(ctx, p);
+#endif
     skgl__timer_free(ctx, &p->t_render);
     skgl__timer_free(ctx, &p->t_mask);
     p->prog = p->lin_sampler = 0;
@@ -9159,6 +9258,9 @@ static sk_result skgl__point_validate(skgl_context *ctx, const skgl_point_desc *
     SKGL__RULE(d->layered == 0 || d->layered == 1, fn, "layered", d->layered, "0 or 1");
     SKGL__NEED(!d->layered || ctx->caps.geometry_shader, fn, "desc.layered", SKGL__GEOMETRY);
     SKGL__RULE(d->cache == 0 || d->cache == 1, fn, "cache", d->cache, "0 or 1");
+#ifdef SKGL_NO_CACHE
+    SKGL__RULE(!d->cache, fn, "cache", d->cache, "cached maps are compiled out (SKGL_NO_CACHE)");
+#endif
     SKGL__RULE(!d->cache || !d->layered, fn, "cache", d->cache,
                "a cached light draws its faces a pass each: not with desc.layered");
     SKGL__RULE(!d->cache || !d->atlas, fn, "cache", d->cache,
@@ -9307,7 +9409,9 @@ SKGLDEF sk_result skgl_point_create(skgl_context *ctx, const skgl_point_desc *de
     }
     p->face_res = d.resolution;
     p->layout = skgl__point_layout(p, d.resolution);
+#ifndef SKGL_NO_CACHE
     if (r == SK_OK && d.cache) r = skgl__point_cache_create(ctx, &st, p);
+#endif
     skgl__st_end(ctx, &st);
     r = skgl__create_close(ctx, fn, r, "the light's maps");
     if (r != SK_OK) {
@@ -9531,6 +9635,7 @@ static sk_result skgl__point_target(skgl_context *ctx, skgl__st *st, skgl_point 
 }
 
 // >>point_cache
+#ifndef SKGL_NO_CACHE
 /* CACHED MAPS for point lights: the faces' static depth in
    a texture shaped like the light's own (a cube with the same levels, or
    the 3 x 2 atlas), valid while the light stays where it was at the same
@@ -9614,6 +9719,7 @@ static int skgl__point_cache_fbos(skgl_context *ctx, skgl__st *st, skgl_point *p
     c->fbo_level = ok ? p->level : -1;
     return ok;
 }
+#endif /* SKGL_NO_CACHE */
 
 SKGLDEF sk_result skgl_point_invalidate(skgl_context *ctx, skgl_point *p, const sk_aabb *box)
 {
@@ -9622,12 +9728,15 @@ SKGLDEF sk_result skgl_point_invalidate(skgl_context *ctx, skgl_point *p, const 
     skgl__enter(ctx, "skgl_point_invalidate", 0);
     SKGL__TRY(skgl__arg_ptr(ctx, fn, p, "p"));
     SKGL__TRY(skgl__arg_box(ctx, fn, box));
+#ifndef SKGL_NO_CACHE   /* compiled out, no light has a cache: nothing to redraw */
     if (!p->cache.tex || p->cache.all) return SK_OK;
     if (!box) p->cache.all = 1;
     else skgl__dirty_add(p->cache.dirty, &p->cache.ndirty, box);
+#endif
     return SK_OK;
 }
 
+#ifndef SKGL_NO_CACHE
 /* one caster pass of a face into fb, scissored to rect (x, y, w, h) */
 static sk_result skgl__point_face_pass(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
                                        int f, const sk_mat4 *vp, skgl__uint fb, const int *rect, int cls, int clear)
@@ -9773,6 +9882,7 @@ static sk_result skgl__point_verify(skgl_context *ctx, skgl__st *st, skgl_point 
                        bad, c->fresh & (1u << bad) ? "drawn whole" : "kept", runs, (double)v[bad].worst, v[bad].alone);
     return r;
 }
+#endif /* SKGL_NO_CACHE */
 
 /* the caster pass of each face in `faces` at side m (Eq. (5.4.6)'s window
    depth: 90 degrees, w = eye depth); every face is cleared, culled ones
@@ -9787,12 +9897,14 @@ static sk_result skgl__point_draw_faces(skgl_context *ctx, skgl__st *st, skgl_po
     sk_result r = SK_OK, rc;
     if (layered) skgl__casters_begin_layered(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
     else skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+#ifndef SKGL_NO_CACHE
     if (p->cache.tex) {
         r = skgl__point_faces_cached(ctx, st, p, scene, faces, m);
         if (r == SK_OK && p->desc.verify_cache) r = skgl__point_verify(ctx, st, p, scene, faces, m);
         skgl__model_end(ctx);
         return r;
     }
+#endif
     if (vsdct) {
         /* the faces' region of an own atlas, one clear; in a shared atlas
            each face's rectangle, cleared in the loop (the other lights'
@@ -10155,6 +10267,7 @@ static int skgl__spot_side(skgl_context *ctx, skgl__st *st, skgl_point *p, const
     return skgl__spot_select(p, vp, viewport);
 }
 
+#ifndef SKGL_NO_CACHE
 /* one caster pass of a cached spot into fb, scissored to rect (x, y, w, h) */
 static sk_result skgl__spot_pass(skgl_context *ctx, skgl__st *st, skgl_point *p, const skgl_scene *scene,
                                  const sk_mat4 *light_vp, skgl__uint fb, const int *rect, int cls, int clear)
@@ -10279,6 +10392,7 @@ static sk_result skgl__spot_verify(skgl_context *ctx, skgl__st *st, skgl_point *
                        c->fresh ? "drawn whole" : "kept", v.runs, (double)v.worst, v.alone);
     return r;
 }
+#endif /* SKGL_NO_CACHE */
 
 /* one pass into the spot's rectangle (cleared first); nothing drawn when
    the scene lies outside the cone (fit 0) */
@@ -10289,12 +10403,14 @@ static sk_result skgl__spot_draw(skgl_context *ctx, skgl__st *st, skgl_point *p,
     skgl_draw_info info;
     sk_result r = SK_OK;
     skgl__casters_begin(ctx, st, p->desc.slope_bias, p->desc.depth_bias, skgl__zero3);
+#ifndef SKGL_NO_CACHE
     if (p->cache.tex) {
         r = skgl__spot_draw_cached(ctx, st, p, scene, light_vp, m, fit);
         if (r == SK_OK && fit == 1 && p->desc.verify_cache) r = skgl__spot_verify(ctx, st, p, scene, light_vp, m);
         skgl__model_end(ctx);
         return r;
     }
+#endif
     skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(p->desc.atlas ? p->desc.atlas->fbo : p->fbo[0]));
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, p->layout.face_x[0], p->layout.face_y[0], m, m);

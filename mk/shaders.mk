@@ -47,7 +47,7 @@ $(BUILD)/compile/gl-header-cpp17: tests/compile/gl_header.c shadowkit.h shadowki
 # the opt-outs (shadowkit_gl.h's CONFIGURATION: SKGL_NO_*): gl_header.c
 # with each alone and with all together, as C99 and C++17; gl-no-all-* is
 # what the object size and line count of the report compare
-GL_OPTOUTS := soft rmsm
+GL_OPTOUTS := soft rmsm cache casters
 gl_optout_flags = $(foreach o,$(if $(filter all,$(1)),$(GL_OPTOUTS),$(1)),-DSKGL_NO_$(shell echo $(o) | tr a-z A-Z))
 GL_OPTOUT_BINS := $(foreach o,$(GL_OPTOUTS) all,$(BUILD)/compile/gl-no-$(o)-c99 $(BUILD)/compile/gl-no-$(o)-cpp17)
 $(BUILD)/compile/gl-no-%-c99: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test

@@ -1,7 +1,8 @@
 /* test_gl_optout.c - shadowkit_gl.h with its optional features compiled
-   out (CONFIGURATION: SKGL_NO_SOFT, SKGL_NO_RMSM): the directional techniques that stay
-   still shadow, and a removed feature's entry points refuse with a message
-   naming the macro.
+   out (CONFIGURATION: SKGL_NO_SOFT, SKGL_NO_RMSM, SKGL_NO_CACHE,
+   SKGL_NO_CASTERS; test_gl_optout_cache.c builds it with the last two
+   alone): the directional techniques that stay still shadow, and a removed
+   feature's entry points refuse with a message naming the macro.
 
    Scene: test_gl_offscreen.c's (ground, a 10 m tower behind the camera
    casting 16 m into the view, a small box), 320 x 180, maps 1024^2.
@@ -13,10 +14,18 @@
    0.6540% / 0.2638%, both fail; built without SKGL_NO_SOFT,
    skgl_soft_create succeeds on the zeroed desc (its defaults) and five
    checks of test_refusals fail; built without SKGL_NO_RMSM, an SKGL_RMSM
-   shadow is created and four checks fail. */
+   shadow is created and four checks fail; built without SKGL_NO_CACHE,
+   desc.cache 1 is accepted for a directional and a point light and eight
+   checks of test_cache_refused fail; built without SKGL_NO_CASTERS, the
+   caster is created, skgl_use_caster answers in the callback, the render
+   succeeds and eight checks of test_casters_refused fail. */
 #define SK_TEST_OWN_IMPLEMENTATION 1
+#ifndef SK_OPTOUT_SOME   /* test_gl_optout_cache.c: the cache and the casters alone */
 #define SKGL_NO_SOFT
 #define SKGL_NO_RMSM
+#endif
+#define SKGL_NO_CACHE
+#define SKGL_NO_CASTERS
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -35,7 +44,8 @@ static void smoke(skgl_technique tech, double max_err_pct)
     sk_vec3 light = gt_v3(0.1f, -0.6f, -1);
     skgl_camera cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, W, H);
     float *ref, *res;
-    const char *tn = tech == SKGL_PSSM ? "pssm" : "standard";
+    const char *tn = tech == SKGL_PSSM ? "pssm" : tech == SKGL_RMSM ? "rmsm" : "standard";
+    skgl_scene scene;
     tb_hard_error he;
     tb_scene_init(&sc);
     tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
@@ -45,9 +55,16 @@ static void smoke(skgl_technique tech, double max_err_pct)
     memset(&d, 0, sizeof d);
     d.technique = tech;
     d.resolution = (int)(1024 * gt_res_scale());
+    if (tech == SKGL_RMSM) {   /* a virtual 8192^2 in pages of 128, a pool of 16^2 (2080^2 texels) */
+        d.resolution = (int)(8192 * gt_res_scale());
+        d.rmsm_page_size = 128;
+        d.rmsm_pool_pages = 16;
+    }
     s = gt_shadow(&e, &d);
     ref = gt_alloc(&e); res = gt_alloc(&e);
+    scene = gt_scene(&e);
     if (!s || !ref || !res || gt_gbuffer(&e, &cam) != 0 || gt_reference(&e, light, ref) != 0 ||
+        (tech == SKGL_RMSM && skgl_shadow_analyze(e.sk, s, &cam, &scene, light, e.gbuf.depth_tex) != SK_OK) ||
         gt_mask(&e, s, &cam, light, res) != 0) {
         SK_CHECK_MSG(0, "%s: frame failed", tn);
         goto done;
@@ -65,6 +82,10 @@ done:
 static void test_standard(void) { smoke(SKGL_STANDARD, 0.18); }
 static void test_pssm(void) { smoke(SKGL_PSSM, 0.07); }
 
+#ifdef SK_OPTOUT_SOME
+/* RMSM stays with the cache compiled out: its pages drawn uncached */
+static void test_rmsm(void) { smoke(SKGL_RMSM, RMSM_MAX_ERR); }
+#else
 /* a compiled-out feature's create refuses, names the macro, makes nothing */
 static void test_refusals(void)
 {
@@ -98,5 +119,126 @@ static void test_refusals(void)
     SK_CHECK(e.gl.GetError() == 0);
     gt_env_free(&e);
 }
+#endif
 
-SK_TEST_MAIN(test_standard, test_pssm, test_refusals)
+/* SKGL_NO_CACHE: desc.cache refused naming the field and the macro; the
+   invalidate calls check their arguments and answer SK_OK (no cache) */
+static void test_cache_refused(void)
+{
+    gt_env e;
+    tb_scene sc;
+    skgl_shadow_desc d;
+    skgl_point_desc pd;
+    skgl_shadow *s = (skgl_shadow *)&d;
+    skgl_point *p = (skgl_point *)&pd;
+    sk_aabb bad = gt_box(1, 0, 0, 0, 1, 1);   /* min.x > max.x */
+    sk_aabb box = gt_box(0, 0, 0, 1, 1, 1);
+    int objects;
+    tb_scene_init(&sc);
+    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
+    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
+    objects = skgl_gl_object_count(e.sk);
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_PSSM;
+    d.cache = 1;
+    SK_CHECK(skgl_shadow_create(e.sk, &d, &s) == SK_ERR_INVALID_ARG);
+    SK_CHECK(s == NULL);
+    SK_CHECK_MSG(strcmp(skgl_error_log(e.sk), "skgl_shadow_create: desc.cache = 1: cached maps are compiled out "
+                                              "(SKGL_NO_CACHE)") == 0, "log: %s", skgl_error_log(e.sk));
+    memset(&pd, 0, sizeof pd);
+    pd.technique = SKGL_POINT_CUBE;
+    pd.resolution = 256;
+    pd.range = 16;
+    pd.cache = 1;
+    SK_CHECK(skgl_point_create(e.sk, &pd, &p) == SK_ERR_INVALID_ARG);
+    SK_CHECK(p == NULL);
+    SK_CHECK_MSG(strcmp(skgl_error_log(e.sk), "skgl_point_create: desc.cache = 1: cached maps are compiled out "
+                                              "(SKGL_NO_CACHE)") == 0, "log: %s", skgl_error_log(e.sk));
+    SK_CHECK(skgl_gl_object_count(e.sk) == objects);
+    d.cache = 0;
+    pd.cache = 0;
+    SK_CHECK(skgl_shadow_create(e.sk, &d, &s) == SK_OK && s != NULL);
+    SK_CHECK(skgl_point_create(e.sk, &pd, &p) == SK_OK && p != NULL);
+    SK_CHECK(skgl_shadow_invalidate(e.sk, s, NULL) == SK_OK);
+    SK_CHECK(skgl_shadow_invalidate(e.sk, s, &box) == SK_OK);
+    SK_CHECK(skgl_point_invalidate(e.sk, p, &box) == SK_OK);
+    SK_CHECK(skgl_shadow_invalidate(e.sk, s, &bad) == SK_ERR_INVALID_ARG);
+    SK_CHECK_MSG(strstr(skgl_error_log(e.sk), "skgl_shadow_invalidate: box: finite") != NULL, "log: %s",
+                 skgl_error_log(e.sk));
+    SK_CHECK(skgl_point_invalidate(e.sk, NULL, NULL) == SK_ERR_INVALID_ARG);
+    skgl_shadow_destroy(e.sk, s);
+    skgl_point_destroy(e.sk, p);
+    SK_CHECK(skgl_gl_object_count(e.sk) == objects);
+    SK_CHECK(e.gl.GetError() == 0);
+    gt_env_free(&e);
+}
+
+/* SKGL_NO_CASTERS: skgl_caster_create refuses, and skgl_use_caster in a
+   draw callback fails the render, both naming the macro */
+typedef struct caster_world {
+    gt_env *e;
+    int calls, got;          /* callbacks; skgl_use_caster returned non-NULL */
+} caster_world;
+
+static void draw_with_caster(void *user, const skgl_draw_info *info)
+{
+    caster_world *w = (caster_world *)user;
+    (void)info;
+    w->calls++;
+    if (skgl_use_caster(w->e->sk, NULL)) w->got++;
+    gt_draw(w->e, info);
+}
+
+static void test_casters_refused(void)
+{
+    gt_env e;
+    tb_scene sc;
+    skgl_caster_desc cd;
+    skgl_caster *c = (skgl_caster *)&cd;
+    skgl_shadow_desc d;
+    skgl_shadow *s;
+    skgl_scene scene;
+    caster_world w;
+    sk_result r;
+    int objects;
+    skgl_camera cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, W, H);
+    tb_scene_init(&sc);
+    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
+    tb_scene_add_box(&sc, "box", gt_v3(3, 0, -3), gt_v3(4, 1, -2));
+    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
+    objects = skgl_gl_object_count(e.sk);
+    memset(&cd, 0, sizeof cd);
+    cd.vertex = "layout(location = 0) in vec3 a_pos;\n"
+                "vec4 skgl_caster_position() { return vec4(a_pos, 1.0); }\n";
+    SK_CHECK(skgl_caster_create(e.sk, &cd, &c) == SK_ERR_INVALID_ARG);
+    SK_CHECK(c == NULL);
+    SK_CHECK_MSG(strcmp(skgl_error_log(e.sk), "skgl_caster_create: compiled out (SKGL_NO_CASTERS)") == 0, "log: %s",
+                 skgl_error_log(e.sk));
+    SK_CHECK(skgl_gl_object_count(e.sk) == objects);
+    skgl_caster_destroy(e.sk, NULL);
+    SK_CHECK(skgl_use_caster(e.sk, NULL) == NULL);   /* outside a callback */
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_STANDARD;
+    d.resolution = 512;
+    s = gt_shadow(&e, &d);
+    memset(&w, 0, sizeof w);
+    w.e = &e;
+    scene = gt_scene(&e);
+    scene.draw = draw_with_caster;
+    scene.user = &w;
+    r = s ? skgl_shadow_render(e.sk, s, &cam, &scene, gt_v3(0.1f, -0.6f, -1)) : SK_ERR_INVALID_ARG;
+    SK_CHECK_MSG(r == SK_ERR_INVALID_ARG, "render: %s", sk_result_string(r));
+    SK_CHECK_MSG(w.calls > 0 && w.got == 0, "callbacks %d, locations %d", w.calls, w.got);
+    SK_CHECK_MSG(strstr(skgl_error_log(e.sk), "skgl_use_caster: compiled out (SKGL_NO_CASTERS)") != NULL, "log: %s",
+                 skgl_error_log(e.sk));
+    skgl_shadow_destroy(e.sk, s);
+    SK_CHECK(skgl_gl_object_count(e.sk) == objects);
+    SK_CHECK(e.gl.GetError() == 0);
+    gt_env_free(&e);
+}
+
+#ifdef SK_OPTOUT_SOME
+SK_TEST_MAIN(test_standard, test_pssm, test_rmsm, test_cache_refused, test_casters_refused)
+#else
+SK_TEST_MAIN(test_standard, test_pssm, test_refusals, test_cache_refused, test_casters_refused)
+#endif
