@@ -2,7 +2,11 @@
 #   make examples        build build/examples/01_hard_shadows .. 08_spot_lights
 #   make examples-demo   render each one headless into out/ (part of make demo)
 # Each example is one C99 file holding the shadowkit implementation, plus
-# examples/common.c, linked with the testbed library and GLFW.
+# examples/common.c, linked with the testbed library and GLFW. Each builds
+# alone that way; here the eight are compiled with -include
+# tests/shared_impl.h, which turns their #define SHADOWKIT_[GL_]IMPLEMENTATION
+# into nothing, and link one copy of the implementation
+# ($(EX_DIR)/obj/shadowkit.o): 8 compiles of 13,000 header lines become 1.
 # The testbed's variables (TESTBED_CFLAGS, TESTBED_LIB, TESTBED_LIBS) come
 # from mk/testbed.mk, which is read after this file: prerequisites naming them
 # are written $$(...) and expanded in the second phase (.SECONDEXPANSION).
@@ -31,13 +35,19 @@ $(EX_DIR)/obj/common.o: examples/common.c $(EX_HDRS) | deps-examples
 	$(MKDIR)
 	$(EX_CC) $(EX_GLFW_CFLAGS) $(DEPFLAGS) -c $< -o $@
 
-$(EX_OBJS): $(EX_DIR)/obj/%.o: examples/%.c $(EX_HDRS) | deps-examples
+$(EX_DIR)/obj/shadowkit.o: tests/gl/shared_impl_gl.c shadowkit.h shadowkit_gl.h | deps-examples
 	$(MKDIR)
 	$(EX_CC) $(DEPFLAGS) -c $< -o $@
 
-$(EX_BINS): $(EX_DIR)/%: $(EX_DIR)/obj/%.o $(EX_DIR)/obj/common.o $$(TESTBED_LIB) | deps-examples
+$(EX_OBJS): $(EX_DIR)/obj/%.o: examples/%.c $(EX_HDRS) tests/shared_impl.h | deps-examples
 	$(MKDIR)
-	$(CC) $< $(EX_DIR)/obj/common.o -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(EX_GLFW_LIBS) $(LDLIBS)
+	$(EX_CC) -include tests/shared_impl.h -DSK_TEST_SHARED_IMPL_GL $(DEPFLAGS) -c $< -o $@
+
+$(EX_BINS): $(EX_DIR)/%: $(EX_DIR)/obj/%.o $(EX_DIR)/obj/common.o $(EX_DIR)/obj/shadowkit.o $$(TESTBED_LIB) \
+            | deps-examples
+	$(MKDIR)
+	$(CC) $< $(EX_DIR)/obj/common.o $(EX_DIR)/obj/shadowkit.o -o $@ $(TESTBED_LIB) $(TESTBED_LIBS) $(EX_GLFW_LIBS) \
+	    $(LDLIBS)
 
 # the headless renders; run from the repository root (paths are relative)
 examples-demo: $(EX_BINS)
