@@ -1863,7 +1863,8 @@ SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
 /* ---- DEBUGGING: for tests and debugging views (the manual's DEBUGGING) --- */
 /* GL objects the context currently owns (its own and its lights') */
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
-/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
+/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views (SKGL_AUTO:
+   the same name, its size and layers those of the chosen count: CHOOSING FOR YOU) */
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
 /* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
    sorted by (level, py, px); writes at most cap, returns how many there are */
