@@ -439,11 +439,15 @@
      and every 8th call whatever the camera did (moving objects); otherwise
      skgl_shadow_analyze keeps the last range and does no GL work
      (stats.auto_analysed 0, analysis_ms 0).
-     Memory: .cascades layers of .resolution^2 depth texels (32-bit float),
-     though a frame draws at most .resolution^2 texels (n maps of side
-     .resolution / sqrt(n), each in a corner of its layer): 64 MiB at the
-     defaults (4 x 2048^2 x 4 bytes) for 16 MiB drawn. .cascades bounds it
-     (2: 32 MiB).
+     Memory: the chosen count's n layers of (.resolution / sqrt(n))^2
+     depth texels (32-bit float), about .resolution^2 x 4 bytes whatever n:
+     16 MiB at the defaults (4 x 1024^2 or 1 x 2048^2; 3 x 1182^2, 2 x
+     1448^2). When the count changes to one the texture cannot hold, it
+     grows at once to hold both counts (at most .cascades x .resolution^2 x
+     4 bytes, 64 MiB, while the choice moves), and shrinks to the count's
+     exact size once a count has been kept for 30 renders: a camera moving
+     between two counts re-allocates at most twice per 30 frames.
+     stats.auto_bytes says what it holds.
      Why not the warps or virtual maps: at equal texels PSSM matched or
      beat LiSPSM, PSM and LSPSM in the open world and has none of their
      failure cases (a light along the view, casters behind the camera); a
@@ -1377,6 +1381,8 @@ typedef struct skgl_shadow_frame_stats {
     int auto_analysed;                    /* AUTO: 1 when the last skgl_shadow_analyze ran the
                                              analysis, 0 when it kept the last one (the view had
                                              not moved: CHOOSING FOR YOU) */
+    double auto_bytes;                    /* AUTO: bytes of its depth texture now (layers x side^2
+                                             x 4; CHOOSING FOR YOU, Memory) */
 } skgl_shadow_frame_stats;
 
 
@@ -1885,7 +1891,8 @@ SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
 /* ---- DEBUGGING: for tests and debugging views (the manual's DEBUGGING) --- */
 /* GL objects the context currently owns (its own and its lights') */
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
-/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views */
+/* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views (SKGL_AUTO:
+   the same name, its size and layers those of the chosen count: CHOOSING FOR YOU) */
 SKGLDEF unsigned skgl_shadow_texture(const skgl_shadow *s);
 /* RMSM: the pages resident after the last skgl_shadow_analyze (or render),
    sorted by (level, py, px); writes at most cap, returns how many there are */
@@ -5734,8 +5741,12 @@ struct skgl_shadow {
     int rendered;                  /* 1 after a render that succeeded: the maps may be read */
     skgl__ferko ferko;             /* SKGL_FERKO, SKGL_AUTO and .fit_to_depth */
     int auto_maps;                 /* SKGL_AUTO: the map count in use (0 before the first fit) */
+    int auto_maps_drawn;           /* SKGL_AUTO: the count of the last render (skgl__auto_storage) */
     sk_mat4 auto_view, auto_proj;  /* SKGL_AUTO: the camera of the last analysis run */
     int auto_kept;                 /* SKGL_AUTO: analyses kept (not run) since it ran */
+    int tex_layers;                /* SKGL_AUTO: layers of s->tex (others: .layers) */
+    int auto_sized;                /* SKGL_AUTO: 1 once a render sized s->tex to a count */
+    int auto_settled;              /* SKGL_AUTO: renders at the count in use since it changed */
     int step[SKGL_MAX_CASCADES][2];   /* .stable: each crop's width and height, steps of the ladder
                                       2^(k/8) (skgl__ladder_step; SKGL__NO_STEP before the first) */
     int far_step;                  /* .stable: the shadow range's end, likewise */
@@ -6083,6 +6094,8 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     s->layers = d.cascades;
     s->maps = s->layers;
     s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
+    /* AUTO: one layer, its one-map size, until a render sizes it (skgl__auto_storage) */
+    s->tex_layers = d.technique == SKGL_AUTO ? 1 : s->layers;
     s->select_extent = 1.0f;
     for (i = 0; i < SKGL_MAX_CASCADES; i++) s->step[i][0] = s->step[i][1] = SKGL__NO_STEP;
     s->far_step = SKGL__NO_STEP;
@@ -6097,12 +6110,12 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     skgl__st_unpack(ctx, &st);
     skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->tex);
     skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
-    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, s->layers, 0,
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, s->tex_size, s->tex_size, s->tex_layers, 0,
                    SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
     /* one framebuffer per layer (RMSM: the pool, layer 0) */
-    for (i = 0; i < (d.technique == SKGL_RMSM ? 1 : s->layers) && r == SK_OK; i++) {
+    for (i = 0; i < (d.technique == SKGL_RMSM ? 1 : s->tex_layers) && r == SK_OK; i++) {
         s->fbo[i] = skgl__framebuffer(ctx, &st, 0, 0, s->tex, i);
         if (!s->fbo[i]) {
             skgl__set_log(ctx, "skgl_shadow_create: shadow framebuffer incomplete", NULL);
@@ -6778,15 +6791,80 @@ static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
     }
     side = skgl__auto_side(s->desc.resolution, n);
     s->view_w = s->view_h = side < s->desc.resolution ? side : s->desc.resolution;
-    for (i = 0; i < n && s->view_w < s->desc.resolution; i++) {
+    return SK_OK;
+}
+
+/* AUTO's depth texture: n maps of side^2 need n layers of side^2. A count
+   that does not fit the texture makes it grow at once, to hold both the
+   old count and the new (a camera going back and forth between two counts
+   then draws into what is there); once a count has been kept for
+   SKGL__AUTO_SHRINK renders, a texture larger than it needs shrinks to
+   exactly its layers and side. A map smaller than the texture is drawn
+   into the lower-left side x side texels of its layer (its lookup matrix
+   scaled to them, sk_map_extent), and llvmpipe draws such a map about
+   1.4x slower than into a layer of its own size (the depth passes of the
+   open world's 4 maps of 1024^2: 37 against 25 ms for PSSM 4 x 1024^2, a
+   layer of 2048^2 under each). Re-specified in place (glTexImage3D on the
+   same name), with new framebuffers for its layers; EVSM's moments follow
+   its size. */
+#define SKGL__AUTO_SHRINK 30
+static sk_result skgl__auto_storage(skgl_context *ctx, skgl_shadow *s)
+{
+    skgl__api *gl = &ctx->gl;
+    skgl__st st;
+    sk_result r = SK_OK;
+    int n = s->maps, side = s->view_w, size, layers, i;
+    if (n != s->auto_maps_drawn) s->auto_settled = 0;
+    s->auto_maps_drawn = n;
+    if (s->auto_settled < SKGL__AUTO_SHRINK) s->auto_settled++;
+    if (!s->auto_sized || s->auto_settled >= SKGL__AUTO_SHRINK) {
+        size = side;
+        layers = n;
+    } else {
+        size = side > s->tex_size ? side : s->tex_size;
+        layers = n > s->tex_layers ? n : s->tex_layers;
+    }
+    s->auto_sized = 1;
+    if (size == s->tex_size && layers == s->tex_layers) return SK_OK;
+    skgl__st_begin(ctx, &st);
+    for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->fbo[i]);
+    skgl__delete_framebuffer(ctx, &s->fbo_layered);
+    skgl__st_unpack(ctx, &st);
+    skgl__st_set1(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->tex);
+    skgl__st_unit(ctx, &st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, size, size, layers, 0,
+                   SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    s->tex_size = size;
+    s->tex_layers = layers;
+    for (i = 0; i < layers && r == SK_OK; i++)
+        if (!(s->fbo[i] = skgl__framebuffer(ctx, &st, 0, 0, s->tex, i))) r = SK_ERR_GL;
+    if (r == SK_OK && s->desc.filter == SKGL_FILTER_EVSM) {
+        skgl__evsm_free(ctx, s);
+        r = skgl__evsm_create(ctx, &st, s);
+    }
+    skgl__st_end(ctx, &st);
+    if (r != SK_OK) skgl__set_log(ctx, "skgl_shadow_render: SKGL_AUTO's depth texture at its new size", NULL);
+    return r;
+}
+
+static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const skgl_scene *rs, sk_vec3 light_dir);
+/* AUTO: its texture sized to the count (skgl__auto_storage), each map's
+   lookup matrix onto its part of the layer, then the layers' passes */
+static sk_result skgl__render_auto(skgl_context *ctx, skgl_shadow *s, const skgl_scene *rs, sk_vec3 light_dir)
+{
+    int i;
+    sk_result r = skgl__auto_storage(ctx, s);
+    if (r != SK_OK) return r;
+    s->stats.auto_bytes = 4.0 * s->tex_layers * (double)s->tex_size * s->tex_size;
+    for (i = 0; i < s->maps && s->view_w < s->tex_size; i++) {
         sk_mat4 m = sk_mat4_identity();
-        float f = (float)s->view_w / (float)s->desc.resolution;
+        float f = (float)s->view_w / (float)s->tex_size;
         m.m[0] = m.m[5] = f;
         m.m[12] = m.m[13] = f - 1.0f;
         s->render_vp[i] = s->vp[i];
         s->vp[i] = sk_mat4_mul(m, s->vp[i]);
     }
-    return SK_OK;
+    return skgl__render_layers(ctx, s, rs, light_dir);
 }
 
 #ifndef SKGL_NO_RMSM
@@ -8336,10 +8414,10 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     int i, res;
     const double *o = s->origin;
     /* a map smaller than its texture (FERKO, AUTO): the fit set both matrices */
-    if (s->view_w == s->desc.resolution && s->view_h == s->desc.resolution)
+    if (s->view_w == s->tex_size && s->view_h == s->tex_size)
         for (i = 0; i < s->maps; i++) s->render_vp[i] = s->vp[i];
     s->light_dir = sk__normalize(light_dir);
-    res = s->desc.resolution;
+    res = s->tex_size;
     skgl__st_begin(ctx, &st);
     skgl__timer_begin(ctx, &s->t_render);
     skgl__st_set4(ctx, &st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
@@ -8396,7 +8474,7 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     skgl__timer_end(ctx, &s->t_render);
     s->stats.shadow_ms = s->t_render.ms;
     s->stats.maps = s->maps;
-    s->stats.resolution = res;
+    s->stats.resolution = s->desc.resolution;
     s->stats.map_width = s->view_w;
     s->stats.map_height = s->view_h;
     skgl__st_end(ctx, &st);
@@ -8430,7 +8508,7 @@ static const skgl__technique skgl__techniques[] = {
 #else
     {"RMSM", NULL, NULL, NULL, NULL, NULL},   /* refused at create (skgl__shadow_validate) */
 #endif
-    {"AUTO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_auto, skgl__render_layers},
+    {"AUTO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_auto, skgl__render_auto},
 };
 
 /* the row of s's technique (validated at create: always in the table) */
@@ -8723,8 +8801,8 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
     }
     /* FERKO and AUTO draw into the lower-left view_w x view_h texels:
        beyond them lie older maps' texels, not this frame's */
-    ext[0] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_w / (float)s->desc.resolution;
-    ext[1] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_h / (float)s->desc.resolution;
+    ext[0] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_w / (float)s->tex_size;
+    ext[1] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_h / (float)s->tex_size;
     if (ext[0] != e->extent[0] || ext[1] != e->extent[1]) {
         e->extent[0] = ext[0];
         e->extent[1] = ext[1];

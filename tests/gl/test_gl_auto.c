@@ -28,6 +28,17 @@
    test_auto_hysteresis a camera rising slowly from the ground to 60 m over
                         a terrace: the count changes a few times, never back
                         and forth between two frames, and the stats say why
+                        and AUTO's depth texture (stats.auto_bytes) holds
+                        the count, is exactly its n layers of
+                        floor(2048 / sqrt(n))^2 once a count has been kept
+                        30 renders, and is resized at most twice a change:
+                        measured rising 3 changes, 4 resizes, 16 MiB at the
+                        end (one 2048^2 map; 64 MiB before, 4 x 2048^2
+                        whatever the count); bobbing 0 and 0. Broken on
+                        purpose: the texture never shrinking
+                        (SKGL__AUTO_SHRINK 1000000) fails from frame 60,
+                        "1 maps kept 30 renders, 67108864 bytes, 16777216
+                        needed"
    (test_gl_calls counts AUTO's GL calls and stalls without
    .sync_readback: FERKO's analysis and ring, no stall.)
 
@@ -59,6 +70,7 @@
 #include "sk_test.h"
 #include "gl_test_util.h"
 
+#include <math.h>
 #include <stdio.h>
 
 #define W 320
@@ -468,14 +480,21 @@ static void test_fit_to_depth(void) {
    of a few hundred metres' depth range (one map). */
 /* one AUTO light along a camera path; the count changes and A -> B -> A
    returns (consecutive changes) */
-typedef struct path_counts { int first, last, changes, returns; } path_counts;
+typedef struct path_counts { int first, last, changes, returns, resizes; double bytes; } path_counts;
+
+/* the depth texture n maps of 2048^2 / n texels each need: n layers of
+   floor(2048 / sqrt(n))^2 32-bit texels (CHOOSING FOR YOU, Memory) */
+static double auto_need_bytes(int n) {
+    double side = floor(2048.0 / sqrt((double)n));
+    return 4.0 * n * side * side;
+}
 
 static path_counts auto_path(gt_env *e, int frames, float (*height)(int f, int frames)) {
     skgl_shadow_desc d = gt_shadow_desc(SKGL_AUTO, 2048, 4, 0);
     skgl_shadow *s = gt_shadow(e, &d);
     sk_vec3 light = gt_v3(-0.45f, -1.0f, -0.35f);
     path_counts pc;
-    int f, prev = 0, prev2 = 0;
+    int f, prev = 0, prev2 = 0, kept = 0;
     memset(&pc, 0, sizeof pc);
     SK_CHECK(s != NULL);
     for (f = 0; s && f < frames; f++) {
@@ -495,6 +514,17 @@ static path_counts auto_path(gt_env *e, int frames, float (*height)(int f, int f
         if (verbose())
             printf("  %.1f m up: predicted texel %.2f %.2f %.2f %.2f px with 1-4 maps -> %d\n", y, st->auto_texel_px[0],
                    st->auto_texel_px[1], st->auto_texel_px[2], st->auto_texel_px[3], st->maps);
+        /* the texture holds the count; exactly its size once the count
+           has been kept 30 renders (SKGL__AUTO_SHRINK); never more than
+           .cascades layers of 2048^2 */
+        kept = st->maps == prev ? kept + 1 : 1;
+        SK_CHECK_MSG(st->auto_bytes >= auto_need_bytes(st->maps) && st->auto_bytes <= 4.0 * 4 * 2048.0 * 2048.0,
+                     "frame %d: %d maps in %.0f bytes", f, st->maps, st->auto_bytes);
+        SK_CHECK_MSG(kept < 30 || st->auto_bytes == auto_need_bytes(st->maps),
+                     "frame %d: %d maps kept %d renders, %.0f bytes, %.0f needed", f, st->maps, kept, st->auto_bytes,
+                     auto_need_bytes(st->maps));
+        if (f > 0 && st->auto_bytes != pc.bytes) pc.resizes++;
+        pc.bytes = st->auto_bytes;
         if (f == 0) pc.first = st->maps;
         if (prev && st->maps != prev) {
             pc.changes++;
@@ -537,6 +567,14 @@ static void test_auto_hysteresis(void) {
     bob = auto_path(&e, 60, bobbing);
     printf("hysteresis: rising %d -> %d maps, %d changes, %d returns; bobbing %d changes, %d returns\n", up.first,
            up.last, up.changes, up.returns, bob.changes, bob.returns);
+    printf("memory: rising %d resizes, %.1f MiB at the end; bobbing %d resizes, %.1f MiB\n", up.resizes,
+           up.bytes / 1048576.0, bob.resizes, bob.bytes / 1048576.0);
+    /* a grow and a shrink at most per change of count (the texture grows
+       to hold both counts, then shrinks once one is kept) */
+    SK_CHECK_MSG(up.resizes <= 2 * up.changes && bob.resizes <= 2 * bob.changes,
+                 "rising: %d resizes for %d changes; bobbing: %d for %d", up.resizes, up.changes, bob.resizes,
+                 bob.changes);
+    SK_CHECK_MSG(up.bytes == auto_need_bytes(1), "rising: %.0f bytes at the end, one map of 2048^2", up.bytes);
     /* measured: rising 4 maps at head height, 1 at 600 m, 3 changes with
        the log splits (2 before them: 2 maps from 65 m, 1 from 74 m); bobbing 0 changes (2 maps kept: one map's worst texel
        swings between 0.94 and 1.2 px, never 15% under the target).
