@@ -558,14 +558,21 @@
      variance shadow maps (EVSM: Lauritzen and McCool 2008, "Layered Variance
      Shadow Maps", Sec. 4). After its depth passes, each map's depth x =
      2z - 1 is warped by exp(40 x) and -exp(-40 x), the two warps and their
-     squares are box-blurred over 2 .evsm_blur + 1 texels a side (two
+     squares are box-filtered over 2 .evsm_blur + 1 texels a side (two
      full-screen passes a map: a row, then a column) into an RGBA32F array,
      and a receiver is lit by the smaller of the two warps' Chebyshev upper
-     bounds, read with one bilinear tap. Choose it for wide soft edges at a
-     fixed cost: the passes, draws and GL calls are the same at every blur
-     radius (the blur's shader reads 2 (2r + 1) texels a map texel, once a
-     frame, against PCF's (2r)^2 comparisons every screen pixel), and the
-     map needs no comparison bias (no acne, slope-scaled offset only).
+     bounds, read with one bilinear tap. Up to a 5-texel box (blur 2, the
+     default) the moments have the map's own grid; a wider box is
+     evaluated on a coarser grid, 5 points across it (a 1024^2 map at blur
+     16: 156^2 moments), and the bilinear tap fills in between. Choose it
+     for wide soft edges at a fixed cost: the draws are the same at every
+     blur radius, and so is the work: the passes read at most about 10
+     texels a map texel, once a frame, at any width, against PCF's
+     (r + 1)^2 comparisons every screen pixel (tests/gl/test_gl_evsm.c:
+     skgl_shadow_render of a 1024^2 map on llvmpipe 86 / 134 / 80 / 68 /
+     56 ms at blur 1 / 2 / 4 / 8 / 16, where the box on the map's own grid
+     took 87 / 122 / 258 / 298 / 506 ms). The map needs no comparison bias
+     (no acne, slope-scaled offset only).
      Its price: light bleeding where casters overlap at different depths
      (a receiver under a low caster, inside a blur width of a high caster's
      edge, sees a little light; the positive warp keeps it small: on
@@ -576,9 +583,13 @@
      edges (the shadow-area error against the exact reference rises from
      PCF's 2.4% to 3.6% on ground-boxes, STANDARD 1024^2), and perspective
      maps (PSM) lose some of the warp's reach: their depth crowds near 1
-     (7.4% against PCF's 2.3%). Memory: 16 bytes a texel for every layer,
-     plus one layer's worth for the blur (a 2048^2 map: 4 + 64 + 64 MiB;
-     4 cascades of 1024^2: 16 + 64 + 16 MiB). Needs float colour targets
+     (7.4% against PCF's 2.3%). Very wide boxes (a quarter of the map)
+     grey sloped open ground a little (the negative warp's bound), in
+     faint bands of the coarse grid. Memory: 16 bytes a moments texel for
+     every layer, plus side x map side for the row pass (depth, moments,
+     row pass; at blur 2 or less a 2048^2 map: 16 + 64 + 64 MiB, 4
+     cascades of 1024^2: 16 + 64 + 16 MiB; at blur 16, 311^2 moments for
+     the 2048^2 map: 16 + 1.5 + 9.7 MiB). Needs float colour targets
      with linear filtering: OpenGL 3.3, or OpenGL ES / WebGL2 with
      GL_EXT_color_buffer_float and GL_OES_texture_float_linear (refused
      with SK_ERR_GL otherwise). Every technique that renders whole maps
@@ -1285,7 +1296,7 @@ typedef struct skgl_shadow_desc {
                                      targets with linear filtering (OpenGL ES: GL_EXT_color_buffer_float
                                      and GL_OES_texture_float_linear) [SKGL_FILTER_PCF] */
     int evsm_blur;                /* EVSM: the blur's radius in texels, a (2r+1)^2 box, 1..64; the same
-                                     passes and GL calls at every radius [2] */
+                                     draws and about the same work at every radius [2] */
     int disable_evsm_blur;        /* 1: EVSM without the blur (bilinear taps of the moments only) [0] */
     float evsm_bleed;             /* EVSM: light-bleeding reduction, the part of the Chebyshev bound
                                      cut off (Lauritzen 2007): less light where casters overlap,
@@ -2424,7 +2435,7 @@ struct skgl_context {
     /* EVSM (FILTERABLE MAPS): the moments blur's horizontal [0] and vertical
        [1] programs, made with the first EVSM light, and their locations */
     skgl__uint evsm_prog[2];
-    skgl__int evsm_u_radius[2], evsm_u_extent[2], evsm_u_layer;
+    skgl__int evsm_u_box[2], evsm_u_extent[2], evsm_u_layer;
     skgl__mask_prog mask_evsm;
     /* u_depth_map (the camera's depth convention) of the mask and analysis
        programs, and the values last sent (the default convention's at link) */
@@ -5715,10 +5726,11 @@ typedef struct skgl__cache {
 } skgl__cache;
 
 /* desc.filter = SKGL_FILTER_EVSM (FILTERABLE MAPS): the moments array (a
-   bilinear RGBA32F layer per map), the horizontal blur's target, and the
-   framebuffers of both */
+   bilinear RGBA32F layer per map, size x size texels), the horizontal
+   pass's target (size x the map's side), and the framebuffers of both */
 typedef struct skgl__evsm {
     skgl__uint tex, tmp, fbo[SKGL_MAX_CASCADES], tmp_fbo;
+    int size;                      /* the moments' side: the map's, or fewer for a wide box (skgl__evsm_side) */
 } skgl__evsm;
 
 struct skgl_shadow {
@@ -8629,6 +8641,13 @@ SKGLDEF sk_result skgl_shadow_render(skgl_context *ctx, skgl_shadow *s, const sk
    E[w^2] - E[w]^2 in 32-bit floats (a relative 1.2e-7 of w^2, a spread of
    about 4e-6 at c = 40) */
 #define SKGL__EVSM_SPREAD 1e-4f
+/* the fewest moments texels across the blur's box: a box wider than this
+   many map texels is evaluated on a coarser grid (skgl__evsm_side), so the
+   passes read at most about 2 (SPAN + 1) map texels per map texel at any
+   width; the receiver's bilinear tap between grid points errs by at most
+   1/(4 SPAN) of a step's moments (at the box's corners). 5: the default
+   blur (2) keeps the map's own grid. */
+#define SKGL__EVSM_SPAN 5
 
 /* the blur's two programs and the EVSM mask, made with the first EVSM light
    and kept with the context; the blur reads the depth (horizontal) or the
@@ -8653,7 +8672,7 @@ static sk_result skgl__evsm_programs(skgl_context *ctx, skgl__st *st)
                           skgl__glsl(SKGL__GLSL_EVSM_MOMENTS_FRAG));
         if (!p) return SK_ERR_GL;
         ctx->evsm_prog[k] = p;
-        ctx->evsm_u_radius[k] = gl->GetUniformLocation(p, "u_radius");
+        ctx->evsm_u_box[k] = gl->GetUniformLocation(p, "u_box");
         ctx->evsm_u_extent[k] = gl->GetUniformLocation(p, "u_extent");
         skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
         skgl__u1i(gl, gl->GetUniformLocation(p, k ? "u_src" : "u_depth"), 0);
@@ -8684,26 +8703,46 @@ static skgl__uint skgl__layer_framebuffer(skgl_context *ctx, skgl__st *st, skgl_
     return 0;
 }
 
-/* the light's moments array (one layer per map, as its depth texture) and
-   the horizontal pass's target; 16 bytes a texel each */
+/* the moments' side for a map of n texels a side and a blur of r: n while
+   the box (2r + 1 texels) spans at most SKGL__EVSM_SPAN of them, else the
+   fewest texels that put SKGL__EVSM_SPAN grid points across the box */
+static int skgl__evsm_side(int n, int r)
+{
+    long w = 2L * r + 1;
+    if (w <= SKGL__EVSM_SPAN) return n;
+    return (int)(((long)n * SKGL__EVSM_SPAN + w - 1) / w);
+}
+
+/* the moments texels a pass writes along an axis where the frame rendered
+   `rendered` of the map's n texels (m: the moments' side): those a
+   bilinear tap inside the rendered region reaches, one past its edge */
+static int skgl__evsm_reach(int rendered, int n, int m)
+{
+    long k = ((long)rendered * m + n - 1) / n + 1;
+    return k < m ? (int)k : m;
+}
+
+/* the light's moments array (one layer per map, size x size) and the
+   horizontal pass's target (size x the map's side); 16 bytes a texel */
 static sk_result skgl__evsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
     skgl__api *gl = &ctx->gl;
-    int i, n = s->tex_size;
+    int i, n = s->tex_size, m = skgl__evsm_side(n, s->desc.evsm_blur);
+    s->evsm.size = m;
     SKGL__TRY(skgl__evsm_programs(ctx, st));
     gl->GenTextures(1, &s->evsm.tex);
     ctx->objects++;
     skgl__st_unpack(ctx, st);
     skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)s->evsm.tex);
     skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
-    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__RGBA32F, n, n, s->layers, 0, SKGL__RGBA, SKGL__FLOAT, NULL);
+    gl->TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__RGBA32F, m, m, s->layers, 0, SKGL__RGBA, SKGL__FLOAT, NULL);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_WRAP_S, SKGL__CLAMP_TO_EDGE);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_WRAP_T, SKGL__CLAMP_TO_EDGE);
     for (i = 0; i < s->layers; i++)
         if (!(s->evsm.fbo[i] = skgl__layer_framebuffer(ctx, st, s->evsm.tex, i))) return SK_ERR_GL;
-    s->evsm.tmp = skgl__color_texture(ctx, st, SKGL__RGBA32F, n, n, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->evsm.tmp = skgl__color_texture(ctx, st, SKGL__RGBA32F, m, n, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
     s->evsm.tmp_fbo = skgl__framebuffer(ctx, st, s->evsm.tmp, 1, 0, 0);
     return s->evsm.tmp_fbo ? SK_OK : SK_ERR_GL;
 }
@@ -8717,29 +8756,37 @@ static void skgl__evsm_free(skgl_context *ctx, skgl_shadow *s)
     skgl__delete_framebuffer(ctx, &s->evsm.tmp_fbo);
 }
 
-/* After the depth passes: each map's moments, blurred by a box of
-   2 evsm_blur + 1 texels a side in two passes (evsm_moments.frag); two
-   draws and the same calls per map at every radius. Only the region this
-   frame rendered (FERKO, AUTO: view_w x view_h) is read and written.
-   Under the render's tracker st, after its caster passes. */
+/* After the depth passes: each map's moments, box-filtered over
+   2 evsm_blur + 1 map texels a side in two passes (evsm_moments.frag),
+   evaluated on the moments' grid (evsm.size a side: the map's own, or a
+   coarser one for a wide box, skgl__evsm_side); two draws and the same
+   calls per map at every radius, and about the same texels read. Only the
+   region this frame rendered (FERKO, AUTO: view_w x view_h) is read, and
+   the moments it reaches written. Under the render's tracker st, after
+   its caster passes. */
 static void skgl__evsm_moments(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
     skgl__api *gl = &ctx->gl;
-    float ext[2];
-    int i, k;
-    ext[0] = (float)s->view_w;
-    ext[1] = (float)s->view_h;
+    int n = s->tex_size, m = s->evsm.size, i, k;
+    int mw = skgl__evsm_reach(s->view_w, n, m), mh = skgl__evsm_reach(s->view_h, n, m);
+    float box[2], ext[2][2];
+    box[0] = (float)s->desc.evsm_blur + 0.5f;
+    box[1] = (float)n / (float)m;
+    /* the horizontal pass reads the depth's region, the vertical its own output */
+    ext[0][0] = (float)s->view_w;
+    ext[0][1] = ext[1][1] = (float)s->view_h;
+    ext[1][0] = (float)mw;
     skgl__st_screen_pass(ctx, st);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
-    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->view_w, s->view_h);
     for (i = 0; i < s->maps; i++)
         for (k = 0; k < 2; k++) {
             skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)(k ? s->evsm.fbo[i] : s->evsm.tmp_fbo));
+            skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, mw, k ? mh : s->view_h);
             skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->evsm_prog[k]);
             if (k) skgl__st_texture(ctx, st, 0, SKGL__T_2D, s->evsm.tmp, ctx->point_sampler);
             else skgl__st_texture(ctx, st, 0, SKGL__T_2D_ARRAY, s->tex, ctx->point_sampler);
-            skgl__u1i(gl, ctx->evsm_u_radius[k], s->desc.evsm_blur);
-            if (ctx->evsm_u_extent[k] >= 0) gl->Uniform2fv(ctx->evsm_u_extent[k], 1, ext);
+            gl->Uniform2fv(ctx->evsm_u_box[k], 1, box);
+            if (ctx->evsm_u_extent[k] >= 0) gl->Uniform2fv(ctx->evsm_u_extent[k], 1, ext[k]);
             if (!k) skgl__u1i(gl, ctx->evsm_u_layer, i);
             gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
         }
@@ -14115,18 +14162,23 @@ static const char skgl__src_soft_dilate_frag[] =
 static const char skgl__src_evsm_moments_frag[] =
     "/* EVSM moments (exponential variance shadow maps: Lauritzen and McCool\n"
     "   2008, \"Layered Variance Shadow Maps\", Sec. 4, the exponential warp with\n"
-    "   a positive and a negative exponent). One separable box blur in two\n"
+    "   a positive and a negative exponent). One separable box filter in two\n"
     "   passes over a layer of the light's map: the horizontal pass reads the\n"
     "   depth layer, warps each texel's depth x = 2 z - 1 into\n"
-    "   (exp(c+ x), exp(c+ x)^2, -exp(-c- x), exp(-c- x)^2) and averages 2r+1 of\n"
-    "   them along a row; the vertical pass (SK_EVSM_VERTICAL) averages 2r+1 of\n"
-    "   those along a column into the layer of the moments array. Reads clamp\n"
-    "   to the texels this frame rendered (u_extent). Two draws per layer\n"
-    "   whatever the radius. */\n"
+    "   (exp(c+ x), exp(c+ x)^2, -exp(-c- x), exp(-c- x)^2) and averages them\n"
+    "   along a row; the vertical pass (SK_EVSM_VERTICAL) averages those along a\n"
+    "   column into the layer of the moments array. The box is 2 u_box.x map\n"
+    "   texels wide (2r+1 for a blur of r), each texel weighed by the part of it\n"
+    "   the box covers, and it is evaluated every u_box.y map texels only (the\n"
+    "   output texel i at (i + 0.5) u_box.y): a wide box at a coarse spacing\n"
+    "   reads about as many texels per map texel as a narrow one at the map's\n"
+    "   own, and the receiver's bilinear tap fills in between. Reads clamp to\n"
+    "   the texels this frame rendered (u_extent). Two draws per layer whatever\n"
+    "   the width. */\n"
     "in vec2 v_uv;\n"
     "out vec4 o_moments;\n"
-    "uniform int u_radius;\n"
-    "uniform vec2 u_extent;              /* the rendered region, in texels */\n"
+    "uniform vec2 u_box;                 /* x: the box's half-width, y: the output spacing, in map texels */\n"
+    "uniform vec2 u_extent;              /* the rendered region, in texels of the pass's source */\n"
     "#ifdef SK_EVSM_VERTICAL\n"
     "uniform highp sampler2D u_src;      /* the horizontal pass's moments */\n"
     "#else\n"
@@ -14150,13 +14202,22 @@ static const char skgl__src_evsm_moments_frag[] =
     "{\n"
     "    ivec2 px = ivec2(gl_FragCoord.xy), last = ivec2(u_extent) - 1;\n"
     "#ifdef SK_EVSM_VERTICAL\n"
+    "    int i = px.y;\n"
     "    ivec2 step = ivec2(0, 1);\n"
     "#else\n"
+    "    int i = px.x;\n"
     "    ivec2 step = ivec2(1, 0);\n"
     "#endif\n"
+    "    /* the box [lo, hi] along the pass's axis; texel j spans [j, j + 1] */\n"
+    "    float c = (float(i) + 0.5) * u_box.y, lo = c - u_box.x, hi = c + u_box.x;\n"
+    "    int first = int(floor(lo)), end = int(ceil(hi));\n"
+    "    ivec2 row = px - i * step;\n"
     "    vec4 sum = vec4(0.0);\n"
-    "    for (int k = -u_radius; k <= u_radius; k++) sum += moments_at(clamp(px + k * step, ivec2(0), last));\n"
-    "    o_moments = sum / float(2 * u_radius + 1);\n"
+    "    for (int j = first; j < end; j++) {\n"
+    "        float w = min(hi, float(j + 1)) - max(lo, float(j));\n"
+    "        sum += w * moments_at(clamp(row + j * step, ivec2(0), last));\n"
+    "    }\n"
+    "    o_moments = sum / (hi - lo);\n"
     "}\n"
     ;
 /* SKGL_EMBEDDED_SHADERS_END */
