@@ -1900,7 +1900,10 @@ SKGLDEF sk_mat4 skgl_soft_matrix(const skgl_soft *s);
 SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap);
 
 /* ---- DEBUGGING: for tests and debugging views (the manual's DEBUGGING) --- */
-/* GL objects the context currently owns (its own and its lights') */
+/* GL objects the context currently owns (its own and its lights'): 6 after
+   skgl_create; the programs of FERKO's analysis (3: FERKO, AUTO,
+   .fit_to_depth), RMSM's (2) and EVSM's are made with the first light that
+   needs them and kept until skgl_destroy */
 SKGLDEF int skgl_gl_object_count(const skgl_context *ctx);
 /* the GL depth texture (GL_TEXTURE_2D_ARRAY), for debugging views (SKGL_AUTO:
    the same name, its size and layers those of the chosen count: CHOOSING FOR YOU) */
@@ -2395,6 +2398,7 @@ struct skgl_context {
     skgl__uint mask_fbo;                   /* the deferred masks' target: the mask texture attached per call */
     skgl__uint mask_fbo_tex;               /* the texture attached to it now (0: none) */
     skgl__uint cmp_sampler, point_sampler;
+    /* made with the first light that needs them (skgl__ferko_programs, skgl__rmsm_programs) */
     skgl__uint ferko_prog, reduce_prog;    /* resolution estimation: analysis, 16x16 MIN reduction */
     skgl__uint final_prog;                 /* resolution estimation: the last reduction, into 2x1 texels */
     skgl__uint rmsm_prog, request_prog;    /* RMSM: per-pixel samples, page-request scatter */
@@ -3998,6 +4002,38 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     ctx->depth_u_model = gl->GetUniformLocation(ctx->depth_prog, "skgl_model");
     ctx->model_loc = -1;   /* no caster pass under way */
     skgl__mask_locations(ctx, st);
+}
+
+/* the programs of a technique that did not build: SK_ERR_GL, the driver's
+   message (in the log) quoted after what */
+static sk_result skgl__programs_failed(skgl_context *ctx, const char *what)
+{
+    char driver[sizeof ctx->log];
+    memcpy(driver, ctx->log, sizeof driver);
+    return skgl__fail(ctx, SK_ERR_GL, "%s did not build on \"%.80s\": %.900s", what,
+                      (const char *)ctx->gl.GetString(SKGL__VERSION), driver);
+}
+
+/* FERKO's analysis (the 4x4-block pass, the 16x16 MIN reduction, the last
+   reduction into 2x1 texels): built with the first light that analyses
+   (FERKO, AUTO, .fit_to_depth), then kept with the context and freed by
+   skgl_destroy; those linked before one failed are kept for the next try */
+static sk_result skgl__ferko_programs(skgl_context *ctx, skgl__st *st)
+{
+    skgl__api *gl = &ctx->gl;
+    if (ctx->final_prog) return SK_OK;
+    if (!ctx->ferko_prog)
+        ctx->ferko_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
+                                        skgl__glsl(SKGL__GLSL_FERKO_ANALYZE_FRAG), NULL);
+    if (ctx->ferko_prog && !ctx->reduce_prog)
+        ctx->reduce_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 0\n",
+                                         skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
+    if (ctx->reduce_prog)
+        ctx->final_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 1\n",
+                                        skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
+    if (!ctx->final_prog)
+        return skgl__programs_failed(ctx, "skgl_shadow_create: the shaders of FERKO's analysis (desc.technique "
+                                     "SKGL_FERKO or SKGL_AUTO, or desc.fit_to_depth)");
     ctx->ferko_u_ndc_to_light = gl->GetUniformLocation(ctx->ferko_prog, "u_ndc_to_light");
     ctx->ferko_u_world_w = gl->GetUniformLocation(ctx->ferko_prog, "u_world_w");
     ctx->ferko_u_view_z = gl->GetUniformLocation(ctx->ferko_prog, "u_view_z");
@@ -4014,7 +4050,24 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->final_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->final_prog, "u_src"), 1);
     ctx->reduce_src[0] = ctx->final_src[0] = -1;
+    return SK_OK;
+}
+
 #ifndef SKGL_NO_RMSM
+/* RMSM's per-pixel samples and page-request scatter: built with the first
+   RMSM light, then kept with the context and freed by skgl_destroy */
+static sk_result skgl__rmsm_programs(skgl_context *ctx, skgl__st *st)
+{
+    skgl__api *gl = &ctx->gl;
+    if (ctx->request_prog) return SK_OK;
+    if (!ctx->rmsm_prog)
+        ctx->rmsm_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
+                                       skgl__glsl(SKGL__GLSL_RMSM_ANALYZE_FRAG), NULL);
+    if (ctx->rmsm_prog)
+        ctx->request_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_RMSM_REQUEST_VERT),
+                                          skgl__glsl(SKGL__GLSL_RMSM_REQUEST_FRAG), NULL);
+    if (!ctx->request_prog)
+        return skgl__programs_failed(ctx, "skgl_shadow_create: the shaders of RMSM's page analysis");
     ctx->rmsm_u_inv_view_proj = gl->GetUniformLocation(ctx->rmsm_prog, "u_inv_view_proj");
     ctx->rmsm_u_light = gl->GetUniformLocation(ctx->rmsm_prog, "u_light");
     ctx->rmsm_u_virtual_res = gl->GetUniformLocation(ctx->rmsm_prog, "u_virtual_res");
@@ -4028,8 +4081,9 @@ static void skgl__own_programs(skgl_context *ctx, skgl__st *st)
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)ctx->request_prog);
     skgl__u1i(gl, gl->GetUniformLocation(ctx->request_prog, "u_samples"), 1);
     ctx->request_pages0 = ctx->request_levels = ctx->request_bands = -1;
-#endif
+    return SK_OK;
 }
+#endif
 
 // >>caps
 /* What the context offers (skgl_caps), from its version and
@@ -4181,38 +4235,17 @@ static sk_result skgl__load(skgl_context *ctx, const skgl_desc *desc)
     return SK_OK;
 }
 
-/* shadowkit's own programs; the first that fails has the driver's message in the log */
+/* the programs every directional light needs (the depth pass, the mask);
+   a technique's own are built with its first light (skgl__ferko_programs,
+   skgl__rmsm_programs, skgl__evsm_programs); the first that fails has the
+   driver's message in the log */
 static sk_result skgl__create_programs(skgl_context *ctx)
 {
     ctx->depth_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT), skgl__glsl(SKGL__GLSL_DEPTH_FRAG), NULL);
     if (ctx->depth_prog)
         ctx->mask_prog = skgl__mask_program(ctx, 0);
-    if (ctx->mask_prog)
-        ctx->ferko_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
-                                        skgl__glsl(SKGL__GLSL_FERKO_ANALYZE_FRAG), NULL);
-    if (ctx->ferko_prog)
-        ctx->reduce_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 0\n",
-                                         skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
-    if (ctx->reduce_prog)
-        ctx->final_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), "#define SK_FERKO_FINAL 1\n",
-                                        skgl__glsl(SKGL__GLSL_FERKO_REDUCE_FRAG));
-#ifndef SKGL_NO_RMSM
-    if (ctx->final_prog)
-        ctx->rmsm_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT),
-                                       skgl__glsl(SKGL__GLSL_RMSM_ANALYZE_FRAG), NULL);
-    if (ctx->rmsm_prog)
-        ctx->request_prog = skgl__program(ctx, skgl__glsl(SKGL__GLSL_RMSM_REQUEST_VERT),
-                                          skgl__glsl(SKGL__GLSL_RMSM_REQUEST_FRAG), NULL);
-    if (ctx->request_prog) return SK_OK;
-#else
-    if (ctx->final_prog) return SK_OK;   /* SKGL_NO_RMSM: no page analysis, no request scatter */
-#endif
-    {
-        char driver[sizeof ctx->log];
-        memcpy(driver, ctx->log, sizeof driver);
-        return skgl__fail(ctx, SK_ERR_GL, "skgl_create: shadowkit's own shaders did not build on \"%.80s\": %.900s",
-                          (const char *)ctx->gl.GetString(SKGL__VERSION), driver);
-    }
+    if (ctx->mask_prog) return SK_OK;
+    return skgl__programs_failed(ctx, "skgl_create: shadowkit's own shaders");
 }
 
 SKGLDEF sk_result skgl_create(const skgl_desc *desc, skgl_context **out)
@@ -6905,6 +6938,7 @@ static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
    targets follow the G-buffer's size: skgl__ferko_targets) */
 static sk_result skgl__ferko_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
+    SKGL__TRY(skgl__ferko_programs(ctx, st));
     s->ferko.final = skgl__color_texture(ctx, st, SKGL__RGBA32F, 2, 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
     s->ferko.final_fbo = skgl__framebuffer(ctx, st, s->ferko.final, 1, 0, 0);
     skgl__ring_create(ctx, st, &s->ferko.ring, 8 * sizeof(float));
@@ -7207,6 +7241,7 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
 {
     int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
     size_t bytes;
+    SKGL__TRY(skgl__rmsm_programs(ctx, st));
     s->rmsm.pages0 = s->desc.resolution / s->desc.rmsm_page_size;
     for (s->rmsm.levels = 1; (1 << (s->rmsm.levels - 1)) < s->rmsm.pages0; s->rmsm.levels++) {}
     s->rmsm.atlas_w = 2 * s->rmsm.pages0 - 1;

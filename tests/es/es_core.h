@@ -218,6 +218,24 @@ static inline void esx_draw(void *user, const skgl_draw_info *info)
     r->gl.BindVertexArray(0);
 }
 
+/* FERKO's analysis programs and RMSM's are made with the first light of
+   each and kept with the context: a light of each made and destroyed before
+   the objects are counted, so that every light of the table must give back
+   all it makes (a technique the context refuses makes nothing) */
+static inline void esx_warm_up(esx_run *r)
+{
+    static const int techs[2] = {SKGL_FERKO, SKGL_RMSM};
+    int i;
+    for (i = 0; i < 2; i++) {
+        skgl_shadow_desc d;
+        skgl_shadow *s = NULL;
+        memset(&d, 0, sizeof d);
+        d.technique = (skgl_technique)techs[i];
+        d.resolution = 1024;
+        if (skgl_shadow_create(r->sk, &d, &s) == SK_OK) skgl_shadow_destroy(r->sk, s);
+    }
+}
+
 /* 0 ok; the GL context current, getproc its loader */
 static inline int esx_begin(esx_run *r, esx_getproc getproc, const esx_scene *scene, unsigned disable_caps)
 {
@@ -301,6 +319,7 @@ static inline int esx_begin(esx_run *r, esx_getproc getproc, const esx_scene *sc
     skgl_remember_texture(r->sk, r->normal_tex, ESX_W, ESX_H);
     skgl_remember_texture(r->sk, r->mask_tex, ESX_W, ESX_H);
     if (gl->GetError() != 0) return esx_fail(r, "GL error while making the scene", NULL);
+    esx_warm_up(r);
     r->objects = skgl_gl_object_count(r->sk);
     r->last = ESX_TECHS;
     r->sun = esx_sun_dir();

@@ -74,6 +74,21 @@ static inline skgl_shadow_desc gt_shadow_desc(skgl_technique technique, int reso
     return d;
 }
 
+/* FERKO's analysis programs and RMSM's are made with the first light that
+   needs them and kept with the context until skgl_destroy: a light of each
+   made and destroyed here, so that an object count taken afterwards comes
+   back to itself once the lights a test makes are destroyed */
+static inline void gt_warm_programs(skgl_context *sk) {
+    skgl_shadow_desc d = gt_shadow_desc(SKGL_FERKO, 1024, 1, 0);
+    skgl_shadow *s = NULL;
+    if (skgl_shadow_create(sk, &d, &s) == SK_OK) skgl_shadow_destroy(sk, s);
+#ifndef SKGL_NO_RMSM
+    d.technique = SKGL_RMSM;
+    s = NULL;
+    if (skgl_shadow_create(sk, &d, &s) == SK_OK) skgl_shadow_destroy(sk, s);
+#endif
+}
+
 /* one row of a printed table: a label, then n names or n values */
 static inline void gt_print_names(const char *label, const char *const *names, int n) {
     int i;

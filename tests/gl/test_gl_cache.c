@@ -707,6 +707,7 @@ static void test_cache(void) {
     if (gt_movers_init(w, W, H) != 0) return;
     /* the mover's room: the scene's bounds hold its whole path */
     w->e.scene.bounds = gt_box(-10, 0, -10, 10, 6, 10);
+    gt_warm_programs(w->e.sk);
     objects = skgl_gl_object_count(w->e.sk);
     test_cached_equals_uncached();
     test_point_cached_equals_uncached();

@@ -527,6 +527,7 @@ static void test_cache_property(void) {
     if (gt_movers_init(w, W, H) != 0) return;
     w->e.scene.bounds = gt_box(-12, 0, -12, 12, 7, 12);   /* the mover's and box0's room */
     w->mover_at = gt_v3(-6, 0, -6);
+    gt_warm_programs(w->e.sk);
     objects = skgl_gl_object_count(w->e.sk);
     test_walk_verify();
     test_drift();

@@ -6,7 +6,7 @@
    lights naive and with every optimization, three VSDCT lights in one
    shared atlas, area lights PCSS and PVSM, a caster program with varyings
    and a fragment hook through layered PSSM, a layered cube and PVSM with
-   its own G-buffer ("engine": 13 programs besides the context's 7: the
+   its own G-buffer ("engine": 13 programs besides the context's 2: the
    point mask's, PVSM's 7, the layered depth program and the hook's 4 for
    the depth, layered, low-resolution and G-buffer passes), and a bare
    context) runs on a
@@ -38,14 +38,26 @@
    SKGL_MALLOC returns NULL, n = 1 .. until the case runs through): each
    failing call returns an error, nothing leaks, nothing crashes.
 
+   Programs on demand: a bare skgl_create links 2 programs and holds 6 GL
+   objects (BARE_*, with the figures before); the first FERKO, AUTO or
+   .fit_to_depth light adds FERKO's 3 analysis programs, the first RMSM
+   light RMSM's 2, later lights none; each link or compile of them made to
+   fail in turn gives SK_ERR_GL from skgl_shadow_create with the driver's
+   message in skgl_error_log, the next create builds them, nothing leaks.
+   Can fail: with FERKO's and RMSM's programs built by skgl_create again
+   (the header before this change), "bare skgl_create: 7 links, 7 programs
+   live, 2 expected", "11 GL objects, 6 expected" and "the first FERKO light
+   added 0 programs, 3 expected" (and the failure injections missed).
+
    Measured (the table): every case 1 framebuffer (the masks' target), 2
-   samplers, 1 vertex array and 7 programs (14 shaders) of the context; a
+   samplers, 1 vertex array and 2 programs (4 shaders) of the context; a
    directional light +1 texture and +1 framebuffer per layer, +9 timer
-   queries (three per timed pass: render, mask, analysis); FERKO 8
+   queries (three per timed pass: render, mask, analysis); FERKO +3
+   programs (its analysis, made with the light), 8
    textures and 9 framebuffers (its map, the final 2x1 pair, and the
    analysis and reduction levels each time the G-buffer size changes:
    three times over the frames) and 3 pixel buffers (the read-back ring),
-   ferko-late 2 fences (the ring's); RMSM 6 textures (map, request atlas,
+   ferko-late 2 fences (the ring's); RMSM +2 programs, 6 textures (map, request atlas,
    page table, the samples made once per G-buffer size), 3 pixel buffers
    and 2 fences; a cube light +1 program, +1 texture, +6 framebuffers (its
    faces), +6 timer queries; a VSDCT light +1 program, +2 textures, +1
@@ -57,7 +69,7 @@
    target and per pyramid level at lowres 256), +3 pixel buffers (the
    prediction's ring), +7 programs, 56 timer queries (sets grown to the
    tiles' passes). Nothing is left: this version of shadowkit_gl.h releases
-   everything, on the failure paths too (22 of skgl_create, 84 host
+   everything, on the failure paths too (7 of skgl_create, 84 host
    allocation failures, a failed timer-set growth reported by
    skgl_soft_render as SK_ERR_CAPACITY).
    Can fail: in local copies of the header with skgl__ring_free's fence
@@ -70,8 +82,13 @@
    query(s) live"; with skgl_point_create's SKGL_FREE(p) after a failed
    link removed, the link-failure cases of point-cube and point-vsdct
    reported one host allocation more than frees. */
+#if !defined(_POSIX_C_SOURCE) || _POSIX_C_SOURCE < 199309L
+#undef _POSIX_C_SOURCE
+#define _POSIX_C_SOURCE 199309L   /* clock_gettime */
+#endif
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 static long census_allocs, census_frees, census_fail_at;   /* fail_at: the n-th allocation returns NULL (0: none) */
 static long census_alloc_seen;
@@ -95,6 +112,18 @@ static void census_free(void *p) {
 #include "sk_test.h"
 #include "gl_test_util.h"
 #include "gl_exercise.h"
+
+/* A bare skgl_create builds what every directional light needs: the depth
+   program and the directional mask (measured: 2 links, 4 compiles, 6 GL
+   objects with the masks' framebuffer, the 2 samplers and the empty vertex
+   array; it built 7 programs, 11 objects, before FERKO's and RMSM's were
+   made on demand). FERKO's analysis (FERKO, AUTO, .fit_to_depth) adds its
+   3 programs with the first light that uses it, RMSM its 2; later lights
+   add none, and skgl_destroy frees them. */
+#define BARE_PROGRAMS 2
+#define BARE_OBJECTS 6
+#define FERKO_PROGRAMS 3
+#define RMSM_PROGRAMS 2
 
 /* ---- object kinds and the wrapped entry points ---- */
 enum { K_TEXTURE, K_FRAMEBUFFER, K_RENDERBUFFER, K_SAMPLER, K_VAO, K_BUFFER, K_QUERY, K_XFB, K_PIPELINE,
@@ -359,7 +388,7 @@ static void test_census(void) {
         census_check(gx_cases[c].name);
         SK_CHECK_MSG(uncounted == 0, "shadowkit loads object entry points this census does not count:%s",
                      uncounted_names);
-        SK_CHECK(created[K_PROGRAM] >= 6 && created[K_TEXTURE] + created[K_PROGRAM] > 0);
+        SK_CHECK(created[K_PROGRAM] >= BARE_PROGRAMS && created[K_TEXTURE] + created[K_PROGRAM] > 0);
     }
     SK_CHECK(X.e.gl.GetError() == 0);
 }
@@ -388,7 +417,7 @@ static void test_create_failures(void) {
             snprintf(what, sizeof what, "skgl_create, %s %d fails", mode ? "link" : "compile", k);
             census_check(what);
         }
-    SK_CHECK_MSG(ran >= 6 + 12, "only %d failure points", ran);   /* 6 programs, 12 shaders */
+    SK_CHECK_MSG(ran == 3 * BARE_PROGRAMS, "%d failure points", ran);   /* each program's link and 2 compiles */
     {
         sk_result r;
         skgl_context *sk;
@@ -509,9 +538,149 @@ static void test_allocation_failures(void) {
     SK_CHECK(total > GX_NCASES);
 }
 
+/* ---- programs built on demand ---- */
+
+static double census_now(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* a light of technique t; the programs it added (-1: its create failed) */
+static int programs_added(skgl_context *sk, skgl_technique t, int fit_to_depth, skgl_shadow **out) {
+    skgl_shadow_desc d;
+    int before = created[K_PROGRAM];
+    sk_result r;
+    memset(&d, 0, sizeof d);
+    d.technique = t;
+    d.resolution = t == SKGL_RMSM ? 4096 : 512;
+    d.cascades = t == SKGL_FERKO || t == SKGL_RMSM ? 1 : 2;
+    d.fit_to_depth = fit_to_depth;
+    *out = NULL;
+    r = skgl_shadow_create(sk, &d, out);
+    return r == SK_OK ? created[K_PROGRAM] - before : -1;
+}
+
+static void test_lazy_programs(void) {
+    double ms[7];
+    int i, n;
+    sk_result r;
+    skgl_context *sk;
+    skgl_shadow *s[6];
+    if (!env_ok) return;
+    /* the bare create: its links and objects, and its time (median of 7) */
+    for (i = 0; i < 7; i++) {
+        double t0;
+        census_reset();
+        t0 = census_now();
+        sk = census_context(&r);
+        ms[i] = 1e3 * (census_now() - t0);
+        if (!sk) { SK_CHECK_MSG(0, "skgl_create: %s", sk_result_string(r)); return; }
+        SK_CHECK_MSG(links_seen == BARE_PROGRAMS && live_n[K_PROGRAM] == BARE_PROGRAMS,
+                     "bare skgl_create: %d links, %d programs live, %d expected", links_seen, live_n[K_PROGRAM],
+                     BARE_PROGRAMS);
+        SK_CHECK_MSG(skgl_gl_object_count(sk) == BARE_OBJECTS, "bare skgl_create: %d GL objects, %d expected",
+                     skgl_gl_object_count(sk), BARE_OBJECTS);
+        if (i == 0)
+            printf("bare skgl_create: %d GL objects, %d programs linked, %d shaders compiled\n",
+                   skgl_gl_object_count(sk), links_seen, compiles_seen);
+        skgl_destroy(sk);
+        census_check("bare skgl_create");
+    }
+    qsort(ms, 7, sizeof ms[0], cmp_double);
+    printf("bare skgl_create: %.1f ms (median of 7; %.1f .. %.1f)\n", ms[3], ms[0], ms[6]);
+    /* FERKO's programs once, with the first light that analyses; RMSM's once */
+    census_reset();
+    sk = census_context(&r);
+    if (!sk) { SK_CHECK(0); return; }
+    n = programs_added(sk, SKGL_PSSM, 0, &s[0]);
+    SK_CHECK_MSG(n == 0, "a PSSM light added %d programs", n);
+    n = programs_added(sk, SKGL_FERKO, 0, &s[1]);
+    SK_CHECK_MSG(n == FERKO_PROGRAMS, "the first FERKO light added %d programs, %d expected", n, FERKO_PROGRAMS);
+    n = programs_added(sk, SKGL_FERKO, 0, &s[2]);
+    SK_CHECK_MSG(n == 0, "a second FERKO light added %d programs", n);
+    n = programs_added(sk, SKGL_AUTO, 0, &s[3]);
+    SK_CHECK_MSG(n == 0, "an AUTO light after FERKO added %d programs", n);
+#ifndef SKGL_NO_RMSM
+    n = programs_added(sk, SKGL_RMSM, 0, &s[4]);
+    SK_CHECK_MSG(n == RMSM_PROGRAMS, "the first RMSM light added %d programs, %d expected", n, RMSM_PROGRAMS);
+    n = programs_added(sk, SKGL_RMSM, 0, &s[5]);
+    SK_CHECK_MSG(n == 0, "a second RMSM light added %d programs", n);
+#else
+    s[4] = s[5] = NULL;
+#endif
+    for (i = 0; i < 6; i++) skgl_shadow_destroy(sk, s[i]);
+    SK_CHECK_MSG(live_n[K_PROGRAM] == BARE_PROGRAMS + FERKO_PROGRAMS + RMSM_PROGRAMS,
+                 "%d programs live after the lights (kept with the context)", live_n[K_PROGRAM]);
+    SK_CHECK(skgl_gl_object_count(sk) == live_objects());
+    skgl_destroy(sk);
+    census_check("FERKO and RMSM lights");
+    /* .fit_to_depth alone builds FERKO's analysis too */
+    census_reset();
+    sk = census_context(&r);
+    if (!sk) { SK_CHECK(0); return; }
+    n = programs_added(sk, SKGL_PSSM, 1, &s[0]);
+    SK_CHECK_MSG(n == FERKO_PROGRAMS, "a .fit_to_depth light added %d programs, %d expected", n, FERKO_PROGRAMS);
+    skgl_shadow_destroy(sk, s[0]);
+    skgl_destroy(sk);
+    census_check(".fit_to_depth light");
+}
+
+/* the k-th link or compile of FERKO's and RMSM's programs failing: the
+   light's create says SK_ERR_GL with the driver's log, the context stays
+   usable (the next create builds them), nothing leaks */
+static void test_lazy_failures(void) {
+    int mode, k, ran = 0;
+    if (!env_ok) return;
+    for (mode = 0; mode < 4; mode++) {
+        skgl_technique t = mode < 2 ? SKGL_FERKO : SKGL_RMSM;
+        int count = t == SKGL_FERKO ? FERKO_PROGRAMS : RMSM_PROGRAMS;
+#ifdef SKGL_NO_RMSM
+        if (t == SKGL_RMSM) continue;
+#endif
+        for (k = 1; k <= (mode & 1 ? count : 2 * count); k++) {
+            sk_result r;
+            skgl_context *sk;
+            skgl_shadow *s;
+            char what[96];
+            const char *log;
+            int n;
+            census_reset();
+            sk = census_context(&r);
+            if (!sk) { SK_CHECK(0); return; }
+            if (mode & 1) fail_link_at = links_seen + k; else fail_compile_at = compiles_seen + k;
+            n = programs_added(sk, t, 0, &s);
+            log = skgl_error_log(sk);
+            SK_CHECK_MSG(n == -1 && !s, "%s, %s %d failing: the light was made", t == SKGL_FERKO ? "FERKO" : "RMSM",
+                         mode & 1 ? "link" : "compile", k);
+            SK_CHECK_MSG(strstr(log, "skgl_shadow_create") && strstr(log, t == SKGL_FERKO ? "FERKO" : "RMSM") &&
+                             strstr(log, mode & 1 ? "link failed" : "compile failed"),
+                         "the log: \"%s\"", log);
+            SK_CHECK_MSG(skgl_gl_object_count(sk) == live_objects(), "count %d, tracked %d",
+                         skgl_gl_object_count(sk), live_objects());
+            skgl_shadow_destroy(sk, s);
+            n = programs_added(sk, t, 0, &s);   /* the driver recovers: built now */
+            SK_CHECK_MSG(n >= 1 && s, "the light after a failed one: %d programs added", n);
+            skgl_shadow_destroy(sk, s);
+            skgl_destroy(sk);
+            snprintf(what, sizeof what, "%s, %s %d failing", t == SKGL_FERKO ? "FERKO" : "RMSM",
+                     mode & 1 ? "link" : "compile", k);
+            census_check(what);
+            ran++;
+        }
+    }
+    printf("FERKO and RMSM program failures: %d, each reported and released\n", ran);
+}
+
 static void test_teardown(void) {
     if (env_ok) SK_CHECK(X.e.gl.GetError() == 0);
     gx_env_free(&X);
 }
 
-SK_TEST_MAIN(test_census, test_create_failures, test_object_failures, test_allocation_failures, test_teardown)
+SK_TEST_MAIN(test_census, test_create_failures, test_object_failures, test_allocation_failures, test_lazy_programs,
+             test_lazy_failures, test_teardown)

@@ -226,6 +226,7 @@ static void test_accuracy(void) {
     ref = gt_alloc(&e); res = gt_alloc(&e); fwd = gt_alloc(&e); fdepth = gt_alloc(&e);
     SK_CHECK(gt_gbuffer(&e, &cam) == 0 && gt_reference(&e, BOXES_LIGHT, ref) == 0);
     warm_up(&e, &cam, BOXES_LIGHT);
+    gt_warm_programs(e.sk);
     before = skgl_gl_object_count(e.sk);
     for (k = 0; k < sizeof acc_rows / sizeof acc_rows[0]; k++) {
         const acc_row *row = &acc_rows[k];
@@ -551,6 +552,7 @@ static void test_rules(void) {
     if (gt_env_init_named(&e, "ground-boxes", W, H) != 0) { gt_env_free(&e); return; }
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
     warm_up(&e, &cam, BOXES_LIGHT);
+    gt_warm_programs(e.sk);
     before = skgl_gl_object_count(e.sk);
     d = evsm_desc(SKGL_STANDARD, 256, 1, 0);
     d.filter = (skgl_filter)2;

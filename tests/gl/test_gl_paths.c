@@ -555,6 +555,7 @@ static void test_shadow_args(void) {
     if (!sk) { gt_env_free(&e); return; }
     sc = gt_scene(&e);
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
+    gt_warm_programs(sk);
     base = skgl_gl_object_count(sk);
     memset(&d, 0, sizeof d);
     d.resolution = RES;
@@ -667,6 +668,7 @@ static void test_shadow_techniques(void) {
         skgl_context *sk = fault_context(modes[m][0], modes[m][1], modes[m][2]);
         int base;
         if (!sk) continue;
+        gt_warm_programs(sk);
         base = skgl_gl_object_count(sk);
         for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
             skgl_shadow_desc d;
@@ -733,6 +735,7 @@ static void test_faults(void) {
     if (!sk) { gt_env_free(&e); return; }
     sc = gt_scene(&e);
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
+    gt_warm_programs(sk);
     base = skgl_gl_object_count(sk);
     memset(&d, 0, sizeof d);
     d.resolution = RES;
@@ -964,6 +967,7 @@ static void test_textures(void) {
     if (!sk || !dbg) { skgl_destroy(sk); skgl_destroy(dbg); gt_env_free(&e); return; }
     sc = gt_scene(&e);
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
+    gt_warm_programs(sk);
     base = skgl_gl_object_count(sk);
     memset(&d, 0, sizeof d);
     d.resolution = RES;
