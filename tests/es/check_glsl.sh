@@ -12,20 +12,28 @@ dump=${1:?usage: check_glsl.sh DUMP OUTDIR}
 dir=${2:?usage: check_glsl.sh DUMP OUTDIR}
 rm -rf "$dir" && mkdir -p "$dir" || exit 1
 "$dump" "$dir" || { echo "check-glsl: $dump failed"; exit 1; }
-n=0; failed=0
-for f in "$dir"/*.vert "$dir"/*.frag "$dir"/*.geom; do
-    [ -f "$f" ] || continue
-    n=$((n + 1))
-    src=$f
+# one file: its errors into FILE.fail (the files run $(nproc) at a time)
+check_one() {
+    local f=$1 src=$1 log
     if grep -q '^#extension GL_ARB_gpu_shader5 : require' "$f"; then
         src="${f%.geom}.v400.geom"
         sed -e 's/^#version 330 core$/#version 400 core/' -e '/^#extension GL_ARB_gpu_shader5/d' "$f" > "$src"
     fi
     if ! log=$(glslangValidator "$src" 2>&1); then
-        failed=$((failed + 1))
-        echo "check-glsl: $(basename "$f"):"
-        printf '%s\n' "$log" | grep -E 'ERROR|error' | head -n 5 | sed 's/^/    /'
+        { echo "check-glsl: $(basename "$f"):"
+          printf '%s\n' "$log" | grep -E 'ERROR|error' | head -n 5 | sed 's/^/    /'; } > "$f.fail"
     fi
+}
+export -f check_one
+files=()
+for f in "$dir"/*.vert "$dir"/*.frag "$dir"/*.geom; do [ -f "$f" ] && files+=("$f"); done
+n=${#files[@]}
+[ "$n" -eq 0 ] || printf '%s\0' "${files[@]}" | xargs -0 -n 1 -P "$(nproc 2>/dev/null || echo 2)" bash -c 'check_one "$1"' _
+failed=0
+for f in "${files[@]+"${files[@]}"}"; do
+    [ -f "$f.fail" ] || continue
+    failed=$((failed + 1))
+    cat "$f.fail"
 done
 echo "check-glsl: $n shaders, $failed failed"
 [ "$n" -gt 0 ] && [ "$failed" -eq 0 ]
