@@ -807,7 +807,11 @@
 
    DOES NOT DO
      - Spot lights as a light of their own: a spot is a point light with a
-       cone (SPOT LIGHTS). Spots are not cached (.cache is refused).
+       cone (SPOT LIGHTS), one perspective map; .cache keeps it as a point
+       light keeps its faces (CACHED MAPS).
+     - World-sized filtering (.filter_world) and the filterable map
+       (SKGL_FILTER_EVSM) for point lights and spots: both are directional
+       only; point lights and spots filter with .pcf_radius in texels.
      - Threads: no call locks anything. A context and everything made from
        it are used from one thread at a time, with the GL context they were
        made in current there. Two skgl contexts, each over its own GL
