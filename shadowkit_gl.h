@@ -77,6 +77,32 @@
                                 the cache copies depth with blits, and a
                                 caster's hooks replace parts of depth.vert
                                 and depth.frag, which every light uses
+         SKGL_NO_FERKO          defined: the depth buffer's analysis
+                                (6.3: the G-buffer reductions of
+                                ferko_analyze.frag and ferko_reduce.frag,
+                                their three programs and read-back ring)
+                                and everything that reads it are left
+                                out: SKGL_FERKO, SKGL_AUTO (CHOOSING FOR
+                                YOU: it splits the depth range the
+                                analysis measures) and .fit_to_depth. A
+                                light asking for one fails with
+                                SK_ERR_INVALID_ARG, "skgl_shadow_create:
+                                desc.technique = 5: FERKO's resolution
+                                estimation is compiled out
+                                (SKGL_NO_FERKO)", "... desc.technique =
+                                7: AUTO splits the depth range of the
+                                depth analysis, which is compiled out
+                                (SKGL_NO_FERKO)" or "... desc.fit_to_depth
+                                = 1: the depth analysis is compiled out
+                                (SKGL_NO_FERKO)". The three share one
+                                analysis: keeping it for AUTO and
+                                .fit_to_depth would leave out only
+                                FERKO's estimate and crop fit, about 60
+                                of the 405 lines this switch removes.
+                                skgl_shadow_analyze then serves RMSM
+                                alone. With all five switches what stays
+                                is STANDARD, PSSM, PSM, LiSPSM and LSPSM,
+                                point and spot lights, the atlas and EVSM
      Nothing else is read from the preprocessor: the rest is chosen at run
      time through the descs.
 
@@ -2888,6 +2914,7 @@ static void skgl__st_screen_pass(skgl_context *ctx, skgl__st *st)
 
 /* pixel transfers between client memory and GL without padding or offsets
    (pack: read-backs; unpack: uploads), no pixel buffer bound unless given */
+#if !defined(SKGL_NO_FERKO) || !defined(SKGL_NO_RMSM) || !defined(SKGL_NO_CACHE) || !defined(SKGL_NO_SOFT)
 static void skgl__st_pack(skgl_context *ctx, skgl__st *st, skgl__uint buffer, int rows, int row_bytes)
 {
     skgl__st_set1(ctx, st, SKGL__S_PACK_BUFFER, (skgl__int)buffer);
@@ -2901,6 +2928,7 @@ static void skgl__st_pack(skgl_context *ctx, skgl__st *st, skgl__uint buffer, in
     skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_PIXELS, 0);
     skgl__st_set1(ctx, st, SKGL__S_PACK_SKIP_ROWS, 0);
 }
+#endif
 static void skgl__st_unpack(skgl_context *ctx, skgl__st *st)
 {
     skgl__st_set1(ctx, st, SKGL__S_UNPACK_BUFFER, 0);
@@ -3866,6 +3894,7 @@ static void skgl__timer_end(skgl_context *ctx, skgl__timer *t)
    flight, the new read-back is skipped (the GPU is three frames behind;
    nothing is waited for). The poll flushes (GL_SYNC_FLUSH_COMMANDS_BIT): a
    fence never flushed to the GPU may never signal. */
+#if !defined(SKGL_NO_FERKO) || !defined(SKGL_NO_RMSM) || !defined(SKGL_NO_SOFT)   /* the rings' users */
 /* the bound pixel pack buffer's first `bytes` into out: glGetBufferSubData
    (GL, WebGL2), else mapped for reading (OpenGL ES 3.0 has no
    glGetBufferSubData). 0 when the map failed (out untouched). */
@@ -3939,6 +3968,7 @@ static void skgl__ring_fence(skgl_context *ctx, skgl__ring *r, int i)
     if (r->sync[i]) ctx->objects++;
     r->next = (i + 1) % SKGL__RING;
 }
+#endif
 
 
 /* 4.6 the context's lifetime */
@@ -4018,6 +4048,7 @@ static sk_result skgl__programs_failed(skgl_context *ctx, const char *what)
                       (const char *)ctx->gl.GetString(SKGL__VERSION), driver);
 }
 
+#ifndef SKGL_NO_FERKO
 /* FERKO's analysis (the 4x4-block pass, the 16x16 MIN reduction, the last
    reduction into 2x1 texels): built with the first light that analyses
    (FERKO, AUTO, .fit_to_depth), then kept with the context and freed by
@@ -4056,6 +4087,7 @@ static sk_result skgl__ferko_programs(skgl_context *ctx, skgl__st *st)
     ctx->reduce_src[0] = ctx->final_src[0] = -1;
     return SK_OK;
 }
+#endif /* SKGL_NO_FERKO */
 
 #ifndef SKGL_NO_RMSM
 /* RMSM's per-pixel samples and page-request scatter: built with the first
@@ -5840,8 +5872,10 @@ typedef struct skgl__technique {
 static const skgl__technique *skgl__technique_of(const skgl_shadow *s);
 
 /* defined in 6.3 and 6.4, used by the light's lifecycle and its fits */
+#ifndef SKGL_NO_FERKO
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s);
 static void skgl__fit_ferko(skgl_shadow *s, float zf);
+#endif
 #ifndef SKGL_NO_RMSM
 static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s);
 static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s);
@@ -6030,6 +6064,12 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     int lspsm = d->technique == SKGL_LSPSM, rmsm = d->technique == SKGL_RMSM;
     SKGL__RULE((int)d->technique >= (int)SKGL_STANDARD && (int)d->technique <= (int)SKGL_AUTO, fn, "technique",
                d->technique, "one of skgl_technique");
+#ifdef SKGL_NO_FERKO
+    SKGL__RULE(d->technique != SKGL_FERKO, fn, "technique", d->technique,
+               "FERKO's resolution estimation is compiled out (SKGL_NO_FERKO)");
+    SKGL__RULE(d->technique != SKGL_AUTO, fn, "technique", d->technique,
+               "AUTO splits the depth range of the depth analysis, which is compiled out (SKGL_NO_FERKO)");
+#endif
     SKGL__RULE(d->resolution >= 1, fn, "resolution", d->resolution, "1 or more (0: the default)");
     SKGL__RULE(rmsm || d->resolution <= 16384, fn, "resolution", d->resolution, "at most 16384");
     /* a stable crop snaps to whole texels of a map of at least two */
@@ -6085,6 +6125,10 @@ static sk_result skgl__shadow_validate(skgl_context *ctx, const skgl_shadow_desc
     SKGL__RULE(!d->cache, fn, "cache", d->cache, "cached maps are compiled out (SKGL_NO_CACHE)");
 #endif
     SKGL__RULE(d->fit_to_depth == 0 || d->fit_to_depth == 1, fn, "fit_to_depth", d->fit_to_depth, "0 or 1");
+#ifdef SKGL_NO_FERKO
+    SKGL__RULE(!d->fit_to_depth, fn, "fit_to_depth", d->fit_to_depth,
+               "the depth analysis is compiled out (SKGL_NO_FERKO)");
+#endif
     SKGL__RULE(d->auto_texel_px > 0.0f && d->auto_texel_px <= 1e6f, fn, "auto_texel_px", d->auto_texel_px,
                "in (0, 1e6] (0: the default 1)");
     SKGL__RULE(!d->fit_to_depth || d->technique == SKGL_STANDARD || d->technique == SKGL_PSSM ||
@@ -6443,6 +6487,11 @@ static sk_result skgl__fit_lspsm(skgl_shadow *s, const skgl_camera *cam, const s
    stays inside. Nothing changes before the first analysis. */
 static void skgl__depth_fit(skgl_shadow *s, float *zn, float *zf)
 {
+#ifdef SKGL_NO_FERKO   /* no analysis: the range stays */
+    (void)zn;
+    (void)zf;
+    s->stats.depth_lo = s->stats.depth_hi = 0.0f;
+#else
     float m = s->desc.sync_readback ? 1e-3f : 0.1f, lo, hi;
     s->stats.depth_lo = s->stats.depth_hi = 0.0f;
     if (!(s->desc.fit_to_depth || s->desc.technique == SKGL_AUTO) || s->ferko.state == 0 ||
@@ -6454,6 +6503,7 @@ static void skgl__depth_fit(skgl_shadow *s, float *zn, float *zf)
     if (hi < *zf && hi > *zn * 1.001f) *zf = hi;
     s->stats.depth_lo = *zn;
     s->stats.depth_hi = *zf;
+#endif
 }
 
 /* The distance fade (desc.fade_band): where the scene goes on past the
@@ -6686,6 +6736,7 @@ static sk_result skgl__fit_lspsm_layers(skgl_shadow *s, const skgl__fit_in *in)
     return skgl__fit_lspsm(s, in->cam, in->scene, in->light_dir, &in->view, in->zn, in->cam_zf, in->zf);
 }
 
+#ifndef SKGL_NO_FERKO
 /* FERKO: the estimate's crop once there is one, the focused map before */
 static sk_result skgl__fit_ferko_layer(skgl_shadow *s, const skgl__fit_in *in)
 {
@@ -6915,6 +6966,7 @@ static sk_result skgl__render_auto(skgl_context *ctx, skgl_shadow *s, const skgl
     }
     return skgl__render_layers(ctx, s, rs, light_dir);
 }
+#endif /* SKGL_NO_FERKO */
 
 #ifndef SKGL_NO_RMSM
 /* RMSM: the pages are fitted by skgl__render_rmsm */
@@ -6928,6 +6980,7 @@ static sk_result skgl__fit_rmsm(skgl_shadow *s, const skgl__fit_in *in)
 
 /* ---- 6.3 FERKO: resolution estimation on the GPU (Ferko 2013) --------- */
 // >>ferko
+#ifndef SKGL_NO_FERKO
 static void skgl__ferko_free(skgl_context *ctx, skgl_shadow *s)
 {
     int i;
@@ -7070,7 +7123,10 @@ static void skgl__fit_ferko(skgl_shadow *s, float zf)
     s->stats.estimate_light = skgl__shift(&s->ferko.lvp, s->ferko.origin, skgl__zero3);
 }
 
-/* the uncropped light frustum: an orthographic map around the scene */
+#endif /* SKGL_NO_FERKO */
+
+/* the uncropped light frustum: an orthographic map around the scene (RMSM's
+   virtual map too) */
 static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, sk_mat4 *out)
 {
     sk_vec3 c[8];
@@ -7083,7 +7139,7 @@ static sk_result skgl__ferko_light(const skgl_scene *scene, sk_vec3 light_dir, s
     return r;
 }
 
-
+#ifndef SKGL_NO_FERKO
 /* an earlier frame's analysis, if it has landed (the last one kept if not) */
 static void skgl__ferko_poll(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
@@ -7226,6 +7282,7 @@ static sk_result skgl__analyze_auto(skgl_context *ctx, skgl__st *st, skgl_shadow
     s->stats.auto_analysed = 1;
     return SK_OK;
 }
+#endif /* SKGL_NO_FERKO */
 
 /* ---- 6.4 RMSM: virtual shadow map pages (Romanick's VGP353 notes) ---- */
 #ifndef SKGL_NO_RMSM
@@ -8532,11 +8589,13 @@ static sk_result skgl__render_layers(skgl_context *ctx, skgl_shadow *s, const sk
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_render");
 }
 /* the techniques' table (its rows are declared with the light, in 6) */
+#ifndef SKGL_NO_FERKO
 /* .fit_to_depth: FERKO's analysis targets and ring, for the depth range */
 static sk_result skgl__depth_fit_create(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 {
     return s->desc.fit_to_depth ? skgl__ferko_create(ctx, st, s) : SK_OK;
 }
+#endif
 
 /* whether skgl_shadow_analyze has anything to do for s */
 static int skgl__analyzes(const skgl_shadow *s)
@@ -8547,6 +8606,7 @@ static int skgl__analyzes(const skgl_shadow *s)
 }
 
 static const skgl__technique skgl__techniques[] = {
+#ifndef SKGL_NO_FERKO
     {"STANDARD", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
     {"PSSM", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
     {"PSM", NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers},
@@ -8554,12 +8614,24 @@ static const skgl__technique skgl__techniques[] = {
     {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
     {"FERKO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ferko_layer,
      skgl__render_layers},
+#else   /* no analysis: FERKO refused at create (skgl__shadow_validate), as are AUTO and .fit_to_depth */
+    {"STANDARD", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
+    {"PSSM", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
+    {"PSM", NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers},
+    {"LISPSM", NULL, NULL, NULL, skgl__fit_lispsm_layers, skgl__render_layers},
+    {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
+    {"FERKO", NULL, NULL, NULL, NULL, NULL},
+#endif
 #ifndef SKGL_NO_RMSM
     {"RMSM", skgl__rmsm_create, skgl__rmsm_free, skgl__analyze_rmsm, skgl__fit_rmsm, skgl__render_rmsm},
 #else
     {"RMSM", NULL, NULL, NULL, NULL, NULL},   /* refused at create (skgl__shadow_validate) */
 #endif
+#ifndef SKGL_NO_FERKO
     {"AUTO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_auto, skgl__render_auto},
+#else
+    {"AUTO", NULL, NULL, NULL, NULL, NULL},
+#endif
 };
 
 /* the row of s's technique (validated at create: always in the table) */
@@ -8625,8 +8697,11 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
         return SK_ERR_INVALID_ARG;
     }
+#ifndef SKGL_NO_FERKO
     if (s->desc.technique == SKGL_AUTO) r = skgl__analyze_auto(ctx, &st, s, cam, &inv, &lvp, o, depth_tex, w, h);
-    else r = skgl__technique_of(s)->analyze(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    else
+#endif
+        r = skgl__technique_of(s)->analyze(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
 }
@@ -14277,6 +14352,11 @@ static const char skgl__src_evsm_moments_frag[] =
 #else
 #define SKGL__SOFT_SRC(src) src
 #endif
+#ifdef SKGL_NO_FERKO
+#define SKGL__FERKO_SRC(src) ""
+#else
+#define SKGL__FERKO_SRC(src) src
+#endif
 static const char *skgl__glsl(skgl__glsl_id id)
 {
     static const char *const src[SKGL__GLSL_N] = {
@@ -14285,8 +14365,8 @@ static const char *skgl__glsl(skgl__glsl_id id)
         skgl__src_fullscreen_vert,
         skgl__src_shadow_sample_glsl,
         skgl__src_shadow_mask_frag,
-        skgl__src_ferko_analyze_frag,
-        skgl__src_ferko_reduce_frag,
+        SKGL__FERKO_SRC(skgl__src_ferko_analyze_frag),
+        SKGL__FERKO_SRC(skgl__src_ferko_reduce_frag),
         SKGL__RMSM_SRC(skgl__src_rmsm_analyze_frag),
         SKGL__RMSM_SRC(skgl__src_rmsm_request_vert),
         SKGL__RMSM_SRC(skgl__src_rmsm_request_frag),

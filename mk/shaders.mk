@@ -50,7 +50,7 @@ $(BUILD)/compile/gl-header-cpp17: tests/compile/gl_header.c shadowkit.h shadowki
 # same warnings as -O2 where only the switches' code differs (unused
 # functions and variables, uninitialized reads), in 2 CPU s instead of 5
 # (the gl-header-* builds above keep -O2 for everything)
-GL_OPTOUTS := soft rmsm cache casters
+GL_OPTOUTS := soft rmsm cache casters ferko
 gl_optout_flags = $(foreach o,$(if $(filter all,$(1)),$(GL_OPTOUTS),$(1)),-DSKGL_NO_$(shell echo $(o) | tr a-z A-Z))
 GL_OPTOUT_BINS := $(foreach o,$(GL_OPTOUTS) all,$(BUILD)/compile/gl-no-$(o)-c99 $(BUILD)/compile/gl-no-$(o)-cpp17)
 $(BUILD)/compile/gl-no-%-c99: tests/compile/gl_header.c shadowkit.h shadowkit_gl.h tests/sk_test.h | deps-test

@@ -73,6 +73,17 @@ $(BUILD)/gl/%: tests/gl/%.c $(GL_TEST_DEPS) $(TESTBED_LIB) $(BUILD)/obj/gl/share
 	$(CC) -std=c99 $(OPT) -g $(WARN) $(TESTBED_CFLAGS) -Itests $(DEPFLAGS) $(call gl_impl,$*,gl) -o $@ \
 	    $(TESTBED_LIB) $(TESTBED_LIBS)
 
+# test_gl_optout.c once per opt-out with that SKGL_NO_* alone (mk/shaders.mk's
+# GL_OPTOUTS; every switch together is test_gl_optout itself): the switch's
+# refusals, and the features that stay (RMSM, FERKO's analysis) still
+# shadow. At -Og, as the compile checks (only the switches' code differs
+# from the -O2 programs). tests/run_tests.sh runs them with the GL flavour.
+GL_OPTOUT_ONE := $(addprefix $(BUILD)/gl/test_gl_optout_no_,$(GL_OPTOUTS))
+$(BUILD)/gl/test_gl_optout_no_%: tests/gl/test_gl_optout.c $(GL_TEST_DEPS) $(TESTBED_LIB) | deps-gl
+	$(MKDIR)
+	$(CC) -std=c99 -Og -g $(WARN) $(TESTBED_CFLAGS) -Itests -DSK_OPTOUT_ONE $(call gl_optout_flags,$*) $< -o $@ \
+	    $(TESTBED_LIB) $(TESTBED_LIBS)
+
 .PHONY: deps-gl testbed testbed-selftest test-gl
 deps-gl:
 	@bash scripts/deps.sh gl
@@ -84,8 +95,8 @@ testbed-selftest: $(BUILD)/testbed/selftest
 	LSAN_OPTIONS=suppressions=testbed/lsan.supp ./$(BUILD)/testbed/selftest
 
 # the GL flavour alone
-test-gl: $(GL_TEST_BINS)
+test-gl: $(GL_TEST_BINS) $(GL_OPTOUT_ONE)
 	@bash tests/run_tests.sh gl
 
-test: $(GL_TEST_BINS)
+test: $(GL_TEST_BINS) $(GL_OPTOUT_ONE)
 check-quick: $(BUILD)/gl/$(QUICK_GL)

@@ -83,7 +83,8 @@ for f in "${flavours[@]}"; do
         [ -f "$b" ] && [ -x "$b" ] || continue
         # skip a stale binary whose tests/<name>.c was removed or renamed
         case "$f" in
-            gl) [ -f "tests/gl/$(basename "$b").c" ] || continue ;;
+            gl) [ -f "tests/gl/$(basename "$b").c" ] || [ -f "tests/gl/$(basename "$b" | sed 's/_no_[a-z]*$//').c" ] ||
+                continue ;;   # test_gl_optout_no_<switch> (mk/testbed.mk) is test_gl_optout.c
             c99|cpp|asan-*) [ -f "tests/$(basename "$b").c" ] || continue ;;
             *) ;;   # compile, integration, fuzz, hygiene: whatever mk/*.mk built
         esac
