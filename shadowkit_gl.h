@@ -5822,16 +5822,32 @@ typedef struct skgl__fit_in {
 
 // >>techniques
 /* What differs from technique to technique, one row each in
-   skgl_technique order: its own objects, its analysis (skgl_shadow_analyze;
-   NULL: none), the fit of its layers and its caster passes. */
+   skgl_technique order: what its map is to the snippet and how many units
+   a bind takes, its own objects, its analysis (skgl_shadow_analyze; NULL:
+   none) and the light frustum the analysis projects into, the fit of its
+   layers, its caster passes, and the textures of its own a bind and the
+   mask add to the map's. */
 typedef struct skgl__technique {
     const char *name;
+    int analyses;                  /* 1: its analysis runs whatever the desc; 0: only with desc.fit_to_depth */
+    int units;                     /* the units skgl_shadow_bind takes from `unit`: the map's, then its own */
+    int pages;                     /* 1: the map is a page pool behind a page table (the snippet's sk_rmsm:
+                                      a lookup spans the whole texture) */
+    int select_by_map;             /* 1: the snippet picks a layer by the light NDC extent (sk_select_by_map) */
     sk_result (*create)(skgl_context *ctx, skgl__st *st, skgl_shadow *s);   /* NULL: nothing of its own */
     void (*destroy)(skgl_context *ctx, skgl_shadow *s);
-    sk_result (*analyze)(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv, const sk_mat4 *lvp,
-                         const double o[3], unsigned depth_tex, int w, int h);
+    /* the analysis's light frustum relative to o (scene: world; rs: relative
+       to o); NULL: skgl__ferko_light around rs */
+    sk_result (*frame)(const skgl_scene *scene, const skgl_scene *rs, sk_vec3 light_dir, const double o[3],
+                       sk_mat4 *lvp);
+    sk_result (*analyze)(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_camera *cam, const sk_mat4 *inv,
+                         const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h);
     sk_result (*fit)(skgl_shadow *s, const skgl__fit_in *in);
     sk_result (*render)(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir);
+    /* skgl_shadow_bind: its textures from unit + 1; the unit it left active (NULL: none) */
+    skgl__int (*bind)(skgl_context *ctx, const skgl_shadow *s, int unit);
+    /* skgl_shadow_mask: its textures (from unit 3) put in b; how many (NULL: none) */
+    int (*mask)(const skgl_shadow *s, skgl__unitbind *b);
 } skgl__technique;
 static const skgl__technique *skgl__technique_of(const skgl_shadow *s);
 
@@ -6138,7 +6154,7 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     if (!s->id) s->id = ++ctx->next_id;
     s->layers = d.cascades;
     s->maps = s->layers;
-    s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
+    s->tex_size = skgl__technique_of(s)->pages ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
     /* AUTO: one layer, its one-map size, until a render sizes it (skgl__auto_storage) */
     s->tex_layers = d.technique == SKGL_AUTO ? 1 : s->layers;
     s->select_extent = 1.0f;
@@ -6159,8 +6175,8 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
                    SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-    /* one framebuffer per layer (RMSM: the pool, layer 0) */
-    for (i = 0; i < (d.technique == SKGL_RMSM ? 1 : s->tex_layers) && r == SK_OK; i++) {
+    /* one framebuffer per layer (a page pool: layer 0) */
+    for (i = 0; i < (skgl__technique_of(s)->pages ? 1 : s->tex_layers) && r == SK_OK; i++) {
         s->fbo[i] = skgl__framebuffer(ctx, &st, 0, 0, s->tex, i);
         if (!s->fbo[i]) {
             skgl__set_log(ctx, "skgl_shadow_create: shadow framebuffer incomplete", NULL);
@@ -6169,7 +6185,8 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     }
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
 #ifndef SKGL_NO_CACHE
-    if (r == SK_OK && d.cache && d.technique != SKGL_RMSM) r = skgl__cache_create(ctx, &st, s);
+    /* a page pool caches its pages itself (skgl__rmsm_create) */
+    if (r == SK_OK && d.cache && !skgl__technique_of(s)->pages) r = skgl__cache_create(ctx, &st, s);
 #endif
     if (r == SK_OK && d.filter == SKGL_FILTER_EVSM) r = skgl__evsm_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
@@ -7092,13 +7109,15 @@ static void skgl__ferko_poll(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 /* FERKO analysis: the 4x4-block pass, the 16x16 reductions, the final 2x1
    texels; read back at once (sync_readback, and the first analysis) or
    into the ring, the estimate of an earlier frame taken when it lands */
-static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
-                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_camera *cam,
+                                     const sk_mat4 *inv, const sk_mat4 *lvp, const double o[3], unsigned depth_tex,
+                                     int w, int h)
 {
     skgl__api *gl = &ctx->gl;
     sk_mat4 ndc_to_light;
     float world_w[4], v[8];
     int k, sync = s->desc.sync_readback || s->ferko.state == 0, slot;
+    (void)cam;   /* the depth buffer's positions come through inv */
     if (!skgl__ferko_targets(ctx, st, s, w, h)) {
         skgl__ferko_free(ctx, s);
         skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
@@ -7214,7 +7233,7 @@ static sk_result skgl__analyze_auto(skgl_context *ctx, skgl__st *st, skgl_shadow
         s->stats.analysis_ms = 0.0f;
         return SK_OK;
     }
-    r = skgl__analyze_ferko(ctx, st, s, inv, lvp, o, depth_tex, w, h);
+    r = skgl__analyze_ferko(ctx, st, s, cam, inv, lvp, o, depth_tex, w, h);
     if (r != SK_OK) return r;
     s->auto_view = cam->view;
     s->auto_proj = cam->proj;
@@ -7469,12 +7488,14 @@ static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
    (ring) or, with sync_readback and on the first analysis, of this one (a
    read-back that waits for the GPU). lvp is the virtual map's frustum
    (skgl__rmsm_frame) relative to o. */
-static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
-                                    const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_camera *cam,
+                                    const sk_mat4 *inv, const sk_mat4 *lvp, const double o[3], unsigned depth_tex,
+                                    int w, int h)
 {
     skgl__api *gl = &ctx->gl;
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     int sync = s->desc.sync_readback || !s->rmsm.analyzed, slot, banded = s->rmsm.bands > 1;
+    (void)cam;
     (void)o;   /* lvp and inv are relative to it already; the render places the pages itself */
     if (s->rmsm.w != w || s->rmsm.h != h) {
         skgl__delete_texture(ctx, &s->rmsm.samples);
@@ -7579,6 +7600,36 @@ static sk_result skgl__rmsm_frame(const sk_aabb *world, sk_vec3 light_dir, sk_ma
     rel.bounds = *world;
     rel = skgl__scene_rel(&rel, o);
     return skgl__ferko_light(&rel, light_dir, lvp);
+}
+
+/* the analysis's light frustum: the virtual map's, whose page grid is
+   fixed in the world (skgl__rmsm_frame), moved to o */
+static sk_result skgl__rmsm_analysis_frame(const skgl_scene *scene, const skgl_scene *rs, sk_vec3 light_dir,
+                                           const double o[3], sk_mat4 *lvp)
+{
+    sk_mat4 vlvp;
+    double vo[3];
+    sk_result r = skgl__rmsm_frame(&scene->bounds, light_dir, &vlvp, vo);
+    (void)rs;
+    *lvp = skgl__shift(&vlvp, vo, o);
+    return r;
+}
+
+/* skgl_shadow_bind: the page table on unit + 1 (point sampled) */
+static skgl__int skgl__rmsm_bind(skgl_context *ctx, const skgl_shadow *s, int unit)
+{
+    skgl__api *gl = &ctx->gl;
+    gl->ActiveTexture((skgl__enum)(SKGL__TEXTURE0 + unit + 1));
+    gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
+    gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
+    return SKGL__TEXTURE0 + unit + 1;
+}
+
+/* skgl_shadow_mask: the page table on unit 3 */
+static int skgl__rmsm_mask(const skgl_shadow *s, skgl__unitbind *b)
+{
+    skgl__bind_unit(b, 3, SKGL__T_2D, s->rmsm.table, 0);
+    return 1;
 }
 #endif /* SKGL_NO_RMSM */
 
@@ -8537,25 +8588,29 @@ static sk_result skgl__depth_fit_create(skgl_context *ctx, skgl__st *st, skgl_sh
 /* whether skgl_shadow_analyze has anything to do for s */
 static int skgl__analyzes(const skgl_shadow *s)
 {
-    return skgl__technique_of(s)->analyze &&
-           (s->desc.fit_to_depth || s->desc.technique == SKGL_FERKO || s->desc.technique == SKGL_RMSM ||
-            s->desc.technique == SKGL_AUTO);
+    return skgl__technique_of(s)->analyze && (s->desc.fit_to_depth || skgl__technique_of(s)->analyses);
 }
 
 static const skgl__technique skgl__techniques[] = {
-    {"STANDARD", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
-    {"PSSM", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
-    {"PSM", NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers},
-    {"LISPSM", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_lispsm_layers, skgl__render_layers},
-    {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
-    {"FERKO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ferko_layer,
-     skgl__render_layers},
+    {"STANDARD", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
+     skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+    {"PSSM", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
+     skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+    {"PSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers, NULL, NULL},
+    {"LISPSM", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
+     skgl__fit_lispsm_layers, skgl__render_layers, NULL, NULL},
+    {"LSPSM", 0, 1, 0, 1, NULL, NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers, NULL, NULL},
+    {"FERKO", 1, 1, 0, 0, skgl__ferko_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko, skgl__fit_ferko_layer,
+     skgl__render_layers, NULL, NULL},
 #ifndef SKGL_NO_RMSM
-    {"RMSM", skgl__rmsm_create, skgl__rmsm_free, skgl__analyze_rmsm, skgl__fit_rmsm, skgl__render_rmsm},
+    {"RMSM", 1, 2, 1, 0, skgl__rmsm_create, skgl__rmsm_free, skgl__rmsm_analysis_frame, skgl__analyze_rmsm,
+     skgl__fit_rmsm, skgl__render_rmsm, skgl__rmsm_bind, skgl__rmsm_mask},
 #else
-    {"RMSM", NULL, NULL, NULL, NULL, NULL},   /* refused at create (skgl__shadow_validate) */
+    /* refused at create (skgl__shadow_validate) */
+    {"RMSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 #endif
-    {"AUTO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_auto, skgl__render_auto},
+    {"AUTO", 1, 1, 0, 0, skgl__ferko_create, skgl__ferko_destroy, NULL, skgl__analyze_auto, skgl__fit_auto,
+     skgl__render_auto, NULL, NULL},
 };
 
 /* the row of s's technique (validated at create: always in the table) */
@@ -8604,15 +8659,8 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         if (!sk_mat4_inverse(cam->proj, &pinv)) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj is singular", fn);
         for (k = 0; k < 4; k++) ctx->cam_view_z[k] = pinv.m[k * 4 + 2];
     }
-#ifndef SKGL_NO_RMSM
-    if (s->desc.technique == SKGL_RMSM) {   /* the page grid is fixed in the world (skgl__rmsm_frame) */
-        sk_mat4 vlvp;
-        double vo[3];
-        r = skgl__rmsm_frame(&scene->bounds, light_dir, &vlvp, vo);
-        lvp = skgl__shift(&vlvp, vo, o);
-    } else
-#endif
-        r = skgl__ferko_light(&rs, light_dir, &lvp);
+    if (skgl__technique_of(s)->frame) r = skgl__technique_of(s)->frame(scene, &rs, light_dir, o, &lvp);
+    else r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
     skgl__st_begin(ctx, &st);
     why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
@@ -8621,8 +8669,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
         return SK_ERR_INVALID_ARG;
     }
-    if (s->desc.technique == SKGL_AUTO) r = skgl__analyze_auto(ctx, &st, s, cam, &inv, &lvp, o, depth_tex, w, h);
-    else r = skgl__technique_of(s)->analyze(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    r = skgl__technique_of(s)->analyze(ctx, &st, s, cam, &inv, &lvp, o, depth_tex, w, h);
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
 }
@@ -8847,11 +8894,11 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
            samplers of different types must never share a unit */
         skgl__u1i(gl, L[SKGL__L_MAP], unit);
         skgl__u1i(gl, L[SKGL__L_TABLE], table_unit);
-        skgl__u1i(gl, L[SKGL__L_RMSM], s->desc.technique == SKGL_RMSM);
+        skgl__u1i(gl, L[SKGL__L_RMSM], skgl__technique_of(s)->pages);
         skgl__u1i(gl, L[SKGL__L_PAGES0], s->rmsm.pages0);
         skgl__u1i(gl, L[SKGL__L_LEVELS], s->rmsm.levels);
         skgl__u1i(gl, L[SKGL__L_PAGE], s->desc.rmsm_page_size);
-        skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], s->desc.technique == SKGL_LSPSM);
+        skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], skgl__technique_of(s)->select_by_map);
         skgl__u1f(gl, L[SKGL__L_BLEND_BAND], s->desc.blend_band);
         skgl__u1f(gl, L[SKGL__L_NORMAL_BIAS], s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
         skgl__u1i(gl, L[SKGL__L_BIAS_MODE], s->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
@@ -8883,8 +8930,8 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
     }
     /* FERKO and AUTO draw into the lower-left view_w x view_h texels:
        beyond them lie older maps' texels, not this frame's */
-    ext[0] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_w / (float)s->tex_size;
-    ext[1] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_h / (float)s->tex_size;
+    ext[0] = skgl__technique_of(s)->pages ? 1.0f : (float)s->view_w / (float)s->tex_size;
+    ext[1] = skgl__technique_of(s)->pages ? 1.0f : (float)s->view_h / (float)s->tex_size;
     if (ext[0] != e->extent[0] || ext[1] != e->extent[1]) {
         e->extent[0] = ext[0];
         e->extent[1] = ext[1];
@@ -9029,7 +9076,7 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__arg_prefix(ctx, fn, prefix));
     SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
-    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, s->desc.technique == SKGL_RMSM ? 30 : 31));
+    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, 32 - skgl__technique_of(s)->units));
     if (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: origin = (%g %g %g): finite, under 1e30", fn, origin[0],
                           origin[1], origin[2]);
@@ -9046,12 +9093,7 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
     if (active != last) gl->ActiveTexture((skgl__enum)last);
     gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
     gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-    if (s->desc.technique == SKGL_RMSM) {
-        last = SKGL__TEXTURE0 + unit + 1;
-        gl->ActiveTexture((skgl__enum)last);
-        gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
-        gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
-    }
+    if (skgl__technique_of(s)->bind) last = skgl__technique_of(s)->bind(ctx, s, unit);
     /* the forward contact march (SK_SHADOW_CONTACT) on unit + 3 (unit + 2 is
        EVSM's): in a
        steady frame only a light with contact shadows costs a call */
@@ -9145,7 +9187,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
         skgl__unitbind b[5];
         int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
         skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm.table, 0);
+        if (skgl__technique_of(s)->mask) n += skgl__technique_of(s)->mask(s, b + n);
         else if (ctx->caps.webgl) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, 0, 0);   /* see skgl__mask_gbuffer */
         skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
         /* EVSM: the moments on unit 4, bilinear through the texture's own filter */
