@@ -5858,16 +5858,32 @@ typedef struct skgl__fit_in {
 
 // >>techniques
 /* What differs from technique to technique, one row each in
-   skgl_technique order: its own objects, its analysis (skgl_shadow_analyze;
-   NULL: none), the fit of its layers and its caster passes. */
+   skgl_technique order: what its map is to the snippet and how many units
+   a bind takes, its own objects, its analysis (skgl_shadow_analyze; NULL:
+   none) and the light frustum the analysis projects into, the fit of its
+   layers, its caster passes, and the textures of its own a bind and the
+   mask add to the map's. */
 typedef struct skgl__technique {
     const char *name;
+    int analyses;                  /* 1: its analysis runs whatever the desc; 0: only with desc.fit_to_depth */
+    int units;                     /* the units skgl_shadow_bind takes from `unit`: the map's, then its own */
+    int pages;                     /* 1: the map is a page pool behind a page table (the snippet's sk_rmsm:
+                                      a lookup spans the whole texture) */
+    int select_by_map;             /* 1: the snippet picks a layer by the light NDC extent (sk_select_by_map) */
     sk_result (*create)(skgl_context *ctx, skgl__st *st, skgl_shadow *s);   /* NULL: nothing of its own */
     void (*destroy)(skgl_context *ctx, skgl_shadow *s);
-    sk_result (*analyze)(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv, const sk_mat4 *lvp,
-                         const double o[3], unsigned depth_tex, int w, int h);
+    /* the analysis's light frustum relative to o (scene: world; rs: relative
+       to o); NULL: skgl__ferko_light around rs */
+    sk_result (*frame)(const skgl_scene *scene, const skgl_scene *rs, sk_vec3 light_dir, const double o[3],
+                       sk_mat4 *lvp);
+    sk_result (*analyze)(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_camera *cam, const sk_mat4 *inv,
+                         const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h);
     sk_result (*fit)(skgl_shadow *s, const skgl__fit_in *in);
     sk_result (*render)(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir);
+    /* skgl_shadow_bind: its textures from unit + 1; the unit it left active (NULL: none) */
+    skgl__int (*bind)(skgl_context *ctx, const skgl_shadow *s, int unit);
+    /* skgl_shadow_mask: its textures (from unit 3) put in b; how many (NULL: none) */
+    int (*mask)(const skgl_shadow *s, skgl__unitbind *b);
 } skgl__technique;
 static const skgl__technique *skgl__technique_of(const skgl_shadow *s);
 
@@ -6186,7 +6202,7 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     if (!s->id) s->id = ++ctx->next_id;
     s->layers = d.cascades;
     s->maps = s->layers;
-    s->tex_size = d.technique == SKGL_RMSM ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
+    s->tex_size = skgl__technique_of(s)->pages ? d.rmsm_pool_pages * (d.rmsm_page_size + 2) : d.resolution;
     /* AUTO: one layer, its one-map size, until a render sizes it (skgl__auto_storage) */
     s->tex_layers = d.technique == SKGL_AUTO ? 1 : s->layers;
     s->select_extent = 1.0f;
@@ -6207,8 +6223,8 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
                    SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__LINEAR);
     gl->TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__LINEAR);
-    /* one framebuffer per layer (RMSM: the pool, layer 0) */
-    for (i = 0; i < (d.technique == SKGL_RMSM ? 1 : s->tex_layers) && r == SK_OK; i++) {
+    /* one framebuffer per layer (a page pool: layer 0) */
+    for (i = 0; i < (skgl__technique_of(s)->pages ? 1 : s->tex_layers) && r == SK_OK; i++) {
         s->fbo[i] = skgl__framebuffer(ctx, &st, 0, 0, s->tex, i);
         if (!s->fbo[i]) {
             skgl__set_log(ctx, "skgl_shadow_create: shadow framebuffer incomplete", NULL);
@@ -6217,7 +6233,8 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     }
     if (r == SK_OK && skgl__technique_of(s)->create) r = skgl__technique_of(s)->create(ctx, &st, s);
 #ifndef SKGL_NO_CACHE
-    if (r == SK_OK && d.cache && d.technique != SKGL_RMSM) r = skgl__cache_create(ctx, &st, s);
+    /* a page pool caches its pages itself (skgl__rmsm_create) */
+    if (r == SK_OK && d.cache && !skgl__technique_of(s)->pages) r = skgl__cache_create(ctx, &st, s);
 #endif
     if (r == SK_OK && d.filter == SKGL_FILTER_EVSM) r = skgl__evsm_create(ctx, &st, s);
     skgl__st_end(ctx, &st);
@@ -6247,19 +6264,6 @@ static void skgl__shadow_free(skgl_context *ctx, skgl_shadow *s)
     skgl__timer_free(ctx, &s->t_render);
     skgl__timer_free(ctx, &s->t_mask);
     skgl__timer_free(ctx, &s->t_analyze);
-    SKGL_FREE(s->rmsm.req_cpu);
-    SKGL_FREE(s->rmsm.mark);
-    s->rmsm.mark = NULL;
-    SKGL_FREE(s->rmsm.table_cpu);
-    SKGL_FREE(s->rmsm.table_new);
-    SKGL_FREE(s->rmsm.pages);
-    SKGL_FREE(s->rmsm.slot_of);
-    SKGL_FREE(s->rmsm.slots);
-    SKGL_FREE(s->rmsm.resident);
-    SKGL_FREE(s->rmsm.lru);
-    s->rmsm.req_cpu = NULL;
-    s->rmsm.table_cpu = s->rmsm.table_new = NULL;
-    s->rmsm.pages = NULL;
 }
 SKGLDEF void skgl_shadow_destroy(skgl_context *ctx, skgl_shadow *s)
 {
@@ -7152,13 +7156,15 @@ static void skgl__ferko_poll(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
 /* FERKO analysis: the 4x4-block pass, the 16x16 reductions, the final 2x1
    texels; read back at once (sync_readback, and the first analysis) or
    into the ring, the estimate of an earlier frame taken when it lands */
-static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
-                                     const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_camera *cam,
+                                     const sk_mat4 *inv, const sk_mat4 *lvp, const double o[3], unsigned depth_tex,
+                                     int w, int h)
 {
     skgl__api *gl = &ctx->gl;
     sk_mat4 ndc_to_light;
     float world_w[4], v[8];
     int k, sync = s->desc.sync_readback || s->ferko.state == 0, slot;
+    (void)cam;   /* the depth buffer's positions come through inv */
     if (!skgl__ferko_targets(ctx, st, s, w, h)) {
         skgl__ferko_free(ctx, s);
         skgl__set_log(ctx, "skgl_shadow_analyze: RGBA32F targets not renderable", NULL);
@@ -7274,7 +7280,7 @@ static sk_result skgl__analyze_auto(skgl_context *ctx, skgl__st *st, skgl_shadow
         s->stats.analysis_ms = 0.0f;
         return SK_OK;
     }
-    r = skgl__analyze_ferko(ctx, st, s, inv, lvp, o, depth_tex, w, h);
+    r = skgl__analyze_ferko(ctx, st, s, cam, inv, lvp, o, depth_tex, w, h);
     if (r != SK_OK) return r;
     s->auto_view = cam->view;
     s->auto_proj = cam->proj;
@@ -7360,6 +7366,19 @@ static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
     skgl__delete_texture(ctx, &s->rmsm.page_tex);
     skgl__delete_framebuffer(ctx, &s->rmsm.page_fbo);
     skgl__ring_free(ctx, &s->rmsm.ring);
+    SKGL_FREE(s->rmsm.req_cpu);
+    SKGL_FREE(s->rmsm.mark);
+    s->rmsm.mark = NULL;
+    SKGL_FREE(s->rmsm.table_cpu);
+    SKGL_FREE(s->rmsm.table_new);
+    SKGL_FREE(s->rmsm.pages);
+    SKGL_FREE(s->rmsm.slot_of);
+    SKGL_FREE(s->rmsm.slots);
+    SKGL_FREE(s->rmsm.resident);
+    SKGL_FREE(s->rmsm.lru);
+    s->rmsm.req_cpu = NULL;
+    s->rmsm.table_cpu = s->rmsm.table_new = NULL;
+    s->rmsm.pages = NULL;
 }
 
 /* texel index of page (level, px, py) in the request atlas and the page
@@ -7530,12 +7549,14 @@ static void skgl__rmsm_table(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
    (ring) or, with sync_readback and on the first analysis, of this one (a
    read-back that waits for the GPU). lvp is the virtual map's frustum
    (skgl__rmsm_frame) relative to o. */
-static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const sk_mat4 *inv,
-                                    const sk_mat4 *lvp, const double o[3], unsigned depth_tex, int w, int h)
+static sk_result skgl__analyze_rmsm(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_camera *cam,
+                                    const sk_mat4 *inv, const sk_mat4 *lvp, const double o[3], unsigned depth_tex,
+                                    int w, int h)
 {
     skgl__api *gl = &ctx->gl;
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f}, one[4] = {1.0f, 1.0f, 1.0f, 1.0f};
     int sync = s->desc.sync_readback || !s->rmsm.analyzed, slot, banded = s->rmsm.bands > 1;
+    (void)cam;
     (void)o;   /* lvp and inv are relative to it already; the render places the pages itself */
     if (s->rmsm.w != w || s->rmsm.h != h) {
         skgl__delete_texture(ctx, &s->rmsm.samples);
@@ -7640,6 +7661,36 @@ static sk_result skgl__rmsm_frame(const sk_aabb *world, sk_vec3 light_dir, sk_ma
     rel.bounds = *world;
     rel = skgl__scene_rel(&rel, o);
     return skgl__ferko_light(&rel, light_dir, lvp);
+}
+
+/* the analysis's light frustum: the virtual map's, whose page grid is
+   fixed in the world (skgl__rmsm_frame), moved to o */
+static sk_result skgl__rmsm_analysis_frame(const skgl_scene *scene, const skgl_scene *rs, sk_vec3 light_dir,
+                                           const double o[3], sk_mat4 *lvp)
+{
+    sk_mat4 vlvp;
+    double vo[3];
+    sk_result r = skgl__rmsm_frame(&scene->bounds, light_dir, &vlvp, vo);
+    (void)rs;
+    *lvp = skgl__shift(&vlvp, vo, o);
+    return r;
+}
+
+/* skgl_shadow_bind: the page table on unit + 1 (point sampled) */
+static skgl__int skgl__rmsm_bind(skgl_context *ctx, const skgl_shadow *s, int unit)
+{
+    skgl__api *gl = &ctx->gl;
+    gl->ActiveTexture((skgl__enum)(SKGL__TEXTURE0 + unit + 1));
+    gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
+    gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
+    return SKGL__TEXTURE0 + unit + 1;
+}
+
+/* skgl_shadow_mask: the page table on unit 3 */
+static int skgl__rmsm_mask(const skgl_shadow *s, skgl__unitbind *b)
+{
+    skgl__bind_unit(b, 3, SKGL__T_2D, s->rmsm.table, 0);
+    return 1;
 }
 #endif /* SKGL_NO_RMSM */
 
@@ -8600,37 +8651,41 @@ static sk_result skgl__depth_fit_create(skgl_context *ctx, skgl__st *st, skgl_sh
 /* whether skgl_shadow_analyze has anything to do for s */
 static int skgl__analyzes(const skgl_shadow *s)
 {
-    return skgl__technique_of(s)->analyze &&
-           (s->desc.fit_to_depth || s->desc.technique == SKGL_FERKO || s->desc.technique == SKGL_RMSM ||
-            s->desc.technique == SKGL_AUTO);
+    return skgl__technique_of(s)->analyze && (s->desc.fit_to_depth || skgl__technique_of(s)->analyses);
 }
 
 static const skgl__technique skgl__techniques[] = {
 #ifndef SKGL_NO_FERKO
-    {"STANDARD", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
-    {"PSSM", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ortho_layers, skgl__render_layers},
-    {"PSM", NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers},
-    {"LISPSM", skgl__depth_fit_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_lispsm_layers, skgl__render_layers},
-    {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
-    {"FERKO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_ferko_layer,
-     skgl__render_layers},
+    {"STANDARD", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
+     skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+    {"PSSM", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
+     skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+    {"PSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers, NULL, NULL},
+    {"LISPSM", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
+     skgl__fit_lispsm_layers, skgl__render_layers, NULL, NULL},
+    {"LSPSM", 0, 1, 0, 1, NULL, NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers, NULL, NULL},
+    {"FERKO", 1, 1, 0, 0, skgl__ferko_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko, skgl__fit_ferko_layer,
+     skgl__render_layers, NULL, NULL},
 #else   /* no analysis: FERKO refused at create (skgl__shadow_validate), as are AUTO and .fit_to_depth */
-    {"STANDARD", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
-    {"PSSM", NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers},
-    {"PSM", NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers},
-    {"LISPSM", NULL, NULL, NULL, skgl__fit_lispsm_layers, skgl__render_layers},
-    {"LSPSM", NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers},
-    {"FERKO", NULL, NULL, NULL, NULL, NULL},
+    {"STANDARD", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+    {"PSSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+    {"PSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers, NULL, NULL},
+    {"LISPSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_lispsm_layers, skgl__render_layers, NULL, NULL},
+    {"LSPSM", 0, 1, 0, 1, NULL, NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers, NULL, NULL},
+    {"FERKO", 0, 1, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 #endif
 #ifndef SKGL_NO_RMSM
-    {"RMSM", skgl__rmsm_create, skgl__rmsm_free, skgl__analyze_rmsm, skgl__fit_rmsm, skgl__render_rmsm},
+    {"RMSM", 1, 2, 1, 0, skgl__rmsm_create, skgl__rmsm_free, skgl__rmsm_analysis_frame, skgl__analyze_rmsm,
+     skgl__fit_rmsm, skgl__render_rmsm, skgl__rmsm_bind, skgl__rmsm_mask},
 #else
-    {"RMSM", NULL, NULL, NULL, NULL, NULL},   /* refused at create (skgl__shadow_validate) */
+    /* refused at create (skgl__shadow_validate) */
+    {"RMSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 #endif
 #ifndef SKGL_NO_FERKO
-    {"AUTO", skgl__ferko_create, skgl__ferko_destroy, skgl__analyze_ferko, skgl__fit_auto, skgl__render_auto},
+    {"AUTO", 1, 1, 0, 0, skgl__ferko_create, skgl__ferko_destroy, NULL, skgl__analyze_auto, skgl__fit_auto,
+     skgl__render_auto, NULL, NULL},
 #else
-    {"AUTO", NULL, NULL, NULL, NULL, NULL},
+    {"AUTO", 0, 1, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 #endif
 };
 
@@ -8680,15 +8735,8 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         if (!sk_mat4_inverse(cam->proj, &pinv)) return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: cam->proj is singular", fn);
         for (k = 0; k < 4; k++) ctx->cam_view_z[k] = pinv.m[k * 4 + 2];
     }
-#ifndef SKGL_NO_RMSM
-    if (s->desc.technique == SKGL_RMSM) {   /* the page grid is fixed in the world (skgl__rmsm_frame) */
-        sk_mat4 vlvp;
-        double vo[3];
-        r = skgl__rmsm_frame(&scene->bounds, light_dir, &vlvp, vo);
-        lvp = skgl__shift(&vlvp, vo, o);
-    } else
-#endif
-        r = skgl__ferko_light(&rs, light_dir, &lvp);
+    if (skgl__technique_of(s)->frame) r = skgl__technique_of(s)->frame(scene, &rs, light_dir, o, &lvp);
+    else r = skgl__ferko_light(&rs, light_dir, &lvp);
     if (r != SK_OK) return r;
     skgl__st_begin(ctx, &st);
     why = skgl__texture_size(ctx, &st, depth_tex, &w, &h);
@@ -8697,11 +8745,7 @@ SKGLDEF sk_result skgl_shadow_analyze(skgl_context *ctx, skgl_shadow *s, const s
         skgl__set_log(ctx, "skgl_shadow_analyze: depth_tex", why);
         return SK_ERR_INVALID_ARG;
     }
-#ifndef SKGL_NO_FERKO
-    if (s->desc.technique == SKGL_AUTO) r = skgl__analyze_auto(ctx, &st, s, cam, &inv, &lvp, o, depth_tex, w, h);
-    else
-#endif
-        r = skgl__technique_of(s)->analyze(ctx, &st, s, &inv, &lvp, o, depth_tex, w, h);
+    r = skgl__technique_of(s)->analyze(ctx, &st, s, cam, &inv, &lvp, o, depth_tex, w, h);
     skgl__st_end(ctx, &st);
     return r != SK_OK ? r : skgl__check(ctx, "skgl_shadow_analyze");
 }
@@ -8926,11 +8970,11 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
            samplers of different types must never share a unit */
         skgl__u1i(gl, L[SKGL__L_MAP], unit);
         skgl__u1i(gl, L[SKGL__L_TABLE], table_unit);
-        skgl__u1i(gl, L[SKGL__L_RMSM], s->desc.technique == SKGL_RMSM);
+        skgl__u1i(gl, L[SKGL__L_RMSM], skgl__technique_of(s)->pages);
         skgl__u1i(gl, L[SKGL__L_PAGES0], s->rmsm.pages0);
         skgl__u1i(gl, L[SKGL__L_LEVELS], s->rmsm.levels);
         skgl__u1i(gl, L[SKGL__L_PAGE], s->desc.rmsm_page_size);
-        skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], s->desc.technique == SKGL_LSPSM);
+        skgl__u1i(gl, L[SKGL__L_SELECT_BY_MAP], skgl__technique_of(s)->select_by_map);
         skgl__u1f(gl, L[SKGL__L_BLEND_BAND], s->desc.blend_band);
         skgl__u1f(gl, L[SKGL__L_NORMAL_BIAS], s->desc.normal_bias > 0.0f ? s->desc.normal_bias : 0.0f);
         skgl__u1i(gl, L[SKGL__L_BIAS_MODE], s->desc.bias == SKGL_BIAS_RECEIVER_PLANE ? 0 : 1);
@@ -8962,8 +9006,8 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
     }
     /* FERKO and AUTO draw into the lower-left view_w x view_h texels:
        beyond them lie older maps' texels, not this frame's */
-    ext[0] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_w / (float)s->tex_size;
-    ext[1] = s->desc.technique == SKGL_RMSM ? 1.0f : (float)s->view_h / (float)s->tex_size;
+    ext[0] = skgl__technique_of(s)->pages ? 1.0f : (float)s->view_w / (float)s->tex_size;
+    ext[1] = skgl__technique_of(s)->pages ? 1.0f : (float)s->view_h / (float)s->tex_size;
     if (ext[0] != e->extent[0] || ext[1] != e->extent[1]) {
         e->extent[0] = ext[0];
         e->extent[1] = ext[1];
@@ -9108,7 +9152,7 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
     SKGL__TRY(skgl__arg_ptr(ctx, fn, s, "s"));
     SKGL__TRY(skgl__arg_prefix(ctx, fn, prefix));
     SKGL__TRY(skgl__arg_name(ctx, fn, program, "program"));
-    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, s->desc.technique == SKGL_RMSM ? 30 : 31));
+    SKGL__TRY(skgl__arg_unit(ctx, fn, unit, 32 - skgl__technique_of(s)->units));
     if (origin && !(SK_FABS(origin[0]) < 1e30 && SK_FABS(origin[1]) < 1e30 && SK_FABS(origin[2]) < 1e30))
         return skgl__fail(ctx, SK_ERR_INVALID_ARG, "%s: origin = (%g %g %g): finite, under 1e30", fn, origin[0],
                           origin[1], origin[2]);
@@ -9125,12 +9169,7 @@ SKGLDEF sk_result skgl_shadow_bind_named(skgl_context *ctx, const skgl_shadow *s
     if (active != last) gl->ActiveTexture((skgl__enum)last);
     gl->BindTexture(SKGL__TEXTURE_2D_ARRAY, s->tex);
     gl->BindSampler((skgl__uint)unit, ctx->cmp_sampler);
-    if (s->desc.technique == SKGL_RMSM) {
-        last = SKGL__TEXTURE0 + unit + 1;
-        gl->ActiveTexture((skgl__enum)last);
-        gl->BindTexture(SKGL__TEXTURE_2D, s->rmsm.table);
-        gl->BindSampler((skgl__uint)unit + 1, ctx->point_sampler);
-    }
+    if (skgl__technique_of(s)->bind) last = skgl__technique_of(s)->bind(ctx, s, unit);
     /* the forward contact march (SK_SHADOW_CONTACT) on unit + 3 (unit + 2 is
        EVSM's): in a
        steady frame only a light with contact shadows costs a call */
@@ -9224,7 +9263,7 @@ SKGLDEF sk_result skgl_shadow_mask(skgl_context *ctx, skgl_shadow *s, const skgl
         skgl__unitbind b[5];
         int n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
         skgl__st_set1(ctx, &st, SKGL__S_SCISSOR_TEST, 0);
-        if (s->desc.technique == SKGL_RMSM) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->rmsm.table, 0);
+        if (skgl__technique_of(s)->mask) n += skgl__technique_of(s)->mask(s, b + n);
         else if (ctx->caps.webgl) skgl__bind_unit(&b[n++], 3, SKGL__T_2D, 0, 0);   /* see skgl__mask_gbuffer */
         skgl__bind_unit(&b[n++], 0, SKGL__T_2D_ARRAY, s->tex, ctx->cmp_sampler);
         /* EVSM: the moments on unit 4, bilinear through the texture's own filter */
@@ -11038,45 +11077,32 @@ static void skgl__ftimer_end(skgl_context *ctx, skgl__frame_timer *t)
 #define SKGL__SOFT_LEVELS 14               /* the low-res map's levels: 8192 down to 1 */
 #define SKGL__SOFT_FINE 4                  /* PVSM without a geometry shader: fine texels per low-res texel side */
 
-struct skgl_soft {
-    skgl_soft_desc desc;
-    /* the programs, their per-frame locations and the values last sent */
-    skgl__uint prog_mask;                  /* PCSS: the mask; PVSM: the kernel-shape pass */
-    skgl__uint prog_cons, prog_smtg, prog_reduce, prog_filter, prog_resolve, prog_gbuf;
-    skgl__int u_inv_view_proj, u_light_vp, u_light_pos, u_light_half, u_light_proj, u_has_normals, u_hard;
-    skgl__int u_depth_map;                 /* the camera's depth convention: last sent, this frame's */
-    float dmap[4], frame_dmap[4];
-    skgl__int cons_u_view_proj, cons_u_model, gbuf_u_view_proj, gbuf_u_model, gbuf_u_eye;
+/* PVSM's part (predicted virtual soft shadow maps, Shen et al. 2011): its passes'
+   programs, their locations and the value last sent; the low-res map, the
+   SMTG, the screen-sized targets; the prediction */
+typedef struct skgl__pvsm {
+    skgl__uint prog_cons, prog_smtg, prog_reduce, prog_filter, prog_resolve;
+    skgl__int cons_u_view_proj, cons_u_model;
     skgl__int smtg_u_width, filter_u_rect, filter_u_res;
-    int sent_has_normals, sent_hard, sent_width;     /* -1: not sent yet */
-    int sent_common;                                 /* 1: sent holds the mask program's values */
-    struct {
-        sk_mat4 inv, lvp;
-        float pos[3], half[2], proj[4];
-    } sent;
-    /* the targets, each with its framebuffer, made and checked once (the
-       screen-sized ones again when the mask's size changes) */
-    skgl__uint map, fb_map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
-    skgl__uint low_color, low_true, fb_low;            /* PVSM: R32F MIN pyramid of the conservative
+    int sent_width;                        /* -1: not sent yet */
+    skgl__uint low_color, low_true, fb_low;            /* R32F MIN pyramid of the conservative
                                                           low-res map (mip levels); the plain map */
     skgl__uint fb_level[SKGL__SOFT_LEVELS];            /* level l of low_color (l >= 1) */
     int low_levels;
-    /* PVSM without a geometry shader (skgl_caps.geometry_shader 0): the
+    /* without a geometry shader (skgl_caps.geometry_shader 0): the
        low-resolution map drawn SKGL__SOFT_FINE times finer into low_fine
        (DEPTH32F) and reduced by prog_dilate into low_color and low_true */
     skgl__uint low_fine, fb_fine, prog_dilate;
-    /* PVSM where a texture cannot be sampled while one of its levels is
-       drawn (skgl_caps.mip_render_level 0: ANGLE calls it a feedback loop):
+    /* where a texture cannot be sampled while one of its levels is drawn
+       (skgl_caps.mip_render_level 0: ANGLE calls it a feedback loop):
        level l of the pyramid is also written to low_copy[l], a texture of
        its own, which level l + 1 reads */
     skgl__uint low_copy[SKGL__SOFT_LEVELS];
-    skgl__uint smtg, fb_smtg;              /* PVSM: RGBA32F, grid x (grid + 1): the SMTG, then a row of counts */
-    skgl__uint screen, acc, fb_kernel, fb_acc;         /* PVSM: a 3-layer array (kernel, prediction,
+    skgl__uint smtg, fb_smtg;              /* RGBA32F, grid x (grid + 1): the SMTG, then a row of counts */
+    skgl__uint screen, acc, fb_kernel, fb_acc;         /* a 3-layer array (kernel, prediction,
                                                           plane), the accumulation */
     int sw, sh;
-    skgl__uint gb_depth, gb_normal, fb_gbuf;           /* the G-buffer rendered here (depth_tex = 0) */
-    int gw, gh;
-    /* PVSM's prediction: the SMTG read back (at once or through the ring),
+    /* the prediction: the SMTG read back (at once or through the ring),
        its pyramid and tiles, the frustum it was made in */
     skgl__ring ring;                       /* lvp[i]: the light projection of read-back i */
     sk_mat4 ring_view[SKGL__RING];
@@ -11092,6 +11118,30 @@ struct skgl_soft {
     unsigned prediction_frame;
     sk_mat4 pred_view, pred_proj;
     float lit_fraction;
+} skgl__pvsm;
+
+struct skgl_soft {
+    skgl_soft_desc desc;
+    /* the programs of both techniques, the mask's per-frame locations and
+       the values last sent */
+    skgl__uint prog_mask;                  /* PCSS: the mask; PVSM: the kernel-shape pass */
+    skgl__uint prog_gbuf;
+    skgl__int u_inv_view_proj, u_light_vp, u_light_pos, u_light_half, u_light_proj, u_has_normals, u_hard;
+    skgl__int u_depth_map;                 /* the camera's depth convention: last sent, this frame's */
+    float dmap[4], frame_dmap[4];
+    skgl__int gbuf_u_view_proj, gbuf_u_model, gbuf_u_eye;
+    int sent_has_normals, sent_hard;                 /* -1: not sent yet */
+    int sent_common;                                 /* 1: sent holds the mask program's values */
+    struct {
+        sk_mat4 inv, lvp;
+        float pos[3], half[2], proj[4];
+    } sent;
+    /* the targets, each with its framebuffer, made and checked once (the
+       screen-sized ones again when the mask's size changes) */
+    skgl__uint map, fb_map;                /* PCSS: the map; PVSM: the tile map (DEPTH32F, resolution^2) */
+    skgl__uint gb_depth, gb_normal, fb_gbuf;           /* the G-buffer rendered here (depth_tex = 0) */
+    int gw, gh;
+    skgl__pvsm pvsm;                       /* SKGL_SOFT_PVSM only */
     /* this frame */
     unsigned frame;
     sk_mat4 light_view, light_proj, light_vp;
@@ -11207,11 +11257,11 @@ static void skgl__delete_program(skgl_context *ctx, skgl__uint *p)
 /* the screen-sized targets (PVSM) */
 static void skgl__soft_free_screen(skgl_context *ctx, skgl_soft *s)
 {
-    skgl__delete_texture(ctx, &s->screen);
-    skgl__delete_texture(ctx, &s->acc);
-    skgl__delete_framebuffer(ctx, &s->fb_kernel);
-    skgl__delete_framebuffer(ctx, &s->fb_acc);
-    s->sw = s->sh = 0;
+    skgl__delete_texture(ctx, &s->pvsm.screen);
+    skgl__delete_texture(ctx, &s->pvsm.acc);
+    skgl__delete_framebuffer(ctx, &s->pvsm.fb_kernel);
+    skgl__delete_framebuffer(ctx, &s->pvsm.fb_acc);
+    s->pvsm.sw = s->pvsm.sh = 0;
 }
 static void skgl__soft_free_gbuffer(skgl_context *ctx, skgl_soft *s)
 {
@@ -11221,40 +11271,46 @@ static void skgl__soft_free_gbuffer(skgl_context *ctx, skgl_soft *s)
     s->gw = s->gh = 0;
 }
 
-static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
+/* PVSM's programs, targets, ring and arrays (a PCSS light: none) */
+static void skgl__pvsm_free(skgl_context *ctx, skgl_soft *s)
 {
     int i;
+    skgl__delete_program(ctx, &s->pvsm.prog_cons);
+    skgl__delete_program(ctx, &s->pvsm.prog_dilate);
+    skgl__delete_texture(ctx, &s->pvsm.low_fine);
+    skgl__delete_framebuffer(ctx, &s->pvsm.fb_fine);
+    skgl__delete_program(ctx, &s->pvsm.prog_smtg);
+    skgl__delete_program(ctx, &s->pvsm.prog_reduce);
+    skgl__delete_program(ctx, &s->pvsm.prog_filter);
+    skgl__delete_program(ctx, &s->pvsm.prog_resolve);
+    skgl__delete_texture(ctx, &s->pvsm.low_color);
+    skgl__delete_texture(ctx, &s->pvsm.low_true);
+    skgl__delete_framebuffer(ctx, &s->pvsm.fb_low);
+    for (i = 0; i < SKGL__SOFT_LEVELS; i++) skgl__delete_framebuffer(ctx, &s->pvsm.fb_level[i]);
+    for (i = 0; i < SKGL__SOFT_LEVELS; i++) skgl__delete_texture(ctx, &s->pvsm.low_copy[i]);
+    skgl__delete_texture(ctx, &s->pvsm.smtg);
+    skgl__delete_framebuffer(ctx, &s->pvsm.fb_smtg);
+    skgl__soft_free_screen(ctx, s);
+    skgl__ring_free(ctx, &s->pvsm.ring);
+    SKGL_FREE(s->pvsm.readback);
+    SKGL_FREE(s->pvsm.pyramid);
+    SKGL_FREE(s->pvsm.grid);
+    SKGL_FREE(s->pvsm.tiles);
+    SKGL_FREE(s->pvsm.rects);
+    s->pvsm.readback = s->pvsm.pyramid = s->pvsm.grid = NULL;
+    s->pvsm.tiles = NULL;
+    s->pvsm.rects = NULL;
+}
+
+static void skgl__soft_free(skgl_context *ctx, skgl_soft *s)
+{
     skgl__delete_program(ctx, &s->prog_mask);
-    skgl__delete_program(ctx, &s->prog_cons);
-    skgl__delete_program(ctx, &s->prog_dilate);
-    skgl__delete_texture(ctx, &s->low_fine);
-    skgl__delete_framebuffer(ctx, &s->fb_fine);
-    skgl__delete_program(ctx, &s->prog_smtg);
-    skgl__delete_program(ctx, &s->prog_reduce);
-    skgl__delete_program(ctx, &s->prog_filter);
-    skgl__delete_program(ctx, &s->prog_resolve);
     skgl__delete_program(ctx, &s->prog_gbuf);
     skgl__delete_texture(ctx, &s->map);
     skgl__delete_framebuffer(ctx, &s->fb_map);
-    skgl__delete_texture(ctx, &s->low_color);
-    skgl__delete_texture(ctx, &s->low_true);
-    skgl__delete_framebuffer(ctx, &s->fb_low);
-    for (i = 0; i < SKGL__SOFT_LEVELS; i++) skgl__delete_framebuffer(ctx, &s->fb_level[i]);
-    for (i = 0; i < SKGL__SOFT_LEVELS; i++) skgl__delete_texture(ctx, &s->low_copy[i]);
-    skgl__delete_texture(ctx, &s->smtg);
-    skgl__delete_framebuffer(ctx, &s->fb_smtg);
-    skgl__soft_free_screen(ctx, s);
+    skgl__pvsm_free(ctx, s);
     skgl__soft_free_gbuffer(ctx, s);
-    skgl__ring_free(ctx, &s->ring);
     skgl__ftimer_free(ctx, &s->timer);
-    SKGL_FREE(s->readback);
-    SKGL_FREE(s->pyramid);
-    SKGL_FREE(s->grid);
-    SKGL_FREE(s->tiles);
-    SKGL_FREE(s->rects);
-    s->readback = s->pyramid = s->grid = NULL;
-    s->tiles = NULL;
-    s->rects = NULL;
 }
 
 /* the fine map's side without a geometry shader (.disable_conservative:
@@ -11271,34 +11327,86 @@ static int skgl__soft_fine_size(const skgl_context *ctx, const skgl_soft *s)
     return s->desc.lowres * skgl__soft_fine_factor(ctx, s);
 }
 
+/* PVSM's passes but the kernel's (prog_mask): 1 when every one linked */
+static int skgl__pvsm_programs(skgl_context *ctx, skgl_soft *s)
+{
+    const char *full = skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT);
+    if (ctx->caps.geometry_shader)
+        s->pvsm.prog_cons = skgl__program_gs(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT),
+                                             skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM),
+                                             skgl__glsl(SKGL__GLSL_SOFT_CONS_FRAG));
+    else
+        s->pvsm.prog_dilate = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_DILATE_FRAG), NULL);
+    s->pvsm.prog_smtg = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_SMTG_VERT),
+                                      skgl__glsl(SKGL__GLSL_SOFT_SMTG_FRAG), NULL);
+    s->pvsm.prog_reduce = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_REDUCE_VERT),
+                                        ctx->caps.mip_render_level ? "" : "#define SKGL_REDUCE_COPY 1\n",
+                                        skgl__glsl(SKGL__GLSL_SOFT_REDUCE_FRAG));
+    s->pvsm.prog_filter = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_FILTER_FRAG), NULL);
+    s->pvsm.prog_resolve = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_RESOLVE_FRAG), NULL);
+    return (s->pvsm.prog_cons || s->pvsm.prog_dilate) && s->pvsm.prog_smtg && s->pvsm.prog_reduce &&
+           s->pvsm.prog_filter && s->pvsm.prog_resolve;
+}
+
 /* the programs of the technique, and of the G-buffer */
 static sk_result skgl__soft_programs(skgl_context *ctx, skgl_soft *s)
 {
     const char *full = skgl__glsl(SKGL__GLSL_FULLSCREEN_VERT), *common = skgl__glsl(SKGL__GLSL_SOFT_COMMON_GLSL);
+    int ok = 1;
     if (s->desc.technique == SKGL_SOFT_PCSS) {
         s->prog_mask = skgl__program(ctx, full, common, skgl__glsl(SKGL__GLSL_PCSS_MASK_FRAG));
     } else {
         s->prog_mask = skgl__program(ctx, full, common, skgl__glsl(SKGL__GLSL_SOFT_KERNEL_FRAG));
-        if (ctx->caps.geometry_shader)
-            s->prog_cons = skgl__program_gs(ctx, skgl__glsl(SKGL__GLSL_DEPTH_VERT),
-                                            skgl__glsl(SKGL__GLSL_SOFT_CONS_GEOM), skgl__glsl(SKGL__GLSL_SOFT_CONS_FRAG));
-        else
-            s->prog_dilate = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_DILATE_FRAG), NULL);
-        s->prog_smtg = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_SMTG_VERT), skgl__glsl(SKGL__GLSL_SOFT_SMTG_FRAG),
-                                     NULL);
-        s->prog_reduce = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_REDUCE_VERT),
-                                       ctx->caps.mip_render_level ? "" : "#define SKGL_REDUCE_COPY 1\n",
-                                       skgl__glsl(SKGL__GLSL_SOFT_REDUCE_FRAG));
-        s->prog_filter = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_FILTER_FRAG), NULL);
-        s->prog_resolve = skgl__program(ctx, full, skgl__glsl(SKGL__GLSL_SOFT_RESOLVE_FRAG), NULL);
+        ok = skgl__pvsm_programs(ctx, s);
     }
     s->prog_gbuf = skgl__program(ctx, skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_VERT), skgl__glsl(SKGL__GLSL_SOFT_GBUFFER_FRAG),
                                  NULL);
-    if (!s->prog_mask || !s->prog_gbuf ||
-        (s->desc.technique == SKGL_SOFT_PVSM && ((!s->prog_cons && !s->prog_dilate) || !s->prog_smtg || !s->prog_reduce ||
-                                                 !s->prog_filter || !s->prog_resolve)))
+    if (!s->prog_mask || !s->prog_gbuf || !ok)
         return SK_ERR_GL;   /* the log holds the compiler's or linker's message */
     return SK_OK;
+}
+
+/* PVSM's passes but the kernel's: their constant uniforms, set once, and
+   the locations of the others */
+static void skgl__pvsm_constants(skgl_context *ctx, skgl__st *st, skgl_soft *s)
+{
+    skgl__api *gl = &ctx->gl;
+    const skgl_soft_desc *d = &s->desc;
+    skgl__uint p;
+    float texel[2];
+    if (s->pvsm.prog_cons) {
+        p = s->pvsm.prog_cons;
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        s->pvsm.cons_u_view_proj = gl->GetUniformLocation(p, "skgl_view_proj");
+        s->pvsm.cons_u_model = gl->GetUniformLocation(p, "skgl_model");
+        texel[0] = texel[1] = 2.0f / (float)d->lowres;
+        if (gl->GetUniformLocation(p, "skgl_texel") >= 0)
+            gl->Uniform2fv(gl->GetUniformLocation(p, "skgl_texel"), 1, texel);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "skgl_conservative"), !d->disable_conservative);
+    } else {
+        p = s->pvsm.prog_dilate;
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_fine"), 0);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_factor"), skgl__soft_fine_factor(ctx, s));
+    }
+    p = s->pvsm.prog_smtg;
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+    s->pvsm.smtg_u_width = gl->GetUniformLocation(p, "u_width");
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_grid"), d->grid);
+    p = s->pvsm.prog_reduce;
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_src"), 0);
+    p = s->pvsm.prog_filter;
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+    s->pvsm.filter_u_rect = gl->GetUniformLocation(p, "u_tile_rect");
+    s->pvsm.filter_u_res = gl->GetUniformLocation(p, "u_tile_res");
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_tile"), 1);
+    p = s->pvsm.prog_resolve;
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
+    skgl__u1i(gl, gl->GetUniformLocation(p, "u_acc"), 1);
 }
 
 /* the uniforms that never change, set once; the locations of the others */
@@ -11325,52 +11433,19 @@ static void skgl__soft_constants(skgl_context *ctx, skgl__st *st, skgl_soft *s)
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_map_cmp"), 3);
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_pcf_taps"), d->pcf_taps);
     } else {
-        float texel[2];
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres"), 0);
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres_true"), 3);
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres_size"), d->lowres);
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres_levels"), s->low_levels);
+        skgl__u1i(gl, gl->GetUniformLocation(p, "u_lowres_levels"), s->pvsm.low_levels);
         skgl__u1i(gl, gl->GetUniformLocation(p, "u_static_scene"), d->static_scene);
         skgl__u1f(gl, gl->GetUniformLocation(p, "u_antialias"), d->disable_antialias ? 0.0f : 1.0f);
         skgl__u1f(gl, gl->GetUniformLocation(p, "u_res_scale"), d->resolution_scale);
-        if (s->prog_cons) {
-            p = s->prog_cons;
-            skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-            s->cons_u_view_proj = gl->GetUniformLocation(p, "skgl_view_proj");
-            s->cons_u_model = gl->GetUniformLocation(p, "skgl_model");
-            texel[0] = texel[1] = 2.0f / (float)d->lowres;
-            if (gl->GetUniformLocation(p, "skgl_texel") >= 0)
-                gl->Uniform2fv(gl->GetUniformLocation(p, "skgl_texel"), 1, texel);
-            skgl__u1i(gl, gl->GetUniformLocation(p, "skgl_conservative"), !d->disable_conservative);
-        } else {
-            p = s->prog_dilate;
-            skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-            skgl__u1i(gl, gl->GetUniformLocation(p, "u_fine"), 0);
-            skgl__u1i(gl, gl->GetUniformLocation(p, "u_factor"), skgl__soft_fine_factor(ctx, s));
-        }
-        p = s->prog_smtg;
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-        s->smtg_u_width = gl->GetUniformLocation(p, "u_width");
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_grid"), d->grid);
-        p = s->prog_reduce;
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_src"), 0);
-        p = s->prog_filter;
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-        s->filter_u_rect = gl->GetUniformLocation(p, "u_tile_rect");
-        s->filter_u_res = gl->GetUniformLocation(p, "u_tile_res");
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_tile"), 1);
-        p = s->prog_resolve;
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)p);
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_screen"), 0);
-        skgl__u1i(gl, gl->GetUniformLocation(p, "u_acc"), 1);
+        skgl__pvsm_constants(ctx, st, s);
     }
     s->gbuf_u_view_proj = gl->GetUniformLocation(s->prog_gbuf, "skgl_view_proj");
     s->gbuf_u_model = gl->GetUniformLocation(s->prog_gbuf, "skgl_model");
     s->gbuf_u_eye = gl->GetUniformLocation(s->prog_gbuf, "skgl_eye");
-    s->sent_has_normals = s->sent_hard = s->sent_width = -1;
+    s->sent_has_normals = s->sent_hard = s->pvsm.sent_width = -1;
 }
 
 /* levels 1.. of a texture made by skgl__color_texture (bound on unit 0's
@@ -11398,57 +11473,66 @@ static int skgl__attach_copy(skgl_context *ctx, skgl__uint copy)
     return ctx->gl.CheckFramebufferStatus(SKGL__DRAW_FRAMEBUFFER) == SKGL__FRAMEBUFFER_COMPLETE;
 }
 
-/* the maps, the SMTG and their framebuffers, the read-back ring and the
-   CPU side of the prediction */
-static sk_result skgl__soft_targets(skgl_context *ctx, skgl__st *st, skgl_soft *s)
+/* PVSM's: the low-res map, the SMTG and their framebuffers, the read-back
+   ring and the CPU side of the prediction */
+static sk_result skgl__pvsm_targets(skgl_context *ctx, skgl__st *st, skgl_soft *s)
 {
     const skgl_soft_desc *d = &s->desc;
     const char *fn = "skgl_soft_create";
     skgl__uint low[3] = {0, 0, 0};
     int l, g = d->grid, ok;
+    for (l = d->lowres, s->pvsm.low_levels = 1; l > 1; l /= 2) s->pvsm.low_levels++;
+    s->pvsm.low_color = skgl__color_texture(ctx, st, SKGL__R32F, d->lowres, d->lowres, 1, SKGL__RED, SKGL__FLOAT, NULL);
+    skgl__soft_levels(ctx, SKGL__R32F, d->lowres, d->lowres, s->pvsm.low_levels, SKGL__RED);
+    s->pvsm.low_true = skgl__color_texture(ctx, st, SKGL__R32F, d->lowres, d->lowres, 1, SKGL__RED, SKGL__FLOAT, NULL);
+    low[0] = s->pvsm.low_color;
+    low[1] = s->pvsm.low_true;
+    if (!ctx->caps.mip_render_level) {
+        int side = d->lowres;
+        for (l = 0; l + 1 < s->pvsm.low_levels; l++, side = side > 1 ? side / 2 : 1)
+            s->pvsm.low_copy[l] = skgl__color_texture(ctx, st, SKGL__R32F, side, side, 1, SKGL__RED, SKGL__FLOAT, NULL);
+        low[2] = s->pvsm.low_copy[0];
+    }
+    s->pvsm.fb_low = skgl__framebuffer_mrt(ctx, st, low, low[2] ? 3 : 2, 0, 0, 0);
+    ok = s->pvsm.fb_low != 0;
+    if (ok && s->pvsm.prog_dilate) {
+        int fine = skgl__soft_fine_size(ctx, s);
+        s->pvsm.low_fine = skgl__color_texture(ctx, st, SKGL__DEPTH_COMPONENT32F, fine, fine, 1, SKGL__DEPTH_COMPONENT,
+                                          SKGL__FLOAT, NULL);
+        s->pvsm.fb_fine = skgl__framebuffer_mrt(ctx, st, NULL, 0, 0, s->pvsm.low_fine, 0);
+        if (!s->pvsm.fb_fine)
+            return skgl__fail(ctx, SK_ERR_GL, "%s: the DEPTH32F fine low-res map's framebuffer is incomplete", fn);
+    }
+    for (l = 1; ok && l < s->pvsm.low_levels; l++)
+        ok = (s->pvsm.fb_level[l] = skgl__framebuffer_mrt(ctx, st, &s->pvsm.low_color, 1, l, 0, 0)) != 0 &&
+             (!s->pvsm.low_copy[l] || skgl__attach_copy(ctx, s->pvsm.low_copy[l]));
+    if (!ok) return skgl__fail(ctx, SK_ERR_GL, "%s: R32F targets are not renderable here", fn);
+    s->pvsm.smtg = skgl__color_texture(ctx, st, SKGL__RGBA32F, g, g + 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->pvsm.fb_smtg = skgl__framebuffer_mrt(ctx, st, &s->pvsm.smtg, 1, 0, 0, 0);
+    if (!s->pvsm.fb_smtg) return skgl__fail(ctx, SK_ERR_GL, "%s: RGBA32F targets are not renderable here", fn);
+    skgl__ring_create(ctx, st, &s->pvsm.ring, sizeof(float) * 4u * (size_t)g * (size_t)(g + 1));
+    s->pvsm.readback = (float *)SKGL_MALLOC(s->pvsm.ring.bytes);
+    s->pvsm.pyramid_floats = sk_smtg_pyramid_size(g, g);
+    s->pvsm.pyramid = (float *)SKGL_MALLOC(sizeof(float) * (size_t)s->pvsm.pyramid_floats);
+    s->pvsm.grid = (float *)SKGL_MALLOC(sizeof(float) * 2u * (size_t)g * (size_t)g);
+    s->pvsm.tiles_cap = g * g;
+    s->pvsm.tiles = (sk_tile *)SKGL_MALLOC(sizeof(sk_tile) * (size_t)s->pvsm.tiles_cap);
+    s->pvsm.rects = (sk_rect *)SKGL_MALLOC(sizeof(sk_rect) * (size_t)s->pvsm.tiles_cap);
+    if (!s->pvsm.readback || !s->pvsm.pyramid || !s->pvsm.grid || !s->pvsm.tiles || !s->pvsm.rects)
+        return SK_ERR_CAPACITY;
+    return SK_OK;
+}
+
+/* the map and its framebuffer; PVSM's own targets */
+static sk_result skgl__soft_targets(skgl_context *ctx, skgl__st *st, skgl_soft *s)
+{
+    const skgl_soft_desc *d = &s->desc;
     s->map = skgl__color_texture(ctx, st, SKGL__DEPTH_COMPONENT32F, d->resolution, d->resolution, 1,
                                  SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
     s->fb_map = skgl__framebuffer_mrt(ctx, st, NULL, 0, 0, s->map, 0);
-    if (!s->fb_map) return skgl__fail(ctx, SK_ERR_GL, "%s: the DEPTH32F map's framebuffer is incomplete", fn);
-    if (d->technique == SKGL_SOFT_PCSS) return SK_OK;
-    for (l = d->lowres, s->low_levels = 1; l > 1; l /= 2) s->low_levels++;
-    s->low_color = skgl__color_texture(ctx, st, SKGL__R32F, d->lowres, d->lowres, 1, SKGL__RED, SKGL__FLOAT, NULL);
-    skgl__soft_levels(ctx, SKGL__R32F, d->lowres, d->lowres, s->low_levels, SKGL__RED);
-    s->low_true = skgl__color_texture(ctx, st, SKGL__R32F, d->lowres, d->lowres, 1, SKGL__RED, SKGL__FLOAT, NULL);
-    low[0] = s->low_color;
-    low[1] = s->low_true;
-    if (!ctx->caps.mip_render_level) {
-        int side = d->lowres;
-        for (l = 0; l + 1 < s->low_levels; l++, side = side > 1 ? side / 2 : 1)
-            s->low_copy[l] = skgl__color_texture(ctx, st, SKGL__R32F, side, side, 1, SKGL__RED, SKGL__FLOAT, NULL);
-        low[2] = s->low_copy[0];
-    }
-    s->fb_low = skgl__framebuffer_mrt(ctx, st, low, low[2] ? 3 : 2, 0, 0, 0);
-    ok = s->fb_low != 0;
-    if (ok && s->prog_dilate) {
-        int fine = skgl__soft_fine_size(ctx, s);
-        s->low_fine = skgl__color_texture(ctx, st, SKGL__DEPTH_COMPONENT32F, fine, fine, 1, SKGL__DEPTH_COMPONENT,
-                                          SKGL__FLOAT, NULL);
-        s->fb_fine = skgl__framebuffer_mrt(ctx, st, NULL, 0, 0, s->low_fine, 0);
-        if (!s->fb_fine) return skgl__fail(ctx, SK_ERR_GL, "%s: the DEPTH32F fine low-res map's framebuffer is incomplete", fn);
-    }
-    for (l = 1; ok && l < s->low_levels; l++)
-        ok = (s->fb_level[l] = skgl__framebuffer_mrt(ctx, st, &s->low_color, 1, l, 0, 0)) != 0 &&
-             (!s->low_copy[l] || skgl__attach_copy(ctx, s->low_copy[l]));
-    if (!ok) return skgl__fail(ctx, SK_ERR_GL, "%s: R32F targets are not renderable here", fn);
-    s->smtg = skgl__color_texture(ctx, st, SKGL__RGBA32F, g, g + 1, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
-    s->fb_smtg = skgl__framebuffer_mrt(ctx, st, &s->smtg, 1, 0, 0, 0);
-    if (!s->fb_smtg) return skgl__fail(ctx, SK_ERR_GL, "%s: RGBA32F targets are not renderable here", fn);
-    skgl__ring_create(ctx, st, &s->ring, sizeof(float) * 4u * (size_t)g * (size_t)(g + 1));
-    s->readback = (float *)SKGL_MALLOC(s->ring.bytes);
-    s->pyramid_floats = sk_smtg_pyramid_size(g, g);
-    s->pyramid = (float *)SKGL_MALLOC(sizeof(float) * (size_t)s->pyramid_floats);
-    s->grid = (float *)SKGL_MALLOC(sizeof(float) * 2u * (size_t)g * (size_t)g);
-    s->tiles_cap = g * g;
-    s->tiles = (sk_tile *)SKGL_MALLOC(sizeof(sk_tile) * (size_t)s->tiles_cap);
-    s->rects = (sk_rect *)SKGL_MALLOC(sizeof(sk_rect) * (size_t)s->tiles_cap);
-    if (!s->readback || !s->pyramid || !s->grid || !s->tiles || !s->rects) return SK_ERR_CAPACITY;
-    return SK_OK;
+    if (!s->fb_map)
+        return skgl__fail(ctx, SK_ERR_GL, "skgl_soft_create: the DEPTH32F map's framebuffer is incomplete");
+    return d->technique == SKGL_SOFT_PVSM ? skgl__pvsm_targets(ctx, st, s) : SK_OK;
 }
 
 SKGLDEF sk_result skgl_soft_create(skgl_context *ctx, const skgl_soft_desc *desc, skgl_soft **out)
@@ -11502,22 +11586,22 @@ SKGLDEF int skgl_soft_tiles(const skgl_soft *s, sk_tile *out, int cap)
 {
     int i;
     if (!s) return 0;
-    for (i = 0; out && i < cap && i < s->ntiles; i++) out[i] = s->tiles[i];
-    return s->ntiles;
+    for (i = 0; out && i < cap && i < s->pvsm.ntiles; i++) out[i] = s->pvsm.tiles[i];
+    return s->pvsm.ntiles;
 }
 SKGLDEF int skgl_soft_tile_rects(const skgl_soft *s, sk_rect *out, int cap)
 {
     int i;
     if (!s) return 0;
-    for (i = 0; out && i < cap && i < s->ntiles; i++) out[i] = s->rects[i];
-    return s->ntiles;
+    for (i = 0; out && i < cap && i < s->pvsm.ntiles; i++) out[i] = s->pvsm.rects[i];
+    return s->pvsm.ntiles;
 }
 SKGLDEF int skgl_soft_pyramid(const skgl_soft *s, float *out, int cap)
 {
     int i;
-    if (!s || !s->pyramid || !s->have_prediction) return 0;
-    for (i = 0; out && i < cap && i < s->pyramid_floats; i++) out[i] = s->pyramid[i];
-    return s->pyramid_floats;
+    if (!s || !s->pvsm.pyramid || !s->pvsm.have_prediction) return 0;
+    for (i = 0; out && i < cap && i < s->pvsm.pyramid_floats; i++) out[i] = s->pvsm.pyramid[i];
+    return s->pvsm.pyramid_floats;
 }
 
 #endif /* SKGL_NO_SOFT */
@@ -11684,19 +11768,19 @@ static int skgl__soft_round_res(int r, int max_res)
 static int skgl__soft_tiles(skgl_soft *s)
 {
     int g = s->desc.grid, n = g * g * 2, i, k, count = 0;
-    const float *top = s->pyramid + s->pyramid_floats - 2;
+    const float *top = s->pvsm.pyramid + s->pvsm.pyramid_floats - 2;
     if (!(top[0] < SK__INF) && !(top[1] < SK__INF)) return 0;      /* the SMTG is empty */
-    memcpy(s->grid, s->pyramid, sizeof(float) * (size_t)n);
+    memcpy(s->pvsm.grid, s->pvsm.pyramid, sizeof(float) * (size_t)n);
     for (k = 0; k < 24; k++) {
-        count = sk_fvsm_tiles(s->grid, g, g, s->desc.resolution, s->tiles, s->tiles_cap);
+        count = sk_fvsm_tiles(s->pvsm.grid, g, g, s->desc.resolution, s->pvsm.tiles, s->pvsm.tiles_cap);
         if (count >= 0 && count <= s->desc.max_tiles) break;
-        for (i = 0; i < n; i++) s->grid[i] *= 2.0f;
+        for (i = 0; i < n; i++) s->pvsm.grid[i] *= 2.0f;
     }
     if (count < 0) return 0;
     if (count > s->desc.max_tiles) count = s->desc.max_tiles;
     for (i = 0; i < count; i++) {
-        s->tiles[i].res_x = skgl__soft_round_res(s->tiles[i].res_x, s->desc.resolution);
-        s->tiles[i].res_y = skgl__soft_round_res(s->tiles[i].res_y, s->desc.resolution);
+        s->pvsm.tiles[i].res_x = skgl__soft_round_res(s->pvsm.tiles[i].res_x, s->desc.resolution);
+        s->pvsm.tiles[i].res_y = skgl__soft_round_res(s->pvsm.tiles[i].res_y, s->desc.resolution);
     }
     return count;
 }
@@ -11713,18 +11797,18 @@ static int skgl__soft_tiles(skgl_soft *s)
    one framebuffer; the accumulation in another */
 static sk_result skgl__soft_screen(skgl_context *ctx, skgl__st *st, skgl_soft *s, int w, int h)
 {
-    if (s->sw == w && s->sh == h) return SK_OK;
+    if (s->pvsm.sw == w && s->pvsm.sh == h) return SK_OK;
     skgl__soft_free_screen(ctx, s);
-    s->screen = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 3, SKGL__RGBA, SKGL__FLOAT, NULL);
-    s->acc = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
-    s->fb_kernel = skgl__framebuffer_mrt(ctx, st, &s->screen, 3, 0, 0, 1);
-    s->fb_acc = skgl__framebuffer_mrt(ctx, st, &s->acc, 1, 0, 0, 0);
-    if (!s->fb_kernel || !s->fb_acc) {
+    s->pvsm.screen = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 3, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->pvsm.acc = skgl__color_texture(ctx, st, SKGL__RGBA32F, w, h, 1, SKGL__RGBA, SKGL__FLOAT, NULL);
+    s->pvsm.fb_kernel = skgl__framebuffer_mrt(ctx, st, &s->pvsm.screen, 3, 0, 0, 1);
+    s->pvsm.fb_acc = skgl__framebuffer_mrt(ctx, st, &s->pvsm.acc, 1, 0, 0, 0);
+    if (!s->pvsm.fb_kernel || !s->pvsm.fb_acc) {
         skgl__soft_free_screen(ctx, s);
         return skgl__fail(ctx, SK_ERR_GL, "skgl_soft_render: RGBA32F screen targets are not renderable here");
     }
-    s->sw = w;
-    s->sh = h;
+    s->pvsm.sw = w;
+    s->pvsm.sh = h;
     return SK_OK;
 }
 
@@ -11888,7 +11972,7 @@ static sk_result skgl__soft_lowres_fine(skgl_context *ctx, skgl__st *st, skgl_so
     skgl_draw_info info;
     int fine = skgl__soft_fine_size(ctx, s);
     sk_result rc;
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_fine);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_fine);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, fine, fine);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     skgl__soft_casters(ctx, st, s, ctx->depth_prog, ctx->depth_u_view_proj, ctx->depth_u_model, SKGL__CV_DEPTH);
@@ -11900,10 +11984,10 @@ static sk_result skgl__soft_lowres_fine(skgl_context *ctx, skgl__st *st, skgl_so
     s->stats.passes += skgl__pass_callbacks(ctx);
     s->stats.texels += (double)fine * fine;
     skgl__st_screen_pass(ctx, st);
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_low);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_low);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->desc.lowres, s->desc.lowres);
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_dilate);
-    skgl__bind_unit(&b, 0, SKGL__T_2D, s->low_fine, ctx->point_sampler);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->pvsm.prog_dilate);
+    skgl__bind_unit(&b, 0, SKGL__T_2D, s->pvsm.low_fine, ctx->point_sampler);
     skgl__st_units(ctx, st, &b, 1);
     ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
     return rc;
@@ -11917,19 +12001,20 @@ static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s
     int r = s->desc.lowres, l;
     sk_result rc;
     skgl__ftimer_begin(ctx, &s->timer, 1);
-    if (s->prog_dilate) {
+    if (s->pvsm.prog_dilate) {
         rc = skgl__soft_lowres_fine(ctx, st, s, scene);
     } else {
-        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_low);
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_low);
         skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, r, r);
         skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
         skgl__st_set4(ctx, st, SKGL__S_COLOR_MASK, 1, 1, 1, 1);
         ctx->gl.ClearBufferfv(SKGL__COLOR, 0, one);
         ctx->gl.ClearBufferfv(SKGL__COLOR, 1, one);
-        if (s->low_copy[0]) ctx->gl.ClearBufferfv(SKGL__COLOR, 2, one);
+        if (s->pvsm.low_copy[0]) ctx->gl.ClearBufferfv(SKGL__COLOR, 2, one);
         ctx->pass_texel[0] = ctx->pass_texel[1] = 2.0f / (float)r;
         ctx->pass_conservative = !s->desc.disable_conservative;
-        skgl__soft_casters(ctx, st, s, s->prog_cons, s->cons_u_view_proj, s->cons_u_model, SKGL__CV_CONS);
+        skgl__soft_casters(ctx, st, s, s->pvsm.prog_cons, s->pvsm.cons_u_view_proj, s->pvsm.cons_u_model,
+                           SKGL__CV_CONS);
         skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
         /* the alpha equation is the SMTG pass's: R32F targets have no alpha */
         skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__MIN, SKGL__FUNC_ADD, 0, 0);
@@ -11942,13 +12027,13 @@ static sk_result skgl__soft_lowres(skgl_context *ctx, skgl__st *st, skgl_soft *s
     }
     skgl__st_screen_pass(ctx, st);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, r / 2, r / 2);
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_reduce);
-    skgl__bind_unit(&b, 0, SKGL__T_2D, s->low_color, ctx->point_sampler);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->pvsm.prog_reduce);
+    skgl__bind_unit(&b, 0, SKGL__T_2D, s->pvsm.low_color, ctx->point_sampler);
     skgl__st_units(ctx, st, &b, 1);
-    for (l = 1; l < s->low_levels; l++) {
-        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_level[l]);
-        if (s->low_copy[0]) {   /* the level below from its copy */
-            skgl__bind_unit(&b, 0, SKGL__T_2D, s->low_copy[l - 1], ctx->point_sampler);
+    for (l = 1; l < s->pvsm.low_levels; l++) {
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_level[l]);
+        if (s->pvsm.low_copy[0]) {   /* the level below from its copy */
+            skgl__bind_unit(&b, 0, SKGL__T_2D, s->pvsm.low_copy[l - 1], ctx->point_sampler);
             skgl__st_units(ctx, st, &b, 1);
         }
         ctx->gl.DrawArrays(SKGL__TRIANGLES, 3 * (l - 1), 3);
@@ -11967,14 +12052,14 @@ static void skgl__soft_kernel(skgl_context *ctx, skgl__st *st, skgl_soft *s, con
     skgl__unitbind b[4];
     int n;
     skgl__ftimer_begin(ctx, &s->timer, 2);
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_kernel);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_kernel);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
     ctx->gl.ClearBufferfv(SKGL__COLOR, 0, zero);
     skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_mask);
     skgl__soft_common(ctx, s, inv, l, normal_tex, hard);
     n = skgl__mask_gbuffer(ctx, depth_tex, normal_tex, b);
-    skgl__bind_unit(&b[n++], 0, SKGL__T_2D, s->low_color, 0);
-    skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->low_true, ctx->point_sampler);
+    skgl__bind_unit(&b[n++], 0, SKGL__T_2D, s->pvsm.low_color, 0);
+    skgl__bind_unit(&b[n++], 3, SKGL__T_2D, s->pvsm.low_true, ctx->point_sampler);
     skgl__st_units(ctx, st, b, n);
     ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
     skgl__ftimer_end(ctx, &s->timer);
@@ -11987,7 +12072,7 @@ static void skgl__soft_smtg(skgl_context *ctx, skgl__st *st, skgl_soft *s, int w
     static const float empty[4] = {1e30f, 1e30f, 1e30f, 0.0f};
     skgl__unitbind b;
     skgl__ftimer_begin(ctx, &s->timer, 3);
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_smtg);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_smtg);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, s->desc.grid, s->desc.grid + 1);
     ctx->gl.ClearBufferfv(SKGL__COLOR, 0, empty);
     skgl__st_set1(ctx, st, SKGL__S_BLEND, 1);
@@ -11995,13 +12080,13 @@ static void skgl__soft_smtg(skgl_context *ctx, skgl__st *st, skgl_soft *s, int w
     skgl__st_set4(ctx, st, SKGL__S_BLEND_FUNC, SKGL__ONE, SKGL__ONE, SKGL__ONE, SKGL__ONE);
     /* the point size from the shader (1), not the caller's glPointSize */
     skgl__st_set1(ctx, st, SKGL__S_POINT_SIZE, 1);
-    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_smtg);
-    if (s->sent_width != w) {
-        s->sent_width = w;
-        skgl__u1i(&ctx->gl, s->smtg_u_width, w);
+    skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->pvsm.prog_smtg);
+    if (s->pvsm.sent_width != w) {
+        s->pvsm.sent_width = w;
+        skgl__u1i(&ctx->gl, s->pvsm.smtg_u_width, w);
     }
     /* texelFetch: the sampler does not matter, the kernel pass's stays */
-    skgl__bind_unit(&b, 0, SKGL__T_2D_ARRAY, s->screen, 0);
+    skgl__bind_unit(&b, 0, SKGL__T_2D_ARRAY, s->pvsm.screen, 0);
     skgl__st_units(ctx, st, &b, 1);
     ctx->gl.DrawArrays(SKGL__POINTS, 0, w * h);
     skgl__ftimer_end(ctx, &s->timer);
@@ -12016,21 +12101,21 @@ static void skgl__soft_prediction(skgl_soft *s, const float *rgba, const sk_mat4
     int g = s->desc.grid, i, c;
     double pen = 0.0, lit = 0.0;
     for (i = 0; i < g * g; i++) {
-        for (c = 0; c < 2; c++) s->grid[2 * i + c] = rgba[4 * i + c] < 1e29f ? rgba[4 * i + c] : SK__INF;
+        for (c = 0; c < 2; c++) s->pvsm.grid[2 * i + c] = rgba[4 * i + c] < 1e29f ? rgba[4 * i + c] : SK__INF;
         if (rgba[4 * i + 3] > 0.0f && rgba[4 * i + 3] < 1e30f) pen += rgba[4 * i + 3];
     }
     for (i = 0; i < g; i++)
         if (rgba[4 * (g * g + i) + 3] > 0.0f && rgba[4 * (g * g + i) + 3] < 1e30f) lit += rgba[4 * (g * g + i) + 3];
-    (void)sk_smtg_pyramid(s->grid, g, g, s->pyramid, s->pyramid_floats);
-    s->lit_fraction = pen + lit > 0.0 ? (float)(1.0 - pen / (pen + lit)) : 1.0f;
-    s->ntiles = skgl__soft_tiles(s);
-    s->pred_view = *view;
-    s->pred_proj = *proj;
-    s->prediction_frame = frame;
-    s->have_prediction = 1;
+    (void)sk_smtg_pyramid(s->pvsm.grid, g, g, s->pvsm.pyramid, s->pvsm.pyramid_floats);
+    s->pvsm.lit_fraction = pen + lit > 0.0 ? (float)(1.0 - pen / (pen + lit)) : 1.0f;
+    s->pvsm.ntiles = skgl__soft_tiles(s);
+    s->pvsm.pred_view = *view;
+    s->pvsm.pred_proj = *proj;
+    s->pvsm.prediction_frame = frame;
+    s->pvsm.have_prediction = 1;
 }
 
-/* The tiles' rectangles on this frame's base map (s->rects, clip units),
+/* The tiles' rectangles on this frame's base map (s->pvsm.rects, clip units),
    from the frustum the prediction was made in. The same light position
    and frame: exact, both frusta are from the light's centre with the same
    view, so a side at tangent t = (ndc + P[8]) / P[0] (x; y with P[9],
@@ -12041,14 +12126,14 @@ static void skgl__soft_prediction(skgl_soft *s, const float *rgba, const sk_mat4
    behind this frame's light plane: that prediction is of no use. */
 static int skgl__soft_tile_rects(skgl_soft *s)
 {
-    const float *a = s->pred_proj.m, *b = s->light_proj.m;
+    const float *a = s->pvsm.pred_proj.m, *b = s->light_proj.m;
     float g = (float)s->desc.grid;
-    int same_view = memcmp(&s->pred_view, &s->light_view, sizeof s->light_view) == 0;
+    int same_view = memcmp(&s->pvsm.pred_view, &s->light_view, sizeof s->light_view) == 0;
     int same_proj = memcmp(a, b, sizeof s->light_proj.m) == 0, i, k;
     sk_mat4 inv;
-    if (!same_view && !sk_mat4_inverse(sk_mat4_mul(s->pred_proj, s->pred_view), &inv)) return 0;
-    for (i = 0; i < s->ntiles; i++) {
-        const sk_tile *t = &s->tiles[i];
+    if (!same_view && !sk_mat4_inverse(sk_mat4_mul(s->pvsm.pred_proj, s->pvsm.pred_view), &inv)) return 0;
+    for (i = 0; i < s->pvsm.ntiles; i++) {
+        const sk_tile *t = &s->pvsm.tiles[i];
         sk_rect r;
         r.x0 = -1.0f + 2.0f * (float)t->x0 / g;
         r.x1 = -1.0f + 2.0f * (float)t->x1 / g;
@@ -12085,7 +12170,7 @@ static int skgl__soft_tile_rects(skgl_soft *s)
                 return 0;
             r = box;
         }
-        s->rects[i] = r;
+        s->pvsm.rects[i] = r;
     }
     return 1;
 }
@@ -12099,25 +12184,26 @@ static void skgl__soft_predict(skgl_context *ctx, skgl__st *st, skgl_soft *s)
 {
     int g = s->desc.grid, slot = -1, sync;
     skgl__ftimer_begin(ctx, &s->timer, 4);
-    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->ring, s->readback)) >= 0)
-        skgl__soft_prediction(s, s->readback, &s->ring_view[slot], &s->ring.lvp[slot], s->ring_frame[slot]);
-    sync = s->desc.sync_readback || !s->have_prediction || !skgl__soft_tile_rects(s);
-    skgl__st_framebuffer(ctx, st, s->fb_smtg);   /* glReadPixels reads the READ framebuffer */
+    if (!s->desc.sync_readback && (slot = skgl__ring_poll(ctx, st, &s->pvsm.ring, s->pvsm.readback)) >= 0)
+        skgl__soft_prediction(s, s->pvsm.readback, &s->pvsm.ring_view[slot], &s->pvsm.ring.lvp[slot],
+                              s->pvsm.ring_frame[slot]);
+    sync = s->desc.sync_readback || !s->pvsm.have_prediction || !skgl__soft_tile_rects(s);
+    skgl__st_framebuffer(ctx, st, s->pvsm.fb_smtg);   /* glReadPixels reads the READ framebuffer */
     if (sync) {
         skgl__st_pack(ctx, st, 0, g + 1, 16 * g);
-        ctx->gl.ReadPixels(0, 0, g, g + 1, SKGL__RGBA, SKGL__FLOAT, s->readback);
-        skgl__soft_prediction(s, s->readback, &s->light_view, &s->light_proj, s->frame);
+        ctx->gl.ReadPixels(0, 0, g, g + 1, SKGL__RGBA, SKGL__FLOAT, s->pvsm.readback);
+        skgl__soft_prediction(s, s->pvsm.readback, &s->light_view, &s->light_proj, s->frame);
         (void)skgl__soft_tile_rects(s);   /* this frame's own frustum: the cells as they are */
-    } else if ((slot = skgl__ring_slot(ctx, st, &s->ring)) >= 0) {
+    } else if ((slot = skgl__ring_slot(ctx, st, &s->pvsm.ring)) >= 0) {
         /* into a pixel pack buffer: the pointer is an offset, the call returns at once */
-        skgl__st_pack(ctx, st, s->ring.buf[slot], g + 1, 16 * g);
+        skgl__st_pack(ctx, st, s->pvsm.ring.buf[slot], g + 1, 16 * g);
         ctx->gl.ReadPixels(0, 0, g, g + 1, SKGL__RGBA, SKGL__FLOAT, (void *)0);
-        s->ring.lvp[slot] = s->light_proj;
-        s->ring_view[slot] = s->light_view;
-        s->ring_frame[slot] = s->frame;
-        skgl__ring_fence(ctx, &s->ring, slot);
+        s->pvsm.ring.lvp[slot] = s->light_proj;
+        s->pvsm.ring_view[slot] = s->light_view;
+        s->pvsm.ring_frame[slot] = s->frame;
+        skgl__ring_fence(ctx, &s->pvsm.ring, slot);
     }
-    s->stats.readback_bytes = sync || slot >= 0 ? (int)s->ring.bytes : 0;
+    s->stats.readback_bytes = sync || slot >= 0 ? (int)s->pvsm.ring.bytes : 0;
     s->stats.readback_sync = sync;
     skgl__ftimer_end(ctx, &s->timer);
 }
@@ -12147,7 +12233,7 @@ static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_so
     skgl_draw_info info;
     int i, sx = w, sy = h;
     sk_result r = SK_OK;
-    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_acc);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_acc);
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
     gl->ClearBufferfv(SKGL__COLOR, 0, zero);
     skgl__st_set4(ctx, st, SKGL__S_BLEND_EQ, SKGL__FUNC_ADD, SKGL__FUNC_ADD, 0, 0);
@@ -12157,15 +12243,15 @@ static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_so
     /* one scissor box for both passes: the largest tile and a texel (a
        tile's clear then covers at least its own region), the screen (the
        filtering's full-screen pass) */
-    for (i = 0; i < s->ntiles; i++) {
-        if (s->tiles[i].res_x + 1 > sx) sx = s->tiles[i].res_x + 1;
-        if (s->tiles[i].res_y + 1 > sy) sy = s->tiles[i].res_y + 1;
+    for (i = 0; i < s->pvsm.ntiles; i++) {
+        if (s->pvsm.tiles[i].res_x + 1 > sx) sx = s->pvsm.tiles[i].res_x + 1;
+        if (s->pvsm.tiles[i].res_y + 1 > sy) sy = s->pvsm.tiles[i].res_y + 1;
     }
     skgl__st_set4(ctx, st, SKGL__S_SCISSOR_BOX, 0, 0, sx, sy);
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 1);
-    for (i = 0; i < s->ntiles && r == SK_OK; i++) {
-        const sk_tile *t = &s->tiles[i];
-        sk_rect rc = s->rects[i];
+    for (i = 0; i < s->pvsm.ntiles && r == SK_OK; i++) {
+        const sk_tile *t = &s->pvsm.tiles[i];
+        sk_rect rc = s->pvsm.rects[i];
         sk_mat4 vp = sk_mat4_mul(sk_crop_matrix(rc, -1.0f, 1.0f), s->light_vp);
         float rect[4], tres[2];
         skgl__ftimer_begin(ctx, &s->timer, 5);
@@ -12182,19 +12268,19 @@ static sk_result skgl__soft_tile_passes(skgl_context *ctx, skgl__st *st, skgl_so
         if (t->res_x > s->stats.resolution) s->stats.resolution = t->res_x;
         if (t->res_y > s->stats.resolution) s->stats.resolution = t->res_y;
         skgl__ftimer_begin(ctx, &s->timer, 6);
-        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->fb_acc);
+        skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->pvsm.fb_acc);
         skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, w, h);
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_filter);
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->pvsm.prog_filter);
         skgl__st_set1(ctx, st, SKGL__S_VAO, (skgl__int)ctx->empty_vao);
         skgl__st_set1(ctx, st, SKGL__S_CULL_FACE, 0);
-        skgl__bind_unit(&b[0], 0, SKGL__T_2D_ARRAY, s->screen, 0);
+        skgl__bind_unit(&b[0], 0, SKGL__T_2D_ARRAY, s->pvsm.screen, 0);
         skgl__bind_unit(&b[1], 1, SKGL__T_2D, s->map, ctx->cmp_sampler);
         skgl__st_units(ctx, st, b, 2);
         rect[0] = rc.x0; rect[1] = rc.y0; rect[2] = rc.x1; rect[3] = rc.y1;
         tres[0] = (float)t->res_x;
         tres[1] = (float)t->res_y;
-        if (s->filter_u_rect >= 0) gl->Uniform4fv(s->filter_u_rect, 1, rect);
-        if (s->filter_u_res >= 0) gl->Uniform2fv(s->filter_u_res, 1, tres);
+        if (s->pvsm.filter_u_rect >= 0) gl->Uniform4fv(s->pvsm.filter_u_rect, 1, rect);
+        if (s->pvsm.filter_u_res >= 0) gl->Uniform2fv(s->pvsm.filter_u_res, 1, tres);
         gl->DrawArrays(SKGL__TRIANGLES, 0, 3);
         skgl__ftimer_end(ctx, &s->timer);
     }
@@ -12211,9 +12297,9 @@ static sk_result skgl__soft_resolve(skgl_context *ctx, skgl__st *st, skgl_soft *
     skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
     r = skgl__mask_begin(ctx, st, mask_tex, &w, &h, "skgl_soft_render");
     if (r == SK_OK) {
-        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->prog_resolve);
-        skgl__bind_unit(&b[0], 0, SKGL__T_2D_ARRAY, s->screen, 0);
-        skgl__bind_unit(&b[1], 1, SKGL__T_2D, s->acc, 0);
+        skgl__st_set1(ctx, st, SKGL__S_PROGRAM, (skgl__int)s->pvsm.prog_resolve);
+        skgl__bind_unit(&b[0], 0, SKGL__T_2D_ARRAY, s->pvsm.screen, 0);
+        skgl__bind_unit(&b[1], 1, SKGL__T_2D, s->pvsm.acc, 0);
         skgl__st_units(ctx, st, b, 2);
         ctx->gl.DrawArrays(SKGL__TRIANGLES, 0, 3);
     }
@@ -12234,10 +12320,10 @@ static sk_result skgl__soft_pvsm(skgl_context *ctx, skgl__st *st, skgl_soft *s, 
     skgl__soft_predict(ctx, st, s);
     r = skgl__soft_tile_passes(ctx, st, s, scene, w, h);
     if (r == SK_OK) r = skgl__soft_resolve(ctx, st, s, mask_tex);
-    s->stats.tiles = s->ntiles;
-    s->stats.maps = s->ntiles;
-    s->stats.lit_fraction = s->lit_fraction;
-    s->stats.prediction_age = (int)(s->frame - s->prediction_frame);
+    s->stats.tiles = s->pvsm.ntiles;
+    s->stats.maps = s->pvsm.ntiles;
+    s->stats.lit_fraction = s->pvsm.lit_fraction;
+    s->stats.prediction_age = (int)(s->frame - s->pvsm.prediction_frame);
     return r;
 }
 
