@@ -654,6 +654,45 @@ static inline int gt_reference_exact(gt_env *e, const tb_light *l, float *vis, t
     return tb_reference_trace_exact(e->ref, &v, e->depth, l, NULL, vis, stats);
 }
 
+/* Into truth the closed form (tb_cf_visibility) of light l over the last
+   G-buffer, with the pixels its exact reference (traced into ref) leaves
+   out as silhouettes left out too: there the raster saw another surface
+   than the ray, and the mask has no receiver to judge. 0 ok. */
+static inline int gt_cf_truth(gt_env *e, const tb_cf_scene *cf, const tb_light *l, float *ref, float *truth) {
+    tb_view v = gt_view(e);
+    size_t i;
+    if (gt_reference_exact(e, l, ref, NULL) != 0 || tb_cf_visibility(cf, &v, l, truth) != 0) return -1;
+    for (i = 0; i < e->n; i++)
+        if (ref[i] == TB_VIS_SILHOUETTE) truth[i] = TB_VIS_SILHOUETTE;
+    return 0;
+}
+
+/* One sun frame over a closed-form caster whose top is `height` above the
+   ground: the sun's travel direction at this elevation and azimuth into
+   *dir, gt_cf_sun_camera's camera (e->w x e->h) into *cam, its G-buffer,
+   and gt_cf_truth's truth and reference. 0 ok. */
+static inline int gt_cf_sun_frame(gt_env *e, const tb_cf_scene *cf, float height, double elevation_deg,
+                                  double azimuth_deg, float *ref, float *truth, sk_vec3 *dir, skgl_camera *cam) {
+    tb_light l;
+    *dir = gt_sun_dir(elevation_deg, azimuth_deg);
+    l = gt_sun(*dir);
+    *cam = gt_cf_sun_camera(height, *dir, e->w, e->h);
+    if (gt_gbuffer(e, cam) != 0) return -1;
+    return gt_cf_truth(e, cf, &l, ref, truth);
+}
+
+/* 1 when pixel i is "open" false shadow: lit in the truth, shadowed in
+   res, and no truth pixel of the other class in its 5 x 5 (acne, not
+   aliasing). The exact edge lies between pixel centres of different
+   classes, but a shadow thinner than a pixel (a pole's, seen far away) may
+   hold no shadow pixel centre at all, and a pixel a little over 1 px from
+   its edge can then be 2 px from the nearest shadow centre: the
+   neighbourhood is 2 px, which holds every false shadow within 1 px of an
+   edge. */
+static inline int gt_open_false_shadow(const gt_env *e, const float *truth, const float *res, size_t i) {
+    return tb_visibility_class(truth[i]) == 1 && res[i] < 0.5f && !gt_near_boundary(e, truth, i, 2);
+}
+
 /* Hard-shadow agreement of two visibility images over the pixels both
    cover (both >= 0): how many, and how many differ in class. */
 typedef struct gt_agreement {
