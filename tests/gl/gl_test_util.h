@@ -745,6 +745,51 @@ static inline skgl_soft *gt_soft(gt_env *e, skgl_soft_technique t, int resolutio
     return s;
 }
 
+/* ---- the off-screen caster (test_gl_offscreen.c, test_gl_optout.c, ------
+   test_gl_warp.c): a 40 x 40 m ground, a 10 m tower [-1,0,12]..[1,10,14]
+   behind the camera (eye (0,2,8) looking toward -z) and a small box in
+   view; the light travels (0.1,-0.6,-1), so the tower's shadow runs 16 m
+   into the view. */
+typedef struct gt_offscreen {
+    gt_env e;
+    skgl_camera cam;
+    sk_vec3 light;
+    skgl_scene scene;      /* gt_scene(&e) */
+    float *ref;            /* the light's exact reference over cam's G-buffer */
+    float *res;            /* scratch for a mask */
+} gt_offscreen;
+
+static inline void gt_offscreen_free(gt_offscreen *o) {
+    free(o->ref);
+    free(o->res);
+    o->ref = o->res = NULL;
+    gt_env_free(&o->e);
+}
+
+/* The scene at w x h, the camera's G-buffer and the reference. 0 ok
+   (gt_offscreen_free frees it); -1 counted as a failed check, nothing
+   held. */
+static inline int gt_offscreen_init(gt_offscreen *o, int w, int h) {
+    tb_scene sc;
+    o->ref = o->res = NULL;
+    o->light = gt_v3(0.1f, -0.6f, -1);
+    o->cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, w, h);
+    tb_scene_init(&sc);
+    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
+    tb_scene_add_box(&sc, "tower", gt_v3(-1, 0, 12), gt_v3(1, 10, 14));
+    tb_scene_add_box(&sc, "box", gt_v3(3, 0, -3), gt_v3(4, 1, -2));
+    if (gt_env_init(&o->e, &sc, w, h) != 0) { gt_offscreen_free(o); return -1; }
+    o->scene = gt_scene(&o->e);
+    o->ref = gt_alloc(&o->e);
+    o->res = gt_alloc(&o->e);
+    if (!o->ref || !o->res || gt_gbuffer(&o->e, &o->cam) != 0 || gt_reference(&o->e, o->light, o->ref) != 0) {
+        SK_CHECK_MSG(0, "off-screen caster: G-buffer or reference");
+        gt_offscreen_free(o);
+        return -1;
+    }
+    return 0;
+}
+
 /* The cache tests' world (test_gl_cache*.c): "ground-boxes" plus a 0.8 m
    "mover" box. gt_movers_draw_static (scene.draw) draws every object but
    the mover, box0 shifted by box0_shift and box3 left out while
