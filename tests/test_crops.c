@@ -12,49 +12,18 @@
 #define SHADOWKIT_IMPLEMENTATION
 #include "shadowkit.h"
 #include "tests/sk_test.h"
+#include "tests/sk_ref.h"
 #include <stdlib.h>
 
 /* ------------------------------------------------------------ helpers */
-typedef struct dv3 { double x, y, z; } dv3;
-static inline dv3 dv(double x, double y, double z) { dv3 r; r.x = x; r.y = y; r.z = z; return r; }
-static inline dv3 dadd(dv3 a, dv3 b) { return dv(a.x + b.x, a.y + b.y, a.z + b.z); }
-static inline dv3 dsub(dv3 a, dv3 b) { return dv(a.x - b.x, a.y - b.y, a.z - b.z); }
-static inline dv3 dmul(dv3 a, double s) { return dv(a.x * s, a.y * s, a.z * s); }
-static inline double ddot(dv3 a, dv3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static inline dv3 dcross(dv3 a, dv3 b) {
-    return dv(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-static inline double dlen(dv3 a) { return sqrt(ddot(a, a)); }
-static inline dv3 dnorm(dv3 a) { return dmul(a, 1.0 / dlen(a)); }
-static inline dv3 tod(sk_vec3 v) { return dv(v.x, v.y, v.z); }
-static inline sk_vec3 v3(float x, float y, float z) { sk_vec3 r; r.x = x; r.y = y; r.z = z; return r; }
-static inline sk_vec3 tof(dv3 v) { return v3((float)v.x, (float)v.y, (float)v.z); }
 static inline sk_vec2 v2(float x, float y) { sk_vec2 r; r.x = x; r.y = y; return r; }
 static inline sk_rect rect(float x0, float y0, float x1, float y1) {
     sk_rect r; r.x0 = x0; r.y0 = y0; r.x1 = x1; r.y1 = y1; return r;
 }
-static inline sk_aabb box3(float x0, float y0, float z0, float x1, float y1, float z1) {
-    sk_aabb b; b.min = v3(x0, y0, z0); b.max = v3(x1, y1, z1); return b;
-}
 static inline sk_sphere sphere(float x, float y, float z, float r) {
     sk_sphere s; s.c = v3(x, y, z); s.r = r; return s;
 }
-static inline float fnan(void) { return (float)NAN; }
-static inline float finf(void) { return (float)INFINITY; }
 
-static inline void mxv(const sk_mat4 *m, const double p[4], double o[4]) {
-    int r;
-    for (r = 0; r < 4; r++)
-        o[r] = (double)m->m[r] * p[0] + (double)m->m[4 + r] * p[1] +
-               (double)m->m[8 + r] * p[2] + (double)m->m[12 + r] * p[3];
-}
-/* M * p with divide, in double from the float matrix */
-static inline dv3 mpoint(const sk_mat4 *m, dv3 p) {
-    double in[4], o[4];
-    in[0] = p.x; in[1] = p.y; in[2] = p.z; in[3] = 1.0;
-    mxv(m, in, o);
-    return dv(o[0] / o[3], o[1] / o[3], o[2] / o[3]);
-}
 /* B * (A * p), both applied in double (no float product of the matrices) */
 static inline dv3 mpoint2(const sk_mat4 *b, const sk_mat4 *a, dv3 p) { return mpoint(b, mpoint(a, p)); }
 static inline dv3 mdir(const sk_mat4 *m, dv3 d) {
@@ -62,35 +31,6 @@ static inline dv3 mdir(const sk_mat4 *m, dv3 d) {
     in[0] = d.x; in[1] = d.y; in[2] = d.z; in[3] = 0.0;
     mxv(m, in, o);
     return dv(o[0], o[1], o[2]);
-}
-static inline double pdist(const sk_plane *pl, dv3 p) {
-    return (double)pl->n.x * p.x + (double)pl->n.y * p.y + (double)pl->n.z * p.z + (double)pl->d;
-}
-static inline int all_finite_mat(const sk_mat4 *m) {
-    int k;
-    for (k = 0; k < 16; k++) if (!isfinite((double)m->m[k])) return 0;
-    return 1;
-}
-static inline int mat_worst(const sk_mat4 *m, const double *e, double rel, double abs_tol) {
-    int k;
-    for (k = 0; k < 16; k++) {
-        double g = (double)m->m[k];
-        if (!(fabs(g - e[k]) <= abs_tol + rel * fabs(e[k]))) return k;
-    }
-    return -1;
-}
-#define CHECK_MAT_NEAR(M, E, REL, ABS) do { const sk_mat4 cm_m_ = (M); \
-    int cm_k_ = mat_worst(&cm_m_, (E), (REL), (ABS)); \
-    SK_CHECK_MSG(cm_k_ < 0, "%s: m[%d] = %.9g, expected %.9g", #M, cm_k_, \
-                 cm_k_ >= 0 ? (double)cm_m_.m[cm_k_] : 0.0, cm_k_ >= 0 ? (E)[cm_k_] : 0.0); } while (0)
-
-#define SENTINEL 0xA5
-static inline void fill_sentinel(void *p, size_t n) { memset(p, SENTINEL, n); }
-static inline int is_sentinel(const void *p, size_t n) {
-    const unsigned char *c = (const unsigned char *)p;
-    size_t i;
-    for (i = 0; i < n; i++) if (c[i] != SENTINEL) return 0;
-    return 1;
 }
 /* fractional distance to the nearest integer */
 static inline double frac_dist(double x) { return fabs(x - floor(x + 0.5)); }
@@ -729,23 +669,6 @@ static void test_frustum_bounding_sphere(void) {
 }
 
 /* ------------------------------------------------------------ light view */
-static double rigid_error(const sk_mat4 *V) {
-    dv3 r0 = dv(V->m[0], V->m[4], V->m[8]);
-    dv3 r1 = dv(V->m[1], V->m[5], V->m[9]);
-    dv3 r2 = dv(V->m[2], V->m[6], V->m[10]);
-    double e = 0, t;
-    t = fabs(ddot(r0, r0) - 1); if (t > e) e = t;
-    t = fabs(ddot(r1, r1) - 1); if (t > e) e = t;
-    t = fabs(ddot(r2, r2) - 1); if (t > e) e = t;
-    t = fabs(ddot(r0, r1)); if (t > e) e = t;
-    t = fabs(ddot(r0, r2)); if (t > e) e = t;
-    t = fabs(ddot(r1, r2)); if (t > e) e = t;
-    t = fabs(ddot(dcross(r0, r1), r2) - 1); if (t > e) e = t;
-    t = fabs((double)V->m[3]) + fabs((double)V->m[7]) + fabs((double)V->m[11]) + fabs((double)V->m[15] - 1);
-    if (t > e) e = t;
-    return e;
-}
-
 static void test_light_view_directional(void) {
     static const float dirs[][3] = { { 0.3f, -1.0f, 0.2f }, { 1, 0, 0 }, { 0, -1, 0 }, { 0, 1, 0 }, { 0, 0, -1 },
                                      { 0, 0, 1 }, { 1e-7f, -1, 0 }, { -0.2f, -0.3f, -5.0f }, { 1e-20f, 1e-20f, -1e-20f },

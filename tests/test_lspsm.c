@@ -31,9 +31,9 @@ static dv3 view_unproject(const sk_mat4 *m, dv3 q) {
     dv3 r0 = mat_row(m, 0), r1 = mat_row(m, 1), r2 = mat_row(m, 2);
     double det = ddot(r0, dcross(r1, r2));
     dv3 v = dv(q.x - m->m[12], q.y - m->m[13], q.z - m->m[14]);
-    dv3 c0 = dscale(dcross(r1, r2), 1.0 / det), c1 = dscale(dcross(r2, r0), 1.0 / det),
-        c2 = dscale(dcross(r0, r1), 1.0 / det);
-    return dadd(dadd(dscale(c0, v.x), dscale(c1, v.y)), dscale(c2, v.z));
+    dv3 c0 = dmul(dcross(r1, r2), 1.0 / det), c1 = dmul(dcross(r2, r0), 1.0 / det),
+        c2 = dmul(dcross(r0, r1), 1.0 / det);
+    return dadd(dadd(dmul(c0, v.x), dmul(c1, v.y)), dmul(c2, v.z));
 }
 
 /* ------------------------------------------------ reference partition (Eq. 1) */
@@ -521,11 +521,11 @@ static int check_region(const scene_case *sc, const sk_lspsm_region *r, const dv
     double xs[MAXB], ys[MAXB];
     dv3 l = dnorm(tod(tof(sc->light))), v = dnorm(dsub(sc->target, sc->eye));
     dv3 r0 = mat_row(&r->light_view, 0), r1 = mat_row(&r->light_view, 1), r2 = mat_row(&r->light_view, 2);
-    dv3 axis = dnorm(dsub(v, dscale(l, ddot(v, l))));
+    dv3 axis = dnorm(dsub(v, dmul(l, ddot(v, l))));
     double t = tan((double)r->theta), far_w, scale, area, amin, zlo = 1e300, zhi = -1e300;
     int i, out_count = 0, worst_i = -1;
     double worst = 0;
-    SK_CHECK_MSG(finite_mat(&r->light_view), "%s: light_view not finite", sc->name);
+    SK_CHECK_MSG(all_finite_mat(&r->light_view), "%s: light_view not finite", sc->name);
     SK_CHECK_MSG(finite_d(r->origin.x) && finite_d(r->origin.y) && finite_d(r->n) && finite_d(r->L) &&
                  finite_d(r->theta) && finite_d(r->zmin) && finite_d(r->zmax), "%s: region not finite", sc->name);
     SK_CHECK_MSG(r->n > 0 && r->L > 0 && r->theta >= 0 && (double)r->theta < T_PI / 2 && r->zmin <= r->zmax,
@@ -622,7 +622,7 @@ static void check_crops(const char *name, const sk_lspsm_region *r, const sk_lsp
         for (ci = 12; ci < 15; ci++) if (fabs(r->light_view.m[ci]) > big) big = fabs(r->light_view.m[ci]);
         if (rects[k].y1 - rects[k].y0 < ext) ext = rects[k].y1 - rects[k].y0;
         ntol = 1e-3 + 16.0 * FLT_EPSILON * big / (ext > 0 ? ext : 1e-30);
-        SK_CHECK_MSG(finite_mat(&vp[k]) && finite_rect(rects[k]), "%s: crop %d not finite", name, k);
+        SK_CHECK_MSG(all_finite_mat(&vp[k]) && finite_rect(rects[k]), "%s: crop %d not finite", name, k);
         for (zi = 0; zi < 3; zi++) {
             double z = zi == 0 ? r->zmin : zi == 1 ? r->zmax : 0.5 * ((double)r->zmin + r->zmax);
             for (ci = 0; ci < 4; ci++) {
@@ -665,7 +665,7 @@ static scene_case mkscene(const char *name, dv3 eye, dv3 target, dv3 up, sk_aabb
 }
 
 static void test_region_and_crops_general(void) {
-    sk_aabb ground = box(-50, -1, -50, 50, 0, 50);
+    sk_aabb ground = box3(-50, -1, -50, 50, 0, 50);
     scene_case cases[10];
     int nc = 0, i;
     sk_lspsm_params pdef = sk_lspsm_default_params(), pother = mkparams(0.1f, 0.3f, 6, 3);
@@ -676,16 +676,16 @@ static void test_region_and_crops_general(void) {
     cases[nc++] = mkscene("view nearly along the light", dv(0, 30, 0), dv(0.3, 0, -1), dv(0, 0, -1), ground, dv(0, -1, 0));
     cases[nc] = mkscene("with casters", dv(0, 5, 10), dv(0, 0, -10), dv(0, 1, 0), ground, dv(0.3, -1, -0.2));
     cases[nc].has_casters = 1;
-    cases[nc].casters = box(-3, 8, -12, 3, 12, -6);
+    cases[nc].casters = box3(-3, 8, -12, 3, 12, -6);
     nc++;
     cases[nc++] = mkscene("camera inside the receivers", dv(0, 1, 0), dv(0, 0.5, -10), dv(0, 1, 0),
-                          box(-40, -1, -40, 40, 3, 40), dv(0.5, -1, 0.2));
+                          box3(-40, -1, -40, 40, 3, 40), dv(0.5, -1, 0.2));
     /* n -> 0: a near plane of 1e-4 inside the receivers, the trapezoid is nearly a triangle */
-    cases[nc] = mkscene("tiny near plane", dv(0, 1, 0), dv(0, 0.2, -10), dv(0, 1, 0), box(-40, -1, -40, 40, 3, 40),
+    cases[nc] = mkscene("tiny near plane", dv(0, 1, 0), dv(0, 0.2, -10), dv(0, 1, 0), box3(-40, -1, -40, 40, 3, 40),
                         dv(0, -1, 0));
     cases[nc++].zn = 1e-4;
     cases[nc] = mkscene("whole frustum, tiny near plane", dv(0, 0, 0), dv(0, 0, -1), dv(0, 1, 0),
-                        box(-100, -100, -100, 100, 100, 100), dv(0, -1, 0));
+                        box3(-100, -100, -100, 100, 100, 100), dv(0, -1, 0));
     cases[nc++].zn = 1e-4;
     for (i = 0; i < nc; i++) {
         cam c;
@@ -722,7 +722,7 @@ static void check_fallback(const char *name, dv3 eye, dv3 target, dv3 up, sk_aab
     SK_CHECK_MSG(res == SK_OK, "%s: %s", name, sk_result_string(res));
     if (res != SK_OK) return;
     SK_CHECK_MSG(r.fallback == 1, "%s: fallback %d", name, r.fallback);
-    SK_CHECK_MSG(finite_mat(&r.light_view) && finite_d(r.origin.x) && finite_d(r.origin.y) && finite_d(r.n) &&
+    SK_CHECK_MSG(all_finite_mat(&r.light_view) && finite_d(r.origin.x) && finite_d(r.origin.y) && finite_d(r.n) &&
                  finite_d(r.L) && finite_d(r.theta) && finite_d(r.zmin) && finite_d(r.zmax),
                  "%s: fallback region not finite", name);
     SK_CHECK_MSG(r.zmin <= r.zmax, "%s: z range [%g, %g]", name, r.zmin, r.zmax);
@@ -734,18 +734,18 @@ static void check_fallback(const char *name, dv3 eye, dv3 target, dv3 up, sk_aab
 }
 
 static void test_region_fallback(void) {
-    sk_aabb ground = box(-50, -1, -50, 50, 0, 50);
-    sk_aabb ceiling = box(-40, 10, -40, 40, 11, 40);
+    sk_aabb ground = box3(-50, -1, -50, 50, 0, 50);
+    sk_aabb ceiling = box3(-40, 10, -40, 40, 11, 40);
     /* view direction parallel to the light: looking straight down, sun overhead */
     check_fallback("parallel", dv(0, 20, 0), dv(0, 0, 0), dv(0, 0, -1), ground, dv(0, -1, 0));
-    check_fallback("parallel, oblique", dv(20, 20, 20), dv(0, 0, 0), dv(0, 1, 0), box(-60, -1, -60, 60, 0, 60),
+    check_fallback("parallel, oblique", dv(20, 20, 20), dv(0, 0, 0), dv(0, 1, 0), box3(-60, -1, -60, 60, 0, 60),
                    dv(-1, -1, -1));
     /* anti-parallel: looking up at a ceiling lit from above */
     check_fallback("anti-parallel", dv(0, 0, 0), dv(0, 1, 0), dv(0, 0, -1), ceiling, dv(0, -1, 0));
 }
 
 static void test_region_errors(void) {
-    sk_aabb ground = box(-50, -1, -50, 50, 0, 50);
+    sk_aabb ground = box3(-50, -1, -50, 50, 0, 50);
     scene_case sc = mkscene("miss", dv(0, 5, 0), dv(0, 10, 0), dv(0, 0, -1), ground, dv(0.3, -1, 0.1));
     cam c;
     dv3 body[MAXB];
@@ -774,7 +774,7 @@ static void test_region_errors(void) {
             const sk_aabb *cp = NULL;
             sk_lspsm_region *op = &r;
             badf = gc.f;
-            badcast = box(-1, 5, -1, 1, 6, 1);
+            badcast = box3(-1, 5, -1, 1, 6, 1);
             switch (i) {
             case 0: fp = NULL; break;
             case 1: op = NULL; break;
@@ -807,7 +807,7 @@ static void test_region_errors(void) {
 }
 
 static void test_crops_bad_input(void) {
-    sk_aabb ground = box(-50, -1, -50, 50, 0, 50);
+    sk_aabb ground = box3(-50, -1, -50, 50, 0, 50);
     scene_case g = mkscene("ok", dv(0, 5, 10), dv(0, 0, -10), dv(0, 1, 0), ground, dv(0.4, -1, -0.3));
     cam gc;
     dv3 body[MAXB];

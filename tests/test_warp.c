@@ -21,7 +21,7 @@
 #include <float.h>
 
 /* ---------------------------------------------------------------- helpers */
-static dv3 dlerp(dv3 a, dv3 b, double t) { return dadd(a, dscale(dsub(b, a), t)); }
+static dv3 dlerp(dv3 a, dv3 b, double t) { return dadd(a, dmul(dsub(b, a), t)); }
 static double deg(double d) { return d * T_PI / 180.0; }
 
 static dv3 box_corner(sk_aabb b, int k) {
@@ -99,7 +99,7 @@ static int check_ray_order(const char *name, const sk_mat4 *m, const dv3 *pts, i
         if (!in_frustum(c, pts[i], 1e-6 * span) || !in_box(within, pts[i])) continue;
         for (k = 1; k <= 3; k++) {
             double s = step * k, a[4], b[4], za, zb;
-            dv3 q = dadd(pts[i], dscale(dir, s));
+            dv3 q = dadd(pts[i], dmul(dir, s));
             if (!in_frustum(c, q, 1e-6 * span) || !in_box(within, q)) continue;
             xform(m, pts[i], a);
             xform(m, q, b);
@@ -142,7 +142,7 @@ static void psm_case_r(const char *name, const cam *c, dv3 light, int expect_inv
     res = sk_psm_matrices(&d, &r);
     SK_CHECK_MSG(res == SK_OK, "%s: %s", name, sk_result_string(res));
     if (res != SK_OK) return;
-    SK_CHECK_MSG(finite_mat(&r.light_view_proj) && finite_mat(&r.virtual_cam_view_proj) && finite_d(r.light_pp.x) &&
+    SK_CHECK_MSG(all_finite_mat(&r.light_view_proj) && all_finite_mat(&r.virtual_cam_view_proj) && finite_d(r.light_pp.x) &&
                  finite_d(r.light_pp.y) && finite_d(r.light_pp.z) && finite_d(r.slide),
                  "%s: non-finite result", name);
     SK_CHECK_MSG(r.slide >= 0, "%s: slide %g < 0", name, r.slide);
@@ -150,7 +150,7 @@ static void psm_case_r(const char *name, const cam *c, dv3 light, int expect_inv
            its clip w is the depth from the virtual eye */
         double q0[4], q1[4];
         xform(&r.virtual_cam_view_proj, c->eye, q0);
-        xform(&r.virtual_cam_view_proj, dadd(c->eye, dscale(c->fwd, 10.0)), q1);
+        xform(&r.virtual_cam_view_proj, dadd(c->eye, dmul(c->fwd, 10.0)), q1);
         SK_CHECK_MSG(fabs(q0[3] - r.slide) <= 1e-4 * (1 + r.slide) && fabs(q1[3] - q0[3] - 10.0) <= 1e-3,
                      "%s: virtual camera w at the eye %g (slide %g), 10 units ahead %g", name, q0[3], r.slide, q1[3]);
     }
@@ -175,8 +175,8 @@ static void psm_case_r(const char *name, const cam *c, dv3 light, int expect_inv
             SK_CHECK_MSG(fabs(lp.z - (c->zf + c->zn) / (c->zf - c->zn)) <= 1e-4 * (c->zf + c->zn) / (c->zf - c->zn),
                          "%s: light_pp.z %g, expected (f+n)/(f-n) = %g", name, lp.z, (c->zf + c->zn) / (c->zf - c->zn));
         for (i2 = 0; i2 < n; i2 += 7) {
-            dv3 p = dlerp(pts[i2], dadd(c->eye, dscale(c->fwd, 0.3 * (c->zn + c->zf))), 0.5);
-            dv3 q = dadd(p, dscale(dir, 0.5));
+            dv3 p = dlerp(pts[i2], dadd(c->eye, dmul(c->fwd, 0.3 * (c->zn + c->zf))), 0.5);
+            dv3 q = dadd(p, dmul(dir, 0.5));
             double a[4], b[4];
             dv3 pa, pb, u, w;
             xform(&r.virtual_cam_view_proj, p, a);
@@ -226,7 +226,7 @@ static void psm_case_r(const char *name, const cam *c, dv3 light, int expect_inv
             double s;
             int hits = 0;
             dv3 dir = dnorm(light);
-            for (s = 0; s <= 2 * span && !hits; s += span / 400) hits = in_frustum(c, dadd(samp[k], dscale(dir, s)), 0);
+            for (s = 0; s <= 2 * span && !hits; s += span / 400) hits = in_frustum(c, dadd(samp[k], dmul(dir, s)), 0);
             if (!hits) continue;
             reach++;
             out = count_outside(&r.light_view_proj, &samp[k], 1, 2e-3, &wi, &worst);
@@ -245,7 +245,7 @@ static void psm_case_r(const char *name, const cam *c, dv3 light, int expect_inv
         for (i = 0; i < n; i++) if (in_frustum(c, pts[i], 1e-6)) inner[ni++] = pts[i];
         /* add interior samples: pull the samples towards the frustum's centre */
         {
-            dv3 centre = dadd(c->eye, dscale(c->fwd, 0.3 * (c->zn + c->zf)));
+            dv3 centre = dadd(c->eye, dmul(c->fwd, 0.3 * (c->zn + c->zf)));
             for (i = 0; i < n && ni < 125; i++) inner[ni++] = dlerp(pts[i], centre, 0.3);
         }
         k = check_ray_order(name, &r.light_view_proj, inner, ni, light, c, r.compare == SK_DEPTH_GREATER,
@@ -292,13 +292,13 @@ static void test_psm_cases(void) {
         psm_case("B behind", &b, dv(-0.2, -1, -0.7), 1, 0, NULL, 0);
         psm_case("B perpendicular", &b, dcross(v, side), 0, 1, NULL, 0);
         psm_case("B parallel", &b, v, 1, 0, NULL, 0);
-        psm_case("B anti-parallel", &b, dscale(v, -1), 0, 0, NULL, 0);
+        psm_case("B anti-parallel", &b, dmul(v, -1), 0, 0, NULL, 0);
     }
 }
 
 static void test_psm_casters_behind(void) {
     cam a = cam_a();
-    sk_aabb behind = box(-0.5f, 2.2f, 0.5f, 0.5f, 2.8f, 1.5f);          /* z > 0: behind the eye at z = 0 */
+    sk_aabb behind = box3(-0.5f, 2.2f, 0.5f, 0.5f, 2.8f, 1.5f);          /* z > 0: behind the eye at z = 0 */
     sk_aabb two[2];
     dv3 light = dv(0, -0.4, -1);    /* shallow enough for the caster's shadow to enter the view */
     sk_psm_desc d;
@@ -306,7 +306,7 @@ static void test_psm_casters_behind(void) {
     sk_aabb many[200];
     int i;
     two[0] = behind;
-    two[1] = box(-2, 0, -10, 2, 1, -8);                                /* one in view as well */
+    two[1] = box3(-2, 0, -10, 2, 1, -8);                                /* one in view as well */
     psm_case_r("casters behind, light behind", &a, light, 1, 0, &behind, 1, 1);
     psm_case_r("casters behind, steep light behind", &a, dv(0, -0.6, -1), 1, 0, &behind, 1, -1);
     psm_case_r("casters behind, light in front", &a, dv(0.2, -0.6, 1), 0, 0, &behind, 1, 0);
@@ -315,7 +315,7 @@ static void test_psm_casters_behind(void) {
     /* a realistic caster list: 200 boxes, some behind the camera */
     for (i = 0; i < 200; i++) {
         float x = (float)(i % 20) - 10.0f, z = -(float)(i / 20) * 4.0f + 6.0f;
-        many[i] = box(x, 0.0f, z, x + 0.5f, 1.0f + (float)(i % 3), z + 0.5f);
+        many[i] = box3(x, 0.0f, z, x + 0.5f, 1.0f + (float)(i % 3), z + 0.5f);
     }
     psm_case_r("200 casters", &a, light, 1, 0, many, 200, -1);
     /* slide > 0, and the caster shadows the receiver on its light ray */
@@ -328,8 +328,8 @@ static void test_psm_casters_behind(void) {
         SK_CHECK_MSG(r.slide > 0, "caster behind the camera but slide = %g", r.slide);
         /* walk along the light ray from the caster centre until inside the view frustum, well inside */
         for (s = 0.5; s < 60; s += 0.25)
-            if (in_frustum(&a, dadd(cc, dscale(dir, s)), 0.5)) break;
-        rec = dadd(cc, dscale(dir, s + 1.0));
+            if (in_frustum(&a, dadd(cc, dmul(dir, s)), 0.5)) break;
+        rec = dadd(cc, dmul(dir, s + 1.0));
         SK_CHECK(in_frustum(&a, rec, 0.0));
         xform(&r.light_view_proj, cc, qa);
         xform(&r.light_view_proj, rec, qb);
@@ -347,7 +347,7 @@ static void test_psm_casters_behind(void) {
     }
     /* a caster only in front of the camera (inside the view): nothing to slide for */
     {
-        sk_aabb front = box(-1, 0, -12, 1, 2, -10);
+        sk_aabb front = box3(-1, 0, -12, 1, 2, -10);
         psm_case("caster in view", &a, light, 1, 0, &front, 1);
     }
 }
@@ -359,7 +359,7 @@ static void test_psm_casters_behind(void) {
    depth order along light rays holds. */
 static void test_psm_body_and_slide(void) {
     cam a = cam_a();
-    sk_aabb recv = box(-3, 0, -20, 3, 1, -4);
+    sk_aabb recv = box3(-3, 0, -20, 3, 1, -4);
     dv3 bodyd[256], pts[125 + 64];
     sk_vec3 body[256];
     static const double lights[3][3] = {{0.3, -0.5, 1}, {0.3, -0.5, -1}, {0, -1, 0}};
@@ -419,7 +419,7 @@ static void test_psm_bad_input(void) {
         const sk_psm_desc *dp = &d;
         sk_psm_result *op = &r;
         d = good;
-        cb[0] = box(-1, 0, -12, 1, 2, -10);
+        cb[0] = box3(-1, 0, -12, 1, 2, -10);
         switch (i) {
         case 0: dp = NULL; break;
         case 1: op = NULL; break;
@@ -505,7 +505,7 @@ static double n_opt_ref(const lcase *L, const sk_lispsm_desc *d, double *sin_gam
     *sin_gamma = sg;
     if (sg == 0) { *depth = 0; return INFINITY; }
     {
-        dv3 axis = dnorm(dsub(v, dscale(l, ddot(v, l))));
+        dv3 axis = dnorm(dsub(v, dmul(l, ddot(v, l))));
         for (i = 0; i < L->nb; i++) {
             double s = ddot(axis, L->body[i]);
             if (s < lo) lo = s;
@@ -535,7 +535,7 @@ static void check_warp_centre(const char *name, const lcase *L, const sk_lispsm_
         return;
     }
     {
-        dv3 axis = dnorm(dsub(v, dscale(l, ddot(v, l))));
+        dv3 axis = dnorm(dsub(v, dmul(l, ddot(v, l))));
         double lo = 1e300, bad = 0;
         SK_CHECK_MSG(gl > 0 && ddot(g, axis) / gl > 1 - 1e-4, "%s: w does not grow along the warp axis (cos %g)", name,
                      gl > 0 ? ddot(g, axis) / gl : 0.0);
@@ -561,7 +561,7 @@ static void check_lispsm_cover(const char *name, const lcase *L, const sk_lispsm
         dv3 inner[MAXB];
         int i, ni = 0;
         dv3 centre = dv(0, 0, 0);
-        for (i = 0; i < L->nb; i++) centre = dadd(centre, dscale(L->body[i], 1.0 / L->nb));
+        for (i = 0; i < L->nb; i++) centre = dadd(centre, dmul(L->body[i], 1.0 / L->nb));
         for (i = 0; i < L->nb && ni < MAXB; i++) inner[ni++] = dlerp(L->body[i], centre, 0.5);
         /* pairs along a light ray inside the body (frustum and receiver box) */
         i = check_ray_order(name, &r->light_view_proj, inner, ni, light, &L->c, 0, 0.2, &L->receivers);
@@ -573,7 +573,7 @@ static lcase g_lc;   /* big; static storage */
 
 static void lispsm_setup_horizontal(void) {
     lcase_init(&g_lc, make_cam(dv(0, 2, 0), dv(0, 2, -1), dv(0, 1, 0), deg(60), 1.33, 0.5, 60.0),
-               box(-100, -1, -100, 100, 0, 100));
+               box3(-100, -1, -100, 100, 0, 100));
 }
 
 static void sweep(const char *family, double zsign) {
@@ -596,7 +596,7 @@ static void sweep(const char *family, double zsign) {
         SK_CHECK_MSG(res == SK_OK, "%s: %s", name, sk_result_string(res));
         if (res != SK_OK) continue;
         nref = n_opt_ref(&g_lc, &d, &sg, &depth);
-        SK_CHECK_MSG(finite_mat(&r.light_view_proj), "%s: matrix not finite", name);
+        SK_CHECK_MSG(all_finite_mat(&r.light_view_proj), "%s: matrix not finite", name);
         SK_CHECK_MSG(fabs(r.sin_gamma - sg) <= 1e-3 * sg + 2e-6, "%s: sin_gamma %.9g, expected %.9g", name, r.sin_gamma, sg);
         SK_CHECK_MSG(r.warped == 0 || r.warped == 1, "%s: warped %d", name, r.warped);
         SK_CHECK_MSG(r.warped ? finite_d(r.n) && r.n > 0 : r.n == INFINITY,
@@ -628,7 +628,7 @@ static void sweep(const char *family, double zsign) {
             SK_CHECK_MSG(r.warped == 0, "%s: warped %d", name, r.warped);
             SK_CHECK_MSG(r.n == INFINITY, "%s: n %g", name, r.n);
             SK_CHECK_MSG(fabs(r.sin_gamma) <= 1e-6, "%s: sin_gamma %g", name, r.sin_gamma);
-            SK_CHECK_MSG(finite_mat(&r.light_view_proj), "%s: matrix not finite", name);
+            SK_CHECK_MSG(all_finite_mat(&r.light_view_proj), "%s: matrix not finite", name);
             check_lispsm_cover(name, &g_lc, &r, light);
             check_warp_centre(name, &g_lc, &d, &r);
         }
@@ -650,7 +650,7 @@ static void test_lispsm_oblique_and_override(void) {
     int i;
     /* a tilted camera */
     lcase_init(L, make_cam(dv(3, 6, 8), dv(0, 0, -15), dv(0, 1, 0), deg(50), 1.5, 0.3, 80.0),
-               box(-60, -2, -80, 60, 0.5, 40));
+               box3(-60, -2, -80, 60, 0.5, 40));
     for (i = 0; i < 5; i++) {
         dv3 light = dv(lights[i][0], lights[i][1], lights[i][2]);
         double sg, depth, nref;
@@ -662,7 +662,7 @@ static void test_lispsm_oblique_and_override(void) {
         SK_CHECK_MSG(res == SK_OK, "%s: %s", name, sk_result_string(res));
         if (res != SK_OK) continue;
         nref = n_opt_ref(L, &d, &sg, &depth);
-        SK_CHECK_MSG(finite_mat(&r.light_view_proj), "%s: not finite", name);
+        SK_CHECK_MSG(all_finite_mat(&r.light_view_proj), "%s: not finite", name);
         SK_CHECK_MSG(r.warped == 1 && fabs(r.n - nref) <= 1e-3 * nref, "%s: warped %d n %.9g, n_opt %.9g", name,
                      r.warped, r.n, nref);
         SK_CHECK_MSG(fabs(r.sin_gamma - sg) <= 1e-4, "%s: sin_gamma %g, expected %g", name, r.sin_gamma, sg);
@@ -737,7 +737,7 @@ static void test_lispsm_resolution_near_eye(void) {
 
 static void test_lispsm_casters(void) {
     lcase *L = &g_lc;
-    sk_aabb caster = box(-0.5f, 3.0f, -15.0f, 0.5f, 4.0f, -14.0f);
+    sk_aabb caster = box3(-0.5f, 3.0f, -15.0f, 0.5f, 4.0f, -14.0f);
     static const double lights[2][3] = { {0, -1, 0}, {0.3, -1, -0.2} };
     int i, k;
     lispsm_setup_horizontal();
@@ -758,7 +758,7 @@ static void test_lispsm_casters(void) {
         /* the caster is nearer the light than the ground below it */
         {
             double a[4], b[4];
-            dv3 top = dv(0, 3.5, -14.5), ground = dadd(top, dscale(dnorm(light), 3.5 / dnorm(light).y * -1.0));
+            dv3 top = dv(0, 3.5, -14.5), ground = dadd(top, dmul(dnorm(light), 3.5 / dnorm(light).y * -1.0));
             xform(&r.light_view_proj, top, a);
             xform(&r.light_view_proj, ground, b);
             SK_CHECK_MSG(a[3] > 0 && b[3] > 0 && a[2] / a[3] < b[2] / b[3], "light %d: caster not in front of the ground", i);
@@ -782,7 +782,7 @@ static void test_lispsm_bad_input(void) {
         sk_lispsm_result *op = &r;
         d = good;
         memcpy(badbody, L->bodyf, sizeof(sk_vec3) * (size_t)L->nb);
-        cb = box(-1, 3, -10, 1, 4, -9);
+        cb = box3(-1, 3, -10, 1, 4, -9);
         switch (i) {
         case 0: dp = NULL; break;
         case 1: op = NULL; break;

@@ -136,17 +136,6 @@ static inline int gx_ok_(const char *cname, const char *call, int frame, sk_resu
 }
 #define GX_OK(call, r) (calls += gx_ok_(c->name, call, f, (r), sk))
 
-/* a point-light callback drawing each object its caster test passes */
-static inline void gx_point_draw(void *user, const skgl_draw_info *info) {
-    gt_env *e = (gt_env *)user;
-    uint32_t i;
-    for (i = 0; i < e->scene.object_count; i++) {
-        const tb_object *o = &e->scene.objects[i];
-        if (skgl_point_caster_visible(info, o->bounds))
-            tb_gl_mesh_draw(&e->gl, &e->mesh, o->first_index, o->index_count);
-    }
-}
-
 static inline void gx_point_desc(const gx_case *c, skgl_point_desc *d) {
     memset(d, 0, sizeof *d);
     d->technique = c->point;
@@ -188,7 +177,7 @@ static inline int gx_run(gx_env *x, skgl_context *sk, const gx_case *c) {
     gt_env *e = &x->e;
     skgl_scene sc = gt_scene(e), psc = sc;
     int f = 0, calls = 0, i;
-    psc.draw = gx_point_draw;
+    psc.draw = gt_point_draw;
     if (c->kind == GX_CONTEXT) return 0;
     if (c->kind == GX_ENGINE) return gx_run_engine(x, sk, c);
     if (c->kind == GX_DIRECTIONAL) {

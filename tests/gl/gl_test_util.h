@@ -243,19 +243,25 @@ static inline int gt_reference(gt_env *e, sk_vec3 light_dir, float *vis) {
     return r;
 }
 
+/* e->mask read back into vis, the last G-buffer's background pixels -1
+   (like the reference); 0 ok */
+static inline int gt_read_mask(gt_env *e, float *vis) {
+    size_t i;
+    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
+    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
+    return 0;
+}
+
 /* skgl_shadow_render for cam, then skgl_shadow_mask over the last G-buffer
    (which must be of the same camera unless the test wants otherwise), read
    back into vis. Background pixels get -1 (like the reference). */
 static inline int gt_mask_only(gt_env *e, skgl_shadow *s, const skgl_camera *cam, float *vis) {
     sk_result r = skgl_shadow_mask(e->sk, s, cam, e->gbuf.depth_tex, e->gbuf.color_tex, e->mask.color_tex);
-    size_t i;
     if (r != SK_OK) {
         printf("skgl_shadow_mask: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
         return -1;
     }
-    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
-    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
-    return 0;
+    return gt_read_mask(e, vis);
 }
 
 static inline int gt_mask(gt_env *e, skgl_shadow *s, const skgl_camera *cam, sk_vec3 light_dir, float *vis) {
@@ -266,6 +272,35 @@ static inline int gt_mask(gt_env *e, skgl_shadow *s, const skgl_camera *cam, sk_
         return -1;
     }
     return gt_mask_only(e, s, cam, vis);
+}
+
+/* the draw callback of a point light or a spot: the objects
+   skgl_point_caster_visible passes (user: the gt_env) */
+static inline void gt_point_draw(void *user, const skgl_draw_info *info) {
+    gt_env *e = (gt_env *)user;
+    uint32_t i;
+    for (i = 0; i < e->scene.object_count; i++) {
+        const tb_object *o = &e->scene.objects[i];
+        if (skgl_point_caster_visible(info, o->bounds))
+            tb_gl_mesh_draw(&e->gl, &e->mesh, o->first_index, o->index_count);
+    }
+}
+
+/* skgl_point_mask of p, already rendered for cam, over the last G-buffer
+   into e->mask cleared to `clear` first (the mask pass's scissor leaves
+   the rest as it is), read back as gt_read_mask does. 0 ok. */
+static inline int gt_point_mask(gt_env *e, skgl_point *p, const skgl_camera *cam, float clear, float *vis) {
+    sk_result r;
+    tb_gl_fbo_bind(&e->gl, &e->mask);
+    e->gl.ClearColor(clear, 0, 0, 0);
+    e->gl.Clear(0x00004000u);   /* GL_COLOR_BUFFER_BIT */
+    tb_gl_fbo_bind(&e->gl, NULL);
+    r = skgl_point_mask(e->sk, p, cam, e->gbuf.depth_tex, e->gbuf.color_tex, e->mask.color_tex);
+    if (r != SK_OK) {
+        printf("skgl_point_mask: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
+        return -1;
+    }
+    return gt_read_mask(e, vis);
 }
 
 /* the can-fail experiments' bias knob, applied to every shadow gt_shadow
@@ -479,15 +514,13 @@ static inline void gt_forward_destroy(gt_env *e, gt_forward *f) {
     memset(f, 0, sizeof *f);
 }
 
-/* Draws the scene with the forward shader for cam, the map of s (already
-   rendered for cam) bound to texture unit `unit`; reads visibility back
-   (-1 where the forward pass drew nothing). 0 ok. */
-static inline int gt_forward_render(gt_env *e, gt_forward *f, const skgl_shadow *s, const skgl_camera *cam,
-                                    int unit, float *vis, float *depth) {
+/* The start of a forward pass for cam: f's target bound and cleared
+   (visibility -1, depth 1), the depth test on, f's program in use with
+   cam's matrices. The caller binds a light and draws, then
+   gt_forward_unbind and gt_forward_read. */
+static inline void gt_forward_begin(gt_env *e, gt_forward *f, const skgl_camera *cam) {
     const tb_gl_funcs *gl = &e->gl;
     sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
-    sk_result r;
-    size_t i;
     tb_gl_fbo_bind(gl, &f->fbo);
     gl->ClearColor(-1.0f, 0, 0, 0);
     gl->ClearDepth(1.0);
@@ -497,20 +530,39 @@ static inline int gt_forward_render(gt_env *e, gt_forward *f, const skgl_shadow 
     gl->UseProgram(f->program);
     gl->UniformMatrix4fv(f->u_view_proj, 1, 0, vp.m);
     gl->UniformMatrix4fv(f->u_view, 1, 0, cam->view.m);
+}
+
+static inline void gt_forward_unbind(gt_env *e) {
+    e->gl.UseProgram(0);
+    tb_gl_fbo_bind(&e->gl, NULL);
+}
+
+/* the pass's visibility into vis (-1 where it drew nothing) and its depth
+   into depth; 0 ok */
+static inline int gt_forward_read(gt_env *e, gt_forward *f, float *vis, float *depth) {
+    size_t i;
+    if (tb_gl_read_red(&e->gl, f->fbo.fbo, e->w, e->h, vis) != 0) return -1;
+    if (tb_gl_read_depth(&e->gl, f->fbo.fbo, e->w, e->h, depth) != 0) return -1;
+    for (i = 0; i < e->n; i++) if (!(depth[i] < 1.0f)) vis[i] = -1.0f;
+    return 0;
+}
+
+/* Draws the scene with the forward shader for cam, the map of s (already
+   rendered for cam) bound to texture unit `unit`; reads visibility back
+   (-1 where the forward pass drew nothing). 0 ok. */
+static inline int gt_forward_render(gt_env *e, gt_forward *f, const skgl_shadow *s, const skgl_camera *cam,
+                                    int unit, float *vis, float *depth) {
+    sk_result r;
+    gt_forward_begin(e, f, cam);
     r = skgl_shadow_bind(e->sk, s, f->program, unit);
     if (r != SK_OK) {
         SK_CHECK_MSG(0, "skgl_shadow_bind: %s (%s)", sk_result_string(r), skgl_error_log(e->sk));
-        gl->UseProgram(0);
-        tb_gl_fbo_bind(gl, NULL);
+        gt_forward_unbind(e);
         return -1;
     }
-    tb_gl_mesh_draw(gl, &e->mesh, 0, 0);
-    gl->UseProgram(0);
-    tb_gl_fbo_bind(gl, NULL);
-    if (tb_gl_read_red(gl, f->fbo.fbo, e->w, e->h, vis) != 0) return -1;
-    if (tb_gl_read_depth(gl, f->fbo.fbo, e->w, e->h, depth) != 0) return -1;
-    for (i = 0; i < e->n; i++) if (!(depth[i] < 1.0f)) vis[i] = -1.0f;
-    return 0;
+    tb_gl_mesh_draw(&e->gl, &e->mesh, 0, 0);
+    gt_forward_unbind(e);
+    return gt_forward_read(e, f, vis, depth);
 }
 
 /* a scale for the can-fail experiments: SK_GL_TEST_RES_SCALE=0.25 runs the
@@ -654,6 +706,49 @@ static inline int gt_reference_exact(gt_env *e, const tb_light *l, float *vis, t
     return tb_reference_trace_exact(e->ref, &v, e->depth, l, NULL, vis, stats);
 }
 
+/* Into truth the closed form (tb_cf_visibility) of light l over the last
+   G-buffer, with the pixels its exact reference (traced into ref) leaves
+   out as silhouettes left out too: there the raster saw another surface
+   than the ray, and the mask has no receiver to judge. 0 ok. */
+static inline int gt_cf_truth(gt_env *e, const tb_cf_scene *cf, const tb_light *l, float *ref, float *truth) {
+    tb_view v = gt_view(e);
+    size_t i;
+    if (gt_reference_exact(e, l, ref, NULL) != 0 || tb_cf_visibility(cf, &v, l, truth) != 0) return -1;
+    for (i = 0; i < e->n; i++)
+        if (ref[i] == TB_VIS_SILHOUETTE) truth[i] = TB_VIS_SILHOUETTE;
+    return 0;
+}
+
+/* One sun frame over a closed-form caster whose top is `height` above the
+   ground: the sun's travel direction at this elevation and azimuth into
+   *dir, gt_cf_sun_camera's camera (e->w x e->h) into *cam, its G-buffer,
+   and gt_cf_truth's truth and reference. 0 ok; -1 counted as a failed
+   check naming the sun. */
+static inline int gt_cf_sun_frame(gt_env *e, const tb_cf_scene *cf, float height, double elevation_deg,
+                                  double azimuth_deg, float *ref, float *truth, sk_vec3 *dir, skgl_camera *cam) {
+    tb_light l;
+    *dir = gt_sun_dir(elevation_deg, azimuth_deg);
+    l = gt_sun(*dir);
+    *cam = gt_cf_sun_camera(height, *dir, e->w, e->h);
+    if (gt_gbuffer(e, cam) != 0 || gt_cf_truth(e, cf, &l, ref, truth) != 0) {
+        SK_CHECK_MSG(0, "sun %g/%g: G-buffer or truth", elevation_deg, azimuth_deg);
+        return -1;
+    }
+    return 0;
+}
+
+/* 1 when pixel i is "open" false shadow: lit in the truth, shadowed in
+   res, and no truth pixel of the other class in its 5 x 5 (acne, not
+   aliasing). The exact edge lies between pixel centres of different
+   classes, but a shadow thinner than a pixel (a pole's, seen far away) may
+   hold no shadow pixel centre at all, and a pixel a little over 1 px from
+   its edge can then be 2 px from the nearest shadow centre: the
+   neighbourhood is 2 px, which holds every false shadow within 1 px of an
+   edge. */
+static inline int gt_open_false_shadow(const gt_env *e, const float *truth, const float *res, size_t i) {
+    return tb_visibility_class(truth[i]) == 1 && res[i] < 0.5f && !gt_near_boundary(e, truth, i, 2);
+}
+
 /* Hard-shadow agreement of two visibility images over the pixels both
    cover (both >= 0): how many, and how many differ in class. */
 typedef struct gt_agreement {
@@ -679,13 +774,11 @@ static inline int gt_soft_mask(gt_env *e, skgl_soft *s, const skgl_camera *cam, 
     skgl_scene sc = gt_scene(e);
     sk_result r = skgl_soft_render(e->sk, s, cam, &sc, light, e->gbuf.depth_tex, e->gbuf.color_tex,
                                    e->mask.color_tex);
-    size_t i;
     if (r != SK_OK) {
         printf("skgl_soft_render: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
         return -1;
     }
-    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
-    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
+    if (gt_read_mask(e, vis) != 0) return -1;
     if (st) *st = *skgl_soft_stats(s);
     return 0;
 }
@@ -704,6 +797,51 @@ static inline skgl_soft *gt_soft(gt_env *e, skgl_soft_technique t, int resolutio
         return NULL;
     }
     return s;
+}
+
+/* ---- the off-screen caster (test_gl_offscreen.c, test_gl_optout.c, ------
+   test_gl_warp.c): a 40 x 40 m ground, a 10 m tower [-1,0,12]..[1,10,14]
+   behind the camera (eye (0,2,8) looking toward -z) and a small box in
+   view; the light travels (0.1,-0.6,-1), so the tower's shadow runs 16 m
+   into the view. */
+typedef struct gt_offscreen {
+    gt_env e;
+    skgl_camera cam;
+    sk_vec3 light;
+    skgl_scene scene;      /* gt_scene(&e) */
+    float *ref;            /* the light's exact reference over cam's G-buffer */
+    float *res;            /* scratch for a mask */
+} gt_offscreen;
+
+static inline void gt_offscreen_free(gt_offscreen *o) {
+    free(o->ref);
+    free(o->res);
+    o->ref = o->res = NULL;
+    gt_env_free(&o->e);
+}
+
+/* The scene at w x h, the camera's G-buffer and the reference. 0 ok
+   (gt_offscreen_free frees it); -1 counted as a failed check, nothing
+   held. */
+static inline int gt_offscreen_init(gt_offscreen *o, int w, int h) {
+    tb_scene sc;
+    o->ref = o->res = NULL;
+    o->light = gt_v3(0.1f, -0.6f, -1);
+    o->cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, w, h);
+    tb_scene_init(&sc);
+    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
+    tb_scene_add_box(&sc, "tower", gt_v3(-1, 0, 12), gt_v3(1, 10, 14));
+    tb_scene_add_box(&sc, "box", gt_v3(3, 0, -3), gt_v3(4, 1, -2));
+    if (gt_env_init(&o->e, &sc, w, h) != 0) { gt_offscreen_free(o); return -1; }
+    o->scene = gt_scene(&o->e);
+    o->ref = gt_alloc(&o->e);
+    o->res = gt_alloc(&o->e);
+    if (!o->ref || !o->res || gt_gbuffer(&o->e, &o->cam) != 0 || gt_reference(&o->e, o->light, o->ref) != 0) {
+        SK_CHECK_MSG(0, "off-screen caster: G-buffer or reference");
+        gt_offscreen_free(o);
+        return -1;
+    }
+    return 0;
 }
 
 /* The cache tests' world (test_gl_cache*.c): "ground-boxes" plus a 0.8 m

@@ -15,7 +15,7 @@
    - the shadow-area error (misclassified / shadow pixels, %);
    - "open" false shadow: false-shadow pixels more than 1 px from the exact
      edge (no truth pixel of the other class in their 5 x 5, see
-     open_false_shadow), i.e. acne;
+     gt_open_false_shadow), i.e. acne;
    - the plate at 8 degrees, standard 2048^2: misclassified ground pixels,
      % of the ground pixels.
 
@@ -104,29 +104,12 @@ typedef struct totals {
     uint64_t plate8_wrong[2], plate8_ground[2];
 } totals;
 
-/* False-shadow pixels with no truth pixel of the other class in their
-   5 x 5: acne, not aliasing. The exact edge lies between pixel centres of
-   different classes, but a shadow thinner than a pixel (the pole's, seen
-   far away) may hold no shadow pixel centre at all, and a pixel a little
-   over 1 px from its edge can then be 2 px from the nearest shadow centre:
-   the neighbourhood is 2 px, which holds every false shadow within 1 px of
-   an edge. */
+/* the open false-shadow pixels of res (gt_open_false_shadow) */
 static uint64_t open_false_shadow(const gt_env *e, const float *truth, const float *res) {
     uint64_t n = 0;
     size_t i;
-    for (i = 0; i < e->n; i++)
-        if (tb_visibility_class(truth[i]) == 1 && res[i] < 0.5f && !gt_near_boundary(e, truth, i, 2)) n++;
+    for (i = 0; i < e->n; i++) n += gt_open_false_shadow(e, truth, res, i);
     return n;
-}
-
-/* the closed form with the exact reference's silhouette pixels left out */
-static int judged_truth(gt_env *e, const tb_cf_scene *cf, const tb_light *l, float *ref, float *truth) {
-    tb_view v = gt_view(e);
-    size_t i;
-    if (gt_reference_exact(e, l, ref, NULL) != 0 || tb_cf_visibility(cf, &v, l, truth) != 0) return -1;
-    for (i = 0; i < e->n; i++)
-        if (ref[i] == TB_VIS_SILHOUETTE) truth[i] = TB_VIS_SILHOUETTE;
-    return 0;
 }
 
 static void run_scene(int sc, totals *T) {
@@ -161,13 +144,10 @@ static void run_scene(int sc, totals *T) {
     if (!ref || !truth || !res) { SK_CHECK_MSG(0, "%s: out of memory", scene_names[sc]); goto done; }
     for (i = 0; i < N_ELEV; i++)
         for (a = 0; a < N_AZIM; a++) {
-            sk_vec3 dir = gt_sun_dir(elevations[i], azimuths[a]);
-            tb_light l = gt_sun(dir);
-            skgl_camera cam = gt_cf_sun_camera(scene_heights[sc], dir, W, H);
-            if (gt_gbuffer(&e, &cam) != 0 || judged_truth(&e, &cf, &l, ref, truth) != 0) {
-                SK_CHECK_MSG(0, "%s: G-buffer or truth", scene_names[sc]);
+            sk_vec3 dir;
+            skgl_camera cam;
+            if (gt_cf_sun_frame(&e, &cf, scene_heights[sc], elevations[i], azimuths[a], ref, truth, &dir, &cam) != 0)
                 continue;
-            }
             for (m = 0; m < 2; m++)
                 for (t = 0; t < N_TECH; t++) {
                     tb_shadow_error se;
@@ -214,7 +194,7 @@ static void run_scene(int sc, totals *T) {
             l.type = TB_LIGHT_POINT;
             l.position = pos[a];
             l.range = 20;
-            if (judged_truth(&e, &cf, &l, ref, truth) != 0) { SK_CHECK_MSG(0, "point truth"); continue; }
+            if (gt_cf_truth(&e, &cf, &l, ref, truth) != 0) { SK_CHECK_MSG(0, "point truth"); continue; }
             for (m = 0; m < 2; m++)
                 for (k = 0; k < N_POINT; k++) {
                     tb_shadow_error se;

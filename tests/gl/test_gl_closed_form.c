@@ -442,29 +442,12 @@ static spot_edge score_edges(const gt_env *e, const float *truth, const float *m
     return s;
 }
 
-static void spot_draw_all(void *user, const skgl_draw_info *info) {
-    gt_env *e = (gt_env *)user;
-    uint32_t i;
-    for (i = 0; i < e->scene.object_count; i++) {
-        const tb_object *o = &e->scene.objects[i];
-        if (skgl_point_caster_visible(info, o->bounds)) tb_gl_mesh_draw(&e->gl, &e->mesh, o->first_index, o->index_count);
-    }
-}
-
 /* the spot's mask over the current G-buffer (0 outside the scissor), background -1 */
 static int spot_mask(gt_env *e, skgl_point *p, const skgl_camera *cam, sk_vec3 lp, sk_vec3 dir, float *vis) {
     skgl_scene sc = gt_scene(e);
-    size_t i;
-    sc.draw = spot_draw_all;
+    sc.draw = gt_point_draw;
     if (skgl_spot_render(e->sk, p, cam, &sc, lp, dir) != SK_OK) return -1;
-    tb_gl_fbo_bind(&e->gl, &e->mask);
-    e->gl.ClearColor(0, 0, 0, 0);
-    e->gl.Clear(0x00004000u);   /* GL_COLOR_BUFFER_BIT */
-    tb_gl_fbo_bind(&e->gl, NULL);
-    if (skgl_point_mask(e->sk, p, cam, e->gbuf.depth_tex, e->gbuf.color_tex, e->mask.color_tex) != SK_OK) return -1;
-    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
-    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
-    return 0;
+    return gt_point_mask(e, p, cam, 0.0f, vis);
 }
 
 typedef struct spot_case {

@@ -17,8 +17,8 @@
      caster's foot, seen);
    - new open false shadow: pixels lit in the truth, lit without contact
      shadows, shadowed with them, and more than 1 px from the exact edge
-     (no truth pixel of the other class in their 5 x 5, as in
-     test_gl_bias_cf.c).
+     (no truth pixel of the other class in their 5 x 5, gt_open_false_shadow
+     as in test_gl_bias_cf.c).
    Asserted: at every elevation and bias at least FALSE_LIGHT_MIN false-light
    pixels without contact shadows, and at most half as many with them; no
    new open false shadow in any configuration. The mask's cost is printed
@@ -134,14 +134,9 @@ static int forward_create(gt_env *e, gt_forward *f) {
    finished) over reps */
 static double forward_ms(gt_env *e, gt_forward *f, skgl_shadow *s, const skgl_camera *cam, int reps) {
     const tb_gl_funcs *gl = &e->gl;
-    sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
     double t0;
     int i;
-    tb_gl_fbo_bind(gl, &f->fbo);
-    gl->Enable(0x0B71 /* DEPTH_TEST */);
-    gl->UseProgram(f->program);
-    gl->UniformMatrix4fv(f->u_view_proj, 1, 0, vp.m);
-    gl->UniformMatrix4fv(f->u_view, 1, 0, cam->view.m);
+    gt_forward_begin(e, f, cam);
     gl->Finish();
     t0 = now_ms();
     for (i = 0; i < reps; i++) {
@@ -150,8 +145,7 @@ static double forward_ms(gt_env *e, gt_forward *f, skgl_shadow *s, const skgl_ca
         tb_gl_mesh_draw(gl, &e->mesh, 0, 0);
     }
     gl->Finish();
-    gl->UseProgram(0);
-    tb_gl_fbo_bind(gl, NULL);
+    gt_forward_unbind(e);
     return t0 < 0 ? -1.0 : (now_ms() - t0) / reps;
 }
 
@@ -187,16 +181,6 @@ static uint64_t contact_zone(const gt_env *e, unsigned char *near) {
     return n;
 }
 
-/* the closed form with the exact reference's silhouette pixels left out */
-static int judged_truth(gt_env *e, const tb_cf_scene *cf, const tb_light *l, float *ref, float *truth) {
-    tb_view v = gt_view(e);
-    size_t i;
-    if (gt_reference_exact(e, l, ref, NULL) != 0 || tb_cf_visibility(cf, &v, l, truth) != 0) return -1;
-    for (i = 0; i < e->n; i++)
-        if (ref[i] == TB_VIS_SILHOUETTE) truth[i] = TB_VIS_SILHOUETTE;
-    return 0;
-}
-
 /* the mean wall time of one skgl_shadow_mask over reps, finished */
 static double mask_ms(gt_env *e, skgl_shadow *s, const skgl_camera *cam, int reps) {
     double t0;
@@ -210,21 +194,39 @@ static double mask_ms(gt_env *e, skgl_shadow *s, const skgl_camera *cam, int rep
     return (now_ms() - t0) / reps;
 }
 
+/* Two masks of a frame, res[0] without contact shadows and res[1] with
+   them, against the truth: the truth-shadowed pixels near the contact line
+   (near), those of them each mask calls lit, and the new open false
+   shadow (gt_open_false_shadow in res[1], lit in res[0]). */
+typedef struct contact_count {
+    uint64_t near_shadow, false_light[2], new_open_fs;
+} contact_count;
+
+static contact_count count_contact(const gt_env *e, const float *truth, float *const res[2],
+                                   const unsigned char *near) {
+    contact_count k;
+    size_t p;
+    memset(&k, 0, sizeof k);
+    for (p = 0; p < e->n; p++) {
+        if (tb_visibility_class(truth[p]) == 0 && near[p]) {
+            k.near_shadow++;
+            k.false_light[0] += res[0][p] >= 0.5f;
+            k.false_light[1] += res[1][p] >= 0.5f;
+        }
+        if (res[0][p] >= 0.5f && gt_open_false_shadow(e, truth, res[1], p)) k.new_open_fs++;
+    }
+    return k;
+}
+
 static void score(const gt_env *e, const float *truth, float *const res[2], const unsigned char *near, int b,
                   int i, totals *T, const char *what) {
-    size_t p;
-    uint64_t open = 0;
-    for (p = 0; p < e->n; p++) {
-        int c = tb_visibility_class(truth[p]);
-        if (c == 0 && near[p]) {
-            T->near_shadow[b][i]++;
-            T->false_light[b][0][i] += res[0][p] >= 0.5f;
-            T->false_light[b][1][i] += res[1][p] >= 0.5f;
-        }
-        if (c == 1 && res[0][p] >= 0.5f && res[1][p] < 0.5f && !gt_near_boundary(e, truth, p, 2)) open++;
-    }
-    T->new_open_fs[b][i] += open;
-    SK_CHECK_MSG(open == 0, "%s: %llu new open false-shadow pixels", what, (unsigned long long)open);
+    contact_count k = count_contact(e, truth, res, near);
+    T->near_shadow[b][i] += k.near_shadow;
+    T->false_light[b][0][i] += k.false_light[0];
+    T->false_light[b][1][i] += k.false_light[1];
+    T->new_open_fs[b][i] += k.new_open_fs;
+    SK_CHECK_MSG(k.new_open_fs == 0, "%s: %llu new open false-shadow pixels", what,
+                 (unsigned long long)k.new_open_fs);
 }
 
 /* the mask without normals (depth alone: the receiver's plane from screen
@@ -234,7 +236,7 @@ static void score_without_normals(gt_env *e, skgl_shadow *s, skgl_shadow *c, con
                                   const float *truth, float *const res[2], const unsigned char *near, int i,
                                   totals *T, const char *what) {
     skgl_shadow *l[2];
-    size_t p;
+    contact_count k;
     int m;
     l[0] = s;
     l[1] = c;
@@ -244,15 +246,10 @@ static void score_without_normals(gt_env *e, skgl_shadow *s, skgl_shadow *c, con
             SK_CHECK_MSG(0, "%s: mask without normals", what);
             return;
         }
-    for (p = 0; p < e->n; p++) {
-        int k = tb_visibility_class(truth[p]);
-        if (k == 0 && near[p]) {
-            T->nn_false_light[0][i] += res[0][p] >= 0.5f;
-            T->nn_false_light[1][i] += res[1][p] >= 0.5f;
-        }
-        if (k == 1 && res[0][p] >= 0.5f && res[1][p] < 0.5f && !gt_near_boundary(e, truth, p, 2))
-            T->nn_open_fs[i]++;
-    }
+    k = count_contact(e, truth, res, near);
+    T->nn_false_light[0][i] += k.false_light[0];
+    T->nn_false_light[1][i] += k.false_light[1];
+    T->nn_open_fs[i] += k.new_open_fs;
 }
 
 /* T: the mask's totals, F: the forward snippet's (SK_SHADOW_CONTACT) */
@@ -290,13 +287,10 @@ static void run_scene(int sc, totals *T, totals *F) {
     }
     for (i = 0; i < N_ELEV; i++)
         for (a = 0; a < N_AZIM; a++) {
-            sk_vec3 dir = gt_sun_dir(elevations[i], azimuths[a]);
-            tb_light l = gt_sun(dir);
-            skgl_camera cam = gt_cf_sun_camera(scene_heights[sc], dir, W, H);
-            if (gt_gbuffer(&e, &cam) != 0 || judged_truth(&e, &cf, &l, ref, truth) != 0) {
-                SK_CHECK_MSG(0, "%s: G-buffer or truth", scene_names[sc]);
+            sk_vec3 dir;
+            skgl_camera cam;
+            if (gt_cf_sun_frame(&e, &cf, scene_heights[sc], elevations[i], azimuths[a], ref, truth, &dir, &cam) != 0)
                 continue;
-            }
             T->contact_px[i] += contact_zone(&e, near);
             for (b = 0; b < N_BIAS; b++)
                 for (t = 0; t < N_TECH; t++) {

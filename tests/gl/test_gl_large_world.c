@@ -236,28 +236,13 @@ static int lw_frame(lw_env *w, skgl_shadow *s, const skgl_camera *cw, float *mas
    already rendered for cw. Visibility read back as gt_forward_render does. */
 static int lw_forward(lw_env *w, gt_forward *f, const skgl_shadow *s, const skgl_camera *cr, float *vis,
                       float *depth) {
-    const tb_gl_funcs *gl = &w->e.gl;
-    sk_mat4 vp = sk_mat4_mul(cr->proj, cr->view);
     sk_result r;
-    size_t i;
-    tb_gl_fbo_bind(gl, &f->fbo);
-    gl->ClearColor(-1.0f, 0, 0, 0);
-    gl->ClearDepth(1.0);
-    gl->Clear(0x00004000u | 0x00000100u);
-    gl->Enable(0x0B71 /* DEPTH_TEST */);
-    gl->DepthFunc(0x0201 /* LESS */);
-    gl->UseProgram(f->program);
-    gl->UniformMatrix4fv(f->u_view_proj, 1, 0, vp.m);
-    gl->UniformMatrix4fv(f->u_view, 1, 0, cr->view.m);
+    gt_forward_begin(&w->e, f, cr);
     r = skgl_shadow_bind_origin(w->e.sk, s, f->program, 4, w->off);
-    if (r == SK_OK) tb_gl_mesh_draw(gl, &w->e.mesh, 0, 0);
-    gl->UseProgram(0);
-    tb_gl_fbo_bind(gl, NULL);
+    if (r == SK_OK) tb_gl_mesh_draw(&w->e.gl, &w->e.mesh, 0, 0);
+    gt_forward_unbind(&w->e);
     if (r != SK_OK) { printf("bind_origin: %s\n", sk_result_string(r)); return -1; }
-    if (tb_gl_read_red(gl, f->fbo.fbo, w->e.w, w->e.h, vis) != 0) return -1;
-    if (tb_gl_read_depth(gl, f->fbo.fbo, w->e.w, w->e.h, depth) != 0) return -1;
-    for (i = 0; i < w->e.n; i++) if (!(depth[i] < 1.0f)) vis[i] = -1.0f;
-    return 0;
+    return gt_forward_read(&w->e, f, vis, depth);
 }
 
 /* ---- hard-shadow error, one frame per technique ---- */

@@ -89,15 +89,6 @@ static int env_init(gt_env *e) {
     return gt_env_init(e, &s, W, H);
 }
 
-static void point_draw(void *user, const skgl_draw_info *info) {
-    gt_env *e = (gt_env *)user;
-    uint32_t i;
-    for (i = 0; i < e->scene.object_count; i++) {
-        const tb_object *o = &e->scene.objects[i];
-        if (skgl_point_caster_visible(info, o->bounds)) tb_gl_mesh_draw(&e->gl, &e->mesh, o->first_index, o->index_count);
-    }
-}
-
 static skgl_point *make_point(gt_env *e, int res, skgl_point_atlas *atlas) {
     skgl_point_desc d;
     skgl_point *p = NULL;
@@ -114,25 +105,10 @@ static skgl_point *make_point(gt_env *e, int res, skgl_point_atlas *atlas) {
     return p;
 }
 
-/* the mask of an already rendered light, read back; background -1 */
-static int mask_of(gt_env *e, skgl_point *p, const skgl_camera *cam, float *vis) {
-    sk_result r;
-    size_t i;
-    tb_gl_fbo_bind(&e->gl, &e->mask);
-    e->gl.ClearColor(1, 0, 0, 0);
-    e->gl.Clear(0x00004000u);
-    tb_gl_fbo_bind(&e->gl, NULL);
-    r = skgl_point_mask(e->sk, p, cam, e->gbuf.depth_tex, e->gbuf.color_tex, e->mask.color_tex);
-    if (r != SK_OK) { printf("skgl_point_mask: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk)); return -1; }
-    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
-    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
-    return 0;
-}
-
 static int render(gt_env *e, skgl_point *p, const skgl_camera *cam, int i) {
     skgl_scene sc = gt_scene(e);
     sk_result r;
-    sc.draw = point_draw;
+    sc.draw = gt_point_draw;
     r = skgl_point_render(e->sk, p, cam, &sc, gt_v3(light_xyz[i][0], light_xyz[i][1], light_xyz[i][2]));
     if (r != SK_OK) printf("skgl_point_render: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk));
     return r == SK_OK ? 0 : -1;
@@ -216,7 +192,7 @@ static void run_shared(int aw, int ah, const int *expect, size_t max_diff, const
     SK_CHECK_MSG(r == SK_OK, "%s: pack: %s (%s)", what, sk_result_string(r), skgl_error_log(e.sk));
     /* every light rendered before any mask: each must find its own faces intact */
     for (i = 0; i < NL; i++) SK_CHECK(render(&e, shared[i], &cam, i) == 0);
-    for (i = 0; i < NL; i++) SK_CHECK(mask_of(&e, shared[i], &cam, a[i]) == 0);
+    for (i = 0; i < NL; i++) SK_CHECK(gt_point_mask(&e, shared[i], &cam, 1.0f, a[i]) == 0);
     check_rects(shared, aw, ah, what);
     for (i = 0; i < NL; i++) {
         const skgl_point_frame_stats *st = skgl_point_stats(shared[i]);
@@ -230,7 +206,7 @@ static void run_shared(int aw, int ah, const int *expect, size_t max_diff, const
         own[i] = make_point(&e, expect[i], NULL);
         if (!own[i]) continue;
         SK_CHECK(render(&e, own[i], &cam, i) == 0);
-        SK_CHECK(mask_of(&e, own[i], &cam, b) == 0);
+        SK_CHECK(gt_point_mask(&e, own[i], &cam, 1.0f, b) == 0);
         diff = class_diff(&e, a[i], b, &covered, &off);
         SK_CHECK(point_reference(&e, i, ref) == 0);
         err = tb_metric_hard(ref, a[i], e.n);

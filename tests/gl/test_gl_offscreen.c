@@ -38,57 +38,46 @@
 /* bounds (figures at the top): false light as % of the reference's
    shadow, covered %, shadow-area error % */
 static void offscreen(skgl_technique tech, double max_false_lit_pct, double max_err_pct, double max_area_pct) {
-    gt_env e;
+    gt_offscreen o;
     skgl_shadow_desc d;
     skgl_shadow *s;
-    tb_scene sc;
-    sk_vec3 light = gt_v3(0.1f, -0.6f, -1);
-    skgl_camera cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, W, H);
-    float *ref, *res;
     size_t i, refsh = 0, agree = 0, tower_px = 0;
     const char *tn = tech == SKGL_PSSM ? "pssm" : "standard";
     tb_hard_error he;
     tb_shadow_error se;
     char buf[256];
-    tb_scene_init(&sc);
-    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
-    tb_scene_add_box(&sc, "tower", gt_v3(-1, 0, 12), gt_v3(1, 10, 14));
-    tb_scene_add_box(&sc, "box", gt_v3(3, 0, -3), gt_v3(4, 1, -2));
-    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
+    if (gt_offscreen_init(&o, W, H) != 0) return;
     memset(&d, 0, sizeof d);
     d.technique = tech;
     d.resolution = (int)(1024 * gt_res_scale());
-    s = gt_shadow(&e, &d);
-    ref = gt_alloc(&e); res = gt_alloc(&e);
-    if (!s || !ref || !res || gt_gbuffer(&e, &cam) != 0 || gt_reference(&e, light, ref) != 0 ||
-        gt_mask(&e, s, &cam, light, res) != 0) {
+    s = gt_shadow(&o.e, &d);
+    if (!s || gt_mask(&o.e, s, &o.cam, o.light, o.res) != 0) {
         SK_CHECK_MSG(0, "%s: frame failed", tn);
         goto done;
     }
-    for (i = 0; i < e.n; i++) {
+    for (i = 0; i < o.e.n; i++) {
         double p[3];
-        if (gt_world(&e, i, p)) continue;
+        if (gt_world(&o.e, i, p)) continue;
         if (p[2] > 8.0) tower_px++;
-        if (tb_visibility_class(ref[i]) == 0) { refsh++; if (tb_visibility_class(res[i]) == 0) agree++; }
+        if (tb_visibility_class(o.ref[i]) == 0) { refsh++; if (tb_visibility_class(o.res[i]) == 0) agree++; }
     }
-    he = tb_metric_hard(ref, res, e.n);
-    se = gt_shadow_error(&e, ref, res);
+    he = tb_metric_hard(o.ref, o.res, o.e.n);
+    se = gt_shadow_error(&o.e, o.ref, o.res);
     printf("%s: reference shadow %zu px, mask agrees on %zu (%.2f%%); error %.4f%%, %s; visible pixels behind the "
            "camera %zu\n", tn, refsh, agree, refsh ? 100.0 * agree / refsh : 0.0, he.pct,
            gt_shadow_error_str(&se, buf, sizeof buf), tower_px);
     SK_CHECK(tower_px == 0);                       /* the tower really is off-screen */
-    SK_CHECK_MSG(refsh > e.n / 10, "%s: the tower's shadow covers %zu px", tn, refsh);
+    SK_CHECK_MSG(refsh > o.e.n / 10, "%s: the tower's shadow covers %zu px", tn, refsh);
     SK_CHECK_MSG(refsh && 100.0 * (double)(refsh - agree) / (double)refsh <= max_false_lit_pct,
                  "%s: false light on %zu of %zu shadowed pixels", tn, refsh - agree, refsh);
     SK_CHECK_MSG(he.pct < max_err_pct, "%s: error %.4f%% >= %.3f%%", tn, he.pct, max_err_pct);
     SK_CHECK_MSG(se.ok && se.area_pct < max_area_pct, "%s: shadow-area error %.4f%% >= %.2f%%", tn, se.area_pct,
                  max_area_pct);
-    gt_images(&e, tech == SKGL_PSSM ? "offscreen-pssm" : "offscreen-standard", ref, res);
+    gt_images(&o.e, tech == SKGL_PSSM ? "offscreen-pssm" : "offscreen-standard", o.ref, o.res);
 done:
-    SK_CHECK(e.gl.GetError() == 0);
-    free(ref); free(res);
-    skgl_shadow_destroy(e.sk, s);
-    gt_env_free(&e);
+    SK_CHECK(o.e.gl.GetError() == 0);
+    skgl_shadow_destroy(o.e.sk, s);
+    gt_offscreen_free(&o);
 }
 
 static void test_offscreen_standard(void) { offscreen(SKGL_STANDARD, 0.48, 0.24, 1.05); }

@@ -48,23 +48,14 @@
    analysis first where the light has one */
 static void smoke(skgl_technique tech, int fit, double max_err_pct)
 {
-    gt_env e;
+    gt_offscreen o;
     skgl_shadow_desc d;
     skgl_shadow *s;
-    tb_scene sc;
-    sk_vec3 light = gt_v3(0.1f, -0.6f, -1);
-    skgl_camera cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, W, H);
-    float *ref, *res;
     const char *tn = tech == SKGL_PSSM ? (fit ? "pssm fit_to_depth" : "pssm") : tech == SKGL_RMSM ? "rmsm"
                      : tech == SKGL_FERKO ? "ferko" : "standard";
     int analyse = tech == SKGL_RMSM || tech == SKGL_FERKO || fit;
-    skgl_scene scene;
     tb_hard_error he;
-    tb_scene_init(&sc);
-    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
-    tb_scene_add_box(&sc, "tower", gt_v3(-1, 0, 12), gt_v3(1, 10, 14));
-    tb_scene_add_box(&sc, "box", gt_v3(3, 0, -3), gt_v3(4, 1, -2));
-    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
+    if (gt_offscreen_init(&o, W, H) != 0) return;
     memset(&d, 0, sizeof d);
     d.technique = tech;
     d.fit_to_depth = fit;
@@ -75,23 +66,19 @@ static void smoke(skgl_technique tech, int fit, double max_err_pct)
         d.rmsm_page_size = 128;
         d.rmsm_pool_pages = 16;
     }
-    s = gt_shadow(&e, &d);
-    ref = gt_alloc(&e); res = gt_alloc(&e);
-    scene = gt_scene(&e);
-    if (!s || !ref || !res || gt_gbuffer(&e, &cam) != 0 || gt_reference(&e, light, ref) != 0 ||
-        (analyse && skgl_shadow_analyze(e.sk, s, &cam, &scene, light, e.gbuf.depth_tex) != SK_OK) ||
-        gt_mask(&e, s, &cam, light, res) != 0) {
+    s = gt_shadow(&o.e, &d);
+    if (!s || (analyse && skgl_shadow_analyze(o.e.sk, s, &o.cam, &o.scene, o.light, o.e.gbuf.depth_tex) != SK_OK) ||
+        gt_mask(&o.e, s, &o.cam, o.light, o.res) != 0) {
         SK_CHECK_MSG(0, "%s: frame failed", tn);
         goto done;
     }
-    he = tb_metric_hard(ref, res, e.n);
+    he = tb_metric_hard(o.ref, o.res, o.e.n);
     printf("%s (opt-outs): error %.4f%%\n", tn, he.pct);
     SK_CHECK_MSG(he.pct < max_err_pct, "%s: error %.4f%% >= %.3f%%", tn, he.pct, max_err_pct);
 done:
-    SK_CHECK(e.gl.GetError() == 0);
-    free(ref); free(res);
-    skgl_shadow_destroy(e.sk, s);
-    gt_env_free(&e);
+    SK_CHECK(o.e.gl.GetError() == 0);
+    skgl_shadow_destroy(o.e.sk, s);
+    gt_offscreen_free(&o);
 }
 
 static void test_standard(void) { smoke(SKGL_STANDARD, 0, 0.18); }

@@ -65,12 +65,7 @@ static int spot_cull_box = 0;   /* draw an extra caster box behind the spot, cul
 static sk_aabb extra_box;
 
 static void spot_draw(void *user, const skgl_draw_info *info) {
-    gt_env *e = (gt_env *)user;
-    uint32_t i;
-    for (i = 0; i < e->scene.object_count; i++) {
-        const tb_object *o = &e->scene.objects[i];
-        if (skgl_point_caster_visible(info, o->bounds)) tb_gl_mesh_draw(&e->gl, &e->mesh, o->first_index, o->index_count);
-    }
+    gt_point_draw(user, info);
     if (spot_cull_box) (void)skgl_point_caster_visible(info, extra_box);
 }
 
@@ -97,19 +92,10 @@ static skgl_point *make_spot(gt_env *e, float angle, int res, int cull) {
 static int spot_mask(gt_env *e, skgl_point *p, const skgl_camera *cam, sk_vec3 lp, sk_vec3 dir, float *vis) {
     skgl_scene sc = gt_scene(e);
     sk_result r;
-    size_t i;
     sc.draw = spot_draw;
     r = skgl_spot_render(e->sk, p, cam, &sc, lp, dir);
     if (r != SK_OK) { printf("skgl_spot_render: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk)); return -1; }
-    tb_gl_fbo_bind(&e->gl, &e->mask);
-    e->gl.ClearColor(0, 0, 0, 0);
-    e->gl.Clear(0x00004000u);
-    tb_gl_fbo_bind(&e->gl, NULL);
-    r = skgl_point_mask(e->sk, p, cam, e->gbuf.depth_tex, e->gbuf.color_tex, e->mask.color_tex);
-    if (r != SK_OK) { printf("skgl_point_mask: %s (%s)\n", sk_result_string(r), skgl_error_log(e->sk)); return -1; }
-    if (tb_gl_read_texture_red(&e->gl, e->mask.color_tex, e->w, e->h, vis) != 0) return -1;
-    for (i = 0; i < e->n; i++) if (!(e->depth[i] < 1.0f)) vis[i] = -1.0f;
-    return 0;
+    return gt_point_mask(e, p, cam, 0.0f, vis);
 }
 
 /* the angle (degrees) between pixel i's receiver, seen from lp, and the axis; -1 background */

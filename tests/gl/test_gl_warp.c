@@ -265,29 +265,19 @@ static void test_singular(void) {
 
 /* ---- casters behind the camera ---------------------------------------- */
 static void test_casters_behind(void) {
-    gt_env e;
-    tb_scene sc;
-    sk_vec3 light = gt_v3(0.1f, -0.6f, -1);
-    skgl_camera cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, W, H);
-    float *ref;
+    gt_offscreen o;
     int t;
     char buf[256];
     /* false light, % of the reference's shadow, per technique (standard,
        psm, lispsm): measured 0.341, 0.651, 0.139 */
     static const double max_false_lit_pct[3] = {0.50, 0.95, 0.20};
-    tb_scene_init(&sc);
-    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
-    tb_scene_add_box(&sc, "tower", gt_v3(-1, 0, 12), gt_v3(1, 10, 14));
-    tb_scene_add_box(&sc, "box", gt_v3(3, 0, -3), gt_v3(4, 1, -2));
-    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
-    ref = gt_alloc(&e);
-    if (!ref || gt_gbuffer(&e, &cam) != 0 || gt_reference(&e, light, ref) != 0) { SK_CHECK(0); free(ref); gt_env_free(&e); return; }
+    if (gt_offscreen_init(&o, W, H) != 0) return;
     for (t = 0; t < 3; t++) {
         skgl_technique tech = t == 0 ? SKGL_STANDARD : t == 1 ? SKGL_PSM : SKGL_LISPSM;
         char img[64];
         warp_run r;
         snprintf(img, sizeof img, "warp-behind-%s", tech_name(tech));
-        r = run(&e, &cam, light, ref, tech, 1024, 1, img);
+        r = run(&o.e, &o.cam, o.light, o.ref, tech, 1024, 1, img);
         printf("casters behind, %-8s: %.4f%% (reversed %d, slide %.2f, n %g); %s\n", tech_name(tech), r.pct,
                r.st.depth_reversed, r.st.psm_slide, r.st.warp_n[0], gt_shadow_error_str(&r.se, buf, sizeof buf));
         SK_CHECK(r.pct >= 0 && r.finite);
@@ -305,8 +295,7 @@ static void test_casters_behind(void) {
             SK_CHECK_MSG(r.se.ok && r.se.area_pct < 0.4, "lispsm: shadow-area error %.4f%% >= 0.4%%", r.se.area_pct);
         }
     }
-    free(ref);
-    gt_env_free(&e);
+    gt_offscreen_free(&o);
 }
 
 SK_TEST_MAIN(test_terrace_angles, test_thresholds, test_singular, test_casters_behind)
