@@ -1446,140 +1446,207 @@ static void point_draw_casters(void *user, const skgl_draw_info *info) {
     }
 }
 
-static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *rgba, float *nrm, float *mask_px) {
+/* What the room's point- and spot-light rows share: the scene, its mesh
+   and exact reference, the casters drawn through point_draw_casters, the
+   mask's value before each pass, and the reference visibility of the view
+   being scored (refv). */
+typedef struct room_bench {
+    bench_gl *B;
+    const char *scene;     /* the rows' scene column: "room", "room-spot" */
+    float mask_clear;      /* 1 (the point rows): a scissored pass leaves the rest lit; 0 (the spot
+                              rows): nothing outside a spot's scissor is lit by it */
+    int reps;              /* timed passes after the warm-up */
+    FILE *csv;
+    float *depth, *mask_px;
     tb_scene s;
     tb_gl_mesh mesh;
-    tb_reference *ref = NULL;
+    tb_reference *ref;
     draw_user du;
     skgl_scene sc;
-    size_t n = (size_t)BENCH_W * BENCH_H, i;
-    float *refv = (float *)malloc(sizeof(float) * n);
-    int v, c, k;
-    double naive_total[4] = {0, 0, 0, 0};
-    memset(&mesh, 0, sizeof mesh);
-    tb_scene_init(&s);
-    if (!refv || tb_scene_build_room(&s) != 0 || tb_gl_mesh_create(&B->gl, &mesh, &s) != 0 ||
-        !(ref = tb_reference_create(&s))) {
-        fprintf(stderr, "bench: room scene setup failed: point-light rows skipped\n");
-        goto out;
+    float *refv;
+} room_bench;
+
+static void room_bench_close(room_bench *R) {
+    free(R->refv);
+    tb_reference_destroy(R->ref);
+    if (R->mesh.vao) tb_gl_mesh_destroy(&R->B->gl, &R->mesh);
+    tb_scene_free(&R->s);
+}
+
+/* The room for the rows of `scene`; depth and mask_px are the caller's
+   scratch images. 0 ok (room_bench_close frees it); -1: the rows are said
+   skipped on stderr and nothing is held. */
+static int room_bench_open(room_bench *R, bench_gl *B, const char *scene, float mask_clear, int repeat, FILE *csv,
+                           float *depth, float *mask_px) {
+    memset(R, 0, sizeof *R);
+    R->B = B;
+    R->scene = scene;
+    R->mask_clear = mask_clear;
+    R->reps = repeat < 1 ? 1 : repeat > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : repeat;
+    R->csv = csv;
+    R->depth = depth;
+    R->mask_px = mask_px;
+    R->refv = (float *)malloc(sizeof(float) * BENCH_W * BENCH_H);
+    tb_scene_init(&R->s);
+    if (!R->refv || tb_scene_build_room(&R->s) != 0 || tb_gl_mesh_create(&B->gl, &R->mesh, &R->s) != 0 ||
+        !(R->ref = tb_reference_create(&R->s))) {
+        fprintf(stderr, "bench: room scene setup failed: %s rows skipped\n", scene);
+        room_bench_close(R);
+        return -1;
     }
-    du.gl = &B->gl;
-    du.scene = &s;
-    du.mesh = &mesh;
-    sc.draw = point_draw_casters;
-    sc.user = &du;
-    sc.bounds = s.bounds;
+    R->du.gl = &B->gl;
+    R->du.scene = &R->s;
+    R->du.mesh = &R->mesh;
+    R->sc.draw = point_draw_casters;
+    R->sc.user = &R->du;
+    R->sc.bounds = R->s.bounds;
+    return 0;
+}
+
+/* One view of the room: its camera, its G-buffer (its depth in R->depth)
+   and the view the reference traced. */
+typedef struct room_view {
+    bench_view bv;
+    tb_gl_fbo gbuf;
+    tb_view tv;
+} room_view;
+
+/* The view `name` from eye to target, and in R->refv the exact visibility
+   of a point light at lp reaching `range`. 0 ok (room_view_close frees
+   it); -1: the view is skipped and nothing is held. */
+static int room_view_open(room_bench *R, room_view *V, const char *name, const float eye[3], const float target[3],
+                          sk_vec3 lp, float range) {
+    bench_gl *B = R->B;
+    tb_light L;
+    memset(V, 0, sizeof *V);
+    snprintf(V->bv.name, sizeof V->bv.name, "%s", name);
+    V->bv.eye = v3(eye[0], eye[1], eye[2]);
+    V->bv.target = v3(target[0], target[1], target[2]);
+    finish_view(&V->bv, &R->s.bounds);
+    if (tb_gl_fbo_create(&B->gl, &V->gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0 ||
+        tb_gl_gbuffer_render(&B->gl, &B->gb, &R->mesh, &V->gbuf, &V->bv.view_proj) != 0 ||
+        tb_gl_read_depth(&B->gl, V->gbuf.fbo, BENCH_W, BENCH_H, R->depth) != 0) {
+        fprintf(stderr, "bench: %s view %s: G-buffer failed\n", R->scene, name);
+        if (V->gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &V->gbuf);
+        return -1;
+    }
+    V->tv.width = BENCH_W;
+    V->tv.height = BENCH_H;
+    memset(&L, 0, sizeof L);
+    L.type = TB_LIGHT_POINT;
+    L.position = lp;
+    L.range = range;
+    if (!sk_mat4_inverse(V->bv.view_proj, &V->tv.inv_view_proj) ||
+        tb_reference_trace_exact(R->ref, &V->tv, R->depth, &L, NULL, R->refv, NULL) != 0) {
+        tb_gl_fbo_destroy(&B->gl, &V->gbuf);
+        return -1;
+    }
+    return 0;
+}
+
+static void room_view_close(room_bench *R, room_view *V) { tb_gl_fbo_destroy(&R->B->gl, &V->gbuf); }
+
+/* one room row as run_room_row measured it */
+typedef struct room_row {
+    run_rec rr;                    /* the mask's median time, texels, passes and scores against R->refv */
+    float shadow_ms;               /* the median shadow time */
+    skgl_point_frame_stats st;     /* the last frame's */
+    char params[160];              /* the configuration only, so that a chart point is a mean over views:
+                                      what the culling found goes to stderr, a spot's cone is its view's */
+} room_row;
+
+/* A light of desc d (the technique, resolution, range, spot angle and
+   optimizations; the bias and the screen set here) at lp over view V:
+   R->reps + 1 frames, the first a warm-up, each skgl_spot_render along
+   *spot_dir (or skgl_point_render without one) and the mask of V's G-buffer
+   into B->mask cleared to R->mask_clear; then the mask scored and written
+   as a row of `method` to R->csv. 0 ok; -1 said on stderr, no row. */
+static int run_room_row(room_bench *R, const room_view *V, const char *method, const skgl_point_desc *d, sk_vec3 lp,
+                        const sk_vec3 *spot_dir, room_row *out) {
+    bench_gl *B = R->B;
+    skgl_point_desc dd = *d;
+    skgl_point *p = NULL;
+    float sms[BENCH_MAX_REPEAT], mms[BENCH_MAX_REPEAT];
+    sk_result r;
+    int k;
+    dd.bias = g_bias;
+    dd.screen_w = BENCH_W;
+    dd.screen_h = BENCH_H;
+    r = skgl_point_create(B->sk, &dd, &p);
+    if (r != SK_OK) {
+        fprintf(stderr, "bench: skgl_point_create %s: %s (%s)\n", method, sk_result_string(r), skgl_error_log(B->sk));
+        return -1;
+    }
+    memset(&out->rr, 0, sizeof out->rr);
+    for (k = 0; k <= R->reps; k++) {   /* one warm-up, then the timed ones */
+        r = spot_dir ? skgl_spot_render(B->sk, p, &V->bv.cam, &R->sc, lp, *spot_dir)
+                     : skgl_point_render(B->sk, p, &V->bv.cam, &R->sc, lp);
+        if (r == SK_OK) {
+            tb_gl_fbo_bind(&B->gl, &B->mask);
+            B->gl.ClearColor(R->mask_clear, R->mask_clear, R->mask_clear, R->mask_clear);
+            B->gl.Clear(0x00004000u);
+            tb_gl_fbo_bind(&B->gl, NULL);
+            r = skgl_point_mask(B->sk, p, &V->bv.cam, V->gbuf.depth_tex, V->gbuf.color_tex, B->mask.color_tex);
+        }
+        if (r != SK_OK) break;
+        if (k > 0) {
+            const skgl_point_frame_stats *st = skgl_point_stats(p);
+            sms[k - 1] = st->shadow_ms;
+            mms[k - 1] = st->mask_ms;
+        }
+    }
+    if (r != SK_OK || tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, R->mask_px) != 0) {
+        fprintf(stderr, "bench: %s on %s %s failed: %s\n", method, R->scene, V->bv.name, skgl_error_log(B->sk));
+        skgl_point_destroy(B->sk, p);
+        return -1;
+    }
+    out->st = *skgl_point_stats(p);
+    skgl_point_destroy(B->sk, p);
+    out->rr.mask_ms = median(mms, R->reps);
+    out->rr.texels = out->st.texels;
+    out->rr.passes = out->st.passes;
+    score_hard(R->refv, R->mask_px, &out->rr);
+    out->shadow_ms = median(sms, R->reps);
+    snprintf(out->params, sizeof out->params, "resolution=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d",
+             dd.resolution, dd.cull_faces, dd.cull_casters, dd.scissor, dd.select_resolution);
+    write_row(R->csv, method, out->params, R->scene, V->bv.name, &out->rr, out->shadow_ms, B->renderer);
+    return 0;
+}
+
+static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *mask_px) {
+    room_bench R;
+    int v, c;
+    double naive_total[4] = {0, 0, 0, 0};
+    if (room_bench_open(&R, B, "room", 1.0f, repeat, csv, depth, mask_px) != 0) return;
     for (v = 0; v < (int)(sizeof point_views / sizeof point_views[0]); v++) {
         const point_view *pv = &point_views[v];
-        bench_view bv;
-        tb_gl_fbo gbuf;
-        tb_view tv;
-        tb_light L;
+        room_view V;
         sk_vec3 lp = v3(pv->light[0], pv->light[1], pv->light[2]);
-        memset(&bv, 0, sizeof bv);
-        memset(&gbuf, 0, sizeof gbuf);
-        snprintf(bv.name, sizeof bv.name, "%s", pv->name);
-        bv.eye = v3(pv->eye[0], pv->eye[1], pv->eye[2]);
-        bv.target = v3(pv->target[0], pv->target[1], pv->target[2]);
-        finish_view(&bv, &s.bounds);
-        if (tb_gl_fbo_create(&B->gl, &gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0 ||
-            tb_gl_gbuffer_render(&B->gl, &B->gb, &mesh, &gbuf, &bv.view_proj) != 0 ||
-            tb_gl_read_depth(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, depth) != 0 ||
-            tb_gl_read_rgba_float(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) {
-            fprintf(stderr, "bench: room view %s: G-buffer failed\n", pv->name);
-            if (gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &gbuf);
-            continue;
-        }
-        for (i = 0; i < n; i++)
-            for (k = 0; k < 3; k++) nrm[3 * i + k] = rgba[4 * i + k];
-        memset(&tv, 0, sizeof tv);
-        if (!sk_mat4_inverse(bv.view_proj, &tv.inv_view_proj)) { tb_gl_fbo_destroy(&B->gl, &gbuf); continue; }
-        tv.width = BENCH_W;
-        tv.height = BENCH_H;
-        memset(&L, 0, sizeof L);
-        L.type = TB_LIGHT_POINT;
-        L.position = lp;
-        L.range = pv->range;
-        if (tb_reference_trace_exact(ref, &tv, depth, &L, NULL, refv, NULL) != 0) {
-            tb_gl_fbo_destroy(&B->gl, &gbuf);
-            continue;
-        }
+        if (room_view_open(&R, &V, pv->name, pv->eye, pv->target, lp, pv->range) != 0) continue;
         for (c = 0; c < (int)(sizeof point_cfgs / sizeof point_cfgs[0]); c++) {
             const point_cfg *pc = &point_cfgs[c];
             skgl_point_desc d;
-            skgl_point *p = NULL;
-            const skgl_point_frame_stats *st;
-            float sms[BENCH_MAX_REPEAT], mms[BENCH_MAX_REPEAT];
-            run_rec rr;
-            char params[160];
-            sk_result r;
-            int reps = repeat < 1 ? 1 : repeat > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : repeat;
+            room_row w;
             memset(&d, 0, sizeof d);
             d.technique = pc->technique;
-            d.bias = g_bias;
             d.resolution = 512;
             d.range = pv->range;
             d.cull_faces = pc->faces;
             d.cull_casters = pc->casters;
             d.scissor = pc->scissor;
             d.select_resolution = pc->select;
-            d.screen_w = BENCH_W;
-            d.screen_h = BENCH_H;
-            r = skgl_point_create(B->sk, &d, &p);
-            if (r != SK_OK) {
-                fprintf(stderr, "bench: skgl_point_create %s: %s (%s)\n", pc->method, sk_result_string(r),
-                        skgl_error_log(B->sk));
-                continue;
-            }
-            memset(&rr, 0, sizeof rr);
-            for (k = 0; k <= reps; k++) {   /* one warm-up, then the timed ones */
-                r = skgl_point_render(B->sk, p, &bv.cam, &sc, lp);
-                if (r == SK_OK) {
-                    /* the mask starts lit: a scissored pass leaves the rest as it is */
-                    tb_gl_fbo_bind(&B->gl, &B->mask);
-                    B->gl.ClearColor(1, 1, 1, 1);
-                    B->gl.Clear(0x00004000u);
-                    tb_gl_fbo_bind(&B->gl, NULL);
-                    r = skgl_point_mask(B->sk, p, &bv.cam, gbuf.depth_tex, gbuf.color_tex, B->mask.color_tex);
-                }
-                if (r != SK_OK) break;
-                st = skgl_point_stats(p);
-                if (k > 0) { sms[k - 1] = st->shadow_ms; mms[k - 1] = st->mask_ms; }
-            }
-            if (r != SK_OK || tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, mask_px) != 0) {
-                fprintf(stderr, "bench: point %s on %s failed: %s\n", pc->method, pv->name, skgl_error_log(B->sk));
-                skgl_point_destroy(B->sk, p);
-                continue;
-            }
-            st = skgl_point_stats(p);
-            rr.n = 0;
-            rr.mask_ms = median(mms, reps);
-            rr.texels = st->texels;
-            rr.passes = st->passes;
-            score_hard(refv, mask_px, &rr);
-            /* the configuration only: what the culling found this view goes to stderr */
-            snprintf(params, sizeof params, "resolution=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d",
-                     d.resolution, pc->faces, pc->casters, pc->scissor, pc->select);
-            {
-                float sm = median(sms, reps);
-                write_row(csv, pc->method, params, "room", pv->name, &rr, sm, B->renderer);
-                if (c == 0) naive_total[v] = sm + rr.mask_ms;
-                fprintf(stderr, "bench: room %-6s %-10s %s: face %d^2, %d faces and %d casters culled: err %.3f%% "
-                                "(shadow area %.3f%%, edge p95 %.2f px) shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
-                        pv->name, pc->method, params, st->resolution, st->faces_culled, st->casters_culled, rr.err,
-                        rr.hard.area_pct, rr.hard.edge_p95_px, (double)sm, (double)rr.mask_ms,
-                        naive_total[v] > 0 ? (sm + rr.mask_ms) / naive_total[v] : 0.0);
-            }
-            skgl_point_destroy(B->sk, p);
+            if (run_room_row(&R, &V, pc->method, &d, lp, NULL, &w) != 0) continue;
+            if (c == 0) naive_total[v] = w.shadow_ms + w.rr.mask_ms;
+            fprintf(stderr, "bench: room %-6s %-10s %s: face %d^2, %d faces and %d casters culled: err %.3f%% "
+                            "(shadow area %.3f%%, edge p95 %.2f px) shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
+                    pv->name, pc->method, w.params, w.st.resolution, w.st.faces_culled, w.st.casters_culled, w.rr.err,
+                    w.rr.hard.area_pct, w.rr.hard.edge_p95_px, (double)w.shadow_ms, (double)w.rr.mask_ms,
+                    naive_total[v] > 0 ? (w.shadow_ms + w.rr.mask_ms) / naive_total[v] : 0.0);
         }
         fflush(csv);
-        tb_gl_fbo_destroy(&B->gl, &gbuf);
+        room_view_close(&R, &V);
     }
-out:
-    free(refv);
-    tb_reference_destroy(ref);
-    if (mesh.vao) tb_gl_mesh_destroy(&B->gl, &mesh);
-    tb_scene_free(&s);
+    room_bench_close(&R);
 }
 
 /* -------------------------------------------------------- spot lights */
@@ -1633,81 +1700,29 @@ static double spot_angle_of(const sk_mat4 *inv, const float *depth, size_t i, sk
     return acos(c < -1 ? -1 : c > 1 ? 1 : c) * 57.29577951308232;
 }
 
-static void spot_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *rgba, float *mask_px) {
-    tb_scene s;
-    tb_gl_mesh mesh;
-    tb_reference *ref = NULL;
-    draw_user du;
-    skgl_scene sc;
+static void spot_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *mask_px) {
+    room_bench R;
     size_t n = (size_t)BENCH_W * BENCH_H, i;
-    float *refv = (float *)malloc(sizeof(float) * n);
-    int v, c, k;
-    memset(&mesh, 0, sizeof mesh);
-    tb_scene_init(&s);
-    if (!refv || tb_scene_build_room(&s) != 0 || tb_gl_mesh_create(&B->gl, &mesh, &s) != 0 ||
-        !(ref = tb_reference_create(&s))) {
-        fprintf(stderr, "bench: room scene setup failed: spot rows skipped\n");
-        goto out;
-    }
-    du.gl = &B->gl;
-    du.scene = &s;
-    du.mesh = &mesh;
-    sc.draw = point_draw_casters;
-    sc.user = &du;
-    sc.bounds = s.bounds;
+    int v, c;
+    if (room_bench_open(&R, B, "room-spot", 0.0f, repeat, csv, depth, mask_px) != 0) return;
     for (v = 0; v < (int)(sizeof spot_views / sizeof spot_views[0]); v++) {
         const spot_view *pv = &spot_views[v];
-        bench_view bv;
-        tb_gl_fbo gbuf;
-        tb_view tv;
-        tb_light L;
+        room_view V;
         sk_vec3 lp = v3(pv->light[0], pv->light[1], pv->light[2]), dir = v3(pv->dir[0], pv->dir[1], pv->dir[2]);
-        memset(&bv, 0, sizeof bv);
-        memset(&gbuf, 0, sizeof gbuf);
-        snprintf(bv.name, sizeof bv.name, "%s", pv->name);
-        bv.eye = v3(pv->eye[0], pv->eye[1], pv->eye[2]);
-        bv.target = v3(pv->target[0], pv->target[1], pv->target[2]);
-        finish_view(&bv, &s.bounds);
-        if (tb_gl_fbo_create(&B->gl, &gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0 ||
-            tb_gl_gbuffer_render(&B->gl, &B->gb, &mesh, &gbuf, &bv.view_proj) != 0 ||
-            tb_gl_read_depth(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, depth) != 0 ||
-            tb_gl_read_rgba_float(&B->gl, gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) {
-            fprintf(stderr, "bench: room-spot view %s: G-buffer failed\n", pv->name);
-            if (gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &gbuf);
-            continue;
-        }
-        memset(&tv, 0, sizeof tv);
-        if (!sk_mat4_inverse(bv.view_proj, &tv.inv_view_proj)) { tb_gl_fbo_destroy(&B->gl, &gbuf); continue; }
-        tv.width = BENCH_W;
-        tv.height = BENCH_H;
-        memset(&L, 0, sizeof L);
-        L.type = TB_LIGHT_POINT;
-        L.position = lp;
-        L.range = pv->range;
-        if (tb_reference_trace_exact(ref, &tv, depth, &L, NULL, refv, NULL) != 0) {
-            tb_gl_fbo_destroy(&B->gl, &gbuf);
-            continue;
-        }
+        if (room_view_open(&R, &V, pv->name, pv->eye, pv->target, lp, pv->range) != 0) continue;
         /* the spot's reference: the point light's inside the cone, the rest left out */
         for (i = 0; i < n; i++) {
-            double a = spot_angle_of(&tv.inv_view_proj, depth, i, lp, dir);
-            if (!(refv[i] >= 0.0f) || a < 0.0) continue;
-            if (fabs(a - pv->angle) < SPOT_EDGE_DEG) refv[i] = BENCH_VIS_SILHOUETTE;
-            else if (a > pv->angle) refv[i] = TB_VIS_OUT_OF_RANGE;
+            double a = spot_angle_of(&V.tv.inv_view_proj, depth, i, lp, dir);
+            if (!(R.refv[i] >= 0.0f) || a < 0.0) continue;
+            if (fabs(a - pv->angle) < SPOT_EDGE_DEG) R.refv[i] = BENCH_VIS_SILHOUETTE;
+            else if (a > pv->angle) R.refv[i] = TB_VIS_OUT_OF_RANGE;
         }
         for (c = 0; c < (int)(sizeof spot_cfgs / sizeof spot_cfgs[0]); c++) {
             const spot_cfg *pc = &spot_cfgs[c];
             skgl_point_desc d;
-            skgl_point *p = NULL;
-            const skgl_point_frame_stats *st;
-            float sms[BENCH_MAX_REPEAT], mms[BENCH_MAX_REPEAT];
-            run_rec rr;
-            char params[160];
-            sk_result r;
-            int reps = repeat < 1 ? 1 : repeat > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : repeat;
+            room_row w;
             memset(&d, 0, sizeof d);
             d.technique = pc->technique;
-            d.bias = g_bias;
             d.resolution = pc->resolution;
             d.range = pv->range;
             d.spot_angle = pc->spot ? pv->angle : 0.0f;
@@ -1715,64 +1730,17 @@ static void spot_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *
             d.cull_casters = pc->opt;
             d.scissor = pc->opt;
             d.select_resolution = pc->opt;
-            d.screen_w = BENCH_W;
-            d.screen_h = BENCH_H;
-            r = skgl_point_create(B->sk, &d, &p);
-            if (r != SK_OK) {
-                fprintf(stderr, "bench: skgl_point_create %s: %s (%s)\n", pc->method, sk_result_string(r),
-                        skgl_error_log(B->sk));
-                continue;
-            }
-            memset(&rr, 0, sizeof rr);
-            for (k = 0; k <= reps; k++) {   /* one warm-up, then the timed ones */
-                r = pc->spot ? skgl_spot_render(B->sk, p, &bv.cam, &sc, lp, dir)
-                             : skgl_point_render(B->sk, p, &bv.cam, &sc, lp);
-                if (r == SK_OK) {
-                    /* the mask starts unlit: outside a spot's scissor nothing is lit by it */
-                    tb_gl_fbo_bind(&B->gl, &B->mask);
-                    B->gl.ClearColor(0, 0, 0, 0);
-                    B->gl.Clear(0x00004000u);
-                    tb_gl_fbo_bind(&B->gl, NULL);
-                    r = skgl_point_mask(B->sk, p, &bv.cam, gbuf.depth_tex, gbuf.color_tex, B->mask.color_tex);
-                }
-                if (r != SK_OK) break;
-                st = skgl_point_stats(p);
-                if (k > 0) { sms[k - 1] = st->shadow_ms; mms[k - 1] = st->mask_ms; }
-            }
-            if (r != SK_OK || tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, mask_px) != 0) {
-                fprintf(stderr, "bench: %s on room-spot %s failed: %s\n", pc->method, pv->name,
-                        skgl_error_log(B->sk));
-                skgl_point_destroy(B->sk, p);
-                continue;
-            }
-            st = skgl_point_stats(p);
-            rr.n = 0;
-            rr.mask_ms = median(mms, reps);
-            rr.texels = st->texels;
-            rr.passes = st->passes;
-            score_hard(refv, mask_px, &rr);
-            /* the configuration only (the views' cones are spot_views'), so that a chart point is a mean over views */
-            snprintf(params, sizeof params, "resolution=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d",
-                     d.resolution, d.cull_faces, d.cull_casters, d.scissor, d.select_resolution);
-            {
-                float sm = median(sms, reps);
-                write_row(csv, pc->method, params, "room-spot", pv->name, &rr, sm, B->renderer);
-                fprintf(stderr, "bench: room-spot %-6s %-10s %s: side %d, %d faces, %d casters culled: err %.3f%% "
-                                "(shadow area %.3f%% of %llu px, edge p95 %.2f px) shadow %.2f ms mask %.2f ms\n",
-                        pv->name, pc->method, params, st->resolution, st->faces_rendered, st->casters_culled, rr.err,
-                        rr.hard.area_pct, (unsigned long long)rr.hard.shadow, rr.hard.edge_p95_px, (double)sm,
-                        (double)rr.mask_ms);
-            }
-            skgl_point_destroy(B->sk, p);
+            if (run_room_row(&R, &V, pc->method, &d, lp, pc->spot ? &dir : NULL, &w) != 0) continue;
+            fprintf(stderr, "bench: room-spot %-6s %-10s %s: side %d, %d faces, %d casters culled: err %.3f%% "
+                            "(shadow area %.3f%% of %llu px, edge p95 %.2f px) shadow %.2f ms mask %.2f ms\n",
+                    pv->name, pc->method, w.params, w.st.resolution, w.st.faces_rendered, w.st.casters_culled,
+                    w.rr.err, w.rr.hard.area_pct, (unsigned long long)w.rr.hard.shadow, w.rr.hard.edge_p95_px,
+                    (double)w.shadow_ms, (double)w.rr.mask_ms);
         }
         fflush(csv);
-        tb_gl_fbo_destroy(&B->gl, &gbuf);
+        room_view_close(&R, &V);
     }
-out:
-    free(refv);
-    tb_reference_destroy(ref);
-    if (mesh.vao) tb_gl_mesh_destroy(&B->gl, &mesh);
-    tb_scene_free(&s);
+    room_bench_close(&R);
 }
 
 /* The walk-through of Tang et al. 2017's Table 1: the camera moves in `frames`
@@ -2652,8 +2620,8 @@ int main(int argc, char **argv) {
         }
         tb_scene_free(&s);
     }
-    if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, rgba, nrm, mask_px);
-    if (scene_selected(o.p.only, "room-spot") && !o.soft_only) spot_bench(&B, o.repeat, csv, depth, rgba, mask_px);
+    if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, mask_px);
+    if (scene_selected(o.p.only, "room-spot") && !o.soft_only) spot_bench(&B, o.repeat, csv, depth, mask_px);
     if (!o.no_soft) soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
