@@ -1780,8 +1780,8 @@ static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float 
    Newhall 2004's regime: most of a light's range behind walls). Every
    frame shadows all of them as a multi-light renderer does: every light
    rendered, then each light's mask. Views: the testbed's head-height
-   cameras through doorways (tb_interior_view), INTERIOR_VIEWS of them,
-   named v0, v1, ... Each point_cfgs configuration at POINT_RES per face,
+   cameras through doorways (tb_interior_view), the first INTERIOR_VIEWS of
+   them (--quick: the first), named v0, v1, ... Each point_cfgs configuration at POINT_RES per face,
    every light its own map (the bench has no shared-atlas method). A row is
    one view: its error pools the lights' masks against their exact
    references (the misclassified pixels of every light over the shadowed
@@ -1803,7 +1803,7 @@ static void interior_floor(room_bench *R, const room_view *V) {
     R->reps = reps;
 }
 
-static void interior_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *mask_px) {
+static void interior_bench(bench_gl *B, int quick, int repeat, FILE *csv, float *depth, float *mask_px) {
     room_bench R;
     sk_vec3 lp[TB_INTERIOR_LIGHTS];
     float range[TB_INTERIOR_LIGHTS];
@@ -1813,7 +1813,7 @@ static void interior_bench(bench_gl *B, int repeat, FILE *csv, float *depth, flo
     if (room_bench_open(&R, B, "interior", tb_scene_build_interior, TB_INTERIOR_LIGHTS, 1.0f, repeat, csv, depth,
                         mask_px) != 0)
         return;
-    for (v = 0; v < INTERIOR_VIEWS; v++) {
+    for (v = 0; v < (quick ? 1 : INTERIOR_VIEWS); v++) {
         room_view V;
         sk_vec3 e, t;
         float eye[3], target[3];
@@ -2798,7 +2798,7 @@ int main(int argc, char **argv) {
     }
     if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, mask_px);
     if (scene_selected(o.p.only, "room-spot") && !o.soft_only) spot_bench(&B, o.repeat, csv, depth, mask_px);
-    if (scene_selected(o.p.only, "interior") && !o.soft_only) interior_bench(&B, o.repeat, csv, depth, mask_px);
+    if (scene_selected(o.p.only, "interior") && !o.soft_only) interior_bench(&B, o.quick, o.repeat, csv, depth, mask_px);
     if (!o.no_soft) soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;
