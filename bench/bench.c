@@ -41,7 +41,8 @@
                   pssm-fit | standard-fit (desc.fit_to_depth: the splits
                   over the analysed depth range, SDSM; params as the
                   practical pssm / standard row they are compared with) |
-                  cube-naive | cube | vsdct (point lights, "room") |
+                  cube-naive | cube | vsdct (point lights, "room"; all six
+                  lights of "interior" at once) |
                   spot | cube-cone | vsdct-cone (spot lights, "room-spot") |
                   floor (the limit: params say which over-resolved map)
                   (DESIGN.md names)
@@ -75,6 +76,9 @@
                          empty when the reference has one class only
        edge_p95_px       its 95th percentile (same cases)
        covered_pct       = error: the % of covered pixels misclassified
+       (interior rows: every light's pixels pooled, the counts of all the
+       lights' masks against their references; edge_mean_px over all their
+       wrong pixels, edge_p95_px the largest light's)
        soft rows only (tb_metric_penumbra, the penumbra grown by 2 px, a
        Euclidean disc; empty on hard rows, and where the reference frame has
        no pixel of that region):
@@ -153,7 +157,11 @@
      directional light per scene; and the "room" with a point light for the omnidirectional methods (see
      point_bench: cube-naive, cube, vsdct), and again under a spot light,
      "room-spot" (spot_bench: spot against cube-cone and vsdct-cone; its
-     own chart, pareto-room-spot.png; --only room-spot runs it alone).
+     own chart, pareto-room-spot.png; --only room-spot runs it alone);
+     and "interior", a building of six rooms with six point lights all
+     shadowed every frame (interior_bench: the point methods, a row's error
+     pooled over the lights, its shadow_ms their passes summed; its own
+     chart, pareto-interior.png; --only interior runs it alone).
 
    Views (3, derived from the bounds of the non-ground objects, so they work
    for any scene; see bench_common.h make_views): "overview" (the whole content from 35
@@ -656,8 +664,20 @@ typedef struct plot_data {
        where defined, their count, and their texel_over1_pct */
     double floor_sum[BENCH_MAX_SCENES * 4], floor_texel[BENCH_MAX_SCENES * 4];
     int floor_n[BENCH_MAX_SCENES * 4], floor_texel_n[BENCH_MAX_SCENES * 4];
+    char floor_what[BENCH_MAX_SCENES * 4][96];   /* which over-resolved map (floor_describe) */
     char device[512];
 } plot_data;
+
+/* what a floor row's params say the over-resolved map was: the directional
+   floor's "source=..." (floor_runs), or the point lights' cube map
+   (interior_floor, params as a point row's) */
+static void floor_describe(const char *params, char *out, size_t n) {
+    int res = 0;
+    if (strncmp(params, "source=", 7) == 0 || sscanf(params, "resolution=%d", &res) != 1)
+        snprintf(out, n, "the finer of RMSM 65536^2 and a standard 16384^2 map per view");
+    else
+        snprintf(out, n, "a cube map of %d^2 per face on every light, per view", res);
+}
 
 static int cmp_pt(const void *a, const void *b) {
     const plot_pt *p = *(const plot_pt *const *)a, *q = *(const plot_pt *const *)b;
@@ -787,6 +807,7 @@ static int plot_read(const char *csv, plot_data *d) {
         }
         snprintf(d->device, sizeof d->device, "%s", fld[13]);
         if (strcmp(fld[0], BENCH_FLOOR) == 0) {   /* the limit: a line on the chart, not a series */
+            if (!d->floor_what[si][0]) floor_describe(fld[1], d->floor_what[si], sizeof d->floor_what[si]);
             if (*fld[BENCH_COL_SHADOW_AREA]) {
                 d->floor_sum[si] += atof(fld[BENCH_COL_SHADOW_AREA]);
                 d->floor_n[si]++;
@@ -846,9 +867,9 @@ static double pt_texel(const plot_pt *p, int k) { return p->texel_n ? p->texel_s
 static void write_limit_table(FILE *t, const plot_data *d, int si, plot_pt *const *sel, int nsel, double floor) {
     int k;
     fprintf(t, "scene %s: floor %s", d->scenes[si], floor >= 0 ? "" : "- (no floor rows)");
-    if (floor >= 0)
-        fprintf(t, "%.3f%% (the finer of RMSM 65536^2 and a standard 16384^2 map per view), its texels over 1 px "
-                   "%.1f%%", floor, d->floor_texel_n[si] ? d->floor_texel[si] / d->floor_texel_n[si] : -1.0);
+    if (floor >= 0) fprintf(t, "%.3f%% (%s)", floor, d->floor_what[si]);
+    if (floor >= 0 && d->floor_texel_n[si])
+        fprintf(t, ", its texels over 1 px %.1f%%", d->floor_texel[si] / d->floor_texel_n[si]);
     fprintf(t, "\n  %-16s %-52s %10s %9s %9s %8s %8s %8s %8s %s\n", "method", "params", "shadow_ms", "error%",
             "-floor", "texel>1", ">2px", ">4px", "median", "front");
     for (k = 0; k < nsel; k++) {
@@ -1054,8 +1075,10 @@ static int plot_scene(const bench_opts *o, plot_data *d, int si, int repeat, FIL
     for (k = 0; k < nsel && strcmp(sel[k]->method, "auto") != 0; k++) {}
     fprintf(g, "has_auto = %d\n", k < nsel);
     fprintf(g, "tmin = %g\ntmax = %g\nemin = %g\nemax = %g\n", tmin, tmax, emin, emax);
-    fprintf(g, "floor = %g\nfloor_texel = %g\n", floor,
+    fprintf(g, "floor = %g\nfloor_texel = %g\nfloor_what = ", floor,
             d->floor_texel_n[si] ? d->floor_texel[si] / d->floor_texel_n[si] : -1.0);
+    gp_string(g, d->floor_what[si]);
+    fputc('\n', g);
     fclose(g);
     snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", path, o->p.gp);
     if (system(cmd) != 0) {
@@ -1437,6 +1460,9 @@ static const point_view point_views[] = {
     {"outside", {0.5f, 2.0f, 4.8f}, {2.5f, 1.2f, -5.0f}, {-4.2f, 1.5f, -1.0f}, 2.0f},
 };
 
+/* the face side of the room's and the interior's point-light rows */
+#define POINT_RES 512
+
 static void point_draw_casters(void *user, const skgl_draw_info *info) {
     const draw_user *u = (const draw_user *)user;
     unsigned i;
@@ -1446,13 +1472,18 @@ static void point_draw_casters(void *user, const skgl_draw_info *info) {
     }
 }
 
-/* What the room's point- and spot-light rows share: the scene, its mesh
-   and exact reference, the casters drawn through point_draw_casters, the
-   mask's value before each pass, and the reference visibility of the view
-   being scored (refv). */
+/* the most lights a room_bench shadows at once (the interior's) */
+#define ROOM_MAX_LIGHTS TB_INTERIOR_LIGHTS
+
+/* What the room's point- and spot-light rows and the interior's share: the
+   scene, its mesh and exact reference, the casters drawn through
+   point_draw_casters, the mask's value before each pass, and the reference
+   visibility of the view being scored (refv: nlights images of BENCH_W x
+   BENCH_H, light l's at refv + l * BENCH_W * BENCH_H). */
 typedef struct room_bench {
     bench_gl *B;
-    const char *scene;     /* the rows' scene column: "room", "room-spot" */
+    const char *scene;     /* the rows' scene column: "room", "room-spot", "interior" */
+    int nlights;           /* lights shadowed every frame, 1 to ROOM_MAX_LIGHTS */
     float mask_clear;      /* 1 (the point rows): a scissored pass leaves the rest lit; 0 (the spot
                               rows): nothing outside a spot's scissor is lit by it */
     int reps;              /* timed passes after the warm-up */
@@ -1473,24 +1504,26 @@ static void room_bench_close(room_bench *R) {
     tb_scene_free(&R->s);
 }
 
-/* The room for the rows of `scene`; depth and mask_px are the caller's
-   scratch images. 0 ok (room_bench_close frees it); -1: the rows are said
-   skipped on stderr and nothing is held. */
-static int room_bench_open(room_bench *R, bench_gl *B, const char *scene, float mask_clear, int repeat, FILE *csv,
-                           float *depth, float *mask_px) {
+/* The scene `build` makes, for the rows of `scene` with nlights lights
+   (1 to ROOM_MAX_LIGHTS); depth and mask_px are the caller's scratch
+   images. 0 ok (room_bench_close frees it); -1: the rows are said skipped
+   on stderr and nothing is held. */
+static int room_bench_open(room_bench *R, bench_gl *B, const char *scene, int (*build)(tb_scene *), int nlights,
+                           float mask_clear, int repeat, FILE *csv, float *depth, float *mask_px) {
     memset(R, 0, sizeof *R);
     R->B = B;
     R->scene = scene;
+    R->nlights = nlights < 1 ? 1 : nlights > ROOM_MAX_LIGHTS ? ROOM_MAX_LIGHTS : nlights;
     R->mask_clear = mask_clear;
     R->reps = repeat < 1 ? 1 : repeat > BENCH_MAX_REPEAT ? BENCH_MAX_REPEAT : repeat;
     R->csv = csv;
     R->depth = depth;
     R->mask_px = mask_px;
-    R->refv = (float *)malloc(sizeof(float) * BENCH_W * BENCH_H);
+    R->refv = (float *)malloc(sizeof(float) * BENCH_W * BENCH_H * (size_t)R->nlights);
     tb_scene_init(&R->s);
-    if (!R->refv || tb_scene_build_room(&R->s) != 0 || tb_gl_mesh_create(&B->gl, &R->mesh, &R->s) != 0 ||
+    if (!R->refv || build(&R->s) != 0 || tb_gl_mesh_create(&B->gl, &R->mesh, &R->s) != 0 ||
         !(R->ref = tb_reference_create(&R->s))) {
-        fprintf(stderr, "bench: room scene setup failed: %s rows skipped\n", scene);
+        fprintf(stderr, "bench: %s scene setup failed: its rows skipped\n", scene);
         room_bench_close(R);
         return -1;
     }
@@ -1503,21 +1536,24 @@ static int room_bench_open(room_bench *R, bench_gl *B, const char *scene, float 
     return 0;
 }
 
-/* One view of the room: its camera, its G-buffer (its depth in R->depth)
-   and the view the reference traced. */
+/* One view of the room: its camera, its G-buffer (its depth in R->depth),
+   the view the reference traced and the lights it traced. */
 typedef struct room_view {
     bench_view bv;
     tb_gl_fbo gbuf;
     tb_view tv;
+    sk_vec3 lp[ROOM_MAX_LIGHTS];
+    float range[ROOM_MAX_LIGHTS];
 } room_view;
 
 /* The view `name` from eye to target, and in R->refv the exact visibility
-   of a point light at lp reaching `range`. 0 ok (room_view_close frees
-   it); -1: the view is skipped and nothing is held. */
+   of R->nlights point lights, light l at lp[l] reaching range[l]. 0 ok
+   (room_view_close frees it); -1: the view is skipped and nothing is held. */
 static int room_view_open(room_bench *R, room_view *V, const char *name, const float eye[3], const float target[3],
-                          sk_vec3 lp, float range) {
+                          const sk_vec3 *lp, const float *range) {
     bench_gl *B = R->B;
     tb_light L;
+    int l, bad;
     memset(V, 0, sizeof *V);
     snprintf(V->bv.name, sizeof V->bv.name, "%s", name);
     V->bv.eye = v3(eye[0], eye[1], eye[2]);
@@ -1532,12 +1568,16 @@ static int room_view_open(room_bench *R, room_view *V, const char *name, const f
     }
     V->tv.width = BENCH_W;
     V->tv.height = BENCH_H;
-    memset(&L, 0, sizeof L);
-    L.type = TB_LIGHT_POINT;
-    L.position = lp;
-    L.range = range;
-    if (!sk_mat4_inverse(V->bv.view_proj, &V->tv.inv_view_proj) ||
-        tb_reference_trace_exact(R->ref, &V->tv, R->depth, &L, NULL, R->refv, NULL) != 0) {
+    bad = !sk_mat4_inverse(V->bv.view_proj, &V->tv.inv_view_proj);
+    for (l = 0; l < R->nlights && !bad; l++) {
+        memset(&L, 0, sizeof L);
+        L.type = TB_LIGHT_POINT;
+        L.position = V->lp[l] = lp[l];
+        L.range = V->range[l] = range[l];
+        bad = tb_reference_trace_exact(R->ref, &V->tv, R->depth, &L, NULL, R->refv + (size_t)l * BENCH_W * BENCH_H,
+                                       NULL) != 0;
+    }
+    if (bad) {
         tb_gl_fbo_destroy(&B->gl, &V->gbuf);
         return -1;
     }
@@ -1548,101 +1588,243 @@ static void room_view_close(room_bench *R, room_view *V) { tb_gl_fbo_destroy(&R-
 
 /* one room row as run_room_row measured it */
 typedef struct room_row {
-    run_rec rr;                    /* the mask's median time, texels, passes and scores against R->refv */
-    float shadow_ms;               /* the median shadow time */
-    skgl_point_frame_stats st;     /* the last frame's */
+    run_rec rr;                    /* the masks' median time, texels, passes and scores against R->refv
+                                      (summed / pooled over the lights) */
+    float shadow_ms;               /* the median shadow time (the lights' face passes summed) */
+    skgl_point_frame_stats st;     /* the last frame's; with several lights the counts summed over
+                                      them and the resolution the largest */
     char params[160];              /* the configuration only, so that a chart point is a mean over views:
                                       what the culling found goes to stderr, a spot's cone is its view's */
 } room_row;
 
-/* A light of desc d (the technique, resolution, range, spot angle and
-   optimizations; the bias and the screen set here) at lp over view V:
-   R->reps + 1 frames, the first a warm-up, each skgl_spot_render along
-   *spot_dir (or skgl_point_render without one) and the mask of V's G-buffer
-   into B->mask cleared to R->mask_clear; then the mask scored and written
-   as a row of `method` to R->csv. 0 ok; -1 said on stderr, no row. */
-static int run_room_row(room_bench *R, const room_view *V, const char *method, const skgl_point_desc *d, sk_vec3 lp,
+/* light `one`'s hard scores added into `sum`, which holds the lights
+   before it: the pixel counts summed and the percentages taken over the
+   sums (test_gl_interior's pooled error), the edge mean weighted by the
+   lights' edge pixels, the edge p95 the largest light's */
+static void pool_hard(run_rec *sum, const run_rec *one) {
+    tb_shadow_error *s = &sum->hard;
+    const tb_shadow_error *o = &one->hard;
+    double edge = s->edge_mean_px * (double)s->edge_count + o->edge_mean_px * (double)o->edge_count;
+    sum->excluded += one->excluded;
+    if (!s->ok || !o->ok) {
+        memset(s, 0, sizeof *s);
+        sum->err = 0.0;
+        return;
+    }
+    s->covered += o->covered;
+    s->shadow += o->shadow;
+    s->lit += o->lit;
+    s->wrong += o->wrong;
+    s->false_shadow += o->false_shadow;
+    s->false_light += o->false_light;
+    s->invalid += o->invalid;
+    s->edge_count += o->edge_count;
+    s->edge_mean_px = s->edge_count ? edge / (double)s->edge_count : 0.0;
+    if (o->edge_p95_px > s->edge_p95_px) s->edge_p95_px = o->edge_p95_px;
+    s->area_pct = s->shadow ? 100.0 * (double)s->wrong / (double)s->shadow : 0.0;
+    s->false_shadow_pct = s->shadow ? 100.0 * (double)s->false_shadow / (double)s->shadow : 0.0;
+    s->false_light_pct = s->shadow ? 100.0 * (double)s->false_light / (double)s->shadow : 0.0;
+    s->covered_pct = s->covered ? 100.0 * (double)s->wrong / (double)s->covered : 0.0;
+    sum->err = s->covered_pct;
+}
+
+/* light l's stats of the frame added into *sum (light 0's copied) */
+static void sum_point_stats(skgl_point_frame_stats *sum, const skgl_point_frame_stats *st, int l) {
+    if (l == 0) {
+        *sum = *st;
+        return;
+    }
+    sum->shadow_ms += st->shadow_ms;
+    sum->mask_ms += st->mask_ms;
+    sum->texels += st->texels;
+    sum->passes += st->passes;
+    if (st->resolution > sum->resolution) sum->resolution = st->resolution;
+    sum->faces_rendered += st->faces_rendered;
+    sum->faces_culled += st->faces_culled;
+    sum->casters_drawn += st->casters_drawn;
+    sum->casters_culled += st->casters_culled;
+}
+
+/* Light l's mask of V's G-buffer into B->mask cleared to R->mask_clear;
+   on the scored frame read back and its scores pooled into out->rr */
+static sk_result room_light_mask(room_bench *R, const room_view *V, skgl_point *p, int l, int scored, room_row *out) {
+    bench_gl *B = R->B;
+    sk_result r;
+    tb_gl_fbo_bind(&B->gl, &B->mask);
+    B->gl.ClearColor(R->mask_clear, R->mask_clear, R->mask_clear, R->mask_clear);
+    B->gl.Clear(0x00004000u);
+    tb_gl_fbo_bind(&B->gl, NULL);
+    r = skgl_point_mask(B->sk, p, &V->bv.cam, V->gbuf.depth_tex, V->gbuf.color_tex, B->mask.color_tex);
+    if (r != SK_OK || !scored) return r;
+    if (tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, R->mask_px) != 0) return SK_ERR_GL;
+    if (l == 0) {
+        score_hard(R->refv, R->mask_px, &out->rr);
+    } else {
+        run_rec one;
+        memset(&one, 0, sizeof one);
+        score_hard(R->refv + (size_t)l * BENCH_W * BENCH_H, R->mask_px, &one);
+        pool_hard(&out->rr, &one);
+    }
+    return SK_OK;
+}
+
+/* R->nlights lights of desc d (the technique, resolution, spot angle and
+   optimizations; each light's range V's, the bias and the screen set
+   here), light l at V->lp[l], over view V: R->reps + 1 frames, the first a
+   warm-up, each rendering every light (skgl_spot_render along *spot_dir,
+   or skgl_point_render without one) before each light's mask
+   (room_light_mask); the last frame's masks scored against their
+   references, pooled, and written as a row of `method` to R->csv, its
+   shadow_ms the median over the timed frames of the lights' face passes
+   summed. 0 ok; -1 said on stderr, no row. */
+static int run_room_row(room_bench *R, const room_view *V, const char *method, const skgl_point_desc *d,
                         const sk_vec3 *spot_dir, room_row *out) {
     bench_gl *B = R->B;
-    skgl_point_desc dd = *d;
-    skgl_point *p = NULL;
+    skgl_point *p[ROOM_MAX_LIGHTS];
     float sms[BENCH_MAX_REPEAT], mms[BENCH_MAX_REPEAT];
-    sk_result r;
-    int k;
-    dd.bias = g_bias;
-    dd.screen_w = BENCH_W;
-    dd.screen_h = BENCH_H;
-    r = skgl_point_create(B->sk, &dd, &p);
+    sk_result r = SK_OK;
+    int k, l, made = 0;
+    for (l = 0; l < R->nlights && r == SK_OK; l++) {
+        skgl_point_desc dd = *d;
+        dd.range = V->range[l];
+        dd.bias = g_bias;
+        dd.screen_w = BENCH_W;
+        dd.screen_h = BENCH_H;
+        p[l] = NULL;
+        r = skgl_point_create(B->sk, &dd, &p[l]);
+        made += r == SK_OK;
+    }
     if (r != SK_OK) {
         fprintf(stderr, "bench: skgl_point_create %s: %s (%s)\n", method, sk_result_string(r), skgl_error_log(B->sk));
+        for (l = 0; l < made; l++) skgl_point_destroy(B->sk, p[l]);
         return -1;
     }
     memset(&out->rr, 0, sizeof out->rr);
-    for (k = 0; k <= R->reps; k++) {   /* one warm-up, then the timed ones */
-        r = spot_dir ? skgl_spot_render(B->sk, p, &V->bv.cam, &R->sc, lp, *spot_dir)
-                     : skgl_point_render(B->sk, p, &V->bv.cam, &R->sc, lp);
-        if (r == SK_OK) {
-            tb_gl_fbo_bind(&B->gl, &B->mask);
-            B->gl.ClearColor(R->mask_clear, R->mask_clear, R->mask_clear, R->mask_clear);
-            B->gl.Clear(0x00004000u);
-            tb_gl_fbo_bind(&B->gl, NULL);
-            r = skgl_point_mask(B->sk, p, &V->bv.cam, V->gbuf.depth_tex, V->gbuf.color_tex, B->mask.color_tex);
+    for (k = 0; k <= R->reps && r == SK_OK; k++) {   /* one warm-up, then the timed ones */
+        for (l = 0; l < R->nlights && r == SK_OK; l++)
+            r = spot_dir ? skgl_spot_render(B->sk, p[l], &V->bv.cam, &R->sc, V->lp[l], *spot_dir)
+                         : skgl_point_render(B->sk, p[l], &V->bv.cam, &R->sc, V->lp[l]);
+        for (l = 0; l < R->nlights && r == SK_OK; l++) {
+            r = room_light_mask(R, V, p[l], l, k == R->reps, out);
+            if (r == SK_OK) sum_point_stats(&out->st, skgl_point_stats(p[l]), l);
         }
-        if (r != SK_OK) break;
-        if (k > 0) {
-            const skgl_point_frame_stats *st = skgl_point_stats(p);
-            sms[k - 1] = st->shadow_ms;
-            mms[k - 1] = st->mask_ms;
+        if (r == SK_OK && k > 0) {
+            sms[k - 1] = out->st.shadow_ms;
+            mms[k - 1] = out->st.mask_ms;
         }
     }
-    if (r != SK_OK || tb_gl_read_red(&B->gl, B->mask.fbo, BENCH_W, BENCH_H, R->mask_px) != 0) {
+    for (l = 0; l < R->nlights; l++) skgl_point_destroy(B->sk, p[l]);
+    if (r != SK_OK) {
         fprintf(stderr, "bench: %s on %s %s failed: %s\n", method, R->scene, V->bv.name, skgl_error_log(B->sk));
-        skgl_point_destroy(B->sk, p);
         return -1;
     }
-    out->st = *skgl_point_stats(p);
-    skgl_point_destroy(B->sk, p);
     out->rr.mask_ms = median(mms, R->reps);
     out->rr.texels = out->st.texels;
     out->rr.passes = out->st.passes;
-    score_hard(R->refv, R->mask_px, &out->rr);
     out->shadow_ms = median(sms, R->reps);
     snprintf(out->params, sizeof out->params, "resolution=%d;pcf=1;faces=%d;casters=%d;scissor=%d;select=%d",
-             dd.resolution, dd.cull_faces, dd.cull_casters, dd.scissor, dd.select_resolution);
+             d->resolution, d->cull_faces, d->cull_casters, d->scissor, d->select_resolution);
     write_row(R->csv, method, out->params, R->scene, V->bv.name, &out->rr, out->shadow_ms, B->renderer);
     return 0;
 }
 
+/* the desc of a point light of technique t at res per face with King and
+   Newhall's optimizations as given (the rest run_room_row sets) */
+static skgl_point_desc point_desc(skgl_point_technique t, int res, int faces, int casters, int scissor, int select) {
+    const skgl_point_desc d = {.technique = t, .resolution = res, .cull_faces = faces, .cull_casters = casters,
+                               .scissor = scissor, .select_resolution = select};
+    return d;
+}
+
+/* Every configuration of point_cfgs at `resolution` per face over view V
+   of R, a row each; stderr says what culling and selection did and the
+   time against the naive cube map's (the first configuration). */
+static void run_point_cfgs(room_bench *R, const room_view *V, int resolution) {
+    double naive_total = 0.0;
+    int c;
+    for (c = 0; c < (int)(sizeof point_cfgs / sizeof point_cfgs[0]); c++) {
+        const point_cfg *pc = &point_cfgs[c];
+        skgl_point_desc d = point_desc(pc->technique, resolution, pc->faces, pc->casters, pc->scissor, pc->select);
+        room_row w;
+        if (run_room_row(R, V, pc->method, &d, NULL, &w) != 0) continue;
+        if (c == 0) naive_total = w.shadow_ms + w.rr.mask_ms;
+        fprintf(stderr, "bench: %s %-6s %-10s %s: face %d^2, %d faces rendered, %d culled, %d casters culled: err "
+                        "%.3f%% (shadow area %.3f%%, edge p95 %.2f px) shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
+                R->scene, V->bv.name, pc->method, w.params, w.st.resolution, w.st.faces_rendered, w.st.faces_culled,
+                w.st.casters_culled, w.rr.err, w.rr.hard.area_pct, w.rr.hard.edge_p95_px, (double)w.shadow_ms,
+                (double)w.rr.mask_ms, naive_total > 0 ? (w.shadow_ms + w.rr.mask_ms) / naive_total : 0.0);
+    }
+    fflush(R->csv);
+}
+
 static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *mask_px) {
     room_bench R;
-    int v, c;
-    double naive_total[4] = {0, 0, 0, 0};
-    if (room_bench_open(&R, B, "room", 1.0f, repeat, csv, depth, mask_px) != 0) return;
+    int v;
+    if (room_bench_open(&R, B, "room", tb_scene_build_room, 1, 1.0f, repeat, csv, depth, mask_px) != 0) return;
     for (v = 0; v < (int)(sizeof point_views / sizeof point_views[0]); v++) {
         const point_view *pv = &point_views[v];
         room_view V;
         sk_vec3 lp = v3(pv->light[0], pv->light[1], pv->light[2]);
-        if (room_view_open(&R, &V, pv->name, pv->eye, pv->target, lp, pv->range) != 0) continue;
-        for (c = 0; c < (int)(sizeof point_cfgs / sizeof point_cfgs[0]); c++) {
-            const point_cfg *pc = &point_cfgs[c];
-            skgl_point_desc d;
-            room_row w;
-            memset(&d, 0, sizeof d);
-            d.technique = pc->technique;
-            d.resolution = 512;
-            d.range = pv->range;
-            d.cull_faces = pc->faces;
-            d.cull_casters = pc->casters;
-            d.scissor = pc->scissor;
-            d.select_resolution = pc->select;
-            if (run_room_row(&R, &V, pc->method, &d, lp, NULL, &w) != 0) continue;
-            if (c == 0) naive_total[v] = w.shadow_ms + w.rr.mask_ms;
-            fprintf(stderr, "bench: room %-6s %-10s %s: face %d^2, %d faces and %d casters culled: err %.3f%% "
-                            "(shadow area %.3f%%, edge p95 %.2f px) shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
-                    pv->name, pc->method, w.params, w.st.resolution, w.st.faces_culled, w.st.casters_culled, w.rr.err,
-                    w.rr.hard.area_pct, w.rr.hard.edge_p95_px, (double)w.shadow_ms, (double)w.rr.mask_ms,
-                    naive_total[v] > 0 ? (w.shadow_ms + w.rr.mask_ms) / naive_total[v] : 0.0);
-        }
+        if (room_view_open(&R, &V, pv->name, pv->eye, pv->target, &lp, &pv->range) != 0) continue;
+        run_point_cfgs(&R, &V, POINT_RES);
+        room_view_close(&R, &V);
+    }
+    room_bench_close(&R);
+}
+
+/* ------------------------------------------------------------ interior */
+/* The interior (tb_scene_build_interior; scene "interior" in bench.csv,
+   its own chart, pareto-interior.png; --only interior runs it alone): six
+   rooms and a corridor, TB_INTERIOR_LIGHTS point lights, one a room, each
+   reaching through its doors into the corridor and other rooms (King and
+   Newhall 2004's regime: most of a light's range behind walls). Every
+   frame shadows all of them as a multi-light renderer does: every light
+   rendered, then each light's mask. Views: the testbed's head-height
+   cameras through doorways (tb_interior_view), the first INTERIOR_VIEWS of
+   them (--quick: the first), named v0, v1, ... Each point_cfgs configuration at POINT_RES per face,
+   every light its own map (the bench has no shared-atlas method). A row is
+   one view: its error pools the lights' masks against their exact
+   references (the misclassified pixels of every light over the shadowed
+   ones of every light, as test_gl_interior scores), shadow_ms sums the
+   lights' face passes, texels and passes sum over the lights. The floor
+   row of a view: the naive cube map at INTERIOR_FLOOR_RES per face on
+   every light (the limit line of the chart). */
+#define INTERIOR_VIEWS 3
+#define INTERIOR_FLOOR_RES 2048
+
+static void interior_floor(room_bench *R, const room_view *V) {
+    skgl_point_desc d = point_desc(SKGL_POINT_CUBE, INTERIOR_FLOOR_RES, 0, 0, 0, 0);
+    room_row w;
+    int reps = R->reps;
+    R->reps = 1;   /* a limit, not a timing: one timed frame after the warm-up */
+    if (run_room_row(R, V, BENCH_FLOOR, &d, NULL, &w) == 0)
+        fprintf(stderr, "bench: %s %-6s floor (cube %d^2, every light): err %.3f%% (shadow area %.3f%%)\n", R->scene,
+                V->bv.name, INTERIOR_FLOOR_RES, w.rr.err, w.rr.hard.area_pct);
+    R->reps = reps;
+}
+
+static void interior_bench(bench_gl *B, int quick, int repeat, FILE *csv, float *depth, float *mask_px) {
+    room_bench R;
+    sk_vec3 lp[TB_INTERIOR_LIGHTS];
+    float range[TB_INTERIOR_LIGHTS];
+    int v, l;
+    for (l = 0; l < TB_INTERIOR_LIGHTS; l++)
+        if (tb_interior_light(l, &lp[l], &range[l]) != 0) return;
+    if (room_bench_open(&R, B, "interior", tb_scene_build_interior, TB_INTERIOR_LIGHTS, 1.0f, repeat, csv, depth,
+                        mask_px) != 0)
+        return;
+    for (v = 0; v < (quick ? 1 : INTERIOR_VIEWS); v++) {
+        room_view V;
+        sk_vec3 e, t;
+        float eye[3], target[3];
+        char name[16];
+        if (tb_interior_view(v, &e, &t) != 0) continue;
+        eye[0] = e.x, eye[1] = e.y, eye[2] = e.z;
+        target[0] = t.x, target[1] = t.y, target[2] = t.z;
+        snprintf(name, sizeof name, "v%d", v);
+        if (room_view_open(&R, &V, name, eye, target, lp, range) != 0) continue;
+        run_point_cfgs(&R, &V, POINT_RES);
+        interior_floor(&R, &V);
         fflush(csv);
         room_view_close(&R, &V);
     }
@@ -1704,12 +1886,12 @@ static void spot_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *
     room_bench R;
     size_t n = (size_t)BENCH_W * BENCH_H, i;
     int v, c;
-    if (room_bench_open(&R, B, "room-spot", 0.0f, repeat, csv, depth, mask_px) != 0) return;
+    if (room_bench_open(&R, B, "room-spot", tb_scene_build_room, 1, 0.0f, repeat, csv, depth, mask_px) != 0) return;
     for (v = 0; v < (int)(sizeof spot_views / sizeof spot_views[0]); v++) {
         const spot_view *pv = &spot_views[v];
         room_view V;
         sk_vec3 lp = v3(pv->light[0], pv->light[1], pv->light[2]), dir = v3(pv->dir[0], pv->dir[1], pv->dir[2]);
-        if (room_view_open(&R, &V, pv->name, pv->eye, pv->target, lp, pv->range) != 0) continue;
+        if (room_view_open(&R, &V, pv->name, pv->eye, pv->target, &lp, &pv->range) != 0) continue;
         /* the spot's reference: the point light's inside the cone, the rest left out */
         for (i = 0; i < n; i++) {
             double a = spot_angle_of(&V.tv.inv_view_proj, depth, i, lp, dir);
@@ -1719,18 +1901,11 @@ static void spot_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *
         }
         for (c = 0; c < (int)(sizeof spot_cfgs / sizeof spot_cfgs[0]); c++) {
             const spot_cfg *pc = &spot_cfgs[c];
-            skgl_point_desc d;
+            skgl_point_desc d =
+                point_desc(pc->technique, pc->resolution, pc->opt && !pc->spot, pc->opt, pc->opt, pc->opt);
             room_row w;
-            memset(&d, 0, sizeof d);
-            d.technique = pc->technique;
-            d.resolution = pc->resolution;
-            d.range = pv->range;
             d.spot_angle = pc->spot ? pv->angle : 0.0f;
-            d.cull_faces = pc->opt && !pc->spot;
-            d.cull_casters = pc->opt;
-            d.scissor = pc->opt;
-            d.select_resolution = pc->opt;
-            if (run_room_row(&R, &V, pc->method, &d, lp, pc->spot ? &dir : NULL, &w) != 0) continue;
+            if (run_room_row(&R, &V, pc->method, &d, pc->spot ? &dir : NULL, &w) != 0) continue;
             fprintf(stderr, "bench: room-spot %-6s %-10s %s: side %d, %d faces, %d casters culled: err %.3f%% "
                             "(shadow area %.3f%% of %llu px, edge p95 %.2f px) shadow %.2f ms mask %.2f ms\n",
                     pv->name, pc->method, w.params, w.st.resolution, w.st.faces_rendered, w.st.casters_culled,
@@ -2314,7 +2489,7 @@ int main(int argc, char **argv) {
         ndefs = bench_scenes("bench", BENCH_IN_SWEEP, o.p.scenes_dir, o.p.only, defs, BENCH_MAX_SCENES, &shared);
         if (o.soft_only) ndefs = 0;
         if (ndefs == 0 && !scene_selected(o.p.only, "room") && !scene_selected(o.p.only, "room-spot") &&
-            !o.soft_only) {
+            !scene_selected(o.p.only, "interior") && !o.soft_only) {
             fprintf(stderr, "bench: no scene selected (--only %s)\n", o.p.only ? o.p.only : "");
             return 2;
         }
@@ -2366,9 +2541,10 @@ int main(int argc, char **argv) {
     snprintf(path, sizeof path, "%.900s/bench-data", o.p.out_dir);
     mkdir_p(path);
     /* charts of an earlier sweep would no longer match bench.csv */
-    for (i = 0; i <= bench_scene_count; i++) {
+    for (i = 0; i < bench_scene_count + 3; i++) {
+        static const char *const point_scenes[3] = {"room", "room-spot", "interior"};
         snprintf(path, sizeof path, "%.900s/pareto-%s.png", o.p.out_dir,
-                 i < bench_scene_count ? bench_scene_table[i].name : "room");
+                 i < bench_scene_count ? bench_scene_table[i].name : point_scenes[i - bench_scene_count]);
         remove(path);
     }
     snprintf(path, sizeof path, "%s/bench.csv", o.p.out_dir);
@@ -2622,6 +2798,7 @@ int main(int argc, char **argv) {
     }
     if (scene_selected(o.p.only, "room") && !o.soft_only) point_bench(&B, o.repeat, csv, depth, mask_px);
     if (scene_selected(o.p.only, "room-spot") && !o.soft_only) spot_bench(&B, o.repeat, csv, depth, mask_px);
+    if (scene_selected(o.p.only, "interior") && !o.soft_only) interior_bench(&B, o.quick, o.repeat, csv, depth, mask_px);
     if (!o.no_soft) soft_bench(&B, &o, csv, depth, rgba, nrm, mask_px);
     fclose(csv);
     csv = NULL;

@@ -9,7 +9,8 @@
 # outfile, methods (space-separated), nviews, repeat, logy, width, height,
 # tmin, tmax, emin, emax, soft (1: area-light rows), floor (the mean
 # error of the floor rows, an over-resolved map per view; -1: none),
-# floor_texel (their mean share of texels over 1 px), has_auto (1: the
+# floor_texel (their mean share of texels over 1 px; -1: none), floor_what
+# (which over-resolved map the floor rows used), has_auto (1: the
 # chart has SKGL_AUTO rows: drawn as large black stars, labelled from
 # <scene>.autolab.dat with their time over the front's at their error).
 # The error (y) is bench.csv's shadow_area_pct on hard-shadow charts: wrong
@@ -73,8 +74,9 @@ if (!soft) {
 if (floor >= 0) {
     set arrow 90 from graph 0, first floor to graph 1, first floor nohead lw 2 dt 4 lc rgb '#b00000' front
     if (!exists("floor_texel")) { floor_texel = -1 }
-    set label 90 sprintf("floor %.3g%%: the finer of RMSM 65536^2 and a 16384^2 map per view (texel > 1 px on %.0f%%)", \
-                         floor, floor_texel) \
+    if (!exists("floor_what")) { floor_what = "the finer of RMSM 65536^2 and a 16384^2 map per view" }
+    set label 90 (floor_texel >= 0 ? sprintf("floor %.3g%%: %s (texel > 1 px on %.0f%%)", floor, floor_what, floor_texel) \
+                                   : sprintf("floor %.3g%%: %s", floor, floor_what)) \
         at graph 0.01, first floor offset 0,0.7 left font 'DejaVu Sans,10' tc rgb '#b00000' front
 }
 

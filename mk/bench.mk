@@ -11,6 +11,11 @@
 #                     by this bench: an older CSV without the texel and band columns
 #                     is refused)
 # Both sweeps write the same files: the last one run is what out/ holds.
+# The point-light scenes run after the directional ones: "room" (one light),
+# "room-spot" and "interior" (six point lights shadowed every frame, 3 views,
+# about 5 minutes on 2 cores under llvmpipe, bench-demo 1 view;
+# out/pareto-interior.png;
+# make bench BENCH_ARGS="--only interior" runs it alone).
 # bench.csv: DESIGN.md's 14 columns, then (appended) the hard-shadow scores
 # shadow_area_pct,false_shadow_pct,false_light_pct,edge_mean_px,edge_p95_px,
 # covered_pct, the soft ones penumbra_mae,penumbra_max,umbra_mae,lit_mae,
