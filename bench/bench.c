@@ -1739,22 +1739,29 @@ static skgl_point_desc point_desc(skgl_point_technique t, int res, int faces, in
 /* Every configuration of point_cfgs at `resolution` per face over view V
    of R, a row each; stderr says what culling and selection did and the
    time against the naive cube map's (the first configuration). */
-static void run_point_cfgs(room_bench *R, const room_view *V, int resolution) {
+/* point_cfgs[first..last] at face side `resolution` */
+static void run_point_cfgs_range(room_bench *R, const room_view *V, int resolution, int first, int last) {
     double naive_total = 0.0;
     int c;
-    for (c = 0; c < (int)(sizeof point_cfgs / sizeof point_cfgs[0]); c++) {
+    for (c = first; c <= last; c++) {
         const point_cfg *pc = &point_cfgs[c];
         skgl_point_desc d = point_desc(pc->technique, resolution, pc->faces, pc->casters, pc->scissor, pc->select);
         room_row w;
         if (run_room_row(R, V, pc->method, &d, NULL, &w) != 0) continue;
         if (c == 0) naive_total = w.shadow_ms + w.rr.mask_ms;
         fprintf(stderr, "bench: %s %-6s %-10s %s: face %d^2, %d faces rendered, %d culled, %d casters culled: err "
-                        "%.3f%% (shadow area %.3f%%, edge p95 %.2f px) shadow %.2f ms mask %.2f ms (%.2fx naive)\n",
+                        "%.3f%% (shadow area %.3f%%, edge p95 %.2f px) shadow %.2f ms mask %.2f ms",
                 R->scene, V->bv.name, pc->method, w.params, w.st.resolution, w.st.faces_rendered, w.st.faces_culled,
                 w.st.casters_culled, w.rr.err, w.rr.hard.area_pct, w.rr.hard.edge_p95_px, (double)w.shadow_ms,
-                (double)w.rr.mask_ms, naive_total > 0 ? (w.shadow_ms + w.rr.mask_ms) / naive_total : 0.0);
+                (double)w.rr.mask_ms);
+        if (naive_total > 0) fprintf(stderr, " (%.2fx naive)", (w.shadow_ms + w.rr.mask_ms) / naive_total);
+        fputc('\n', stderr);
     }
     fflush(R->csv);
+}
+
+static void run_point_cfgs(room_bench *R, const room_view *V, int resolution) {
+    run_point_cfgs_range(R, V, resolution, 0, (int)(sizeof point_cfgs / sizeof point_cfgs[0]) - 1);
 }
 
 static void point_bench(bench_gl *B, int repeat, FILE *csv, float *depth, float *mask_px) {
@@ -1824,6 +1831,13 @@ static void interior_bench(bench_gl *B, int quick, int repeat, FILE *csv, float 
         snprintf(name, sizeof name, "v%d", v);
         if (room_view_open(&R, &V, name, eye, target, lp, range) != 0) continue;
         run_point_cfgs(&R, &V, POINT_RES);
+        /* the speed/accuracy front: the cube map and VSDCT with every
+           option (point_cfgs' last "cube" and "vsdct" rows) at half and
+           twice the face side */
+        run_point_cfgs_range(&R, &V, POINT_RES / 2, 5, 5);
+        run_point_cfgs_range(&R, &V, POINT_RES * 2, 5, 5);
+        run_point_cfgs_range(&R, &V, POINT_RES / 2, 8, 8);
+        run_point_cfgs_range(&R, &V, POINT_RES * 2, 8, 8);
         interior_floor(&R, &V);
         fflush(csv);
         room_view_close(&R, &V);
