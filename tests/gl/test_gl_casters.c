@@ -32,7 +32,14 @@
    shadowkit's own program: opaque quad, one box at the origin, a flat
    plane, attribute 0's data as positions) at least CONTROL_MIN_* worse.
    Can fail: SK_GL_TEST_NO_HOOK=1 draws every caster without its hook
-   (every bound fails, figures in the comment at the bounds). */
+   (every bound fails, figures in the comment at the bounds).
+   HYGIENE. Under the sanitizers (build/hygiene/, __SANITIZE_ADDRESS__)
+   test_caster_kinds runs no control (KIND_CONTROLS below): measured with
+   gcov, 3312 of the 3313 lines of shadowkit_gl.h it reaches with them,
+   the one left (FERKO's reduction finding the width it sent last: a
+   second FERKO light in the same context) reached by test_gl_ferko there; 27 CPU s instead of 39, 261
+   checks instead of 441 (the 60 controls' bounds, and their frames' 2 each:
+   no skgl_use_caster failure, no GL error). */
 #define SHADOWKIT_IMPLEMENTATION
 #define SHADOWKIT_GL_IMPLEMENTATION
 #include "shadowkit_gl.h"
@@ -44,6 +51,16 @@
 
 #define W 320
 #define H 180
+/* 1: test_caster_kinds runs each frame again without the hook (the
+   control). Under the sanitizers (build/hygiene/) it does not: that frame
+   is shadowkit's own caster program, and the lines of shadowkit_gl.h this
+   program reaches are the same without it (gcov); the plain build keeps
+   the controls' power to fail */
+#ifdef __SANITIZE_ADDRESS__
+#define KIND_CONTROLS 0
+#else
+#define KIND_CONTROLS 1
+#endif
 #define INSTANCES 1000
 #define ALPHA_TEX 32
 
@@ -564,6 +581,7 @@ static void run_kind(int kind) {
         snprintf(name, sizeof name, "casters_%s_%s", kind_name[kind], tech_name[t]);
         gt_images(&w.e, name, ref, res);
         /* the control: the same frame with the caster drawn by shadowkit's own program */
+        if (!KIND_CONTROLS) continue;
         w.hook = 0;
         err_off[kind][t] = run_tech(&w, &cam, t, ref, res);
         w.hook = hook;
@@ -613,13 +631,14 @@ static void test_caster_kinds(void) {
             double bound = 1.25 * measured[k][t] + (t >= T_PCSS ? 0.003 : 0.25);
             SK_CHECK_MSG(err[k][t] >= 0 && err[k][t] <= bound, "%s under %s: error %.4f, bound %.4f", kind_name[k],
                          tech_name[t], err[k][t], bound);
-            SK_CHECK_MSG(err_off[k][t] >= 2.0 * err[k][t], "%s under %s: without the hook %.4f, with %.4f",
-                         kind_name[k], tech_name[t], err_off[k][t], err[k][t]);
+            if (KIND_CONTROLS)
+                SK_CHECK_MSG(err_off[k][t] >= 2.0 * err[k][t], "%s under %s: without the hook %.4f, with %.4f",
+                             kind_name[k], tech_name[t], err_off[k][t], err[k][t]);
         }
     gt_print_names("kind", tech_name, T_COUNT);
     for (k = 0; k < K_COUNT; k++) {
         gt_print_values(kind_name[k], err[k], T_COUNT);
-        gt_print_values("  no hook", err_off[k], T_COUNT);
+        if (KIND_CONTROLS) gt_print_values("  no hook", err_off[k], T_COUNT);
     }
 }
 
