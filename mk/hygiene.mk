@@ -22,7 +22,7 @@
 HYG_DIR      := $(BUILD)/hygiene
 # Left out of this flavour (they run in the plain one, build/gl/):
 # - test_gl_calls: it counts GL calls over the frames every other GL test
-#   draws (110 s plain, 190 s under the sanitizers), and the library paths
+#   draws (44 CPU s plain, 4x that under the sanitizers), and the library paths
 #   it reaches run under the sanitizers in test_gl_census, test_gl_debug and
 #   test_gl_paths already;
 # - the programs whose every reached line of shadowkit_gl.h is reached here
