@@ -104,18 +104,28 @@ static void test_pssm_fit(void) { smoke(SKGL_PSSM, 1, PSSM_FIT_MAX_ERR); }
 #endif
 
 /* a compiled-out feature's create refuses, names the macro, makes nothing */
+#if defined(SKGL_NO_SOFT) || defined(SKGL_NO_RMSM) || defined(SKGL_NO_FERKO) || defined(SKGL_NO_CACHE)
+/* the refusal tests' context: a ground plane, and the GL objects it holds
+   before the refused create */
+static int refusal_env(gt_env *e, int *objects)
+{
+    tb_scene sc;
+    tb_scene_init(&sc);
+    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
+    if (gt_env_init(e, &sc, W, H) != 0) { gt_env_free(e); return -1; }
+    *objects = skgl_gl_object_count(e->sk);
+    return 0;
+}
+#endif
+
 #ifdef SKGL_NO_SOFT
 static void test_soft_refused(void)
 {
     gt_env e;
-    tb_scene sc;
     skgl_soft_desc sd;
     skgl_soft *soft = (skgl_soft *)&sd;   /* must be reset to NULL */
     int objects;
-    tb_scene_init(&sc);
-    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
-    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
-    objects = skgl_gl_object_count(e.sk);
+    if (refusal_env(&e, &objects) != 0) return;
     memset(&sd, 0, sizeof sd);
     SK_CHECK(skgl_soft_create(e.sk, &sd, &soft) == SK_ERR_INVALID_ARG);
     SK_CHECK(soft == NULL);
@@ -135,14 +145,10 @@ static void test_soft_refused(void)
 static void test_rmsm_refused(void)
 {
     gt_env e;
-    tb_scene sc;
     skgl_shadow_desc d;
     skgl_shadow *s = (skgl_shadow *)&d;   /* must be reset to NULL */
     int objects;
-    tb_scene_init(&sc);
-    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
-    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
-    objects = skgl_gl_object_count(e.sk);
+    if (refusal_env(&e, &objects) != 0) return;
     memset(&d, 0, sizeof d);
     d.technique = SKGL_RMSM;
     SK_CHECK(skgl_shadow_create(e.sk, &d, &s) == SK_ERR_INVALID_ARG);
@@ -172,16 +178,12 @@ static void refused_log(gt_env *e, skgl_shadow_desc *d, const char *want)
 static void test_ferko_refused(void)
 {
     gt_env e;
-    tb_scene sc;
     skgl_shadow_desc d;
     skgl_shadow *s = NULL;
     skgl_scene scene;
     skgl_camera cam = gt_camera(gt_v3(0, 2, 8), gt_v3(0, 0, -2), 0.9f, 0.3f, 60, W, H);
     int objects;
-    tb_scene_init(&sc);
-    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
-    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
-    objects = skgl_gl_object_count(e.sk);
+    if (refusal_env(&e, &objects) != 0) return;
     memset(&d, 0, sizeof d);
     d.technique = SKGL_FERKO;
     refused_log(&e, &d, "skgl_shadow_create: desc.technique = 5: FERKO's resolution estimation is compiled out "
@@ -216,7 +218,6 @@ static void test_ferko_refused(void)
 static void test_cache_refused(void)
 {
     gt_env e;
-    tb_scene sc;
     skgl_shadow_desc d;
     skgl_point_desc pd;
     skgl_shadow *s = (skgl_shadow *)&d;
@@ -224,10 +225,7 @@ static void test_cache_refused(void)
     sk_aabb bad = gt_box(1, 0, 0, 0, 1, 1);   /* min.x > max.x */
     sk_aabb box = gt_box(0, 0, 0, 1, 1, 1);
     int objects;
-    tb_scene_init(&sc);
-    tb_scene_add_ground(&sc, "ground", 0, 0, 20, 20, 0, 4, 4);
-    if (gt_env_init(&e, &sc, W, H) != 0) { gt_env_free(&e); return; }
-    objects = skgl_gl_object_count(e.sk);
+    if (refusal_env(&e, &objects) != 0) return;
     memset(&d, 0, sizeof d);
     d.technique = SKGL_PSSM;
     d.cache = 1;
