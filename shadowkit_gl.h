@@ -4886,6 +4886,7 @@ static sk_result skgl__casters_draw_layered_as(skgl_context *ctx, skgl__st *st, 
 {
     int i;
     sk_result r;
+    skgl__pass_program(ctx);   /* RMSM's batches: the last callback may have left its own program current */
     ctx->pass_layers = n;
     for (i = 0; i < n; i++) {
         memcpy(ctx->pass_layer_vp[i], vps[i].m, sizeof vps[i].m);
