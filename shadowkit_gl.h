@@ -256,7 +256,18 @@
      version the same way. The maps are the same as with a pass per layer;
      the draw calls are divided by the layers, the geometry shader's cost
      added: time both on your GPU (the stats' layered field says which ran).
-     VSDCT's atlas, RMSM's pages and one-map techniques keep one pass each.
+     RMSM draws its pages SKGL_MAX_CASCADES at a pass: each into a layer of
+     a page-sized array target, then copied into its pool slot as a pass
+     per page does; layer_index[i] is then the page (skgl_shadow_pages'
+     order), its depth the per-page one but for the last bits (a cached
+     RMSM light, refused with .layered, draws a pass per page). On
+     llvmpipe, tests/gl/test_gl_open_world.c's 2 km views (one draw of the
+     whole scene a callback, 30 frames): 188 pages a frame at 16384^2 in
+     24 callbacks, 479 at 65536^2 in 60; the render 216 -> 175 ms and 398
+     -> 359 ms through the geometry shader's loop (SKGL_LAYERED_LOOP), but
+     4.2x and 4.8x slower than a pass per page through llvmpipe's
+     invocations; on ground-boxes (572 pages) 0.65-0.83x either way. VSDCT's
+     atlas and one-map techniques keep one pass each.
 
    CACHED MAPS (skgl_shadow_desc.cache, skgl_point_desc.cache)
      Most casters do not move from one frame to the next. A cached light
@@ -1046,8 +1057,8 @@ typedef struct skgl_draw_info {
     /* Layered single-pass rendering (desc.layered, LAYERED PASSES): 0 when
        the callback draws one layer (index); n > 0 when what it draws goes
        to n layers at once (index -1; view_proj and frustum those of
-       layer_view_proj[0]): entry i is cascade or cube face layer_index[i],
-       for culling against any of them. */
+       layer_view_proj[0]): entry i is cascade, cube face or RMSM page
+       layer_index[i], for culling against any of them. */
     int layers;
     int layer_index[SKGL_MAX_CASCADES];
     sk_mat4 layer_view_proj[SKGL_MAX_CASCADES];
@@ -1297,7 +1308,8 @@ typedef struct skgl_shadow_desc {
     int layered;                  /* 1: a light of several layers (PSSM, LSPSM, LiSPSM with
                                      cascades) draws them all in one pass through a
                                      geometry shader: one callback instead of one per
-                                     layer (LAYERED PASSES); 0: a pass per layer [0] */
+                                     layer (LAYERED PASSES); RMSM: a callback per
+                                     SKGL_MAX_CASCADES pages; 0: a pass per layer [0] */
     int fit_to_depth;             /* 1: STANDARD, PSSM, LiSPSM: the shadow range, and the
                                      splits over it, is the view depths the depth buffer
                                      holds (sample distribution shadow maps, Lauritzen,
@@ -1389,7 +1401,8 @@ typedef struct skgl_shadow_frame_stats {
     int pages_reused;                     /* RMSM, .cache: pages of this frame kept from an earlier one */
     int pages_evicted;                    /* RMSM, .cache: resident pages whose slot a new page took */
     int pages_resident;                   /* RMSM: pages the pool holds (uncached: this frame's) */
-    int layered;                          /* 1: the layers went in one pass (desc.layered honoured);
+    int layered;                          /* 1: the layers went in one pass (desc.layered honoured;
+                                             RMSM: its pages SKGL_MAX_CASCADES at a pass);
                                              2: so, through one geometry shader invocation per layer
                                              (GL_ARB_gpu_shader5) */
     /* the cache (desc.cache, CACHED MAPS): cached layers this frame drawn
@@ -4871,18 +4884,21 @@ static void skgl__layers_send(skgl_context *ctx, skgl__int vp, skgl__int of, skg
 
 /* One callback for n layers: vps[i] (relative to origin) into layer
    layer_of[i] of the layered target already bound and cleared, through
-   the layered program (current, skgl__casters_begin_layered). */
-static sk_result skgl__casters_draw_layered(skgl_context *ctx, skgl__st *st, const skgl_scene *scene,
-                                            const sk_mat4 *vps, const int *layer_of, int n, const double origin[3],
-                                            skgl_draw_info *info)
+   the layered program (current, skgl__casters_begin_layered); the
+   callback's info->layer_index[i] is index_of[i] (RMSM: the page, not the
+   layer of the batch target). */
+static sk_result skgl__casters_draw_layered_as(skgl_context *ctx, skgl__st *st, const skgl_scene *scene,
+                                               const sk_mat4 *vps, const int *layer_of, const int *index_of, int n,
+                                               const double origin[3], skgl_draw_info *info)
 {
     int i;
     sk_result r;
+    skgl__pass_program(ctx);   /* RMSM's batches: the last callback may have left its own program current */
     ctx->pass_layers = n;
     for (i = 0; i < n; i++) {
         memcpy(ctx->pass_layer_vp[i], vps[i].m, sizeof vps[i].m);
         ctx->pass_layer_of[i] = layer_of[i];
-        info->layer_index[i] = layer_of[i];
+        info->layer_index[i] = index_of[i];
         info->layer_view_proj[i] = skgl__shift(&vps[i], origin, skgl__zero3);
         info->layer_frustum[i] = sk_frustum_from_matrix(info->layer_view_proj[i]);
     }
@@ -4897,6 +4913,13 @@ static sk_result skgl__casters_draw_layered(skgl_context *ctx, skgl__st *st, con
     r = skgl__scene_draw(ctx, st, scene, info);
     ctx->pass_layers = 0;
     return r;
+}
+/* ... each layer's info->layer_index its own: a cascade, a cube face */
+static sk_result skgl__casters_draw_layered(skgl_context *ctx, skgl__st *st, const skgl_scene *scene,
+                                            const sk_mat4 *vps, const int *layer_of, int n, const double origin[3],
+                                            skgl_draw_info *info)
+{
+    return skgl__casters_draw_layered_as(ctx, st, scene, vps, layer_of, layer_of, n, origin, info);
 }
 
 /* the caster passes' state with the layered program (skgl__casters_begin's) */
@@ -5763,6 +5786,12 @@ typedef struct skgl__rmsm {
     double origin[3];              /* the world point lvp is relative to */
     sk_aabb world;                 /* the scene's bounds (world) at the last render */
     skgl__uint page_tex, page_fbo; /* one slot of depth every page is drawn in (skgl__page_pass) */
+    /* desc.layered: the batch target, SKGL_MAX_CASCADES slots of depth as
+       the layers of an array texture (batch_fbo: all of them, layered;
+       batch_layer_fbo[i]: layer i, to copy from), made on first use
+       (batch_state 1; -1: not renderable or no layered program) */
+    skgl__uint batch_tex, batch_fbo, batch_layer_fbo[SKGL_MAX_CASCADES];
+    int batch_state;
     /* desc.cache: the slots, the slot + 1 of each atlas texel (0: not
        resident), the frame the slots were drawn for (key_lvp, key_origin),
        the render count; the static copy of the pool is cache.tex */
@@ -7356,6 +7385,45 @@ static sk_result skgl__rmsm_create(skgl_context *ctx, skgl__st *st, skgl_shadow 
     return SK_OK;
 }
 
+/* the batch target's objects (desc.layered) */
+static void skgl__rmsm_batch_free(skgl_context *ctx, skgl_shadow *s)
+{
+    int i;
+    skgl__delete_framebuffer(ctx, &s->rmsm.batch_fbo);
+    for (i = 0; i < SKGL_MAX_CASCADES; i++) skgl__delete_framebuffer(ctx, &s->rmsm.batch_layer_fbo[i]);
+    skgl__delete_texture(ctx, &s->rmsm.batch_tex);
+}
+
+/* 1 when this light's pages can be drawn SKGL_MAX_CASCADES at a pass
+   (desc.layered): the layered program and the batch target, made now if
+   need be; 0 keeps a pass per page (no geometry shader program, or the
+   target not renderable: tried once) */
+static int skgl__rmsm_batch_ready(skgl_context *ctx, skgl__st *st, skgl_shadow *s)
+{
+    skgl__rmsm *m = &s->rmsm;
+    int slot = s->desc.rmsm_page_size + 2, i, ok;
+    if (m->batch_state != 0) return m->batch_state > 0;
+    m->batch_state = -1;
+    if (!skgl__layered_ready(ctx)) return 0;
+    ctx->gl.GenTextures(1, &m->batch_tex);
+    ctx->objects++;
+    skgl__st_set1(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY), (skgl__int)m->batch_tex);
+    skgl__st_unit(ctx, st, SKGL__S_TEX(0, SKGL__T_2D_ARRAY));
+    ctx->gl.TexImage3D(SKGL__TEXTURE_2D_ARRAY, 0, SKGL__DEPTH_COMPONENT32F, slot, slot, SKGL_MAX_CASCADES, 0,
+                       SKGL__DEPTH_COMPONENT, SKGL__FLOAT, NULL);
+    ctx->gl.TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MIN_FILTER, SKGL__NEAREST);
+    ctx->gl.TexParameteri(SKGL__TEXTURE_2D_ARRAY, SKGL__TEXTURE_MAG_FILTER, SKGL__NEAREST);
+    m->batch_fbo = skgl__framebuffer(ctx, st, 0, 0, m->batch_tex, SKGL__ALL_LAYERS);
+    for (i = 0, ok = m->batch_fbo != 0; ok && i < SKGL_MAX_CASCADES; i++)
+        ok = (m->batch_layer_fbo[i] = skgl__framebuffer(ctx, st, 0, 0, m->batch_tex, i)) != 0;
+    if (!ok) {
+        skgl__rmsm_batch_free(ctx, s);
+        return 0;
+    }
+    m->batch_state = 1;
+    return 1;
+}
+
 static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
 {
     skgl__delete_texture(ctx, &s->rmsm.samples);
@@ -7365,6 +7433,7 @@ static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
     skgl__delete_framebuffer(ctx, &s->rmsm.requests_fbo);
     skgl__delete_texture(ctx, &s->rmsm.page_tex);
     skgl__delete_framebuffer(ctx, &s->rmsm.page_fbo);
+    skgl__rmsm_batch_free(ctx, s);
     skgl__ring_free(ctx, &s->rmsm.ring);
     SKGL_FREE(s->rmsm.req_cpu);
     SKGL_FREE(s->rmsm.mark);
@@ -8325,6 +8394,12 @@ static void skgl__rmsm_assign(skgl_shadow *s)
 }
 #endif /* SKGL_NO_CACHE */
 
+/* the matrix that draws page i's slot (relative to rmsm.origin) */
+static sk_mat4 skgl__page_vp(const skgl_shadow *s, int i)
+{
+    return sk_mat4_mul(sk_crop_matrix(skgl__page_rect(s, &s->rmsm.pages[i]), -1.0f, 1.0f), s->rmsm.lvp);
+}
+
 /* page i drawn in the page target (rmsm.page_fbo) at (0, 0): the casters
    of cls (SKGL__DRAW_*), the whole slot cleared first (rect NULL) or over
    what is there inside rect (slot texels) */
@@ -8332,7 +8407,7 @@ static sk_result skgl__page_draw(skgl_context *ctx, skgl__st *st, skgl_shadow *s
                                  const int *rect, int cls)
 {
     int slot = s->desc.rmsm_page_size + 2;
-    sk_mat4 vp = sk_mat4_mul(sk_crop_matrix(skgl__page_rect(s, &s->rmsm.pages[i]), -1.0f, 1.0f), s->rmsm.lvp);
+    sk_mat4 vp = skgl__page_vp(s, i);
     skgl_draw_info info;
     skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, slot, slot);
     memset(&info, 0, sizeof info);
@@ -8368,6 +8443,42 @@ static sk_result skgl__page_pass(skgl_context *ctx, skgl__st *st, skgl_shadow *s
     }
     r = skgl__page_draw(ctx, st, s, scene, i, NULL, cls);
     skgl__blit_depth(ctx, st, s->rmsm.page_fbo, fb, 0, 0, slot, slot, x, y);
+    return r;
+}
+
+/* desc.layered (uncached): pages first .. first + n - 1 (n up to
+   SKGL_MAX_CASCADES) in one pass, page first + j into layer j of the batch
+   target at (0, 0) (layered.geom: the page's matrix, gl_Layer j), then
+   each layer copied into its page's slot of fb. The same matrix at the
+   same window position as skgl__page_draw's: the depth of a pass per page
+   but for the last bits where the geometry shader's matrix product rounds
+   otherwise than the vertex shader's (llvmpipe: 0.16% of the texels, by
+   up to 3 ulps). info->layer_index[j] is the page (first + j). */
+static sk_result skgl__page_batch(skgl_context *ctx, skgl__st *st, skgl_shadow *s, const skgl_scene *scene,
+                                  int first, int n, skgl__uint fb)
+{
+    int slot = s->desc.rmsm_page_size + 2, of[SKGL_MAX_CASCADES], page[SKGL_MAX_CASCADES], j, x, y;
+    sk_mat4 vps[SKGL_MAX_CASCADES];
+    skgl_draw_info info;
+    sk_result r;
+    for (j = 0; j < n; j++) {
+        vps[j] = skgl__page_vp(s, first + j);
+        of[j] = j;
+        page[j] = first + j;
+    }
+    skgl__st_set4(ctx, st, SKGL__S_VIEWPORT, 0, 0, slot, slot);
+    skgl__st_set1(ctx, st, SKGL__S_DRAW_FB, (skgl__int)s->rmsm.batch_fbo);
+    skgl__st_set1(ctx, st, SKGL__S_SCISSOR_TEST, 0);
+    skgl__clear_depth(ctx);   /* every layer */
+    memset(&info, 0, sizeof info);
+    info.kind = SKGL_PASS_DIRECTIONAL;
+    r = skgl__casters_draw_layered_as(ctx, st, scene, vps, of, page, n, s->rmsm.origin, &info);
+    s->stats.passes += skgl__pass_callbacks(ctx);
+    s->stats.texels += (double)n * slot * slot;
+    for (j = 0; j < n; j++) {
+        skgl__slot_xy(s, s->rmsm.slot_of[first + j], &x, &y);
+        skgl__blit_depth(ctx, st, s->rmsm.batch_layer_fbo[j], fb, 0, 0, slot, slot, x, y);
+    }
     return r;
 }
 
@@ -8489,13 +8600,15 @@ static sk_result skgl__rmsm_verify(skgl_context *ctx, skgl__st *st, skgl_shadow 
 }
 #endif /* SKGL_NO_CACHE */
 
-/* RMSM: this frame's pages into their pool slots (skgl__page_pass). With
-   desc.cache only the slots skgl__rmsm_assign emptied are drawn, with the
-   static casters, then the dynamic ones over them (skgl__rmsm_dynamic). */
+/* RMSM: this frame's pages into their pool slots (skgl__page_pass; with
+   desc.layered SKGL_MAX_CASCADES at a pass, skgl__page_batch). With
+   desc.cache (never layered: validated at create) only the slots
+   skgl__rmsm_assign emptied are drawn, a pass each, with the static
+   casters, then the dynamic ones over them (skgl__rmsm_dynamic). */
 static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl_scene *scene, sk_vec3 light_dir)
 {
     skgl__st st;
-    int i, cached = s->desc.cache;
+    int i, cached = s->desc.cache, batched;
     sk_result r, rc;
     r = skgl__rmsm_frame(&s->rmsm.world, light_dir, &s->rmsm.lvp, s->rmsm.origin);
     if (r != SK_OK) return r;
@@ -8525,8 +8638,17 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
     /* the pages are drawn relative to the virtual map's origin, not the
        camera's: the same depth whatever the camera, so a cached page equals
        the one an uncached render draws */
-    skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, s->rmsm.origin);
-    for (i = 0; i < s->rmsm.npages; i++) {
+    batched = !cached && s->desc.layered && skgl__rmsm_batch_ready(ctx, &st, s);
+    s->stats.layered = batched ? ctx->layered_state : 0;
+    if (batched) skgl__casters_begin_layered(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, s->rmsm.origin);
+    else skgl__casters_begin(ctx, &st, s->desc.slope_bias, s->desc.depth_bias, s->rmsm.origin);
+    for (i = 0; batched && i < s->rmsm.npages; i += SKGL_MAX_CASCADES) {
+        int n = s->rmsm.npages - i < SKGL_MAX_CASCADES ? s->rmsm.npages - i : SKGL_MAX_CASCADES;
+        rc = skgl__page_batch(ctx, &st, s, scene, i, n, s->fbo[0]);
+        if (rc != SK_OK) r = rc;
+        s->stats.pages_rendered += n;
+    }
+    for (i = 0; !batched && i < s->rmsm.npages; i++) {
         skgl__rmsm_slot *t = cached ? &s->rmsm.slots[s->rmsm.slot_of[i]] : NULL;
         if (t && t->valid) continue;
         rc = skgl__page_pass(ctx, &st, s, scene, i, s->fbo[0], NULL, cached ? SKGL__DRAW_STATIC : SKGL__DRAW_ALL);

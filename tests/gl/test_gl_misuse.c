@@ -744,6 +744,15 @@ static void draw_leaving_program(void *user, const skgl_draw_info *info) {
     env.gl.UseProgram(foreign);                     /* against SCENE ACCESS */
 }
 
+/* ... without a model of its own (skgl_set_model would have the pass's
+   program bound again after the callback, hiding what comes next) */
+static void draw_leaving_program_plain(void *user, const skgl_draw_info *info) {
+    (void)user;
+    (void)info;
+    tb_gl_mesh_draw(&env.gl, &env.mesh, 0, 0);
+    env.gl.UseProgram(foreign);                     /* against SCENE ACCESS */
+}
+
 static void test_foreign_program(void) {
     skgl_desc d = desc_with((skgl_getproc_fn)real_getproc, 0);
     skgl_context *sk = NULL;
@@ -778,6 +787,36 @@ static void test_foreign_program(void) {
         get_uniformfv(foreign, loc, probe);
         SK_CHECK_MSG(probe[0] == 7 && probe[1] == 7 && probe[2] == 7 && probe[3] == 7,
                      "the foreign program's u_probe[0] became (%g %g %g %g)", probe[0], probe[1], probe[2], probe[3]);
+    }
+    /* RMSM with desc.layered: a callback per 8 pages, the pass's program
+       bound again before each batch's matrices (without it the second
+       batch's glUniformMatrix4fv lands in the foreign program) */
+    if (sk) {
+        skgl_shadow *rm = NULL;
+        const skgl_shadow_frame_stats *st;
+        memset(&sd, 0, sizeof sd);
+        sd.technique = SKGL_RMSM;
+        sd.resolution = 16384;
+        sd.rmsm_page_size = 128;
+        sd.rmsm_pool_pages = 8;
+        sd.layered = 1;
+        SK_CHECK(skgl_shadow_create(sk, &sd, &rm) == SK_OK);
+        if (rm && gt_gbuffer(&env, &cam) == 0) {
+            sc.draw = draw_leaving_program_plain;
+            sc.user = sk;
+            SK_CHECK(skgl_shadow_analyze(sk, rm, &cam, &sc, sun(), env.gbuf.depth_tex) == SK_OK);
+            (void)skgl_shadow_render(sk, rm, &cam, &sc, sun());
+            st = skgl_shadow_stats(rm);
+            SK_CHECK_MSG(st->passes > 1 && st->layered > 0, "RMSM layered: %d passes, layered %d", st->passes,
+                         st->layered);
+            SK_CHECK_MSG(gl_error() == E_NO_ERROR, "RMSM layered, a callback leaving its program current: GL error "
+                         "left (debug off)");
+            get_uniformfv(foreign, loc, probe);
+            SK_CHECK_MSG(probe[0] == 7 && probe[1] == 7 && probe[2] == 7 && probe[3] == 7,
+                         "RMSM layered: the foreign program's u_probe[0] became (%g %g %g %g)", probe[0], probe[1],
+                         probe[2], probe[3]);
+        }
+        skgl_shadow_destroy(sk, rm);
     }
     env.gl.UseProgram(0);
     skgl_shadow_destroy(sk, s);
