@@ -32,7 +32,8 @@
        penumbra_max,umbra_mae,lit_mae,excluded_px,texel_over1_pct,
        texel_over2_pct,texel_over4_pct,texel_median_px,area_0_10_pct,
        area_10_50_pct,area_50_200_pct,area_200_pct
-       method     standard | standard-stable | pssm | psm | lispsm |
+       method     standard | standard-stable | pssm | pssm-stable (stable
+                  cascades, lambda 0.9) | psm | lispsm |
                   lispsm-pssm (LiSPSM per cascade) | lspsm | ferko | rmsm |
                   auto (SKGL_AUTO: one focused map or up to 4 cascades
                   sharing resolution^2 texels, chosen per frame) |
@@ -300,6 +301,15 @@ static void add_pssm(int cascades, float lambda, int res, float blend, int pcf) 
     c->desc.disable_pcf_kernel = !(pcf > 0);
 }
 
+/* stable cascades (desc.stable: each cascade's crop a sphere snapped to
+   its texel grid), lambda 0.9 and no blend band, to set against the
+   unstable rows of the same params */
+static void add_pssm_stable(int cascades, int res) {
+    add_pssm(cascades, 0.9f, res, 0.0f, 1);
+    snprintf(g_cfg[g_ncfg - 1].method, sizeof g_cfg[0].method, "pssm-stable");
+    g_cfg[g_ncfg - 1].desc.stable = 1;
+}
+
 /* PSM: slide = the virtual-camera slide in sqrt(near*far) units (< 0: plain PSM) */
 static void add_psm(int res, float slide) {
     bench_cfg *c = &g_cfg[g_ncfg++];
@@ -442,8 +452,11 @@ static void sweep_pssm(int quick) {
         add_pssm(4, 0.5f, 1024, 0.0f, 1);
         add_pssm(4, 0.9f, 1024, 0.0f, 1);
         add_pssm(4, 0.75f, 1024, 0.1f, 1);
+        add_pssm_stable(4, 1024);
         return;
     }
+    for (c = 2; c <= 4; c++)
+        for (r = 0; r < 3; r++) add_pssm_stable(c, pssm_res[r]);
     for (c = 1; c <= SKGL_MAX_CASCADES; c++)
         for (l = 0; l < 3; l++)
             for (r = 0; r < 3; r++)
@@ -739,7 +752,8 @@ static void short_label(const plot_pt *p, char *buf, size_t n) {
     else if (strcmp(p->method, "standard-fit") == 0)
         snprintf(buf, n, "%d fit", res);
     else if (strncmp(p->method, "pssm", 4) == 0)
-        snprintf(buf, n, "%d\xc3\x97%d \xce\xbb%g%s", casc, res, lambda, blend > 0 ? " blend" : "");
+        snprintf(buf, n, "%d\xc3\x97%d \xce\xbb%g%s%s", casc, res, lambda, blend > 0 ? " blend" : "",
+                 strcmp(p->method, "pssm-stable") == 0 ? " stable" : "");
     else
         snprintf(buf, n, "%s%d pcf%d", strstr(p->method, "stable") ? "stable " : "", res, pcf);
 }
