@@ -962,4 +962,20 @@ static inline void gt_caster_references(gt_env *e, float *sun, float *point, flo
     SK_CHECK(gt_area_reference(e, &al, 16, area) == 0);
 }
 
+/* A caster program whose vertices move by the uniform u_offset (label
+   "moved"): a layered or batched pass must draw it with each callback's
+   offset. NULL where its create fails (the check names the log). */
+static inline skgl_caster *gt_offset_caster(gt_env *e) {
+    skgl_caster_desc cd;
+    skgl_caster *hook = NULL;
+    memset(&cd, 0, sizeof cd);
+    cd.label = "moved";
+    cd.vertex = "layout(location = 0) in vec3 a_pos;\n"
+                "uniform vec3 u_offset;\n"
+                "vec4 skgl_caster_position() { return vec4(a_pos + u_offset, 1.0); }\n";
+    cd.uniforms[0] = "u_offset";
+    SK_CHECK_MSG(skgl_caster_create(e->sk, &cd, &hook) == SK_OK, "%s", skgl_error_log(e->sk));
+    return hook;
+}
+
 #endif /* GL_TEST_UTIL_H */

@@ -160,7 +160,6 @@ static void compare(int k, const char *what, const float *a, const float *b, siz
 static void test_layered(void) {
     gt_env e;
     skgl_camera cam = gt_camera(gt_v3(-9, 7, 12), gt_v3(0, 1, 0), 0.9f, 0.5f, 100, W, H);
-    skgl_caster_desc cd;
     skgl_caster *hook = NULL;
     float *per = NULL, *lay = NULL;
     int k;
@@ -173,13 +172,7 @@ static void test_layered(void) {
     per = gt_alloc(&e);
     lay = gt_alloc(&e);
     SK_CHECK(gt_gbuffer(&e, &cam) == 0);
-    memset(&cd, 0, sizeof cd);
-    cd.label = "moved";
-    cd.vertex = "layout(location = 0) in vec3 a_pos;\n"
-                "uniform vec3 u_offset;\n"
-                "vec4 skgl_caster_position() { return vec4(a_pos + u_offset, 1.0); }\n";
-    cd.uniforms[0] = "u_offset";
-    SK_CHECK_MSG(skgl_caster_create(e.sk, &cd, &hook) == SK_OK, "%s", skgl_error_log(e.sk));
+    hook = gt_offset_caster(&e);
     for (k = 0; k < L_COUNT; k++) {
         int layers = k == L_LISPSM ? 3 : k == L_CUBE ? 6 : 4, h;
         for (h = 0; h < 2; h++) {

@@ -574,19 +574,12 @@ static void test_layered_batches(void) {
        its layered version): the same pages again, the same comparison */
     if (s[0] && s[1]) {
         static lb_counted hc[2];
-        skgl_caster_desc cd;
         skgl_caster *hook = NULL;
         void *fp = tb_gl_context_getproc(e.ctx)("glUniform3f");
         double hworst = 0.0;
         long hdepth = -1;
         size_t hdiffer = 0;
-        memset(&cd, 0, sizeof cd);
-        cd.label = "moved";
-        cd.vertex = "layout(location = 0) in vec3 a_pos;\n"
-                    "uniform vec3 u_offset;\n"
-                    "vec4 skgl_caster_position() { return vec4(a_pos + u_offset, 1.0); }\n";
-        cd.uniforms[0] = "u_offset";
-        SK_CHECK_MSG(skgl_caster_create(e.sk, &cd, &hook) == SK_OK, "%s", skgl_error_log(e.sk));
+        hook = gt_offset_caster(&e);
         for (layered = 0; layered < 2 && hook; layered++) {
             memset(&hc[layered], 0, sizeof hc[layered]);
             hc[layered].e = &e;
