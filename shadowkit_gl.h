@@ -7437,7 +7437,6 @@ static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
     skgl__ring_free(ctx, &s->rmsm.ring);
     SKGL_FREE(s->rmsm.req_cpu);
     SKGL_FREE(s->rmsm.mark);
-    s->rmsm.mark = NULL;
     SKGL_FREE(s->rmsm.table_cpu);
     SKGL_FREE(s->rmsm.table_new);
     SKGL_FREE(s->rmsm.pages);
@@ -7445,9 +7444,13 @@ static void skgl__rmsm_free(skgl_context *ctx, skgl_shadow *s)
     SKGL_FREE(s->rmsm.slots);
     SKGL_FREE(s->rmsm.resident);
     SKGL_FREE(s->rmsm.lru);
-    s->rmsm.req_cpu = NULL;
+    s->rmsm.req_cpu = s->rmsm.mark = NULL;
     s->rmsm.table_cpu = s->rmsm.table_new = NULL;
     s->rmsm.pages = NULL;
+    s->rmsm.slot_of = NULL;
+    s->rmsm.slots = NULL;
+    s->rmsm.resident = NULL;
+    s->rmsm.lru = NULL;
 }
 
 /* texel index of page (level, px, py) in the request atlas and the page
@@ -8776,24 +8779,24 @@ static int skgl__analyzes(const skgl_shadow *s)
     return skgl__technique_of(s)->analyze && (s->desc.fit_to_depth || skgl__technique_of(s)->analyses);
 }
 
-static const skgl__technique skgl__techniques[] = {
+/* a row's create, destroy, frame and analyze where .fit_to_depth may ask
+   for the depth analysis (compiled out with it: SKGL_NO_FERKO) */
 #ifndef SKGL_NO_FERKO
-    {"STANDARD", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
-     skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
-    {"PSSM", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
-     skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+#define SKGL__DEPTH_FIT_ENTRIES skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko
+#else
+#define SKGL__DEPTH_FIT_ENTRIES NULL, NULL, NULL, NULL
+#endif
+
+static const skgl__technique skgl__techniques[] = {
+    {"STANDARD", 0, 1, 0, 0, SKGL__DEPTH_FIT_ENTRIES, skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
+    {"PSSM", 0, 1, 0, 0, SKGL__DEPTH_FIT_ENTRIES, skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
     {"PSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers, NULL, NULL},
-    {"LISPSM", 0, 1, 0, 0, skgl__depth_fit_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko,
-     skgl__fit_lispsm_layers, skgl__render_layers, NULL, NULL},
+    {"LISPSM", 0, 1, 0, 0, SKGL__DEPTH_FIT_ENTRIES, skgl__fit_lispsm_layers, skgl__render_layers, NULL, NULL},
     {"LSPSM", 0, 1, 0, 1, NULL, NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers, NULL, NULL},
+#ifndef SKGL_NO_FERKO
     {"FERKO", 1, 1, 0, 0, skgl__ferko_create, skgl__ferko_destroy, NULL, skgl__analyze_ferko, skgl__fit_ferko_layer,
      skgl__render_layers, NULL, NULL},
-#else   /* no analysis: FERKO refused at create (skgl__shadow_validate), as are AUTO and .fit_to_depth */
-    {"STANDARD", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
-    {"PSSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_ortho_layers, skgl__render_layers, NULL, NULL},
-    {"PSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_psm_layer, skgl__render_layers, NULL, NULL},
-    {"LISPSM", 0, 1, 0, 0, NULL, NULL, NULL, NULL, skgl__fit_lispsm_layers, skgl__render_layers, NULL, NULL},
-    {"LSPSM", 0, 1, 0, 1, NULL, NULL, NULL, NULL, skgl__fit_lspsm_layers, skgl__render_layers, NULL, NULL},
+#else   /* refused at create (skgl__shadow_validate), as are AUTO and .fit_to_depth */
     {"FERKO", 0, 1, 0, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL},
 #endif
 #ifndef SKGL_NO_RMSM
