@@ -179,8 +179,11 @@ static double layer_texel(const skgl_shadow *s, int i) {
 /* A camera turning in place (1 degree a frame, 120 frames) and a camera
    walking 30 m, both over ground-boxes, PSSM 4x1024: in how many frames a
    layer's texel changed size. A stepped stable crop (the default) changes
-   only when the view's need crosses a ladder step; the sphere fit never;
-   an unstable crop nearly every frame. */
+   only when the view's need crosses a ladder step, or has stayed two steps
+   below its size for SKGL__LADDER_SETTLE renders; the sphere fit never;
+   an unstable crop nearly every frame. Measured: stepped 14 and 8 frames
+   (11 and 9 before crops settled to a need that stays below them), the
+   sphere 0 and 0, unstable 119 and 119. */
 static void test_stable_turning(void) {
     gt_env e;
     int mode, f, i;
@@ -225,8 +228,98 @@ static void test_stable_turning(void) {
     }
     SK_CHECK_MSG(resized[1][0] == 0 && resized[1][1] == 0, "sphere fit resized %d, %d", resized[1][0], resized[1][1]);
     SK_CHECK_MSG(resized[2][0] > 100 && resized[2][1] > 100, "unstable resized %d, %d", resized[2][0], resized[2][1]);
-    SK_CHECK_MSG(resized[0][0] <= 12 && resized[0][1] <= 12, "stepped resized %d, %d", resized[0][0], resized[0][1]);
+    SK_CHECK_MSG(resized[0][0] <= 15 && resized[0][1] <= 15, "stepped resized %d, %d", resized[0][0], resized[0][1]);
     gt_env_free(&e);
 }
 
-SK_TEST_MAIN(test_stable_crops, test_stable_turning)
+/* every layer's crop, its width and height in world units (after a render) */
+static void crop_sides(const skgl_shadow *s, double *tx) {
+    int i;
+    for (i = 0; i < 4; i++) {
+        sk_mat4 m = skgl_shadow_matrix(s, i);
+        double sx = sqrt((double)m.m[0] * m.m[0] + (double)m.m[4] * m.m[4] + (double)m.m[8] * m.m[8]);
+        double sy = sqrt((double)m.m[1] * m.m[1] + (double)m.m[5] * m.m[5] + (double)m.m[9] * m.m[9]);
+        tx[2 * i] = sx > 0 ? 2.0 / sx : 0;
+        tx[2 * i + 1] = sy > 0 ? 2.0 / sy : 0;
+    }
+}
+
+static skgl_camera settle_cam(float t) {
+    /* t = 0: an overview; t = 1: at head height, looking along the ground */
+    sk_vec3 eye = gt_v3(-9.0f + 3.0f * t, 12.0f - 10.3f * t, 14.0f - 8.0f * t);
+    sk_vec3 target = gt_v3(4.0f * t, 1.2f * t, -2.0f * t);
+    return gt_camera(eye, target, 0.9f, 0.5f, 100, W, H);
+}
+
+/* A stepped stable crop keeps its size while the view's need wavers below
+   it, but not for good. Two ways the need falls, PSSM 4x1024 stable over
+   ground-boxes, from an overview to head height:
+   - a camera cut (one render at each view): every crop afresh, the same
+     as a new light's at the second view;
+   - a slow descent (100 renders) then SKGL__LADDER_SETTLE + 1 = 61 still
+     renders: every crop within one ladder step (9%) of a new light's,
+     and at most three of the still renders resizing a crop (measured 2:
+     the shadow range's end settles, then the crops).
+   Without either rule the crops stayed up to six steps (1.68x) larger
+   than the new view needs (figures printed). */
+static void test_stable_settles(void) {
+    gt_env e;
+    skgl_shadow_desc d;
+    skgl_shadow *s, *fresh;
+    skgl_scene sc;
+    sk_vec3 light = gt_v3(-0.5f, -1, -0.35f);
+    double want[8], got[8], prev[8], worst_cut = 0, worst_drift = 0;
+    skgl_camera a = settle_cam(0), b = settle_cam(1);
+    int f, i, resizes = 0;
+    if (gt_env_init_named(&e, "ground-boxes", W, H) != 0) { gt_env_free(&e); return; }
+    sc = gt_scene(&e);
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_PSSM;
+    d.resolution = 1024;
+    d.stable = 1;
+    fresh = gt_shadow(&e, &d);
+    s = gt_shadow(&e, &d);
+    if (!fresh || !s) { skgl_shadow_destroy(e.sk, fresh); skgl_shadow_destroy(e.sk, s); gt_env_free(&e); return; }
+    SK_CHECK(skgl_shadow_render(e.sk, fresh, &b, &sc, light) == SK_OK);
+    crop_sides(fresh, want);
+    /* the cut */
+    SK_CHECK(skgl_shadow_render(e.sk, s, &a, &sc, light) == SK_OK);
+    crop_sides(s, prev);
+    SK_CHECK(skgl_shadow_render(e.sk, s, &b, &sc, light) == SK_OK);
+    crop_sides(s, got);
+    for (i = 0; i < 8; i++) {
+        double q = got[i] / want[i];
+        if (q > worst_cut) worst_cut = q;
+        SK_CHECK_MSG(fabs(q - 1.0) < 1e-6, "after a cut, layer %d axis %d: crop side %.5f m, a new light's %.5f m (%.3fx; "
+                     "the overview's %.5f m)", i / 2, i & 1, got[i], want[i], q, prev[i]);
+    }
+    skgl_shadow_destroy(e.sk, s);
+    /* the descent, then still */
+    s = gt_shadow(&e, &d);
+    if (!s) { skgl_shadow_destroy(e.sk, fresh); gt_env_free(&e); return; }
+    for (f = 0; f <= 100 + 61; f++) {
+        skgl_camera c = settle_cam(f < 100 ? (float)f / 100.0f : 1.0f);
+        SK_CHECK(skgl_shadow_render(e.sk, s, &c, &sc, light) == SK_OK);
+        crop_sides(s, got);
+        if (f > 100) {
+            int changed = 0;
+            for (i = 0; i < 8; i++) changed |= fabs(got[i] - prev[i]) > 1e-6 * prev[i];
+            resizes += changed;
+        }
+        memcpy(prev, got, sizeof prev);
+    }
+    for (i = 0; i < 8; i++) {
+        double q = got[i] / want[i];
+        if (q > worst_drift) worst_drift = q;
+        SK_CHECK_MSG(q < 1.0906 && q > 0.999999, "after the descent, layer %d axis %d: crop side %.5f m, a new light's "
+                     "%.5f m (%.3fx)", i / 2, i & 1, got[i], want[i], q);
+    }
+    printf("stepped crops against a new light's at head height: after a cut %.3fx, after a slow descent %.3fx "
+           "(%d renders resized a crop while still)\n", worst_cut, worst_drift, resizes);
+    SK_CHECK_MSG(resizes <= 3, "%d of 61 still renders resized a crop", resizes);
+    skgl_shadow_destroy(e.sk, s);
+    skgl_shadow_destroy(e.sk, fresh);
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_stable_crops, test_stable_turning, test_stable_settles)
