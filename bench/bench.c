@@ -1190,7 +1190,7 @@ typedef struct run_rec {
     int has_bands;                    /* directional rows: the band counts below are set */
     uint64_t band_shadow[BENCH_BANDS], band_wrong[BENCH_BANDS];
     int maps;                         /* the stats' maps (AUTO: its choice) */
-    char reason[128];                 /* AUTO: the stats' auto_reason */
+    char reason[192];                 /* AUTO: the stats' auto_reason */
 } run_rec;
 
 /* scratch of the texel-to-pixel figure (bench_texel_stats), one frame's worth */

@@ -77,6 +77,7 @@ static void s_zeta(skgl_shadow_desc *d) { d->lspsm.zeta = 0.75f; }
 static void s_sync(skgl_shadow_desc *d) { d->sync_readback = 2; }
 static void s_page(skgl_shadow_desc *d) { d->technique = SKGL_RMSM; d->rmsm_page_size = 100; }
 static void s_pool(skgl_shadow_desc *d) { d->technique = SKGL_RMSM; d->rmsm_pool_pages = 1; }
+static void s_auto_warp(skgl_shadow_desc *d) { d->technique = SKGL_AUTO; d->disable_auto_warp = 2; }
 
 static const shadow_case shadow_cases[] = {
     {"desc.technique = 9:", s_technique},
@@ -100,6 +101,7 @@ static const shadow_case shadow_cases[] = {
     {"desc.sync_readback = 2:", s_sync},
     {"desc.rmsm_page_size = 100:", s_page},
     {"desc.rmsm_pool_pages = 1:", s_pool},
+    {"desc.disable_auto_warp = 2: 0 or 1", s_auto_warp},
 };
 
 static void test_shadow_rules(gt_env *e) {
