@@ -7047,10 +7047,11 @@ static void skgl__auto_score(skgl_shadow *s, const skgl__fit_in *in, int n, floa
    focused or warped (candidate c: c / 2 + 1 maps, warped when c is odd),
    the fewest maps whose worst texel-to-pixel ratio (skgl__auto_score) is
    at most .auto_texel_px, the smaller ratio of the two at that count;
-   else the candidate whose ratio is smallest. Hysteresis, so that two
-   candidates that score alike do not alternate: the one in use is kept
-   unless the new one's ratio is 15% smaller, or it has fewer maps and
-   meets 0.85 of the target, or the one in use misses the target by more
+   else the fewest maps within 15% of the smallest ratio. Hysteresis, so
+   that two candidates that score alike do not alternate: the one in use
+   is kept unless the new one's ratio is 15% smaller, or it has fewer maps
+   and meets 0.85 of the target (or, the one in use missing the target,
+   is at most 15% coarser), or the one in use misses the target by more
    than 15% and the new one meets it. One focused map is SKGL_STANDARD's
    crop, more are SKGL_PSSM's cascades, warped ones SKGL_LISPSM's (with
    .cascades n); the maps share the texels, so each is drawn into the
@@ -7066,11 +7067,20 @@ static int skgl__auto_pick(const float *score, int cands, int cur, float target)
             pick = c;
         if (low < 0 || score[c] < score[low]) low = c;
     }
-    if (pick < 0) pick = low;
-    if (pick < 0) return -1;   /* nothing fitted: the fit reports it */
+    if (low < 0) return -1;   /* nothing fitted: the fit reports it */
+    if (pick < 0) {
+        /* none meets the target: the fewest maps within 15% of the finest
+           (a map more must buy texels 15% finer: it costs a caster pass) */
+        for (c = 0; c < cands; c++)
+            if (score[c] > 0.0f && score[c] <= 1.15f * score[low] &&
+                (pick < 0 || SKGL__AUTO_MAPS(c) < SKGL__AUTO_MAPS(pick) ||
+                 (SKGL__AUTO_MAPS(c) == SKGL__AUTO_MAPS(pick) && score[c] < score[pick])))
+                pick = c;
+    }
     if (cur < 0 || cur >= cands || !(score[cur] > 0.0f)) return pick;
     if (score[pick] < 0.85f * score[cur] ||
-        (SKGL__AUTO_MAPS(pick) < SKGL__AUTO_MAPS(cur) && score[pick] <= 0.85f * target) ||
+        (SKGL__AUTO_MAPS(pick) < SKGL__AUTO_MAPS(cur) &&
+         (score[pick] <= 0.85f * target || (score[cur] > target && score[pick] <= 1.15f * score[cur]))) ||
         (score[cur] > 1.15f * target && score[pick] <= target))
         return pick;
     return cur;

@@ -370,8 +370,9 @@ static void add_rmsm(int vres, int pool) {
     c->desc.sync_readback = 1;   /* this view's pages (see add_ferko) */
 }
 
-/* SKGL_AUTO at a texel budget of res^2 (one focused map or up to 4
-   cascades sharing it, desc.auto_texel_px's default target of 1 px). Its
+/* SKGL_AUTO at a texel budget of res^2 (one map or up to 4 cascades
+   sharing it, focused or warped, desc.auto_texel_px's default target of
+   1 px). Its
    analysis runs each frame without a stall (sync_readback 0: the depth
    range of an earlier frame through the read-back ring, widened by 10%),
    as a game would run it; the sweep gives each view a fresh light and
