@@ -623,5 +623,66 @@ static void test_auto_hysteresis(void) {
     gt_env_free(&e);
 }
 
-SK_TEST_MAIN(test_auto_choice, test_auto_front, test_fit_to_depth, test_stable_ratio, test_auto_hysteresis,
+/* AUTO's rule where no set meets the target (.auto_texel_px 0.05, below
+   any set's ratio): the fewest maps within 15% of the finest set, a new
+   light each open-world frame (no hysteresis). Checked on the predictions
+   each frame reports (stats.auto_texel_px and .auto_texel_px_warped):
+   the chosen set within 1.15x of the finest, and no set of fewer maps
+   within it. Measured: the finest set has 4 maps in every frame, the
+   choice fewer in 6 of 15 (seen failing with the old rule, the finest
+   set: those 6 frames, and the count of frames with fewer maps). */
+static void test_auto_rule(void) {
+    view v[TB_OPEN_WORLD_VIEWS * 3];
+    gt_env e;
+    tb_scene sc;
+    int n, i, fewer = 0;
+    tb_scene_init(&sc);
+    if (tb_scene_build_open_world(&sc) != 0 || gt_env_init(&e, &sc, W, H) != 0) {
+        SK_CHECK_MSG(0, "open world");
+        gt_env_free(&e);
+        return;
+    }
+    n = open_world_views(v);
+    for (i = 0; i < n; i++) {
+        skgl_camera cam = gt_camera(v[i].eye, v[i].target, FOVY, v[i].zn, v[i].zf, W, H);
+        skgl_shadow_desc d = gt_shadow_desc(SKGL_AUTO, 2048, 4, 0);
+        skgl_scene scene = gt_scene(&e);
+        skgl_shadow *s;
+        const skgl_shadow_frame_stats *st;
+        float best = 0.0f, chosen;
+        int k, best_maps = 0;
+        d.sync_readback = 1;
+        d.auto_texel_px = 0.05f;
+        s = gt_shadow(&e, &d);
+        if (!s || gt_gbuffer(&e, &cam) != 0 ||
+            skgl_shadow_analyze(e.sk, s, &cam, &scene, v[i].light, e.gbuf.depth_tex) != SK_OK ||
+            skgl_shadow_render(e.sk, s, &cam, &scene, v[i].light) != SK_OK) {
+            SK_CHECK_MSG(0, "frame %d: %s", i, skgl_error_log(e.sk));
+            skgl_shadow_destroy(e.sk, s);
+            continue;
+        }
+        st = skgl_shadow_stats(s);
+        for (k = 0; k < 4; k++) {
+            float f = st->auto_texel_px[k], w = st->auto_texel_px_warped[k];
+            if (f > 0.0f && (!best || f < best)) { best = f; best_maps = k + 1; }
+            if (w > 0.0f && (!best || w < best)) { best = w; best_maps = k + 1; }
+        }
+        chosen = st->auto_technique == SKGL_LISPSM ? st->auto_texel_px_warped[st->maps - 1]
+                                                   : st->auto_texel_px[st->maps - 1];
+        SK_CHECK_MSG(best > 0.05f && chosen <= 1.15f * best, "frame %d: chose %d maps at %.3f px, the finest %.3f", i,
+                     st->maps, chosen, best);
+        for (k = 0; k < st->maps - 1; k++)
+            SK_CHECK_MSG(!(st->auto_texel_px[k] > 0.0f && st->auto_texel_px[k] <= 1.15f * best) &&
+                             !(st->auto_texel_px_warped[k] > 0.0f && st->auto_texel_px_warped[k] <= 1.15f * best),
+                         "frame %d: %d maps chosen, %d within 15%% of the finest (%.3f / %.3f against %.3f)", i,
+                         st->maps, k + 1, st->auto_texel_px[k], st->auto_texel_px_warped[k], best);
+        fewer += st->maps < best_maps;
+        skgl_shadow_destroy(e.sk, s);
+    }
+    printf("rule without a set meeting the target: fewer maps than the finest set in %d of %d frames\n", fewer, n);
+    SK_CHECK_MSG(fewer > 0, "the rule never chose fewer maps than the finest set (%d frames)", n);
+    gt_env_free(&e);
+}
+
+SK_TEST_MAIN(test_auto_rule, test_auto_choice, test_auto_front, test_fit_to_depth, test_stable_ratio, test_auto_hysteresis,
              test_auto_analysis_gate)
