@@ -389,12 +389,20 @@ static void add_auto(int res) {
 }
 
 /* desc.fit_to_depth (sample distribution shadow maps, Lauritzen, Salvi and
-   Lefohn 2011): PSSM's practical splits, or the standard focused map, over
-   the view depths the analysis found; analysed each frame like AUTO */
+   Lefohn 2011): PSSM's splits at the default .lambda (0: logarithmic over
+   an analysed range, 0.75 before the first analysis), or the standard
+   focused map, over the view depths the analysis found; analysed each
+   frame like AUTO. Paired in bench-auto.txt with the practical scheme at
+   lambda 0.75 (FIT_PAIR_LAMBDA). */
+#define FIT_PAIR_LAMBDA "lambda=0.75;"
 static void add_pssm_fit(int cascades, int res) {
+    bench_cfg *c;
     add_pssm(cascades, 0.75f, res, 0.0f, 1);
-    snprintf(g_cfg[g_ncfg - 1].method, sizeof g_cfg[0].method, "pssm-fit");
-    g_cfg[g_ncfg - 1].desc.fit_to_depth = 1;
+    c = &g_cfg[g_ncfg - 1];
+    snprintf(c->method, sizeof c->method, "pssm-fit");
+    snprintf(c->params, sizeof c->params, "cascades=%d;lambda=0;resolution=%d;blend=0;pcf=1", cascades, res);
+    c->desc.lambda = 0.0f;
+    c->desc.fit_to_depth = 1;
 }
 
 static void add_standard_fit(int res) {
@@ -971,9 +979,16 @@ static void write_auto_table(FILE *t, const plot_data *d, int si, plot_pt *const
         const plot_pt *p = sel[k];
         const char *base = strcmp(p->method, "pssm-fit") == 0 ? "pssm"
                            : strcmp(p->method, "standard-fit") == 0 ? "standard" : NULL;
+        char want[sizeof p->params + 8];
+        const char *lz;
         if (!base) continue;
+        /* a pssm-fit row's "lambda=0;" pairs with the practical scheme's FIT_PAIR_LAMBDA */
+        if ((lz = strstr(p->params, "lambda=0;")) != NULL)
+            snprintf(want, sizeof want, "%.*s%s%s", (int)(lz - p->params), p->params, FIT_PAIR_LAMBDA, lz + 9);
+        else
+            snprintf(want, sizeof want, "%s", p->params);
         for (j = 0; j < nsel; j++)
-            if (strcmp(sel[j]->method, base) == 0 && strcmp(sel[j]->params, p->params) == 0) break;
+            if (strcmp(sel[j]->method, base) == 0 && strcmp(sel[j]->params, want) == 0) break;
         if (j == nsel) continue;
         fprintf(t, "    %-14s %-44s %9.3f %9.3f %8.3f %9.3f %9.3f %8.3f\n", p->method, p->params, p->err, sel[j]->err,
                 sel[j]->err > 0 ? p->err / sel[j]->err : 0.0, p->ms, sel[j]->ms, sel[j]->ms > 0 ? p->ms / sel[j]->ms : 0.0);

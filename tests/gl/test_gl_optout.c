@@ -23,7 +23,8 @@
    succeeds and eight checks of test_casters_refused fail.
    Where the depth analysis stays (every build but SKGL_NO_FERKO's), FERKO
    (its estimate read back at once) 0.1704% and PSSM with .fit_to_depth
-   0.0467%, as without the switches; bounds about 1.4x: 0.24% / 0.065%.
+   0.0577% (0.0467% before a fitted range took log splits), as without the
+   switches; bounds about 1.4x: 0.24% / 0.08%.
    At a quarter of the resolution 0.6403% / 0.2418%, both fail. */
 #define SK_TEST_OWN_IMPLEMENTATION 1
 #ifndef SK_OPTOUT_ONE   /* mk/testbed.mk's test_gl_optout_<switch>: that -DSKGL_NO_* alone */
@@ -97,7 +98,7 @@ static void test_rmsm(void) { smoke(SKGL_RMSM, 0, RMSM_MAX_ERR); }
 /* the depth analysis stays: FERKO's map, and PSSM's splits fitted to the
    depth range */
 #define FERKO_MAX_ERR 0.24
-#define PSSM_FIT_MAX_ERR 0.065
+#define PSSM_FIT_MAX_ERR 0.08
 static void test_ferko(void) { smoke(SKGL_FERKO, 0, FERKO_MAX_ERR); }
 static void test_pssm_fit(void) { smoke(SKGL_PSSM, 1, PSSM_FIT_MAX_ERR); }
 #define SK_T_FERKO test_ferko, test_pssm_fit,
