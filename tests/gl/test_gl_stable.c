@@ -169,11 +169,23 @@ static void test_stable_crops(void) {
     gt_env_free(&e);
 }
 
-/* layer i's texel size in world units (the lookup matrix's x scale) */
+/* every layer's crop, its width and height in world units (after a render) */
+static void crop_sides(const skgl_shadow *s, double *tx) {
+    int i;
+    for (i = 0; i < 4; i++) {
+        sk_mat4 m = skgl_shadow_matrix(s, i);
+        double sx = sqrt((double)m.m[0] * m.m[0] + (double)m.m[4] * m.m[4] + (double)m.m[8] * m.m[8]);
+        double sy = sqrt((double)m.m[1] * m.m[1] + (double)m.m[5] * m.m[5] + (double)m.m[9] * m.m[9]);
+        tx[2 * i] = sx > 0 ? 2.0 / sx : 0;
+        tx[2 * i + 1] = sy > 0 ? 2.0 / sy : 0;
+    }
+}
+
+/* layer i's texel size in world units (along the lookup matrix's x) */
 static double layer_texel(const skgl_shadow *s, int i) {
-    sk_mat4 m = skgl_shadow_matrix(s, i);
-    double sx = sqrt((double)m.m[0] * m.m[0] + (double)m.m[4] * m.m[4] + (double)m.m[8] * m.m[8]);
-    return sx > 0 ? 2.0 / (sx * (double)skgl_shadow_get_desc(s).resolution) : 0;
+    double sides[8];
+    crop_sides(s, sides);
+    return sides[2 * i] / (double)skgl_shadow_get_desc(s).resolution;
 }
 
 /* A camera turning in place (1 degree a frame, 120 frames) and a camera
@@ -230,18 +242,6 @@ static void test_stable_turning(void) {
     SK_CHECK_MSG(resized[2][0] > 100 && resized[2][1] > 100, "unstable resized %d, %d", resized[2][0], resized[2][1]);
     SK_CHECK_MSG(resized[0][0] <= 15 && resized[0][1] <= 15, "stepped resized %d, %d", resized[0][0], resized[0][1]);
     gt_env_free(&e);
-}
-
-/* every layer's crop, its width and height in world units (after a render) */
-static void crop_sides(const skgl_shadow *s, double *tx) {
-    int i;
-    for (i = 0; i < 4; i++) {
-        sk_mat4 m = skgl_shadow_matrix(s, i);
-        double sx = sqrt((double)m.m[0] * m.m[0] + (double)m.m[4] * m.m[4] + (double)m.m[8] * m.m[8]);
-        double sy = sqrt((double)m.m[1] * m.m[1] + (double)m.m[5] * m.m[5] + (double)m.m[9] * m.m[9]);
-        tx[2 * i] = sx > 0 ? 2.0 / sx : 0;
-        tx[2 * i + 1] = sy > 0 ? 2.0 / sy : 0;
-    }
 }
 
 static skgl_camera settle_cam(float t) {
