@@ -628,13 +628,14 @@ static void test_auto_hysteresis(void) {
 }
 
 /* AUTO's rule where no set meets the target (.auto_texel_px 0.05, below
-   any set's ratio): the fewest maps within 15% of the finest set, a new
+   any set's ratio): the fewest maps within 25% of the finest set, a new
    light each open-world frame (no hysteresis). Checked on the predictions
    each frame reports (stats.auto_texel_px and .auto_texel_px_warped):
-   the chosen set within 1.15x of the finest, and no set of fewer maps
+   the chosen set within 1.25x of the finest, and no set of fewer maps
    within it. Measured: the finest set has 4 maps in every frame, the
-   choice fewer in 6 of 15 (seen failing with the old rule, the finest
-   set: those 6 frames, and the count of frames with fewer maps). */
+   choice fewer in 10 of 15 (6 of 15 with a 15% margin; seen failing with
+   the old rule, the finest set: those frames, and the count of frames
+   with fewer maps). */
 static void test_auto_rule(void) {
     view v[TB_OPEN_WORLD_VIEWS * 3];
     gt_env e;
@@ -673,12 +674,12 @@ static void test_auto_rule(void) {
         }
         chosen = st->auto_technique == SKGL_LISPSM ? st->auto_texel_px_warped[st->maps - 1]
                                                    : st->auto_texel_px[st->maps - 1];
-        SK_CHECK_MSG(best > 0.05f && chosen <= 1.15f * best, "frame %d: chose %d maps at %.3f px, the finest %.3f", i,
+        SK_CHECK_MSG(best > 0.05f && chosen <= 1.25f * best, "frame %d: chose %d maps at %.3f px, the finest %.3f", i,
                      st->maps, chosen, best);
         for (k = 0; k < st->maps - 1; k++)
-            SK_CHECK_MSG(!(st->auto_texel_px[k] > 0.0f && st->auto_texel_px[k] <= 1.15f * best) &&
-                             !(st->auto_texel_px_warped[k] > 0.0f && st->auto_texel_px_warped[k] <= 1.15f * best),
-                         "frame %d: %d maps chosen, %d within 15%% of the finest (%.3f / %.3f against %.3f)", i,
+            SK_CHECK_MSG(!(st->auto_texel_px[k] > 0.0f && st->auto_texel_px[k] <= 1.25f * best) &&
+                             !(st->auto_texel_px_warped[k] > 0.0f && st->auto_texel_px_warped[k] <= 1.25f * best),
+                         "frame %d: %d maps chosen, %d within 25%% of the finest (%.3f / %.3f against %.3f)", i,
                          st->maps, k + 1, st->auto_texel_px[k], st->auto_texel_px_warped[k], best);
         fewer += st->maps < best_maps;
         skgl_shadow_destroy(e.sk, s);
