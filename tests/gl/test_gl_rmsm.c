@@ -13,8 +13,12 @@
    band the pool holds, exactly band_pages' over the same samples: boxes
    band 6 (1774 pages), terrace and fence band 7 (2315, 3088: level 0).
    Pool of 24^2 (test_accuracy): boxes band 6 (572 pages), covered
-   0.0054%, area 0.25%; terrace and fence band 0 (434 pixel-matched pages
-   fill most of the pool; fence's 810 do not fit, min level 1).
+   0.0054%, area 0.25%; terrace a band capped in world size (522 pages,
+   0.0579%, 2.18%), where it took the pixel-matched band 0 while the
+   bands had to go a level finer (434 pages, 0.1480%, 5.58%); fence's 810
+   pixel-matched pages do not fit: a cap above its finest level 2 (317
+   pages, 0.8859%, 10.83%; band 0 folded to min level 1 before, 546
+   pages, 1.1516%, 14.08%).
 
    test_accuracy - pool of 24^2 pages, against the focused 2048^2 map, on
    the exact reference with the default bias (receiver plane); covered %
