@@ -7625,13 +7625,16 @@ static unsigned char *skgl__rmsm_bands(skgl_shadow *s, const unsigned char *atla
 {
     size_t bytes = (size_t)s->rmsm.atlas_w * (size_t)s->rmsm.atlas_h, i;
     int b = 0, n = 0, finer = 0, floor_level, top = s->rmsm.bands - 1;
+    int pool = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
     unsigned char stamp = 0;
     for (i = 0; i < bytes; i++) n += atlas[4 * i + 2] != 255;
     s->stats.pages_requested = n;
     memset(s->rmsm.mark, 0, bytes);
     for (floor_level = 0; floor_level < top; floor_level++) {
-        b = skgl__rmsm_band_fit(s, atlas, cap, floor_level, &finer, &stamp);
-        if (b > 0 || n + 1 <= s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages) break;
+        /* above a floor the pool is full either way, as the fold fills it
+           (skgl__rmsm_pages): no half kept for a cache's earlier pages */
+        b = skgl__rmsm_band_fit(s, atlas, floor_level > 0 ? pool : cap, floor_level, &finer, &stamp);
+        if (b > 0 || n + 1 <= pool) break;
     }
     s->stats.rmsm_band = b;
     s->stats.rmsm_band_finer = b > 0 && finer;
