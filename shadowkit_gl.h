@@ -1292,10 +1292,10 @@ typedef struct skgl_shadow_desc {
                                      (.rmsm_page_size + 2))^2 32-bit texels: 24, 3120^2,
                                      39 MB; 48, 6240^2, 156 MB. Measured (bench, 1280x720,
                                      16384^2 virtual, shadow-area error, mean of 3 views):
-                                     sponza-ivy 13.89% at 24, 6.53% at 48 (standard 2048^2
-                                     12.89%); terrace 16.07%, 3.75% (10.17%); at 48 the
-                                     frame draws 3-4x the pages (1107-2017 against
-                                     325-507) in 1.4-2.4x the time. 24 stays the default
+                                     sponza-ivy 6.75% at 24, 4.02% at 48 (standard 2048^2
+                                     12.89%); terrace 7.21%, 3.75% (10.17%); at 48 the
+                                     frame draws 3.2x the pages (1715 and 1407 against 535
+                                     and 445) in 1.3-1.4x the time. 24 stays the default
                                      for its memory and passes; 48 where the view needs
                                      the pages */
     int rmsm_band_pages;          /* RMSM: finer pages than the pixel-matched level, in at most
