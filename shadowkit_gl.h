@@ -413,10 +413,12 @@
                     default; .sync_readback = 1: this frame's); where a
                     page is missing the lookup falls back
                     to a coarser resident one. Where the pool holds them
-                    (.rmsm_band_pages, stats.rmsm_band) the pages go a
-                    level finer than the pixel and no coarser than a world
-                    size: a texel matched to a pixel misses casters
-                    thinner than the pixel (a pole at 500 m).
+                    (.rmsm_band_pages, stats.rmsm_band) the pages go no
+                    coarser than a world size, the finest the pool holds,
+                    and a level finer than the pixel where it holds that
+                    too (stats.rmsm_band_finer): a texel matched to a
+                    pixel misses casters thinner than the pixel (a pole
+                    at 500 m).
      SKGL_AUTO      the library chooses (CHOOSING FOR YOU): one map or 2 to
                     .cascades cascades, focused (STANDARD, PSSM) or warped
                     (LiSPSM), per frame, from the view's depth range and the
@@ -1309,17 +1311,18 @@ typedef struct skgl_shadow_desc {
                                      (.rmsm_page_size + 2))^2 32-bit texels: 24, 3120^2,
                                      39 MB; 48, 6240^2, 156 MB. Measured (bench, 1280x720,
                                      16384^2 virtual, shadow-area error, mean of 3 views):
-                                     sponza-ivy 13.89% at 24, 6.53% at 48 (standard 2048^2
-                                     12.89%); terrace 16.07%, 3.75% (10.17%); at 48 the
-                                     frame draws 3-4x the pages (1107-2017 against
-                                     325-507) in 1.4-2.4x the time. 24 stays the default
+                                     sponza-ivy 6.75% at 24, 4.02% at 48 (standard 2048^2
+                                     12.89%); terrace 7.21%, 3.75% (10.17%); at 48 the
+                                     frame draws 3.2x the pages (1715 and 1407 against 535
+                                     and 445) in 1.3-1.4x the time. 24 stays the default
                                      for its memory and passes; 48 where the view needs
                                      the pages */
     int rmsm_band_pages;          /* RMSM: finer pages than the pixel-matched level, in at most
-                                     this many slots: a texel of half a pixel, and none coarser
-                                     than the finest world size they afford (a caster thinner
-                                     than a pixel, a pole's shadow at 500 m, needs texels
-                                     under the pixel; stats.rmsm_band). [0: the pool, half of
+                                     this many slots: none coarser than the finest world size
+                                     they afford and, where they afford it too, a texel of half
+                                     a pixel (a caster thinner than a pixel, a pole's shadow at
+                                     500 m, needs texels under the pixel; stats.rmsm_band,
+                                     rmsm_band_finer). [0: the pool, half of
                                      it with .cache, the rest kept for earlier frames' pages];
                                      -1: the pixel-matched level alone (Lefohn, Sengupta and
                                      Owens 2007); else 1..rmsm_pool_pages^2 */
@@ -1419,10 +1422,14 @@ typedef struct skgl_shadow_frame_stats {
     int pages_requested;                  /* RMSM: distinct pages the view asked for (finest levels) */
     int pages_rendered;                   /* RMSM: pages drawn this frame (uncached: every page of the
                                              frame, the coarsest always among them) */
-    int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short) */
+    int rmsm_min_level;                   /* RMSM: finest level rendered (> 0 when the pool was short
+                                             even for the pixel-matched pages; a band may sit above it) */
     int rmsm_band;                        /* RMSM: the request band of this frame's pages, the finest the
-                                             pool held: 0 the pixel-matched level; b > 0 one level
-                                             finer and at most level levels - 1 - b (desc.rmsm_band_pages) */
+                                             pool held: 0 the pixel-matched level; b > 0 at most level
+                                             levels - 1 - b (desc.rmsm_band_pages) and, with
+                                             rmsm_band_finer, one level finer than the pixel */
+    int rmsm_band_finer;                  /* RMSM: 1 when band b > 0's pages are also a level finer than
+                                             the pixel; 0: the cap alone (the pool held no more) */
     int pages_reused;                     /* RMSM, .cache: pages of this frame kept from an earlier one */
     int pages_evicted;                    /* RMSM, .cache: resident pages whose slot a new page took */
     int pages_resident;                   /* RMSM: pages the pool holds (uncached: this frame's) */
@@ -5807,6 +5814,7 @@ typedef struct skgl__rmsm {
     int req_fmt;                   /* rmsm.requests' format: the atlas in R8, banded in RGBA8 */
     unsigned char *req_cpu, *table_cpu, *table_new;
     unsigned char *mark;           /* banded: per atlas texel, the band that last marked it (scratch) */
+    int floor_level;               /* banded: the finest level this frame's band asks for (skgl__rmsm_bands) */
     sk_page *pages;
     int *slot_of;                  /* per page: its pool slot */
     int npages, analyzed;
@@ -7712,12 +7720,15 @@ static int skgl__rmsm_count(const skgl_shadow *s, const unsigned char *req, int 
 }
 
 /* the level request band b asks for where the pixel-matched one is f
-   (rmsm_request.vert): band 0 f, band b > 0 one finer and at most top - b */
-static int skgl__band_level(int f, int b, int top)
+   (rmsm_request.vert): band 0 f; band b > 0 at most top - b (the cap on
+   the texel's world size), one level finer than f where finer is set,
+   and never below floor_level */
+static int skgl__band_level(int f, int b, int finer, int floor_level, int top)
 {
     if (b == 0) return f;
-    f = f > 0 ? f - 1 : 0;
-    return f < top - b ? f : top - b;
+    if (finer && f > 0) f--;
+    if (f > top - b) f = top - b;
+    return f > floor_level ? f : floor_level;
 }
 
 /* Band b > 0's pages, from the banded atlas's level-0 texels (red and
@@ -7725,9 +7736,11 @@ static int skgl__band_level(int f, int b, int top)
    page's samples; 255 in red: none): a sample asks for the ancestor of
    its level-0 page at its band level, so the page asks for its ancestors
    at the band levels of [fmin, fmax] (every one between: a superset where
-   the levels present skip one). Each is marked in rmsm.mark with stamp;
-   their count, which stops past stop (a band that cannot fit). */
-static int skgl__rmsm_band_mark(skgl_shadow *s, const unsigned char *atlas, int b, unsigned char stamp, int stop)
+   the levels present skip one; skgl__band_level with finer and
+   floor_level). Each is marked in rmsm.mark with stamp; their count,
+   which stops past stop (a band that cannot fit). */
+static int skgl__rmsm_band_mark(skgl_shadow *s, const unsigned char *atlas, int b, int finer, int floor_level,
+                                unsigned char stamp, int stop)
 {
     int n0 = s->rmsm.pages0, top = s->rmsm.levels - 1, count = 0, px, py, l;
     for (py = 0; py < n0; py++)
@@ -7735,8 +7748,8 @@ static int skgl__rmsm_band_mark(skgl_shadow *s, const unsigned char *atlas, int 
             const unsigned char *e = atlas + 4 * skgl__atlas_index(s, 0, px, py);
             int lo, hi;
             if (e[0] == 255) continue;
-            lo = skgl__band_level(e[0], b, top);
-            hi = skgl__band_level(254 - e[1], b, top);
+            lo = skgl__band_level(e[0], b, finer, floor_level, top);
+            hi = skgl__band_level(254 - e[1], b, finer, floor_level, top);
             for (l = lo; l <= hi; l++) {
                 unsigned char *m = &s->rmsm.mark[skgl__atlas_index(s, l, px >> l, py >> l)];
                 if (*m == stamp) continue;
@@ -7747,27 +7760,60 @@ static int skgl__rmsm_band_mark(skgl_shadow *s, const unsigned char *atlas, int 
     return count;
 }
 
+/* The finest cap on the texel's world size whose band fits in cap slots
+   with the coarsest page, at floor floor_level: for each cap from the
+   finest (top - b, b = top - floor_level first), its pages one level finer
+   than the pixel, else the cap alone (the pixel-matched level under it).
+   Returns the band (0: none fits), *finer and *stamp (rmsm.mark's). */
+static int skgl__rmsm_band_fit(skgl_shadow *s, const unsigned char *atlas, int cap, int floor_level, int *finer,
+                               unsigned char *stamp)
+{
+    int top = s->rmsm.bands - 1, b, k;
+    for (b = top - floor_level; b > 0; b--)
+        for (k = 1; k >= 0; k--) {
+            ++*stamp;
+            if (skgl__rmsm_band_mark(s, atlas, b, k, floor_level, *stamp, cap - 1) + 1 <= cap) {
+                *finer = k;
+                return b;
+            }
+        }
+    return 0;
+}
+
 /* The banded requests (desc.rmsm_band_pages >= 0) as one request atlas in
-   rmsm.mark (nonzero: asked for): the finest band whose pages fit in the
-   pool with the coarsest page, else band 0, the pixel-matched pages (blue
-   0 in the banded atlas, exactly those of the matched one). Lefohn,
-   Sengupta and Owens match a texel to a pixel, which leaves a caster thinner than the
-   pixel's footprint (a pole's shadow at 500 m) to the chance of covering
-   a texel centre; the pool's spare slots buy texels of half a pixel and,
-   band by band, a finer cap on the texel's world size. A band b > 0 fits
-   in cap slots. */
+   rmsm.mark (nonzero: asked for): the band with the finest cap on the
+   texel's world size that fits in the pool with the coarsest page, its
+   pages a level finer than the pixel where that fits too
+   (skgl__rmsm_band_fit); else band 0, the pixel-matched pages (blue 0 in
+   the banded atlas, exactly those of the matched one). Lefohn, Sengupta
+   and Owens match a texel to a pixel, which leaves a caster thinner than
+   the pixel's footprint (a pole's shadow at 500 m) to the chance of
+   covering a texel centre; the pool's spare slots buy, first, a cap on the
+   texel's world size (the far field, where a pixel spans metres) and then
+   texels of half a pixel. Where even the pixel-matched pages overflow the
+   pool, the finest level rises (the floor, stats.rmsm_min_level) and the
+   cap is sought again above it, rather than the far field left at the
+   pixel-matched level. A band b > 0 fits in cap slots. */
 static unsigned char *skgl__rmsm_bands(skgl_shadow *s, const unsigned char *atlas, int cap)
 {
     size_t bytes = (size_t)s->rmsm.atlas_w * (size_t)s->rmsm.atlas_h, i;
-    int b, n = 0;
+    int b = 0, n = 0, finer = 0, floor_level, top = s->rmsm.bands - 1;
+    int pool = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages;
+    unsigned char stamp = 0;
     for (i = 0; i < bytes; i++) n += atlas[4 * i + 2] != 255;
     s->stats.pages_requested = n;
     memset(s->rmsm.mark, 0, bytes);
-    for (b = s->rmsm.bands - 1; b > 0; b--)
-        if (skgl__rmsm_band_mark(s, atlas, b, (unsigned char)b, cap - 1) + 1 <= cap) break;
+    for (floor_level = 0; floor_level < top; floor_level++) {
+        /* above a floor the pool is full either way, as the fold fills it
+           (skgl__rmsm_pages): no half kept for a cache's earlier pages */
+        b = skgl__rmsm_band_fit(s, atlas, floor_level > 0 ? pool : cap, floor_level, &finer, &stamp);
+        if (b > 0 || n + 1 <= pool) break;
+    }
     s->stats.rmsm_band = b;
+    s->stats.rmsm_band_finer = b > 0 && finer;
+    s->rmsm.floor_level = b > 0 ? floor_level : 0;
     if (b > 0)
-        for (i = 0; i < bytes; i++) s->rmsm.mark[i] = s->rmsm.mark[i] == (unsigned char)b;
+        for (i = 0; i < bytes; i++) s->rmsm.mark[i] = s->rmsm.mark[i] == stamp;
     else
         for (i = 0; i < bytes; i++) s->rmsm.mark[i] = atlas[4 * i + 2] != 255;
     return s->rmsm.mark;
@@ -7798,10 +7844,12 @@ static void skgl__rmsm_pages(skgl_shadow *s, unsigned char *data)
     int cap = s->desc.rmsm_pool_pages * s->desc.rmsm_pool_pages, min_level = 0, count, l, px, py;
     int top = s->rmsm.levels - 1;
     unsigned char *req = data;
-    s->stats.rmsm_band = 0;
+    s->stats.rmsm_band = s->stats.rmsm_band_finer = 0;
+    s->rmsm.floor_level = 0;
     if (s->rmsm.bands > 1) req = skgl__rmsm_bands(s, data, skgl__rmsm_band_cap(s));
     else s->stats.pages_requested = skgl__rmsm_count(s, req, 0);
-    count = skgl__rmsm_count(s, req, 0);
+    min_level = s->rmsm.floor_level;
+    count = skgl__rmsm_count(s, req, min_level);
     while (count + 1 > cap && min_level < top) {
         int n = s->rmsm.pages0 >> min_level;
         for (py = 0; py < n; py++)
@@ -8860,7 +8908,7 @@ static sk_result skgl__render_rmsm(skgl_context *ctx, skgl_shadow *s, const skgl
         s->rmsm.pages[0].px = s->rmsm.pages[0].py = 0;
         s->rmsm.npages = 1;
         s->stats.pages_requested = 0;
-        s->stats.rmsm_min_level = s->stats.rmsm_band = 0;
+        s->stats.rmsm_min_level = s->stats.rmsm_band = s->stats.rmsm_band_finer = 0;
     }
     s->stats.passes = 0;
     s->stats.texels = 0.0;
@@ -9364,10 +9412,15 @@ static void skgl__shadow_uniforms(skgl_context *ctx, const skgl_shadow *s, skgl_
     }
     if (e->layers != s->maps) { e->layers = s->maps; skgl__u1i(gl, L[SKGL__L_LAYERS], s->maps); }
     /* sk_rmsm_min_level: the finest level rendered, or -b when the pages
-       are those of request band b (skgl__rmsm_pages: never both) */
-    if (e->min_level != s->stats.rmsm_min_level - s->stats.rmsm_band) {
-        e->min_level = s->stats.rmsm_min_level - s->stats.rmsm_band;
-        skgl__u1i(gl, L[SKGL__L_MIN_LEVEL], e->min_level);
+       are those of request band b: the lookup starts b levels under the
+       pixel's, at or under every level band b asks for (a floor under
+       the band, stats.rmsm_min_level > 0, holds no pages to find) */
+    {
+        int first = s->stats.rmsm_band > 0 ? -s->stats.rmsm_band : s->stats.rmsm_min_level;
+        if (e->min_level != first) {
+            e->min_level = first;
+            skgl__u1i(gl, L[SKGL__L_MIN_LEVEL], e->min_level);
+        }
     }
     /* FERKO and AUTO draw into the lower-left view_w x view_h texels:
        beyond them lie older maps' texels, not this frame's */
@@ -13664,9 +13717,9 @@ static const char skgl__src_rmsm_request_vert[] =
     "   one onto its level-0 page with (f, 254 - f) / 255 in red and green, f\n"
     "   the level above: per level-0 page the least and the greatest level its\n"
     "   samples ask for. Request band b's pages follow on the CPU\n"
-    "   (skgl__rmsm_bands): band 0 the level f (blue), band b > 0 one level\n"
-    "   finer and at most level u_levels - 1 - b, each the ancestor of the\n"
-    "   sample's level-0 page. */\n"
+    "   (skgl__rmsm_bands): band 0 the level f (blue), band b > 0 at most\n"
+    "   level u_levels - 1 - b (and one level finer where the pool holds\n"
+    "   it), each the ancestor of the sample's level-0 page. */\n"
     "uniform sampler2D u_samples;\n"
     "uniform int u_pages0;\n"
     "uniform int u_levels;\n"

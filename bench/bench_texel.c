@@ -209,10 +209,10 @@ static int rmsm_texels(const skgl_shadow *s, const bench_receivers *rc, const fl
         if (t->footprint[i] < 0.0f) continue;
         sv = smallest_singular(j[0], j[2], j[1], j[3]);
         /* as the shader takes it (sk_shadow_rmsm, its sk_rmsm_min_level =
-           stats.rmsm_min_level - stats.rmsm_band): request band b starts b
-           levels finer than the pixel's */
+           -stats.rmsm_band, else stats.rmsm_min_level): request band b
+           starts b levels finer than the pixel's */
         {
-            int u = st->rmsm_min_level - st->rmsm_band;
+            int u = st->rmsm_band > 0 ? -st->rmsm_band : st->rmsm_min_level;
             level = (sv > 0.0 ? (int)floor(log2(sv)) : 0) - (u < 0 ? -u : 0);
             if (level < (u > 0 ? u : 0)) level = u > 0 ? u : 0;
         }

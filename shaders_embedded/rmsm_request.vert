@@ -12,9 +12,9 @@
    one onto its level-0 page with (f, 254 - f) / 255 in red and green, f
    the level above: per level-0 page the least and the greatest level its
    samples ask for. Request band b's pages follow on the CPU
-   (skgl__rmsm_bands): band 0 the level f (blue), band b > 0 one level
-   finer and at most level u_levels - 1 - b, each the ancestor of the
-   sample's level-0 page. */
+   (skgl__rmsm_bands): band 0 the level f (blue), band b > 0 at most
+   level u_levels - 1 - b (and one level finer where the pool holds
+   it), each the ancestor of the sample's level-0 page. */
 uniform sampler2D u_samples;
 uniform int u_pages0;
 uniform int u_levels;

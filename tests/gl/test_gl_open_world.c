@@ -172,6 +172,30 @@ static void footprint_add(footprint *fp, const gt_env *e, const skgl_shadow *s, 
         }
 }
 
+/* covered pixels beyond 200 m that the reference calls lit while the
+   G-buffer's normal faces away from the sun: at a box's vertical edge the
+   rasterised face and the traced one differ (the same depth, so not a
+   silhouette), and every technique's mask calls the G-buffer's face its
+   own shadow (sk_shadow_map_visibility), wrong whatever the map holds */
+static double far_faced_away(const gt_env *e, const float *ref, sk_vec3 light) {
+    double n = 0;
+    size_t i;
+    for (i = 0; i < e->n; i++) {
+        const float *nn = e->normals + 3 * i;
+        if (tb_visibility_class(ref[i]) != 1 || gt_band_of(gt_view_depth(e, i)) != GT_BANDS - 1) continue;
+        n += nn[0] * light.x + nn[1] * light.y + nn[2] * light.z >= 0.0f;
+    }
+    return n;
+}
+
+/* "  <name>  wrong / shadow px  0-10 a/b ..." */
+static void print_band_px(const char *name, const gt_band_pool *p) {
+    int b;
+    printf("  %-20s wrong / shadow px by band:", name);
+    for (b = 0; b < GT_BANDS; b++) printf("  %s %.0f/%.0f", gt_band_name[b], p->band_wrong[b], p->band_shadow[b]);
+    printf("\n");
+}
+
 /* method indices the checks name */
 enum { M_STD2048, M_STD4096, M_PSSM, M_PSSM_STABLE, M_LISPSM, M_PSM, M_LSPSM, M_FERKO, M_RMSM, M_RMSM64K, M_LSPSM1K };
 #define FRAMES (TB_OPEN_WORLD_VIEWS * TB_OPEN_WORLD_SUNS)
@@ -205,7 +229,7 @@ static int methods_filtered(void) {
      lspsm               1.23   1.03  1.45  4.00  3.83  27.3M
      ferko max 4096      3.63   2.81  6.12  3.54  2.41  16.8M
      rmsm 16384          2.30   1.93  3.30  3.13  2.63   3.2M
-     rmsm 65536          1.09   0.62  1.96  4.76  3.29   8.1M
+     rmsm 65536          0.85   0.62  1.32  2.47  2.30   8.4M
      lspsm 1024          3.05   2.54  4.25  5.64  4.49   6.8M
    LSPSM at 1024^2 a partition (1.6x PSSM 4x1024^2's texels: 6.5
    partitions a frame on average) has 2.0x PSSM's error, 2.1x in the
@@ -237,12 +261,29 @@ static int methods_filtered(void) {
    0.3 m shadow is a point sample inside one texel. The pages now go a
    level finer than the pixel, capped in world size, as far as the pool
    holds them (request bands, stats.rmsm_band): at 16384^2 every frame
-   takes level 0; at 65536^2 band 6-9 in 21 frames, the pixel-matched
-   band 0 in 9 whose pixel-matched pages already fill most of the pool.
-   With a 64^2 pool and every frame at band 9, 65536^2 gives 0.73%
-   (0.61 1.06 0.74 1.53, 16.1M): beyond 200 m 14 of 913 px remain
-   wrong, at the feet of far buildings (the bias at a contact, not
-   resolution), so 1% there is out of reach of the page level alone. */
+   takes level 0. At 65536^2 the bands once had to go a level finer than
+   the pixel everywhere: 9 frames found none that fit and kept the
+   pixel-matched band 0 (two of them over the pool even so, their finest
+   level raised), 1.09% (0.62 1.96 4.76 3.29, 8.1M), the far field
+   worse than at 16384^2. Now the finest world-size cap the pool holds
+   comes first, a level finer than the pixel only where the pool holds
+   that too (stats.rmsm_band_finer), and a pool too short for the
+   pixel-matched pages seeks the cap above a raised floor: band 6-9 in
+   28 frames, 0 in 2. Pixels beyond 200 m (all shadow-area figures
+   there are of 913 reference shadow px, so 1% allows 9): 21 wrong at
+   65536^2 (30 before), 24 at 16384^2. 9 of them are no map's doing:
+   at a box's vertical edge the G-buffer holds the face turned from the
+   sun and the reference traces the lit one (the same depth, so not a
+   silhouette), and every technique's mask calls them shadowed
+   (standard 4096 too); the table prints their count. Of the other 12, 1
+   is a receiver 2 cm from its caster (a contact, inside the receiver's
+   4-ulp depth slack of ~12 cm at 500 m) and 11 sit on shadow edges,
+   res 0.05-0.73, where the cap is 9-35 cm (bands 6-8). With a 48^2
+   pool (band 9, level 0's ~4 cm texels everywhere; 16.1M texels, 4x
+   the memory) 16 remain (0.73%, 0.61 1.06 0.75 1.75), with 32^2 19
+   (0.76%, 12.8M): the 9 at box edges, that contact and 4-6 edges at
+   the depth buffer's precision (a float depth at 700 m is 3 cm along
+   the ray), so 1% beyond 200 m is out of reach of the map. */
 static void test_open_world(void) {
     gt_env e;
     pool pools[METHODS];
@@ -250,6 +291,7 @@ static void test_open_world(void) {
     double frame_err[METHODS][FRAMES];
     float *ref, *res, max_slide = 0.0f;
     int v, s, k, f, ferko_below_cap = 0;
+    double faced_away = 0;
     tb_scene sc;
     tb_scene_init(&sc);
     if (tb_scene_build_open_world(&sc) != 0 || gt_env_init(&e, &sc, W, H) != 0) {
@@ -270,6 +312,7 @@ static void test_open_world(void) {
             sk_vec3 light = ow_sun(v, s);
             f = v * TB_OPEN_WORLD_SUNS + s;
             if (gt_reference(&e, light, ref) != 0) { SK_CHECK_MSG(0, "reference"); continue; }
+            faced_away += far_faced_away(&e, ref, light);
             for (k = 0; k < METHODS; k++) {
                 const skgl_shadow_frame_stats *st;
                 pool one;
@@ -307,6 +350,10 @@ static void test_open_world(void) {
     for (k = 0; k < METHODS; k++)
         if (method_selected(k)) print_pool(methods[k].name, &pools[k]);
     printf("PSM: largest slide %.1f m; FERKO: %d of %d frames below its cap\n", max_slide, ferko_below_cap, FRAMES);
+    for (k = M_RMSM; k <= M_RMSM64K; k++)
+        if (method_selected(k)) print_band_px(methods[k].name, &pools[k].b);
+    printf("beyond 200 m, %.0f px the reference calls lit face away from the sun in the G-buffer (a box's edge)\n",
+           faced_away);
     for (k = 0; k < METHODS; k++) SK_CHECK_MSG(pools[k].failed == 0, "%s: %d frames failed", methods[k].name,
                                                pools[k].failed);
     if (!methods_filtered()) {
@@ -349,22 +396,29 @@ static void test_open_world(void) {
         SK_CHECK_MSG(max_slide > 0.0f && max_slide <= 320.0f, "PSM slide %.1f m", max_slide);
     }
     if (method_selected(M_RMSM) && method_selected(M_RMSM64K)) {
-        /* RMSM's pages a level finer than the pixel and capped in world
-           size where the pool holds them (desc.rmsm_band_pages): 50-200 m
-           3.13% (7.90% pixel-matched, 22.78% with the area's square root),
-           the error falls as the virtual map grows (65536^2: 1.09%,
-           16384^2: 2.30%), and beyond 200 m 2.63% and 3.29% (9.97% at
-           both, pixel-matched: 91 of 913 px; with the page level from
-           the area, 34.28%). Bounds about 1.5x; beyond 200 m 5% */
+        /* RMSM's pages capped in world size, and a level finer than the
+           pixel, where the pool holds them (desc.rmsm_band_pages): 50-200 m
+           3.13% at 16384^2 (7.90% pixel-matched, 22.78% with the area's
+           square root) and 2.47% at 65536^2 (4.76% when every band had to
+           go a level finer); the error falls as the virtual map grows,
+           pooled (65536^2 0.85%, 0.37x 16384^2's 2.30%; 1.09%, 0.47x, so)
+           and beyond 200 m (2.30%, 21 of 913 px, against 2.63%, 24 px;
+           3.29%, 30 px, so; 9.97% at both pixel-matched; 34.28% with the
+           level from the area). Beyond 200 m less the 9 px at box edges no
+           map can help (far_faced_away): 12 px, 1.31% (2.30% so). Bounds
+           about 1.25x, the 200+ m ones 4 px over the measurement */
         double rmsm = gt_pool_pct(pools[M_RMSM].b.wrong, pools[M_RMSM].b.shadow);
         double rmsm64 = gt_pool_pct(pools[M_RMSM64K].b.wrong, pools[M_RMSM64K].b.shadow);
         double rmsm_mid = gt_pool_pct(pools[M_RMSM].b.band_wrong[2], pools[M_RMSM].b.band_shadow[2]);
+        double mid64 = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[2], pools[M_RMSM64K].b.band_shadow[2]);
         double far16 = gt_pool_pct(pools[M_RMSM].b.band_wrong[3], pools[M_RMSM].b.band_shadow[3]);
         double far64 = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[3], pools[M_RMSM64K].b.band_shadow[3]);
-        SK_CHECK_MSG(rmsm_mid <= 5.0, "RMSM 50-200 m %.2f%%", rmsm_mid);
-        SK_CHECK_MSG(rmsm64 <= 0.7 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
-        SK_CHECK_MSG(far16 <= 5.0 && far64 <= 5.0, "RMSM beyond 200 m: 16384^2 %.2f%%, 65536^2 %.2f%%", far16,
-                     far64);
+        double far64_maps = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[3] - faced_away, pools[M_RMSM64K].b.band_shadow[3]);
+        SK_CHECK_MSG(rmsm_mid <= 4.0 && mid64 <= 3.1, "RMSM 50-200 m: 16384^2 %.2f%%, 65536^2 %.2f%%", rmsm_mid, mid64);
+        SK_CHECK_MSG(rmsm64 <= 0.42 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
+        SK_CHECK_MSG(far64 < far16 && far16 <= 3.1 && far64 <= 2.75 && far64_maps <= 1.75,
+                     "RMSM beyond 200 m: 16384^2 %.2f%%, 65536^2 %.2f%% (%.2f%% less the box edges)", far16, far64,
+                     far64_maps);
     }
     for (f = 0; f < FRAMES; f++) {
         /* LiSPSM never loses to the plain map in any frame: measured at

@@ -13,8 +13,12 @@
    band the pool holds, exactly band_pages' over the same samples: boxes
    band 6 (1774 pages), terrace and fence band 7 (2315, 3088: level 0).
    Pool of 24^2 (test_accuracy): boxes band 6 (572 pages), covered
-   0.0054%, area 0.25%; terrace and fence band 0 (434 pixel-matched pages
-   fill most of the pool; fence's 810 do not fit, min level 1).
+   0.0054%, area 0.25%; terrace a band capped in world size (522 pages,
+   0.0579%, 2.18%), where it took the pixel-matched band 0 while the
+   bands had to go a level finer (434 pages, 0.1480%, 5.58%); fence's 810
+   pixel-matched pages do not fit: a cap above its finest level 2 (317
+   pages, 0.8859%, 10.83%; band 0 folded to min level 1 before, 546
+   pages, 1.1516%, 14.08%).
 
    test_accuracy - pool of 24^2 pages, against the focused 2048^2 map, on
    the exact reference with the default bias (receiver plane); covered %
@@ -122,9 +126,10 @@ static skgl_shadow *rmsm_shadow(gt_env *e, int vres, int page, int pool) {
    of a 16384^2 map in pages of 128^2 (8 levels), sorted as
    sk_rmsm_page_requests sorts: per level-0 page the least and greatest
    pixel-matched level f of its samples, and its ancestors at the band
-   levels (f - 1, at most 7 - b) of every f between; out holds up to cap. */
+   levels (f - 1 with finer, else f; at most 7 - b) of every f between
+   (stats.rmsm_band_finer); out holds up to cap. */
 #define BAND_N0 128
-static int band_pages(const sk_vec3 *pts, int n, int band, sk_page *out, int cap) {
+static int band_pages(const sk_vec3 *pts, int n, int band, int finer, sk_page *out, int cap) {
     static int fmin[BAND_N0][BAND_N0], fmax[BAND_N0][BAND_N0];
     static unsigned char want[8][BAND_N0][BAND_N0];
     int i, x, y, l, f, count = 0;
@@ -142,7 +147,7 @@ static int band_pages(const sk_vec3 *pts, int n, int band, sk_page *out, int cap
     for (y = 0; y < BAND_N0; y++)
         for (x = 0; x < BAND_N0; x++)
             for (f = fmin[y][x]; f <= fmax[y][x]; f++) {
-                l = f > 0 ? f - 1 : 0;
+                l = finer && f > 0 ? f - 1 : f;
                 if (l > 7 - band) l = 7 - band;
                 want[l][y >> l][x >> l] = 1;
             }
@@ -206,7 +211,7 @@ static void test_pages_match_cpu(void) {
             for (i = 0; i < e.n; i++)
                 if (samp[4 * i + 3] > 0.5f) pts[ns++] = gt_v3(samp[4 * i], samp[4 * i + 1], samp[4 * i + 2]);
             requested = sk_rmsm_page_requests(pts, ns, 16384, 128, cpu, MAX_PAGES);
-            nc = band > 0 ? band_pages(pts, ns, band, cpu, MAX_PAGES) : requested;
+            nc = band > 0 ? band_pages(pts, ns, band, st->rmsm_band_finer, cpu, MAX_PAGES) : requested;
             ng = skgl_shadow_pages(s, gpu, MAX_PAGES);
             /* the coarsest page is resident whether asked for or not */
             extra = !(nc > 0 && cpu[nc - 1].level == 7);

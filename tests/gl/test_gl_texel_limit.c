@@ -133,7 +133,7 @@ static void rmsm_levels_agree(gt_env *e, skgl_shadow *s, const bench_texel_scrat
     const skgl_shadow_frame_stats *st = skgl_shadow_stats(s);
     float *samp = (float *)malloc(sizeof(float) * 4 * e->n);
     size_t i, n = 0, eq = 0, close = 0, coarse = 0, over = 0;
-    int u = st->rmsm_min_level - st->rmsm_band;
+    int u = st->rmsm_band > 0 ? -st->rmsm_band : st->rmsm_min_level;
     *same = *near = *coarse_over1 = 0.0;
     if (!samp || tb_gl_read_texture_rgba_float(&e->gl, skgl_shadow_analysis_texture(s), W, H, samp) != 0) {
         free(samp);
@@ -143,7 +143,7 @@ static void rmsm_levels_agree(gt_env *e, skgl_shadow *s, const bench_texel_scrat
         int lv;
         if (t->key[i] < 0 || !(samp[4 * i + 3] > 0.5f)) continue;
         /* the shader's first level: the pixel's, b finer in request band b
-           (its sk_rmsm_min_level u = stats.rmsm_min_level - rmsm_band),
+           (its sk_rmsm_min_level u = -rmsm_band, else stats.rmsm_min_level),
            never below the finest rendered */
         lv = (int)floorf(samp[4 * i + 2]) - (u < 0 ? -u : 0);
         if (lv < (u > 0 ? u : 0)) lv = u > 0 ? u : 0;
