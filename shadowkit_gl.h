@@ -445,7 +445,8 @@
      shrinks at once when the need falls six steps (a factor 1.68) below
      it, and after 60 renders in a row two or more steps below, so a
      wavering need does not resize back and forth and a need that has
-     fallen for good gets its smaller crop. A camera cut (turned more than
+     fallen for good gets its smaller crop (and at once when the shadow
+     range's end steps, which moves every split). A camera cut (turned more than
      about 30 degrees, or moved farther than the first crop's smaller side,
      since the last render) starts every size afresh. Measured: a camera
      turning 120 degrees resizes a layer in 14 of 119 frames, walking 30 m
@@ -479,7 +480,8 @@
      maps: it takes the fewest maps whose worst ratio meets the target
      (of a focused and a warped set of that count, the smaller ratio),
      else the fewest maps within 25% of the smallest ratio (a map more
-     costs a caster pass). The set in use is kept unless
+     costs a caster pass; from a set in use that misses the target, fewer
+     maps only when at most 9% coarser). The set in use is kept unless
      the new one is 15% better, has fewer maps and meets 0.85 of the
      target, or the old misses the target by 15% and the new one meets it
      (hysteresis: a camera bobbing about the height where the choice
@@ -1239,9 +1241,9 @@ typedef struct skgl_shadow_desc {
     int resolution;               /* texels per side of each map, 1 or more (2 or more with
                                      .stable) [2048] */
     int cascades;                 /* PSSM, 1..SKGL_MAX_CASCADES [4] */
-    float lambda;                 /* PSSM split scheme weight in (0, 1] (AUTO, and .fit_to_depth
-                                     when left 0: before the first analysis; after it, 1)
-                                     [0.75] */
+    float lambda;                 /* PSSM split scheme weight in (0, 1] (AUTO: before its first
+                                     analysis; after it, 1) [0.75; with .fit_to_depth, left 0:
+                                     0.75 before the first analysis, 1 after it] */
     int uniform_splits;           /* 1: lambda 0, the uniform split scheme [0] */
     float splits[SKGL_MAX_CASCADES - 1];  /* PSSM, LiSPSM per cascade: hand-set view depths where
                                      cascade i ends and i + 1 begins, increasing, one per
@@ -1318,7 +1320,9 @@ typedef struct skgl_shadow_desc {
                                      for its memory and passes; 48 where the view needs
                                      the pages */
     int rmsm_band_pages;          /* RMSM: finer pages than the pixel-matched level, in at most
-                                     this many slots: none coarser than the finest world size
+                                     this many slots (the whole pool where even the
+                                     pixel-matched pages overflow it and the finest level
+                                     rises): none coarser than the finest world size
                                      they afford and, where they afford it too, a texel of half
                                      a pixel (a caster thinner than a pixel, a pole's shadow at
                                      500 m, needs texels under the pixel; stats.rmsm_band,
@@ -1346,8 +1350,8 @@ typedef struct skgl_shadow_desc {
                                      .stable or .cache. SKGL_AUTO always does this [0] */
     float auto_texel_px;          /* SKGL_AUTO: the texel-to-pixel ratio wanted: the fewest maps
                                      whose worst texel spans at most this many pixels of the
-                                     depth buffer analysed; when none does, the count whose
-                                     texels are smallest. More than 0 [1.0] */
+                                     depth buffer analysed; when none does, the fewest within
+                                     25% of the smallest ratio. More than 0 [1.0] */
     int disable_auto_warp;        /* SKGL_AUTO: 1: focused maps only, never a LiSPSM warp [0] */
     float contact_length;         /* contact shadows in skgl_shadow_mask: a march this long (world
                                      units: a few centimetres to decimetres) from each receiver
@@ -1461,7 +1465,8 @@ typedef struct skgl_shadow_frame_stats {
                                              pixels at the near end of the worst map (0: not tried) */
     float auto_texel_px_warped[SKGL_MAX_CASCADES];  /* AUTO: the same maps warped (LiSPSM), the
                                              worst over each map's depths (0: not tried, no
-                                             slice warped, or .disable_auto_warp) */
+                                             slice warped, an orthographic camera, or
+                                             .disable_auto_warp) */
     char auto_reason[192];                /* AUTO: the choice in words */
     float auto_lambda;                    /* AUTO: the split weight of the cascades (0 with one map;
                                              1, the log scheme, over an analysed range) */
@@ -5887,10 +5892,7 @@ struct skgl_shadow {
     sk_vec3 light_dir;             /* unit travel direction of the last render */
     int rendered;                  /* 1 after a render that succeeded: the maps may be read */
     skgl__ferko ferko;             /* SKGL_FERKO, SKGL_AUTO and .fit_to_depth */
-    int auto_maps;                 /* SKGL_AUTO: the map count in use (0 before the first fit) */
     int auto_pick;                 /* SKGL_AUTO: the candidate in use (skgl__auto_pick; -1 before) */
-    int log_when_fitted;           /* .fit_to_depth, .lambda left 0: log splits over an analysed
-                                      range (skgl__split_lambda) */
     int auto_maps_drawn;           /* SKGL_AUTO: the count of the last render (skgl__auto_storage) */
     sk_mat4 auto_view, auto_proj;  /* SKGL_AUTO: the camera of the last analysis run */
     int auto_kept;                 /* SKGL_AUTO: analyses kept (not run) since it ran */
@@ -6100,7 +6102,7 @@ static skgl_shadow_desc skgl__defaults(const skgl_shadow_desc *d)
     /* a disable_ switch wins over its value, which then reads 0 (none): the
        filled desc given back to skgl_shadow_create makes the same light */
     if (r.uniform_splits) r.lambda = 0.0f;
-    else if (r.lambda == 0.0f) r.lambda = 0.75f;
+    else if (r.lambda == 0.0f && !(r.fit_to_depth && r.technique != SKGL_AUTO)) r.lambda = 0.75f;
     if (r.slope_bias == 0.0f) r.slope_bias = 2.0f;
     if (r.depth_bias == 0.0f) r.depth_bias = 1.0f;
     if (r.normal_bias == 0.0f && r.bias == SKGL_BIAS_NORMAL_OFFSET) r.normal_bias = 1.5f;
@@ -6326,7 +6328,6 @@ SKGLDEF sk_result skgl_shadow_create(skgl_context *ctx, const skgl_shadow_desc *
     s = (skgl_shadow *)skgl__create_alloc(ctx, fn, sizeof *s);
     if (!s) return SK_ERR_CAPACITY;
     s->desc = d;
-    s->log_when_fitted = d.fit_to_depth && desc->lambda == 0.0f && !desc->uniform_splits;
     s->id = ++ctx->next_id;
     if (!s->id) s->id = ++ctx->next_id;
     s->layers = d.cascades;
@@ -6675,7 +6676,8 @@ static void skgl__fade(skgl_shadow *s, float far_scene, const skgl_camera *cam, 
    see skgl__auto_lambda for AUTO's same choice). */
 static float skgl__split_lambda(const skgl_shadow *s)
 {
-    return s->log_when_fitted && s->stats.depth_hi > 0.0f ? 1.0f : s->desc.lambda;
+    if (s->desc.lambda > 0.0f || s->desc.uniform_splits) return s->desc.lambda;
+    return s->stats.depth_hi > 0.0f ? 1.0f : 0.75f;   /* .fit_to_depth, .lambda left 0 */
 }
 
 /* Crops of every layer: the PSSM practical split scheme (Romanick's VGP353 notes) over
@@ -7083,8 +7085,10 @@ static void skgl__auto_score(skgl_shadow *s, const skgl__fit_in *in, int n, floa
    that two candidates that score alike do not alternate: the one in use
    is kept unless the new one's ratio is 15% smaller, or it has fewer maps
    and meets 0.85 of the target (or, the one in use missing the target,
-   is at most 25% coarser), or the one in use misses the target by more
-   than 15% and the new one meets it. One focused map is SKGL_STANDARD's
+   is at most 1.25 / 1.15 = 9% coarser: a set 9-25% coarser with fewer
+   maps is picked afresh but not switched to, so a score wavering about
+   the 25% line does not swap the sets back and forth), or the one in use
+   misses the target by more than 15% and the new one meets it. One focused map is SKGL_STANDARD's
    crop, more are SKGL_PSSM's cascades, warped ones SKGL_LISPSM's (with
    .cascades n); the maps share the texels, so each is drawn into the
    lower-left side x side texels of its layer. */
@@ -7117,7 +7121,8 @@ static int skgl__auto_pick(const float *score, int cands, int cur, float target)
     if (cur < 0 || cur >= cands || !(score[cur] > 0.0f)) return pick;
     if (score[pick] < 0.85f * score[cur] ||
         (SKGL__AUTO_MAPS(pick) < SKGL__AUTO_MAPS(cur) &&
-         (score[pick] <= 0.85f * target || (score[cur] > target && score[pick] <= SKGL__AUTO_MAP_GAIN * score[cur]))) ||
+         (score[pick] <= 0.85f * target ||
+          (score[cur] > target && 1.15f * score[pick] <= SKGL__AUTO_MAP_GAIN * score[cur]))) ||
         (score[cur] > 1.15f * target && score[pick] <= target))
         return pick;
     return cur;
@@ -7140,7 +7145,6 @@ static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
     if (c < 0) c = 2 * (s->layers - 1);
     n = SKGL__AUTO_MAPS(c);
     warp = c & 1;
-    s->auto_maps = n;
     s->maps = n;
     s->stats.auto_technique = warp ? SKGL_LISPSM : n == 1 ? SKGL_STANDARD : SKGL_PSSM;
     s->stats.auto_lambda = n == 1 ? 0.0f : lambda;

@@ -534,7 +534,7 @@ static path_counts auto_path(gt_env *e, int frames, float (*height)(int f, int f
     skgl_shadow *s = gt_shadow(e, &d);
     sk_vec3 light = gt_v3(-0.45f, -1.0f, -0.35f);
     path_counts pc;
-    int f, prev = 0, prev2 = 0, kept = 0;
+    int f, prev = 0, kept = 0, set, prev_set = 0, prev2_set = 0;
     memset(&pc, 0, sizeof pc);
     SK_CHECK(s != NULL);
     for (f = 0; s && f < frames; f++) {
@@ -549,9 +549,12 @@ static path_counts auto_path(gt_env *e, int frames, float (*height)(int f, int f
         }
         st = skgl_shadow_stats(s);
         SK_CHECK_MSG(strstr(st->auto_reason, "map") != NULL, "frame %d: reason '%s'", f, st->auto_reason);
-        SK_CHECK_MSG(st->auto_technique == (st->warped[0] ? SKGL_LISPSM : st->maps == 1 ? SKGL_STANDARD : SKGL_PSSM),
-                     "frame %d: technique %d, %d maps, layer 0 warped %d", f, (int)st->auto_technique, st->maps,
-                     st->warped[0]);
+        {
+            int i, warped = 0;
+            for (i = 0; i < st->maps; i++) warped |= st->warped[i];
+            SK_CHECK_MSG(st->auto_technique == (warped ? SKGL_LISPSM : st->maps == 1 ? SKGL_STANDARD : SKGL_PSSM),
+                         "frame %d: technique %d, %d maps, warped %d", f, (int)st->auto_technique, st->maps, warped);
+        }
         if (verbose())
             printf("  %.1f m up: predicted texel %.2f %.2f %.2f %.2f px with 1-4 maps -> %d\n", y, st->auto_texel_px[0],
                    st->auto_texel_px[1], st->auto_texel_px[2], st->auto_texel_px[3], st->maps);
@@ -567,12 +570,16 @@ static path_counts auto_path(gt_env *e, int frames, float (*height)(int f, int f
         if (f > 0 && st->auto_bytes != pc.bytes) pc.resizes++;
         pc.bytes = st->auto_bytes;
         if (f == 0) pc.first = st->maps;
-        if (prev && st->maps != prev) {
+        /* the set in use: its map count, and whether warped (a focused /
+           warped swap at the same count is a change too) */
+        set = 2 * st->maps + (st->auto_technique == SKGL_LISPSM);
+        if (prev_set && set != prev_set) {
             pc.changes++;
-            if (st->maps == prev2) pc.returns++;
+            if (set == prev2_set) pc.returns++;
             if (verbose()) printf("frame %d (%.1f m up): %s\n", f, y, st->auto_reason);
-            prev2 = prev;
+            prev2_set = prev_set;
         }
+        prev_set = set;
         prev = pc.last = st->maps;
     }
     skgl_shadow_destroy(e->sk, s);

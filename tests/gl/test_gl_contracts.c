@@ -167,6 +167,21 @@ static void test_shadow_switches(gt_env *e) {
     SK_CHECK(skgl_shadow_create(e->sk, &d, &s) == SK_OK);
     SK_CHECK(skgl_shadow_get_desc(s).normal_bias == 1.5f);
     skgl_shadow_destroy(e->sk, s);
+    /* .fit_to_depth with .lambda left 0: the filled desc keeps 0 (log
+       splits once analysed, 0.75 before), so that it makes the same light
+       again; 0.75 there would split at 0.75 for good */
+    memset(&d, 0, sizeof d);
+    d.technique = SKGL_PSSM;
+    d.resolution = 256;
+    d.fit_to_depth = 1;
+    SK_CHECK(skgl_shadow_create(e->sk, &d, &s) == SK_OK);
+    got = skgl_shadow_get_desc(s);
+    SK_CHECK_MSG(got.lambda == 0.0f, "fit_to_depth, lambda left 0: filled %g", got.lambda);
+    SK_CHECK(skgl_shadow_create(e->sk, &got, &t) == SK_OK);
+    again = skgl_shadow_get_desc(t);
+    SK_CHECK(memcmp(&again, &got, sizeof got) == 0);
+    skgl_shadow_destroy(e->sk, t);
+    skgl_shadow_destroy(e->sk, s);
 }
 
 static void p_near(skgl_point_desc *d) { d->near_plane = -0.1f; }

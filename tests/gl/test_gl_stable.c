@@ -256,8 +256,8 @@ static skgl_camera settle_cam(float t) {
    ground-boxes, from an overview to head height:
    - a camera cut (one render at each view): every crop afresh, the same
      as a new light's at the second view;
-   - a slow descent (100 renders) then SKGL__LADDER_SETTLE + 1 = 61 still
-     renders: every crop within one ladder step (9%) of a new light's,
+   - a slow descent (100 renders) then 62 still renders (more than
+     SKGL__LADDER_SETTLE, 60): every crop within one ladder step (9%) of a new light's,
      and at most three of the still renders resizing a crop (measured 2:
      the shadow range's end settles, then the crops).
    Without either rule the crops stayed up to six steps (1.68x) larger
@@ -316,7 +316,7 @@ static void test_stable_settles(void) {
     }
     printf("stepped crops against a new light's at head height: after a cut %.3fx, after a slow descent %.3fx "
            "(%d renders resized a crop while still)\n", worst_cut, worst_drift, resizes);
-    SK_CHECK_MSG(resizes <= 3, "%d of 61 still renders resized a crop", resizes);
+    SK_CHECK_MSG(resizes <= 3, "%d of 62 still renders resized a crop", resizes);
     skgl_shadow_destroy(e.sk, s);
     skgl_shadow_destroy(e.sk, fresh);
     gt_env_free(&e);
