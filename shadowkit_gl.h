@@ -485,9 +485,10 @@
      the new one is 15% better, has fewer maps and meets 0.85 of the
      target, or the old misses the target by 15% and the new one meets it
      (hysteresis: a camera bobbing about the height where the choice
-     changes keeps it). stats.maps, stats.auto_technique (SKGL_STANDARD,
-     SKGL_PSSM, or SKGL_LISPSM when warped; stats.warped and stats.warp_n
-     per map), stats.auto_lambda, stats.auto_texel_px and
+     changes keeps it; the first analysed range picks afresh).
+     stats.maps, stats.auto_technique (SKGL_STANDARD, SKGL_PSSM, or
+     SKGL_LISPSM when warped; stats.warped and stats.warp_n per map),
+     stats.auto_lambda, stats.auto_texel_px and
      .auto_texel_px_warped (the prediction for each count) and
      stats.auto_reason (in words) say what it chose and why. A warp pays
      where the view looks along the ground: test_gl_auto's low views of
@@ -5893,6 +5894,7 @@ struct skgl_shadow {
     int rendered;                  /* 1 after a render that succeeded: the maps may be read */
     skgl__ferko ferko;             /* SKGL_FERKO, SKGL_AUTO and .fit_to_depth */
     int auto_pick;                 /* SKGL_AUTO: the candidate in use (skgl__auto_pick; -1 before) */
+    int auto_pick_analysed;        /* SKGL_AUTO: 1 when it was picked over an analysed range */
     int auto_maps_drawn;           /* SKGL_AUTO: the count of the last render (skgl__auto_storage) */
     sk_mat4 auto_view, auto_proj;  /* SKGL_AUTO: the camera of the last analysis run */
     int auto_kept;                 /* SKGL_AUTO: analyses kept (not run) since it ran */
@@ -7133,7 +7135,7 @@ static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
     skgl__auto_try t[SKGL_MAX_CASCADES];
     float score[2 * SKGL_MAX_CASCADES], px_h = s->ferko.h > 0 ? (float)s->ferko.h : (float)s->desc.resolution;
     float target = s->desc.auto_texel_px, lambda = skgl__auto_lambda(s, in);
-    int n, c, warp, side, i;
+    int n, c, cur, warp, side, i;
     s->stats.auto_crops = 0;
     for (n = 1; n <= SKGL_MAX_CASCADES; n++) {
         t[n - 1].ratio = t[n - 1].warp_ratio = 0.0f;
@@ -7141,7 +7143,11 @@ static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
         score[2 * (n - 1)] = s->stats.auto_texel_px[n - 1] = t[n - 1].ratio;
         score[2 * (n - 1) + 1] = s->stats.auto_texel_px_warped[n - 1] = t[n - 1].warp_ratio;
     }
-    c = skgl__auto_pick(score, 2 * s->layers, s->auto_pick, target);
+    /* the first analysed range: the set picked over the whole view before
+       it is no set in use to keep (hysteresis is for a view that moves) */
+    cur = s->stats.depth_hi > 0.0f && !s->auto_pick_analysed ? -1 : s->auto_pick;
+    s->auto_pick_analysed = s->stats.depth_hi > 0.0f;
+    c = skgl__auto_pick(score, 2 * s->layers, cur, target);
     if (c < 0) c = 2 * (s->layers - 1);
     n = SKGL__AUTO_MAPS(c);
     warp = c & 1;
@@ -7151,7 +7157,7 @@ static sk_result skgl__fit_auto(skgl_shadow *s, const skgl__fit_in *in)
     snprintf(s->stats.auto_reason, sizeof s->stats.auto_reason,
              "%d %smap%s: a texel spans %.2f px at worst, target %.2f%s; depths %.3g..%.3g%s, lambda %.2g", n,
              warp ? "warped " : "", n > 1 ? "s" : "", (double)score[c], (double)target,
-             c == s->auto_pick ? " (kept)" : "", (double)in->shadow_zn, (double)in->zf,
+             c == cur ? " (kept)" : "", (double)in->shadow_zn, (double)in->zf,
              s->stats.depth_hi > 0.0f ? "" : " (no analysis yet)", (double)s->stats.auto_lambda);
     s->auto_pick = c;
     if (score[c] > 0.0f) {

@@ -636,13 +636,19 @@ static void test_auto_hysteresis(void) {
 
 /* AUTO's rule where no set meets the target (.auto_texel_px 0.05, below
    any set's ratio): the fewest maps within 25% of the finest set, a new
-   light each open-world frame (no hysteresis). Checked on the predictions
+   light each open-world view, rendered RULE_FRAMES times through the
+   read-back ring (the first render has no analysed range yet: the set it
+   picks over the whole view is no set in use to keep once the range
+   lands: with the 9% margin for fewer maps, a light would otherwise keep
+   more maps than the analysed view needs; on these frames keeping it
+   happens to pass as well). Checked on the predictions
    each frame reports (stats.auto_texel_px and .auto_texel_px_warped):
    the chosen set within 1.25x of the finest, and no set of fewer maps
    within it. Measured: the finest set has 4 maps in every frame, the
    choice fewer in 10 of 15 (6 of 15 with a 15% margin; seen failing with
    the old rule, the finest set: those frames, and the count of frames
    with fewer maps). */
+#define RULE_FRAMES 3
 static void test_auto_rule(void) {
     view v[TB_OPEN_WORLD_VIEWS * 3];
     gt_env e;
@@ -663,17 +669,20 @@ static void test_auto_rule(void) {
         const skgl_shadow_frame_stats *st;
         float best = 0.0f, chosen;
         int k, best_maps = 0;
-        d.sync_readback = 1;
-        d.auto_texel_px = 0.05f;
+        int w, failed = 0;
+        d.auto_texel_px = 0.05f;   /* the read-back ring, as a game runs it */
         s = gt_shadow(&e, &d);
-        if (!s || gt_gbuffer(&e, &cam) != 0 ||
-            skgl_shadow_analyze(e.sk, s, &cam, &scene, v[i].light, e.gbuf.depth_tex) != SK_OK ||
-            skgl_shadow_render(e.sk, s, &cam, &scene, v[i].light) != SK_OK) {
+        failed = !s || gt_gbuffer(&e, &cam) != 0;
+        for (w = 0; w < RULE_FRAMES && !failed; w++)
+            failed = skgl_shadow_analyze(e.sk, s, &cam, &scene, v[i].light, e.gbuf.depth_tex) != SK_OK ||
+                     skgl_shadow_render(e.sk, s, &cam, &scene, v[i].light) != SK_OK;
+        if (failed) {
             SK_CHECK_MSG(0, "frame %d: %s", i, skgl_error_log(e.sk));
             skgl_shadow_destroy(e.sk, s);
             continue;
         }
         st = skgl_shadow_stats(s);
+        SK_CHECK_MSG(st->depth_hi > 0.0f, "frame %d: no analysed range after %d renders", i, RULE_FRAMES);
         for (k = 0; k < 4; k++) {
             float f = st->auto_texel_px[k], w = st->auto_texel_px_warped[k];
             if (f > 0.0f && (!best || f < best)) { best = f; best_maps = k + 1; }
