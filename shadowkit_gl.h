@@ -4550,15 +4550,39 @@ static void skgl__delete_framebuffer(skgl_context *ctx, skgl__uint *f)
 #endif
 static const double skgl__zero3[3] = {0.0, 0.0, 0.0};
 
+/* the eye of a rigid view matrix, -R^T t, in double */
+static void skgl__view_eye(const sk_mat4 *view, double eye[3])
+{
+    int k;
+    for (k = 0; k < 3; k++)
+        eye[k] = -((double)view->m[k * 4] * view->m[12] + (double)view->m[k * 4 + 1] * view->m[13] +
+                   (double)view->m[k * 4 + 2] * view->m[14]);
+}
+
+/* 1 when the camera turned: a rotation element of a differs from b's by
+   more than tol (0.03: about 1.7 degrees; 0.5: about 30) */
+static int skgl__view_turned(const sk_mat4 *a, const sk_mat4 *b, float tol)
+{
+    int r, c;
+    for (c = 0; c < 3; c++)
+        for (r = 0; r < 3; r++)
+            if (!(SK_FABSF(a->m[c * 4 + r] - b->m[c * 4 + r]) <= tol)) return 1;
+    return 0;
+}
+
+static double skgl__dist2(const double a[3], const double b[3])
+{
+    return (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]);
+}
+
 static void skgl__origin(const sk_mat4 *view, double o[3])
 {
     const double cell = SKGL_ORIGIN_CELL;
+    double eye[3];
     int k;
+    skgl__view_eye(view, eye);
     for (k = 0; k < 3; k++) {
-        /* eye = -R^T t of the rigid view matrix */
-        double eye = -((double)view->m[k * 4] * view->m[12] + (double)view->m[k * 4 + 1] * view->m[13] +
-                       (double)view->m[k * 4 + 2] * view->m[14]);
-        o[k] = cell > 0.0 ? SK_FLOOR(eye / cell + 0.5) * cell : 0.0;
+        o[k] = cell > 0.0 ? SK_FLOOR(eye[k] / cell + 0.5) * cell : 0.0;
         if (!(SK_FABS(o[k]) < 1e30)) o[k] = 0.0;
     }
 }
@@ -6043,27 +6067,22 @@ static int skgl__ladder_step(double need, int prev, int *below)
    starts afresh (skgl__fit_layers), instead of the new view inheriting
    crops up to 1.68x too large (measured in the open world: stable cascades
    1.42-1.61x the focused ones' error after a cut, 1.00-1.10x afresh). */
+/* the eye of cam (relative to s->origin) in world space */
 static void skgl__world_eye(const skgl_shadow *s, const skgl_camera *cam, double eye[3])
 {
-    int r;
-    for (r = 0; r < 3; r++)   /* eye = -R^T t of the rigid view matrix, relative to s->origin */
-        eye[r] = s->origin[r] - ((double)cam->view.m[r * 4] * cam->view.m[12] +
-                                 (double)cam->view.m[r * 4 + 1] * cam->view.m[13] +
-                                 (double)cam->view.m[r * 4 + 2] * cam->view.m[14]);
+    int k;
+    skgl__view_eye(&cam->view, eye);
+    for (k = 0; k < 3; k++) eye[k] += s->origin[k];
 }
 
 static int skgl__camera_cut(const skgl_shadow *s, const skgl_camera *cam)
 {
-    double eye[3], d2 = 0.0, reach;
-    int r, c;
+    double eye[3], reach;
     if (s->step[0][0] == SKGL__NO_STEP || s->step[0][1] == SKGL__NO_STEP) return 0;
-    for (c = 0; c < 3; c++)
-        for (r = 0; r < 3; r++)
-            if (!(SK_FABSF(cam->view.m[c * 4 + r] - s->step_view.m[c * 4 + r]) <= 0.5f)) return 1;
+    if (skgl__view_turned(&cam->view, &s->step_view, 0.5f)) return 1;
     skgl__world_eye(s, cam, eye);
-    for (r = 0; r < 3; r++) d2 += (eye[r] - s->step_eye[r]) * (eye[r] - s->step_eye[r]);
     reach = skgl__ladder(s->step[0][0] < s->step[0][1] ? s->step[0][0] : s->step[0][1]);
-    return !(d2 <= reach * reach);
+    return !(skgl__dist2(eye, s->step_eye) <= reach * reach);
 }
 
 static void skgl__settled_layer_steps(skgl_shadow *s)
@@ -6976,7 +6995,7 @@ static float skgl__texel_px_at(const sk_mat4 *vp, const sk_mat4 *lview, const sk
     const float *m = vp->m, *l = lview->m, *v = cam->view.m;
     double eye[3], p[3], c[4], j[2][3], a[2][3], q[2][2], t, det, tr, disc, smin;
     int r, k;
-    for (r = 0; r < 3; r++) eye[r] = -((double)v[r * 4] * v[12] + (double)v[r * 4 + 1] * v[13] + (double)v[r * 4 + 2] * v[14]);
+    skgl__view_eye(&cam->view, eye);
     for (r = 0; r < 3; r++) p[r] = eye[r] - (double)d * v[r * 4 + 2];   /* along -z of the eye */
     for (k = 0; k < 4; k++) c[k] = (double)m[k] * p[0] + (double)m[4 + k] * p[1] + (double)m[8 + k] * p[2] + m[12 + k];
     if (!(c[3] > 0.0)) return 0.0f;
@@ -7533,24 +7552,14 @@ static sk_result skgl__analyze_ferko(skgl_context *ctx, skgl__st *st, skgl_shado
 #define SKGL__AUTO_KEEP 7
 static int skgl__auto_stale(const skgl_shadow *s, const skgl_camera *cam, int w, int h)
 {
-    double d2 = 0.0, reach = 0.05 * (double)s->ferko.depth_lo;
-    int r, c;
+    double reach = 0.05 * (double)s->ferko.depth_lo, e0[3], e1[3];
     if (s->ferko.state == 0 || s->auto_kept >= SKGL__AUTO_KEEP || s->ferko.w != w || s->ferko.h != h ||
         !(s->ferko.depth_hi > 0.0f) || memcmp(&cam->proj, &s->auto_proj, sizeof cam->proj) != 0)
         return 1;
-    for (c = 0; c < 3; c++)
-        for (r = 0; r < 3; r++)
-            if (SK_FABSF(cam->view.m[c * 4 + r] - s->auto_view.m[c * 4 + r]) > 0.03f) return 1;
-    for (r = 0; r < 3; r++) {
-        /* eye = -R^T t of each rigid view matrix */
-        double e0 = 0.0, e1 = 0.0;
-        for (c = 0; c < 3; c++) {
-            e0 -= (double)cam->view.m[r * 4 + c] * cam->view.m[12 + c];
-            e1 -= (double)s->auto_view.m[r * 4 + c] * s->auto_view.m[12 + c];
-        }
-        d2 += (e0 - e1) * (e0 - e1);
-    }
-    return !(d2 <= reach * reach);
+    if (skgl__view_turned(&cam->view, &s->auto_view, 0.03f)) return 1;
+    skgl__view_eye(&cam->view, e0);
+    skgl__view_eye(&s->auto_view, e1);
+    return !(skgl__dist2(e0, e1) <= reach * reach);
 }
 
 /* AUTO: FERKO's analysis (its depth range only) when skgl__auto_stale says
