@@ -1410,7 +1410,7 @@ static int prepare_view(bench_gl *B, const tb_gl_mesh *mesh, const bench_forest 
     L.direction = light_dir;
     if (area) L = *area;
     vd->ref = (float *)malloc(sizeof(float) * n);
-    if (!vd->ref || bench_trace(ref, &vd->v.view_proj, depth, &L, vd->ref) != 0) return -1;
+    if (!vd->ref || bench_trace(ref, &vd->v.view_proj, depth, nrm, &L, vd->ref) != 0) return -1;
     vd->covered = 0;
     for (i = 0; i < n; i++)
         if (vd->ref[i] >= 0.0f) vd->covered++;

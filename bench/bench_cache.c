@@ -436,12 +436,12 @@ static int prepare_frame(bench *B, const tb_gl_mesh *mesh, const tb_reference *r
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_DIRECTIONAL;
     L.direction = light_dir;
-    if (bench_trace(ref, vp, B->depth, &L, B->ref_dir) != 0) return -1;
+    if (bench_trace(ref, vp, B->depth, NULL, &L, B->ref_dir) != 0) return -1;
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_POINT;
     L.position = wp->point_pos;
     L.range = wp->point_range;
-    return bench_trace(ref, vp, B->depth, &L, B->ref_point);
+    return bench_trace(ref, vp, B->depth, NULL, &L, B->ref_point);
 }
 
 /* light (t, m)'s mask of this frame into B->mask_px[t][m]; 0 ok */

@@ -396,10 +396,11 @@ void bench_gl_close(bench_gl *B) {
     memset(B, 0, sizeof *B);
 }
 
-int bench_trace(const tb_reference *ref, const sk_mat4 *view_proj, const float *depth, const tb_light *light,
-                float *vis) {
+int bench_trace(const tb_reference *ref, const sk_mat4 *view_proj, const float *depth, const float *normals,
+                const tb_light *light, float *vis) {
     double d[16], inv[16];
     tb_view tv;
+    tb_ref_options opt;
     int k;
     for (k = 0; k < 16; k++) d[k] = view_proj->m[k];
     if (!tb_mat4_inverse_d(d, inv)) return -1;
@@ -407,7 +408,9 @@ int bench_trace(const tb_reference *ref, const sk_mat4 *view_proj, const float *
     for (k = 0; k < 16; k++) tv.inv_view_proj.m[k] = (float)inv[k];
     tv.width = BENCH_W;
     tv.height = BENCH_H;
-    return tb_reference_trace_exact(ref, &tv, depth, light, NULL, vis, NULL) != 0 ? -1 : 0;
+    memset(&opt, 0, sizeof opt);
+    opt.raster_normals = normals;
+    return tb_reference_trace_exact(ref, &tv, depth, light, &opt, vis, NULL) != 0 ? -1 : 0;
 }
 
 /* ---------------------------------------------------------------- forest */

@@ -192,8 +192,10 @@ int bench_forest_gbuffer(bench_gl *B, const bench_forest *f, const tb_gl_fbo *fb
 /* The exact reference (tb_reference_trace_exact) of the view whose
    G-buffer was drawn with the float view_proj and has window depth
    `depth` (BENCH_W x BENCH_H): traced with the exact double inverse of
-   that matrix. 0 ok. */
-int bench_trace(const tb_reference *ref, const sk_mat4 *view_proj, const float *depth, const tb_light *light,
-                float *vis);
+   that matrix. normals (3 a pixel, the G-buffer's; may be NULL) leave
+   out the pixels whose rasterised face is not the traced one
+   (tb_ref_options.raster_normals). 0 ok. */
+int bench_trace(const tb_reference *ref, const sk_mat4 *view_proj, const float *depth, const float *normals,
+                const tb_light *light, float *vis);
 
 #endif /* BENCH_COMMON_H */

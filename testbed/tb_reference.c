@@ -248,6 +248,7 @@ typedef struct tb_job_ {
     /* exact mode (tb_reference_trace_exact) */
     int exact;
     const float *raster;     /* raster window depth or NULL */
+    const float *raster_n;   /* raster normals (opt->raster_normals) or NULL */
     double vp[16];           /* double inverse of view->inv_view_proj (column-major) */
     int rows;            /* work items */
     int nthreads;
@@ -644,6 +645,16 @@ static double tb_window_depth_(const double vp[16], const double p[3]) {
     return 0.5 * (z / w) + 0.5;
 }
 
+/* the rasterised normal r (any sign, any length; 0 on the background)
+   lies within TB_REF_SAME_FACE_COS of the traced unit normal n, either way
+   round (point 2) */
+static int tb_same_face_(const float *r, const double n[3]) {
+    double rn[3];
+    rn[0] = r[0]; rn[1] = r[1]; rn[2] = r[2];
+    if (!tb_normalize_(rn)) return 1;
+    return fabs(tb_dot_(rn, n)) >= TB_REF_SAME_FACE_COS;
+}
+
 /* one pixel of the exact method (header, points 1-5) */
 static float tb_exact_pixel_(const tb_job_ *j, int x, int y, size_t i) {
     const tb_view *v = j->view;
@@ -695,6 +706,7 @@ static float tb_exact_pixel_(const tb_job_ *j, int x, int y, size_t i) {
             double dt = tb_window_depth_(j->vp, p);
             if (!(fabs(dt - (double)dr) <= TB_REF_SAME_SURFACE_ULPS * ldexp(1.0, -24))) return TB_VIS_SILHOUETTE;
         }
+        if (j->raster_n && !tb_same_face_(j->raster_n + 3 * i, n)) return TB_VIS_SILHOUETTE;
     }
     return tb_shade_exact_(j, p, n, prim, (uint64_t)i);
 }
@@ -880,6 +892,7 @@ int tb_reference_trace_exact(const tb_reference *ref, const tb_view *view, const
     j.view = view;
     j.exact = 1;
     j.raster = raster_depth;
+    j.raster_n = raster_depth && opt ? opt->raster_normals : NULL;
     j.rows = view->height;
     j.vis = vis;
     if (tb_run_(&j, opt) != 0) return -1;

@@ -26,6 +26,12 @@
       the same surface when they differ by at most TB_REF_SAME_SURFACE_ULPS
       units of 2^-24 (one ulp of a depth in [0.5, 1), where perspective
       depth buffers hold nearly every pixel; see the value for the figures).
+      With opt->raster_normals (the G-buffer's normals) a pixel at the same
+      depth is a different surface too when the traced triangle's normal
+      and the rasterised one are more than TB_REF_SAME_FACE_COS apart: at a
+      box's edge the rasteriser may shade the face turned from the light
+      while the pixel centre's ray meets the lit face, and every technique's
+      mask calls that pixel its own shadow whatever its map holds.
 
    3. Facing. A receiver whose geometric normal faces away from the light
       (dot(n, to_light) <= 0; for a rect light: for all four corners, so for
@@ -126,6 +132,11 @@ extern "C" {
    are ones the depth buffer itself barely separates. Pixels excluded as
    silhouettes: 0.0004% pooled over those views (at most 1 pixel a view). */
 #define TB_REF_SAME_SURFACE_ULPS 16.0
+/* Exact method: same-face tolerance, the cosine of the angle between the
+   traced triangle's normal and the rasterised normal (point 2). The faces
+   of a box meet at 90 degrees (cosine 0); an interpolated vertex normal
+   stays well within 75 degrees of its own triangle's (cosine 0.25). */
+#define TB_REF_SAME_FACE_COS 0.25
 /* Exact method: default strata per axis for rect lights (point 5). The
    reference's own noise, mean |difference of two seeds| / sqrt 2 over the
    penumbra (0 < closed form < 1), on the plate scene under a square light of
@@ -167,6 +178,9 @@ typedef struct tb_ref_options {   /* all-zero = defaults */
     double eps_rel;               /* <= 0: TB_REF_EPS_REL */
     int threads;                  /* <= 0: online CPUs (at most 64) */
     int ignore_facing;            /* 1: no back-facing test with normals */
+    const float *raster_normals;  /* exact method with raster_depth: the G-buffer's
+                                     world normals, 3 a pixel (any sign, 0 on the
+                                     background), for the same-face test (point 2) */
 } tb_ref_options;
 
 typedef struct tb_reference tb_reference;

@@ -220,19 +220,29 @@ static inline tb_light gt_sun(sk_vec3 dir) {
     return l;
 }
 
+/* the reference's options over the last G-buffer: its normals go to the
+   same-face test (tb_ref_options.raster_normals) */
+static inline tb_ref_options gt_ref_options(const gt_env *e) {
+    tb_ref_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.raster_normals = e->normals;
+    return opt;
+}
+
 /* The exact reference of a sun over the last G-buffer (its raster depth
-   decides the silhouettes): 1 lit, 0 shadowed, < 0 not counted
+   and normals decide the silhouettes): 1 lit, 0 shadowed, < 0 not counted
    (TB_VIS_BACKGROUND, TB_VIS_BACKFACING, TB_VIS_SILHOUETTE). The counts go
    to e->ref_stats; SK_GL_TEST_REF_STATS=1 prints them. */
 static inline int gt_reference(gt_env *e, sk_vec3 light_dir, float *vis) {
     tb_view v;
     tb_light l = gt_sun(light_dir);
+    tb_ref_options opt = gt_ref_options(e);
     const char *pr = getenv("SK_GL_TEST_REF_STATS");
     int r;
     v.inv_view_proj = e->inv_vp;
     v.width = e->w;
     v.height = e->h;
-    r = tb_reference_trace_exact(e->ref, &v, e->depth, &l, NULL, vis, &e->ref_stats);
+    r = tb_reference_trace_exact(e->ref, &v, e->depth, &l, &opt, vis, &e->ref_stats);
     if (pr && *pr && *pr != '0')
         printf("gt_reference: %llu pixels, %llu covered, %llu background, %llu back-facing, %llu silhouette "
                "(%.4f%%)\n",
@@ -643,6 +653,7 @@ static inline gt_run_result gt_run(gt_env *e, const skgl_camera *cam, sk_vec3 li
 /* the reference for an area light: strata^2 stratified samples (>= 256) */
 static inline int gt_area_reference(gt_env *e, const skgl_area_light *light, int strata, float *vis) {
     tb_view v;
+    tb_ref_options opt;
     tb_light l;
     memset(&l, 0, sizeof l);
     l.type = TB_LIGHT_RECT;
@@ -653,7 +664,8 @@ static inline int gt_area_reference(gt_env *e, const skgl_area_light *light, int
     v.inv_view_proj = e->inv_vp;
     v.width = e->w;
     v.height = e->h;
-    return tb_reference_trace_exact(e->ref, &v, e->depth, &l, NULL, vis, NULL);
+    opt = gt_ref_options(e);
+    return tb_reference_trace_exact(e->ref, &v, e->depth, &l, &opt, vis, NULL);
 }
 
 /* ---- closed-form cases (tb_closed_form.h) ------------------------------- */
@@ -703,7 +715,8 @@ static inline skgl_camera gt_cf_sun_camera(float height, sk_vec3 dir, int w, int
    G-buffer, with its raster depth; stats may be NULL */
 static inline int gt_reference_exact(gt_env *e, const tb_light *l, float *vis, tb_ref_stats *stats) {
     tb_view v = gt_view(e);
-    return tb_reference_trace_exact(e->ref, &v, e->depth, l, NULL, vis, stats);
+    tb_ref_options opt = gt_ref_options(e);
+    return tb_reference_trace_exact(e->ref, &v, e->depth, l, &opt, vis, stats);
 }
 
 /* Into truth the closed form (tb_cf_visibility) of light l over the last

@@ -64,26 +64,29 @@ typedef struct method {
     const char *name;
     skgl_technique technique;
     int resolution, cascades, stable, analyze;
+    int pool;                 /* RMSM: desc.rmsm_pool_pages (0: the default 24) */
 } method;
 
 static const method methods[] = {
-    {"standard 2048", SKGL_STANDARD, 2048, 1, 0, 0},
-    {"standard 4096", SKGL_STANDARD, 4096, 1, 0, 0},
-    {"pssm 4x1024", SKGL_PSSM, 1024, 4, 0, 0},
-    {"pssm-stable 4x1024", SKGL_PSSM, 1024, 4, 1, 0},
-    {"lispsm 2048", SKGL_LISPSM, 2048, 1, 0, 0},
-    {"psm 2048", SKGL_PSM, 2048, 1, 0, 0},
-    {"lspsm", SKGL_LSPSM, 2048, 0, 0, 0},
-    {"ferko max 4096", SKGL_FERKO, 4096, 1, 0, 1},
-    {"rmsm 16384", SKGL_RMSM, 16384, 1, 0, 1},
-    {"rmsm 65536", SKGL_RMSM, 65536, 1, 0, 1},
-    {"lspsm 1024", SKGL_LSPSM, 1024, 0, 0, 0},
+    {"standard 2048", SKGL_STANDARD, 2048, 1, 0, 0, 0},
+    {"standard 4096", SKGL_STANDARD, 4096, 1, 0, 0, 0},
+    {"pssm 4x1024", SKGL_PSSM, 1024, 4, 0, 0, 0},
+    {"pssm-stable 4x1024", SKGL_PSSM, 1024, 4, 1, 0, 0},
+    {"lispsm 2048", SKGL_LISPSM, 2048, 1, 0, 0, 0},
+    {"psm 2048", SKGL_PSM, 2048, 1, 0, 0, 0},
+    {"lspsm", SKGL_LSPSM, 2048, 0, 0, 0, 0},
+    {"ferko max 4096", SKGL_FERKO, 4096, 1, 0, 1, 0},
+    {"rmsm 16384", SKGL_RMSM, 16384, 1, 0, 1, 0},
+    {"rmsm 65536", SKGL_RMSM, 65536, 1, 0, 1, 0},
+    {"lspsm 1024", SKGL_LSPSM, 1024, 0, 0, 0, 0},
+    {"rmsm 65536 pool 48", SKGL_RMSM, 65536, 1, 0, 1, 48},
 };
 #define METHODS ((int)(sizeof methods / sizeof methods[0]))
 
 static skgl_shadow_desc method_desc(const method *m) {
     skgl_shadow_desc d = gt_shadow_desc(m->technique, m->resolution, m->cascades, m->stable);
     d.sync_readback = m->analyze;
+    d.rmsm_pool_pages = m->pool;
     return d;
 }
 
@@ -172,17 +175,19 @@ static void footprint_add(footprint *fp, const gt_env *e, const skgl_shadow *s, 
         }
 }
 
-/* covered pixels beyond 200 m that the reference calls lit while the
-   G-buffer's normal faces away from the sun: at a box's vertical edge the
-   rasterised face and the traced one differ (the same depth, so not a
-   silhouette), and every technique's mask calls the G-buffer's face its
-   own shadow (sk_shadow_map_visibility), wrong whatever the map holds */
-static double far_faced_away(const gt_env *e, const float *ref, sk_vec3 light) {
+/* covered pixels the reference calls lit while the G-buffer's normal faces
+   away from the sun. At a box's vertical edge the rasteriser may shade the
+   face turned from the sun while the pixel centre's ray meets the lit one
+   at the same depth; every technique's mask calls that face its own shadow
+   (sk_shadow_map_visibility) whatever its map holds, so the reference
+   leaves such pixels out (tb_ref_options.raster_normals, the same-face
+   test). With the flat faces of this scene none may remain. */
+static double lit_faced_away(const gt_env *e, const float *ref, sk_vec3 light) {
     double n = 0;
     size_t i;
     for (i = 0; i < e->n; i++) {
         const float *nn = e->normals + 3 * i;
-        if (tb_visibility_class(ref[i]) != 1 || gt_band_of(gt_view_depth(e, i)) != GT_BANDS - 1) continue;
+        if (tb_visibility_class(ref[i]) != 1) continue;
         n += nn[0] * light.x + nn[1] * light.y + nn[2] * light.z >= 0.0f;
     }
     return n;
@@ -197,7 +202,8 @@ static void print_band_px(const char *name, const gt_band_pool *p) {
 }
 
 /* method indices the checks name */
-enum { M_STD2048, M_STD4096, M_PSSM, M_PSSM_STABLE, M_LISPSM, M_PSM, M_LSPSM, M_FERKO, M_RMSM, M_RMSM64K, M_LSPSM1K };
+enum { M_STD2048, M_STD4096, M_PSSM, M_PSSM_STABLE, M_LISPSM, M_PSM, M_LSPSM, M_FERKO, M_RMSM, M_RMSM64K, M_LSPSM1K,
+       M_RMSM64K_POOL48 };
 #define FRAMES (TB_OPEN_WORLD_VIEWS * TB_OPEN_WORLD_SUNS)
 
 static int verbose(void) {
@@ -220,17 +226,23 @@ static int methods_filtered(void) {
 /* Every technique over every view and sun. Measured (Mesa 22.3 llvmpipe,
    320x180), pooled shadow-area error % and by band (0-10, 10-50, 50-200,
    200+ m), texels per frame:
-     standard 2048      11.95   9.25 19.84 14.75  5.15   4.2M
-     standard 4096       6.98   5.28 11.80  9.75  3.18  16.8M
-     pssm 4x1024         1.51   1.21  1.93  4.60  5.48   4.2M
-     pssm-stable 4x1024  1.40   0.99  2.03  5.39  4.27   4.2M
-     lispsm 2048         1.52   0.79  3.06  5.91  8.00   4.2M
-     psm 2048            3.16   2.05  5.62  9.13  9.53   4.2M
-     lspsm               1.23   1.03  1.45  4.00  3.83  27.3M
-     ferko max 4096      3.63   2.81  6.12  3.54  2.41  16.8M
-     rmsm 16384          2.30   1.93  3.30  3.13  2.63   3.2M
-     rmsm 65536          0.85   0.62  1.32  2.47  2.30   8.4M
-     lspsm 1024          3.05   2.54  4.25  5.64  4.49   6.8M
+     standard 2048      11.94   9.25 19.83 14.71  4.17   4.2M
+     standard 4096       6.97   5.28 11.79  9.71  2.20  16.8M
+     pssm 4x1024         1.50   1.21  1.92  4.56  4.50   4.2M
+     pssm-stable 4x1024  1.39   0.99  2.02  5.34  3.29   4.2M
+     lispsm 2048         1.52   0.79  3.05  5.86  7.24   4.2M
+     psm 2048            3.15   2.05  5.61  9.09  8.56   4.2M
+     lspsm               1.23   1.03  1.44  3.95  2.85  27.3M
+     ferko max 4096      3.62   2.81  6.12  3.49  1.43  16.8M
+     rmsm 16384          2.29   1.93  3.29  3.08  1.65   3.2M
+     rmsm 65536          0.84   0.62  1.31  2.42  1.32   8.4M
+     lspsm 1024          3.05   2.54  4.24  5.59  3.51   6.8M
+     rmsm 65536 pool 48  0.72   0.61  1.06  0.70  0.77  16.1M
+   (The reference leaves out the pixels at a box's edge where the
+   rasteriser shaded the face turned from the sun and the traced ray met
+   the lit one: 23 px over the 30 frames, 9 of them beyond 200 m, which
+   every technique got wrong. Counted, the 200+ m column read 5.15,
+   3.18, 5.48, 4.27, 8.00, 9.53, 3.83, 2.41, 2.63, 2.30 and 1.75.)
    LSPSM at 1024^2 a partition (1.6x PSSM 4x1024^2's texels: 6.5
    partitions a frame on average) has 2.0x PSSM's error, 2.1x in the
    0-10 m band: the partitions of the view's trapezoid (Tang et al. 2017,
@@ -239,7 +251,7 @@ static int methods_filtered(void) {
    6.5x the texels.
    The limit, the share of pixels one texel spans more than 1 / 2 / 4
    times: standard 2048 98.2 94.7 86.9%, 4096 94.7 86.9 70.1, PSSM 81.3
-   68.7 65.9, PSSM stable 89.0 72.2 67.7, LiSPSM 77.2 37.3 13.5, PSM 70.8
+   68.7 65.9, PSSM stable 83.4 69.1 66.5, LiSPSM 77.2 37.3 13.5, PSM 70.8
    44.4 25.4, FERKO 84.8 73.8 66.9.
    PSM before its casters became the hull of what can shadow the view
    (skgl__caster_hull; the whole scene box before): 10.22% pooled (0.86x
@@ -270,20 +282,15 @@ static int methods_filtered(void) {
    that too (stats.rmsm_band_finer), and a pool too short for the
    pixel-matched pages seeks the cap above a raised floor: band 6-9 in
    28 frames, 0 in 2. Pixels beyond 200 m (all shadow-area figures
-   there are of 913 reference shadow px, so 1% allows 9): 21 wrong at
-   65536^2 (30 before), 24 at 16384^2. 9 of them are no map's doing:
-   at a box's vertical edge the G-buffer holds the face turned from the
-   sun and the reference traces the lit one (the same depth, so not a
-   silhouette), and every technique's mask calls them shadowed
-   (standard 4096 too); the table prints their count. Of the other 12, 1
-   is a receiver 2 cm from its caster (a contact, inside the receiver's
-   4-ulp depth slack of ~12 cm at 500 m) and 11 sit on shadow edges,
-   res 0.05-0.73, where the cap is 9-35 cm (bands 6-8). With a 48^2
-   pool (band 9, level 0's ~4 cm texels everywhere; 16.1M texels, 4x
-   the memory) 16 remain (0.73%, 0.61 1.06 0.75 1.75), with 32^2 19
-   (0.76%, 12.8M): the 9 at box edges, that contact and 4-6 edges at
-   the depth buffer's precision (a float depth at 700 m is 3 cm along
-   the ray), so 1% beyond 200 m is out of reach of the map. */
+   there are of 911 reference shadow px, so 1% allows 9): 12 wrong at
+   65536^2, 15 at 16384^2 (21 and 24 while the reference counted the 9
+   box-edge pixels above). Of the 12, 1 is a receiver 2 cm from its
+   caster (a contact, inside the receiver's 4-ulp depth slack of ~12 cm
+   at 500 m) and 11 sit on shadow edges, res 0.05-0.73, where the 24^2
+   pool affords a cap of 9-35 cm (bands 6-8). A 48^2 pool (band 9, level
+   0's ~4 cm texels everywhere; 16.1M texels, 4x the memory) leaves 7
+   (0.77%): that contact and edges at the depth buffer's precision (a
+   float depth at 700 m is 3 cm along the ray). */
 static void test_open_world(void) {
     gt_env e;
     pool pools[METHODS];
@@ -312,7 +319,7 @@ static void test_open_world(void) {
             sk_vec3 light = ow_sun(v, s);
             f = v * TB_OPEN_WORLD_SUNS + s;
             if (gt_reference(&e, light, ref) != 0) { SK_CHECK_MSG(0, "reference"); continue; }
-            faced_away += far_faced_away(&e, ref, light);
+            faced_away += lit_faced_away(&e, ref, light);
             for (k = 0; k < METHODS; k++) {
                 const skgl_shadow_frame_stats *st;
                 pool one;
@@ -327,7 +334,7 @@ static void test_open_world(void) {
                 gt_band_pool_add(&pools[k].b, &e, ref, res);
                 gt_band_pool_add(&one.b, &e, ref, res);
                 pools[k].texels += st->texels;
-                if (k != M_LSPSM && k != M_LSPSM1K && k != M_RMSM && k != M_RMSM64K) footprint_add(&pools[k].fp, &e, sh[k], ref);
+                if (methods[k].technique != SKGL_LSPSM && methods[k].technique != SKGL_RMSM) footprint_add(&pools[k].fp, &e, sh[k], ref);
                 frame_err[k][f] = gt_pool_pct(one.b.wrong, one.b.shadow);
                 if (getenv("SK_GL_TEST_IMAGES")) {
                     char nm[96];
@@ -350,10 +357,10 @@ static void test_open_world(void) {
     for (k = 0; k < METHODS; k++)
         if (method_selected(k)) print_pool(methods[k].name, &pools[k]);
     printf("PSM: largest slide %.1f m; FERKO: %d of %d frames below its cap\n", max_slide, ferko_below_cap, FRAMES);
-    for (k = M_RMSM; k <= M_RMSM64K; k++)
-        if (method_selected(k)) print_band_px(methods[k].name, &pools[k].b);
-    printf("beyond 200 m, %.0f px the reference calls lit face away from the sun in the G-buffer (a box's edge)\n",
-           faced_away);
+    for (k = 0; k < METHODS; k++)
+        if (method_selected(k) && methods[k].technique == SKGL_RMSM) print_band_px(methods[k].name, &pools[k].b);
+    SK_CHECK_MSG(faced_away == 0, "%.0f px the reference calls lit face away from the sun in the G-buffer",
+                 faced_away);
     for (k = 0; k < METHODS; k++) SK_CHECK_MSG(pools[k].failed == 0, "%s: %d frames failed", methods[k].name,
                                                pools[k].failed);
     if (!methods_filtered()) {
@@ -398,27 +405,43 @@ static void test_open_world(void) {
     if (method_selected(M_RMSM) && method_selected(M_RMSM64K)) {
         /* RMSM's pages capped in world size, and a level finer than the
            pixel, where the pool holds them (desc.rmsm_band_pages): 50-200 m
-           3.13% at 16384^2 (7.90% pixel-matched, 22.78% with the area's
-           square root) and 2.47% at 65536^2 (4.76% when every band had to
+           3.08% at 16384^2 (7.90% pixel-matched, 22.78% with the area's
+           square root) and 2.42% at 65536^2 (4.76% when every band had to
            go a level finer); the error falls as the virtual map grows,
-           pooled (65536^2 0.85%, 0.37x 16384^2's 2.30%; 1.09%, 0.47x, so)
-           and beyond 200 m (2.30%, 21 of 913 px, against 2.63%, 24 px;
-           3.29%, 30 px, so; 9.97% at both pixel-matched; 34.28% with the
-           level from the area). Beyond 200 m less the 9 px at box edges no
-           map can help (far_faced_away): 12 px, 1.31% (2.30% so). Bounds
-           about 1.25x, the 200+ m ones 4 px over the measurement */
+           pooled (65536^2 0.84%, 0.37x 16384^2's 2.29%; 1.09%, 0.47x, so)
+           and beyond 200 m (1.32%, 12 of 911 px, against 1.65%, 15 px;
+           2.30% and 2.63% when the reference still counted the box edges
+           the same-face test leaves out; 9.97% at both pixel-matched; 34.28%
+           with the level from the area). Bounds about 1.25x, the 200+ m
+           ones 4 px over the measurement */
         double rmsm = gt_pool_pct(pools[M_RMSM].b.wrong, pools[M_RMSM].b.shadow);
         double rmsm64 = gt_pool_pct(pools[M_RMSM64K].b.wrong, pools[M_RMSM64K].b.shadow);
         double rmsm_mid = gt_pool_pct(pools[M_RMSM].b.band_wrong[2], pools[M_RMSM].b.band_shadow[2]);
         double mid64 = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[2], pools[M_RMSM64K].b.band_shadow[2]);
         double far16 = gt_pool_pct(pools[M_RMSM].b.band_wrong[3], pools[M_RMSM].b.band_shadow[3]);
         double far64 = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[3], pools[M_RMSM64K].b.band_shadow[3]);
-        double far64_maps = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[3] - faced_away, pools[M_RMSM64K].b.band_shadow[3]);
         SK_CHECK_MSG(rmsm_mid <= 4.0 && mid64 <= 3.1, "RMSM 50-200 m: 16384^2 %.2f%%, 65536^2 %.2f%%", rmsm_mid, mid64);
         SK_CHECK_MSG(rmsm64 <= 0.42 * rmsm, "RMSM 65536^2 %.2f%%, 16384^2 %.2f%%", rmsm64, rmsm);
-        SK_CHECK_MSG(far64 < far16 && far16 <= 3.1 && far64 <= 2.75 && far64_maps <= 1.75,
-                     "RMSM beyond 200 m: 16384^2 %.2f%%, 65536^2 %.2f%% (%.2f%% less the box edges)", far16, far64,
-                     far64_maps);
+        SK_CHECK_MSG(far64 < far16 && far16 <= 2.1 && far64 <= 1.75,
+                     "RMSM beyond 200 m: 16384^2 %.2f%%, 65536^2 %.2f%%", far16, far64);
+    }
+    if (method_selected(M_RMSM64K) && method_selected(M_RMSM64K_POOL48)) {
+        /* the far field near the limit: a 65536^2 virtual map whose pool
+           holds the pages it asks for (48^2 = 2304 pages of 128^2, 156 MB;
+           the default 24^2 overflows beyond 50 m, its bands settle at
+           9-35 cm texels there): pooled 0.72%, 50-200 m 0.70% (2.42% at
+           24^2), beyond 200 m 0.77%, 7 of 911 px (12 at 24^2): one
+           receiver 2 cm under its caster, inside its 4-ulp depth slack
+           at 500 m, the rest on shadow edges within a float depth's
+           precision (3 cm along the ray at 700 m). The issue's goal, at
+           most 1% beyond 200 m, is the bound (9 px); 50-200 m at most 1%
+           too (129 px, measured 91) */
+        double mid48 = gt_pool_pct(pools[M_RMSM64K_POOL48].b.band_wrong[2], pools[M_RMSM64K_POOL48].b.band_shadow[2]);
+        double far48 = gt_pool_pct(pools[M_RMSM64K_POOL48].b.band_wrong[3], pools[M_RMSM64K_POOL48].b.band_shadow[3]);
+        double far64 = gt_pool_pct(pools[M_RMSM64K].b.band_wrong[3], pools[M_RMSM64K].b.band_shadow[3]);
+        SK_CHECK_MSG(far48 <= 1.0 && far48 < far64 && mid48 <= 1.0,
+                     "RMSM 65536^2, 48^2 pool: 50-200 m %.2f%%, beyond 200 m %.2f%% (%.2f%% with 24^2)", mid48,
+                     far48, far64);
     }
     for (f = 0; f < FRAMES; f++) {
         /* LiSPSM never loses to the plain map in any frame: measured at

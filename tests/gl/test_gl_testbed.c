@@ -93,6 +93,42 @@ static void test_reference_points(void) {
    partition the image and match the pixels it returns; its silhouette
    pixels (raster and traced surfaces differ) lie on the box's outline and
    the ground's far edge only: fewer than 1% of the image. */
+/* The same-face test (tb_ref_options.raster_normals): with the G-buffer's
+   own normals a pixel changes only by becoming TB_VIS_SILHOUETTE (the box's
+   edges: measured 0 to a few pixels); with the normals of the upward faces
+   (ground, box top) turned to +z every such pixel is left out, the others
+   are as before. vis: the trace without normals. */
+static void same_face_rule(const tb_reference *ref, const tb_view *view, const float *depth, const float *nrm,
+                           const tb_light *sun, const float *vis) {
+    size_t n = (size_t)view->width * (size_t)view->height, i;
+    float *vn = (float *)malloc(sizeof(float) * n), *turned = (float *)malloc(sizeof(float) * 3 * n);
+    long changed = 0, other = 0, up = 0, up_kept = 0, rest_changed = 0;
+    tb_ref_options opt;
+    memset(&opt, 0, sizeof opt);
+    if (!vn || !turned) { SK_CHECK(0); free(vn); free(turned); return; }
+    opt.raster_normals = nrm;
+    SK_CHECK(tb_reference_trace_exact(ref, view, depth, sun, &opt, vn, NULL) == 0);
+    for (i = 0; i < n; i++)
+        if (vn[i] != vis[i]) { changed++; other += vn[i] != TB_VIS_SILHOUETTE; }
+    memcpy(turned, nrm, sizeof(float) * 3 * n);
+    for (i = 0; i < n; i++)
+        if (nrm[3 * i + 1] > 0.9f) { turned[3 * i] = 0.0f; turned[3 * i + 1] = 0.0f; turned[3 * i + 2] = 1.0f; }
+    opt.raster_normals = turned;
+    SK_CHECK(tb_reference_trace_exact(ref, view, depth, sun, &opt, vn, NULL) == 0);
+    for (i = 0; i < n; i++) {
+        if (!(depth[i] < 1.0f)) continue;
+        if (nrm[3 * i + 1] > 0.9f) { up++; up_kept += vn[i] != TB_VIS_SILHOUETTE; }
+        else rest_changed += vn[i] != vis[i] && vn[i] != TB_VIS_SILHOUETTE;
+    }
+    printf("same-face test: %ld px left out with the G-buffer's normals (%ld otherwise changed); upward faces "
+           "turned: %ld of %ld kept, %ld others changed\n", changed, other, up_kept, up, rest_changed);
+    SK_CHECK_MSG(other == 0 && changed * 200 < (long)n, "%ld changed, %ld not to silhouette", changed, other);
+    SK_CHECK_MSG(up > 1000 && up_kept == 0 && rest_changed == 0, "upward %ld, kept %ld, others changed %ld", up,
+                 up_kept, rest_changed);
+    free(vn);
+    free(turned);
+}
+
 static void gbuffer_reference(int exact) {
     const int W = 160, H = 90;
     char err[512] = "";
@@ -198,6 +234,7 @@ static void gbuffer_reference(int exact) {
         SK_CHECK_MSG(stats.silhouette * 100 < stats.pixels, "%llu silhouette pixels",
                      (unsigned long long)stats.silhouette);
         SK_CHECK(stats.backfacing >= (uint64_t)side);
+        same_face_rule(ref, &view, depth, nrm, &sun, vis);
     }
 done:
     tb_reference_destroy(ref);
