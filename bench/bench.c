@@ -1519,6 +1519,7 @@ typedef struct room_bench {
     int reps;              /* timed passes after the warm-up */
     FILE *csv;
     float *depth, *mask_px;
+    float *rgba, *nrm;     /* the G-buffer's normals read back (the reference's same-face test) */
     tb_scene s;
     tb_gl_mesh mesh;
     tb_reference *ref;
@@ -1529,6 +1530,8 @@ typedef struct room_bench {
 
 static void room_bench_close(room_bench *R) {
     free(R->refv);
+    free(R->rgba);
+    free(R->nrm);
     tb_reference_destroy(R->ref);
     if (R->mesh.vao) tb_gl_mesh_destroy(&R->B->gl, &R->mesh);
     tb_scene_free(&R->s);
@@ -1550,8 +1553,10 @@ static int room_bench_open(room_bench *R, bench_gl *B, const char *scene, int (*
     R->depth = depth;
     R->mask_px = mask_px;
     R->refv = (float *)malloc(sizeof(float) * BENCH_W * BENCH_H * (size_t)R->nlights);
+    R->rgba = (float *)malloc(sizeof(float) * 4 * BENCH_W * BENCH_H);
+    R->nrm = (float *)malloc(sizeof(float) * 3 * BENCH_W * BENCH_H);
     tb_scene_init(&R->s);
-    if (!R->refv || build(&R->s) != 0 || tb_gl_mesh_create(&B->gl, &R->mesh, &R->s) != 0 ||
+    if (!R->refv || !R->rgba || !R->nrm || build(&R->s) != 0 || tb_gl_mesh_create(&B->gl, &R->mesh, &R->s) != 0 ||
         !(R->ref = tb_reference_create(&R->s))) {
         fprintf(stderr, "bench: %s scene setup failed: its rows skipped\n", scene);
         room_bench_close(R);
@@ -1583,7 +1588,9 @@ static int room_view_open(room_bench *R, room_view *V, const char *name, const f
                           const sk_vec3 *lp, const float *range) {
     bench_gl *B = R->B;
     tb_light L;
-    int l, bad;
+    tb_ref_options opt;
+    size_t i;
+    int l, k, bad;
     memset(V, 0, sizeof *V);
     snprintf(V->bv.name, sizeof V->bv.name, "%s", name);
     V->bv.eye = v3(eye[0], eye[1], eye[2]);
@@ -1591,7 +1598,8 @@ static int room_view_open(room_bench *R, room_view *V, const char *name, const f
     finish_view(&V->bv, &R->s.bounds);
     if (tb_gl_fbo_create(&B->gl, &V->gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0 ||
         tb_gl_gbuffer_render(&B->gl, &B->gb, &R->mesh, &V->gbuf, &V->bv.view_proj) != 0 ||
-        tb_gl_read_depth(&B->gl, V->gbuf.fbo, BENCH_W, BENCH_H, R->depth) != 0) {
+        tb_gl_read_depth(&B->gl, V->gbuf.fbo, BENCH_W, BENCH_H, R->depth) != 0 ||
+        tb_gl_read_rgba_float(&B->gl, V->gbuf.fbo, BENCH_W, BENCH_H, R->rgba) != 0) {
         fprintf(stderr, "bench: %s view %s: G-buffer failed\n", R->scene, name);
         if (V->gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &V->gbuf);
         return -1;
@@ -1599,12 +1607,16 @@ static int room_view_open(room_bench *R, room_view *V, const char *name, const f
     V->tv.width = BENCH_W;
     V->tv.height = BENCH_H;
     bad = !sk_mat4_inverse(V->bv.view_proj, &V->tv.inv_view_proj);
+    for (i = 0; i < (size_t)BENCH_W * BENCH_H; i++)
+        for (k = 0; k < 3; k++) R->nrm[3 * i + k] = R->rgba[4 * i + k];
+    memset(&opt, 0, sizeof opt);
+    opt.raster_normals = R->nrm;
     for (l = 0; l < R->nlights && !bad; l++) {
         memset(&L, 0, sizeof L);
         L.type = TB_LIGHT_POINT;
         L.position = V->lp[l] = lp[l];
         L.range = V->range[l] = range[l];
-        bad = tb_reference_trace_exact(R->ref, &V->tv, R->depth, &L, NULL, R->refv + (size_t)l * BENCH_W * BENCH_H,
+        bad = tb_reference_trace_exact(R->ref, &V->tv, R->depth, &L, &opt, R->refv + (size_t)l * BENCH_W * BENCH_H,
                                        NULL) != 0;
     }
     if (bad) {

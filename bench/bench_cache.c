@@ -304,6 +304,7 @@ typedef struct bench {
     tb_gl_fbo gbuf;
     int wall;                  /* 1: time by the wall clock between glFinish calls */
     float *depth, *ref_dir, *ref_point, *mask_px[NTECH][NMODE];
+    float *rgba, *nrm;             /* the G-buffer's normals (the reference's same-face test) */
 } bench;
 
 
@@ -431,17 +432,22 @@ static int render_one(bench *B, lights *L, int t, int m, const skgl_camera *cam,
 static int prepare_frame(bench *B, const tb_gl_mesh *mesh, const tb_reference *ref, const sk_mat4 *vp,
                          sk_vec3 light_dir, const walk_path *wp) {
     tb_light L;
+    size_t i;
+    int k;
     if (tb_gl_gbuffer_render(&B->g.gl, &B->g.gb, mesh, &B->gbuf, vp) != 0) return -1;
     if (tb_gl_read_depth(&B->g.gl, B->gbuf.fbo, CW, CH, B->depth) != 0) return -1;
+    if (tb_gl_read_rgba_float(&B->g.gl, B->gbuf.fbo, CW, CH, B->rgba) != 0) return -1;
+    for (i = 0; i < (size_t)CW * CH; i++)
+        for (k = 0; k < 3; k++) B->nrm[3 * i + k] = B->rgba[4 * i + k];
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_DIRECTIONAL;
     L.direction = light_dir;
-    if (bench_trace(ref, vp, B->depth, NULL, &L, B->ref_dir) != 0) return -1;
+    if (bench_trace(ref, vp, B->depth, B->nrm, &L, B->ref_dir) != 0) return -1;
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_POINT;
     L.position = wp->point_pos;
     L.range = wp->point_range;
-    return bench_trace(ref, vp, B->depth, NULL, &L, B->ref_point);
+    return bench_trace(ref, vp, B->depth, B->nrm, &L, B->ref_point);
 }
 
 /* light (t, m)'s mask of this frame into B->mask_px[t][m]; 0 ok */
@@ -922,12 +928,14 @@ int main(int argc, char **argv) {
     B.depth = (float *)malloc(sizeof(float) * CW * CH);
     B.ref_dir = (float *)malloc(sizeof(float) * CW * CH);
     B.ref_point = (float *)malloc(sizeof(float) * CW * CH);
+    B.rgba = (float *)malloc(sizeof(float) * 4 * CW * CH);
+    B.nrm = (float *)malloc(sizeof(float) * 3 * CW * CH);
     for (t = 0; t < NTECH; t++)
         for (m = 0; m < NMODE; m++) {
             B.mask_px[t][m] = (float *)malloc(sizeof(float) * CW * CH);
             if (!B.mask_px[t][m]) status = 1;
         }
-    if (status || !B.depth || !B.ref_dir || !B.ref_point) {
+    if (status || !B.depth || !B.ref_dir || !B.ref_point || !B.rgba || !B.nrm) {
         fprintf(stderr, "bench-cache: out of memory\n");
         status = 1;
         goto done;
@@ -980,6 +988,8 @@ done:
     free(B.depth);
     free(B.ref_dir);
     free(B.ref_point);
+    free(B.rgba);
+    free(B.nrm);
     for (t = 0; t < NTECH; t++)
         for (m = 0; m < NMODE; m++) free(B.mask_px[t][m]);
     if (B.gbuf.fbo) tb_gl_fbo_destroy(&B.g.gl, &B.gbuf);

@@ -25,6 +25,7 @@ struct tb_reference {
     RTCScene scene;
     double diagonal;
     float *pos;              /* copy of the vertex positions (exact method) */
+    float *nrm;              /* copy of the vertex normals (the same-face test), NULL without */
     unsigned *idx;           /* copy of the triangle indices */
     unsigned tri_count;
     unsigned vertex_count;
@@ -88,6 +89,15 @@ tb_reference *tb_reference_create(const tb_scene *s) {
     }
     memcpy(r->pos, s->positions, (size_t)s->vertex_count * 3 * sizeof(float));
     memcpy(r->idx, s->indices, (size_t)r->tri_count * 3 * sizeof(unsigned));
+    if (s->normals) {
+        r->nrm = (float *)malloc((size_t)s->vertex_count * 3 * sizeof(float));
+        if (!r->nrm) {
+            rtcReleaseGeometry(g);
+            tb_reference_destroy(r);
+            return NULL;
+        }
+        memcpy(r->nrm, s->normals, (size_t)s->vertex_count * 3 * sizeof(float));
+    }
     rtcCommitGeometry(g);
     rtcAttachGeometry(r->scene, g);
     rtcReleaseGeometry(g);
@@ -105,6 +115,7 @@ void tb_reference_destroy(tb_reference *r) {
     if (r->scene) rtcReleaseScene(r->scene);
     if (r->device) rtcReleaseDevice(r->device);
     free(r->pos);
+    free(r->nrm);
     free(r->idx);
     free(r->uv);
     free(r->alpha);
@@ -645,14 +656,33 @@ static double tb_window_depth_(const double vp[16], const double p[3]) {
     return 0.5 * (z / w) + 0.5;
 }
 
-/* the rasterised normal r (any sign, any length; 0 on the background)
-   lies within TB_REF_SAME_FACE_COS of the traced unit normal n, either way
-   round (point 2) */
-static int tb_same_face_(const float *r, const double n[3]) {
-    double rn[3];
-    rn[0] = r[0]; rn[1] = r[1]; rn[2] = r[2];
-    if (!tb_normalize_(rn)) return 1;
-    return fabs(tb_dot_(rn, n)) >= TB_REF_SAME_FACE_COS;
+/* the rasterised normal g (any sign, any length; 0 or not finite: no test)
+   and the traced unit normal t agree on the face: |cos| >=
+   TB_REF_SAME_FACE_COS */
+static int tb_normals_agree_(const float *g, const double t[3]) {
+    double gn[3];
+    gn[0] = g[0]; gn[1] = g[1]; gn[2] = g[2];
+    if (!tb_normalize_(gn)) return 1;
+    return fabs(tb_dot_(gn, t)) >= TB_REF_SAME_FACE_COS;
+}
+
+/* The same-face test (header, point 2): the G-buffer's normal g is the
+   traced triangle prim's geometric normal n (a G-buffer of face normals,
+   as the instanced scenes draw) or its vertex normals interpolated at
+   Embree's barycentrics (u, v weigh vertices 1 and 2; a G-buffer of
+   shading normals, smooth meshes included), within TB_REF_SAME_FACE_COS
+   of either. */
+static int tb_same_face_(const tb_reference *r, unsigned prim, float u, float v, const double n[3],
+                         const float *g) {
+    double w[3], m[3] = {0.0, 0.0, 0.0};
+    int k;
+    if (tb_normals_agree_(g, n) || !r->nrm) return 1;
+    w[0] = 1.0 - (double)u - (double)v; w[1] = u; w[2] = v;
+    for (k = 0; k < 3; k++) {
+        const float *f = r->nrm + 3 * (size_t)r->idx[3 * (size_t)prim + (size_t)k];
+        m[0] += w[k] * f[0]; m[1] += w[k] * f[1]; m[2] += w[k] * f[2];
+    }
+    return tb_normalize_(m) && tb_normals_agree_(g, m);
 }
 
 /* one pixel of the exact method (header, points 1-5) */
@@ -706,7 +736,8 @@ static float tb_exact_pixel_(const tb_job_ *j, int x, int y, size_t i) {
             double dt = tb_window_depth_(j->vp, p);
             if (!(fabs(dt - (double)dr) <= TB_REF_SAME_SURFACE_ULPS * ldexp(1.0, -24))) return TB_VIS_SILHOUETTE;
         }
-        if (j->raster_n && !tb_same_face_(j->raster_n + 3 * i, n)) return TB_VIS_SILHOUETTE;
+        if (j->raster_n && !tb_same_face_(j->ref, prim, rh.hit.u, rh.hit.v, n, j->raster_n + 3 * i))
+            return TB_VIS_SILHOUETTE;
     }
     return tb_shade_exact_(j, p, n, prim, (uint64_t)i);
 }

@@ -26,12 +26,16 @@
       the same surface when they differ by at most TB_REF_SAME_SURFACE_ULPS
       units of 2^-24 (one ulp of a depth in [0.5, 1), where perspective
       depth buffers hold nearly every pixel; see the value for the figures).
-      With opt->raster_normals (the G-buffer's normals) a pixel at the same
-      depth is a different surface too when the traced triangle's normal
-      and the rasterised one are more than TB_REF_SAME_FACE_COS apart: at a
-      box's edge the rasteriser may shade the face turned from the light
-      while the pixel centre's ray meets the lit face, and every technique's
-      mask calls that pixel its own shadow whatever its map holds.
+      With opt->raster_normals (the G-buffer's normals), the same-face
+      test: a pixel at the same depth is a different surface too when the
+      rasterised normal g is neither the traced triangle's geometric normal
+      nor its vertex normals interpolated at the hit (what a G-buffer of
+      face normals or of shading normals writes for that triangle):
+      |cos(g, either)| < TB_REF_SAME_FACE_COS. At a box's edge the
+      rasteriser may shade one face while the pixel centre's ray meets the
+      other, at the same depth; when one of them is turned from the light,
+      every technique's mask calls the pixel its own shadow whatever its
+      map holds.
 
    3. Facing. A receiver whose geometric normal faces away from the light
       (dot(n, to_light) <= 0; for a rect light: for all four corners, so for
@@ -132,10 +136,11 @@ extern "C" {
    are ones the depth buffer itself barely separates. Pixels excluded as
    silhouettes: 0.0004% pooled over those views (at most 1 pixel a view). */
 #define TB_REF_SAME_SURFACE_ULPS 16.0
-/* Exact method: same-face tolerance, the cosine of the angle between the
-   traced triangle's normal and the rasterised normal (point 2). The faces
-   of a box meet at 90 degrees (cosine 0); an interpolated vertex normal
-   stays well within 75 degrees of its own triangle's (cosine 0.25). */
+/* Exact method: same-face tolerance (point 2), |cos| of the angle between
+   the rasterised normal and the traced triangle's (geometric or
+   interpolated) one: 0.25, about 75.5 degrees. The faces of a box meet at
+   90 degrees (cosine 0); the G-buffer's normal for the traced triangle
+   itself differs from the test's only by RGBA16F rounding. */
 #define TB_REF_SAME_FACE_COS 0.25
 /* Exact method: default strata per axis for rect lights (point 5). The
    reference's own noise, mean |difference of two seeds| / sqrt 2 over the
@@ -222,8 +227,8 @@ typedef struct tb_ref_stats {
    triangle's plane, shadow rays from it with the float-error tnear bound
    and the receiver-plane filter. raster_depth: the window depth
    (width*height floats, row 0 at the bottom) the technique used, or NULL
-   (then no pixel is TB_VIS_SILHOUETTE). opt: only .threads is read (may be
-   NULL). vis: width*height floats. stats (may be NULL) gets the counts.
+   (then no pixel is TB_VIS_SILHOUETTE). opt (may be NULL): .threads, and
+   .raster_normals with raster_depth (the same-face test, point 2). vis: width*height floats. stats (may be NULL) gets the counts.
    0 ok, -1 bad arguments (NULL, sizes <= 0, unknown light type, a
    non-finite light, a zero sun direction, rect strata above
    TB_REF_MAX_STRATA, a non-finite or singular inv_view_proj). */

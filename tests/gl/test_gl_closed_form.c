@@ -357,8 +357,7 @@ static void test_area(void) {
     SK_CHECK(tb_cf_visibility(&cf, &v, &l, truth) == 0);
     {
         /* deterministic: one thread gives the same image as all of them */
-        tb_ref_options one;
-        memset(&one, 0, sizeof one);
+        tb_ref_options one = gt_ref_options(&e);
         one.threads = 1;
         l.seed = 2;
         SK_CHECK(tb_reference_trace_exact(e.ref, &v, e.depth, &l, &one, truth, NULL) == 0);
