@@ -1396,15 +1396,12 @@ static int prepare_view(bench_gl *B, const tb_gl_mesh *mesh, const bench_forest 
                         float *nrm) {
     tb_light L;
     size_t i, n = (size_t)BENCH_W * BENCH_H;
-    int k;
     if (tb_gl_fbo_create(&B->gl, &vd->gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0) return -1;
     if (forest ? bench_forest_gbuffer(B, forest, &vd->gbuf, &vd->v.view_proj) != 0
                : tb_gl_gbuffer_render(&B->gl, &B->gb, mesh, &vd->gbuf, &vd->v.view_proj) != 0)
         return -1;
     if (tb_gl_read_depth(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, depth) != 0) return -1;
-    if (tb_gl_read_rgba_float(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, rgba) != 0) return -1;
-    for (i = 0; i < n; i++)
-        for (k = 0; k < 3; k++) nrm[3 * i + k] = rgba[4 * i + k];
+    if (tb_gl_read_normals(&B->gl, vd->gbuf.fbo, BENCH_W, BENCH_H, rgba, nrm) != 0) return -1;
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_DIRECTIONAL;
     L.direction = light_dir;
@@ -1589,8 +1586,7 @@ static int room_view_open(room_bench *R, room_view *V, const char *name, const f
     bench_gl *B = R->B;
     tb_light L;
     tb_ref_options opt;
-    size_t i;
-    int l, k, bad;
+    int l, bad;
     memset(V, 0, sizeof *V);
     snprintf(V->bv.name, sizeof V->bv.name, "%s", name);
     V->bv.eye = v3(eye[0], eye[1], eye[2]);
@@ -1599,7 +1595,7 @@ static int room_view_open(room_bench *R, room_view *V, const char *name, const f
     if (tb_gl_fbo_create(&B->gl, &V->gbuf, BENCH_W, BENCH_H, TB_GL_COLOR_RGBA16F) != 0 ||
         tb_gl_gbuffer_render(&B->gl, &B->gb, &R->mesh, &V->gbuf, &V->bv.view_proj) != 0 ||
         tb_gl_read_depth(&B->gl, V->gbuf.fbo, BENCH_W, BENCH_H, R->depth) != 0 ||
-        tb_gl_read_rgba_float(&B->gl, V->gbuf.fbo, BENCH_W, BENCH_H, R->rgba) != 0) {
+        tb_gl_read_normals(&B->gl, V->gbuf.fbo, BENCH_W, BENCH_H, R->rgba, R->nrm) != 0) {
         fprintf(stderr, "bench: %s view %s: G-buffer failed\n", R->scene, name);
         if (V->gbuf.fbo) tb_gl_fbo_destroy(&B->gl, &V->gbuf);
         return -1;
@@ -1607,8 +1603,6 @@ static int room_view_open(room_bench *R, room_view *V, const char *name, const f
     V->tv.width = BENCH_W;
     V->tv.height = BENCH_H;
     bad = !sk_mat4_inverse(V->bv.view_proj, &V->tv.inv_view_proj);
-    for (i = 0; i < (size_t)BENCH_W * BENCH_H; i++)
-        for (k = 0; k < 3; k++) R->nrm[3 * i + k] = R->rgba[4 * i + k];
     memset(&opt, 0, sizeof opt);
     opt.raster_normals = R->nrm;
     for (l = 0; l < R->nlights && !bad; l++) {

@@ -432,13 +432,9 @@ static int render_one(bench *B, lights *L, int t, int m, const skgl_camera *cam,
 static int prepare_frame(bench *B, const tb_gl_mesh *mesh, const tb_reference *ref, const sk_mat4 *vp,
                          sk_vec3 light_dir, const walk_path *wp) {
     tb_light L;
-    size_t i;
-    int k;
     if (tb_gl_gbuffer_render(&B->g.gl, &B->g.gb, mesh, &B->gbuf, vp) != 0) return -1;
     if (tb_gl_read_depth(&B->g.gl, B->gbuf.fbo, CW, CH, B->depth) != 0) return -1;
-    if (tb_gl_read_rgba_float(&B->g.gl, B->gbuf.fbo, CW, CH, B->rgba) != 0) return -1;
-    for (i = 0; i < (size_t)CW * CH; i++)
-        for (k = 0; k < 3; k++) B->nrm[3 * i + k] = B->rgba[4 * i + k];
+    if (tb_gl_read_normals(&B->g.gl, B->gbuf.fbo, CW, CH, B->rgba, B->nrm) != 0) return -1;
     memset(&L, 0, sizeof L);
     L.type = TB_LIGHT_DIRECTIONAL;
     L.direction = light_dir;

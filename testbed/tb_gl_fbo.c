@@ -146,6 +146,16 @@ int tb_gl_read_red(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *out
 int tb_gl_read_rgba_float(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *out) {
     return tb_read_(gl, fbo, 1, w, h, TB_GL_RGBA, TB_GL_FLOAT, out);
 }
+int tb_gl_read_normals(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *rgba, float *out) {
+    size_t i, n = (size_t)w * (size_t)h;
+    if (tb_gl_read_rgba_float(gl, fbo, w, h, rgba) != 0) return -1;
+    for (i = 0; i < n; i++) {
+        out[3 * i] = rgba[4 * i];
+        out[3 * i + 1] = rgba[4 * i + 1];
+        out[3 * i + 2] = rgba[4 * i + 2];
+    }
+    return 0;
+}
 
 static int tb_read_texture_(const tb_gl_funcs *gl, unsigned tex, int depth, int w, int h,
                             float *out, unsigned color_fmt) {

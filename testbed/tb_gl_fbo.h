@@ -42,6 +42,9 @@ int tb_gl_read_rgba8(const tb_gl_funcs *gl, unsigned fbo, int w, int h, unsigned
 int tb_gl_read_rgb8(const tb_gl_funcs *gl, unsigned fbo, int w, int h, unsigned char *out);
 int tb_gl_read_red(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *out);    /* R of attachment 0 */
 int tb_gl_read_rgba_float(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *out);
+/* the G-buffer's normals: RGB of attachment 0, 3 floats a pixel into out,
+   read through rgba (4 floats a pixel, the caller's scratch) */
+int tb_gl_read_normals(const tb_gl_funcs *gl, unsigned fbo, int w, int h, float *rgba, float *out);
 /* red channel / depth of any 2D texture (through a temporary FBO) */
 int tb_gl_read_texture_red(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out);
 int tb_gl_read_texture_rgba_float(const tb_gl_funcs *gl, unsigned tex, int w, int h, float *out);  /* 4 per texel */

@@ -676,7 +676,8 @@ static int tb_same_face_(const tb_reference *r, unsigned prim, float u, float v,
                          const float *g) {
     double w[3], m[3] = {0.0, 0.0, 0.0};
     int k;
-    if (tb_normals_agree_(g, n) || !r->nrm) return 1;
+    if (tb_normals_agree_(g, n)) return 1;
+    if (!r->nrm) return 0;
     w[0] = 1.0 - (double)u - (double)v; w[1] = u; w[2] = v;
     for (k = 0; k < 3; k++) {
         const float *f = r->nrm + 3 * (size_t)r->idx[3 * (size_t)prim + (size_t)k];

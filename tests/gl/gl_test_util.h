@@ -198,17 +198,11 @@ static inline int gt_env_init_named(gt_env *e, const char *name, int w, int h) {
 /* G-buffer of this camera: e->depth, e->normals (and the textures in e->gbuf) */
 static inline int gt_gbuffer(gt_env *e, const skgl_camera *cam) {
     sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
-    size_t i;
     if (!sk_mat4_inverse(vp, &e->inv_vp)) return -1;
     e->view = cam->view;
     if (tb_gl_gbuffer_render(&e->gl, &e->gb, &e->mesh, &e->gbuf, &vp) != 0) return -1;
     if (tb_gl_read_depth(&e->gl, e->gbuf.fbo, e->w, e->h, e->depth) != 0) return -1;
-    if (tb_gl_read_rgba_float(&e->gl, e->gbuf.fbo, e->w, e->h, e->rgba) != 0) return -1;
-    for (i = 0; i < e->n; i++) {
-        e->normals[3 * i] = e->rgba[4 * i];
-        e->normals[3 * i + 1] = e->rgba[4 * i + 1];
-        e->normals[3 * i + 2] = e->rgba[4 * i + 2];
-    }
+    if (tb_gl_read_normals(&e->gl, e->gbuf.fbo, e->w, e->h, e->rgba, e->normals) != 0) return -1;
     return 0;
 }
 

@@ -171,19 +171,12 @@ static void forest_free(forest *f) {
 static int forest_gbuffer(forest *f, const skgl_camera *cam) {
     gt_env *e = &f->e;
     sk_mat4 vp = sk_mat4_mul(cam->proj, cam->view);
-    size_t i;
     if (!sk_mat4_inverse(vp, &e->inv_vp)) return -1;
     e->view = cam->view;
     if (tb_gl_gbuffer_render_instanced(&e->gl, &e->gb, &f->ground, &f->gb_trees, &f->trees, &e->gbuf, &vp) != 0)
         return -1;
     if (tb_gl_read_depth(&e->gl, e->gbuf.fbo, e->w, e->h, e->depth) != 0) return -1;
-    if (tb_gl_read_rgba_float(&e->gl, e->gbuf.fbo, e->w, e->h, e->rgba) != 0) return -1;
-    for (i = 0; i < e->n; i++) {
-        e->normals[3 * i] = e->rgba[4 * i];
-        e->normals[3 * i + 1] = e->rgba[4 * i + 1];
-        e->normals[3 * i + 2] = e->rgba[4 * i + 2];
-    }
-    return 0;
+    return tb_gl_read_normals(&e->gl, e->gbuf.fbo, e->w, e->h, e->rgba, e->normals);
 }
 
 static skgl_camera forest_camera(int view) {
